@@ -1,0 +1,45 @@
+//! `morpho convert IN -o OUT`: format conversion by extension.
+
+use super::check_not_input;
+use crate::report::Report;
+use crate::Failure;
+use morpho::io::{self, read_any, Data, Encoding, Format};
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Input file.
+    pub input: PathBuf,
+    /// Output file; its extension chooses the format.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Write PLY/STL as ASCII instead of binary.
+    #[arg(long)]
+    pub ascii: bool,
+    /// Write binary PLY big endian.
+    #[arg(long, conflicts_with = "ascii")]
+    pub big_endian: bool,
+}
+
+pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
+    check_not_input(&args.output, &[&args.input])?;
+    Format::of(&args.output)?;
+    let enc = if args.ascii {
+        Encoding::Ascii
+    } else if args.big_endian {
+        Encoding::BinaryBigEndian
+    } else {
+        Encoding::BinaryLittleEndian
+    };
+    let data = report.time("read", || read_any(&args.input))?;
+    let out = &args.output;
+    report.time("write", || match &data {
+        Data::Mesh(m) => io::write_mesh(out, m, enc),
+        Data::Points(p) => io::write_points(out, p),
+        Data::Shapes(s) => io::write_shapes2(out, s),
+        Data::Volume(v) => io::write_volume(out, v),
+    })?;
+    report.set("input", args.input.display().to_string());
+    report.set("output", out.display().to_string());
+    Ok(0)
+}

@@ -1,0 +1,117 @@
+//! `morpho`: the command-line tool over the morpho library.
+//!
+//! A thin layer: parse arguments (clap), call the library, write outputs atomically, print the
+//! one-line `error: …` on failure. Exit codes: 0 success, 2 bad usage or bad input, 1 anything else.
+
+mod cmd;
+mod report;
+
+use clap::{Parser, Subcommand};
+use report::Report;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "morpho",
+    version,
+    about = "Computational morphology: shapes from points, samples and volumes"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+    /// Write machine-readable figures (counts, validity, timings) to this JSON file.
+    #[arg(long, global = true, value_name = "FILE.json")]
+    report: Option<PathBuf>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run every pipeline on generated sample data and write a gallery (index.html + images).
+    Demo(cmd::demo::Args),
+    /// Show what a file holds: counts, bounding box, topology.
+    Info(cmd::info::Args),
+    /// Convert between file formats (by extension).
+    Convert(cmd::convert::Args),
+    /// Draw points, polygons, graphs (SVG) or meshes and volume slices (PNG).
+    Render(cmd::render::Args),
+    /// Delaunay triangulation of 2D or 3D points.
+    Triangulate(cmd::triangulate::Args),
+}
+
+/// What a command returns on failure: the error and the exit code it deserves.
+pub struct Failure {
+    pub code: u8,
+    pub msg: String,
+}
+
+impl From<morpho::Error> for Failure {
+    fn from(e: morpho::Error) -> Self {
+        Failure {
+            code: if e.is_input_error() { 2 } else { 1 },
+            msg: e.to_string(),
+        }
+    }
+}
+
+impl Failure {
+    /// A usage error (exit 2).
+    pub fn usage(msg: impl Into<String>) -> Self {
+        Failure {
+            code: 2,
+            msg: msg.into(),
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+                let _ = e.print();
+                return ExitCode::SUCCESS;
+            }
+            let msg = e.to_string();
+            let first = msg
+                .lines()
+                .next()
+                .unwrap_or("bad usage")
+                .trim_start_matches("error: ");
+            eprintln!("error: {first}");
+            eprintln!("(see 'morpho --help')");
+            return ExitCode::from(2);
+        }
+    };
+    let name = match &cli.command {
+        Command::Demo(_) => "demo",
+        Command::Info(_) => "info",
+        Command::Convert(_) => "convert",
+        Command::Render(_) => "render",
+        Command::Triangulate(_) => "triangulate",
+    };
+    let mut report = Report::new(name);
+    let result = match cli.command {
+        Command::Demo(a) => cmd::demo::run(a, &mut report),
+        Command::Info(a) => cmd::info::run(a, &mut report),
+        Command::Convert(a) => cmd::convert::run(a, &mut report),
+        Command::Render(a) => cmd::render::run(a, &mut report),
+        Command::Triangulate(a) => cmd::triangulate::run(a, &mut report),
+    };
+    let code = match result {
+        Ok(code) => code,
+        Err(f) => {
+            eprintln!("error: {}", f.msg);
+            report.set("error", f.msg.clone());
+            f.code
+        }
+    };
+    if let Some(path) = &cli.report {
+        if let Err(e) = report.save(path) {
+            eprintln!("error: {e}");
+            return ExitCode::from(if code == 0 { 1 } else { code });
+        }
+    }
+    ExitCode::from(code)
+}

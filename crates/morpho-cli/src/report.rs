@@ -1,0 +1,78 @@
+//! The `--report FILE.json` figures: `command`, `version`, `elapsed_s`, `timings` and each
+//! command's own keys.
+
+use serde_json::{Map, Value};
+use std::path::Path;
+use std::time::Instant;
+
+/// Collects a command's figures and stage timings.
+pub struct Report {
+    start: Instant,
+    fields: Map<String, Value>,
+    timings: Map<String, Value>,
+}
+
+impl Report {
+    pub fn new(command: &str) -> Self {
+        let mut fields = Map::new();
+        fields.insert("command".into(), command.into());
+        fields.insert("version".into(), morpho::VERSION.into());
+        Report {
+            start: Instant::now(),
+            fields,
+            timings: Map::new(),
+        }
+    }
+    /// Sets a key.
+    pub fn set(&mut self, key: &str, v: impl Into<Value>) {
+        self.fields.insert(key.to_string(), v.into());
+    }
+    /// Runs `f`, adding its duration to the stage `stage` (`read`, `compute`, `write`).
+    pub fn time<T>(&mut self, stage: &str, f: impl FnOnce() -> T) -> T {
+        let t = Instant::now();
+        let r = f();
+        self.add_time(stage, t.elapsed().as_secs_f64());
+        r
+    }
+    /// Adds `dt` seconds to the stage `stage`.
+    pub fn add_time(&mut self, stage: &str, dt: f64) {
+        let prev = self
+            .timings
+            .get(stage)
+            .and_then(Value::as_f64)
+            .unwrap_or(0.0);
+        self.timings.insert(stage.to_string(), (prev + dt).into());
+    }
+    /// Seconds spent in `stage` so far.
+    #[allow(dead_code)]
+    pub fn stage_seconds(&self, stage: &str) -> f64 {
+        self.timings
+            .get(stage)
+            .and_then(Value::as_f64)
+            .unwrap_or(0.0)
+    }
+    /// The JSON object.
+    pub fn to_json(&self) -> Value {
+        let mut m = self.fields.clone();
+        m.insert(
+            "elapsed_s".into(),
+            self.start.elapsed().as_secs_f64().into(),
+        );
+        let mut t = self.timings.clone();
+        for k in ["read", "compute", "write"] {
+            t.entry(k).or_insert(0.0.into());
+        }
+        m.insert("timings".into(), Value::Object(t));
+        Value::Object(m)
+    }
+    /// Writes the report atomically.
+    pub fn save(&self, path: &Path) -> morpho::Result<()> {
+        let v = self.to_json();
+        morpho::io::write_atomic(path, |w| {
+            serde_json::to_writer_pretty(&mut *w, &v)
+                .map_err(|e| morpho::Error::invalid(format!("cannot write report: {e}")))?;
+            writeln!(w).map_err(|e| morpho::Error::io(path, e))
+        })
+        .map_err(|e| e.with_path(path))
+    }
+}

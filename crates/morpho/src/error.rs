@@ -1,0 +1,154 @@
+//! Error type of the library: every fallible function returns [`Result`].
+//!
+//! Errors name the input they concern. Parsers that work on bytes leave `path` empty and the
+//! caller fills it in with [`Error::with_path`]; the CLI prints `error: {err}`.
+
+use std::fmt;
+
+/// Where in an input file a problem was found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Location {
+    /// 1-based line number of a text file.
+    Line(u64),
+    /// 0-based byte offset of a binary file.
+    Byte(u64),
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Location::Line(l) => write!(f, "line {l}"),
+            Location::Byte(b) => write!(f, "byte {b}"),
+        }
+    }
+}
+
+/// Everything that can go wrong in morpho.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The operating system refused to read or write a file.
+    #[error("{}{source}", prefix(path))]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// An input file is malformed (bad header, truncated, out-of-range index, NaN, …).
+    #[error("{}{}{msg}", prefix(path), loc(location))]
+    Format {
+        path: String,
+        location: Option<Location>,
+        msg: String,
+    },
+    /// The input is well-formed but cannot be processed (too few points, wrong dimension, …).
+    #[error("{}{msg}", prefix(path))]
+    Invalid { path: String, msg: String },
+    /// The file type or feature is not supported.
+    #[error("{}{msg}", prefix(path))]
+    Unsupported { path: String, msg: String },
+}
+
+fn prefix(path: &str) -> String {
+    if path.is_empty() {
+        String::new()
+    } else {
+        format!("{path}: ")
+    }
+}
+
+fn loc(l: &Option<Location>) -> String {
+    match l {
+        Some(l) => format!("{l}: "),
+        None => String::new(),
+    }
+}
+
+impl Error {
+    /// A malformed-input error without file name (filled in later by [`Error::with_path`]).
+    pub fn format(msg: impl Into<String>) -> Self {
+        Error::Format {
+            path: String::new(),
+            location: None,
+            msg: msg.into(),
+        }
+    }
+    /// A malformed-input error at a 1-based line.
+    pub fn at_line(line: u64, msg: impl Into<String>) -> Self {
+        Error::Format {
+            path: String::new(),
+            location: Some(Location::Line(line)),
+            msg: msg.into(),
+        }
+    }
+    /// A malformed-input error at a 0-based byte offset.
+    pub fn at_byte(byte: u64, msg: impl Into<String>) -> Self {
+        Error::Format {
+            path: String::new(),
+            location: Some(Location::Byte(byte)),
+            msg: msg.into(),
+        }
+    }
+    /// Input that is well-formed but unusable.
+    pub fn invalid(msg: impl Into<String>) -> Self {
+        Error::Invalid {
+            path: String::new(),
+            msg: msg.into(),
+        }
+    }
+    /// Unsupported format or feature.
+    pub fn unsupported(msg: impl Into<String>) -> Self {
+        Error::Unsupported {
+            path: String::new(),
+            msg: msg.into(),
+        }
+    }
+    /// An I/O error on `path`.
+    pub fn io(path: impl AsRef<std::path::Path>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.as_ref().display().to_string(),
+            source,
+        }
+    }
+    /// Sets the file name if none is set yet.
+    pub fn with_path(mut self, p: impl AsRef<std::path::Path>) -> Self {
+        let name = p.as_ref().display().to_string();
+        match &mut self {
+            Error::Io { path, .. }
+            | Error::Format { path, .. }
+            | Error::Invalid { path, .. }
+            | Error::Unsupported { path, .. } => {
+                if path.is_empty() {
+                    *path = name;
+                }
+            }
+        }
+        self
+    }
+    /// True for errors caused by the user's input or arguments (CLI exit code 2).
+    pub fn is_input_error(&self) -> bool {
+        !matches!(self, Error::Io { source, .. } if source.kind() != std::io::ErrorKind::NotFound
+            && source.kind() != std::io::ErrorKind::PermissionDenied
+            && source.kind() != std::io::ErrorKind::InvalidData
+            && source.kind() != std::io::ErrorKind::UnexpectedEof)
+    }
+}
+
+/// Result with morpho's [`Error`].
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_name_file_and_location() {
+        let e = Error::at_line(7, "expected 3 coordinates").with_path("a.xyz");
+        assert_eq!(e.to_string(), "a.xyz: line 7: expected 3 coordinates");
+        let e = Error::at_byte(84, "truncated")
+            .with_path("m.stl")
+            .with_path("other");
+        assert_eq!(e.to_string(), "m.stl: byte 84: truncated");
+        assert!(e.is_input_error());
+        assert_eq!(Error::invalid("too few").to_string(), "too few");
+    }
+}

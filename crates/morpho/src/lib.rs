@@ -1,0 +1,33 @@
+//! # morpho — computational morphology
+//!
+//! Turns scattered points, samples with values and scalar volumes into valid shapes (boundary
+//! polygons, closed meshes, contour surfaces, region contours), then approximates, localizes,
+//! smooths and analyses them. The methods are those of Veltkamp (1992), Hamann (1991) and
+//! Dorgerloh et al.; each module cites the section it implements.
+//!
+//! The library never prints and never exits; every fallible function returns [`Result`].
+//!
+//! | module | what |
+//! |---|---|
+//! | [`geom`] | points, exact predicates, bounding boxes, smallest enclosing disc/ball |
+//! | [`mesh`] | polygons, triangle/tetrahedral meshes, point sets, topology |
+//! | [`delaunay`] | Delaunay triangulations, hulls, Voronoi |
+//! | [`volume`] | rectilinear volumes |
+//! | [`io`] | file formats |
+//! | [`render`] | SVG and PNG pictures |
+
+// Geometry code indexes coordinates by axis on purpose.
+#![allow(clippy::needless_range_loop)]
+
+pub mod delaunay;
+pub mod error;
+pub mod geom;
+pub mod io;
+pub mod mesh;
+pub mod render;
+pub mod volume;
+
+pub use error::{Error, Location, Result};
+
+/// The library version.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -1,0 +1,321 @@
+//! Polygons, polylines, triangle meshes, tetrahedral meshes, and their topology.
+//!
+//! Storage is flat (`Vec<[u32; 3]>` for triangles) as in meshoptimizer; typed ids
+//! ([`VertexId`], [`TriId`]) are used where an index of one kind could be mistaken for another.
+
+pub mod topology;
+
+use crate::geom::{Aabb3, Point2, Point3, Vector3};
+use crate::{Error, Result};
+
+macro_rules! id_type {
+    ($(#[$m:meta])* $name:ident) => {
+        $(#[$m])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+        pub struct $name(pub u32);
+        impl $name {
+            /// The index as `usize`.
+            #[inline]
+            pub fn idx(self) -> usize {
+                self.0 as usize
+            }
+        }
+        impl From<$name> for usize {
+            #[inline]
+            fn from(v: $name) -> usize {
+                v.0 as usize
+            }
+        }
+    };
+}
+
+id_type!(
+    /// Index of a vertex in a mesh's position array.
+    VertexId
+);
+id_type!(
+    /// Index of a triangle in a [`TriMesh`].
+    TriId
+);
+id_type!(
+    /// Index of a tetrahedron in a [`TetMesh`].
+    TetId
+);
+
+/// Scalar type of a property as stored in a file (kept so a PLY round trip is faithful).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ScalarKind {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+/// A named per-vertex or per-face scalar column (PLY extra properties, curvatures, part labels…).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Property {
+    pub name: String,
+    pub kind: ScalarKind,
+    pub values: Vec<f64>,
+}
+
+/// A closed polygon with optional holes. Ring 0 is the outer ring; rings are not closed
+/// explicitly (the last vertex connects back to the first).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Polygon {
+    pub rings: Vec<Vec<Point2>>,
+}
+
+/// An open or closed sequence of points in the plane.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Polyline {
+    pub points: Vec<Point2>,
+    /// If true, the last point connects back to the first.
+    pub closed: bool,
+}
+
+/// What a 2D vector file (CSV polygon, GeoJSON) holds.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Shapes2 {
+    pub polygons: Vec<Polygon>,
+    pub polylines: Vec<Polyline>,
+}
+
+/// A triangle mesh: positions and counter-clockwise (outward, by convention) triangles.
+///
+/// Invariant established by [`TriMesh::validate`]: every index is `< positions.len()`, every
+/// coordinate is finite, every property column has the right length.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct TriMesh {
+    pub positions: Vec<Point3>,
+    pub triangles: Vec<[u32; 3]>,
+    /// Optional per-vertex normals (same length as `positions`).
+    pub normals: Option<Vec<Vector3>>,
+    /// Extra per-vertex scalar properties.
+    pub vertex_props: Vec<Property>,
+    /// Extra per-face scalar properties.
+    pub face_props: Vec<Property>,
+}
+
+impl TriMesh {
+    /// A mesh from positions and triangles, without properties.
+    pub fn new(positions: Vec<Point3>, triangles: Vec<[u32; 3]>) -> Self {
+        TriMesh {
+            positions,
+            triangles,
+            ..Default::default()
+        }
+    }
+    /// Number of vertices (including unreferenced ones).
+    pub fn num_vertices(&self) -> usize {
+        self.positions.len()
+    }
+    /// Number of triangles.
+    pub fn num_triangles(&self) -> usize {
+        self.triangles.len()
+    }
+    /// Bounding box of all positions.
+    pub fn bbox(&self) -> Aabb3 {
+        crate::geom::bbox3(&self.positions)
+    }
+    /// Corner positions of triangle `t`.
+    pub fn triangle_points(&self, t: TriId) -> [Point3; 3] {
+        let [a, b, c] = self.triangles[t.idx()];
+        [
+            self.positions[a as usize],
+            self.positions[b as usize],
+            self.positions[c as usize],
+        ]
+    }
+    /// Checks the invariants: indices in range, finite coordinates, property lengths.
+    pub fn validate(&self) -> Result<()> {
+        let n = self.positions.len();
+        if n > u32::MAX as usize {
+            return Err(Error::invalid("more than 2^32-1 vertices"));
+        }
+        for (i, p) in self.positions.iter().enumerate() {
+            if !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite()) {
+                return Err(Error::invalid(format!(
+                    "vertex {i} has a non-finite coordinate"
+                )));
+            }
+        }
+        for (t, tri) in self.triangles.iter().enumerate() {
+            for &v in tri {
+                if v as usize >= n {
+                    return Err(Error::invalid(format!(
+                        "triangle {t} refers to vertex {v}, but there are only {n} vertices"
+                    )));
+                }
+            }
+        }
+        if let Some(nr) = &self.normals {
+            if nr.len() != n {
+                return Err(Error::invalid("normal count differs from vertex count"));
+            }
+        }
+        for p in &self.vertex_props {
+            if p.values.len() != n {
+                return Err(Error::invalid(format!(
+                    "vertex property {} has the wrong length",
+                    p.name
+                )));
+            }
+        }
+        for p in &self.face_props {
+            if p.values.len() != self.triangles.len() {
+                return Err(Error::invalid(format!(
+                    "face property {} has the wrong length",
+                    p.name
+                )));
+            }
+        }
+        Ok(())
+    }
+    /// The per-vertex property called `name`, if any.
+    pub fn vertex_prop(&self, name: &str) -> Option<&Property> {
+        self.vertex_props.iter().find(|p| p.name == name)
+    }
+    /// The per-face property called `name`, if any.
+    pub fn face_prop(&self, name: &str) -> Option<&Property> {
+        self.face_props.iter().find(|p| p.name == name)
+    }
+    /// Signed volume enclosed by the triangles (positive for a closed, outward-oriented mesh).
+    pub fn signed_volume(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|&[a, b, c]| {
+                let (a, b, c) = (
+                    self.positions[a as usize].coords,
+                    self.positions[b as usize].coords,
+                    self.positions[c as usize].coords,
+                );
+                a.dot(&b.cross(&c)) / 6.0
+            })
+            .sum()
+    }
+    /// Total surface area.
+    pub fn area(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|&[a, b, c]| {
+                let (a, b, c) = (
+                    self.positions[a as usize],
+                    self.positions[b as usize],
+                    self.positions[c as usize],
+                );
+                0.5 * (b - a).cross(&(c - a)).norm()
+            })
+            .sum()
+    }
+}
+
+/// A tetrahedral mesh. Tetrahedra are positively oriented: `orient3d(a, b, c, d) > 0` in
+/// Shewchuk's convention.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct TetMesh {
+    pub positions: Vec<Point3>,
+    pub tets: Vec<[u32; 4]>,
+}
+
+/// A set of points in 2 or 3 dimensions with optional named value columns (flat storage).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PointSet {
+    /// 2 or 3.
+    pub dim: usize,
+    /// `len() * dim` coordinates, point after point.
+    pub coords: Vec<f64>,
+    /// Extra columns (e.g. `value`, `zinc`), each with one value per point.
+    pub columns: Vec<Column>,
+}
+
+/// A named column of values, one per point.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Column {
+    pub name: String,
+    pub values: Vec<f64>,
+}
+
+impl PointSet {
+    /// Points from 2D positions.
+    pub fn from_points2(p: &[Point2]) -> Self {
+        PointSet {
+            dim: 2,
+            coords: p.iter().flat_map(|p| [p.x, p.y]).collect(),
+            columns: vec![],
+        }
+    }
+    /// Points from 3D positions.
+    pub fn from_points3(p: &[Point3]) -> Self {
+        PointSet {
+            dim: 3,
+            coords: p.iter().flat_map(|p| [p.x, p.y, p.z]).collect(),
+            columns: vec![],
+        }
+    }
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.coords.len().checked_div(self.dim).unwrap_or(0)
+    }
+    /// True when there is no point.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Coordinates of point `i`.
+    pub fn point(&self, i: usize) -> &[f64] {
+        &self.coords[i * self.dim..(i + 1) * self.dim]
+    }
+    /// The points as 2D points (the first two coordinates).
+    pub fn to_points2(&self) -> Vec<Point2> {
+        (0..self.len())
+            .map(|i| {
+                let p = self.point(i);
+                Point2::new(p[0], p[1])
+            })
+            .collect()
+    }
+    /// The points as 3D points (z = 0 for 2D sets).
+    pub fn to_points3(&self) -> Vec<Point3> {
+        (0..self.len())
+            .map(|i| {
+                let p = self.point(i);
+                Point3::new(p[0], p[1], if self.dim > 2 { p[2] } else { 0.0 })
+            })
+            .collect()
+    }
+    /// The column called `name`.
+    pub fn column(&self, name: &str) -> Option<&Column> {
+        self.columns.iter().find(|c| c.name == name)
+    }
+    /// Checks dim ∈ {2,3}, finite coordinates and column lengths.
+    pub fn validate(&self) -> Result<()> {
+        if self.dim != 2 && self.dim != 3 {
+            return Err(Error::invalid(format!(
+                "points must be 2D or 3D, not {}D",
+                self.dim
+            )));
+        }
+        if self.coords.len() % self.dim != 0 {
+            return Err(Error::invalid("coordinate count is not a multiple of dim"));
+        }
+        if let Some(i) = self.coords.iter().position(|c| !c.is_finite()) {
+            return Err(Error::invalid(format!(
+                "point {} has a non-finite coordinate",
+                i / self.dim
+            )));
+        }
+        for c in &self.columns {
+            if c.values.len() != self.len() {
+                return Err(Error::invalid(format!(
+                    "column {} has the wrong length",
+                    c.name
+                )));
+            }
+        }
+        Ok(())
+    }
+}

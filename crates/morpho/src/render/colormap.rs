@@ -1,0 +1,1 @@
+//! Colour maps for scalar values. TODO(helper).

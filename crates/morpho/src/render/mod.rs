@@ -1,0 +1,64 @@
+//! Pictures of every stage: SVG for 2D, a software rasterizer (PNG) for meshes and volume views.
+
+pub mod colormap;
+pub mod raster;
+pub mod svg;
+
+use crate::{Error, Result};
+use std::path::Path;
+
+/// An RGBA image, rows top to bottom.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Image {
+    pub width: u32,
+    pub height: u32,
+    /// `width * height * 4` bytes.
+    pub rgba: Vec<u8>,
+}
+
+impl Image {
+    /// An image filled with one colour.
+    pub fn new(width: u32, height: u32, fill: [u8; 4]) -> Self {
+        let n = width as usize * height as usize;
+        let mut rgba = Vec::with_capacity(n * 4);
+        for _ in 0..n {
+            rgba.extend_from_slice(&fill);
+        }
+        Image {
+            width,
+            height,
+            rgba,
+        }
+    }
+    /// Pixel at (x, y).
+    pub fn get(&self, x: u32, y: u32) -> [u8; 4] {
+        let i = (y as usize * self.width as usize + x as usize) * 4;
+        [
+            self.rgba[i],
+            self.rgba[i + 1],
+            self.rgba[i + 2],
+            self.rgba[i + 3],
+        ]
+    }
+    /// Sets pixel (x, y).
+    pub fn put(&mut self, x: u32, y: u32, c: [u8; 4]) {
+        let i = (y as usize * self.width as usize + x as usize) * 4;
+        self.rgba[i..i + 4].copy_from_slice(&c);
+    }
+    /// Encodes the image as PNG.
+    pub fn write_png(&self, w: &mut dyn std::io::Write) -> Result<()> {
+        let mut enc = png::Encoder::new(w, self.width, self.height);
+        enc.set_color(png::ColorType::Rgba);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut wr = enc
+            .write_header()
+            .map_err(|e| Error::invalid(format!("PNG: {e}")))?;
+        wr.write_image_data(&self.rgba)
+            .map_err(|e| Error::invalid(format!("PNG: {e}")))?;
+        Ok(())
+    }
+    /// Writes the image to a `.png` file atomically.
+    pub fn save_png(&self, path: &Path) -> Result<()> {
+        crate::io::write_atomic(path, |w| self.write_png(w)).map_err(|e| e.with_path(path))
+    }
+}
