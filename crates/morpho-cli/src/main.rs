@@ -37,6 +37,10 @@ enum Command {
     Render(cmd::render::Args),
     /// Delaunay triangulation of 2D or 3D points.
     Triangulate(cmd::triangulate::Args),
+    /// Contour surface f = level of a volume (consistent marching cubes).
+    Isosurface(cmd::isosurface::Args),
+    /// External contour of thresholded samples (regions where a rating exceeds a threshold).
+    Contour(cmd::contour::Args),
 }
 
 /// What a command returns on failure: the error and the exit code it deserves.
@@ -90,6 +94,8 @@ fn main() -> ExitCode {
         Command::Convert(_) => "convert",
         Command::Render(_) => "render",
         Command::Triangulate(_) => "triangulate",
+        Command::Isosurface(_) => "isosurface",
+        Command::Contour(_) => "contour",
     };
     let mut report = Report::new(name);
     let result = match cli.command {
@@ -98,6 +104,8 @@ fn main() -> ExitCode {
         Command::Convert(a) => cmd::convert::run(a, &mut report),
         Command::Render(a) => cmd::render::run(a, &mut report),
         Command::Triangulate(a) => cmd::triangulate::run(a, &mut report),
+        Command::Isosurface(a) => cmd::isosurface::run(a, &mut report),
+        Command::Contour(a) => cmd::contour::run(a, &mut report),
     };
     let code = match result {
         Ok(code) => code,

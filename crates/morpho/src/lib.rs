@@ -11,6 +11,7 @@
 //! |---|---|
 //! | [`geom`] | points, exact predicates, bounding boxes, smallest enclosing disc/ball |
 //! | [`mesh`] | polygons, triangle/tetrahedral meshes, point sets, topology |
+//! | [`contour`] | external contours of coloured triangulations (Dorgerloh et al.) |
 //! | [`delaunay`] | Delaunay triangulations, hulls, Voronoi |
 //! | [`volume`] | rectilinear volumes |
 //! | [`io`] | file formats |
@@ -19,6 +20,7 @@
 // Geometry code indexes coordinates by axis on purpose.
 #![allow(clippy::needless_range_loop)]
 
+pub mod contour;
 pub mod delaunay;
 pub mod error;
 pub mod geom;

@@ -1,8 +1,10 @@
 //! One file per subcommand. Each has `Args` (clap) and `run(args, report) -> Result<exit code>`.
 
+pub mod contour;
 pub mod convert;
 pub mod demo;
 pub mod info;
+pub mod isosurface;
 pub mod render;
 pub mod triangulate;
 

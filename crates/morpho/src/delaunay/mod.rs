@@ -1,2 +1,7 @@
-//! Delaunay triangulations in 2D, 3D and d dimensions, convex hulls and Voronoi duals
-//! (Veltkamp 1992 §2.2.8–2.2.9; Dorgerloh et al. §2). TODO(helper): issue 3.
+//! Delaunay triangulations in 2D ([`d2`]), 3D ([`d3`]) and d dimensions ([`dd`]), convex hulls
+//! and Voronoi duals ([`voronoi`]) (Veltkamp 1992 §2.2.8–2.2.9; Dorgerloh et al. §2).
+
+pub mod d2;
+pub mod d3;
+pub mod dd;
+pub mod voronoi;

@@ -3,6 +3,7 @@
 //! Storage is flat (`Vec<[u32; 3]>` for triangles) as in meshoptimizer; typed ids
 //! ([`VertexId`], [`TriId`]) are used where an index of one kind could be mistaken for another.
 
+pub mod generate;
 pub mod topology;
 
 use crate::geom::{Aabb3, Point2, Point3, Vector3};

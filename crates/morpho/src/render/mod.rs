@@ -2,6 +2,7 @@
 
 pub mod colormap;
 pub mod raster;
+pub mod slice;
 pub mod svg;
 
 use crate::{Error, Result};

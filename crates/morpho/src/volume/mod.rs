@@ -1,5 +1,8 @@
 //! Rectilinear volumes f(x, y, z) sampled on a grid (Hamann 1991, ch. 2–3).
 
+pub mod gradient;
+pub mod isosurface;
+
 use crate::{Error, Result};
 
 /// Data type of the samples as stored in a file.

@@ -1,0 +1,1 @@
+//! Volume views: three orthogonal slices with colour maps (Hamann 1991 ch. 2). TODO(helper).
