@@ -16,6 +16,7 @@
 //! | [`volume`] | rectilinear volumes |
 //! | [`io`] | file formats |
 //! | [`render`] | SVG and PNG pictures |
+//! | [`samples`] | generated sample data (chalice outline, Shepp–Logan phantom, borehole field) |
 
 // Geometry code indexes coordinates by axis on purpose.
 #![allow(clippy::needless_range_loop)]
@@ -27,6 +28,7 @@ pub mod geom;
 pub mod io;
 pub mod mesh;
 pub mod render;
+pub mod samples;
 pub mod volume;
 
 pub use error::{Error, Location, Result};
