@@ -28,9 +28,12 @@ impl Report {
         self.fields.insert(key.to_string(), v.into());
     }
     /// Runs `f`, adding its duration to the stage `stage` (`read`, `compute`, `write`).
+    /// On a terminal a spinner shows the stage while it runs (nothing otherwise).
     pub fn time<T>(&mut self, stage: &str, f: impl FnOnce() -> T) -> T {
         let t = Instant::now();
+        let bar = spinner(stage);
         let r = f();
+        bar.finish_and_clear();
         self.add_time(stage, t.elapsed().as_secs_f64());
         r
     }
@@ -75,4 +78,16 @@ impl Report {
         })
         .map_err(|e| e.with_path(path))
     }
+}
+
+/// A spinner on stderr when it is a terminal; hidden otherwise (CI, pipes, tests).
+pub fn spinner(msg: &str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new_spinner();
+    bar.set_message(format!("{msg}…"));
+    bar.enable_steady_tick(std::time::Duration::from_millis(120));
+    bar
 }

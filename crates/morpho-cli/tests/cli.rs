@@ -1,0 +1,301 @@
+//! End-to-end tests of the `morpho` binary: exit codes, `error:` lines, atomic outputs,
+//! reports, and behaviour on bad input (issue 2 item 8).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn morpho(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_morpho"))
+        .args(args)
+        .output()
+        .expect("run morpho")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Asserts exit code 2 and exactly one `error: FILE: …` line naming the file.
+fn assert_input_error(o: &Output, file: &Path) {
+    let err = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "stderr: {err}");
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 1, "exactly one line expected: {err}");
+    assert!(lines[0].starts_with("error: "), "{err}");
+    let name = file.display().to_string();
+    assert!(lines[0].contains(&name), "error should name {name}: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+fn data_dir() -> Option<PathBuf> {
+    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
+    if d.is_dir() {
+        Some(d)
+    } else {
+        eprintln!("note: ../shared/data not found; skipping real-data test");
+        None
+    }
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, bytes).unwrap();
+    p
+}
+
+/// No file but the given ones is left in `dir` (no temporary or partial output).
+fn assert_only(dir: &Path, names: &[&str]) {
+    let mut found: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    found.sort();
+    let mut want: Vec<String> = names.iter().map(|s| s.to_string()).collect();
+    want.sort();
+    assert_eq!(found, want);
+}
+
+const CUBE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+
+#[test]
+fn info_on_a_closed_cube() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = write(dir.path(), "cube.obj", CUBE_OBJ.as_bytes());
+    let rep = dir.path().join("r.json");
+    let o = morpho(&[
+        "info",
+        f.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("vertices: 8"), "{out}");
+    assert!(out.contains("triangles: 12"), "{out}");
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&rep).unwrap()).unwrap();
+    assert_eq!(r["command"], "info");
+    assert_eq!(r["kind"], "mesh");
+    assert_eq!(r["vertices"], 8);
+    assert_eq!(r["triangles"], 12);
+    assert_eq!(r["parts"], 1);
+    assert_eq!(r["boundary_loops"], 0);
+    assert_eq!(r["euler_characteristic"], 2);
+    assert_eq!(r["genus"], 0);
+    assert_eq!(r["manifold"], true);
+    assert_eq!(r["orientable"], true);
+    assert!(r["elapsed_s"].as_f64().unwrap() >= 0.0);
+    for k in ["read", "compute", "write"] {
+        assert!(r["timings"][k].as_f64().is_some(), "timings.{k}");
+    }
+    assert_eq!(
+        r["bbox"],
+        serde_json::json!([[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]])
+    );
+}
+
+#[test]
+fn bad_inputs_give_one_error_line_and_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let mut cases: Vec<PathBuf> = vec![
+        write(d, "empty.ply", b""),
+        write(d, "empty.obj", b""),
+        write(d, "empty.csv", b""),
+        write(d, "empty.stl", b""),
+        write(d, "huge.ply", b"ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n\0\0\0\0"),
+        write(d, "huge.off", b"OFF\n1000000000000 1 0\n0 0 0\n"),
+        write(d, "range.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
+        write(d, "nan.obj", b"v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"),
+        write(d, "inf.xyz", b"0 0 0\n1 inf 0\n"),
+        write(d, "nan.csv", b"x,y\n0,0\nNaN,1\n"),
+        write(d, "bytes.obj", b"v 0 0 0\nv \xff\xfe 0 0\n"),
+        write(d, "unknown.xyzzy", b"hello"),
+        write(d, "noext", b"hello"),
+    ];
+    // a binary PLY whose data stops in the middle of the faces
+    let mut trunc = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n".to_vec();
+    for v in [[0f32, 0., 0.], [1., 0., 0.], [0., 1., 0.]] {
+        for c in v {
+            trunc.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    trunc.extend_from_slice(&[3, 0, 0, 0, 0, 1]);
+    cases.push(write(d, "trunc.ply", &trunc));
+    // binary STL claiming 10 triangles but holding one
+    let mut stl = vec![0u8; 80];
+    stl.extend_from_slice(&10u32.to_le_bytes());
+    stl.extend_from_slice(&[0u8; 50]);
+    cases.push(write(d, "trunc.stl", &stl));
+    for f in &cases {
+        let o = morpho(&["info", f.to_str().unwrap()]);
+        assert_input_error(&o, f);
+    }
+    // convert of a bad input leaves no output file behind
+    let out = d.join("out.ply");
+    for f in &cases {
+        let o = morpho(&["convert", f.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{}: {}", f.display(), stderr(&o));
+        assert!(!out.exists(), "partial output left for {}", f.display());
+    }
+    let names: Vec<String> = cases
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    assert_only(d, &refs);
+}
+
+#[test]
+fn missing_file_and_bad_usage_exit_2() {
+    let o = morpho(&["info", "/nonexistent/file.obj"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).starts_with("error: /nonexistent/file.obj"),
+        "{}",
+        stderr(&o)
+    );
+    let o = morpho(&["info"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).starts_with("error: "));
+    let o = morpho(&["frobnicate"]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = morpho(&["--help"]);
+    assert_eq!(o.status.code(), Some(0));
+}
+
+#[test]
+fn output_never_overwrites_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = write(dir.path(), "cube.obj", CUBE_OBJ.as_bytes());
+    let o = morpho(&["convert", f.to_str().unwrap(), "-o", f.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&f).unwrap(), CUBE_OBJ);
+    // the same file under another spelling of its path
+    let alias = dir.path().join(".").join("cube.obj");
+    let o = morpho(&[
+        "convert",
+        f.to_str().unwrap(),
+        "-o",
+        alias.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(std::fs::read_to_string(&f).unwrap(), CUBE_OBJ);
+}
+
+#[test]
+fn convert_round_trips_a_mesh_through_every_format() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = write(dir.path(), "cube.obj", CUBE_OBJ.as_bytes());
+    let mut prev = f.clone();
+    for ext in ["ply", "off", "stl", "obj"] {
+        let out = dir.path().join(format!("c.{ext}"));
+        let o = morpho(&[
+            "convert",
+            prev.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{ext}: {}", stderr(&o));
+        let rep = dir.path().join(format!("{ext}.json"));
+        let o = morpho(&[
+            "info",
+            out.to_str().unwrap(),
+            "--report",
+            rep.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&rep).unwrap()).unwrap();
+        assert_eq!(r["vertices"], 8, "{ext}");
+        assert_eq!(r["triangles"], 12, "{ext}");
+        assert_eq!(r["genus"], 0, "{ext}");
+        prev = out;
+    }
+}
+
+#[test]
+fn non_manifold_mesh_is_reported_not_rejected() {
+    // three triangles sharing the edge (0,1)
+    let dir = tempfile::tempdir().unwrap();
+    let f = write(
+        dir.path(),
+        "fin.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n",
+    );
+    let rep = dir.path().join("r.json");
+    let o = morpho(&[
+        "info",
+        f.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&rep).unwrap()).unwrap();
+    assert_eq!(r["manifold"], false);
+    assert_eq!(r["non_manifold_edges"], 1);
+    assert!(stdout(&o).contains("manifold: no"));
+}
+
+#[test]
+fn info_on_real_meshes_matches_the_data_readme() {
+    let Some(data) = data_dir() else { return };
+    // (file, vertices, triangles, parts, boundary loops, genus or None, manifold)
+    type Case<'a> = (&'a str, u64, u64, u64, Option<u64>, Option<i64>, bool);
+    let cases: [Case; 4] = [
+        (
+            "meshes/bunny_npm.obj",
+            1839,
+            3674,
+            1,
+            Some(0),
+            Some(0),
+            true,
+        ),
+        (
+            "meshes/rocker-arm.obj",
+            10044,
+            20088,
+            1,
+            Some(0),
+            Some(1),
+            true,
+        ),
+        ("meshes/fandisk.obj", 6475, 12946, 1, Some(0), Some(0), true),
+        (
+            "meshes/dragon_vrip_res4.obj",
+            5205,
+            11102,
+            1,
+            None,
+            None,
+            false,
+        ),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    for (name, v, t, parts, loops, genus, manifold) in cases {
+        let f = data.join(name);
+        let rep = dir.path().join("r.json");
+        let o = morpho(&[
+            "info",
+            f.to_str().unwrap(),
+            "--report",
+            rep.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+        let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&rep).unwrap()).unwrap();
+        assert_eq!(r["vertices"], v, "{name}");
+        assert_eq!(r["triangles"], t, "{name}");
+        assert_eq!(r["manifold"], manifold, "{name}");
+        if manifold {
+            assert_eq!(r["parts"], parts, "{name}");
+        }
+        if let Some(l) = loops {
+            assert_eq!(r["boundary_loops"], l, "{name}");
+        }
+        assert_eq!(r["genus"], serde_json::json!(genus), "{name}");
+    }
+}
