@@ -14,6 +14,7 @@
 //! | [`contour`] | external contours of coloured triangulations (Dorgerloh et al.) |
 //! | [`delaunay`] | Delaunay triangulations, hulls, Voronoi |
 //! | [`volume`] | rectilinear volumes |
+//! | [`graphs`] | geometric graphs and the γ-neighbourhood graph (Veltkamp ch. 2–3) |
 //! | [`io`] | file formats |
 //! | [`render`] | SVG and PNG pictures |
 //! | [`samples`] | generated sample data (chalice outline, Shepp–Logan phantom, borehole field) |
@@ -25,6 +26,7 @@ pub mod contour;
 pub mod delaunay;
 pub mod error;
 pub mod geom;
+pub mod graphs;
 pub mod io;
 pub mod mesh;
 pub mod render;

@@ -1,0 +1,370 @@
+//! Geometric graphs straight from their definitions (Veltkamp 1992, §2.2 Defs. 2.3–2.16 and
+//! §3.2–3.3 Defs. 3.1–3.3), by brute force: O(N²) per edge set and O(N^{k+1}) for the
+//! neighbourhood graphs (Thm 3.1). They are the oracles the fast constructions are tested
+//! against, and the fallback for tiny inputs.
+//!
+//! Conventions: points are distinct; edges are `[i, j]` with i < j, triangles sorted, and
+//! every list is sorted. Neighbourhoods are open, as in V §2.2 (points on a boundary circle do
+//! not block), with the special rule for half-space neighbourhoods (the closed simplex belongs
+//! to them). Where a graph is not unique (NNG and EMST under ties) the oracle returns the
+//! union of all choices (NNG) or one tree (EMST; compare lengths).
+
+use super::gamma::{
+    center_interval_2d, center_interval_3d, def_contains_2d, def_contains_3d, dot3, sub3,
+};
+use crate::geom::predicates::raw;
+
+fn d2(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
+}
+
+fn pairs(n: usize) -> impl Iterator<Item = (usize, usize)> {
+    (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j)))
+}
+
+/// Closest pairs (Def. 2.3): all pairs at the minimum distance.
+pub fn closest_pairs<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
+    let min = pairs(p.len())
+        .map(|(i, j)| d2(&p[i], &p[j]))
+        .fold(f64::INFINITY, f64::min);
+    pairs(p.len())
+        .filter(|&(i, j)| d2(&p[i], &p[j]) == min)
+        .map(|(i, j)| [i as u32, j as u32])
+        .collect()
+}
+
+/// Nearest-neighbour distances (squared) of every point.
+pub fn nn_dist2<const D: usize>(p: &[[f64; D]]) -> Vec<f64> {
+    (0..p.len())
+        .map(|i| {
+            (0..p.len())
+                .filter(|&j| j != i)
+                .map(|j| d2(&p[i], &p[j]))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect()
+}
+
+/// Nearest neighbours graph (Def. 2.4), with every tie: (i, j) whenever j is a nearest
+/// neighbour of i or i of j.
+pub fn nng<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
+    let nn = nn_dist2(p);
+    pairs(p.len())
+        .filter(|&(i, j)| {
+            let d = d2(&p[i], &p[j]);
+            d == nn[i] || d == nn[j]
+        })
+        .map(|(i, j)| [i as u32, j as u32])
+        .collect()
+}
+
+/// A Euclidean minimum spanning tree (Def. 2.5) by Prim's O(N²) algorithm.
+pub fn emst<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
+    let n = p.len();
+    if n < 2 {
+        return vec![];
+    }
+    let mut best = vec![(f64::INFINITY, 0usize); n];
+    let mut done = vec![false; n];
+    done[0] = true;
+    for j in 1..n {
+        best[j] = (d2(&p[0], &p[j]), 0);
+    }
+    let mut out = Vec::with_capacity(n - 1);
+    for _ in 1..n {
+        let (mut k, mut bd) = (usize::MAX, f64::INFINITY);
+        for j in 0..n {
+            if !done[j] && best[j].0 < bd {
+                bd = best[j].0;
+                k = j;
+            }
+        }
+        if k == usize::MAX {
+            break;
+        }
+        done[k] = true;
+        let (a, b) = (best[k].1.min(k), best[k].1.max(k));
+        out.push([a as u32, b as u32]);
+        for j in 0..n {
+            if !done[j] {
+                let d = d2(&p[k], &p[j]);
+                if d < best[j].0 {
+                    best[j] = (d, k);
+                }
+            }
+        }
+    }
+    out.sort_unstable();
+    out
+}
+
+/// Total length of a set of edges.
+pub fn length<const D: usize>(p: &[[f64; D]], edges: &[[u32; 2]]) -> f64 {
+    edges
+        .iter()
+        .map(|e| d2(&p[e[0] as usize], &p[e[1] as usize]).sqrt())
+        .sum()
+}
+
+/// Infinite strip graph (Def. 2.6): no point strictly between the two planes through i and j
+/// perpendicular to ij.
+pub fn strip<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
+    pairs(p.len())
+        .filter(|&(i, j)| {
+            let dd: Vec<f64> = (0..D).map(|k| p[j][k] - p[i][k]).collect();
+            let len2: f64 = dd.iter().map(|x| x * x).sum();
+            !(0..p.len()).any(|x| {
+                if x == i || x == j {
+                    return false;
+                }
+                let t: f64 = (0..D).map(|k| (p[x][k] - p[i][k]) * dd[k]).sum();
+                t > 0.0 && t < len2
+            })
+        })
+        .map(|(i, j)| [i as u32, j as u32])
+        .collect()
+}
+
+/// Sphere of influence graph (Def. 2.7): the balls of nearest-neighbour radius around i and j
+/// overlap in more than one point, d(i, j) < r_i + r_j.
+pub fn sig<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
+    let nn: Vec<f64> = nn_dist2(p).into_iter().map(f64::sqrt).collect();
+    pairs(p.len())
+        .filter(|&(i, j)| d2(&p[i], &p[j]).sqrt() < nn[i] + nn[j])
+        .map(|(i, j)| [i as u32, j as u32])
+        .collect()
+}
+
+/// Relative neighbourhood graph (Def. 2.8): no x with max(d(x,i), d(x,j)) < d(i,j).
+pub fn rng<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
+    pairs(p.len())
+        .filter(|&(i, j)| {
+            let dij = d2(&p[i], &p[j]);
+            !(0..p.len()).any(|x| x != i && x != j && d2(&p[x], &p[i]).max(d2(&p[x], &p[j])) < dij)
+        })
+        .map(|(i, j)| [i as u32, j as u32])
+        .collect()
+}
+
+/// Gabriel graph (Def. 2.9): no x strictly inside the ball with diameter ij,
+/// i.e. (x − i)·(x − j) < 0.
+pub fn gabriel<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
+    pairs(p.len())
+        .filter(|&(i, j)| {
+            !(0..p.len()).any(|x| {
+                x != i
+                    && x != j
+                    && (0..D)
+                        .map(|k| (p[x][k] - p[i][k]) * (p[x][k] - p[j][k]))
+                        .sum::<f64>()
+                        < 0.0
+            })
+        })
+        .map(|(i, j)| [i as u32, j as u32])
+        .collect()
+}
+
+/// 2D convex hull edges (Def. 2.10): no point in the open half-plane on one side of the line
+/// through i and j, nor on the closed segment ij (other than i, j).
+pub fn hull_2d(p: &[[f64; 2]]) -> Vec<[u32; 2]> {
+    pairs(p.len())
+        .filter(|&(i, j)| {
+            let mut left = false;
+            let mut right = false;
+            for x in 0..p.len() {
+                if x == i || x == j {
+                    continue;
+                }
+                let o = raw::orient2d(p[i], p[j], p[x]);
+                if o > 0.0 {
+                    left = true;
+                } else if o < 0.0 {
+                    right = true;
+                } else {
+                    let t = (p[x][0] - p[i][0]) * (p[j][0] - p[i][0])
+                        + (p[x][1] - p[i][1]) * (p[j][1] - p[i][1]);
+                    let l2 = d2(&p[i], &p[j]);
+                    if t >= 0.0 && t <= l2 {
+                        return false;
+                    }
+                }
+            }
+            !(left && right)
+        })
+        .map(|(i, j)| [i as u32, j as u32])
+        .collect()
+}
+
+fn triples(n: usize) -> impl Iterator<Item = (usize, usize, usize)> {
+    (0..n).flat_map(move |i| (i + 1..n).flat_map(move |j| (j + 1..n).map(move |k| (i, j, k))))
+}
+
+/// 3D convex hull triangles (Def. 2.10): all points on one closed side of the plane, none
+/// (other than the corners) in the closed triangle. Coplanar hull facets therefore give every
+/// triangle among their points that contains no other point.
+pub fn hull_3d(p: &[[f64; 3]]) -> Vec<[u32; 3]> {
+    triples(p.len())
+        .filter(|&(i, j, k)| {
+            let n = super::gamma::cross3(sub3(p[j], p[i]), sub3(p[k], p[i]));
+            if dot3(n, n) == 0.0 {
+                return false;
+            }
+            let (mut above, mut below) = (false, false);
+            for x in 0..p.len() {
+                if x == i || x == j || x == k {
+                    continue;
+                }
+                let o = raw::orient3d(p[i], p[j], p[k], p[x]);
+                if o > 0.0 {
+                    below = true;
+                } else if o < 0.0 {
+                    above = true;
+                } else if super::gamma::in_closed_triangle_3d(p[i], p[j], p[k], p[x], n) {
+                    return false;
+                }
+            }
+            !(above && below)
+        })
+        .map(|(i, j, k)| [i as u32, j as u32, k as u32])
+        .collect()
+}
+
+/// α(a)-shape edges in 2D (Defs. 2.12–2.14, following Edelsbrunner et al. 1983): (i, j) is an
+/// edge when some generalized disc of radius 1/a has i and j on its boundary and contains all
+/// points: for a > 0 a disc of radius 1/a, for a < 0 the complement of an (open) disc of radius
+/// 1/|a| — i.e. an empty disc —, for a = 0 a half-plane (the convex hull).
+pub fn alpha_2d(p: &[[f64; 2]], a: f64) -> Vec<[u32; 2]> {
+    if a == 0.0 {
+        return hull_2d(p);
+    }
+    let rad = 1.0 / a.abs();
+    pairs(p.len())
+        .filter(|&(i, j)| {
+            let (pi, pj) = (p[i], p[j]);
+            let dd = [pj[0] - pi[0], pj[1] - pi[1]];
+            let l2 = dd[0] * dd[0] + dd[1] * dd[1];
+            let h2 = rad * rad - l2 / 4.0;
+            if h2 < 0.0 {
+                return false;
+            }
+            let h = h2.sqrt() / l2.sqrt();
+            let m = [0.5 * (pi[0] + pj[0]), 0.5 * (pi[1] + pj[1])];
+            [1.0, -1.0].iter().any(|&sd| {
+                let c = [m[0] - sd * h * dd[1], m[1] + sd * h * dd[0]];
+                (0..p.len()).filter(|&x| x != i && x != j).all(|x| {
+                    let dx = [p[x][0] - c[0], p[x][1] - c[1]];
+                    let r2 = dx[0] * dx[0] + dx[1] * dx[1];
+                    if a > 0.0 {
+                        r2 <= rad * rad
+                    } else {
+                        r2 >= rad * rad
+                    }
+                })
+            })
+        })
+        .map(|(i, j)| [i as u32, j as u32])
+        .collect()
+}
+
+/// Circle-based β-skeleton (Def. 2.15) in 2D: N_βc(b) = N_γ(b, b).
+pub fn beta_circle_2d(p: &[[f64; 2]], b: f64) -> Vec<[u32; 2]> {
+    gamma_2d_def(p, b, b)
+}
+
+/// Lune-based β-skeleton (Def. 2.16) for b ∈ [0, 1] in 2D or 3D: the open intersection of the
+/// balls of radius d/(2(1−b)) centred at i + (j−i)/(2(1−b)) and j + (i−j)/(2(1−b)), plus the
+/// open segment (b = 1: the infinite strip). For b < 0 the lune-based skeleton is the
+/// circle-based one ([`beta_circle_2d`]).
+pub fn beta_lune<const D: usize>(p: &[[f64; D]], b: f64) -> Vec<[u32; 2]> {
+    if b >= 1.0 {
+        return strip(p);
+    }
+    pairs(p.len())
+        .filter(|&(i, j)| {
+            let k = 1.0 / (2.0 * (1.0 - b));
+            let dij = d2(&p[i], &p[j]).sqrt();
+            let rad = dij * k;
+            let c1: Vec<f64> = (0..D).map(|t| p[i][t] + (p[j][t] - p[i][t]) * k).collect();
+            let c2: Vec<f64> = (0..D).map(|t| p[j][t] + (p[i][t] - p[j][t]) * k).collect();
+            !(0..p.len()).any(|x| {
+                if x == i || x == j {
+                    return false;
+                }
+                let in1 = d2(&p[x], &c1) < rad * rad;
+                let in2 = d2(&p[x], &c2) < rad * rad;
+                in1 && in2 || on_open_segment(&p[i], &p[j], &p[x])
+            })
+        })
+        .map(|(i, j)| [i as u32, j as u32])
+        .collect()
+}
+
+/// x on the open segment ij (exactly collinear, strictly between).
+fn on_open_segment<const D: usize>(a: &[f64; D], b: &[f64; D], x: &[f64; D]) -> bool {
+    // collinear: x − a parallel to b − a (exact for the cases that matter: uses orient2d in
+    // each coordinate plane)
+    for u in 0..D {
+        for v in u + 1..D {
+            if raw::orient2d([a[u], a[v]], [b[u], b[v]], [x[u], x[v]]) != 0.0 {
+                return false;
+            }
+        }
+    }
+    let t: f64 = (0..D).map(|k| (x[k] - a[k]) * (b[k] - a[k])).sum();
+    t > 0.0 && t < d2(a, b)
+}
+
+/// γ(c₀, c₁) in 2D straight from Defs. 3.1–3.2: an edge is in the graph when one of its two
+/// mirror-symmetric neighbourhoods contains no other point. O(N³).
+pub fn gamma_2d_def(p: &[[f64; 2]], c0: f64, c1: f64) -> Vec<[u32; 2]> {
+    pairs(p.len())
+        .filter(|&(i, j)| {
+            [1.0, -1.0].iter().any(|&side| {
+                !(0..p.len())
+                    .any(|x| x != i && x != j && def_contains_2d(p[i], p[j], c0, c1, side, p[x]))
+            })
+        })
+        .map(|(i, j)| [i as u32, j as u32])
+        .collect()
+}
+
+/// γ(c₀, c₁) in 3D straight from Defs. 3.1–3.2. O(N⁴).
+pub fn gamma_3d_def(p: &[[f64; 3]], c0: f64, c1: f64) -> Vec<[u32; 3]> {
+    triples(p.len())
+        .filter(|&(i, j, k)| {
+            let t = [p[i], p[j], p[k]];
+            let n = super::gamma::cross3(sub3(t[1], t[0]), sub3(t[2], t[0]));
+            if dot3(n, n) == 0.0 {
+                return false;
+            }
+            [1.0, -1.0].iter().any(|&side| {
+                !(0..p.len())
+                    .any(|x| x != i && x != j && x != k && def_contains_3d(t, c0, c1, side, p[x]))
+            })
+        })
+        .map(|(i, j, k)| [i as u32, j as u32, k as u32])
+        .collect()
+}
+
+/// The γ-values of every pair in 2D (brute force, Thm 3.1): `(edge, (c₀′, c₁′))` for the
+/// pairs that have any empty neighbourhood.
+pub fn gamma_values_2d(p: &[[f64; 2]]) -> Vec<([u32; 2], (f64, f64))> {
+    pairs(p.len())
+        .filter_map(|(i, j)| {
+            center_interval_2d(p, i, j)
+                .gamma_values()
+                .map(|v| ([i as u32, j as u32], v))
+        })
+        .collect()
+}
+
+/// The γ-values of every triple in 3D (brute force, Thm 3.1).
+pub fn gamma_values_3d(p: &[[f64; 3]]) -> Vec<([u32; 3], (f64, f64))> {
+    triples(p.len())
+        .filter_map(|(i, j, k)| {
+            center_interval_3d(p, i, j, k)?
+                .gamma_values()
+                .map(|v| ([i as u32, j as u32, k as u32], v))
+        })
+        .collect()
+}

@@ -1,0 +1,416 @@
+//! The γ-neighborhood graph (Veltkamp 1992, ch. 3: Defs. 3.1–3.3, Lemmas 3.1–3.3, Thms 3.1–3.2;
+//! paper "2D Computational Morphology" §2).
+//!
+//! # The neighbourhood as an interval of ball centres
+//! For a (k−1)-simplex σ in kD (an edge in 2D, a triangle in 3D) let `m` be the centre and `r`
+//! the radius of its smallest touching ball, and `n` a normal of its hyperplane. Every ball
+//! touching σ's vertices has its centre at `m + s·n` for a signed offset `s` and radius
+//! `√(r² + s²)`; the parameter c of Def. 3.1 and the offset are related by
+//! `|c| = 1 − r/√(r² + s²)` (s = ±∞ is a half-space, |c| = 1).
+//!
+//! A point x with height `h = (x − m)·n` and power `q = |x − m|² − r²` lies strictly inside the
+//! ball of offset s iff `q < 2·s·h`. So a point above the hyperplane (h > 0) blocks the offsets
+//! `s > τ(x) = q / 2h`, a point below blocks `s < τ(x)`, and a point in the hyperplane blocks every
+//! finite ball when q < 0 (and every neighbourhood when it lies in the closed simplex, which is
+//! part of each neighbourhood). Hence the balls touching σ that are empty are exactly those with
+//! offset in one interval `[lo, hi]`, `hi = min τ` over the points above and `lo = max τ` below
+//! ([`CenterInterval`]). Every γ-neighbourhood of σ is empty or not according to this interval:
+//! - union neighbourhoods (c₁ ≥ 0) are empty iff both balls' offsets lie in `[lo, hi]`;
+//! - intersection neighbourhoods (c₁ < 0) are empty iff the offsets of the two balls span an
+//!   interval that meets `[lo, hi]` (when `lo > hi`: that covers the gap `[hi, lo]`).
+//!
+//! The *γ-values* (c₀′, c₁′) of σ — the largest parameters whose neighbourhood is empty
+//! (Def. 3.3) — follow from the interval's two ends (see [`CenterInterval::gamma_values`]), and
+//! σ ∈ γ(c₀, c₁) is then decided by Lemmas 3.1 and 3.2 ([`in_gamma`]) and
+//! σ ∈ γ([c₀,c₁],[c₂,c₃]) by Def. 3.3 ([`in_gamma_range`]).
+//!
+//! Sidedness (the sign of h) is decided by the exact orientation predicates. The offsets τ are
+//! computed in floating point from exactly representable q and h for the unnormalised normal,
+//! so for inputs with small integer coordinates all comparisons of τ values are exact (ties
+//! stay ties: IEEE division is correctly rounded); otherwise they are accurate to rounding.
+//!
+//! Complexity: one simplex against N points costs O(N) ([`center_interval_2d`],
+//! [`center_interval_3d`]); the brute-force graphs of Thm 3.1 cost O(N^{k+1}).
+
+use crate::geom::predicates::raw;
+
+/// The offsets (in units of the simplex's unnormalised normal) of the empty balls touching a
+/// simplex: exactly the balls with offset in `[lo, hi]` are empty (`lo > hi`: none is).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CenterInterval {
+    /// Largest τ over points below the hyperplane (−∞ if none).
+    pub lo: f64,
+    /// Smallest τ over points above the hyperplane (+∞ if none).
+    pub hi: f64,
+    /// The radius of the smallest touching ball divided by the length of the normal used, so
+    /// that an offset s corresponds to |c| = 1 − ρ₀/√(ρ₀² + s²).
+    pub r_over_n: f64,
+    /// Some point in the hyperplane lies strictly inside the smallest touching ball but outside
+    /// the closed simplex (possible in 3D only): every finite ball is blocked.
+    pub finite_blocked: bool,
+    /// Some point lies in the closed simplex (other than its vertices): every neighbourhood is
+    /// blocked.
+    pub all_blocked: bool,
+}
+
+/// |c| of the ball with offset `s` (in normal units) for a simplex with `r_over_n`.
+#[inline]
+pub fn abs_c(s: f64, r_over_n: f64) -> f64 {
+    if s.is_infinite() {
+        return 1.0;
+    }
+    let rho = (r_over_n * r_over_n + s * s).sqrt();
+    // 1 − r/ρ without cancellation
+    (s * s) / (rho * (rho + r_over_n))
+}
+
+/// Offset (in normal units, ≥ 0) of a ball with parameter |c|.
+#[inline]
+pub fn offset_of(c_abs: f64, r_over_n: f64) -> f64 {
+    if c_abs >= 1.0 {
+        return f64::INFINITY;
+    }
+    let k = 1.0 / (1.0 - c_abs);
+    r_over_n * (k * k - 1.0).max(0.0).sqrt()
+}
+
+impl CenterInterval {
+    fn new(r_over_n: f64) -> Self {
+        CenterInterval {
+            lo: f64::NEG_INFINITY,
+            hi: f64::INFINITY,
+            r_over_n,
+            finite_blocked: false,
+            all_blocked: false,
+        }
+    }
+
+    /// True when the ball with offset `s` (±∞ = half-space) is empty.
+    pub fn ball_empty(&self, s: f64) -> bool {
+        if self.all_blocked || (self.finite_blocked && s.is_finite()) {
+            return false;
+        }
+        self.lo <= s && s <= self.hi
+    }
+
+    /// True when the neighbourhood N_γ(c₀, c₁) with the larger ball's centre on the side
+    /// `side` (+1 or −1) is empty, by Def. 3.1 applied to the interval.
+    pub fn neighborhood_empty(&self, c0: f64, c1: f64, side: f64) -> bool {
+        if self.all_blocked {
+            return false;
+        }
+        let s1 = side * offset_of(c1.abs(), self.r_over_n);
+        let f0 = offset_of(c0.abs(), self.r_over_n);
+        let s0 = if c0 * c1 < 0.0 { side * f0 } else { -side * f0 };
+        let s0 = if c0 == 0.0 { 0.0 } else { s0 };
+        if c1 >= 0.0 {
+            self.ball_empty(s0) && self.ball_empty(s1)
+        } else {
+            // intersection of the two balls: a point above (h > 0) is inside both iff
+            // min(s0, s1) > τ; below iff max(s0, s1) < τ.
+            let (a, b) = if s0 <= s1 { (s0, s1) } else { (s1, s0) };
+            if self.finite_blocked && a.is_finite() && b.is_finite() {
+                return false;
+            }
+            a <= self.hi && b >= self.lo
+        }
+    }
+
+    /// The γ-values (c₀′, c₁′) of Def. 3.3: the largest parameters whose neighbourhood is
+    /// empty; `None` when no neighbourhood at all is empty (a point lies in the closed simplex).
+    ///
+    /// - `lo ≤ hi` (some ball is empty; the simplex is in γ([-1,1],[0,1]) = DT in general
+    ///   position): c₁′ = |c| of the end farther from the smallest ball, c₀′ = |c| of the
+    ///   nearer end, positive when the ends lie on opposite sides (c₀c₁ > 0), negative when on
+    ///   the same side.
+    /// - `lo > hi` (no ball is empty): only intersections can be empty; the smallest symmetric
+    ///   pair covering the gap has offset max(|lo|, |hi|): c₁′ = −|c| of it, and c₀′ = ±|c| of
+    ///   the gap's nearer end, positive when on the same side as the farther end.
+    pub fn gamma_values(&self) -> Option<(f64, f64)> {
+        if self.all_blocked {
+            return None;
+        }
+        let (lo, hi) = (self.lo, self.hi);
+        let c = |s: f64| abs_c(s, self.r_over_n);
+        if self.finite_blocked {
+            // only half-spaces can be empty
+            return match (hi == f64::INFINITY, lo == f64::NEG_INFINITY) {
+                (true, true) => Some((1.0, 1.0)),
+                (true, false) | (false, true) => Some((-1.0, 1.0)),
+                (false, false) => None,
+            };
+        }
+        if lo <= hi {
+            let (near, far) = if lo.abs() <= hi.abs() {
+                (lo, hi)
+            } else {
+                (hi, lo)
+            };
+            let opposite = lo <= 0.0 && hi >= 0.0;
+            let c0 = if opposite { c(near) } else { -c(near) };
+            Some((c0, c(far)))
+        } else {
+            let (near, far) = if lo.abs() <= hi.abs() {
+                (lo, hi)
+            } else {
+                (hi, lo)
+            };
+            let same = near * far > 0.0;
+            let c0 = if same || near == 0.0 {
+                c(near)
+            } else {
+                -c(near)
+            };
+            Some((c0, -c(far)))
+        }
+    }
+}
+
+/// σ ∈ γ(c₀, c₁) given σ's γ-values, by Lemma 3.1 (c₁ ≥ 0) and Lemma 3.2 (c₁ < 0).
+/// Requires |c₀| ≤ |c₁|.
+pub fn in_gamma(values: (f64, f64), c0: f64, c1: f64) -> bool {
+    let (a, b) = values;
+    if c1 >= 0.0 {
+        a >= c0 && b >= c1
+    } else {
+        (a >= c0 && b >= c1) || (a >= c1 && b >= c0.abs())
+    }
+}
+
+/// σ ∈ γ([c₀,c₁],[c₂,c₃]) given σ's γ-values (Def. 3.3).
+pub fn in_gamma_range(values: (f64, f64), range: [f64; 4]) -> bool {
+    let (a, b) = values;
+    range[0] <= a && a <= range[1] && range[2] <= b && b <= range[3]
+}
+
+/// The interval of empty-ball offsets of the 2D edge (a, b) among `points` (indices `skip`
+/// excluded — the edge's own vertices). Normal: the left normal of a→b, unnormalised.
+pub fn center_interval_2d(points: &[[f64; 2]], a: usize, b: usize) -> CenterInterval {
+    let (pa, pb) = (points[a], points[b]);
+    let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+    let d = [pb[0] - pa[0], pb[1] - pa[1]];
+    let nrm = [-d[1], d[0]];
+    let r2 = 0.25 * (d[0] * d[0] + d[1] * d[1]);
+    let nlen = (nrm[0] * nrm[0] + nrm[1] * nrm[1]).sqrt();
+    let mut iv = CenterInterval::new(r2.sqrt() / nlen);
+    for (i, &x) in points.iter().enumerate() {
+        if i == a || i == b {
+            continue;
+        }
+        let side = raw::orient2d(pa, pb, x);
+        let dx = [x[0] - m[0], x[1] - m[1]];
+        if side == 0.0 {
+            // on the line: blocks everything when on the closed segment (between a and b)
+            let t = dx[0] * d[0] + dx[1] * d[1];
+            // |t| ≤ |d|²/2 = 2r² ⇔ x lies between a and b
+            if t.abs() <= 2.0 * r2 {
+                iv.all_blocked = true;
+            }
+            continue;
+        }
+        let q = dx[0] * dx[0] + dx[1] * dx[1] - r2;
+        let h = dx[0] * nrm[0] + dx[1] * nrm[1];
+        // h has the exact sign of `side` up to rounding; trust the predicate
+        let h = if (h > 0.0) != (side > 0.0) || h == 0.0 {
+            side.signum() * f64::MIN_POSITIVE
+        } else {
+            h
+        };
+        let tau = q / (2.0 * h);
+        if side > 0.0 {
+            iv.hi = iv.hi.min(tau);
+        } else {
+            iv.lo = iv.lo.max(tau);
+        }
+    }
+    iv
+}
+
+/// Circumcentre of triangle (a, b, c) in its plane, its squared radius, and the unnormalised
+/// normal (b − a) × (c − a). `None` for collinear corners.
+pub fn triangle_circle(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<([f64; 3], f64, [f64; 3])> {
+    let u = sub3(b, a);
+    let v = sub3(c, a);
+    let n = cross3(u, v);
+    let nn = dot3(n, n);
+    if nn == 0.0 || !nn.is_finite() {
+        return None;
+    }
+    // circumcentre = a + (|u|² (v × n) + |v|² (n × u)) / (2 |n|²)
+    let uu = dot3(u, u);
+    let vv = dot3(v, v);
+    let t1 = cross3(v, n);
+    let t2 = cross3(n, u);
+    let off = [
+        (uu * t1[0] + vv * t2[0]) / (2.0 * nn),
+        (uu * t1[1] + vv * t2[1]) / (2.0 * nn),
+        (uu * t1[2] + vv * t2[2]) / (2.0 * nn),
+    ];
+    let m = [a[0] + off[0], a[1] + off[1], a[2] + off[2]];
+    Some((m, dot3(off, off), n))
+}
+
+/// The interval of empty-ball offsets of triangle (a, b, c) among 3D `points`; normal
+/// (b − a) × (c − a). `None` for a degenerate (collinear) triangle, for which no touching
+/// ball is defined (Def. 3.1 requires the vertices not to lie in a line).
+pub fn center_interval_3d(
+    points: &[[f64; 3]],
+    a: usize,
+    b: usize,
+    c: usize,
+) -> Option<CenterInterval> {
+    let (pa, pb, pc) = (points[a], points[b], points[c]);
+    let (m, r2, n) = triangle_circle(pa, pb, pc)?;
+    let nlen = dot3(n, n).sqrt();
+    let mut iv = CenterInterval::new(r2.sqrt() / nlen);
+    for (i, &x) in points.iter().enumerate() {
+        if i == a || i == b || i == c {
+            continue;
+        }
+        // orient3d(a, b, c, x) > 0 when x is below, i.e. on the side opposite to n
+        let o = -raw::orient3d(pa, pb, pc, x);
+        let dx = sub3(x, m);
+        let q = dot3(dx, dx) - r2;
+        if o == 0.0 {
+            if in_closed_triangle_3d(pa, pb, pc, x, n) {
+                iv.all_blocked = true;
+            } else if q < 0.0 {
+                iv.finite_blocked = true;
+            }
+            continue;
+        }
+        let h = dot3(dx, n);
+        let h = if (h > 0.0) != (o > 0.0) || h == 0.0 {
+            o.signum() * f64::MIN_POSITIVE
+        } else {
+            h
+        };
+        let tau = q / (2.0 * h);
+        if o > 0.0 {
+            iv.hi = iv.hi.min(tau);
+        } else {
+            iv.lo = iv.lo.max(tau);
+        }
+    }
+    Some(iv)
+}
+
+/// Whether x (coplanar with triangle abc, normal n) lies in the closed triangle, by exact 2D
+/// orientation tests in the coordinate plane where the triangle's projection is largest.
+pub fn in_closed_triangle_3d(
+    a: [f64; 3],
+    b: [f64; 3],
+    c: [f64; 3],
+    x: [f64; 3],
+    n: [f64; 3],
+) -> bool {
+    let k = if n[0].abs() >= n[1].abs() && n[0].abs() >= n[2].abs() {
+        0
+    } else if n[1].abs() >= n[2].abs() {
+        1
+    } else {
+        2
+    };
+    let p = |v: [f64; 3]| match k {
+        0 => [v[1], v[2]],
+        1 => [v[2], v[0]],
+        _ => [v[0], v[1]],
+    };
+    let (a, b, c, x) = (p(a), p(b), p(c), p(x));
+    let s = raw::orient2d(a, b, c).signum();
+    let o1 = raw::orient2d(a, b, x) * s;
+    let o2 = raw::orient2d(b, c, x) * s;
+    let o3 = raw::orient2d(c, a, x) * s;
+    o1 >= 0.0 && o2 >= 0.0 && o3 >= 0.0
+}
+
+#[inline]
+pub(crate) fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+#[inline]
+pub(crate) fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+#[inline]
+pub(crate) fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Whether `x` lies in the neighbourhood N_γ(c₀, c₁) of the 2D edge (a, b), with the larger
+/// ball's centre on side `side` (+1: left of a→b), computed literally from Def. 3.1: explicit
+/// discs (or half-planes for |c| = 1), their union (c₁ ≥ 0) or intersection (c₁ < 0), plus the
+/// open segment. This is the brute-force oracle for [`CenterInterval::neighborhood_empty`].
+pub fn def_contains_2d(a: [f64; 2], b: [f64; 2], c0: f64, c1: f64, side: f64, x: [f64; 2]) -> bool {
+    let o = raw::orient2d(a, b, x);
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let dd = d[0] * d[0] + d[1] * d[1];
+    if o == 0.0 {
+        let t = (x[0] - a[0]) * d[0] + (x[1] - a[1]) * d[1];
+        if t > 0.0 && t < dd {
+            return true; // open segment
+        }
+    }
+    // Ball with centre m + t·N (N = unnormalised left normal, |N| = |d|) and radius² r² + t²|N|²:
+    // x is strictly inside iff |x − m|² − 2t (x − m)·N < r², evaluated without square roots so
+    // that ties on the boundary circle stay exact for small integer inputs.
+    let r2 = 0.25 * dd;
+    let m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+    let nn = [-d[1], d[0]];
+    let xm = [x[0] - m[0], x[1] - m[1]];
+    let q = xm[0] * xm[0] + xm[1] * xm[1] - r2;
+    let h = xm[0] * nn[0] + xm[1] * nn[1];
+    let r_over_n = 0.5;
+    let in_ball = |c: f64, sd: f64| -> bool {
+        if c.abs() >= 1.0 {
+            return o * sd > 0.0; // open half-plane on side sd
+        }
+        let t = sd * offset_of(c.abs(), r_over_n);
+        q < 2.0 * t * h
+    };
+    let side0 = if c0 * c1 < 0.0 { side } else { -side };
+    let in1 = in_ball(c1, side);
+    let in0 = in_ball(c0, side0);
+    if c1 >= 0.0 {
+        in0 || in1
+    } else {
+        in0 && in1
+    }
+}
+
+/// The 3D analogue of [`def_contains_2d`] for triangle (a, b, c); `side` +1 is the side of the
+/// normal (b − a) × (c − a). The closed triangle (but its corners) always belongs to the
+/// neighbourhood.
+pub fn def_contains_3d(t: [[f64; 3]; 3], c0: f64, c1: f64, side: f64, x: [f64; 3]) -> bool {
+    let [a, b, c] = t;
+    let Some((m, r2, n)) = triangle_circle(a, b, c) else {
+        return true;
+    };
+    let o = -raw::orient3d(a, b, c, x);
+    if o == 0.0 && in_closed_triangle_3d(a, b, c, x, n) {
+        return true;
+    }
+    let r_over_n = (r2 / dot3(n, n)).sqrt();
+    let xm = sub3(x, m);
+    let q = dot3(xm, xm) - r2;
+    let h = dot3(xm, n);
+    let in_ball = |cc: f64, sd: f64| -> bool {
+        if cc.abs() >= 1.0 {
+            return o * sd > 0.0;
+        }
+        let t = sd * offset_of(cc.abs(), r_over_n);
+        q < 2.0 * t * h
+    };
+    let side0 = if c0 * c1 < 0.0 { side } else { -side };
+    let in1 = in_ball(c1, side);
+    let in0 = in_ball(c0, side0);
+    if c1 >= 0.0 {
+        in0 || in1
+    } else {
+        in0 && in1
+    }
+}
