@@ -1,1 +1,956 @@
-//! TODO(helper): issue 3.
+//! 3D Delaunay tetrahedralization (Veltkamp 1992 §2.2.8–2.2.9: Delaunay triangulation and convex
+//! hull; Dorgerloh et al. §2: Bowyer–Watson insertion, here with exact predicates instead of
+//! constructed circumcentres).
+//!
+//! # Algorithm
+//! Incremental Bowyer–Watson insertion:
+//! 1. Input points are checked (NaN/inf → error), sorted lexicographically and duplicates merged;
+//!    the *canonical index* of a vertex is its rank in that order (so vertex ids do not depend on
+//!    the input order).
+//! 2. Insertion order: biased randomized insertion order (BRIO, rounds of doubling size from a
+//!    fixed-seed shuffle) with every round sorted along a 3D Hilbert curve.
+//! 3. The triangulation is stored in flat arrays (`[u32; 4]` vertices and `[u32; 4]` neighbour
+//!    codes `tet << 2 | face` per tetrahedron). The convex hull is closed by *ghost* tetrahedra
+//!    `[a, b, c, ∞]` (∞ always in slot 3), so points outside the hull need no special case.
+//! 4. Location: remembering stochastic visibility walk from the last created tetrahedron, with the
+//!    exact `orient3d`.
+//! 5. Cavity: breadth-first search of the tetrahedra in conflict (exact `insphere`; for a ghost,
+//!    "strictly beyond the hull face", or, when coplanar with it, the conflict of its finite
+//!    neighbour), then the star-shaped re-triangulation joining the new point to every boundary
+//!    facet. New tetrahedra are linked to each other through a small generation-stamped hash
+//!    table on their shared cavity-boundary edges. Freed tetrahedra are reused through a free
+//!    list; all work buffers are reused, so an insertion allocates nothing in the steady state.
+//!
+//! # Degeneracies
+//! Duplicates are merged. Cospherical ties (`insphere == 0` exactly) are broken by symbolic
+//! perturbation of the lifting map (Devillers & Teillaud, "Perturbations for Delaunay and weighted
+//! Delaunay 3D triangulations", 2011): vertex `v` is lifted to `|v|² + ε^(N−v)`, so the vertex with
+//! the largest canonical index has the dominant perturbation. The sign of the perturbed
+//! determinant is the sign of the first non-zero cofactor, i.e. of an exact `orient3d` of four of
+//! the five points, taken in decreasing canonical index. Because the lifted points of a sphere are
+//! in convex position, the perturbation hides no vertex, and the result is the unique Delaunay
+//! triangulation of the perturbed set: deterministic and independent of the insertion order.
+//! Coplanar points on the hull are handled through the coplanar ghost rule above, which equals
+//! the perturbed in-circle test inside the plane of the hull face.
+//! All-collinear or all-coplanar input is not an error: the result has no tetrahedra and
+//! [`Delaunay3::degenerate`] says why.
+//!
+//! # Complexity
+//! Expected `O(n log n)` for points spread in space (`O(n²)` worst case, e.g. points on the
+//! moment curve, where the output itself is quadratic). Memory: about 8 tetrahedra per point
+//! during the construction, 36 bytes each.
+
+use crate::geom::predicates::raw::{orient2d, orient3d};
+use crate::geom::Point3;
+use crate::{Error, Result};
+use rand::seq::SliceRandom;
+use rand::SeedableRng;
+use std::collections::HashSet;
+
+/// Marker for "no tetrahedron" in [`Delaunay3::neighbors`] and [`Face3::tets`].
+pub const NONE: u32 = u32::MAX;
+/// The infinite vertex (internal).
+const INF: u32 = u32::MAX;
+/// Marks a freed tetrahedron slot (internal, in vertex slot 0).
+const FREE: u32 = u32::MAX - 1;
+
+/// Vertex positions of the face opposite corner `i`, ordered so that
+/// `orient3d(face…, v_i) > 0` for a positive tetrahedron.
+pub const FACE_OF: [[usize; 3]; 4] = [[1, 3, 2], [0, 2, 3], [0, 3, 1], [0, 1, 2]];
+
+/// A 3D Delaunay tetrahedralization.
+#[derive(Debug, Clone)]
+pub struct Delaunay3 {
+    /// The distinct input points, sorted lexicographically by (x, y, z).
+    pub points: Vec<Point3>,
+    /// For every input point, its vertex in [`Self::points`].
+    pub vertex_of_input: Vec<u32>,
+    /// For every vertex, the first input point at that position.
+    pub input_of_vertex: Vec<u32>,
+    /// Tetrahedra, positively oriented: `geom::orient3d(a, b, c, d) > 0` (Shewchuk's convention,
+    /// i.e. `d` lies on the side of plane `abc` from which `a, b, c` appear clockwise).
+    pub tets: Vec<[u32; 4]>,
+    /// `neighbors[t][i]`: the tetrahedron across the face opposite corner `i` of `t`, or [`NONE`]
+    /// on the hull.
+    pub neighbors: Vec<[u32; 4]>,
+    /// Convex hull triangles, oriented outward (right-hand normal points out of the hull).
+    pub hull: Vec<[u32; 3]>,
+    /// Number of input points merged into an earlier identical point.
+    pub duplicates: usize,
+    /// Why there are no tetrahedra ("all points coplanar", "all points collinear", …), if so.
+    pub degenerate: Option<String>,
+    /// One incident tetrahedron per vertex ([`NONE`] when there are no tetrahedra).
+    pub vertex_tet: Vec<u32>,
+}
+
+/// A triangle of the tetrahedralization with its (one or two) tetrahedra.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Face3 {
+    /// The vertices, oriented outward of `tets[0]`.
+    pub v: [u32; 3],
+    /// The tetrahedron on the inner side of `v`, and the one on the other side ([`NONE`] on the hull).
+    pub tets: [u32; 2],
+}
+
+#[inline]
+fn arr(p: &Point3) -> [f64; 3] {
+    [p.x, p.y, p.z]
+}
+
+/// Sign of the symbolically perturbed `insphere(q0, q1, q2, q3, q4)` when the exact value is 0;
+/// `ids` are the canonical indices of the five points (all distinct), `q` their coordinates.
+/// Requires `orient3d(q0..q3) != 0`. Returns true for "inside".
+pub(crate) fn perturbed_insphere(q: &[[f64; 3]; 5], ids: &[u32; 5]) -> bool {
+    let mut idx = [0usize, 1, 2, 3, 4];
+    idx.sort_unstable_by(|a, b| ids[*b].cmp(&ids[*a]));
+    for &k in &idx {
+        let s = if k == 4 {
+            -orient3d(q[0], q[1], q[2], q[3])
+        } else {
+            let mut w = [q[0], q[1], q[2], q[3]];
+            w[k] = q[4];
+            orient3d(w[0], w[1], w[2], w[3])
+        };
+        if s != 0.0 {
+            return s > 0.0;
+        }
+    }
+    false
+}
+
+/// A record of a cavity boundary facet: the new tetrahedron's vertices (old tet with the new
+/// point in slot `i`) and the outside neighbour code.
+#[derive(Clone, Copy)]
+struct Bnd {
+    v: [u32; 4],
+    i: u8,
+    out: u32,
+}
+
+struct Builder<'a> {
+    pts: &'a [[f64; 3]],
+    tv: Vec<[u32; 4]>,
+    tn: Vec<[u32; 4]>,
+    stamp: Vec<u32>,
+    free: Vec<u32>,
+    last: u32,
+    rng: u64,
+    stack: Vec<u32>,
+    conflict: Vec<u32>,
+    bnd: Vec<Bnd>,
+    table: Vec<(u64, u32, u32)>,
+    gen: u32,
+}
+
+impl<'a> Builder<'a> {
+    #[inline]
+    fn p(&self, v: u32) -> [f64; 3] {
+        self.pts[v as usize]
+    }
+
+    #[inline]
+    fn rand(&mut self) -> u64 {
+        // xorshift64
+        let mut x = self.rng;
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        self.rng = x;
+        x
+    }
+
+    fn alloc(&mut self) -> u32 {
+        if let Some(t) = self.free.pop() {
+            self.stamp[t as usize] = 0;
+            t
+        } else {
+            self.tv.push([FREE; 4]);
+            self.tn.push([0; 4]);
+            self.stamp.push(0);
+            (self.tv.len() - 1) as u32
+        }
+    }
+
+    /// Conflict of the finite tetrahedron `t` with point `p` (exact, perturbed).
+    #[inline]
+    fn finite_conflict(&self, t: u32, p: u32) -> bool {
+        let v = self.tv[t as usize];
+        let q = [
+            self.p(v[0]),
+            self.p(v[1]),
+            self.p(v[2]),
+            self.p(v[3]),
+            self.p(p),
+        ];
+        let s = insphere_fast(&q);
+        if s != 0.0 {
+            return s > 0.0;
+        }
+        perturbed_insphere(&q, &[v[0], v[1], v[2], v[3], p])
+    }
+
+    #[inline]
+    fn in_conflict(&self, t: u32, p: u32) -> bool {
+        let v = self.tv[t as usize];
+        if v[3] == INF {
+            let o = orient3d(self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(p));
+            if o != 0.0 {
+                return o > 0.0;
+            }
+            return self.finite_conflict(self.tn[t as usize][3] >> 2, p);
+        }
+        self.finite_conflict(t, p)
+    }
+
+    /// Visibility walk to a tetrahedron in conflict with `p` (a finite one containing it, or a
+    /// ghost whose hull face sees it strictly).
+    fn locate(&mut self, p: u32) -> u32 {
+        let mut t = self.last;
+        if self.tv[t as usize][3] == INF {
+            t = self.tn[t as usize][3] >> 2;
+        }
+        let pp = self.p(p);
+        let mut prev = NONE;
+        let mut steps = 0usize;
+        'walk: loop {
+            let v = self.tv[t as usize];
+            if v[3] == INF {
+                return t;
+            }
+            steps += 1;
+            if steps > 4 * self.tv.len() + 100 {
+                break;
+            }
+            let q = [self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(v[3])];
+            let r = self.rand() as usize;
+            for k in 0..4 {
+                let i = (r + k) & 3;
+                let n = self.tn[t as usize][i] >> 2;
+                if n == prev {
+                    continue;
+                }
+                let mut w = q;
+                w[i] = pp;
+                if orient3d(w[0], w[1], w[2], w[3]) < 0.0 {
+                    prev = t;
+                    t = n;
+                    continue 'walk;
+                }
+            }
+            return t;
+        }
+        // Fallback (never expected): scan for a tetrahedron in conflict.
+        (0..self.tv.len() as u32)
+            .find(|&t| self.tv[t as usize][0] != FREE && self.in_conflict(t, p))
+            .unwrap_or(self.last)
+    }
+
+    fn insert(&mut self, p: u32, k: u32) {
+        let t0 = self.locate(p);
+        let cs = 2 * k + 2;
+        let ns = cs + 1;
+        self.stack.clear();
+        self.conflict.clear();
+        self.bnd.clear();
+        self.stamp[t0 as usize] = cs;
+        self.stack.push(t0);
+        self.conflict.push(t0);
+        while let Some(t) = self.stack.pop() {
+            for i in 0..4 {
+                let code = self.tn[t as usize][i];
+                let u = code >> 2;
+                let su = self.stamp[u as usize];
+                if su == cs {
+                    continue;
+                }
+                if su != ns {
+                    if self.in_conflict(u, p) {
+                        self.stamp[u as usize] = cs;
+                        self.stack.push(u);
+                        self.conflict.push(u);
+                        continue;
+                    }
+                    self.stamp[u as usize] = ns;
+                }
+                let mut v = self.tv[t as usize];
+                v[i] = p;
+                self.bnd.push(Bnd {
+                    v,
+                    i: i as u8,
+                    out: code,
+                });
+            }
+        }
+        for j in 0..self.conflict.len() {
+            let t = self.conflict[j];
+            self.tv[t as usize][0] = FREE;
+            self.free.push(t);
+        }
+        // Hash table on cavity-boundary edges.
+        let need = (4 * self.bnd.len()).next_power_of_two().max(64);
+        if self.table.len() < need {
+            self.table = vec![(0, 0, 0); need];
+            self.gen = 0;
+        }
+        self.gen = self.gen.wrapping_add(1);
+        if self.gen == 0 {
+            self.table.iter_mut().for_each(|e| e.2 = 0);
+            self.gen = 1;
+        }
+        let mask = self.table.len() - 1;
+        let bits = self.table.len().trailing_zeros();
+        let mut last = NONE;
+        for b in 0..self.bnd.len() {
+            let Bnd { v, i, out } = self.bnd[b];
+            let i = i as usize;
+            let n = self.alloc();
+            self.tv[n as usize] = v;
+            self.tn[n as usize][i] = out;
+            self.tn[(out >> 2) as usize][(out & 3) as usize] = (n << 2) | i as u32;
+            if v[3] != INF || last == NONE {
+                last = n;
+            }
+            for j in 0..4 {
+                if j == i {
+                    continue;
+                }
+                // the two slots other than i and j
+                let (mut a, mut c) = (NONE, NONE);
+                for s in 0..4 {
+                    if s != i && s != j {
+                        if a == NONE {
+                            a = v[s];
+                        } else {
+                            c = v[s];
+                        }
+                    }
+                }
+                let key = if a < c {
+                    ((a as u64) << 32) | c as u64
+                } else {
+                    ((c as u64) << 32) | a as u64
+                };
+                let mut h = (key.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> (64 - bits)) as usize;
+                loop {
+                    let e = self.table[h];
+                    if e.2 != self.gen {
+                        self.table[h] = (key, (n << 2) | j as u32, self.gen);
+                        break;
+                    }
+                    if e.0 == key {
+                        let m = e.1;
+                        self.tn[n as usize][j] = m;
+                        self.tn[(m >> 2) as usize][(m & 3) as usize] = (n << 2) | j as u32;
+                        // tombstone: key can never match again
+                        self.table[h].0 = u64::MAX;
+                        break;
+                    }
+                    h = (h + 1) & mask;
+                }
+            }
+        }
+        self.last = last;
+    }
+}
+
+/// Filtered in-sphere: exact sign via Shewchuk's adaptive predicate.
+#[inline]
+fn insphere_fast(q: &[[f64; 3]; 5]) -> f64 {
+    crate::geom::predicates::raw::insphere(q[0], q[1], q[2], q[3], q[4])
+}
+
+/// 3D Hilbert index of integer coordinates with `bits` bits each (Skilling's transpose method).
+fn hilbert3(mut x: [u32; 3], bits: u32) -> u64 {
+    let m = 1u32 << (bits - 1);
+    let mut q = m;
+    while q > 1 {
+        let p = q - 1;
+        for i in 0..3 {
+            if x[i] & q != 0 {
+                x[0] ^= p;
+            } else {
+                let t = (x[0] ^ x[i]) & p;
+                x[0] ^= t;
+                x[i] ^= t;
+            }
+        }
+        q >>= 1;
+    }
+    for i in 1..3 {
+        x[i] ^= x[i - 1];
+    }
+    let mut t = 0;
+    q = m;
+    while q > 1 {
+        if x[2] & q != 0 {
+            t ^= q - 1;
+        }
+        q >>= 1;
+    }
+    for xi in x.iter_mut() {
+        *xi ^= t;
+    }
+    let mut h = 0u64;
+    for b in (0..bits).rev() {
+        for xi in x {
+            h = (h << 1) | ((xi >> b) & 1) as u64;
+        }
+    }
+    h
+}
+
+/// BRIO insertion order of `pts` (fixed seed), each round Hilbert-sorted.
+pub(crate) fn brio_order(pts: &[[f64; 3]]) -> Vec<u32> {
+    let n = pts.len();
+    let mut order: Vec<u32> = (0..n as u32).collect();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0x5eed_de1a);
+    order.shuffle(&mut rng);
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in pts {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    const BITS: u32 = 16;
+    let scale: Vec<f64> = (0..3)
+        .map(|k| {
+            let e = hi[k] - lo[k];
+            if e > 0.0 && e.is_finite() {
+                ((1u32 << BITS) - 1) as f64 / e
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let key = |i: u32| -> u64 {
+        let p = pts[i as usize];
+        let mut c = [0u32; 3];
+        for k in 0..3 {
+            let v = ((p[k] - lo[k]) * scale[k]).clamp(0.0, ((1u32 << BITS) - 1) as f64);
+            c[k] = if v.is_finite() { v as u32 } else { 0 };
+        }
+        hilbert3(c, BITS)
+    };
+    let mut keyed: Vec<(u64, u32)> = order.iter().map(|&i| (key(i), i)).collect();
+    // rounds [0, n/2^r), …, [n/4, n/2), [n/2, n)
+    let mut end = n;
+    while end > 0 {
+        let start = if end <= 256 { 0 } else { end / 2 };
+        keyed[start..end].sort_unstable();
+        end = start;
+    }
+    keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// Distinct sorted points, vertex of each input point, first input point of each vertex.
+pub(crate) type Dedup<const D: usize> = (Vec<[f64; D]>, Vec<u32>, Vec<u32>);
+
+/// Checks the input and merges duplicates: returns the sorted distinct points, the vertex of each
+/// input point and the first input point of each vertex.
+pub(crate) fn dedup_sorted<const D: usize>(
+    coords: &[[f64; D]],
+) -> Result<Dedup<D>> {
+    if coords.is_empty() {
+        return Err(Error::invalid("no points"));
+    }
+    if coords.len() >= u32::MAX as usize / 8 {
+        return Err(Error::invalid("too many points"));
+    }
+    let mut pts: Vec<[f64; D]> = Vec::with_capacity(coords.len());
+    for (i, c) in coords.iter().enumerate() {
+        if c.iter().any(|x| !x.is_finite()) {
+            return Err(Error::invalid(format!(
+                "point {} has a non-finite coordinate",
+                i + 1
+            )));
+        }
+        // normalise -0.0 to 0.0 so that equal points compare equal
+        let mut q = *c;
+        for x in q.iter_mut() {
+            *x += 0.0;
+        }
+        pts.push(q);
+    }
+    let mut idx: Vec<u32> = (0..pts.len() as u32).collect();
+    idx.sort_unstable_by(|&a, &b| {
+        let (pa, pb) = (&pts[a as usize], &pts[b as usize]);
+        for k in 0..D {
+            match pa[k].partial_cmp(&pb[k]) {
+                Some(std::cmp::Ordering::Equal) | None => continue,
+                Some(o) => return o,
+            }
+        }
+        a.cmp(&b)
+    });
+    let mut uniq: Vec<[f64; D]> = Vec::new();
+    let mut vertex_of_input = vec![0u32; pts.len()];
+    let mut input_of_vertex = Vec::new();
+    for &i in &idx {
+        let p = pts[i as usize];
+        if uniq.last() != Some(&p) {
+            uniq.push(p);
+            input_of_vertex.push(i);
+        }
+        vertex_of_input[i as usize] = (uniq.len() - 1) as u32;
+    }
+    Ok((uniq, vertex_of_input, input_of_vertex))
+}
+
+/// Computes the Delaunay tetrahedralization of `points`.
+///
+/// Errors: empty input, a NaN or infinite coordinate. Collinear or coplanar input (or fewer than
+/// four distinct points) gives `Ok` with no tetrahedra and [`Delaunay3::degenerate`] set.
+pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
+    let coords: Vec<[f64; 3]> = points.iter().map(arr).collect();
+    let (pts, vertex_of_input, input_of_vertex) = dedup_sorted(&coords)?;
+    drop(coords);
+    let duplicates = points.len() - pts.len();
+    let order = brio_order(&pts);
+    let mk = |pts: &[[f64; 3]], degenerate: Option<String>| Delaunay3 {
+        points: pts.iter().map(|p| Point3::new(p[0], p[1], p[2])).collect(),
+        vertex_of_input: vertex_of_input.clone(),
+        input_of_vertex: input_of_vertex.clone(),
+        tets: Vec::new(),
+        neighbors: Vec::new(),
+        hull: Vec::new(),
+        duplicates,
+        degenerate,
+        vertex_tet: vec![NONE; pts.len()],
+    };
+    // initial simplex
+    let a = order[0];
+    if pts.len() == 1 {
+        return Ok(mk(&pts, Some("a single distinct point".into())));
+    }
+    let b = order[1];
+    let (pa, pb) = (pts[a as usize], pts[b as usize]);
+    let collinear = |c: &[f64; 3]| {
+        orient2d([pa[0], pa[1]], [pb[0], pb[1]], [c[0], c[1]]) == 0.0
+            && orient2d([pa[1], pa[2]], [pb[1], pb[2]], [c[1], c[2]]) == 0.0
+            && orient2d([pa[0], pa[2]], [pb[0], pb[2]], [c[0], c[2]]) == 0.0
+    };
+    let Some(ci) = order.iter().position(|&c| !collinear(&pts[c as usize])) else {
+        return Ok(mk(&pts, Some("all points collinear".into())));
+    };
+    let c = order[ci];
+    let pc = pts[c as usize];
+    let Some(di) = order
+        .iter()
+        .position(|&d| orient3d(pa, pb, pc, pts[d as usize]) != 0.0)
+    else {
+        return Ok(mk(&pts, Some("all points coplanar".into())));
+    };
+    let d = order[di];
+    let mut first = if orient3d(pa, pb, pc, pts[d as usize]) > 0.0 {
+        [a, b, c, d]
+    } else {
+        [b, a, c, d]
+    };
+    if orient3d(
+        pts[first[0] as usize],
+        pts[first[1] as usize],
+        pts[first[2] as usize],
+        pts[first[3] as usize],
+    ) < 0.0
+    {
+        first.swap(0, 1);
+    }
+    let n = pts.len();
+    let mut bld = Builder {
+        pts: &pts,
+        tv: Vec::with_capacity(7 * n + 16),
+        tn: Vec::with_capacity(7 * n + 16),
+        stamp: Vec::with_capacity(7 * n + 16),
+        free: Vec::new(),
+        last: 0,
+        rng: 0x2545_F491_4F6C_DD1D,
+        stack: Vec::new(),
+        conflict: Vec::new(),
+        bnd: Vec::new(),
+        table: Vec::new(),
+        gen: 0,
+    };
+    bld.tv.push(first);
+    for f in FACE_OF {
+        bld.tv.push([first[f[1]], first[f[0]], first[f[2]], INF]);
+    }
+    bld.tn = vec![[0; 4]; 5];
+    bld.stamp = vec![0; 5];
+    link_brute(&bld.tv, &mut bld.tn);
+    let mut k = 0u32;
+    for &p in &order {
+        if p == a || p == b || p == c || p == d {
+            continue;
+        }
+        bld.insert(p, k);
+        k += 1;
+    }
+    // compact in place
+    let Builder { mut tv, mut tn, .. } = bld;
+    let mut map = vec![NONE; tv.len()];
+    let mut m = 0u32;
+    for (t, v) in tv.iter().enumerate() {
+        if v[0] != FREE && v[3] != INF {
+            map[t] = m;
+            m += 1;
+        }
+    }
+    let mut hull = Vec::new();
+    let mut w = 0usize;
+    for t in 0..tv.len() {
+        let v = tv[t];
+        if v[0] == FREE {
+            continue;
+        }
+        if v[3] == INF {
+            hull.push([v[0], v[2], v[1]]);
+            continue;
+        }
+        let mut nb = [NONE; 4];
+        for i in 0..4 {
+            nb[i] = map[(tn[t][i] >> 2) as usize];
+        }
+        tv[w] = v;
+        tn[w] = nb;
+        w += 1;
+    }
+    tv.truncate(w);
+    tn.truncate(w);
+    tv.shrink_to_fit();
+    tn.shrink_to_fit();
+    drop(map);
+    let mut out = mk(&pts, None);
+    for (t, v) in tv.iter().enumerate() {
+        for &x in v {
+            out.vertex_tet[x as usize] = t as u32;
+        }
+    }
+    out.tets = tv;
+    out.neighbors = tn;
+    out.hull = hull;
+    Ok(out)
+}
+
+/// Links the faces of a handful of tetrahedra by brute force (initial simplex).
+fn link_brute(tv: &[[u32; 4]], tn: &mut [[u32; 4]]) {
+    let face = |t: usize, i: usize| {
+        let mut f: Vec<u32> = (0..4).filter(|&k| k != i).map(|k| tv[t][k]).collect();
+        f.sort_unstable();
+        f
+    };
+    for t in 0..tv.len() {
+        for i in 0..4 {
+            let f = face(t, i);
+            for u in 0..tv.len() {
+                if u == t {
+                    continue;
+                }
+                for j in 0..4 {
+                    if face(u, j) == f {
+                        tn[t][i] = ((u as u32) << 2) | j as u32;
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl Delaunay3 {
+    /// Number of vertices (distinct points).
+    pub fn num_vertices(&self) -> usize {
+        self.points.len()
+    }
+
+    fn pa(&self, v: u32) -> [f64; 3] {
+        arr(&self.points[v as usize])
+    }
+
+    /// A tetrahedron containing `p` (in its closure), or `None` when `p` is outside the convex
+    /// hull or there are no tetrahedra. Visibility walk with exact `orient3d` (it terminates on
+    /// Delaunay triangulations).
+    pub fn locate(&self, p: &Point3) -> Option<u32> {
+        self.locate_from(p, 0)
+    }
+
+    /// [`Self::locate`] starting the walk at tetrahedron `hint`.
+    pub fn locate_from(&self, p: &Point3, hint: u32) -> Option<u32> {
+        if self.tets.is_empty() {
+            return None;
+        }
+        let pp = arr(p);
+        let mut t = if (hint as usize) < self.tets.len() {
+            hint
+        } else {
+            0
+        };
+        let mut steps = 0usize;
+        'walk: loop {
+            steps += 1;
+            if steps > 4 * self.tets.len() + 100 {
+                break;
+            }
+            let v = self.tets[t as usize];
+            let q = [self.pa(v[0]), self.pa(v[1]), self.pa(v[2]), self.pa(v[3])];
+            for i in 0..4 {
+                let mut w = q;
+                w[i] = pp;
+                if orient3d(w[0], w[1], w[2], w[3]) < 0.0 {
+                    let n = self.neighbors[t as usize][i];
+                    if n == NONE {
+                        return None;
+                    }
+                    t = n;
+                    continue 'walk;
+                }
+            }
+            return Some(t);
+        }
+        (0..self.tets.len() as u32).find(|&t| {
+            let v = self.tets[t as usize];
+            let q = [self.pa(v[0]), self.pa(v[1]), self.pa(v[2]), self.pa(v[3])];
+            (0..4).all(|i| {
+                let mut w = q;
+                w[i] = pp;
+                orient3d(w[0], w[1], w[2], w[3]) >= 0.0
+            })
+        })
+    }
+
+    /// All tetrahedra incident to vertex `v` (empty for an invalid `v`).
+    pub fn tets_around_vertex(&self, v: u32) -> Vec<u32> {
+        let Some(&t0) = self.vertex_tet.get(v as usize) else {
+            return Vec::new();
+        };
+        if t0 == NONE {
+            return Vec::new();
+        }
+        let mut seen = HashSet::new();
+        let mut out = vec![t0];
+        seen.insert(t0);
+        let mut k = 0;
+        while k < out.len() {
+            let t = out[k] as usize;
+            k += 1;
+            for i in 0..4 {
+                if self.tets[t][i] == v {
+                    continue;
+                }
+                let n = self.neighbors[t][i];
+                if n != NONE && seen.insert(n) {
+                    out.push(n);
+                }
+            }
+        }
+        out
+    }
+
+    /// The tetrahedra around edge `ab`, in rotational order (empty when `ab` is not an edge).
+    pub fn tets_around_edge(&self, a: u32, b: u32) -> Vec<u32> {
+        let Some(t0) = self
+            .tets_around_vertex(a)
+            .into_iter()
+            .find(|&t| self.tets[t as usize].contains(&b))
+        else {
+            return Vec::new();
+        };
+        let others = |t: u32| -> [usize; 2] {
+            let v = self.tets[t as usize];
+            let mut o = [0; 2];
+            let mut k = 0;
+            for i in 0..4 {
+                if v[i] != a && v[i] != b {
+                    o[k] = i;
+                    k += 1;
+                }
+            }
+            o
+        };
+        let rotate = |start_slot: usize| -> (Vec<u32>, bool) {
+            let mut out = Vec::new();
+            let mut prev = t0;
+            let mut cur = self.neighbors[t0 as usize][start_slot];
+            while cur != NONE && cur != t0 {
+                out.push(cur);
+                let o = others(cur);
+                let n0 = self.neighbors[cur as usize][o[0]];
+                let next = if n0 != prev {
+                    n0
+                } else {
+                    self.neighbors[cur as usize][o[1]]
+                };
+                prev = cur;
+                cur = next;
+            }
+            (out, cur == t0)
+        };
+        let o = others(t0);
+        let (fwd, closed) = rotate(o[0]);
+        let mut res = vec![t0];
+        if closed {
+            res.extend(fwd);
+        } else {
+            let (bwd, _) = rotate(o[1]);
+            let mut r: Vec<u32> = bwd.into_iter().rev().collect();
+            r.push(t0);
+            r.extend(fwd);
+            res = r;
+        }
+        res
+    }
+
+    /// Every triangle once, with its tetrahedra (the second is [`NONE`] on the hull).
+    pub fn triangles(&self) -> Vec<Face3> {
+        let mut out = Vec::with_capacity(self.tets.len() * 2 + self.hull.len());
+        for (t, v) in self.tets.iter().enumerate() {
+            for i in 0..4 {
+                let n = self.neighbors[t][i];
+                if n == NONE || (t as u32) < n {
+                    let f = FACE_OF[i];
+                    // FACE_OF is oriented towards corner i; outward = reversed
+                    out.push(Face3 {
+                        v: [v[f[1]], v[f[0]], v[f[2]]],
+                        tets: [t as u32, n],
+                    });
+                }
+            }
+        }
+        out
+    }
+
+    /// Circumcentre of tetrahedron `t` (a Voronoi vertex), computed in `f64`.
+    pub fn circumcenter(&self, t: u32) -> Point3 {
+        self.circumsphere(t).0
+    }
+
+    /// Circumsphere (centre, radius) of tetrahedron `t`, computed in `f64`.
+    pub fn circumsphere(&self, t: u32) -> (Point3, f64) {
+        let v = self.tets[t as usize];
+        let a = self.points[v[0] as usize];
+        let b = self.points[v[1] as usize] - a;
+        let c = self.points[v[2] as usize] - a;
+        let d = self.points[v[3] as usize] - a;
+        let den = 2.0 * b.dot(&c.cross(&d));
+        let num = c.cross(&d) * b.norm_squared()
+            + d.cross(&b) * c.norm_squared()
+            + b.cross(&c) * d.norm_squared();
+        let off = num / den;
+        (a + off, off.norm())
+    }
+
+    /// The tetrahedra with input indices (a merged duplicate is represented by its first
+    /// occurrence).
+    pub fn to_input_indices(&self) -> Vec<[u32; 4]> {
+        self.tets
+            .iter()
+            .map(|t| t.map(|v| self.input_of_vertex[v as usize]))
+            .collect()
+    }
+
+    /// Checks the combinatorial invariants (positive orientation, neighbour symmetry); for tests.
+    pub fn check_topology(&self) -> std::result::Result<(), String> {
+        for (t, v) in self.tets.iter().enumerate() {
+            let q = v.map(|x| self.pa(x));
+            if orient3d(q[0], q[1], q[2], q[3]) <= 0.0 {
+                return Err(format!("tet {t} not positive"));
+            }
+            for i in 0..4 {
+                let n = self.neighbors[t][i];
+                if n == NONE {
+                    continue;
+                }
+                let nv = self.tets[n as usize];
+                let Some(j) = (0..4).find(|&j| self.neighbors[n as usize][j] == t as u32) else {
+                    return Err(format!("neighbour {n} of {t} not symmetric"));
+                };
+                let mut f1: Vec<u32> = (0..4).filter(|&k| k != i).map(|k| v[k]).collect();
+                let mut f2: Vec<u32> = (0..4).filter(|&k| k != j).map(|k| nv[k]).collect();
+                f1.sort_unstable();
+                f2.sort_unstable();
+                if f1 != f2 {
+                    return Err(format!("tets {t} and {n} do not share the face"));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cube_grid(n: usize) -> Vec<Point3> {
+        let mut v = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                for k in 0..n {
+                    v.push(Point3::new(i as f64, j as f64, k as f64));
+                }
+            }
+        }
+        v
+    }
+
+    #[test]
+    fn single_tet() {
+        let p = [
+            Point3::new(0.0, 0.0, 0.0),
+            Point3::new(1.0, 0.0, 0.0),
+            Point3::new(0.0, 1.0, 0.0),
+            Point3::new(0.0, 0.0, 1.0),
+        ];
+        let d = triangulate(&p).unwrap();
+        assert_eq!(d.tets.len(), 1);
+        assert_eq!(d.hull.len(), 4);
+        d.check_topology().unwrap();
+    }
+
+    #[test]
+    fn cube_grid_counts() {
+        let d = triangulate(&cube_grid(3)).unwrap();
+        d.check_topology().unwrap();
+        let vol: f64 = d
+            .tets
+            .iter()
+            .map(|t| {
+                let q = t.map(|x| arr(&d.points[x as usize]));
+                orient3d(q[0], q[1], q[2], q[3]) / 6.0
+            })
+            .sum();
+        assert!((vol - 8.0).abs() < 1e-12, "{vol}");
+        assert_eq!(d.hull.len(), 6 * 8);
+    }
+
+    #[test]
+    fn hilbert_is_bijective_on_small_grid() {
+        let mut keys: Vec<u64> = Vec::new();
+        for x in 0..8 {
+            for y in 0..8 {
+                for z in 0..8 {
+                    keys.push(hilbert3([x, y, z], 3));
+                }
+            }
+        }
+        keys.sort_unstable();
+        keys.dedup();
+        assert_eq!(keys.len(), 512);
+        assert_eq!(*keys.last().unwrap(), 511);
+    }
+
+    #[test]
+    fn degenerate_inputs() {
+        let line: Vec<Point3> = (0..5).map(|i| Point3::new(i as f64, 0.0, 0.0)).collect();
+        let d = triangulate(&line).unwrap();
+        assert!(d.tets.is_empty());
+        assert_eq!(d.degenerate.as_deref(), Some("all points collinear"));
+        let plane: Vec<Point3> = (0..9)
+            .map(|i| Point3::new((i % 3) as f64, (i / 3) as f64, 0.0))
+            .collect();
+        let d = triangulate(&plane).unwrap();
+        assert_eq!(d.degenerate.as_deref(), Some("all points coplanar"));
+        assert!(triangulate(&[]).is_err());
+        assert!(triangulate(&[Point3::new(f64::NAN, 0.0, 0.0)]).is_err());
+    }
+}
