@@ -434,10 +434,14 @@ impl Builder {
 
 fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
     if points.is_empty() {
-        return Err(Error::invalid("Delaunay triangulation of an empty point set"));
+        return Err(Error::invalid(
+            "Delaunay triangulation of an empty point set",
+        ));
     }
     if points.len() >= u32::MAX as usize / 4 {
-        return Err(Error::invalid("too many points for a 2D Delaunay triangulation"));
+        return Err(Error::invalid(
+            "too many points for a 2D Delaunay triangulation",
+        ));
     }
     let mut lo = [f64::INFINITY; 2];
     let mut hi = [f64::NEG_INFINITY; 2];
@@ -562,11 +566,13 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
     bld.link(2, 5);
     bld.link(0, 8); // (b,c) ↔ ghost 2 (c,b)
     bld.link(1, 11); // (c,a) ↔ ghost 3 (a,c)
-    // ghost edges through INF: ghost1 (b,a,INF): corner0 opp (a,INF), corner1 opp (INF,b)
+                     // ghost edges through INF: ghost1 (b,a,INF): corner0 opp (a,INF), corner1 opp (INF,b)
     bld.link(3, 10); // g1 (a,INF) ↔ g3 (INF,a): g3 = (a,c,INF) corner 1 opp (INF,a)
     bld.link(4, 6); // g1 (INF,b) ↔ g2 (b,INF): g2 = (c,b,INF) corner 0 opp (b,INF)
     bld.link(7, 9); // g2 (INF,c) ↔ g3 (c,INF)
-    let mut order: Vec<u32> = (0..n as u32).filter(|&v| v as usize != k0 && v > 1).collect();
+    let mut order: Vec<u32> = (0..n as u32)
+        .filter(|&v| v as usize != k0 && v > 1)
+        .collect();
     if let Some(seed) = order_seed {
         let mut st = seed | 1;
         for i in (1..order.len()).rev() {

@@ -449,9 +449,7 @@ pub(crate) type Dedup<const D: usize> = (Vec<[f64; D]>, Vec<u32>, Vec<u32>);
 
 /// Checks the input and merges duplicates: returns the sorted distinct points, the vertex of each
 /// input point and the first input point of each vertex.
-pub(crate) fn dedup_sorted<const D: usize>(
-    coords: &[[f64; D]],
-) -> Result<Dedup<D>> {
+pub(crate) fn dedup_sorted<const D: usize>(coords: &[[f64; D]]) -> Result<Dedup<D>> {
     if coords.is_empty() {
         return Err(Error::invalid("no points"));
     }

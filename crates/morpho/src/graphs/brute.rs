@@ -240,6 +240,9 @@ pub fn alpha_2d(p: &[[f64; 2]], a: f64) -> Vec<[u32; 2]> {
     let rad = 1.0 / a.abs();
     pairs(p.len())
         .filter(|&(i, j)| {
+            // disc through i and j with centre m + t·N (N the unnormalised left normal):
+            // |x − c|² − R² = q − 2t·h with q = |x − m|² − r², h = (x − m)·N (no square roots
+            // in the comparison, so points exactly on the circle stay on it)
             let (pi, pj) = (p[i], p[j]);
             let dd = [pj[0] - pi[0], pj[1] - pi[1]];
             let l2 = dd[0] * dd[0] + dd[1] * dd[1];
@@ -247,17 +250,19 @@ pub fn alpha_2d(p: &[[f64; 2]], a: f64) -> Vec<[u32; 2]> {
             if h2 < 0.0 {
                 return false;
             }
-            let h = h2.sqrt() / l2.sqrt();
+            let t = (h2 / l2).sqrt();
             let m = [0.5 * (pi[0] + pj[0]), 0.5 * (pi[1] + pj[1])];
+            let nrm = [-dd[1], dd[0]];
             [1.0, -1.0].iter().any(|&sd| {
-                let c = [m[0] - sd * h * dd[1], m[1] + sd * h * dd[0]];
                 (0..p.len()).filter(|&x| x != i && x != j).all(|x| {
-                    let dx = [p[x][0] - c[0], p[x][1] - c[1]];
-                    let r2 = dx[0] * dx[0] + dx[1] * dx[1];
+                    let xm = [p[x][0] - m[0], p[x][1] - m[1]];
+                    let q = xm[0] * xm[0] + xm[1] * xm[1] - l2 / 4.0;
+                    let h = xm[0] * nrm[0] + xm[1] * nrm[1];
+                    let v = q - 2.0 * sd * t * h; // |x − c|² − R²
                     if a > 0.0 {
-                        r2 <= rad * rad
+                        v <= 0.0
                     } else {
-                        r2 >= rad * rad
+                        v >= 0.0
                     }
                 })
             })
@@ -282,16 +287,16 @@ pub fn beta_lune<const D: usize>(p: &[[f64; D]], b: f64) -> Vec<[u32; 2]> {
     pairs(p.len())
         .filter(|&(i, j)| {
             let k = 1.0 / (2.0 * (1.0 - b));
-            let dij = d2(&p[i], &p[j]).sqrt();
-            let rad = dij * k;
+            // squared radius without a square root, so that ties stay exact on grids
+            let rad2 = d2(&p[i], &p[j]) * k * k;
             let c1: Vec<f64> = (0..D).map(|t| p[i][t] + (p[j][t] - p[i][t]) * k).collect();
             let c2: Vec<f64> = (0..D).map(|t| p[j][t] + (p[i][t] - p[j][t]) * k).collect();
             !(0..p.len()).any(|x| {
                 if x == i || x == j {
                     return false;
                 }
-                let in1 = d2(&p[x], &c1) < rad * rad;
-                let in2 = d2(&p[x], &c2) < rad * rad;
+                let in1 = d2(&p[x], &c1) < rad2;
+                let in2 = d2(&p[x], &c2) < rad2;
                 in1 && in2 || on_open_segment(&p[i], &p[j], &p[x])
             })
         })
@@ -366,5 +371,41 @@ pub fn gamma_values_3d(p: &[[f64; 3]]) -> Vec<([u32; 3], (f64, f64))> {
                 .gamma_values()
                 .map(|v| ([i as u32, j as u32, k as u32], v))
         })
+        .collect()
+}
+
+/// α(a)-shape triangles in 3D from the definition (Defs. 2.12–2.14): a generalized ball of
+/// radius 1/a through the three corners that contains all points (a > 0: a ball; a < 0: the
+/// complement of an open ball, i.e. an empty ball; a = 0: the hull).
+pub fn alpha_3d(p: &[[f64; 3]], a: f64) -> Vec<[u32; 3]> {
+    if a == 0.0 {
+        return hull_3d(p);
+    }
+    let rad = 1.0 / a.abs();
+    triples(p.len())
+        .filter(|&(i, j, k)| {
+            let Some((m, r2, n)) = super::gamma::triangle_circle(p[i], p[j], p[k]) else {
+                return false;
+            };
+            let h2 = rad * rad - r2;
+            if h2 < 0.0 {
+                return false;
+            }
+            let t = (h2 / dot3(n, n)).sqrt();
+            [1.0, -1.0].iter().any(|&sd| {
+                (0..p.len())
+                    .filter(|&x| x != i && x != j && x != k)
+                    .all(|x| {
+                        let xm = sub3(p[x], m);
+                        let v = dot3(xm, xm) - r2 - 2.0 * sd * t * dot3(xm, n); // |x − c|² − R²
+                        if a > 0.0 {
+                            v <= 0.0
+                        } else {
+                            v >= 0.0
+                        }
+                    })
+            })
+        })
+        .map(|(i, j, k)| [i as u32, j as u32, k as u32])
         .collect()
 }

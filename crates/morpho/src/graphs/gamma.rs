@@ -51,6 +51,10 @@ pub struct CenterInterval {
     /// Some point lies in the closed simplex (other than its vertices): every neighbourhood is
     /// blocked.
     pub all_blocked: bool,
+    /// The point that fixes `lo` (a point below whose ball is the largest empty one), if any.
+    pub lo_at: Option<[f64; 3]>,
+    /// The point that fixes `hi`, if any.
+    pub hi_at: Option<[f64; 3]>,
 }
 
 /// |c| of the ball with offset `s` (in normal units) for a simplex with `r_over_n`.
@@ -75,13 +79,28 @@ pub fn offset_of(c_abs: f64, r_over_n: f64) -> f64 {
 }
 
 impl CenterInterval {
-    fn new(r_over_n: f64) -> Self {
+    /// The interval of a simplex with no other point: every ball empty.
+    pub fn new(r_over_n: f64) -> Self {
         CenterInterval {
             lo: f64::NEG_INFINITY,
             hi: f64::INFINITY,
             r_over_n,
             finite_blocked: false,
             all_blocked: false,
+            lo_at: None,
+            hi_at: None,
+        }
+    }
+
+    /// Makes the float ends agree with the exact relation `rel` between them (< 0: lo < hi,
+    /// 0: lo = hi, > 0: lo > hi) decided by an exact in-circle/in-sphere test.
+    fn settle(&mut self, rel: f64) {
+        if rel == 0.0 || (rel < 0.0 && self.lo > self.hi) {
+            let mid = 0.5 * (self.lo + self.hi);
+            self.lo = mid;
+            self.hi = mid;
+        } else if rel > 0.0 && self.lo <= self.hi {
+            self.lo = self.hi + self.hi.abs() * 4.0 * f64::EPSILON + f64::MIN_POSITIVE;
         }
     }
 
@@ -183,44 +202,115 @@ pub fn in_gamma_range(values: (f64, f64), range: [f64; 4]) -> bool {
     range[0] <= a && a <= range[1] && range[2] <= b && b <= range[3]
 }
 
-/// The interval of empty-ball offsets of the 2D edge (a, b) among `points` (indices `skip`
-/// excluded — the edge's own vertices). Normal: the left normal of a→b, unnormalised.
-pub fn center_interval_2d(points: &[[f64; 2]], a: usize, b: usize) -> CenterInterval {
-    let (pa, pb) = (points[a], points[b]);
-    let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
-    let d = [pb[0] - pa[0], pb[1] - pa[1]];
-    let nrm = [-d[1], d[0]];
-    let r2 = 0.25 * (d[0] * d[0] + d[1] * d[1]);
-    let nlen = (nrm[0] * nrm[0] + nrm[1] * nrm[1]).sqrt();
-    let mut iv = CenterInterval::new(r2.sqrt() / nlen);
-    for (i, &x) in points.iter().enumerate() {
-        if i == a || i == b {
-            continue;
+/// −1, 0 or +1 (unlike `f64::signum`, 0 for zero).
+#[inline]
+pub fn sign(x: f64) -> f64 {
+    if x > 0.0 {
+        1.0
+    } else if x < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+/// The frame of a 2D edge (a, b) for computing its [`CenterInterval`] point by point.
+#[derive(Debug, Clone, Copy)]
+pub struct EdgeFrame {
+    pa: [f64; 2],
+    pb: [f64; 2],
+    m: [f64; 2],
+    d: [f64; 2],
+    nrm: [f64; 2],
+    r2: f64,
+}
+
+impl EdgeFrame {
+    /// Frame of the edge a→b; the normal is the left normal of a→b (unnormalised).
+    pub fn new(pa: [f64; 2], pb: [f64; 2]) -> Self {
+        let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+        let d = [pb[0] - pa[0], pb[1] - pa[1]];
+        EdgeFrame {
+            pa,
+            pb,
+            m,
+            d,
+            nrm: [-d[1], d[0]],
+            r2: 0.25 * (d[0] * d[0] + d[1] * d[1]),
         }
-        let side = raw::orient2d(pa, pb, x);
-        let dx = [x[0] - m[0], x[1] - m[1]];
+    }
+    /// The interval before any point is added: every ball empty.
+    pub fn start(&self) -> CenterInterval {
+        let nlen = (self.nrm[0] * self.nrm[0] + self.nrm[1] * self.nrm[1]).sqrt();
+        CenterInterval::new(self.r2.sqrt() / nlen)
+    }
+    /// Side (+1 left, −1 right, 0 on the line; exact) and offset τ of point x.
+    pub fn tau(&self, x: [f64; 2]) -> (f64, f64) {
+        let side = sign(raw::orient2d(self.pa, self.pb, x));
+        let dx = [x[0] - self.m[0], x[1] - self.m[1]];
+        let q = dx[0] * dx[0] + dx[1] * dx[1] - self.r2;
         if side == 0.0 {
-            // on the line: blocks everything when on the closed segment (between a and b)
-            let t = dx[0] * d[0] + dx[1] * d[1];
-            // |t| ≤ |d|²/2 = 2r² ⇔ x lies between a and b
-            if t.abs() <= 2.0 * r2 {
-                iv.all_blocked = true;
-            }
-            continue;
+            return (0.0, q);
         }
-        let q = dx[0] * dx[0] + dx[1] * dx[1] - r2;
-        let h = dx[0] * nrm[0] + dx[1] * nrm[1];
+        let h = dx[0] * self.nrm[0] + dx[1] * self.nrm[1];
         // h has the exact sign of `side` up to rounding; trust the predicate
         let h = if (h > 0.0) != (side > 0.0) || h == 0.0 {
-            side.signum() * f64::MIN_POSITIVE
+            side * f64::MIN_POSITIVE
         } else {
             h
         };
-        let tau = q / (2.0 * h);
+        (side, q / (2.0 * h))
+    }
+    /// Narrows `iv` by point x (not a or b). Which point binds each end, and whether the ends
+    /// are equal or in which order, is decided by exact in-circle tests: τ(x) < τ(y) for points
+    /// above ⇔ x lies inside the circle through a, b, y.
+    pub fn add(&self, iv: &mut CenterInterval, x: [f64; 2]) {
+        let (side, tau) = self.tau(x);
+        let xy = |p: [f64; 3]| [p[0], p[1]];
         if side > 0.0 {
-            iv.hi = iv.hi.min(tau);
+            let better = match iv.hi_at {
+                None => true,
+                Some(y) => raw::incircle(self.pa, self.pb, xy(y), x) > 0.0,
+            };
+            if better {
+                iv.hi = tau;
+                iv.hi_at = Some([x[0], x[1], 0.0]);
+                if let Some(l) = iv.lo_at {
+                    iv.lo = self.tau(xy(l)).1;
+                    iv.settle(raw::incircle(self.pa, self.pb, x, xy(l)));
+                }
+            }
+        } else if side < 0.0 {
+            let better = match iv.lo_at {
+                None => true,
+                Some(y) => raw::incircle(self.pb, self.pa, xy(y), x) > 0.0,
+            };
+            if better {
+                iv.lo = tau;
+                iv.lo_at = Some([x[0], x[1], 0.0]);
+                if let Some(h) = iv.hi_at {
+                    iv.hi = self.tau(xy(h)).1;
+                    iv.settle(raw::incircle(self.pa, self.pb, xy(h), x));
+                }
+            }
         } else {
-            iv.lo = iv.lo.max(tau);
+            // on the line: blocks everything when between a and b: |(x − m)·d| ≤ |d|²/2 = 2r²
+            let t = (x[0] - self.m[0]) * self.d[0] + (x[1] - self.m[1]) * self.d[1];
+            if t.abs() <= 2.0 * self.r2 {
+                iv.all_blocked = true;
+            }
+        }
+    }
+}
+
+/// The interval of empty-ball offsets of the 2D edge (a, b) among `points` (the edge's own
+/// vertices excluded). Normal: the left normal of a→b, unnormalised. O(N).
+pub fn center_interval_2d(points: &[[f64; 2]], a: usize, b: usize) -> CenterInterval {
+    let f = EdgeFrame::new(points[a], points[b]);
+    let mut iv = f.start();
+    for (i, &x) in points.iter().enumerate() {
+        if i != a && i != b {
+            f.add(&mut iv, x);
         }
     }
     iv
@@ -250,46 +340,105 @@ pub fn triangle_circle(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<([f64; 3
     Some((m, dot3(off, off), n))
 }
 
+/// The frame of a 3D triangle (a, b, c) for computing its [`CenterInterval`] point by point.
+#[derive(Debug, Clone, Copy)]
+pub struct TriFrame {
+    t: [[f64; 3]; 3],
+    m: [f64; 3],
+    r2: f64,
+    n: [f64; 3],
+}
+
+impl TriFrame {
+    /// Frame of the triangle; normal (b − a) × (c − a). `None` when the corners are collinear.
+    pub fn new(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<Self> {
+        let (m, r2, n) = triangle_circle(a, b, c)?;
+        Some(TriFrame {
+            t: [a, b, c],
+            m,
+            r2,
+            n,
+        })
+    }
+    /// The interval before any point is added.
+    pub fn start(&self) -> CenterInterval {
+        CenterInterval::new((self.r2 / dot3(self.n, self.n)).sqrt())
+    }
+    /// Side (+1 along the normal, −1 against, 0 in the plane; exact) and offset τ of x.
+    pub fn tau(&self, x: [f64; 3]) -> (f64, f64) {
+        let [a, b, c] = self.t;
+        // orient3d(a, b, c, x) > 0 when x is below, i.e. on the side opposite to n
+        let side = sign(-raw::orient3d(a, b, c, x));
+        let dx = sub3(x, self.m);
+        let q = dot3(dx, dx) - self.r2;
+        if side == 0.0 {
+            return (0.0, q);
+        }
+        let h = dot3(dx, self.n);
+        let h = if (h > 0.0) != (side > 0.0) || h == 0.0 {
+            side * f64::MIN_POSITIVE
+        } else {
+            h
+        };
+        (side, q / (2.0 * h))
+    }
+    /// Narrows `iv` by point x (not a corner); binding points and the order of the ends are
+    /// decided by exact in-sphere tests (see [`EdgeFrame::add`]).
+    pub fn add(&self, iv: &mut CenterInterval, x: [f64; 3]) {
+        let (side, tau) = self.tau(x);
+        let [a, b, c] = self.t;
+        if side > 0.0 {
+            // above: (b, a, c, y) is positively oriented
+            let better = match iv.hi_at {
+                None => true,
+                Some(y) => raw::insphere(b, a, c, y, x) > 0.0,
+            };
+            if better {
+                iv.hi = tau;
+                iv.hi_at = Some(x);
+                if let Some(l) = iv.lo_at {
+                    iv.lo = self.tau(l).1;
+                    iv.settle(raw::insphere(b, a, c, x, l));
+                }
+            }
+        } else if side < 0.0 {
+            let better = match iv.lo_at {
+                None => true,
+                Some(y) => raw::insphere(a, b, c, y, x) > 0.0,
+            };
+            if better {
+                iv.lo = tau;
+                iv.lo_at = Some(x);
+                if let Some(h) = iv.hi_at {
+                    iv.hi = self.tau(h).1;
+                    iv.settle(raw::insphere(b, a, c, h, x));
+                }
+            }
+        } else {
+            let [a, b, c] = self.t;
+            if in_closed_triangle_3d(a, b, c, x, self.n) {
+                iv.all_blocked = true;
+            } else if tau < 0.0 {
+                iv.finite_blocked = true;
+            }
+        }
+    }
+}
+
 /// The interval of empty-ball offsets of triangle (a, b, c) among 3D `points`; normal
 /// (b − a) × (c − a). `None` for a degenerate (collinear) triangle, for which no touching
-/// ball is defined (Def. 3.1 requires the vertices not to lie in a line).
+/// ball is defined (Def. 3.1 requires the vertices not to lie in a line). O(N).
 pub fn center_interval_3d(
     points: &[[f64; 3]],
     a: usize,
     b: usize,
     c: usize,
 ) -> Option<CenterInterval> {
-    let (pa, pb, pc) = (points[a], points[b], points[c]);
-    let (m, r2, n) = triangle_circle(pa, pb, pc)?;
-    let nlen = dot3(n, n).sqrt();
-    let mut iv = CenterInterval::new(r2.sqrt() / nlen);
+    let f = TriFrame::new(points[a], points[b], points[c])?;
+    let mut iv = f.start();
     for (i, &x) in points.iter().enumerate() {
-        if i == a || i == b || i == c {
-            continue;
-        }
-        // orient3d(a, b, c, x) > 0 when x is below, i.e. on the side opposite to n
-        let o = -raw::orient3d(pa, pb, pc, x);
-        let dx = sub3(x, m);
-        let q = dot3(dx, dx) - r2;
-        if o == 0.0 {
-            if in_closed_triangle_3d(pa, pb, pc, x, n) {
-                iv.all_blocked = true;
-            } else if q < 0.0 {
-                iv.finite_blocked = true;
-            }
-            continue;
-        }
-        let h = dot3(dx, n);
-        let h = if (h > 0.0) != (o > 0.0) || h == 0.0 {
-            o.signum() * f64::MIN_POSITIVE
-        } else {
-            h
-        };
-        let tau = q / (2.0 * h);
-        if o > 0.0 {
-            iv.hi = iv.hi.min(tau);
-        } else {
-            iv.lo = iv.lo.max(tau);
+        if i != a && i != b && i != c {
+            f.add(&mut iv, x);
         }
     }
     Some(iv)

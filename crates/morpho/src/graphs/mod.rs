@@ -5,7 +5,12 @@
 //!   3.1–3.2.
 
 pub mod brute;
+pub mod build;
+pub mod fast;
 pub mod gamma;
+pub mod grid;
+
+pub use build::{graph_2d, graph_3d, Graph, Kind};
 
 #[cfg(test)]
 mod tests;

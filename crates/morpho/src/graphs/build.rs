@@ -1,0 +1,768 @@
+//! The graph family as one entry point: [`graph_2d`] and [`graph_3d`] build any [`Kind`] from
+//! the Delaunay triangulation (Veltkamp 1992 §2.2 and ch. 3; construction per [`super::fast`]).
+//!
+//! Complexities after the O(N log N) triangulation: CP, NNG, EMST (Kruskal on Delaunay edges),
+//! hull, Delaunay, GG, α (a ≤ 0), β_c/γ with parameters ≥ 0: O(N); RNG, lune-based β, SIG:
+//! O(N·k) with k the points in the edge's neighbourhood (grid queries); ∞-SG: O(N) filter plus
+//! O(N) per surviving edge; α (a > 0): O(h³) over the h hull vertices; γ beyond the Delaunay
+//! triangulation: see [`super::fast::beyond_dt_2d`]. 3D γ with negative parameters and 3D α
+//! with a > 0 use the brute force of V Thm 3.1 and are limited to [`BRUTE_LIMIT_3D`] points.
+
+use super::brute;
+use super::fast::{self, Candidates2};
+use super::gamma::{in_gamma, in_gamma_range, CenterInterval};
+use super::grid::Grid;
+use crate::delaunay::{d2, d3};
+use crate::geom::{Point2, Point3};
+use crate::{Error, Result};
+
+/// Largest input for the brute-force 3D constructions.
+pub const BRUTE_LIMIT_3D: usize = 150;
+
+/// Which graph to build.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Kind {
+    /// Closest pairs (Def. 2.3).
+    ClosestPairs,
+    /// Nearest neighbours graph with all ties (Def. 2.4).
+    Nng,
+    /// Euclidean minimum spanning tree (Def. 2.5).
+    Emst,
+    /// Infinite strip graph (Def. 2.6).
+    Strip,
+    /// Sphere of influence graph (Def. 2.7).
+    Sig,
+    /// Relative neighbourhood graph (Def. 2.8).
+    Rng,
+    /// Gabriel graph (Def. 2.9).
+    Gabriel,
+    /// Convex hull (Def. 2.10): edges in 2D, triangles in 3D.
+    Hull,
+    /// The Delaunay triangulation: its edges in 2D, its triangles in 3D.
+    Delaunay,
+    /// α(a)-shape (Defs. 2.12–2.14).
+    Alpha(f64),
+    /// Circle-based β-skeleton (Def. 2.15), b ∈ [−1, 1]; 2D only (= γ(b, b)).
+    BetaCircle(f64),
+    /// Lune-based β-skeleton (Def. 2.16), b ∈ [−1, 1] in 2D, b ∈ [0, 1] in 3D.
+    BetaLune(f64),
+    /// γ(c₀, c₁) with |c₀| ≤ |c₁| (Defs. 3.1–3.2).
+    Gamma(f64, f64),
+    /// γ([c₀,c₁],[c₂,c₃]) (Def. 3.3).
+    GammaRange([f64; 4]),
+}
+
+impl Kind {
+    /// The CLI name of the kind.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Kind::ClosestPairs => "closest-pairs",
+            Kind::Nng => "nng",
+            Kind::Emst => "emst",
+            Kind::Strip => "strip",
+            Kind::Sig => "sig",
+            Kind::Rng => "rng",
+            Kind::Gabriel => "gabriel",
+            Kind::Hull => "hull",
+            Kind::Delaunay => "delaunay",
+            Kind::Alpha(_) => "alpha",
+            Kind::BetaCircle(_) => "beta-circle",
+            Kind::BetaLune(_) => "beta-lune",
+            Kind::Gamma(..) => "gamma",
+            Kind::GammaRange(_) => "gamma-range",
+        }
+    }
+    /// Checks the parameter ranges.
+    pub fn validate(&self) -> Result<()> {
+        let unit = |v: f64, what: &str| -> Result<()> {
+            if !(-1.0..=1.0).contains(&v) {
+                Err(Error::invalid(format!(
+                    "{what} must lie in [-1, 1], got {v}"
+                )))
+            } else {
+                Ok(())
+            }
+        };
+        match *self {
+            Kind::Alpha(a) if !a.is_finite() => {
+                Err(Error::invalid("alpha parameter must be finite"))
+            }
+            Kind::BetaCircle(b) | Kind::BetaLune(b) => unit(b, "b"),
+            Kind::Gamma(c0, c1) => {
+                unit(c0, "c0")?;
+                unit(c1, "c1")?;
+                if c0.abs() > c1.abs() {
+                    return Err(Error::invalid(format!(
+                        "γ(c0, c1) needs |c0| ≤ |c1| (got {c0}, {c1})"
+                    )));
+                }
+                Ok(())
+            }
+            Kind::GammaRange(r) => {
+                for (i, v) in r.iter().enumerate() {
+                    unit(*v, &format!("c{i}"))?;
+                }
+                if r[0] > r[1] || r[2] > r[3] {
+                    return Err(Error::invalid("γ ranges must be [c0 ≤ c1], [c2 ≤ c3]"));
+                }
+                Ok(())
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// A geometric graph on a point set; indices refer to the input points (a duplicated point is
+/// represented by its first occurrence).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Graph {
+    pub dim: usize,
+    /// Edges `[i, j]`, i < j, sorted (2D graphs, and 3D graphs made of edges).
+    pub edges: Vec<[u32; 2]>,
+    /// Triangles `[i, j, k]`, sorted (3D hull, Delaunay, α-shape and γ-graphs).
+    pub triangles: Vec<[u32; 3]>,
+    /// For the γ kinds: the γ-values (c₀′, c₁′) of each simplex, aligned with `edges` (2D) or
+    /// `triangles` (3D).
+    pub gamma: Vec<[f64; 2]>,
+}
+
+fn finish2(d: &d2::Delaunay2, mut e: Vec<([u32; 2], Option<[f64; 2]>)>) -> Graph {
+    for (k, _) in e.iter_mut() {
+        let (a, b) = (
+            d.input_of_vertex[k[0] as usize],
+            d.input_of_vertex[k[1] as usize],
+        );
+        *k = [a.min(b), a.max(b)];
+    }
+    e.sort_by_key(|x| x.0);
+    e.dedup_by(|x, y| x.0 == y.0);
+    let gamma = if e.iter().all(|x| x.1.is_some()) && !e.is_empty() {
+        e.iter().map(|x| x.1.unwrap_or_default()).collect()
+    } else {
+        vec![]
+    };
+    Graph {
+        dim: 2,
+        edges: e.into_iter().map(|x| x.0).collect(),
+        triangles: vec![],
+        gamma,
+    }
+}
+
+fn d2len(a: [f64; 2], b: [f64; 2]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
+}
+
+fn dist<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
+    (0..D).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// Nearest-neighbour distance of every vertex over the given (Delaunay) edges.
+fn nn_over<const D: usize>(p: &[[f64; D]], edges: &[[u32; 2]]) -> Vec<f64> {
+    let mut nn = vec![f64::INFINITY; p.len()];
+    for e in edges {
+        let l = dist(&p[e[0] as usize], &p[e[1] as usize]);
+        for &v in e {
+            nn[v as usize] = nn[v as usize].min(l);
+        }
+    }
+    nn
+}
+
+/// The classic graphs that depend only on distances, in D dimensions, from the Delaunay edges.
+fn classic<const D: usize>(
+    p: &[[f64; D]],
+    dt_edges: &[[u32; 2]],
+    gabriel: &[[u32; 2]],
+    kind: Kind,
+) -> Result<Vec<[u32; 2]>> {
+    let n = p.len();
+    Ok(match kind {
+        Kind::Nng | Kind::ClosestPairs => {
+            let nn = nn_over(p, dt_edges);
+            let mut e: Vec<[u32; 2]> = dt_edges
+                .iter()
+                .copied()
+                .filter(|e| {
+                    let l = dist(&p[e[0] as usize], &p[e[1] as usize]);
+                    l == nn[e[0] as usize] || l == nn[e[1] as usize]
+                })
+                .collect();
+            if kind == Kind::ClosestPairs {
+                let min = e
+                    .iter()
+                    .map(|e| dist(&p[e[0] as usize], &p[e[1] as usize]))
+                    .fold(f64::INFINITY, f64::min);
+                e.retain(|e| dist(&p[e[0] as usize], &p[e[1] as usize]) == min);
+            }
+            e
+        }
+        Kind::Emst => {
+            let mut e: Vec<(f64, [u32; 2])> = dt_edges
+                .iter()
+                .map(|e| (dist(&p[e[0] as usize], &p[e[1] as usize]), *e))
+                .collect();
+            e.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            let mut parent: Vec<u32> = (0..n as u32).collect();
+            fn root(p: &mut [u32], mut x: u32) -> u32 {
+                while p[x as usize] != x {
+                    let g = p[p[x as usize] as usize];
+                    p[x as usize] = g;
+                    x = g;
+                }
+                x
+            }
+            let mut out = Vec::with_capacity(n.saturating_sub(1));
+            for (_, [a, b]) in e {
+                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                if ra != rb {
+                    parent[ra as usize] = rb;
+                    out.push([a, b]);
+                }
+            }
+            out
+        }
+        Kind::Rng | Kind::BetaLune(_) => {
+            let b = match kind {
+                Kind::BetaLune(b) => b,
+                _ => 0.5,
+            };
+            let grid = Grid::new(p, 2.0);
+            if b >= 1.0 {
+                return Ok(strip(p, gabriel));
+            }
+            let k = 1.0 / (2.0 * (1.0 - b));
+            gabriel
+                .iter()
+                .copied()
+                .filter(|e| {
+                    let (u, v) = (p[e[0] as usize], p[e[1] as usize]);
+                    let len2: f64 = (0..D).map(|t| (u[t] - v[t]).powi(2)).sum();
+                    let len = len2.sqrt();
+                    let rad = len * k;
+                    let rad2 = len2 * k * k;
+                    let mut c1 = [0.0; D];
+                    let mut c2 = [0.0; D];
+                    let mut m = [0.0; D];
+                    for t in 0..D {
+                        c1[t] = u[t] + (v[t] - u[t]) * k;
+                        c2[t] = v[t] + (u[t] - v[t]) * k;
+                        m[t] = 0.5 * (u[t] + v[t]);
+                    }
+                    // the lune lies within max(len/2, √(R² − (R − len/2)²)) of the midpoint
+                    let reach = (0.5 * len)
+                        .max((rad * rad - (rad - 0.5 * len).powi(2)).max(0.0).sqrt())
+                        * (1.0 + 1e-9);
+                    grid.for_each_within(m, reach, |x| {
+                        if x == e[0] || x == e[1] {
+                            return true;
+                        }
+                        let q = &p[x as usize];
+                        let in1: f64 = (0..D).map(|t| (q[t] - c1[t]).powi(2)).sum();
+                        let in2: f64 = (0..D).map(|t| (q[t] - c2[t]).powi(2)).sum();
+                        !(in1 < rad2 && in2 < rad2)
+                    })
+                })
+                .collect()
+        }
+        Kind::Sig => {
+            let nn = nn_over(p, dt_edges);
+            let rmax = nn.iter().cloned().fold(0.0, f64::max);
+            let grid = Grid::new(p, 2.0);
+            let mut out = Vec::new();
+            for a in 0..n {
+                grid.for_each_within(p[a], nn[a] + rmax, |b| {
+                    if (b as usize) > a && dist(&p[a], &p[b as usize]) < nn[a] + nn[b as usize] {
+                        out.push([a as u32, b]);
+                    }
+                    true
+                });
+            }
+            out
+        }
+        Kind::Strip => strip(p, gabriel),
+        _ => {
+            return Err(Error::invalid(format!(
+                "{} is not a distance graph",
+                kind.name()
+            )))
+        }
+    })
+}
+
+/// ∞-SG ⊆ GG (the open slab contains the Gabriel ball): test each Gabriel edge's slab, with
+/// early exit at the first point inside.
+fn strip<const D: usize>(p: &[[f64; D]], gabriel: &[[u32; 2]]) -> Vec<[u32; 2]> {
+    gabriel
+        .iter()
+        .copied()
+        .filter(|e| {
+            let (u, v) = (p[e[0] as usize], p[e[1] as usize]);
+            let mut dd = [0.0; D];
+            for t in 0..D {
+                dd[t] = v[t] - u[t];
+            }
+            let len2: f64 = dd.iter().map(|x| x * x).sum();
+            !p.iter().any(|x| {
+                let t: f64 = (0..D).map(|k| (x[k] - u[k]) * dd[k]).sum();
+                t > 0.0 && t < len2
+            })
+        })
+        .collect()
+}
+
+/// Builds a graph on 2D points (duplicates merged). Parameters are validated.
+pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
+    kind.validate()?;
+    let d = d2::triangulate(points)?;
+    let p = fast::coords2(&d);
+    let cand = fast::candidates_2d(&d);
+    let gab = |c: &Candidates2| -> Vec<[u32; 2]> {
+        c.edges
+            .iter()
+            .zip(&c.intervals)
+            .filter(|(_, iv)| iv.gamma_values().is_some_and(|v| in_gamma(v, 0.0, 0.0)))
+            .map(|(e, _)| *e)
+            .collect()
+    };
+    let no_gamma = |e: Vec<[u32; 2]>| -> Vec<([u32; 2], Option<[f64; 2]>)> {
+        e.into_iter().map(|e| (e, None)).collect()
+    };
+    let dt_edges: Vec<[u32; 2]> = d
+        .edges()
+        .into_iter()
+        .map(|e| [e[0].min(e[1]), e[0].max(e[1])])
+        .collect();
+    let g = match kind {
+        Kind::Delaunay => no_gamma(dt_edges),
+        Kind::Hull => {
+            let h = &d.hull;
+            let mut e = Vec::new();
+            if d.collinear {
+                e.extend(h.windows(2).map(|w| [w[0], w[1]]));
+            } else if h.len() >= 2 {
+                for i in 0..h.len() {
+                    e.push([h[i], h[(i + 1) % h.len()]]);
+                }
+            }
+            no_gamma(e)
+        }
+        Kind::Gabriel => no_gamma(gab(&cand)),
+        Kind::Alpha(a) if a < 0.0 => {
+            let rad = 1.0 / a.abs();
+            no_gamma(
+                cand.edges
+                    .iter()
+                    .zip(&cand.intervals)
+                    .filter(|(e, iv)| {
+                        let len = d2len(p[e[0] as usize], p[e[1] as usize]);
+                        let h2 = rad * rad - 0.25 * len * len;
+                        if h2 < 0.0 {
+                            return false;
+                        }
+                        let s = h2.sqrt() / len;
+                        iv.ball_empty(s) || iv.ball_empty(-s)
+                    })
+                    .map(|(e, _)| *e)
+                    .collect(),
+            )
+        }
+        Kind::Alpha(a) => {
+            // a = 0: hull; a > 0: discs containing everything, through two hull vertices
+            let hv: Vec<u32> = d.hull.clone();
+            let hp: Vec<[f64; 2]> = hv.iter().map(|&v| p[v as usize]).collect();
+            let e = if a == 0.0 {
+                brute::hull_2d(&hp)
+            } else {
+                brute::alpha_2d(&hp, a)
+            };
+            no_gamma(
+                e.into_iter()
+                    .map(|[i, j]| [hv[i as usize], hv[j as usize]])
+                    .collect(),
+            )
+        }
+        Kind::BetaCircle(b) => {
+            return graph_2d(points, Kind::Gamma(b, b)).map(|mut g| {
+                g.gamma.clear();
+                g
+            })
+        }
+        Kind::BetaLune(b) if b < 0.0 => return graph_2d(points, Kind::BetaCircle(b)),
+        Kind::Gamma(c0, c1) => {
+            let mut e: Vec<([u32; 2], Option<[f64; 2]>)> = Vec::new();
+            let mut take = |edges: &[[u32; 2]], ivs: &[CenterInterval]| {
+                for (k, iv) in edges.iter().zip(ivs) {
+                    // decided on the interval itself (not through the rounded γ-values), so
+                    // that a parameter equal to a γ-value is decided exactly
+                    if iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0) {
+                        if let Some(v) = iv.gamma_values() {
+                            e.push((*k, Some([v.0, v.1])));
+                        }
+                    }
+                }
+            };
+            take(&cand.edges, &cand.intervals);
+            if c1 < 0.0 {
+                let (be, bi) = fast::beyond_dt_2d(&d, &cand, c1);
+                take(&be, &bi);
+            }
+            e
+        }
+        Kind::GammaRange(r) => {
+            let mut e: Vec<([u32; 2], Option<[f64; 2]>)> = Vec::new();
+            let mut take = |edges: &[[u32; 2]], ivs: &[CenterInterval]| {
+                for (k, iv) in edges.iter().zip(ivs) {
+                    if let Some(v) = iv.gamma_values() {
+                        if in_gamma_range(v, r) {
+                            e.push((*k, Some([v.0, v.1])));
+                        }
+                    }
+                }
+            };
+            take(&cand.edges, &cand.intervals);
+            if r[2] < 0.0 {
+                let (be, bi) = fast::beyond_dt_2d(&d, &cand, r[2]);
+                take(&be, &bi);
+            }
+            e
+        }
+        _ => no_gamma(classic(&p, &dt_edges, &gab(&cand), kind)?),
+    };
+    Ok(finish2(&d, g))
+}
+
+/// A triangle with its γ-values when the graph kind has them.
+type Simplex3 = ([u32; 3], Option<[f64; 2]>);
+/// Decides a candidate triangle: `None` to drop it, `Some(γ-values)` to keep it.
+type TriPredicate<'a> = dyn Fn(&CenterInterval, &[u32; 3]) -> Option<Option<[f64; 2]>> + 'a;
+
+fn finish3(
+    d: &d3::Delaunay3,
+    edges: Vec<[u32; 2]>,
+    mut tris: Vec<([u32; 3], Option<[f64; 2]>)>,
+) -> Graph {
+    let map = |v: u32| d.input_of_vertex[v as usize];
+    let mut e: Vec<[u32; 2]> = edges
+        .into_iter()
+        .map(|[a, b]| {
+            let (a, b) = (map(a), map(b));
+            [a.min(b), a.max(b)]
+        })
+        .collect();
+    e.sort_unstable();
+    e.dedup();
+    for (t, _) in tris.iter_mut() {
+        *t = t.map(map);
+        t.sort_unstable();
+    }
+    tris.sort_by_key(|x| x.0);
+    tris.dedup_by(|x, y| x.0 == y.0);
+    let gamma = if !tris.is_empty() && tris.iter().all(|x| x.1.is_some()) {
+        tris.iter().map(|x| x.1.unwrap_or_default()).collect()
+    } else {
+        vec![]
+    };
+    Graph {
+        dim: 3,
+        edges: e,
+        triangles: tris.into_iter().map(|x| x.0).collect(),
+        gamma,
+    }
+}
+
+/// Builds a graph on 3D points (duplicates merged). Kinds made of triangles (hull, Delaunay,
+/// α, γ) fill `triangles`; the others `edges`. Circle-based β and lune-based β with b < 0 are
+/// not defined in 3D (V §2.2.11).
+pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
+    kind.validate()?;
+    let d = d3::triangulate(points)?;
+    let p = fast::coords3(&d);
+    if let Some(why) = &d.degenerate {
+        if p.len() > BRUTE_LIMIT_3D {
+            return Err(Error::invalid(format!("3D graph of degenerate input ({why}) with more than {BRUTE_LIMIT_3D} points; use the 2D graph")));
+        }
+        return brute_3d(&d, &p, kind);
+    }
+    let cand = fast::candidates_3d(&d);
+    let mut dt_edges: Vec<[u32; 2]> = Vec::with_capacity(d.tets.len() * 2);
+    for t in &d.tets {
+        for i in 0..4 {
+            for j in i + 1..4 {
+                dt_edges.push([t[i].min(t[j]), t[i].max(t[j])]);
+            }
+        }
+    }
+    dt_edges.sort_unstable();
+    dt_edges.dedup();
+    let tri_filter = |f: &TriPredicate<'_>| -> Vec<Simplex3> {
+        cand.triangles
+            .iter()
+            .zip(&cand.intervals)
+            .filter_map(|(t, iv)| f(iv, t).map(|g| (*t, g)))
+            .collect()
+    };
+    let gabriel = || -> Vec<[u32; 2]> {
+        // candidate pairs: Delaunay edges and pairs within cospherical groups
+        let mut pairs = dt_edges.clone();
+        for (t, indt) in cand.triangles.iter().zip(&cand.in_dt) {
+            if !indt {
+                pairs.extend([[t[0], t[1]], [t[0], t[2]], [t[1], t[2]]]);
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        let grid = Grid::new(&p, 2.0);
+        pairs
+            .into_iter()
+            .filter(|e| {
+                let (u, v) = (p[e[0] as usize], p[e[1] as usize]);
+                let m = [
+                    0.5 * (u[0] + v[0]),
+                    0.5 * (u[1] + v[1]),
+                    0.5 * (u[2] + v[2]),
+                ];
+                grid.for_each_within(m, 0.5 * dist(&u, &v) * (1.0 + 1e-9), |x| {
+                    if x == e[0] || x == e[1] {
+                        return true;
+                    }
+                    let q = p[x as usize];
+                    (0..3).map(|k| (q[k] - u[k]) * (q[k] - v[k])).sum::<f64>() >= 0.0
+                })
+            })
+            .collect()
+    };
+    Ok(match kind {
+        Kind::Delaunay => finish3(
+            &d,
+            dt_edges,
+            cand.triangles
+                .iter()
+                .zip(&cand.in_dt)
+                .filter(|x| *x.1)
+                .map(|x| (*x.0, None))
+                .collect(),
+        ),
+        Kind::Hull => finish3(
+            &d,
+            vec![],
+            hull_3d(&d, &p).into_iter().map(|t| (t, None)).collect(),
+        ),
+        Kind::Gamma(c0, c1) if c1 >= 0.0 => finish3(
+            &d,
+            vec![],
+            tri_filter(&|iv, _| {
+                let v = iv.gamma_values()?;
+                (iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0))
+                    .then_some(Some([v.0, v.1]))
+            }),
+        ),
+        Kind::GammaRange(r) if r[2] >= 0.0 => finish3(
+            &d,
+            vec![],
+            tri_filter(&|iv, _| {
+                let v = iv.gamma_values()?;
+                in_gamma_range(v, r).then_some(Some([v.0, v.1]))
+            }),
+        ),
+        Kind::Gamma(..) | Kind::GammaRange(_) => {
+            if p.len() > BRUTE_LIMIT_3D {
+                return Err(Error::invalid(format!(
+                    "3D γ-graphs beyond the Delaunay triangulation (negative c) are limited to {BRUTE_LIMIT_3D} points"
+                )));
+            }
+            brute_3d(&d, &p, kind)?
+        }
+        Kind::Alpha(a) if a < 0.0 => {
+            let rad = 1.0 / a.abs();
+            finish3(
+                &d,
+                vec![],
+                tri_filter(&|iv, t| {
+                    let (m, r2, n) = super::gamma::triangle_circle(
+                        p[t[0] as usize],
+                        p[t[1] as usize],
+                        p[t[2] as usize],
+                    )?;
+                    let _ = m;
+                    let h2 = rad * rad - r2;
+                    if h2 < 0.0 {
+                        return None;
+                    }
+                    let s = h2.sqrt() / (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                    (iv.ball_empty(s) || iv.ball_empty(-s)).then_some(None)
+                }),
+            )
+        }
+        Kind::Alpha(0.0) => finish3(
+            &d,
+            vec![],
+            hull_3d(&d, &p).into_iter().map(|t| (t, None)).collect(),
+        ),
+        Kind::Alpha(a) => {
+            let mut hv: Vec<u32> = d.hull.iter().flatten().copied().collect();
+            hv.sort_unstable();
+            hv.dedup();
+            if hv.len() > BRUTE_LIMIT_3D {
+                return Err(Error::invalid(format!(
+                    "3D α-shapes with a > 0 are limited to {BRUTE_LIMIT_3D} hull vertices"
+                )));
+            }
+            let hp: Vec<[f64; 3]> = hv.iter().map(|&v| p[v as usize]).collect();
+            let t = brute::alpha_3d(&hp, a);
+            finish3(
+                &d,
+                vec![],
+                t.into_iter()
+                    .map(|t| (t.map(|i| hv[i as usize]), None))
+                    .collect(),
+            )
+        }
+        Kind::BetaCircle(_) => {
+            return Err(Error::invalid(
+                "the circle-based β-skeleton is defined in 2D only (V §2.2.11)",
+            ))
+        }
+        Kind::BetaLune(b) if b < 0.0 => {
+            return Err(Error::invalid(
+                "the lune-based β-skeleton with b < 0 is defined in 2D only (V §2.2.11)",
+            ))
+        }
+        Kind::Gabriel => finish3(&d, gabriel(), vec![]),
+        _ => {
+            let g = gabriel();
+            finish3(&d, classic(&p, &dt_edges, &g, kind)?, vec![])
+        }
+    })
+}
+
+/// The 3D hull triangles of Def. 2.10: the hull facets of the tetrahedralization, and for
+/// coplanar facets with more than three points every empty non-degenerate triangle of them.
+fn hull_3d(d: &d3::Delaunay3, p: &[[f64; 3]]) -> Vec<[u32; 3]> {
+    use crate::geom::predicates::raw;
+    let h = &d.hull;
+    // group hull triangles that share an edge and are coplanar
+    let mut parent: Vec<usize> = (0..h.len()).collect();
+    fn root(p: &mut [usize], mut x: usize) -> usize {
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
+    }
+    let mut by_edge: std::collections::HashMap<[u32; 2], usize> = std::collections::HashMap::new();
+    for (i, t) in h.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let key = [a.min(b), a.max(b)];
+            if let Some(&j) = by_edge.get(&key) {
+                let other = h[j];
+                let apex = other
+                    .iter()
+                    .copied()
+                    .find(|&x| x != a && x != b)
+                    .unwrap_or(a);
+                let q = t.map(|x| p[x as usize]);
+                if raw::orient3d(q[0], q[1], q[2], p[apex as usize]) == 0.0 {
+                    let (ri, rj) = (root(&mut parent, i), root(&mut parent, j));
+                    parent[ri] = rj;
+                }
+            } else {
+                by_edge.insert(key, i);
+            }
+        }
+    }
+    let mut groups: std::collections::BTreeMap<usize, Vec<u32>> = std::collections::BTreeMap::new();
+    let mut out: Vec<[u32; 3]> = Vec::new();
+    let mut gsize: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    for i in 0..h.len() {
+        *gsize.entry(root(&mut parent, i)).or_default() += 1;
+    }
+    for (i, t) in h.iter().enumerate() {
+        let r = root(&mut parent, i);
+        if gsize[&r] == 1 {
+            let mut s = *t;
+            s.sort_unstable();
+            out.push(s);
+        } else {
+            groups.entry(r).or_default().extend_from_slice(t);
+        }
+    }
+    for (_, mut vs) in groups {
+        vs.sort_unstable();
+        vs.dedup();
+        let gp: Vec<[f64; 3]> = vs.iter().map(|&v| p[v as usize]).collect();
+        for i in 0..vs.len() {
+            for j in i + 1..vs.len() {
+                for k in j + 1..vs.len() {
+                    let n = super::gamma::cross3(
+                        super::gamma::sub3(gp[j], gp[i]),
+                        super::gamma::sub3(gp[k], gp[i]),
+                    );
+                    if n == [0.0, 0.0, 0.0] {
+                        continue;
+                    }
+                    let empty = (0..vs.len()).all(|x| {
+                        x == i
+                            || x == j
+                            || x == k
+                            || !super::gamma::in_closed_triangle_3d(gp[i], gp[j], gp[k], gp[x], n)
+                    });
+                    if empty {
+                        out.push([vs[i], vs[j], vs[k]]);
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Brute-force 3D construction (V Thm 3.1) for small or degenerate inputs.
+fn brute_3d(d: &d3::Delaunay3, p: &[[f64; 3]], kind: Kind) -> Result<Graph> {
+    let tris = |t: Vec<([u32; 3], Option<[f64; 2]>)>| finish3(d, vec![], t);
+    let edges = |e: Vec<[u32; 2]>| finish3(d, e, vec![]);
+    Ok(match kind {
+        Kind::Gamma(c0, c1) => tris(
+            brute::gamma_values_3d(p)
+                .into_iter()
+                .filter(|(_, v)| in_gamma(*v, c0, c1))
+                .map(|(t, v)| (t, Some([v.0, v.1])))
+                .collect(),
+        ),
+        Kind::GammaRange(r) => tris(
+            brute::gamma_values_3d(p)
+                .into_iter()
+                .filter(|(_, v)| in_gamma_range(*v, r))
+                .map(|(t, v)| (t, Some([v.0, v.1])))
+                .collect(),
+        ),
+        Kind::Hull => tris(brute::hull_3d(p).into_iter().map(|t| (t, None)).collect()),
+        Kind::Delaunay => tris(
+            brute::gamma_values_3d(p)
+                .into_iter()
+                .filter(|(_, v)| in_gamma_range(*v, [-1.0, 1.0, 0.0, 1.0]))
+                .map(|(t, _)| (t, None))
+                .collect(),
+        ),
+        Kind::Alpha(a) => tris(
+            brute::alpha_3d(p, a)
+                .into_iter()
+                .map(|t| (t, None))
+                .collect(),
+        ),
+        Kind::ClosestPairs => edges(brute::closest_pairs(p)),
+        Kind::Nng => edges(brute::nng(p)),
+        Kind::Emst => edges(brute::emst(p)),
+        Kind::Strip => edges(brute::strip(p)),
+        Kind::Sig => edges(brute::sig(p)),
+        Kind::Rng => edges(brute::rng(p)),
+        Kind::Gabriel => edges(brute::gabriel(p)),
+        Kind::BetaLune(b) if b >= 0.0 => edges(brute::beta_lune(p, b)),
+        Kind::BetaCircle(_) | Kind::BetaLune(_) => {
+            return Err(Error::invalid(
+                "β-skeletons with b < 0 and circle-based β are defined in 2D only",
+            ))
+        }
+    })
+}

@@ -1,0 +1,477 @@
+//! Geometric graphs from the Delaunay triangulation (Veltkamp 1992, Thms 3.2–3.3: every
+//! γ([c₀,c₁],[c₂,c₃]) with [c₂,c₃] ⊆ [0,1] is a subgraph of γ([-1,1],[0,1]), which is the Delaunay
+//! triangulation plus, for cocircular/cospherical groups, every chord of the group (V §3.3:
+//! "γ([-1,1],[0,1]) forms all possible overlapping simplices")).
+//!
+//! # Candidates
+//! [`Candidates2`]/[`Candidates3`] hold every simplex of γ([-1,1],[0,1]) with its
+//! [`CenterInterval`]: for a Delaunay edge (triangle) the interval ends are the offsets of the
+//! circumcircles of its two adjacent triangles (tetrahedra) — the largest empty balls on each
+//! side —, ±∞ on the hull. Cocircular (cospherical) groups are found by exact in-circle
+//! (in-sphere) tests between neighbours; a chord of a group has the group's circle on both
+//! sides. Building them is O(N) after the triangulation (plus O(g²)/O(g³) per group of g
+//! points), so every Delaunay-subgraph kind costs O(N log N) in total.
+//!
+//! # Beyond the Delaunay triangulation (c < 0)
+//! An edge outside γ([-1,1],[0,1]) belongs to γ([-1,1],[c,1]) iff the lens of two balls with
+//! offsets ±F(c) is empty. The lens contains the disc of radius w = λ·|uv| around the edge's
+//! midpoint (λ = (k − √(k² − 1))/2, k = 1/(1 − |c|)), and an empty disc centred in the convex hull
+//! has radius at most the largest Delaunay circumradius R. So only pairs closer than 2R/λ' can
+//! qualify; for each we test the midpoint disc with a grid query and then compute the exact
+//! interval from the points within F + ρ of the midpoint (all that can bind). The cost is
+//! O(N·K·Q) with K the number of points within 2R/λ' of a vertex and Q the cost of a grid query:
+//! output-sensitive in practice (K ~ log N / λ² for uniform points), far below the O(N³) of
+//! V Thm 3.1. 3D beyond-Delaunay graphs use the brute force (limited to small inputs).
+
+use super::gamma::{CenterInterval, EdgeFrame, TriFrame};
+use super::grid::Grid;
+use crate::delaunay::d2::{Delaunay2, NONE};
+use crate::delaunay::d3::Delaunay3;
+use crate::geom::predicates::raw;
+use std::collections::{HashMap, HashSet};
+
+/// Every edge of γ([-1,1],[0,1]) of a 2D point set with its interval of empty-ball offsets.
+/// Edges are `[a, b]` with a < b in vertex indices of the triangulation; the interval's normal
+/// is the left normal of a→b.
+#[derive(Debug, Clone, Default)]
+pub struct Candidates2 {
+    pub edges: Vec<[u32; 2]>,
+    pub intervals: Vec<CenterInterval>,
+    /// True for edges of the Delaunay triangulation, false for extra chords of cocircular groups.
+    pub in_dt: Vec<bool>,
+}
+
+fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        let p = parent[parent[x as usize] as usize];
+        parent[x as usize] = p;
+        x = p;
+    }
+    x
+}
+
+/// The vertex coordinates of a triangulation as arrays.
+pub fn coords2(d: &Delaunay2) -> Vec<[f64; 2]> {
+    d.points.iter().map(|p| [p.x, p.y]).collect()
+}
+
+/// Builds the candidates from a 2D Delaunay triangulation. O(N + Σ g²).
+pub fn candidates_2d(d: &Delaunay2) -> Candidates2 {
+    let p = coords2(d);
+    let mut out = Candidates2::default();
+    if d.collinear {
+        // consecutive points on the line: nothing off the line, nothing between them
+        for w in d.hull.windows(2) {
+            let (a, b) = (w[0].min(w[1]), w[0].max(w[1]));
+            out.edges.push([a, b]);
+            out.intervals
+                .push(EdgeFrame::new(p[a as usize], p[b as usize]).start());
+            out.in_dt.push(true);
+        }
+        return out;
+    }
+    let nt = d.triangles.len();
+    let mut parent: Vec<u32> = (0..nt as u32).collect();
+    for (t, tri) in d.triangles.iter().enumerate() {
+        for i in 0..3 {
+            let nb = d.neighbors[t][i];
+            if nb != NONE && (nb as usize) < t {
+                continue; // handled from the other side
+            }
+            let (u, v) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+            let (a, b) = (u.min(v), u.max(v));
+            let f = EdgeFrame::new(p[a as usize], p[b as usize]);
+            let mut iv = f.start();
+            f.add(&mut iv, p[tri[i] as usize]);
+            if nb != NONE {
+                let ntri = d.triangles[nb as usize];
+                let apex = ntri
+                    .iter()
+                    .copied()
+                    .find(|&x| x != u && x != v)
+                    .unwrap_or(tri[i]);
+                f.add(&mut iv, p[apex as usize]);
+                let pa = p[tri[0] as usize];
+                let pb = p[tri[1] as usize];
+                let pc = p[tri[2] as usize];
+                if raw::incircle(pa, pb, pc, p[apex as usize]) == 0.0 {
+                    let (r1, r2) = (find(&mut parent, t as u32), find(&mut parent, nb));
+                    parent[r1 as usize] = r2;
+                }
+            }
+            out.edges.push([a, b]);
+            out.intervals.push(iv);
+            out.in_dt.push(true);
+        }
+    }
+    // cocircular groups: all chords
+    let mut groups: HashMap<u32, Vec<u32>> = HashMap::new();
+    let mut size: HashMap<u32, usize> = HashMap::new();
+    for t in 0..nt as u32 {
+        let r = find(&mut parent, t);
+        *size.entry(r).or_default() += 1;
+    }
+    for t in 0..nt as u32 {
+        let r = find(&mut parent, t);
+        if size[&r] > 1 {
+            groups
+                .entry(r)
+                .or_default()
+                .extend_from_slice(&d.triangles[t as usize]);
+        }
+    }
+    if !groups.is_empty() {
+        let existing: HashSet<[u32; 2]> = out.edges.iter().copied().collect();
+        let mut roots: Vec<u32> = groups.keys().copied().collect();
+        roots.sort_unstable();
+        for r in roots {
+            let mut vs = groups.remove(&r).unwrap_or_default();
+            vs.sort_unstable();
+            vs.dedup();
+            for i in 0..vs.len() {
+                for j in i + 1..vs.len() {
+                    let (a, b) = (vs[i], vs[j]);
+                    if existing.contains(&[a, b]) {
+                        continue;
+                    }
+                    let f = EdgeFrame::new(p[a as usize], p[b as usize]);
+                    let mut iv = f.start();
+                    for &x in &vs {
+                        if x != a && x != b {
+                            f.add(&mut iv, p[x as usize]);
+                        }
+                    }
+                    // all group points lie on one circle (exactly): both ends are its offset
+                    if iv.lo > iv.hi {
+                        let mid = 0.5 * (iv.lo + iv.hi);
+                        iv.lo = mid;
+                        iv.hi = mid;
+                    }
+                    out.edges.push([a, b]);
+                    out.intervals.push(iv);
+                    out.in_dt.push(false);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Largest circumradius of the triangulation's triangles.
+fn max_circumradius_2d(d: &Delaunay2, p: &[[f64; 2]]) -> f64 {
+    d.triangles
+        .iter()
+        .map(|t| {
+            let (a, b, c) = (p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]);
+            let la = ((b[0] - c[0]).powi(2) + (b[1] - c[1]).powi(2)).sqrt();
+            let lb = ((a[0] - c[0]).powi(2) + (a[1] - c[1]).powi(2)).sqrt();
+            let lc = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+            let area2 = raw::orient2d(a, b, c).abs();
+            if area2 > 0.0 {
+                la * lb * lc / (2.0 * area2)
+            } else {
+                f64::INFINITY
+            }
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The edges outside γ([-1,1],[0,1]) whose largest intersection parameter c₁′ is ≥ `c` (c < 0),
+/// with their intervals. See the module documentation for the algorithm.
+pub fn beyond_dt_2d(
+    d: &Delaunay2,
+    cand: &Candidates2,
+    c: f64,
+) -> (Vec<[u32; 2]>, Vec<CenterInterval>) {
+    let p = coords2(d);
+    let n = p.len();
+    let mut edges = Vec::new();
+    let mut ivs = Vec::new();
+    if n < 3 || c >= 0.0 {
+        return (edges, ivs);
+    }
+    let existing: HashSet<[u32; 2]> = cand.edges.iter().copied().collect();
+    let grid = Grid::new(&p, 2.0);
+    let cabs = c.abs().min(1.0);
+    if cabs >= 1.0 {
+        // every pair not blocked by a point on its segment
+        for a in 0..n as u32 {
+            for b in a + 1..n as u32 {
+                if existing.contains(&[a, b]) {
+                    continue;
+                }
+                let f = EdgeFrame::new(p[a as usize], p[b as usize]);
+                let mut iv = f.start();
+                for x in 0..n {
+                    if x != a as usize && x != b as usize {
+                        f.add(&mut iv, p[x]);
+                    }
+                }
+                if iv.gamma_values().is_some() {
+                    edges.push([a, b]);
+                    ivs.push(iv);
+                }
+            }
+        }
+        return (edges, ivs);
+    }
+    let k = 1.0 / (1.0 - cabs);
+    let lam = 0.5 * (k - (k * k - 1.0).sqrt()); // midpoint disc radius / edge length
+    let big_r = if d.collinear {
+        f64::INFINITY
+    } else {
+        max_circumradius_2d(d, &p)
+    };
+    let dmax = if big_r.is_finite() {
+        big_r / lam
+    } else {
+        f64::INFINITY
+    };
+    let f_over_r = (k * k - 1.0).sqrt();
+    for a in 0..n {
+        let pa = p[a];
+        let mut near: Vec<u32> = Vec::new();
+        if dmax.is_finite() {
+            grid.for_each_within(pa, dmax * (1.0 + 1e-12), |b| {
+                if b as usize > a {
+                    near.push(b);
+                }
+                true
+            });
+        } else {
+            near.extend((a as u32 + 1)..n as u32);
+        }
+        near.sort_unstable();
+        for b in near {
+            let key = [a as u32, b];
+            if existing.contains(&key) {
+                continue;
+            }
+            let pb = p[b as usize];
+            let len = ((pb[0] - pa[0]).powi(2) + (pb[1] - pa[1]).powi(2)).sqrt();
+            let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+            let w = lam * len;
+            // midpoint disc must be empty
+            let empty = grid.for_each_within(m, w, |x| x == a as u32 || x == b);
+            if !empty {
+                continue;
+            }
+            let r = 0.5 * len;
+            let reach = r * (k + f_over_r) * (1.0 + 1e-9);
+            let f = EdgeFrame::new(pa, pb);
+            let mut iv = f.start();
+            grid.for_each_within(m, reach, |x| {
+                if x != a as u32 && x != b {
+                    f.add(&mut iv, p[x as usize]);
+                }
+                true
+            });
+            // Only a gap can be trusted: a non-Delaunay edge always has one, and when its true
+            // c₁′ ≥ c every binding point is within reach, so the local interval is exact. A
+            // local interval without a gap means a binding point beyond reach, i.e. c₁′ < c.
+            if iv.lo <= iv.hi {
+                continue;
+            }
+            if let Some((_, c1)) = iv.gamma_values() {
+                if c1 >= c {
+                    edges.push(key);
+                    ivs.push(iv);
+                }
+            }
+        }
+    }
+    (edges, ivs)
+}
+
+/// Every triangle of 3D γ([-1,1],[0,1]) with its interval (normal of the sorted corners
+/// (b − a) × (c − a)).
+#[derive(Debug, Clone, Default)]
+pub struct Candidates3 {
+    pub triangles: Vec<[u32; 3]>,
+    pub intervals: Vec<CenterInterval>,
+    pub in_dt: Vec<bool>,
+}
+
+/// The vertex coordinates of a tetrahedralization as arrays.
+pub fn coords3(d: &Delaunay3) -> Vec<[f64; 3]> {
+    d.points.iter().map(|p| [p.x, p.y, p.z]).collect()
+}
+
+fn sorted3(mut t: [u32; 3]) -> [u32; 3] {
+    t.sort_unstable();
+    t
+}
+
+/// Builds the 3D candidates. Cospherical groups (adjacent tetrahedra with a common empty
+/// sphere, found by exact in-sphere) contribute every non-degenerate triple of their vertices;
+/// such a triple's interval is computed against the group's vertices and the vertices of all
+/// tetrahedra around its corners (every point that can touch an empty ball through it).
+pub fn candidates_3d(d: &Delaunay3) -> Candidates3 {
+    let p = coords3(d);
+    let mut out = Candidates3::default();
+    let nt = d.tets.len();
+    let mut parent: Vec<u32> = (0..nt as u32).collect();
+    for f in d.triangles() {
+        let t = sorted3(f.v);
+        let Some(fr) = TriFrame::new(p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]) else {
+            continue;
+        };
+        let mut iv = fr.start();
+        let mut apexes = [NONE; 2];
+        for (k, &tet) in f.tets.iter().enumerate() {
+            if tet == NONE {
+                continue;
+            }
+            let tv = d.tets[tet as usize];
+            if let Some(&x) = tv.iter().find(|&&x| !t.contains(&x)) {
+                fr.add(&mut iv, p[x as usize]);
+                apexes[k] = x;
+            }
+        }
+        if f.tets[1] != NONE && apexes[1] != NONE {
+            let tv = d.tets[f.tets[0] as usize].map(|x| p[x as usize]);
+            if raw::insphere(tv[0], tv[1], tv[2], tv[3], p[apexes[1] as usize]) == 0.0 {
+                let (r1, r2) = (find(&mut parent, f.tets[0]), find(&mut parent, f.tets[1]));
+                parent[r1 as usize] = r2;
+            }
+        }
+        out.triangles.push(t);
+        out.intervals.push(iv);
+        out.in_dt.push(true);
+    }
+    // groups of vertices whose triples all belong to γ([-1,1],[0,1]):
+    // (a) cospherical tetrahedra (common empty sphere)
+    let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
+    let mut count: HashMap<u32, usize> = HashMap::new();
+    for t in 0..nt as u32 {
+        *count.entry(find(&mut parent, t)).or_default() += 1;
+    }
+    for t in 0..nt as u32 {
+        let r = find(&mut parent, t);
+        if count[&r] > 1 {
+            members
+                .entry(r)
+                .or_default()
+                .extend_from_slice(&d.tets[t as usize]);
+        }
+    }
+    let mut groups: Vec<Vec<u32>> = members.into_values().collect();
+    // (b) coplanar, cocircular faces sharing an edge (their common circle bounds the same
+    // family of balls); (c) coplanar hull facets (every empty triangle of a facet is a hull
+    // triangle, Def. 2.10, whose half-space is empty)
+    groups.extend(flat_groups(d, &p, &out.triangles));
+    for g in groups.iter_mut() {
+        g.sort_unstable();
+        g.dedup();
+    }
+    groups.sort();
+    groups.dedup();
+    if groups.is_empty() {
+        return out;
+    }
+    let mut existing: HashSet<[u32; 3]> = out.triangles.iter().copied().collect();
+    for vs in &groups {
+        // every point that can touch an empty ball through a triple of the group: the group and
+        // the vertices of all tetrahedra around its vertices
+        let mut cands: Vec<u32> = vs.clone();
+        for &v in vs {
+            for tet in d.tets_around_vertex(v) {
+                cands.extend_from_slice(&d.tets[tet as usize]);
+            }
+        }
+        cands.sort_unstable();
+        cands.dedup();
+        for i in 0..vs.len() {
+            for j in i + 1..vs.len() {
+                for k in j + 1..vs.len() {
+                    let t = [vs[i], vs[j], vs[k]];
+                    if existing.contains(&t) {
+                        continue;
+                    }
+                    let Some(fr) =
+                        TriFrame::new(p[t[0] as usize], p[t[1] as usize], p[t[2] as usize])
+                    else {
+                        continue;
+                    };
+                    let mut iv = fr.start();
+                    for &x in &cands {
+                        if !t.contains(&x) {
+                            fr.add(&mut iv, p[x as usize]);
+                        }
+                    }
+                    if iv.gamma_values().is_none() {
+                        continue;
+                    }
+                    if iv.lo > iv.hi && iv.lo - iv.hi <= 1e-12 * (iv.lo.abs() + iv.hi.abs()) {
+                        let mid = 0.5 * (iv.lo + iv.hi);
+                        iv.lo = mid;
+                        iv.hi = mid;
+                    }
+                    if iv.lo <= iv.hi {
+                        existing.insert(t);
+                        out.triangles.push(t);
+                        out.intervals.push(iv);
+                        out.in_dt.push(false);
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Vertex groups of coplanar faces sharing an edge that are cocircular (exact in-sphere test
+/// against a point off the plane) or both on the hull.
+fn flat_groups(d: &Delaunay3, p: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u32>> {
+    let hull: HashSet<[u32; 3]> = d.hull.iter().map(|t| sorted3(*t)).collect();
+    let mut by_edge: HashMap<[u32; 2], Vec<usize>> = HashMap::new();
+    for (i, t) in faces.iter().enumerate() {
+        for (a, b) in [(t[0], t[1]), (t[0], t[2]), (t[1], t[2])] {
+            by_edge.entry([a, b]).or_default().push(i);
+        }
+    }
+    let mut parent: Vec<u32> = (0..faces.len() as u32).collect();
+    let mut joined = vec![false; faces.len()];
+    for (edge, fs) in &by_edge {
+        for x in 0..fs.len() {
+            for y in x + 1..fs.len() {
+                let (f, g) = (faces[fs[x]], faces[fs[y]]);
+                let apex = g
+                    .iter()
+                    .copied()
+                    .find(|v| !edge.contains(v))
+                    .unwrap_or(g[0]);
+                let q = f.map(|v| p[v as usize]);
+                let pa = p[apex as usize];
+                if raw::orient3d(q[0], q[1], q[2], pa) != 0.0 {
+                    continue;
+                }
+                let both_hull = hull.contains(&f) && hull.contains(&g);
+                let n = super::gamma::cross3(
+                    super::gamma::sub3(q[1], q[0]),
+                    super::gamma::sub3(q[2], q[0]),
+                );
+                let e = [q[0][0] + n[0], q[0][1] + n[1], q[0][2] + n[2]];
+                let cocircular = raw::orient3d(q[0], q[1], q[2], e) != 0.0
+                    && raw::insphere(q[0], q[1], q[2], e, pa) == 0.0;
+                if both_hull || cocircular {
+                    let (r1, r2) = (
+                        find(&mut parent, fs[x] as u32),
+                        find(&mut parent, fs[y] as u32),
+                    );
+                    parent[r1 as usize] = r2;
+                    joined[fs[x]] = true;
+                    joined[fs[y]] = true;
+                }
+            }
+        }
+    }
+    let mut groups: HashMap<u32, Vec<u32>> = HashMap::new();
+    for i in 0..faces.len() {
+        if joined[i] {
+            let r = find(&mut parent, i as u32);
+            groups.entry(r).or_default().extend_from_slice(&faces[i]);
+        }
+    }
+    groups.into_values().collect()
+}
