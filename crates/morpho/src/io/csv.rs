@@ -109,7 +109,10 @@ fn split<'a>(line: &'a str, delim: Delim, lineno: u64, out: &mut Vec<Cow<'a, str
     out.clear();
     let d = match delim {
         Delim::Spaces => {
-            out.extend(line.split_whitespace().map(|f| Cow::Borrowed(unquote_simple(f))));
+            out.extend(
+                line.split_whitespace()
+                    .map(|f| Cow::Borrowed(unquote_simple(f))),
+            );
             return Ok(());
         }
         Delim::Char(d) => d,
@@ -139,7 +142,10 @@ fn split<'a>(line: &'a str, delim: Delim, lineno: u64, out: &mut Vec<Cow<'a, str
                 }
             }
             let end = end.ok_or_else(|| {
-                Error::at_line(lineno, "unterminated quoted field (fields cannot span lines)")
+                Error::at_line(
+                    lineno,
+                    "unterminated quoted field (fields cannot span lines)",
+                )
             })?;
             out.push(Cow::Owned(s));
             let after = q[end..].trim_start_matches([' ', '\t'].as_slice());
@@ -322,11 +328,7 @@ fn coord_columns(t: &Table) -> Result<(usize, usize, Option<usize>)> {
     ];
     for (xn, yn, zn) in PAIRS {
         if let (Some(x), Some(y)) = (t.index(&[xn]), t.index(&[yn])) {
-            let z = if zn.is_empty() {
-                None
-            } else {
-                t.index(&[zn])
-            };
+            let z = if zn.is_empty() { None } else { t.index(&[zn]) };
             return Ok((x, y, z));
         }
     }
@@ -636,7 +638,8 @@ mod tests {
         let sh = read_polygon(s.as_bytes()).unwrap();
         assert_eq!(sh.polygons.len(), 1);
         assert_eq!(sh.polygons[0].rings[0].len(), 3);
-        let s = "component,closed,order,x,y\n0,0,1,1,0\n0,0,0,0,0\n1,1,0,5,5\n1,1,1,6,5\n1,1,2,6,6\n";
+        let s =
+            "component,closed,order,x,y\n0,0,1,1,0\n0,0,0,0,0\n1,1,0,5,5\n1,1,1,6,5\n1,1,2,6,6\n";
         let sh = read_polygon(s.as_bytes()).unwrap();
         assert_eq!(sh.polylines.len(), 1);
         assert_eq!(sh.polylines[0].points[0], Point2::new(0., 0.));

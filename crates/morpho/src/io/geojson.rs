@@ -71,10 +71,7 @@ fn polygon(v: &Value, ctx: &str) -> Result<Option<Polygon>> {
         return Ok(None);
     }
     Ok(Some(Polygon {
-        rings: rings
-            .iter()
-            .map(|r| ring(r, ctx))
-            .collect::<Result<_>>()?,
+        rings: rings.iter().map(|r| ring(r, ctx)).collect::<Result<_>>()?,
     }))
 }
 
@@ -355,7 +352,11 @@ mod tests {
         assert_eq!(ring_orientation(&rev), -1);
         // a sliver far from the origin: float shoelace cancels, the exact sum does not
         let big = 1e15;
-        let t = [p(big, big), p(big + 1.0, big), p(big + 2.0, big + 2f64.powi(-2))];
+        let t = [
+            p(big, big),
+            p(big + 1.0, big),
+            p(big + 2.0, big + 2f64.powi(-2)),
+        ];
         let o = orient2d(&t[0], &t[1], &t[2]);
         assert_eq!(ring_orientation(&t), o.signum() as i32);
         let flat = [p(0., 0.), p(1., 1.), p(2., 2.)];

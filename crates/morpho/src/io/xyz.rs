@@ -83,20 +83,22 @@ pub fn read(bytes: &[u8]) -> Result<PointSet> {
         }
         for (k, f) in fields.iter().enumerate() {
             if k < 3 {
-                let v: f64 = f.parse().map_err(|_| {
-                    Error::at_line(no, format!("coordinate '{f}' is not a number"))
-                })?;
+                let v: f64 = f
+                    .parse()
+                    .map_err(|_| Error::at_line(no, format!("coordinate '{f}' is not a number")))?;
                 if !v.is_finite() {
-                    return Err(Error::at_line(no, format!("coordinate '{f}' is not finite")));
+                    return Err(Error::at_line(
+                        no,
+                        format!("coordinate '{f}' is not finite"),
+                    ));
                 }
                 coords.push(v);
             } else {
                 let v = if is_missing(f) {
                     f64::NAN
                 } else {
-                    f.parse().map_err(|_| {
-                        Error::at_line(no, format!("value '{f}' is not a number"))
-                    })?
+                    f.parse()
+                        .map_err(|_| Error::at_line(no, format!("value '{f}' is not a number")))?
                 };
                 extra[k - 3].push(v);
             }
