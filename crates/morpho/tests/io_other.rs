@@ -938,7 +938,7 @@ mod fuzz {
     use proptest::prelude::*;
 
     proptest! {
-        #![proptest_config(ProptestConfig { cases: 64, .. ProptestConfig::default() })]
+        #![proptest_config(ProptestConfig { cases: 192, .. ProptestConfig::default() })]
         #[test]
         fn truncations_and_mutations_never_panic(
             which in 0usize..9,
@@ -965,4 +965,61 @@ mod fuzz {
             read_all(&path);
         }
     }
+}
+
+mod fuzz_bytes {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 256, .. ProptestConfig::default() })]
+        /// Random text from a CSV/XYZ/GeoJSON-ish alphabet never panics the byte parsers.
+        #[test]
+        fn random_text_never_panics(
+            s in "[xyzXYZ,;\\t \"\\n\\r0-9.eE+naNA#\\[\\]{}:-]{0,200}",
+        ) {
+            let b = s.as_bytes();
+            let _ = io::csv::read_points(b);
+            let _ = io::csv::read_polygon(b);
+            let _ = io::xyz::read(b);
+            let _ = io::geojson::read(b);
+        }
+
+        /// Valid CSV points survive a write/read round trip exactly.
+        #[test]
+        fn csv_points_round_trip(
+            pts in proptest::collection::vec((-1e12f64..1e12, -1e-3f64..1e-3, any::<f64>()), 1..20),
+        ) {
+            let ps = PointSet {
+                dim: 2,
+                coords: pts.iter().flat_map(|p| [p.0, p.1]).collect(),
+                columns: vec![Column { name: "v".into(), values: pts.iter().map(|p| p.2).collect() }],
+            };
+            let mut out = Vec::new();
+            io::csv::write_points(&mut out, &ps).unwrap();
+            let back = io::csv::read_points(&out).unwrap();
+            prop_assert_eq!(&back.coords, &ps.coords);
+            for (a, b) in back.columns[0].values.iter().zip(&ps.columns[0].values) {
+                prop_assert!(a == b || (a.is_nan() && b.is_nan()));
+            }
+        }
+    }
+}
+
+#[test]
+fn non_uniform_axes_are_not_written_and_leave_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let v = Volume {
+        dims: [2, 2, 1],
+        axes: Axes::Coords([vec![0.0, 1.0], vec![0.0, 3.0], vec![0.0]]),
+        data: vec![1.0; 4],
+        source_dtype: DType::F32,
+    };
+    for name in ["c.nrrd", "c.mhd", "c.json"] {
+        let path = dir.path().join(name);
+        assert!(io::write_volume(&path, &v).is_err(), "{name}");
+        assert!(!path.exists(), "{name}");
+    }
+    let leftovers: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
 }

@@ -17,6 +17,7 @@
 //!   line. A column's kind is fixed by its first non-missing cell: **text columns (e.g. a
 //!   land-use or rock code) are dropped** (they carry no number, and inventing codes would
 //!   invent an order); a later non-number in a numeric column is an error naming the line.
+//!   Numbers use `.` as decimal point (a decimal comma is read as text).
 //!
 //! # Polygons ([`read_polygon`])
 //! Rows are vertices in order. Optional integer columns (case-insensitive names):
@@ -27,7 +28,8 @@
 //!   boundary, later rings = holes);
 //! - `order`: vertices of a component are sorted by it (stable) before grouping.
 //!
-//! A ring whose last vertex repeats its first has the repeat dropped.
+//! A ring whose last vertex repeats its first has the repeat dropped; a ring needs at least 3
+//! vertices after that, an open polyline at least 2 (errors name the line).
 //!
 //! # Writing
 //! [`write_points`]: header `x,y[,z],<column names>` and one row per point, numbers with Rust's
@@ -514,12 +516,21 @@ pub fn read_polygon(bytes: &[u8]) -> Result<Shapes2> {
                 Some(r) => group_by(&rows, r),
                 None => vec![(0, rows)],
             };
-            let poly = Polygon {
-                rings: rings
-                    .into_iter()
-                    .map(|(_, r)| drop_closing_repeat(r.into_iter().map(pt).collect()))
-                    .collect(),
-            };
+            let mut poly = Polygon::default();
+            for (_, r) in rings {
+                let first_line = t.lines[r[0]];
+                let ring = drop_closing_repeat(r.into_iter().map(pt).collect());
+                if ring.len() < 3 {
+                    return Err(Error::at_line(
+                        first_line,
+                        format!(
+                            "the ring starting here has {} vertices; a polygon ring needs 3",
+                            ring.len()
+                        ),
+                    ));
+                }
+                poly.rings.push(ring);
+            }
             out.polygons.push(poly);
         } else {
             if let Some(r) = &ring {
@@ -529,6 +540,12 @@ pub fn read_polygon(bytes: &[u8]) -> Result<Shapes2> {
                         "an open polyline (closed = 0) cannot have several rings",
                     ));
                 }
+            }
+            if rows.len() < 2 {
+                return Err(Error::at_line(
+                    t.lines[rows[0]],
+                    "an open polyline needs at least 2 vertices",
+                ));
             }
             out.polylines.push(Polyline {
                 points: rows.into_iter().map(pt).collect(),
