@@ -816,6 +816,31 @@ fn size_mismatches_truncation_and_bad_types() {
             "endian",
         ),
         (
+            "j8.json",
+            r#"{"data":"d.raw","dims":[2,3,4],"dtype":"u8","header_bytes":18446744073709551615,"raw_bytes":5}"#.into(),
+            "",
+        ),
+        (
+            "j9.json",
+            r#"{"data":"d.raw.gz","dims":[2,3,4],"dtype":"u8","header_bytes":18446744073709551615}"#.into(),
+            "",
+        ),
+        (
+            "m12.nhdr",
+            "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 3 4\nencoding: gzip\nbyte skip: 9223372036854775807\ndata file: d.raw.gz\n".into(),
+            "",
+        ),
+        (
+            "k4.mhd",
+            "NDims = 3\nDimSize = 2 3 4\nElementType = MET_UCHAR\nHeaderSize = 9223372036854775807\nCompressedData = True\nElementDataFile = d.raw\n".into(),
+            "HeaderSize",
+        ),
+        (
+            "k5.mhd",
+            "NDims = 3\nDimSize = 2 3 4\nElementType = MET_UCHAR\nHeaderSize = 9223372036854775807\nElementDataFile = d.raw\n".into(),
+            "bytes",
+        ),
+        (
             "k1.mhd",
             "NDims = 3\nDimSize = 2 3 4\nElementType = MET_QUUX\nElementDataFile = d.raw\n".into(),
             "ElementType",

@@ -188,7 +188,9 @@ pub(crate) fn read_data(
     skip: u64,
     expected: usize,
 ) -> Result<Vec<u8>> {
-    let want = skip + expected as u64;
+    let want = skip
+        .checked_add(expected as u64)
+        .ok_or_else(|| Error::format("bytes to skip are out of range"))?;
     let mut out = Vec::new();
     match codec {
         Codec::Raw => {
@@ -526,11 +528,11 @@ pub fn read(path: &Path) -> Result<Volume> {
         let rb = rb
             .as_u64()
             .ok_or_else(|| Error::format(format!("\"{k}\" must be an integer")))?;
-        if rb != skip + nbytes as u64 {
+        if Some(rb) != skip.checked_add(nbytes as u64) {
             return Err(Error::format(format!(
                 "\"raw_bytes\" is {rb}, but dims {dims:?} of {} need {}",
                 ty.name(),
-                skip + nbytes as u64
+                skip as u128 + nbytes as u128
             )));
         }
     }

@@ -6,7 +6,8 @@
 //! - The first data line fixes the column count: 2 → 2D points, 3 → 3D points, more → 3D
 //!   points plus value columns named `c3`, `c4`, … (0-based column index). If the last comment
 //!   line before the first data line lists exactly that many names starting `x y`, those names
-//!   are used instead (this is what [`write`] emits, so columns round-trip).
+//!   are used instead, and a third name other than `z` makes the points 2D with value columns
+//!   from the third on (this is what [`write`] emits, so columns round-trip).
 //! - Every later line must have the same count; coordinates must be finite numbers; value
 //!   columns may hold `nan`/`NA` (missing). Errors name the line.
 //!
@@ -21,6 +22,7 @@ use std::io::Write;
 pub fn read(bytes: &[u8]) -> Result<PointSet> {
     let s = text(bytes)?;
     let mut ncol = 0usize;
+    let mut dim = 0usize;
     let mut names: Option<Vec<String>> = None;
     let mut last_comment: Option<&str> = None;
     let mut coords = Vec::new();
@@ -60,18 +62,21 @@ pub fn read(bytes: &[u8]) -> Result<PointSet> {
                     _ => format!("c{i}"),
                 })
                 .collect();
+            dim = ncol.min(3);
             if let Some(c) = last_comment {
                 let toks: Vec<&str> = c.split_whitespace().collect();
                 if toks.len() == ncol
                     && toks[0].eq_ignore_ascii_case("x")
                     && toks[1].eq_ignore_ascii_case("y")
-                    && (ncol == 2 || toks[2].eq_ignore_ascii_case("z"))
                 {
+                    if ncol > 2 && !toks[2].eq_ignore_ascii_case("z") {
+                        dim = 2;
+                    }
                     n = toks.iter().map(|t| t.to_string()).collect();
                 }
             }
             names = Some(n);
-            extra = vec![Vec::new(); ncol.saturating_sub(3)];
+            extra = vec![Vec::new(); ncol - dim];
         } else if fields.len() != ncol {
             return Err(Error::at_line(
                 no,
@@ -82,7 +87,7 @@ pub fn read(bytes: &[u8]) -> Result<PointSet> {
             ));
         }
         for (k, f) in fields.iter().enumerate() {
-            if k < 3 {
+            if k < dim {
                 let v: f64 = f
                     .parse()
                     .map_err(|_| Error::at_line(no, format!("coordinate '{f}' is not a number")))?;
@@ -100,7 +105,7 @@ pub fn read(bytes: &[u8]) -> Result<PointSet> {
                     f.parse()
                         .map_err(|_| Error::at_line(no, format!("value '{f}' is not a number")))?
                 };
-                extra[k - 3].push(v);
+                extra[k - dim].push(v);
             }
         }
     }
@@ -110,26 +115,22 @@ pub fn read(bytes: &[u8]) -> Result<PointSet> {
     let names = names.unwrap_or_default();
     let columns = extra
         .into_iter()
-        .zip(names.into_iter().skip(3))
+        .zip(names.into_iter().skip(dim))
         .map(|(values, name)| Column { name, values })
         .collect();
     Ok(PointSet {
-        dim: ncol.min(3),
+        dim,
         coords,
         columns,
     })
 }
 
-/// Writes one point per line (a `# x y [z] names…` comment first when there are columns).
+/// Writes one point per line (a `# x y [z] names…` comment first when there are columns;
+/// column names must be non-empty without blanks or `#`).
 pub fn write(w: &mut dyn Write, pts: &PointSet) -> Result<()> {
     pts.validate()?;
     let e = super::werr;
     if !pts.columns.is_empty() {
-        if pts.dim != 3 {
-            return Err(Error::unsupported(
-                "XYZ stores value columns only for 3D points; use CSV for 2D points with values",
-            ));
-        }
         let ok = |n: &str| !n.is_empty() && !n.contains(|c: char| c.is_whitespace() || c == '#');
         if let Some(c) = pts.columns.iter().find(|c| !ok(&c.name)) {
             return Err(Error::unsupported(format!(
@@ -138,7 +139,8 @@ pub fn write(w: &mut dyn Write, pts: &PointSet) -> Result<()> {
             )));
         }
         let names: Vec<&str> = pts.columns.iter().map(|c| c.name.as_str()).collect();
-        writeln!(w, "# x y z {}", names.join(" ")).map_err(e)?;
+        let xyz = if pts.dim == 3 { "x y z" } else { "x y" };
+        writeln!(w, "# {xyz} {}", names.join(" ")).map_err(e)?;
     }
     let mut row = String::new();
     for i in 0..pts.len() {
@@ -181,6 +183,19 @@ mod tests {
         assert!(err.contains("line 1"), "{err}");
         assert!(read(b"").is_err());
         assert!(read(b"# only a comment\n").is_err());
+    }
+
+    #[test]
+    fn two_d_points_with_named_columns() {
+        let p = read(b"# x y zinc\n1 2 3\n4 5 NA\n").unwrap();
+        assert_eq!((p.dim, p.len()), (2, 2));
+        assert_eq!(p.columns[0].name, "zinc");
+        let mut out = Vec::new();
+        write(&mut out, &p).unwrap();
+        let q = read(&out).unwrap();
+        assert_eq!(q.coords, p.coords);
+        assert_eq!(q.columns[0].values[0], 3.0);
+        assert!(q.columns[0].values[1].is_nan());
     }
 
     #[test]
