@@ -572,9 +572,14 @@ pub fn write(path: &Path, v: &Volume) -> Result<()> {
         .ok_or_else(|| Error::invalid("the sidecar name must be valid UTF-8"))?
         .to_string();
     let ty = output_type(v);
-    let bytes = encode(&v.data, ty, false);
-    super::write_atomic(&raw_path, |w| w.write_all(&bytes).map_err(super::werr))
-        .map_err(|e| e.with_path(&raw_path))?;
+    super::write_atomic(&raw_path, |w| {
+        for chunk in v.data.chunks(1 << 16) {
+            w.write_all(&encode(chunk, ty, false))
+                .map_err(super::werr)?;
+        }
+        Ok(())
+    })
+    .map_err(|e| e.with_path(&raw_path))?;
     let doc = json!({
         "data": raw_name,
         "dims": v.dims,

@@ -7,7 +7,7 @@
 //!   points plus value columns named `c3`, `c4`, … (0-based column index). If the last comment
 //!   line before the first data line lists exactly that many names starting `x y`, those names
 //!   are used instead, and a third name other than `z` makes the points 2D with value columns
-//!   from the third on (this is what [`write`] emits, so columns round-trip).
+//!   from the third on (this is what [`write()`] emits, so columns round-trip).
 //! - Every later line must have the same count; coordinates must be finite numbers; value
 //!   columns may hold `nan`/`NA` (missing). Errors name the line.
 //!
