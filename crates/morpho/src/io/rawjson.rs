@@ -432,6 +432,14 @@ fn affine_origin(o: &Map<String, Value>) -> Option<([f64; 3], [f64; 3])> {
     Some(([m[0][3], m[1][3], m[2][3]], [m[0][0], m[1][1], m[2][2]]))
 }
 
+/// True when a parsed JSON document looks like a volume sidecar (an object with one of the
+/// size keys `dims`, `dims_xyz`, `sizes`) — for dispatch in [`super::read_any`], which today
+/// only checks `dims` and so misses the shipped `*.json` sidecars (`dims_xyz`).
+pub fn is_sidecar(v: &Value) -> bool {
+    v.as_object()
+        .is_some_and(|o| get(o, &["dims", "dims_xyz", "sizes"]).is_some())
+}
+
 /// Reads a volume (detached data is found relative to `path`).
 pub fn read(path: &Path) -> Result<Volume> {
     let mut bytes = Vec::new();
@@ -620,6 +628,14 @@ mod tests {
         }
         assert_eq!(decode(&[0xff], Sample::I8, false), vec![-1.0]);
         assert_eq!(decode(&[0x01, 0x00], Sample::I16, true), vec![256.0]);
+    }
+
+    #[test]
+    fn sidecar_detection() {
+        assert!(is_sidecar(&json!({"dims_xyz": [1, 2, 3]})));
+        assert!(is_sidecar(&json!({"dims": [1, 2, 3]})));
+        assert!(!is_sidecar(&json!({"type": "Polygon"})));
+        assert!(!is_sidecar(&json!([[0, 1]])));
     }
 
     #[test]
