@@ -749,9 +749,18 @@ mod tests {
         let x = Expansion::diff(1e16, 1.0);
         assert_eq!(x.0.len(), 2); // 1e16 − 1 is not a double
         assert_eq!(x.sub(&Expansion::diff(1e16, 0.0)).grow(1.0).sign(), 0);
-        let sq = x.mul(&x); // (1e16 − 1)² = 1e32 − 2e16 + 1
-        let back = sq.sub(&Expansion::diff(1e32, 2e16)).grow(-1.0);
-        assert_eq!(back.sign(), 0);
+        let t53 = 2f64.powi(53);
+        let y = Expansion::diff(t53, -1.0); // 2^53 + 1, not a double
+        let sq = y.mul(&y); // 2^106 + 2^54 + 1
+        let back = sq.sub(&Expansion::diff(2f64.powi(106), -2f64.powi(54)));
+        assert_eq!(back.sign(), 1);
+        assert_eq!(back.grow(-1.0).sign(), 0);
+        assert_eq!(
+            sq.grow(-1.0)
+                .sub(&Expansion::diff(2f64.powi(106), -2f64.powi(54)))
+                .sign(),
+            0
+        );
         assert_eq!(Expansion::diff(0.1, 0.1).sign(), 0);
         assert_eq!(Expansion::diff(0.1, 0.3).sign(), -1);
     }
