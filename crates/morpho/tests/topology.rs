@@ -130,6 +130,80 @@ fn brute_parts(m: &TriMesh) -> usize {
     used.len()
 }
 
+/// Non-manifold vertices from the definition: the triangles at v, joined when they share an
+/// edge (v, w) that has exactly two triangles, form more than one group; or v is on an edge with
+/// more than two triangles.
+fn brute_non_manifold_vertices(m: &TriMesh) -> Vec<u32> {
+    let e = brute_edges(m);
+    let nv = m.positions.len() as u32;
+    let mut out = Vec::new();
+    for v in 0..nv {
+        let at: Vec<usize> = e
+            .iter()
+            .filter(|(k, _)| k.0 == v || k.1 == v)
+            .flat_map(|(_, ts)| ts.iter().copied())
+            .collect::<BTreeSet<_>>()
+            .into_iter()
+            .collect();
+        if at.is_empty() {
+            continue;
+        }
+        if e.iter()
+            .any(|(k, ts)| (k.0 == v || k.1 == v) && ts.len() > 2)
+        {
+            out.push(v);
+            continue;
+        }
+        let mut group: Vec<usize> = (0..at.len()).collect();
+        loop {
+            let mut changed = false;
+            for (k, ts) in &e {
+                if (k.0 == v || k.1 == v) && ts.len() == 2 {
+                    let i = at.iter().position(|&t| t == ts[0]).unwrap();
+                    let j = at.iter().position(|&t| t == ts[1]).unwrap();
+                    let g = group[i].min(group[j]);
+                    if group[i] != g || group[j] != g {
+                        group[i] = g;
+                        group[j] = g;
+                        changed = true;
+                    }
+                }
+            }
+            if !changed {
+                break;
+            }
+        }
+        if group.iter().collect::<BTreeSet<_>>().len() > 1 {
+            out.push(v);
+        }
+    }
+    out
+}
+
+/// (consistently oriented, orientable) from the definition, by trying every flip assignment.
+fn brute_orientation(m: &TriMesh) -> (bool, bool) {
+    let e = brute_edges(m);
+    let manifold: Vec<((u32, u32), [usize; 2])> = e
+        .iter()
+        .filter(|(_, ts)| ts.len() == 2)
+        .map(|(k, ts)| (*k, [ts[0], ts[1]]))
+        .collect();
+    // Direction of edge (lo, hi) in triangle t: true when t runs lo → hi.
+    let forward = |t: usize, k: (u32, u32)| {
+        let tri = m.triangles[t];
+        (0..3).any(|i| tri[i] == k.0 && tri[(i + 1) % 3] == k.1)
+    };
+    let ok = |flip: u64| {
+        manifold.iter().all(|&(k, [a, b])| {
+            let fa = forward(a, k) ^ (flip >> a & 1 == 1);
+            let fb = forward(b, k) ^ (flip >> b & 1 == 1);
+            fa != fb
+        })
+    };
+    let n = m.triangles.len();
+    (ok(0), (0..1u64 << n).any(ok))
+}
+
 fn brute_chi(m: &TriMesh) -> i64 {
     let e = brute_edges(m);
     let tris: BTreeSet<usize> = e.values().flatten().copied().collect();
@@ -449,6 +523,25 @@ proptest! {
             .map(|(k, _)| [k.0, k.1])
             .collect();
         prop_assert_eq!(&t.non_manifold_edges, &nm);
+        prop_assert_eq!(&t.non_manifold_vertices, &brute_non_manifold_vertices(&m));
+        if m.triangles.len() <= 12 {
+            prop_assert_eq!((t.consistently_oriented, t.orientable), brute_orientation(&m));
+        }
+        // Orienting: succeeds exactly for orientable meshes and then gives a consistent mesh
+        // with the same topology; on failure the mesh is unchanged.
+        let mut o = m.clone();
+        match orient_consistently(&mut o) {
+            Ok(_) => {
+                prop_assert!(t.orientable);
+                let to = analyze(&o);
+                prop_assert!(to.consistently_oriented);
+                prop_assert_eq!(summary(&to), summary(&t));
+            }
+            Err(_) => {
+                prop_assert!(!t.orientable);
+                prop_assert_eq!(&o, &m);
+            }
+        }
         check_invariants(&m, &t);
         // Neighbour relation is symmetric.
         for (a, ns) in t.neighbors.iter().enumerate() {
@@ -571,18 +664,23 @@ fn read_obj(name: &str) -> Option<TriMesh> {
     };
     let mut m = TriMesh::default();
     for line in text.lines() {
-        let mut it = line.split_whitespace();
+        let mut it = line.split_ascii_whitespace();
         match it.next() {
             Some("v") => {
-                let c: Vec<f64> = it.take(3).map(|s| s.parse().unwrap()).collect();
+                let mut c = [0.0; 3];
+                for x in c.iter_mut() {
+                    *x = it.next().unwrap().parse().unwrap();
+                }
                 m.positions.push(Point3::new(c[0], c[1], c[2]));
             }
             Some("f") => {
-                let f: Vec<u32> = it
-                    .map(|s| s.split('/').next().unwrap().parse::<u32>().unwrap() - 1)
-                    .collect();
-                assert_eq!(f.len(), 3, "{name}: non-triangle face");
-                m.triangles.push([f[0], f[1], f[2]]);
+                let mut f = [0u32; 3];
+                for x in f.iter_mut() {
+                    let s = it.next().unwrap();
+                    *x = s.split('/').next().unwrap().parse::<u32>().unwrap() - 1;
+                }
+                assert!(it.next().is_none(), "{name}: non-triangle face");
+                m.triangles.push(f);
             }
             _ => {}
         }
@@ -694,11 +792,14 @@ fn real_dragon_non_manifold() {
 
 #[test]
 fn real_horse_closed_genus_0_inward() {
+    let t0 = std::time::Instant::now();
     let Some(mut m) = read_obj("horse.obj.gz") else {
         return;
     };
     assert_eq!((m.num_vertices(), m.num_triangles()), (48485, 96966));
+    let t1 = std::time::Instant::now();
     let t = analyze(&m);
+    eprintln!("horse: read {:?}, analyze {:?}", t1 - t0, t1.elapsed());
     check_invariants_fast(&t);
     assert!(t.is_closed() && t.manifold && t.consistently_oriented);
     assert_eq!(

@@ -170,12 +170,6 @@ fn is_degenerate(t: &[u32; 3]) -> bool {
     t[0] == t[1] || t[1] == t[2] || t[2] == t[0]
 }
 
-#[inline]
-fn edge_key(a: u32, b: u32) -> u64 {
-    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-    ((lo as u64) << 32) | hi as u64
-}
-
 /// The edge structure shared by [`analyze`] and [`orient_consistently`].
 struct Edges {
     /// Half-edges grouped by undirected edge: edge `e` owns `sorted[start[e]..start[e+1]]`.
@@ -188,30 +182,67 @@ struct Edges {
 }
 
 impl Edges {
-    fn build(tris: &[[u32; 3]]) -> Self {
-        let mut pairs: Vec<(u64, u32)> = Vec::with_capacity(tris.len() * 3);
-        for (t, tri) in tris.iter().enumerate() {
-            if is_degenerate(tri) {
-                continue;
+    /// Groups the half-edges by undirected edge with two stable counting-sort passes (by the
+    /// larger, then by the smaller endpoint): O(n + V), no comparisons. `nv` must exceed every
+    /// vertex index.
+    fn build(tris: &[[u32; 3]], nv: usize) -> Self {
+        let n_half = tris.len() * 3;
+        let ends = |h: usize| {
+            let t = &tris[h / 3];
+            let (a, b) = (t[h % 3], t[(h + 1) % 3]);
+            if a < b {
+                (a, b)
+            } else {
+                (b, a)
             }
-            for i in 0..3 {
-                pairs.push((edge_key(tri[i], tri[(i + 1) % 3]), (3 * t + i) as u32));
-            }
+        };
+        let live = |h: usize| !is_degenerate(&tris[h / 3]);
+        let mut count = vec![0u32; nv + 1];
+        // Pass 1: by the larger endpoint.
+        for h in (0..n_half).filter(|&h| live(h)) {
+            count[ends(h).1 as usize + 1] += 1;
         }
-        pairs.sort_unstable();
-        let mut sorted = Vec::with_capacity(pairs.len());
+        for v in 0..nv {
+            count[v + 1] += count[v];
+        }
+        let m = count[nv] as usize;
+        let mut by_hi = vec![0u32; m];
+        for h in (0..n_half).filter(|&h| live(h)) {
+            let slot = &mut count[ends(h).1 as usize];
+            by_hi[*slot as usize] = h as u32;
+            *slot += 1;
+        }
+        // Pass 2 (stable): by the smaller endpoint.
+        count.iter_mut().for_each(|c| *c = 0);
+        for &h in &by_hi {
+            count[ends(h as usize).0 as usize + 1] += 1;
+        }
+        for v in 0..nv {
+            count[v + 1] += count[v];
+        }
+        let mut sorted = vec![0u32; m];
+        for &h in &by_hi {
+            let slot = &mut count[ends(h as usize).0 as usize];
+            sorted[*slot as usize] = h;
+            *slot += 1;
+        }
+        drop(by_hi);
+        drop(count);
         let mut start = Vec::new();
         let mut key = Vec::new();
-        let mut edge_of = vec![NONE; tris.len() * 3];
-        for (i, &(k, h)) in pairs.iter().enumerate() {
-            if i == 0 || pairs[i - 1].0 != k {
+        let mut edge_of = vec![NONE; n_half];
+        let mut last = u64::MAX;
+        for (i, &h) in sorted.iter().enumerate() {
+            let (lo, hi) = ends(h as usize);
+            let k = ((lo as u64) << 32) | hi as u64;
+            if k != last {
                 start.push(i as u32);
                 key.push(k);
+                last = k;
             }
-            sorted.push(h);
             edge_of[h as usize] = (key.len() - 1) as u32;
         }
-        start.push(pairs.len() as u32);
+        start.push(m as u32);
         Edges {
             sorted,
             start,
@@ -310,7 +341,7 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
         .max()
         .map_or(0, |m| m as usize + 1);
     let nv = mesh.positions.len().max(max_index);
-    let edges = Edges::build(tris);
+    let edges = Edges::build(tris, nv);
     let ne = edges.len();
 
     let degenerate_triangles: Vec<u32> = (0..nt as u32)
@@ -418,92 +449,80 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
     // partner[2e + s] = 2f + r: boundary edge e at its endpoint s (0 = lo, 1 = hi) continues with
     // boundary edge f, entered at its endpoint r.
     let mut partner = vec![NONE; 2 * ne];
+    // Fans: corners (3t + k, the corner of tris[t][k]) joined across manifold edges at both
+    // endpoints of the edge, by a global union–find.
+    let corner_at = |t: u32, x: u32| -> u32 {
+        let tri = &tris[t as usize];
+        3 * t
+            + if tri[0] == x {
+                0
+            } else if tri[1] == x {
+                1
+            } else {
+                2
+            }
+    };
+    let mut fans = Dsu::new(3 * nt);
+    let mut on_nm_edge = vec![false; nv];
+    for e in 0..ne {
+        let hs = edges.halves(e);
+        let (lo, hi) = ((edges.key[e] >> 32) as u32, edges.key[e] as u32);
+        match *hs {
+            [h1, h2] => {
+                for x in [lo, hi] {
+                    fans.union(corner_at(h1 / 3, x), corner_at(h2 / 3, x));
+                }
+            }
+            [_] => {}
+            _ => {
+                on_nm_edge[lo as usize] = true;
+                on_nm_edge[hi as usize] = true;
+            }
+        }
+    }
     let mut non_manifold_vertices = Vec::new();
     let mut num_used_vertices = 0usize;
-    let mut local: Vec<(u32, u32)> = Vec::new();
-    let mut ldsu_parent: Vec<u32> = Vec::new();
+    let mut root_seen = vec![NONE; 3 * nt];
+    let mut part_seen = vec![NONE; nparts as usize];
+    let mut part_fan_seen = vec![NONE; nparts as usize];
     let mut ends: Vec<(u32, u32)> = Vec::new(); // (fan root, boundary edge)
-    let mut vparts: Vec<u32> = Vec::new();
-    let mut fan_parts: Vec<(u32, u32)> = Vec::new();
     for v in 0..nv {
         let cs = &corner[cstart[v] as usize..cstart[v + 1] as usize];
         if cs.is_empty() {
             continue;
         }
         num_used_vertices += 1;
-        // Parts using v.
-        vparts.clear();
-        vparts.extend(cs.iter().map(|&h| part_of_triangle[(h / 3) as usize]));
-        vparts.sort_unstable();
-        vparts.dedup();
-        for &p in &vparts {
-            parts[p as usize].vertices += 1;
-        }
-        // The two edges at v of each corner; group by edge.
-        local.clear();
-        for (c, &h) in cs.iter().enumerate() {
-            let prev = h - h % 3 + (h % 3 + 2) % 3;
-            local.push((edges.edge_of[h as usize], c as u32));
-            local.push((edges.edge_of[prev as usize], c as u32));
-        }
-        local.sort_unstable();
-        ldsu_parent.clear();
-        ldsu_parent.extend(0..cs.len() as u32);
-        let find = |p: &mut Vec<u32>, mut x: u32| {
-            while p[x as usize] != x {
-                let g = p[p[x as usize] as usize];
-                p[x as usize] = g;
-                x = g;
+        let vv = v as u32;
+        let mut nfans = 0;
+        ends.clear();
+        for &c in cs {
+            let p = part_of_triangle[(c / 3) as usize] as usize;
+            if part_seen[p] != vv {
+                part_seen[p] = vv;
+                parts[p].vertices += 1;
             }
-            x
-        };
-        let mut on_nm_edge = false;
-        let mut i = 0;
-        while i < local.len() {
-            let e = local[i].0;
-            let mut j = i + 1;
-            while j < local.len() && local[j].0 == e {
-                j += 1;
-            }
-            match j - i {
-                1 => {}
-                2 => {
-                    let a = find(&mut ldsu_parent, local[i].1);
-                    let b = find(&mut ldsu_parent, local[i + 1].1);
-                    if a != b {
-                        ldsu_parent[a as usize] = b;
-                    }
+            let r = fans.find(c);
+            if root_seen[r as usize] != vv {
+                root_seen[r as usize] = vv;
+                nfans += 1;
+                // A second fan of the same part at v: that part is not a manifold.
+                if part_fan_seen[p] == vv {
+                    parts[p].manifold = false;
                 }
-                _ => on_nm_edge = true,
+                part_fan_seen[p] = vv;
             }
-            i = j;
-        }
-        // Fans: count roots; per part, more than one fan ⇒ that part is not a manifold.
-        fan_parts.clear();
-        for c in 0..cs.len() as u32 {
-            if find(&mut ldsu_parent, c) == c {
-                fan_parts.push((part_of_triangle[(cs[c as usize] / 3) as usize], c));
+            let prev = c - c % 3 + (c % 3 + 2) % 3;
+            for h in [c, prev] {
+                let e = edges.edge_of[h as usize];
+                if edges.mult(e as usize) == 1 {
+                    ends.push((r, e));
+                }
             }
         }
-        if fan_parts.len() > 1 || on_nm_edge {
-            non_manifold_vertices.push(v as u32);
-        }
-        fan_parts.sort_unstable();
-        for w in fan_parts.windows(2) {
-            if w[0].0 == w[1].0 {
-                parts[w[0].0 as usize].manifold = false;
-            }
+        if nfans > 1 || on_nm_edge[v] {
+            non_manifold_vertices.push(vv);
         }
         // Boundary edge ends at v, grouped by fan.
-        ends.clear();
-        let mut i = 0;
-        while i < local.len() {
-            let e = local[i].0;
-            if edges.mult(e as usize) == 1 {
-                ends.push((find(&mut ldsu_parent, local[i].1), e));
-            }
-            i += 1;
-        }
         if ends.is_empty() {
             continue;
         }
@@ -679,7 +698,7 @@ pub fn orient_consistently(mesh: &mut TriMesh) -> crate::Result<usize> {
             mesh.positions.len()
         )));
     }
-    let edges = Edges::build(tris);
+    let edges = Edges::build(tris, mesh.positions.len());
     let twin = twins(&edges, 3 * nt);
     let (colour, comp, conflict) = flip_colouring(tris, &twin);
     if let Some(c) = conflict.iter().position(|&c| c) {
