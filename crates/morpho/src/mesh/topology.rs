@@ -19,12 +19,18 @@
 //!   the vertex lies on a non-manifold edge), orientation consistency and orientability.
 //!
 //! # Method and complexity
-//! Every triangle contributes three half-edges `3t + i` (from `v_i` to `v_{i+1}`). They are sorted
-//! by the undirected key `(min << 32) | max` (`sort_unstable`, O(n log n), cache friendly, no
-//! hashing); every run of equal keys is one undirected edge. Parts use union–find over runs (near
-//! O(n)). Vertex fans are found per vertex from a counting-sorted corner table (O(n) plus a sort of
-//! each vertex's few incident edges). Orientability is a BFS 2-colouring of "flip" states over the
-//! manifold edges. Memory is O(n) in flat `u32` arrays.
+//! Every triangle contributes three half-edges `3t + i` (from `v_i` to `v_{i+1}`). They are
+//! grouped by undirected edge `(min, max)` with two stable counting-sort passes (by `max`, then by
+//! `min`): O(n + V), no hashing, sequential memory access; every run of equal keys is one edge.
+//! Parts use union–find over the runs (near O(n)), then are renumbered in order of first
+//! triangle. Fans are the classes of a union–find over corners (`3t + k`), joined across every
+//! manifold edge at both of its endpoints; each vertex then counts its fans from a counting-sorted
+//! corner table in O(degree). Orientability is a BFS 2-colouring of "flip" states over the
+//! manifold edges. Total O(n α(n)) time, O(n + V) memory in flat `u32` arrays. Half-edge indices
+//! are `u32`, so a mesh may have at most ⌊(2³² − 1)/3⌋ triangles.
+//!
+//! Measured only in a debug build of this crate (optimised dependencies, loaded 2-core machine):
+//! the horse mesh (96966 triangles) takes about 0.9–1.3 s; no release measurement was made.
 //!
 //! # Boundary loops at non-manifold vertices
 //! Boundary edges are chained vertex by vertex. At a vertex, the two boundary edges that end the
