@@ -400,6 +400,16 @@ fn two_cones_sharing_a_tip() {
     assert_eq!(t.parts.len(), 1);
     assert_eq!(t.non_manifold_vertices, vec![0]);
     assert!(!t.parts[0].manifold && t.genus().is_none());
+    // The inner and the outer boundary touch at vertex 0 but stay two loops (boundary edges are
+    // paired within each fan), each through vertex 0 once.
+    assert_eq!(t.boundary_loops.len(), 2);
+    let mut sizes: Vec<usize> = t.boundary_loops.iter().map(|l| l.len()).collect();
+    sizes.sort_unstable();
+    assert_eq!(sizes, vec![8, 8]);
+    assert!(t
+        .boundary_loops
+        .iter()
+        .all(|l| l.iter().filter(|&&v| v == 0).count() == 1));
 }
 
 #[test]

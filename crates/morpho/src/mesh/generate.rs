@@ -29,7 +29,8 @@ fn orient_away_from(m: &mut TriMesh, center: Point3) {
     }
 }
 
-/// A UV sphere: `n_lat ≥ 2` latitude bands between two poles, `n_lon ≥ 3` meridians.
+/// A UV sphere of radius `r > 0`: `n_lat ≥ 2` latitude bands between two poles, `n_lon ≥ 3`
+/// meridians.
 /// Vertices: 2 + (n_lat − 1)·n_lon; triangles: 2·(n_lat − 1)·n_lon.
 pub fn uv_sphere(center: Point3, r: f64, n_lat: usize, n_lon: usize) -> TriMesh {
     let (n_lat, n_lon) = (n_lat.max(2), n_lon.max(3));
@@ -256,7 +257,8 @@ fn rings(
 }
 
 /// The annulus `r_inner ≤ |x| ≤ r_outer` in the plane z = 0, facing +z: `n_rings + 1 ≥ 2`
-/// circles of `n_sectors ≥ 3` vertices. χ = 0, two boundary loops, genus 0.
+/// circles of `n_sectors ≥ 3` vertices. χ = 0, two boundary loops, genus 0. Needs
+/// `0 < r_inner < r_outer` for distinct vertex positions (the connectivity does not depend on it).
 pub fn annulus(r_inner: f64, r_outer: f64, n_rings: usize, n_sectors: usize) -> TriMesh {
     let (nr, ns) = (n_rings.max(1), n_sectors.max(3));
     let mut pos = Vec::new();
