@@ -50,8 +50,9 @@
 //! [`NONE`]). A mesh containing one is not reported as `manifold`.
 //!
 //! # Preconditions
-//! `mesh` should satisfy [`TriMesh::validate`]. Out-of-range indices do not cause a panic (the
-//! vertex count is taken as max(positions, largest index + 1)); only loop lengths become NaN.
+//! `mesh` should satisfy [`TriMesh::validate`]. Without it nothing panics and nothing is
+//! allocated beyond O(n + V): a triangle with an index `>= positions.len()` is treated exactly
+//! like a degenerate triangle (listed in `degenerate_triangles`, otherwise ignored).
 
 use super::TriMesh;
 use std::collections::VecDeque;
@@ -171,9 +172,11 @@ impl Dsu {
     }
 }
 
+/// A triangle that takes no part in the topology: a repeated vertex index, or an index
+/// `>= nv` (only possible when the mesh was not validated).
 #[inline]
-fn is_degenerate(t: &[u32; 3]) -> bool {
-    t[0] == t[1] || t[1] == t[2] || t[2] == t[0]
+fn is_degenerate(t: &[u32; 3], nv: usize) -> bool {
+    t[0] == t[1] || t[1] == t[2] || t[2] == t[0] || t.iter().any(|&v| v as usize >= nv)
 }
 
 /// The edge structure shared by [`analyze`] and [`orient_consistently`].
@@ -202,7 +205,7 @@ impl Edges {
                 (b, a)
             }
         };
-        let live = |h: usize| !is_degenerate(&tris[h / 3]);
+        let live = |h: usize| !is_degenerate(&tris[h / 3], nv);
         let mut count = vec![0u32; nv + 1];
         // Pass 1: by the larger endpoint.
         for h in (0..n_half).filter(|&h| live(h)) {
@@ -290,14 +293,14 @@ fn twins(edges: &Edges, n_half: usize) -> Vec<u32> {
 /// BFS 2-colouring of flip states over manifold edges. Returns the colour of each triangle
 /// (0 = keep, 1 = flip relative to the component's first triangle), the component (manifold-edge
 /// connected) of each triangle, and whether each component had a conflict (non-orientable).
-fn flip_colouring(tris: &[[u32; 3]], twin: &[u32]) -> (Vec<u8>, Vec<u32>, Vec<bool>) {
+fn flip_colouring(tris: &[[u32; 3]], nv: usize, twin: &[u32]) -> (Vec<u8>, Vec<u32>, Vec<bool>) {
     let n = tris.len();
     let mut colour = vec![u8::MAX; n];
     let mut comp = vec![NONE; n];
     let mut conflict = Vec::new();
     let mut queue = VecDeque::new();
     for s in 0..n {
-        if comp[s] != NONE || is_degenerate(&tris[s]) {
+        if comp[s] != NONE || is_degenerate(&tris[s], nv) {
             continue;
         }
         let c = conflict.len() as u32;
@@ -329,8 +332,9 @@ fn flip_colouring(tris: &[[u32; 3]], twin: &[u32]) -> (Vec<u8>, Vec<u32>, Vec<bo
     (colour, comp, conflict)
 }
 
-/// Computes the topology of `mesh` in O(n log n). `mesh` should satisfy [`TriMesh::validate`]
-/// (see the module docs for what happens otherwise: no panic).
+/// Computes the topology of `mesh` in O(n α(n) + V) time. `mesh` should satisfy
+/// [`TriMesh::validate`]; triangles with an out-of-range index are treated like degenerate ones
+/// (no panic).
 ///
 /// ```
 /// use morpho::mesh::{generate, topology};
@@ -340,18 +344,12 @@ fn flip_colouring(tris: &[[u32; 3]], twin: &[u32]) -> (Vec<u8>, Vec<u32>, Vec<bo
 pub fn analyze(mesh: &TriMesh) -> Topology {
     let tris = &mesh.triangles;
     let nt = tris.len();
-    let max_index = tris
-        .iter()
-        .flatten()
-        .copied()
-        .max()
-        .map_or(0, |m| m as usize + 1);
-    let nv = mesh.positions.len().max(max_index);
+    let nv = mesh.positions.len();
     let edges = Edges::build(tris, nv);
     let ne = edges.len();
 
     let degenerate_triangles: Vec<u32> = (0..nt as u32)
-        .filter(|&t| is_degenerate(&tris[t as usize]))
+        .filter(|&t| is_degenerate(&tris[t as usize], nv))
         .collect();
 
     // Neighbours (Alg. 3.1), non-manifold edges, orientation consistency.
@@ -390,7 +388,7 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
     let mut part_of_triangle = vec![NONE; nt];
     let mut nparts = 0u32;
     for t in 0..nt {
-        if is_degenerate(&tris[t]) {
+        if is_degenerate(&tris[t], nv) {
             continue;
         }
         let r = dsu.find(t as u32) as usize;
@@ -429,7 +427,7 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
     // each a half-edge index 3t + k with tris[t][k] == v.
     let mut cstart = vec![0u32; nv + 1];
     for tri in tris {
-        if !is_degenerate(tri) {
+        if !is_degenerate(tri, nv) {
             for &v in tri {
                 cstart[v as usize + 1] += 1;
             }
@@ -441,7 +439,7 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
     let mut fill = cstart.clone();
     let mut corner = vec![0u32; cstart[nv] as usize];
     for (t, tri) in tris.iter().enumerate() {
-        if is_degenerate(tri) {
+        if is_degenerate(tri, nv) {
             continue;
         }
         for (k, &v) in tri.iter().enumerate() {
@@ -641,7 +639,7 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
 
     // Orientability (BFS 2-colouring over manifold edges).
     let twin = twins(&edges, 3 * nt);
-    let (_, comp, conflict) = flip_colouring(tris, &twin);
+    let (_, comp, conflict) = flip_colouring(tris, nv, &twin);
     for t in 0..nt {
         if comp[t] != NONE && conflict[comp[t] as usize] {
             parts[part_of_triangle[t] as usize].orientable = false;
@@ -704,9 +702,10 @@ pub fn orient_consistently(mesh: &mut TriMesh) -> crate::Result<usize> {
             mesh.positions.len()
         )));
     }
-    let edges = Edges::build(tris, mesh.positions.len());
+    let nv = mesh.positions.len();
+    let edges = Edges::build(tris, nv);
     let twin = twins(&edges, 3 * nt);
-    let (colour, comp, conflict) = flip_colouring(tris, &twin);
+    let (colour, comp, conflict) = flip_colouring(tris, nv, &twin);
     if let Some(c) = conflict.iter().position(|&c| c) {
         let t = comp.iter().position(|&x| x == c as u32).unwrap_or(0);
         return Err(crate::Error::invalid(format!(
@@ -837,10 +836,11 @@ mod tests {
 
     #[test]
     fn out_of_range_index_no_panic() {
-        let m = TriMesh::new(vec![Point3::origin()], vec![[0, 5, 7]]);
+        let m = TriMesh::new(vec![Point3::origin(); 3], vec![[0, 1, 2], [0, 5, u32::MAX]]);
         let t = analyze(&m);
+        assert_eq!(t.degenerate_triangles, vec![1]);
         assert_eq!(t.num_used_vertices, 3);
-        assert!(t.boundary_loop_lengths[0].is_nan());
+        assert_eq!(t.boundary_loops.len(), 1);
         let mut m = m;
         assert!(orient_consistently(&mut m).is_err());
     }
