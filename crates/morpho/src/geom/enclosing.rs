@@ -819,6 +819,25 @@ mod tests {
             prop_assert!((d.radius - b.radius).abs() <= 1e-9 * d.radius.max(1e-300));
         }
 
+        /// Exact decisions are invariant under an exact translation: the same support comes
+        /// out (coordinates are multiples of 1/16, the shift 2^30 keeps them exact).
+        #[test]
+        fn exact_translation_keeps_support(
+            p in prop::collection::vec((-64i32..64, -64i32..64, -64i32..64), 1..25),
+            t in (-4i32..4, -4i32..4, -4i32..4),
+        ) {
+            let sh = 2f64.powi(30);
+            let p3: Vec<Point3> = p.iter().map(|&(x, y, z)| Point3::new(x as f64 / 16.0, y as f64 / 16.0, z as f64 / 16.0)).collect();
+            let q3: Vec<Point3> = p3.iter().map(|q| Point3::new(q.x + t.0 as f64 * sh, q.y + t.1 as f64 * sh, q.z + t.2 as f64 * sh)).collect();
+            let (a, b) = (smallest_enclosing_ball(&p3).unwrap(), smallest_enclosing_ball(&q3).unwrap());
+            prop_assert_eq!(&a.support, &b.support);
+            prop_assert!((a.radius - b.radius).abs() <= 1e-6 * a.radius.max(1e-3));
+            let p2: Vec<Point2> = p3.iter().map(|q| Point2::new(q.x, q.y)).collect();
+            let q2: Vec<Point2> = q3.iter().map(|q| Point2::new(q.x, q.y)).collect();
+            let (a, b) = (smallest_enclosing_disc(&p2).unwrap(), smallest_enclosing_disc(&q2).unwrap());
+            prop_assert_eq!(&a.support, &b.support);
+        }
+
         #[test]
         fn order_does_not_matter(p in prop::collection::vec((coord(), coord(), coord()), 1..30), seed in any::<u64>()) {
             let p: Vec<Point3> = p.into_iter().map(|(x, y, z)| Point3::new(x, y, z)).collect();
