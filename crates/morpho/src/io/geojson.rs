@@ -1,15 +1,407 @@
-//! GeoJSON Polygon, MultiPolygon, LineString (also inside Feature/FeatureCollection). TODO(helper).
-use crate::mesh::Shapes2;
+//! GeoJSON (RFC 7946) polygons and line strings, and the earcut fixture format.
+//!
+//! # Reading
+//! `Polygon`, `MultiPolygon`, `LineString`, `MultiLineString`, alone or inside `Feature`,
+//! `FeatureCollection` and `GeometryCollection` (any nesting serde_json accepts, ≤ 128 levels).
+//! `Point`/`MultiPoint` and null geometries are skipped; properties are ignored. Positions
+//! need at least 2 numbers (further numbers, e.g. z, are ignored). A ring's closing repeat is
+//! dropped; a ring needs at least 3 vertices after that. A `LineString` whose last position
+//! repeats its first (and that has ≥ 4 positions) becomes a closed [`Polyline`] without the
+//! repeat. Orientation is kept as in the file. A top-level JSON array of rings of `[x, y]`
+//! (mapbox/earcut fixtures: ring 0 outer, others holes) is read as one polygon.
+//!
+//! # Writing
+//! A `FeatureCollection` with one `Feature` per shape (`properties: {}`): polygons as `Polygon`
+//! with explicitly closed rings, the outer ring counter-clockwise and holes clockwise
+//! (RFC 7946 §3.1.6) — a ring is reversed when the sign of its signed area, computed
+//! **exactly** ([`ring_orientation`]), disagrees; polylines as `LineString` (closed ones with
+//! the first position repeated at the end). Numbers use serde_json's shortest round-trip form.
+//!
+//! Complexity: linear in the input size.
+
+use crate::geom::Point2;
+use crate::mesh::{Polygon, Polyline, Shapes2};
 use crate::{Error, Result};
+use serde_json::{json, Value};
 use std::io::Write;
+
+fn position(v: &Value, ctx: &str) -> Result<Point2> {
+    let a = v
+        .as_array()
+        .ok_or_else(|| Error::format(format!("{ctx}: a position must be an array of numbers")))?;
+    if a.len() < 2 {
+        return Err(Error::format(format!(
+            "{ctx}: a position needs at least 2 numbers"
+        )));
+    }
+    let num = |x: &Value| {
+        x.as_f64()
+            .filter(|f| f.is_finite())
+            .ok_or_else(|| Error::format(format!("{ctx}: a coordinate is not a finite number")))
+    };
+    Ok(Point2::new(num(&a[0])?, num(&a[1])?))
+}
+
+fn positions(v: &Value, ctx: &str) -> Result<Vec<Point2>> {
+    v.as_array()
+        .ok_or_else(|| Error::format(format!("{ctx}: expected an array of positions")))?
+        .iter()
+        .map(|p| position(p, ctx))
+        .collect()
+}
+
+fn ring(v: &Value, ctx: &str) -> Result<Vec<Point2>> {
+    let mut r = positions(v, ctx)?;
+    if r.len() > 1 && r.first() == r.last() {
+        r.pop();
+    }
+    if r.len() < 3 {
+        return Err(Error::format(format!(
+            "{ctx}: a polygon ring needs at least 3 distinct positions"
+        )));
+    }
+    Ok(r)
+}
+
+fn polygon(v: &Value, ctx: &str) -> Result<Option<Polygon>> {
+    let rings = v
+        .as_array()
+        .ok_or_else(|| Error::format(format!("{ctx}: expected an array of rings")))?;
+    if rings.is_empty() {
+        return Ok(None);
+    }
+    Ok(Some(Polygon {
+        rings: rings.iter().map(|r| ring(r, ctx)).collect::<Result<_>>()?,
+    }))
+}
+
+fn line_string(v: &Value, ctx: &str) -> Result<Option<Polyline>> {
+    let mut pts = positions(v, ctx)?;
+    if pts.is_empty() {
+        return Ok(None);
+    }
+    if pts.len() < 2 {
+        return Err(Error::format(format!(
+            "{ctx}: a LineString needs at least 2 positions"
+        )));
+    }
+    let closed = pts.len() >= 4 && pts.first() == pts.last();
+    if closed {
+        pts.pop();
+    }
+    Ok(Some(Polyline {
+        points: pts,
+        closed,
+    }))
+}
+
+fn coords<'a>(o: &'a Value, ty: &str) -> Result<&'a Value> {
+    o.get("coordinates")
+        .ok_or_else(|| Error::format(format!("{ty} without \"coordinates\"")))
+}
+
+fn walk(v: &Value, out: &mut Shapes2) -> Result<()> {
+    let ty = v
+        .get("type")
+        .and_then(Value::as_str)
+        .ok_or_else(|| Error::format("a GeoJSON object needs a \"type\" string"))?;
+    match ty {
+        "FeatureCollection" => {
+            let fs = v
+                .get("features")
+                .and_then(Value::as_array)
+                .ok_or_else(|| Error::format("FeatureCollection without a \"features\" array"))?;
+            for f in fs {
+                walk(f, out)?;
+            }
+        }
+        "Feature" => match v.get("geometry") {
+            None | Some(Value::Null) => {}
+            Some(g) => walk(g, out)?,
+        },
+        "GeometryCollection" => {
+            let gs = v
+                .get("geometries")
+                .and_then(Value::as_array)
+                .ok_or_else(|| {
+                    Error::format("GeometryCollection without a \"geometries\" array")
+                })?;
+            for g in gs {
+                walk(g, out)?;
+            }
+        }
+        "Polygon" => out.polygons.extend(polygon(coords(v, ty)?, ty)?),
+        "MultiPolygon" => {
+            let ps = coords(v, ty)?
+                .as_array()
+                .ok_or_else(|| Error::format("MultiPolygon: expected an array of polygons"))?;
+            for p in ps {
+                out.polygons.extend(polygon(p, ty)?);
+            }
+        }
+        "LineString" => out.polylines.extend(line_string(coords(v, ty)?, ty)?),
+        "MultiLineString" => {
+            let ls = coords(v, ty)?
+                .as_array()
+                .ok_or_else(|| Error::format("MultiLineString: expected an array of lines"))?;
+            for l in ls {
+                out.polylines.extend(line_string(l, ty)?);
+            }
+        }
+        "Point" | "MultiPoint" => {}
+        other => {
+            return Err(Error::unsupported(format!(
+                "unknown GeoJSON type \"{other}\""
+            )))
+        }
+    }
+    Ok(())
+}
 
 /// Reads all polygons and line strings.
 pub fn read(bytes: &[u8]) -> Result<Shapes2> {
-    let _ = bytes;
-    Err(Error::unsupported("not implemented yet"))
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    let v: Value = serde_json::from_slice(bytes)
+        .map_err(|e| Error::at_line(e.line() as u64, format!("bad JSON: {e}")))?;
+    let mut out = Shapes2::default();
+    if v.is_array() {
+        // earcut fixture: [[ [x, y], … ], …]
+        out.polygons.extend(polygon(&v, "array of rings")?);
+    } else {
+        walk(&v, &mut out)?;
+    }
+    Ok(out)
 }
+
+/// Error-free transformation: `a + b = s + t` exactly.
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    let t = (a - (s - bb)) + (b - bb);
+    (s, t)
+}
+
+/// Adds `b` to the nonoverlapping expansion `e` (increasing magnitude), zero components dropped
+/// (Shewchuk 1997, Grow-Expansion with zero elimination).
+fn grow(e: &mut Vec<f64>, b: f64) {
+    let mut q = b;
+    let mut k = 0;
+    for i in 0..e.len() {
+        let (s, h) = two_sum(q, e[i]);
+        q = s;
+        if h != 0.0 {
+            e[k] = h;
+            k += 1;
+        }
+    }
+    e.truncate(k);
+    if q != 0.0 {
+        e.push(q);
+    }
+}
+
+/// Sign of the signed area of a ring (positive = counter-clockwise), computed exactly: the
+/// shoelace sum Σ (xᵢ·yᵢ₊₁ − xᵢ₊₁·yᵢ) is accumulated as an exact floating-point expansion
+/// (products split with fused multiply-add). If an intermediate overflows, the sign of
+/// `orient2d` at the lexicographically lowest vertex is used (exact for simple rings).
+/// Returns 0 for a ring of zero area.
+pub fn ring_orientation(ring: &[Point2]) -> i32 {
+    let n = ring.len();
+    if n < 3 {
+        return 0;
+    }
+    let mut e: Vec<f64> = Vec::new();
+    let mut finite = true;
+    for i in 0..n {
+        let (a, b) = (ring[i], ring[(i + 1) % n]);
+        for (p, sign) in [(a.x * b.y, 1.0), (b.x * a.y, -1.0)] {
+            let (u, v) = if sign > 0.0 { (a.x, b.y) } else { (b.x, a.y) };
+            let err = u.mul_add(v, -p);
+            if !p.is_finite() || !err.is_finite() {
+                finite = false;
+            }
+            grow(&mut e, sign * p);
+            grow(&mut e, sign * err);
+        }
+        if !finite {
+            break;
+        }
+        if e.len() > 64 {
+            // cannot happen for nonoverlapping doubles (≤ ~40 components), but stay bounded
+            finite = false;
+            break;
+        }
+    }
+    if finite && e.iter().all(|v| v.is_finite()) {
+        return match e.last() {
+            Some(&v) if v > 0.0 => 1,
+            Some(&v) if v < 0.0 => -1,
+            _ => 0,
+        };
+    }
+    // fallback: orientation at the extreme vertex
+    let mut m = 0;
+    for i in 1..n {
+        if (ring[i].x, ring[i].y) < (ring[m].x, ring[m].y) {
+            m = i;
+        }
+    }
+    let prev = (1..n)
+        .map(|k| ring[(m + n - k) % n])
+        .find(|p| *p != ring[m]);
+    let next = (1..n).map(|k| ring[(m + k) % n]).find(|p| *p != ring[m]);
+    match (prev, next) {
+        (Some(p), Some(q)) => {
+            let o = crate::geom::orient2d(&p, &ring[m], &q);
+            if o > 0.0 {
+                1
+            } else if o < 0.0 {
+                -1
+            } else {
+                0
+            }
+        }
+        _ => 0,
+    }
+}
+
+fn closed_ring(r: &[Point2], ccw: bool) -> Result<Value> {
+    let o = ring_orientation(r);
+    let flip = (ccw && o < 0) || (!ccw && o > 0);
+    let mut pts: Vec<Value> = Vec::with_capacity(r.len() + 1);
+    let mut push = |p: &Point2| -> Result<()> {
+        if !(p.x.is_finite() && p.y.is_finite()) {
+            return Err(Error::invalid("cannot write a non-finite coordinate"));
+        }
+        pts.push(json!([p.x, p.y]));
+        Ok(())
+    };
+    if flip {
+        for p in r.iter().rev() {
+            push(p)?;
+        }
+        if let Some(p) = r.last() {
+            push(p)?;
+        }
+    } else {
+        for p in r {
+            push(p)?;
+        }
+        if let Some(p) = r.first() {
+            push(p)?;
+        }
+    }
+    Ok(Value::Array(pts))
+}
+
 /// Writes a FeatureCollection.
 pub fn write(w: &mut dyn Write, shapes: &Shapes2) -> Result<()> {
-    let _ = (w, shapes);
-    Err(Error::unsupported("not implemented yet"))
+    let mut features = Vec::new();
+    for poly in &shapes.polygons {
+        let rings = poly
+            .rings
+            .iter()
+            .enumerate()
+            .map(|(i, r)| closed_ring(r, i == 0))
+            .collect::<Result<Vec<_>>>()?;
+        features.push(json!({
+            "type": "Feature",
+            "properties": {},
+            "geometry": {"type": "Polygon", "coordinates": rings},
+        }));
+    }
+    for line in &shapes.polylines {
+        let mut pts = Vec::with_capacity(line.points.len() + 1);
+        for p in &line.points {
+            if !(p.x.is_finite() && p.y.is_finite()) {
+                return Err(Error::invalid("cannot write a non-finite coordinate"));
+            }
+            pts.push(json!([p.x, p.y]));
+        }
+        if line.closed {
+            if let Some(p) = line.points.first() {
+                pts.push(json!([p.x, p.y]));
+            }
+        }
+        features.push(json!({
+            "type": "Feature",
+            "properties": {},
+            "geometry": {"type": "LineString", "coordinates": pts},
+        }));
+    }
+    let doc = json!({"type": "FeatureCollection", "features": features});
+    serde_json::to_writer(&mut *w, &doc).map_err(|e| Error::invalid(format!("JSON: {e}")))?;
+    writeln!(w).map_err(super::werr)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::orient2d;
+
+    fn p(x: f64, y: f64) -> Point2 {
+        Point2::new(x, y)
+    }
+
+    #[test]
+    fn orientation_is_exact_on_tiny_and_offset_rings() {
+        let sq = [p(0., 0.), p(1., 0.), p(1., 1.), p(0., 1.)];
+        assert_eq!(ring_orientation(&sq), 1);
+        let rev: Vec<_> = sq.iter().rev().copied().collect();
+        assert_eq!(ring_orientation(&rev), -1);
+        // a sliver far from the origin: float shoelace cancels, the exact sum does not
+        let big = 1e15;
+        let t = [
+            p(big, big),
+            p(big + 1.0, big),
+            p(big + 2.0, big + 2f64.powi(-2)),
+        ];
+        let o = orient2d(&t[0], &t[1], &t[2]);
+        assert_eq!(ring_orientation(&t), o.signum() as i32);
+        let flat = [p(0., 0.), p(1., 1.), p(2., 2.)];
+        assert_eq!(ring_orientation(&flat), 0);
+    }
+
+    #[test]
+    fn reads_nested_collections() {
+        let s = br#"{"type":"FeatureCollection","features":[
+          {"type":"Feature","properties":{"a":1},"geometry":{"type":"GeometryCollection","geometries":[
+            {"type":"Polygon","coordinates":[[[0,0,5],[1,0,5],[1,1,5],[0,0,5]]]},
+            {"type":"MultiLineString","coordinates":[[[0,0],[1,1]],[[0,0],[1,0],[1,1],[0,0]]]}]}},
+          {"type":"Feature","geometry":null},
+          {"type":"Feature","geometry":{"type":"Point","coordinates":[1,2]}}]}"#;
+        let sh = read(s).unwrap();
+        assert_eq!(sh.polygons.len(), 1);
+        assert_eq!(sh.polygons[0].rings[0].len(), 3);
+        assert_eq!(sh.polylines.len(), 2);
+        assert!(!sh.polylines[0].closed);
+        assert!(sh.polylines[1].closed);
+        assert_eq!(sh.polylines[1].points.len(), 3);
+        assert!(read(br#"{"type":"Polygon","coordinates":[[[0,0],[1,0]]]}"#).is_err());
+        assert!(read(br#"{"type":"Polygon"}"#).is_err());
+        assert!(read(br#"{"type":"Blob"}"#).is_err());
+        assert!(read(b"").is_err());
+    }
+
+    #[test]
+    fn writer_orients_rings_and_round_trips() {
+        let outer_cw = vec![p(0., 0.), p(0., 10.), p(10., 10.), p(10., 0.)];
+        let hole_ccw = vec![p(2., 2.), p(4., 2.), p(4., 4.)];
+        let sh = Shapes2 {
+            polygons: vec![Polygon {
+                rings: vec![outer_cw, hole_ccw],
+            }],
+            polylines: vec![Polyline {
+                points: vec![p(0.1, 0.2), p(0.3, 0.4)],
+                closed: false,
+            }],
+        };
+        let mut out = Vec::new();
+        write(&mut out, &sh).unwrap();
+        let back = read(&out).unwrap();
+        assert_eq!(ring_orientation(&back.polygons[0].rings[0]), 1);
+        assert_eq!(ring_orientation(&back.polygons[0].rings[1]), -1);
+        assert_eq!(back.polylines, sh.polylines);
+    }
 }
