@@ -30,16 +30,104 @@ pub(crate) fn utf8_text(bytes: &[u8], first_line: u64) -> Result<&str> {
     })
 }
 
-/// Lines numbered from `first`, without the `\n` and a trailing `\r`.
-pub(crate) fn numbered_lines(text: &str, first: u64) -> impl Iterator<Item = (u64, &str)> {
-    text.split('\n')
-        .enumerate()
-        .map(move |(i, l)| (i as u64 + first, l.strip_suffix('\r').unwrap_or(l)))
+/// The lines of a text, numbered from `first`, without the `\n` and a trailing `\r`.
+///
+/// Hand-written rather than `str::split` + `split_ascii_whitespace` so that parsing stays fast
+/// in unoptimised (test) builds too.
+pub(crate) struct Lines<'a> {
+    text: &'a str,
+    pos: usize,
+    next: u64,
+}
+
+impl<'a> Lines<'a> {
+    pub(crate) fn new(text: &'a str, first: u64) -> Self {
+        Lines {
+            text,
+            pos: 0,
+            next: first,
+        }
+    }
+}
+
+impl<'a> Iterator for Lines<'a> {
+    type Item = (u64, &'a str);
+    #[inline]
+    fn next(&mut self) -> Option<(u64, &'a str)> {
+        let b = self.text.as_bytes();
+        if self.pos > b.len() || (self.pos == b.len() && self.pos > 0) {
+            return None;
+        }
+        let start = self.pos;
+        let mut j = start;
+        while j < b.len() && b[j] != b'\n' {
+            j += 1;
+        }
+        self.pos = j + 1;
+        let end = if j > start && b[j - 1] == b'\r' {
+            j - 1
+        } else {
+            j
+        };
+        let n = self.next;
+        self.next += 1;
+        // `\n` and `\r` are ASCII, so these are character boundaries.
+        Some((n, self.text.get(start..end).unwrap_or("")))
+    }
+}
+
+/// Numbered lines (see [`Lines`]).
+pub(crate) fn numbered_lines(text: &str, first: u64) -> Lines<'_> {
+    Lines::new(text, first)
 }
 
 /// Number of lines of `text` (the last one may lack its `\n`).
 pub(crate) fn count_lines(text: &str) -> u64 {
-    text.bytes().filter(|&b| b == b'\n').count() as u64 + 1
+    let mut n = 1;
+    for &b in text.as_bytes() {
+        n += (b == b'\n') as u64;
+    }
+    n
+}
+
+/// The whitespace-separated tokens of a line (see [`Lines`] for why it is hand-written).
+#[derive(Clone)]
+pub(crate) struct Tokens<'a> {
+    s: &'a str,
+    pos: usize,
+}
+
+/// Tokens of `s`.
+pub(crate) fn tokens(s: &str) -> Tokens<'_> {
+    Tokens { s, pos: 0 }
+}
+
+#[inline]
+fn is_space(b: u8) -> bool {
+    b == b' ' || b == b'\t' || b == b'\r' || b == 0x0b || b == 0x0c || b == b'\n'
+}
+
+impl<'a> Iterator for Tokens<'a> {
+    type Item = &'a str;
+    #[inline]
+    fn next(&mut self) -> Option<&'a str> {
+        let b = self.s.as_bytes();
+        let mut i = self.pos;
+        while i < b.len() && is_space(b[i]) {
+            i += 1;
+        }
+        if i >= b.len() {
+            self.pos = i;
+            return None;
+        }
+        let start = i;
+        while i < b.len() && !is_space(b[i]) {
+            i += 1;
+        }
+        self.pos = i;
+        // Token boundaries are next to ASCII whitespace or the ends: character boundaries.
+        self.s.get(start..i)
+    }
 }
 
 /// Shortest representation of an `f64` that parses back to the same value: plain decimal for
@@ -144,7 +232,7 @@ pub fn read(bytes: &[u8]) -> Result<TriMesh> {
         if l.is_empty() || l.starts_with('#') {
             continue;
         }
-        let mut toks = l.split_ascii_whitespace();
+        let mut toks = tokens(l);
         let kw = toks.next().unwrap_or("");
         match kw {
             "v" => {

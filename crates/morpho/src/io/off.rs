@@ -13,7 +13,7 @@
 //!
 //! Writing: plain `OFF` with Rust's shortest round-trip representation of each coordinate
 //! (a write/read round trip is exact). Normals and properties are not written.
-use super::obj::{clip, count_lines, numbered_lines, parse_f64, utf8_text, F64};
+use super::obj::{clip, count_lines, numbered_lines, parse_f64, tokens, utf8_text, F64};
 use crate::geom::{Point3, Vector3};
 use crate::mesh::TriMesh;
 use crate::{Error, Result};
@@ -80,7 +80,7 @@ pub fn read(bytes: &[u8]) -> Result<TriMesh> {
     let (hline, header) = lines
         .next()
         .ok_or_else(|| Error::format("empty file, expected an OFF header"))?;
-    let mut toks = header.split_ascii_whitespace();
+    let mut toks = tokens(header);
     let variant = parse_keyword(toks.next().unwrap_or(""), hline)?;
     // Counts may follow the keyword on its line or come on the next lines.
     let mut pending: Vec<(u64, &str)> = toks.map(|t| (hline, t)).collect();
@@ -92,7 +92,7 @@ pub fn read(bytes: &[u8]) -> Result<TriMesh> {
         let (n, l) = lines.next().ok_or_else(|| {
             Error::at_line(total_lines, "file ends before the vertex and face counts")
         })?;
-        pending.extend(l.split_ascii_whitespace().map(|t| (n, t)));
+        pending.extend(tokens(l).map(|t| (n, t)));
     }
     let mut it = pending.into_iter();
     if variant.ndim {
@@ -127,7 +127,7 @@ pub fn read(bytes: &[u8]) -> Result<TriMesh> {
         let (line, l) = lines.next().ok_or_else(|| {
             Error::at_line(total_lines, format!("file ends after {i} of {nv} vertices"))
         })?;
-        let mut toks = l.split_ascii_whitespace();
+        let mut toks = tokens(l);
         for (k, v) in vals.iter_mut().take(nneed).enumerate() {
             let t = toks.next().ok_or_else(|| {
                 Error::at_line(line, format!("vertex {i} has {k} values, needs {nneed}"))
@@ -159,7 +159,7 @@ pub fn read(bytes: &[u8]) -> Result<TriMesh> {
         let (line, l) = lines.next().ok_or_else(|| {
             Error::at_line(total_lines, format!("file ends after {f} of {nf} faces"))
         })?;
-        let mut toks = l.split_ascii_whitespace();
+        let mut toks = tokens(l);
         let n = parse_count(toks.next(), line, "face corner count")?;
         if n < 3 {
             return Err(Error::at_line(

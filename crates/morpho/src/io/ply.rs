@@ -26,7 +26,7 @@
 //! Writing: `x y z` (and `nx ny nz`) as `double` so that values round-trip exactly, extra
 //! properties with their own kinds (values must be representable in them), faces as
 //! `list uchar int vertex_indices`. ASCII numbers use the shortest round-trip representation.
-use super::obj::{clip, count_lines, F32, F64};
+use super::obj::{clip, count_lines, tokens, Lines, Tokens, F32, F64};
 use super::Encoding;
 use crate::geom::{Point3, Vector3};
 use crate::mesh::{Column, PointSet, Property, ScalarKind, TriMesh};
@@ -166,7 +166,7 @@ fn parse_header(bytes: &[u8]) -> Result<Header> {
         let s = std::str::from_utf8(raw)
             .map_err(|_| Error::at_line(line, "PLY header line is not valid UTF-8 text"))?;
         let s = s.strip_suffix('\r').unwrap_or(s);
-        let mut t = s.split_ascii_whitespace();
+        let mut t = tokens(s);
         let Some(kw) = t.next() else { continue };
         match kw {
             "ply" if line == 1 => {}
@@ -296,11 +296,11 @@ trait Source {
 }
 
 struct Ascii<'a> {
-    rest: &'a str,
+    lines: Lines<'a>,
     /// Number of the line of the current record (0 before the first).
     line: u64,
     last_line: u64,
-    toks: std::str::SplitAsciiWhitespace<'a>,
+    toks: Tokens<'a>,
     el: String,
     rec: u64,
 }
@@ -308,21 +308,19 @@ struct Ascii<'a> {
 impl<'a> Ascii<'a> {
     fn new(text: &'a str, header_lines: u64) -> Self {
         Ascii {
-            rest: text,
+            lines: Lines::new(text, header_lines + 1),
             line: header_lines,
             last_line: header_lines + count_lines(text),
-            toks: "".split_ascii_whitespace(),
+            toks: tokens(""),
             el: String::new(),
             rec: 0,
         }
     }
     /// The next non-blank line, or `None` at the end.
     fn next_line(&mut self) -> Option<&'a str> {
-        while !self.rest.is_empty() {
-            let (l, r) = self.rest.split_once('\n').unwrap_or((self.rest, ""));
-            self.rest = r;
-            self.line += 1;
-            if !l.trim_ascii().is_empty() {
+        for (n, l) in self.lines.by_ref() {
+            self.line = n;
+            if tokens(l).next().is_some() {
                 return Some(l);
             }
         }
@@ -374,7 +372,7 @@ impl Source for Ascii<'_> {
         self.rec = i;
         match self.next_line() {
             Some(l) => {
-                self.toks = l.split_ascii_whitespace();
+                self.toks = tokens(l);
                 Ok(())
             }
             None => Err(self.truncated()),

@@ -5,7 +5,7 @@
 //! when it starts with `solid`, as many exporters write. (So a binary file is recognised by
 //! the `84 + 50·n` layout, `n` the little-endian `u32` at bytes 80..84, whatever its header.)
 //! ASCII STL is `solid name / facet normal nx ny nz / outer loop / vertex x y z … / endloop /
-//! endfacet / endsolid`; several solids are allowed and loops with more than three vertices
+//! endfacet / endsolid`, one statement per line; several solids are allowed and loops with more than three vertices
 //! are fan-triangulated. In binary files a length shorter than `84 + 50·n` is a truncation
 //! error naming the byte offset (extra trailing bytes are ignored).
 //!
@@ -18,7 +18,7 @@
 //! Writing: binary STL with `f32` coordinates and the facet normal computed from the corners
 //! (zero for degenerate triangles), or ASCII STL with round-trip `f64` numbers. Big-endian STL
 //! does not exist, so that encoding is refused.
-use super::obj::{clip, numbered_lines, parse_f64, utf8_text, F64};
+use super::obj::{clip, numbered_lines, parse_f64, tokens, utf8_text, F64};
 use super::Encoding;
 use crate::geom::{Point3, Vector3};
 use crate::mesh::TriMesh;
@@ -128,123 +128,121 @@ fn read_binary(bytes: &[u8]) -> Result<TriMesh> {
     Ok(TriMesh::new(merger.positions, triangles))
 }
 
+/// Where the ASCII parser is in the grammar.
+#[derive(PartialEq, Eq)]
+enum State {
+    Outside,
+    Solid,
+    Facet,
+    Loop,
+    EndFacet,
+}
+
 fn read_ascii(bytes: &[u8]) -> Result<TriMesh> {
     let text = utf8_text(bytes, 1)?;
-    let mut toks = numbered_lines(text, 1)
-        .flat_map(|(n, l)| l.split_ascii_whitespace().map(move |t| (n, t)))
-        .peekable();
+    let mut st = State::Outside;
     let mut merger = Merger::with_capacity(1024);
-    let mut triangles = Vec::new();
-    let mut last_line: u64;
+    let mut triangles: Vec<[u32; 3]> = Vec::new();
     let mut corners: Vec<u32> = Vec::new();
-    macro_rules! next {
-        ($what:expr) => {
-            match toks.next() {
-                Some((n, t)) => {
-                    last_line = n;
-                    (n, t)
-                }
-                None => {
-                    return Err(Error::at_line(
-                        last_line,
-                        format!("file ends where {} was expected", $what),
-                    ))
-                }
-            }
-        };
-    }
-    macro_rules! expect {
-        ($kw:expr) => {{
-            let (n, t) = next!(format!("'{}'", $kw));
-            if !t.eq_ignore_ascii_case($kw) {
-                return Err(Error::at_line(
-                    n,
-                    format!("expected '{}', found '{}'", $kw, clip(t)),
-                ));
-            }
-        }};
-    }
     let mut solids = 0;
-    while let Some((line, t)) = toks.next() {
-        last_line = line;
-        if !t.eq_ignore_ascii_case("solid") {
-            return Err(Error::at_line(
-                line,
-                format!("expected 'solid', found '{}'", clip(t)),
-            ));
-        }
-        solids += 1;
-        // The solid's name is the rest of its line.
-        while toks.next_if(|&(n, _)| n == line).is_some() {}
-        loop {
-            let (n, t) = next!("'facet' or 'endsolid'");
-            if t.eq_ignore_ascii_case("endsolid") {
-                while toks.next_if(|&(m, _)| m == n).is_some() {}
-                break;
+    let mut last = 1;
+    for (line, l) in numbered_lines(text, 1) {
+        last = line;
+        let mut t = tokens(l);
+        let Some(kw) = t.next() else { continue };
+        let is = |w: &str| kw.eq_ignore_ascii_case(w);
+        let unexpected =
+            |want: &str| Error::at_line(line, format!("expected {want}, found '{}'", clip(kw)));
+        match st {
+            State::Outside => {
+                if !is("solid") {
+                    return Err(unexpected("'solid'"));
+                }
+                solids += 1;
+                st = State::Solid;
             }
-            if !t.eq_ignore_ascii_case("facet") {
-                return Err(Error::at_line(
-                    n,
-                    format!("expected 'facet' or 'endsolid', found '{}'", clip(t)),
-                ));
-            }
-            if toks
-                .next_if(|&(_, t)| t.eq_ignore_ascii_case("normal"))
-                .is_some()
-            {
-                for _ in 0..3 {
-                    let (n, t) = next!("a normal component");
-                    parse_f64(t, n, "facet normal")?;
+            State::Solid => {
+                if is("facet") {
+                    if let Some(w) = t.next() {
+                        if !w.eq_ignore_ascii_case("normal") {
+                            return Err(unexpected("'facet normal'"));
+                        }
+                        for _ in 0..3 {
+                            let c = t.next().ok_or_else(|| {
+                                Error::at_line(line, "facet normal needs 3 components")
+                            })?;
+                            parse_f64(c, line, "facet normal")?;
+                        }
+                    }
+                    st = State::Facet;
+                } else if is("endsolid") {
+                    st = State::Outside;
+                } else {
+                    return Err(unexpected("'facet' or 'endsolid'"));
                 }
             }
-            expect!("outer");
-            expect!("loop");
-            corners.clear();
-            loop {
-                let (n, t) = next!("'vertex' or 'endloop'");
-                if t.eq_ignore_ascii_case("endloop") {
-                    break;
+            State::Facet => {
+                if !(is("outer") && t.next().is_some_and(|w| w.eq_ignore_ascii_case("loop"))) {
+                    return Err(unexpected("'outer loop'"));
                 }
-                if !t.eq_ignore_ascii_case("vertex") {
-                    return Err(Error::at_line(
-                        n,
-                        format!("expected 'vertex' or 'endloop', found '{}'", clip(t)),
-                    ));
-                }
-                let mut p = [0.0; 3];
-                for c in &mut p {
-                    let (n, t) = next!("a vertex coordinate");
-                    *c = parse_f64(t, n, "vertex")?;
-                }
-                if !p.iter().all(|c| c.is_finite()) {
-                    return Err(Error::at_line(
-                        n,
-                        format!(
-                            "triangle {}, corner {} has a non-finite coordinate",
-                            triangles.len(),
-                            corners.len()
-                        ),
-                    ));
-                }
-                corners.push(merger.add(p)?);
+                corners.clear();
+                st = State::Loop;
             }
-            if corners.len() < 3 {
-                return Err(Error::at_line(
-                    last_line,
-                    format!(
-                        "facet with {} vertices; a facet needs at least 3",
-                        corners.len()
-                    ),
-                ));
+            State::Loop => {
+                if is("vertex") {
+                    let mut p = [0.0; 3];
+                    for c in &mut p {
+                        let tok = t
+                            .next()
+                            .ok_or_else(|| Error::at_line(line, "a vertex needs 3 coordinates"))?;
+                        *c = parse_f64(tok, line, "vertex")?;
+                    }
+                    if !p.iter().all(|c| c.is_finite()) {
+                        return Err(Error::at_line(
+                            line,
+                            format!(
+                                "triangle {}, corner {} has a non-finite coordinate",
+                                triangles.len(),
+                                corners.len()
+                            ),
+                        ));
+                    }
+                    corners.push(merger.add(p)?);
+                } else if is("endloop") {
+                    if corners.len() < 3 {
+                        return Err(Error::at_line(
+                            line,
+                            format!(
+                                "facet with {} vertices; a facet needs at least 3",
+                                corners.len()
+                            ),
+                        ));
+                    }
+                    for k in 1..corners.len() - 1 {
+                        triangles.push([corners[0], corners[k], corners[k + 1]]);
+                    }
+                    st = State::EndFacet;
+                } else {
+                    return Err(unexpected("'vertex' or 'endloop'"));
+                }
             }
-            for k in 1..corners.len() - 1 {
-                triangles.push([corners[0], corners[k], corners[k + 1]]);
+            State::EndFacet => {
+                if !is("endfacet") {
+                    return Err(unexpected("'endfacet'"));
+                }
+                st = State::Solid;
             }
-            expect!("endfacet");
         }
     }
     if solids == 0 {
         return Err(Error::format("empty ASCII STL file"));
+    }
+    // A missing final `endsolid` is tolerated; a file ending inside a facet is not.
+    if st != State::Outside && st != State::Solid {
+        return Err(Error::at_line(
+            last,
+            "file ends inside a facet (data is truncated)",
+        ));
     }
     Ok(TriMesh::new(merger.positions, triangles))
 }
