@@ -13,7 +13,11 @@
 //! * `face`: the list `vertex_indices` (or `vertex_index`) gives the polygon, fan-triangulated
 //!   (`v0 v(k) v(k+1)`); a face with fewer than 3 corners is an error. Other scalar face
 //!   properties are kept, repeated for each triangle of a polygon.
+//! * `tristrips` (as in the Cyberware/Stanford scans): `-1`-separated triangle strips in the
+//!   list `vertex_indices`, expanded with alternating orientation, degenerate joints dropped.
 //! * Any other element (edges, materials, …) is skipped, parsing its lists in binary files.
+//!
+//! A vertex element without `z` gives `z = 0` (planar data; [`read_points`] makes it 2D).
 //!
 //! Untrusted input: before an element is allocated, its count is checked against what is left
 //! of the file — in binary `count × minimum record size ≤ bytes left`, in ASCII (one record per
@@ -279,10 +283,17 @@ fn parse_header(bytes: &[u8]) -> Result<Header> {
 
 /// Reads the values of one element's records, one record at a time.
 trait Source {
-    /// Checks that `el.count` records can still be in the file (before anything is allocated).
-    fn check_count(&self, el: &ElementDef) -> Result<()>;
-    /// Starts record `i` of element `el`.
-    fn begin(&mut self, el: &str, i: u64) -> Result<()>;
+    /// Starts reading element `el`: checks that `el.count` records can still be in the file
+    /// (before the caller allocates anything).
+    fn start(&mut self, el: &ElementDef) -> Result<()>;
+    /// Starts record `i` of the current element.
+    fn begin(&mut self, i: u64) -> Result<()>;
+    /// Binary sources: the next `len` bytes (which [`Source::start`] checked to be present),
+    /// their offset in the file and whether they are big endian; the source moves past them.
+    fn fixed(&mut self, len: u64) -> Option<(&[u8], usize, bool)>;
+    /// Binary sources: all bytes left, their offset in the file and whether they are big
+    /// endian (the source does not move; use [`Source::fixed`] to move past them).
+    fn rest(&self) -> Option<(&[u8], usize, bool)>;
     /// The next scalar of the current record.
     fn scalar(&mut self, k: ScalarKind) -> Result<f64>;
     /// The next list length of the current record (checked against what is left).
@@ -352,7 +363,8 @@ fn parse_ascii(tok: &str, k: ScalarKind) -> Option<f64> {
 }
 
 impl Source for Ascii<'_> {
-    fn check_count(&self, el: &ElementDef) -> Result<()> {
+    fn start(&mut self, el: &ElementDef) -> Result<()> {
+        self.el.clone_from(&el.name);
         let left = self.last_line - self.line;
         if !el.props.is_empty() && el.count > left {
             return Err(Error::at_line(
@@ -365,10 +377,7 @@ impl Source for Ascii<'_> {
         }
         Ok(())
     }
-    fn begin(&mut self, el: &str, i: u64) -> Result<()> {
-        if self.el != el {
-            self.el = el.to_string();
-        }
+    fn begin(&mut self, i: u64) -> Result<()> {
         self.rec = i;
         match self.next_line() {
             Some(l) => {
@@ -377,6 +386,12 @@ impl Source for Ascii<'_> {
             }
             None => Err(self.truncated()),
         }
+    }
+    fn fixed(&mut self, _len: u64) -> Option<(&[u8], usize, bool)> {
+        None
+    }
+    fn rest(&self) -> Option<(&[u8], usize, bool)> {
+        None
     }
     fn scalar(&mut self, k: ScalarKind) -> Result<f64> {
         let tok = self
@@ -411,8 +426,7 @@ impl Source for Ascii<'_> {
         if el.props.is_empty() {
             return Ok(());
         }
-        self.check_count(el)?;
-        self.el = el.name.clone();
+        self.start(el)?;
         for i in 0..el.count {
             self.rec = i;
             if self.next_line().is_none() {
@@ -464,7 +478,8 @@ impl Binary<'_> {
 }
 
 impl Source for Binary<'_> {
-    fn check_count(&self, el: &ElementDef) -> Result<()> {
+    fn start(&mut self, el: &ElementDef) -> Result<()> {
+        self.el.clone_from(&el.name);
         let need = el.count.checked_mul(el.min_size());
         let left = self.left();
         if need.map_or(true, |n| n > left) {
@@ -480,13 +495,20 @@ impl Source for Binary<'_> {
         }
         Ok(())
     }
-    fn begin(&mut self, el: &str, i: u64) -> Result<()> {
-        if self.el != el {
-            self.el = el.to_string();
-        }
+    fn begin(&mut self, i: u64) -> Result<()> {
         self.rec = i;
         self.rec_start = self.pos;
         Ok(())
+    }
+    fn fixed(&mut self, len: u64) -> Option<(&[u8], usize, bool)> {
+        let start = self.pos;
+        let end = start.checked_add(usize::try_from(len).ok()?)?;
+        let block = self.data.get(start..end)?;
+        self.pos = end;
+        Some((block, start, self.big))
+    }
+    fn rest(&self) -> Option<(&[u8], usize, bool)> {
+        Some((self.data.get(self.pos..)?, self.pos, self.big))
     }
     #[inline]
     fn scalar(&mut self, k: ScalarKind) -> Result<f64> {
@@ -538,14 +560,14 @@ impl Source for Binary<'_> {
         )
     }
     fn skip_element(&mut self, el: &ElementDef) -> Result<()> {
-        self.check_count(el)?;
+        self.start(el)?;
         if el.props.iter().all(|p| matches!(p.ty, PropType::Scalar(_))) {
-            // Fixed-size records: checked above to fit.
+            // Fixed-size records: checked by `start` to fit.
             self.pos += (el.count * el.min_size()) as usize;
             return Ok(());
         }
         for i in 0..el.count {
-            self.begin(&el.name, i)?;
+            self.begin(i)?;
             for p in &el.props {
                 skip_prop(self, p.ty)?;
             }
@@ -588,20 +610,14 @@ struct Vertices {
     dim: usize,
 }
 
-fn read_vertices<S: Source>(src: &mut S, el: &ElementDef, need_z: bool) -> Result<Vertices> {
+fn read_vertices<S: Source>(src: &mut S, el: &ElementDef) -> Result<Vertices> {
     let x = el.scalar("x");
     let y = el.scalar("y");
     let z = el.scalar("z");
-    if x.is_none() || y.is_none() || (need_z && z.is_none()) {
+    if x.is_none() || y.is_none() {
         return Err(Error::format(format!(
             "PLY vertex element has no scalar {} property",
-            if x.is_none() {
-                "x"
-            } else if y.is_none() {
-                "y"
-            } else {
-                "z"
-            }
+            if x.is_none() { "x" } else { "y" }
         )));
     }
     let normals = ["nx", "ny", "nz"].iter().all(|n| el.scalar(n).is_some());
@@ -627,7 +643,7 @@ fn read_vertices<S: Source>(src: &mut S, el: &ElementDef, need_z: bool) -> Resul
         };
         roles.push(role);
     }
-    src.check_count(el)?;
+    src.start(el)?;
     if el.count > u32::MAX as u64 - 1 {
         return Err(Error::invalid(format!(
             "{} vertices are too many",
@@ -640,8 +656,53 @@ fn read_vertices<S: Source>(src: &mut S, el: &ElementDef, need_z: bool) -> Resul
     for e in &mut extras {
         e.values.reserve_exact(n);
     }
+    if el.props.iter().all(|p| matches!(p.ty, PropType::Scalar(_))) {
+        // Fast path for binary files: fixed-size records decoded straight from the bytes.
+        let rs = el.min_size() as usize;
+        let mut layout = Vec::with_capacity(el.props.len());
+        let mut off = 0;
+        for (p, role) in el.props.iter().zip(&roles) {
+            if let PropType::Scalar(k) = p.ty {
+                layout.push((off, k, *role));
+                off += size(k);
+            }
+        }
+        if let Some((block, base, big)) = src.fixed(el.count * rs as u64) {
+            for (i, rec) in block.chunks_exact(rs.max(1)).enumerate() {
+                let mut s = [0.0f64; 6];
+                for &(off, k, role) in &layout {
+                    let v = decode(k, &rec[off..], big);
+                    match role {
+                        VRole::Slot(j) => s[j] = v,
+                        VRole::Extra(j) => {
+                            if let Some(e) = extras.get_mut(j) {
+                                e.values.push(v);
+                            }
+                        }
+                        VRole::Skip => {}
+                    }
+                }
+                if !(s[0].is_finite() && s[1].is_finite() && s[2].is_finite()) {
+                    return Err(Error::at_byte(
+                        (base + i * rs) as u64,
+                        format!("vertex {i}: non-finite coordinate"),
+                    ));
+                }
+                coords.push([s[0], s[1], s[2]]);
+                if let Some(nr) = &mut nrm {
+                    nr.push(Vector3::new(s[3], s[4], s[5]));
+                }
+            }
+            return Ok(Vertices {
+                coords,
+                normals: nrm,
+                extras,
+                dim: if z.is_some() { 3 } else { 2 },
+            });
+        }
+    }
     for i in 0..el.count {
-        src.begin(&el.name, i)?;
+        src.begin(i)?;
         let mut s = [0.0f64; 6];
         for (p, role) in el.props.iter().zip(&roles) {
             match (*role, p.ty) {
@@ -702,16 +763,23 @@ fn read_faces<S: Source>(src: &mut S, el: &ElementDef, nv: u64) -> Result<Faces>
             PropType::List(..) => VRole::Skip,
         });
     }
-    src.check_count(el)?;
+    src.start(el)?;
     let n = el.count as usize;
     let mut triangles = Vec::with_capacity(n);
     for e in &mut extras {
         e.values.reserve(n);
     }
+    if let (1, PropType::List(c, it)) = (el.props.len(), el.props[0].ty) {
+        if let Some((data, base, big)) = src.rest() {
+            let used = binary_index_lists(data, base, big, c, it, el.count, nv, &mut triangles)?;
+            src.fixed(used as u64);
+            return Ok(Faces { triangles, extras });
+        }
+    }
     let mut corners: Vec<u32> = Vec::new();
     let mut vals = vec![0.0; extras.len()];
     for f in 0..el.count {
-        src.begin(&el.name, f)?;
+        src.begin(f)?;
         corners.clear();
         for (p, role) in el.props.iter().zip(&roles) {
             match (*role, p.ty) {
@@ -753,10 +821,133 @@ fn read_faces<S: Source>(src: &mut S, el: &ElementDef, nv: u64) -> Result<Faces>
     Ok(Faces { triangles, extras })
 }
 
+/// Fast path for binary face elements that hold only the index list: decodes `count` lists
+/// from `data` (at file offset `base`), fan-triangulates them into `triangles`, and returns the
+/// number of bytes used. Errors and messages are those of the general path.
+#[allow(clippy::too_many_arguments)]
+fn binary_index_lists(
+    data: &[u8],
+    base: usize,
+    big: bool,
+    count_kind: ScalarKind,
+    item: ScalarKind,
+    count: u64,
+    nv: u64,
+    triangles: &mut Vec<[u32; 3]>,
+) -> Result<usize> {
+    let (cs, is) = (size(count_kind), size(item));
+    let mut p = 0usize;
+    for f in 0..count {
+        let at = base + p;
+        let truncated = |q: usize| {
+            Error::at_byte(
+                (base + q) as u64,
+                format!("file ends inside face {f} (data is truncated)"),
+            )
+        };
+        let len = decode(
+            count_kind,
+            data.get(p..p + cs).ok_or_else(|| truncated(p))?,
+            big,
+        );
+        if len < 0.0 || len.fract() != 0.0 {
+            return Err(Error::at_byte(
+                at as u64,
+                format!("face {f}: bad list length {len}"),
+            ));
+        }
+        let len = len as u64;
+        let bytes = len
+            .checked_mul(is as u64)
+            .filter(|&b| b <= (data.len() - p - cs) as u64)
+            .ok_or_else(|| {
+                Error::at_byte(
+                    at as u64,
+                    format!(
+                        "face {f}: list of {len} items runs past the end of the file (data is truncated)"
+                    ),
+                )
+            })? as usize;
+        let items = &data[p + cs..p + cs + bytes];
+        if len < 3 {
+            return Err(Error::at_byte(
+                at as u64,
+                format!("face {f}: face has {len} corners; a face needs at least 3"),
+            ));
+        }
+        let (mut first, mut prev) = (0u32, 0u32);
+        for (k, b) in items.chunks_exact(is).enumerate() {
+            let v = decode(item, b, big);
+            if !(v >= 0.0 && v.fract() == 0.0 && v < nv as f64) {
+                return Err(Error::at_byte(
+                    at as u64,
+                    format!("face {f}: refers to vertex {v}, but there are only {nv} vertices"),
+                ));
+            }
+            let v = v as u32;
+            match k {
+                0 => first = v,
+                1 => {}
+                _ => triangles.push([first, prev, v]),
+            }
+            prev = v;
+        }
+        p += cs + bytes;
+    }
+    Ok(p)
+}
+
+/// Triangles of a `tristrips` element (Cyberware/Stanford scans): each record's
+/// `vertex_indices` list holds strips separated by `-1`; strip `s0 s1 s2 …` gives triangles
+/// `(s_i, s_i+1, s_i+2)` with every other one flipped to keep the orientation, and triangles
+/// with a repeated corner (strip joints) are dropped.
+fn read_tristrips<S: Source>(src: &mut S, el: &ElementDef, nv: u64) -> Result<Vec<[u32; 3]>> {
+    let list = el
+        .props
+        .iter()
+        .position(|p| matches!(p.ty, PropType::List(..)) && p.name == "vertex_indices")
+        .ok_or_else(|| Error::format("PLY tristrips element has no 'vertex_indices' list"))?;
+    src.start(el)?;
+    let mut triangles = Vec::new();
+    for r in 0..el.count {
+        src.begin(r)?;
+        for (i, p) in el.props.iter().enumerate() {
+            match p.ty {
+                PropType::List(c, it) if i == list => {
+                    let len = src.list_len(c, it)?;
+                    // (second-to-last, last, position in the current strip)
+                    let (mut a, mut b, mut k) = (0u32, 0u32, 0u64);
+                    for _ in 0..len {
+                        let v = src.scalar(it)?;
+                        if v == -1.0 {
+                            k = 0;
+                            continue;
+                        }
+                        if !(v >= 0.0 && v.fract() == 0.0 && v < nv as f64) {
+                            return Err(src.err(format!(
+                                "refers to vertex {v}, but there are only {nv} vertices"
+                            )));
+                        }
+                        let v = v as u32;
+                        if k >= 2 && a != b && b != v && a != v {
+                            triangles.push(if k % 2 == 0 { [a, b, v] } else { [b, a, v] });
+                        }
+                        (a, b, k) = (b, v, k + 1);
+                    }
+                }
+                ty => skip_prop(src, ty)?,
+            }
+        }
+        src.end()?;
+    }
+    Ok(triangles)
+}
+
 /// What to read from the body.
 struct Body {
     vertices: Option<Vertices>,
     faces: Option<Faces>,
+    strips: Option<Vec<[u32; 3]>>,
 }
 
 fn read_body<S: Source>(src: &mut S, h: &Header, mesh: bool) -> Result<Body> {
@@ -769,16 +960,18 @@ fn read_body<S: Source>(src: &mut S, h: &Header, mesh: bool) -> Result<Body> {
     let mut body = Body {
         vertices: None,
         faces: None,
+        strips: None,
     };
     for el in &h.elements {
         match el.name.as_str() {
             "vertex" => {
-                body.vertices = Some(read_vertices(src, el, mesh)?);
+                body.vertices = Some(read_vertices(src, el)?);
                 if !mesh {
                     break;
                 }
             }
             "face" if mesh => body.faces = Some(read_faces(src, el, nv)?),
+            "tristrips" if mesh => body.strips = Some(read_tristrips(src, el, nv)?),
             _ => src.skip_element(el)?,
         }
     }
@@ -813,10 +1006,16 @@ pub fn read_mesh(bytes: &[u8]) -> Result<TriMesh> {
     let v = body
         .vertices
         .ok_or_else(|| Error::format("PLY file has no vertex element"))?;
-    let (triangles, face_props) = match body.faces {
+    let (mut triangles, mut face_props) = match body.faces {
         Some(f) => (f.triangles, f.extras),
         None => (Vec::new(), Vec::new()),
     };
+    if let Some(strips) = body.strips {
+        triangles.extend_from_slice(&strips);
+        for p in &mut face_props {
+            p.values.resize(triangles.len(), 0.0);
+        }
+    }
     Ok(TriMesh {
         positions: v
             .coords
@@ -1199,6 +1398,41 @@ mod tests {
         for n in 0..b.len() {
             assert!(read_mesh(&b[..n]).is_err(), "{n}");
         }
+    }
+
+    #[test]
+    fn tristrips_planar_vertices_and_crlf_binary_header() {
+        // Strip 0 1 2 3 4, then a second strip 4 3 5 after -1; 2 2 5 makes a degenerate joint.
+        let src = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n\
+                   element tristrips 1\nproperty list int int vertex_indices\nend_header\n\
+                   0 0\n1 0\n0 1\n1 1\n0 2\n1 2\n10 0 1 2 3 4 -1 4 3 5 5\n";
+        let m = read_mesh(src.as_bytes()).unwrap();
+        assert_eq!(m.positions[5], Point3::new(1.0, 2.0, 0.0));
+        assert_eq!(
+            m.triangles,
+            vec![[0, 1, 2], [2, 1, 3], [2, 3, 4], [4, 3, 5]]
+        );
+        let p = read_points(src.as_bytes()).unwrap();
+        assert_eq!((p.dim, p.len()), (2, 6));
+        // Little-endian binary with a skipped list element and Windows line endings.
+        let mut b = b"ply\r\nformat binary_little_endian 1.0\r\nelement junk 1\r\n\
+            property list uint short v\r\nproperty double w\r\nelement vertex 3\r\n\
+            property double x\r\nproperty double y\r\nproperty double z\r\n\
+            element face 1\r\nproperty list uchar int vertex_indices\r\nend_header\r\n"
+            .to_vec();
+        b.extend_from_slice(&3u32.to_le_bytes());
+        b.extend_from_slice(&[1, 0, 2, 0, 3, 0]);
+        b.extend_from_slice(&9.5f64.to_le_bytes());
+        for v in [0f64, 0., 0., 1., 0., 0., 0., 1., 0.] {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        b.push(3);
+        for i in [0i32, 1, 2] {
+            b.extend_from_slice(&i.to_le_bytes());
+        }
+        let m = read_mesh(&b).unwrap();
+        assert_eq!(m.positions[1], Point3::new(1.0, 0.0, 0.0));
+        assert_eq!(m.triangles, vec![[0, 1, 2]]);
     }
 
     #[test]
