@@ -261,6 +261,22 @@ fn files_through_the_dispatch_functions() {
     let pts = PointSet::from_points3(&m.positions);
     io::write_points(&p, &pts).unwrap();
     assert_eq!(io::read_points(&p).unwrap(), pts);
+    // A planar point set stays 2D, also through `read_any`.
+    let p2 = dir.path().join("pts2.ply");
+    let flat = PointSet {
+        dim: 2,
+        coords: vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.5],
+        columns: vec![],
+    };
+    io::write_points(&p2, &flat).unwrap();
+    match io::read_any(&p2).unwrap() {
+        io::Data::Points(q) => assert_eq!(q, flat),
+        other => panic!("expected points, got {other:?}"),
+    }
+    match io::read_any(&dir.path().join("t.ply")).unwrap() {
+        io::Data::Mesh(q) => assert_eq!(q, m),
+        other => panic!("expected a mesh, got {other:?}"),
+    }
 }
 
 fn finite_f64() -> impl Strategy<Value = f64> {

@@ -22,12 +22,14 @@ use std::fmt;
 use std::io::Write;
 
 /// The whole input as UTF-8 text, or an error naming the first line that is not.
+/// A leading byte-order mark is dropped.
 pub(crate) fn utf8_text(bytes: &[u8], first_line: u64) -> Result<&str> {
-    std::str::from_utf8(bytes).map_err(|e| {
+    let text = std::str::from_utf8(bytes).map_err(|e| {
         let before = bytes.get(..e.valid_up_to()).unwrap_or(&[]);
         let line = before.iter().filter(|&&b| b == b'\n').count() as u64 + first_line;
         Error::at_line(line, "not valid UTF-8 text")
-    })
+    })?;
+    Ok(text.strip_prefix('\u{feff}').unwrap_or(text))
 }
 
 /// The lines of a text, numbered from `first`, without the `\n` and a trailing `\r`.
@@ -461,6 +463,25 @@ mod tests {
         );
         // Vertex 3 (index 3) got normal 1 through the quad; all vertices share one normal.
         assert_eq!(m.normals.unwrap()[3], Vector3::new(0.0, 0.0, 1.0));
+    }
+
+    #[test]
+    fn normals_without_corner_references_and_conflicts() {
+        let m = read(
+            "\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 1\nvn 0 1 0\nf 1 2 3\n".as_bytes(),
+        )
+        .unwrap();
+        assert_eq!(m.normals.unwrap()[2], Vector3::new(0.0, 1.0, 0.0));
+        // Vertex 1 gets two different normals: no per-vertex normals.
+        let m = read(
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 1 0 0\nf 1//1 2//1 3//1\nf 1//1 3//1 2//2\n",
+        )
+        .unwrap();
+        assert!(m.normals.is_none());
+        // Fewer normals than vertices and vertex 4 without one: none either.
+        let m = read(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nvn 0 0 1\nf 1//1 2//1 3//1\n").unwrap();
+        assert!(m.normals.is_none());
+        assert!(read(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n").is_err());
     }
 
     #[test]
