@@ -308,7 +308,7 @@ trait Source {
 
 struct Ascii<'a> {
     lines: Lines<'a>,
-    /// Number of the line of the current record (0 before the first).
+    /// Number of the line of the current record (the last header line before the first).
     line: u64,
     last_line: u64,
     toks: Tokens<'a>,
@@ -769,7 +769,12 @@ fn read_faces<S: Source>(src: &mut S, el: &ElementDef, nv: u64) -> Result<Faces>
     for e in &mut extras {
         e.values.reserve(n);
     }
-    if let (1, PropType::List(c, it)) = (el.props.len(), el.props[0].ty) {
+    if let [PropDef {
+        ty: PropType::List(c, it),
+        ..
+    }] = el.props.as_slice()
+    {
+        let (c, it) = (*c, *it);
         if let Some((data, base, big)) = src.rest() {
             let used = binary_index_lists(data, base, big, c, it, el.count, nv, &mut triangles)?;
             src.fixed(used as u64);
