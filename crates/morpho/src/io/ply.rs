@@ -370,7 +370,7 @@ impl Source for Ascii<'_> {
             return Err(Error::at_line(
                 self.line + 1,
                 format!(
-                    "header claims {} {} records, but only {left} lines are left",
+                    "header claims {} {} records, but only {left} line(s) are left",
                     el.count, el.name
                 ),
             ));
