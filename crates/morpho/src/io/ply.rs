@@ -1453,7 +1453,7 @@ mod tests {
         let e = read_mesh(b"ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n")
             .unwrap_err()
             .to_string();
-        assert!(e.contains("lines are left"), "{e}");
+        assert!(e.contains("line(s) are left"), "{e}");
         assert!(t.elapsed().as_secs_f64() < 1.0);
         let e = read_mesh(b"ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n")
             .unwrap_err()
