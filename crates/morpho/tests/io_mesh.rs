@@ -734,8 +734,16 @@ fn mutation() -> impl Strategy<Value = Mutation> {
     ]
 }
 
+/// 256 cases, or `IO_MESH_FUZZ_CASES` for a longer run.
+fn fuzz_cases() -> u32 {
+    std::env::var("IO_MESH_FUZZ_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(256)
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(fuzz_cases()))]
 
     #[test]
     fn mutated_files_never_panic(which in 0usize..9, muts in prop::collection::vec(mutation(), 1..6)) {
