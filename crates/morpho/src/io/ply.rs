@@ -792,12 +792,12 @@ fn read_faces<S: Source>(src: &mut S, el: &ElementDef, nv: u64) -> Result<Faces>
                     let len = src.list_len(c, it)?;
                     for _ in 0..len {
                         let v = src.scalar(it)?;
-                        if !(v >= 0.0 && v.fract() == 0.0 && v < nv as f64) {
-                            return Err(src.err(format!(
+                        let v = vertex_index(v, nv).ok_or_else(|| {
+                            src.err(format!(
                                 "refers to vertex {v}, but there are only {nv} vertices"
-                            )));
-                        }
-                        corners.push(v as u32);
+                            ))
+                        })?;
+                        corners.push(v);
                     }
                 }
                 (VRole::Extra(j), PropType::Scalar(k)) => {
@@ -824,6 +824,18 @@ fn read_faces<S: Source>(src: &mut S, el: &ElementDef, nv: u64) -> Result<Faces>
         }
     }
     Ok(Faces { triangles, extras })
+}
+
+/// `v` as a vertex index when it is a whole number in `0..nv` (without a call to `trunc`,
+/// which is a library call on baseline x86-64).
+#[inline]
+fn vertex_index(v: f64, nv: u64) -> Option<u32> {
+    if v >= 0.0 && v < nv as f64 {
+        let i = v as u32;
+        (i as f64 == v).then_some(i)
+    } else {
+        None
+    }
 }
 
 /// Fast path for binary face elements that hold only the index list: decodes `count` lists
@@ -883,13 +895,12 @@ fn binary_index_lists(
         let (mut first, mut prev) = (0u32, 0u32);
         for (k, b) in items.chunks_exact(is).enumerate() {
             let v = decode(item, b, big);
-            if !(v >= 0.0 && v.fract() == 0.0 && v < nv as f64) {
-                return Err(Error::at_byte(
+            let v = vertex_index(v, nv).ok_or_else(|| {
+                Error::at_byte(
                     at as u64,
                     format!("face {f}: refers to vertex {v}, but there are only {nv} vertices"),
-                ));
-            }
-            let v = v as u32;
+                )
+            })?;
             match k {
                 0 => first = v,
                 1 => {}
@@ -928,12 +939,11 @@ fn read_tristrips<S: Source>(src: &mut S, el: &ElementDef, nv: u64) -> Result<Ve
                             k = 0;
                             continue;
                         }
-                        if !(v >= 0.0 && v.fract() == 0.0 && v < nv as f64) {
-                            return Err(src.err(format!(
+                        let v = vertex_index(v, nv).ok_or_else(|| {
+                            src.err(format!(
                                 "refers to vertex {v}, but there are only {nv} vertices"
-                            )));
-                        }
-                        let v = v as u32;
+                            ))
+                        })?;
                         if k >= 2 && a != b && b != v && a != v {
                             triangles.push(if k % 2 == 0 { [a, b, v] } else { [b, a, v] });
                         }

@@ -23,39 +23,95 @@ use super::Encoding;
 use crate::geom::{Point3, Vector3};
 use crate::mesh::TriMesh;
 use crate::{Error, Result};
-use std::collections::HashMap;
+use std::collections::hash_map::{Entry, HashMap, RandomState};
+use std::hash::{BuildHasher, Hasher};
 use std::io::Write;
+
+/// Keyed hash for the corner map: one folded 64×64→128-bit multiplication per word, with keys
+/// drawn from std's [`RandomState`] — several times faster than SipHash on three words, and
+/// still unpredictable to whoever writes the file.
+#[derive(Clone)]
+struct KeyedFold {
+    k0: u64,
+    k1: u64,
+}
+
+impl KeyedFold {
+    fn new() -> Self {
+        let s = RandomState::new();
+        KeyedFold {
+            k0: s.hash_one(0x5354_4c31u64),
+            k1: s.hash_one(0x5354_4c32u64) | 1,
+        }
+    }
+}
+
+struct FoldHasher {
+    h: u64,
+    k: u64,
+}
+
+impl Hasher for FoldHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for c in bytes.chunks(8) {
+            let mut a = [0u8; 8];
+            a[..c.len()].copy_from_slice(c);
+            self.write_u64(u64::from_le_bytes(a));
+        }
+    }
+    #[inline]
+    fn write_u64(&mut self, x: u64) {
+        let m = ((self.h ^ x) as u128) * (self.k as u128);
+        self.h = (m as u64) ^ ((m >> 64) as u64);
+    }
+    fn finish(&self) -> u64 {
+        self.h
+    }
+}
+
+impl BuildHasher for KeyedFold {
+    type Hasher = FoldHasher;
+    fn build_hasher(&self) -> FoldHasher {
+        FoldHasher {
+            h: self.k0,
+            k: self.k1,
+        }
+    }
+}
 
 /// Merges corner positions into vertices by bit pattern, in order of first appearance.
 struct Merger {
-    map: HashMap<[u64; 3], u32>,
+    map: HashMap<(u64, u64, u64), u32, KeyedFold>,
     positions: Vec<Point3>,
 }
 
 impl Merger {
     fn with_capacity(n: usize) -> Self {
         Merger {
-            map: HashMap::with_capacity(n),
+            map: HashMap::with_capacity_and_hasher(n, KeyedFold::new()),
             positions: Vec::with_capacity(n),
         }
     }
     fn add(&mut self, p: [f64; 3]) -> Result<u32> {
         // Adding +0.0 turns -0.0 into +0.0, so both zeros are one key.
-        let key = [
+        let key = (
             (p[0] + 0.0).to_bits(),
             (p[1] + 0.0).to_bits(),
             (p[2] + 0.0).to_bits(),
-        ];
-        if let Some(&i) = self.map.get(&key) {
-            return Ok(i);
+        );
+        let next = self.positions.len();
+        match self.map.entry(key) {
+            Entry::Occupied(e) => Ok(*e.get()),
+            Entry::Vacant(e) => {
+                let i = u32::try_from(next)
+                    .ok()
+                    .filter(|&i| i != u32::MAX)
+                    .ok_or_else(|| Error::invalid("more than 2^32-1 distinct vertices"))?;
+                e.insert(i);
+                self.positions.push(Point3::new(p[0], p[1], p[2]));
+                Ok(i)
+            }
         }
-        let i = u32::try_from(self.positions.len())
-            .ok()
-            .filter(|&i| i != u32::MAX)
-            .ok_or_else(|| Error::invalid("more than 2^32-1 distinct vertices"))?;
-        self.map.insert(key, i);
-        self.positions.push(Point3::new(p[0], p[1], p[2]));
-        Ok(i)
     }
 }
 
