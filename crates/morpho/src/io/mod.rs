@@ -379,7 +379,7 @@ pub fn read_any(path: &Path) -> Result<Data> {
             let v: serde_json::Value = serde_json::from_slice(&bytes).map_err(|e| {
                 Error::at_line(e.line() as u64, format!("bad JSON: {e}")).with_path(path)
             })?;
-            if v.get("dims").is_some() {
+            if rawjson::is_sidecar(&v) {
                 Ok(Data::Volume(read_volume(path)?))
             } else if v.get("type").is_some() {
                 Ok(Data::Shapes(read_shapes2(path)?))
