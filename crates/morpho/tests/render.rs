@@ -7,8 +7,12 @@ use morpho::render::colormap::Colormap;
 use morpho::render::raster::{
     render_mesh, render_mesh_stats, Projection, RenderOptions, Scalars, Shading, UpAxis,
 };
+use morpho::render::slice::{
+    middle, orthogonal_slices, slice_height_mesh, slice_image, Axis, SliceOptions, Upsample,
+};
 use morpho::render::svg::{self, Fill, Stroke, Svg};
 use morpho::render::Image;
+use morpho::volume::Volume;
 use std::f64::consts::PI;
 
 /// UV sphere of radius `r` around `c`, outward counter-clockwise triangles.
@@ -677,6 +681,147 @@ fn svg_large_input_is_linear() {
     assert_eq!(out.matches('M').count(), n);
 }
 
+// ---------------------------------------------------------------- slices
+
+fn grey_opts(upsample: Upsample) -> SliceOptions {
+    SliceOptions {
+        colormap: Colormap::Greys,
+        range: Some((0.0, 255.0)),
+        size: None,
+        upsample,
+        labels: true,
+    }
+}
+
+#[test]
+fn slice_pixels_are_samples() {
+    // f = x + 10 y + 100 z on a 4 x 5 x 6 unit grid (values up to 3 + 40 + 500).
+    let v = Volume::from_fn([4, 5, 6], [0.0; 3], [3.0, 4.0, 5.0], |x, y, z| {
+        (x + 10.0 * y + 40.0 * z).min(255.0)
+    });
+    for up in [Upsample::Nearest, Upsample::Bilinear] {
+        let img = slice_image(&v, Axis::Z, 2, &grey_opts(up)).unwrap();
+        assert_eq!((img.width, img.height), (4, 5));
+        for py in 0..5u32 {
+            for px in 0..4u32 {
+                // Row 0 is the top = largest y.
+                let (x, y) = (px as f64, (4 - py) as f64);
+                let want = Colormap::Greys.color((x + 10.0 * y + 80.0) / 255.0);
+                let got = img.get(px, py);
+                assert_eq!([got[0], got[1], got[2]], want, "({px},{py}) {up:?}");
+            }
+        }
+        // x-slice: (y right, z up), 5 x 6.
+        let img = slice_image(&v, Axis::X, 1, &grey_opts(up)).unwrap();
+        assert_eq!((img.width, img.height), (5, 6));
+        let got = img.get(3, 0); // y = 3, z = 5
+        assert_eq!(
+            got[0],
+            Colormap::Greys.color((1.0 + 30.0 + 200.0) / 255.0)[0]
+        );
+    }
+}
+
+#[test]
+fn slice_aspect_size_and_interpolation() {
+    // Spacing 1 in x, 2 in y: the z-slice is 4 x (3 * 2) pixels.
+    let v = Volume::new(
+        [4, 3, 2],
+        [0.0; 3],
+        [1.0, 2.0, 1.0],
+        (0..24).map(|i| i as f32).collect(),
+    )
+    .unwrap();
+    let img = slice_image(&v, Axis::Z, 0, &SliceOptions::default()).unwrap();
+    assert_eq!((img.width, img.height), (4, 6));
+    let o = SliceOptions {
+        size: Some(100),
+        ..Default::default()
+    };
+    let img = slice_image(&v, Axis::Z, 1, &o).unwrap();
+    assert_eq!((img.width, img.height), (67, 100));
+    // Bilinear upsampling: a linear ramp in x gives non-decreasing greys along a row, with
+    // more distinct values than nearest.
+    let ramp = Volume::from_fn([3, 2, 1], [0.0; 3], [2.0, 1.0, 0.0], |x, _, _| x);
+    let mut o = grey_opts(Upsample::Bilinear);
+    o.range = None;
+    o.size = Some(60);
+    let bil = slice_image(&ramp, Axis::Z, 0, &o).unwrap();
+    o.upsample = Upsample::Nearest;
+    let near = slice_image(&ramp, Axis::Z, 0, &o).unwrap();
+    let row = |img: &Image| {
+        (0..img.width)
+            .map(|x| img.get(x, 10)[0])
+            .collect::<Vec<u8>>()
+    };
+    let (rb, rn) = (row(&bil), row(&near));
+    assert!(rb.windows(2).all(|w| w[1] >= w[0]));
+    let distinct = |r: &[u8]| r.iter().collect::<std::collections::BTreeSet<_>>().len();
+    assert_eq!(distinct(&rn), 3);
+    assert!(distinct(&rb) > 10);
+    assert_eq!((rn[0], rn[59]), (0, 255));
+}
+
+#[test]
+fn slice_errors_nan_and_ranges() {
+    let mut v = Volume::from_fn([3, 3, 3], [0.0; 3], [1.0; 3], |x, y, z| x + y + z);
+    assert!(slice_image(&v, Axis::Y, 3, &SliceOptions::default()).is_err());
+    assert!(orthogonal_slices(&v, [0, 0, 5], &SliceOptions::default()).is_err());
+    let i = v.index(1, 1, 1);
+    v.data[i] = f32::NAN;
+    let img = slice_image(&v, Axis::Z, 1, &grey_opts(Upsample::Bilinear)).unwrap();
+    let c = img.get(1, 1);
+    assert_eq!([c[0], c[1], c[2]], morpho::render::colormap::MISSING);
+    // Broken volume: error, not panic.
+    let mut bad = v.clone();
+    bad.data.pop();
+    assert!(slice_image(&bad, Axis::Z, 0, &SliceOptions::default()).is_err());
+    // Constant volume: degenerate range, no panic.
+    let flat = Volume::from_fn([2, 2, 2], [0.0; 3], [1.0; 3], |_, _, _| 7.0);
+    assert!(orthogonal_slices(&flat, middle(&flat), &SliceOptions::default()).is_ok());
+}
+
+#[test]
+fn orthogonal_slices_layout() {
+    let v = Volume::from_fn([40, 30, 20], [0.0; 3], [39.0, 29.0, 19.0], |x, y, z| {
+        x + y + z
+    });
+    let o = SliceOptions {
+        labels: false,
+        ..Default::default()
+    };
+    let img = orthogonal_slices(&v, middle(&v), &o).unwrap();
+    // Unlabelled: gap + (30 + gap) + (40 + gap) + (40 + gap) wide at 1 px per sample … scaled
+    // up by 5 so the longest side reaches 192 px.
+    assert_eq!(img.width, 12 + (150 + 12) + (200 + 12) + (200 + 12));
+    assert_eq!(img.height, 12 + 150 + 12);
+    let lab = orthogonal_slices(&v, middle(&v), &SliceOptions::default()).unwrap();
+    assert!(lab.height > img.height);
+    // The labels put black pixels at the top left.
+    let dark = (0..40)
+        .flat_map(|x| (12..26).map(move |y| (x, y)))
+        .filter(|&(x, y)| lab.get(x, y)[0] == 0)
+        .count();
+    assert!(dark > 10);
+}
+
+#[test]
+fn height_mesh_of_slice() {
+    let v = Volume::from_fn([5, 4, 3], [0.0; 3], [4.0, 3.0, 2.0], |x, y, _| x * y);
+    let m = slice_height_mesh(&v, Axis::Z, 1, None, 0.5).unwrap();
+    assert_eq!(m.positions.len(), 20);
+    assert_eq!(m.triangles.len(), 2 * 4 * 3);
+    m.validate().unwrap();
+    let zmax = m.positions.iter().map(|p| p.z).fold(0.0, f64::max);
+    assert!((zmax - 0.5).abs() < 1e-12);
+    // Upward-facing (counter-clockwise seen from +z): positive projected area.
+    for t in &m.triangles {
+        let [a, b, c] = t.map(|i| m.positions[i as usize]);
+        assert!((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x) > 0.0);
+    }
+    assert_eq!(m.vertex_prop("value").unwrap().values[19], 12.0);
+}
+
 // ---------------------------------------------------------------- pictures to look at
 
 /// Reads `v` and `f` lines of an OBJ file (triangles and polygons fanned; `v/vt/vn` indices).
@@ -809,6 +954,66 @@ fn pictures() {
                 shading: Shading::Flat,
                 back_color: Some([220, 120, 100]),
                 wireframe: true,
+                ..o.clone()
+            },
+        ),
+    );
+    // Hamann's test function of ch. 2 (three Gaussian bumps) on [0, 39]^3.
+    let f = |x: f64, y: f64, z: f64| {
+        15.0 * ((-0.005 * ((x - 10.0).powi(2) + (y - 10.0).powi(2) + (z - 10.0).powi(2))).exp()
+            + (-0.0025 * ((x - 15.0).powi(2) + (y - 20.0).powi(2) + (z - 20.0).powi(2))).exp()
+            + (-0.005 * ((x - 25.0).powi(2) + (y - 25.0).powi(2) + (z - 25.0).powi(2))).exp())
+    };
+    let vol = Volume::new([40, 40, 20], [0.0; 3], [1.0, 1.0, 2.0], {
+        let g = Volume::from_fn([40, 40, 20], [0.0; 3], [39.0, 39.0, 38.0], f);
+        g.data
+    })
+    .unwrap();
+    save(
+        "slices.png",
+        &orthogonal_slices(&vol, [12, 20, 10], &SliceOptions::default()).unwrap(),
+    );
+    save(
+        "slices_coolwarm_nearest.png",
+        &orthogonal_slices(
+            &vol,
+            [12, 20, 10],
+            &SliceOptions {
+                colormap: Colormap::Coolwarm,
+                upsample: Upsample::Nearest,
+                size: Some(300),
+                ..Default::default()
+            },
+        )
+        .unwrap(),
+    );
+    save(
+        "slice_z.png",
+        &slice_image(
+            &vol,
+            Axis::Z,
+            10,
+            &SliceOptions {
+                size: Some(256),
+                ..Default::default()
+            },
+        )
+        .unwrap(),
+    );
+    let hm = slice_height_mesh(&vol, Axis::Z, 10, None, 0.4).unwrap();
+    let val = hm.vertex_prop("value").unwrap().values.clone();
+    save(
+        "slice_height.png",
+        &render_mesh(
+            &hm,
+            &RenderOptions {
+                up: UpAxis::Z,
+                scalars: Some(Scalars {
+                    values: val,
+                    per_face: false,
+                    colormap: Colormap::Viridis,
+                    range: None,
+                }),
                 ..o.clone()
             },
         ),
