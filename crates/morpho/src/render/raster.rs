@@ -607,8 +607,9 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
     )
 }
 
-/// Camera basis (right, up, towards-eye) for the options' azimuth, elevation and up axis.
-fn camera_basis(opts: &RenderOptions) -> (Vector3, Vector3, Vector3) {
+/// Camera basis (right, up, towards-eye) for the options' azimuth, elevation and up axis:
+/// screen x = p·right, screen y = p·up, depth towards the viewer = p·eye (orthographic view).
+pub fn camera_basis(opts: &RenderOptions) -> (Vector3, Vector3, Vector3) {
     let (up, front0, right0) = match opts.up {
         UpAxis::Y => (Vector3::y(), Vector3::z(), Vector3::x()),
         UpAxis::Z => (Vector3::z(), -Vector3::y(), Vector3::x()),
