@@ -1,21 +1,405 @@
-//! `morpho render IN -o IMAGE.{svg,png}`. TODO: wire to morpho::render once it exists.
+//! `morpho render IN -o IMAGE.{svg,png}`: pictures of any file morpho reads.
+//!
+//! - 2D points → SVG dots (coloured by a column with `--color-by`); 3D points → SVG of their
+//!   orthographic projection from `--azimuth/--elevation`, nearer dots drawn last and darker
+//!   farther ones;
+//! - polygons/polylines → SVG;
+//! - triangle meshes → PNG by the software rasterizer (`--flat|--smooth`, `--wireframe`,
+//!   `--color-by` a vertex or face property or `x`/`y`/`z`);
+//! - volumes → PNG of the three orthogonal middle slices, or of one slice with `--slice z,10`.
+
+use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
+use morpho::geom::{Aabb2, Point2};
+use morpho::io::{self, read_any, Data, Format};
+use morpho::mesh::{PointSet, TriMesh};
+use morpho::render::colormap::{finite_range, Colormap};
+use morpho::render::raster::{
+    camera_basis, render_mesh_stats, Projection, RenderOptions, Scalars, Shading, UpAxis,
+};
+use morpho::render::slice::{self, Axis, SliceOptions, Upsample};
+use morpho::render::svg::{self, Svg};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Input file.
+    /// Input file (points, polygons, mesh or volume).
     pub input: PathBuf,
-    /// Output picture (.svg for 2D, .png for meshes and volumes).
+    /// Output picture: .svg for points and polygons, .png for meshes and volumes.
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Viewpoint rotation about the up axis, degrees.
+    #[arg(long, default_value_t = 35.0, allow_negative_numbers = true)]
+    pub azimuth: f64,
+    /// Viewpoint height above the horizontal plane, degrees (−90…90).
+    #[arg(long, default_value_t = 25.0, allow_negative_numbers = true)]
+    pub elevation: f64,
+    /// Which axis points up: y (mesh files) or z (volumes, terrain).
+    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
+    pub up: String,
+    /// Flat shading (one normal per triangle).
+    #[arg(long, conflicts_with = "smooth")]
+    pub flat: bool,
+    /// Smooth shading (vertex normals; the default).
+    #[arg(long)]
+    pub smooth: bool,
+    /// Parallel instead of perspective projection.
+    #[arg(long)]
+    pub ortho: bool,
+    /// Colour by a vertex/face property or point column, or by the coordinate x, y or z.
+    #[arg(long, value_name = "PROPERTY")]
+    pub color_by: Option<String>,
+    /// Colour map: viridis, coolwarm or grey.
+    #[arg(long, default_value = "viridis")]
+    pub colormap: String,
+    /// Value range mapped to the colour map ends, `LO,HI` (default: the data's range).
+    #[arg(long, value_name = "LO,HI", allow_hyphen_values = true)]
+    pub range: Option<String>,
+    /// Image width in pixels.
+    #[arg(long, default_value_t = 800)]
+    pub width: u32,
+    /// Image height in pixels (meshes).
+    #[arg(long, default_value_t = 600)]
+    pub height: u32,
+    /// One volume slice `AXIS,INDEX` (e.g. `z,10`; INDEX may be `mid`) instead of three.
+    #[arg(long, value_name = "AXIS,INDEX")]
+    pub slice: Option<String>,
+    /// Nearest-sample blocks instead of bilinear interpolation in volume slices.
+    #[arg(long)]
+    pub nearest: bool,
+    /// Draw triangle edges (for small meshes).
+    #[arg(long)]
+    pub wireframe: bool,
+    /// Supersampling factor per axis for meshes (1 = no anti-aliasing).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
+    pub supersample: u32,
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    let _ = (args, report);
-    Err(Failure {
-        code: 1,
-        msg: "render: not implemented yet".into(),
+    check_not_input(&args.output, &[&args.input])?;
+    let out_fmt = Format::of(&args.output)?;
+    if !matches!(out_fmt, Format::Svg | Format::Png) {
+        return Err(Failure::usage(format!(
+            "{}: render writes .svg or .png pictures",
+            args.output.display()
+        )));
+    }
+    if !(1..=8192).contains(&args.width) || !(1..=8192).contains(&args.height) {
+        return Err(Failure::usage(
+            "--width and --height must be between 1 and 8192",
+        ));
+    }
+    if !args.azimuth.is_finite() || !args.elevation.is_finite() {
+        return Err(Failure::usage(
+            "--azimuth and --elevation must be finite numbers",
+        ));
+    }
+    let colormap: Colormap = args
+        .colormap
+        .parse()
+        .map_err(|e: morpho::Error| Failure::usage(e.to_string()))?;
+    let range = match &args.range {
+        None => None,
+        Some(s) => Some(parse_range(s)?),
+    };
+    let data = report.time("read", || read_any(&args.input))?;
+    report.set("input", args.input.display().to_string());
+    report.set("output", args.output.display().to_string());
+    match (&data, out_fmt) {
+        (Data::Points(p), Format::Svg) => points(&args, p, colormap, range, report)?,
+        (Data::Points(_), _) => {
+            return Err(Failure::usage(
+                "points are drawn as SVG: use an output ending in .svg",
+            ))
+        }
+        (Data::Shapes(s), Format::Svg) => {
+            report.set("kind", "shapes");
+            report.set("polygons", s.polygons.len());
+            report.set("polylines", s.polylines.len());
+            let text = report.time("compute", || svg::polygon_svg(s));
+            write_svg(&args, &text, report)?;
+        }
+        (Data::Shapes(_), _) => {
+            return Err(Failure::usage(
+                "polygons are drawn as SVG: use an output ending in .svg",
+            ))
+        }
+        (Data::Mesh(m), Format::Png) => mesh(&args, m, colormap, range, report)?,
+        (Data::Mesh(_), _) => {
+            return Err(Failure::usage(
+                "meshes are rendered as PNG: use an output ending in .png",
+            ))
+        }
+        (Data::Volume(v), Format::Png) => {
+            report.set("kind", "volume");
+            let opts = SliceOptions {
+                colormap,
+                range,
+                size: None,
+                upsample: if args.nearest {
+                    Upsample::Nearest
+                } else {
+                    Upsample::Bilinear
+                },
+                labels: true,
+            };
+            let img = match &args.slice {
+                Some(s) => {
+                    let (axis, index) = parse_slice(s, v)?;
+                    report.set("slice", format!("{},{}", axis.name(), index));
+                    let opts = SliceOptions {
+                        size: Some(args.width),
+                        ..opts
+                    };
+                    report.time("compute", || slice::slice_image(v, axis, index, &opts))?
+                }
+                None => {
+                    let mid = slice::middle(v);
+                    report.set("slice", serde_json::json!(mid));
+                    report.time("compute", || slice::orthogonal_slices(v, mid, &opts))?
+                }
+            };
+            report.set("width", img.width);
+            report.set("height", img.height);
+            report.time("write", || img.save_png(&args.output))?;
+        }
+        (Data::Volume(_), _) => {
+            return Err(Failure::usage(
+                "volumes are drawn as PNG slices: use an output ending in .png",
+            ))
+        }
+    }
+    Ok(0)
+}
+
+fn parse_range(s: &str) -> Result<(f64, f64), Failure> {
+    let bad = || Failure::usage(format!("--range {s:?}: expected LO,HI with LO < HI"));
+    let (a, b) = s.split_once(',').ok_or_else(bad)?;
+    let lo: f64 = a.trim().parse().map_err(|_| bad())?;
+    let hi: f64 = b.trim().parse().map_err(|_| bad())?;
+    if lo.is_finite() && hi.is_finite() && lo < hi {
+        Ok((lo, hi))
+    } else {
+        Err(bad())
+    }
+}
+
+fn parse_slice(s: &str, v: &morpho::volume::Volume) -> Result<(Axis, usize), Failure> {
+    let bad = |why: String| Failure::usage(format!("--slice {s:?}: {why}"));
+    let (a, i) = s
+        .split_once(',')
+        .ok_or_else(|| bad("expected AXIS,INDEX such as z,10".into()))?;
+    let axis: Axis = a.parse().map_err(|e: morpho::Error| bad(e.to_string()))?;
+    let n = v.dims[axis.index()];
+    let index = if i.trim() == "mid" {
+        n / 2
+    } else {
+        i.trim()
+            .parse::<usize>()
+            .map_err(|_| bad("INDEX must be a whole number or 'mid'".into()))?
+    };
+    if index >= n {
+        return Err(bad(format!(
+            "index {index} is out of range; the volume has {n} samples along {}",
+            axis.name()
+        )));
+    }
+    Ok((axis, index))
+}
+
+fn write_svg(args: &Args, text: &str, report: &mut Report) -> Result<(), Failure> {
+    report.time("write", || {
+        io::write_atomic(&args.output, |w| {
+            w.write_all(text.as_bytes())
+                .map_err(|e| morpho::Error::io(&args.output, e))
+        })
+        .map_err(|e| e.with_path(&args.output))
+    })?;
+    Ok(())
+}
+
+/// Values of `name` for each point: a column or a coordinate.
+fn point_values(p: &PointSet, name: &str) -> Result<Vec<f64>, Failure> {
+    if let Some(c) = p.column(name) {
+        return Ok(c.values.clone());
+    }
+    let k = match name {
+        "x" => 0,
+        "y" => 1,
+        "z" if p.dim == 3 => 2,
+        _ => {
+            let names: Vec<&str> = p.columns.iter().map(|c| c.name.as_str()).collect();
+            return Err(Failure::usage(format!(
+                "--color-by {name:?}: no such column (columns: {}; or x, y{})",
+                if names.is_empty() {
+                    "none".to_string()
+                } else {
+                    names.join(", ")
+                },
+                if p.dim == 3 { ", z" } else { "" }
+            )));
+        }
+    };
+    Ok((0..p.len()).map(|i| p.point(i)[k]).collect())
+}
+
+fn points(
+    args: &Args,
+    p: &PointSet,
+    colormap: Colormap,
+    range: Option<(f64, f64)>,
+    report: &mut Report,
+) -> Result<(), Failure> {
+    report.set("kind", "points");
+    report.set("points", p.len());
+    let values = match &args.color_by {
+        Some(name) => Some(point_values(p, name)?),
+        None => None,
+    };
+    let (text, skipped) = report.time("compute", || {
+        let n = p.len();
+        // 2D positions (3D: orthographic projection) and a shade per point.
+        let (pos, depth): (Vec<Point2>, Vec<f64>) = if p.dim == 3 {
+            let o = RenderOptions {
+                azimuth_deg: args.azimuth,
+                elevation_deg: args.elevation,
+                up: if args.up == "z" { UpAxis::Z } else { UpAxis::Y },
+                ..Default::default()
+            };
+            let (r, u, e) = camera_basis(&o);
+            (0..n)
+                .map(|i| {
+                    let q = p.point(i);
+                    let v = morpho::geom::Vector3::new(q[0], q[1], q[2]);
+                    (Point2::new(v.dot(&r), v.dot(&u)), v.dot(&e))
+                })
+                .unzip()
+        } else {
+            (0..n)
+                .map(|i| (Point2::new(p.point(i)[0], p.point(i)[1]), 0.0))
+                .unzip()
+        };
+        let mut b = Aabb2::empty();
+        for q in &pos {
+            if q.x.is_finite() && q.y.is_finite() {
+                b.add(q.coords.as_slice());
+            }
+        }
+        let mut order: Vec<usize> = (0..n).collect();
+        if p.dim == 3 {
+            // Far points first, near points on top.
+            order.sort_by(|&a, &b| depth[a].total_cmp(&depth[b]));
+        }
+        let (dlo, dhi) = finite_range(depth.iter().copied()).unwrap_or((0.0, 1.0));
+        let (vlo, vhi) = match &values {
+            Some(v) => range
+                .or(finite_range(v.iter().copied()))
+                .unwrap_or((0.0, 1.0)),
+            None => (0.0, 1.0),
+        };
+        let mut s = Svg::new(b, args.width as f64);
+        let r = svg::point_radius(n);
+        for i in order {
+            let mut c = match &values {
+                Some(v) => colormap.color_of(v[i], vlo, vhi),
+                None => [0, 0, 0],
+            };
+            if p.dim == 3 && dhi > dlo {
+                // Fade far points towards white (depth cue).
+                let f = 0.55 * (dhi - depth[i]) / (dhi - dlo);
+                for ch in &mut c {
+                    *ch = (*ch as f64 + f * (255.0 - *ch as f64)).round() as u8;
+                }
+            }
+            s.point(pos[i], r, c);
+        }
+        let skipped = s.skipped();
+        (s.finish(), skipped)
+    });
+    report.set("skipped", skipped);
+    report.set("width", args.width);
+    write_svg(args, &text, report)
+}
+
+/// Scalars for `--color-by NAME` on a mesh: vertex property, face property or coordinate.
+fn mesh_scalars(
+    m: &TriMesh,
+    name: &str,
+    colormap: Colormap,
+    range: Option<(f64, f64)>,
+) -> Result<Scalars, Failure> {
+    let (values, per_face) = if let Some(p) = m.vertex_prop(name) {
+        (p.values.clone(), false)
+    } else if let Some(p) = m.face_prop(name) {
+        (p.values.clone(), true)
+    } else if let Some(k) = ["x", "y", "z"].iter().position(|c| *c == name) {
+        (m.positions.iter().map(|p| p[k]).collect(), false)
+    } else {
+        let names: Vec<&str> = m
+            .vertex_props
+            .iter()
+            .chain(&m.face_props)
+            .map(|p| p.name.as_str())
+            .collect();
+        return Err(Failure::usage(format!(
+            "--color-by {name:?}: no such property (properties: {}; or x, y, z)",
+            if names.is_empty() {
+                "none".to_string()
+            } else {
+                names.join(", ")
+            }
+        )));
+    };
+    Ok(Scalars {
+        values,
+        per_face,
+        colormap,
+        range,
     })
+}
+
+fn mesh(
+    args: &Args,
+    m: &TriMesh,
+    colormap: Colormap,
+    range: Option<(f64, f64)>,
+    report: &mut Report,
+) -> Result<(), Failure> {
+    report.set("kind", "mesh");
+    report.set("vertices", m.num_vertices());
+    report.set("triangles", m.num_triangles());
+    let scalars = match &args.color_by {
+        Some(name) => Some(mesh_scalars(m, name, colormap, range)?),
+        None => None,
+    };
+    let opts = RenderOptions {
+        width: args.width,
+        height: args.height,
+        azimuth_deg: args.azimuth,
+        elevation_deg: args.elevation,
+        up: if args.up == "z" { UpAxis::Z } else { UpAxis::Y },
+        projection: if args.ortho {
+            Projection::Orthographic
+        } else {
+            Projection::Perspective { fov_deg: 30.0 }
+        },
+        shading: if args.flat {
+            Shading::Flat
+        } else {
+            Shading::Smooth
+        },
+        scalars,
+        wireframe: args.wireframe,
+        supersample: args.supersample,
+        ..Default::default()
+    };
+    let (img, st) = report.time("compute", || render_mesh_stats(m, &opts));
+    report.set("width", img.width);
+    report.set("height", img.height);
+    report.set("drawn", st.drawn);
+    report.set("skipped_invalid", st.invalid);
+    report.set("degenerate", st.degenerate);
+    report.time("write", || img.save_png(&args.output))?;
+    Ok(())
 }

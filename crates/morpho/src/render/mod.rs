@@ -1,6 +1,7 @@
 //! Pictures of every stage: SVG for 2D, a software rasterizer (PNG) for meshes and volume views.
 
 pub mod colormap;
+pub mod font;
 pub mod raster;
 pub mod slice;
 pub mod svg;
