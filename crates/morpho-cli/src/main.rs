@@ -37,6 +37,8 @@ enum Command {
     Render(cmd::render::Args),
     /// Delaunay triangulation of 2D or 3D points.
     Triangulate(cmd::triangulate::Args),
+    /// Geometric graphs (NNG, EMST, RNG, Gabriel, α-shape, β-skeletons, γ-graph, …).
+    Graph(cmd::graph::Args),
     /// Contour surface f = level of a volume (consistent marching cubes).
     Isosurface(cmd::isosurface::Args),
     /// External contour of thresholded samples (regions where a rating exceeds a threshold).
@@ -95,6 +97,7 @@ fn main() -> ExitCode {
         Command::Render(_) => "render",
         Command::Triangulate(_) => "triangulate",
         Command::Isosurface(_) => "isosurface",
+        Command::Graph(_) => "graph",
         Command::Contour(_) => "contour",
     };
     let mut report = Report::new(name);
@@ -105,6 +108,7 @@ fn main() -> ExitCode {
         Command::Render(a) => cmd::render::run(a, &mut report),
         Command::Triangulate(a) => cmd::triangulate::run(a, &mut report),
         Command::Isosurface(a) => cmd::isosurface::run(a, &mut report),
+        Command::Graph(a) => cmd::graph::run(a, &mut report),
         Command::Contour(a) => cmd::contour::run(a, &mut report),
     };
     let code = match result {

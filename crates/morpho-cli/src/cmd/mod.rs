@@ -3,6 +3,7 @@
 pub mod contour;
 pub mod convert;
 pub mod demo;
+pub mod graph;
 pub mod info;
 pub mod isosurface;
 pub mod render;

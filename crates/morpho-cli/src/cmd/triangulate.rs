@@ -1,21 +1,221 @@
-//! `morpho triangulate` (issue 3). TODO(helper).
+//! `morpho triangulate POINTS -o OUT`: Delaunay triangulation of 2D or 3D points (issue 3).
+//!
+//! The dimension comes from the input. Outputs: `.json` (`{"points", "triangles"}` in 2D,
+//! `{"points", "tetrahedra"}` in 3D, indices into the input order — a merged duplicate is
+//! represented by its first occurrence), a mesh format (`.ply/.obj/.off/.stl`: the triangles in
+//! 2D with z = 0, the hull surface in 3D, or with `--tets` a tetrahedral PLY), or `.svg` (2D,
+//! optionally with the Voronoi diagram).
+
+use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
+use morpho::delaunay::{d2, d3, voronoi};
+use morpho::geom::Point3;
+use morpho::io::{self, Encoding, Format};
+use morpho::mesh::TriMesh;
+use serde_json::json;
+use std::io::Write;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Points (CSV with header, XYZ, PLY, JSON array).
+    /// Points (CSV with header, XYZ, PLY, JSON array of [x, y(, z)]).
     pub input: PathBuf,
-    /// Output: .json, .ply/.obj/.off, or .svg (2D).
+    /// Output: .json, .ply/.obj/.off/.stl, or .svg (2D).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// 3D: write the tetrahedra as a PLY with a `tetra` element instead of the hull surface.
+    #[arg(long)]
+    pub tets: bool,
+    /// 2D SVG: draw the Voronoi diagram too.
+    #[arg(long)]
+    pub voronoi: bool,
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    let _ = (args, report);
-    Err(Failure {
-        code: 1,
-        msg: "triangulate: not implemented yet".into(),
-    })
+    check_not_input(&args.output, &[&args.input])?;
+    let fmt = Format::of(&args.output)?;
+    let pts = report.time("read", || io::read_points(&args.input))?;
+    let n = pts.len();
+    report.set("dim", pts.dim);
+    report.set("points", n);
+    let path = &args.output;
+    let werr = |e: std::io::Error| morpho::Error::io(path, e);
+    if pts.dim == 2 {
+        let p2 = pts.to_points2();
+        let d = report
+            .time("compute", || d2::triangulate(&p2))
+            .map_err(|e| e.with_path(&args.input))?;
+        let unique = d.points.len();
+        if unique < 3 {
+            return Err(Failure::usage(format!(
+                "{}: a 2D triangulation needs at least 3 distinct points, the file has {unique}",
+                args.input.display()
+            )));
+        }
+        report.set("unique_points", unique);
+        report.set("duplicates", d.duplicates);
+        report.set("triangles", d.triangles.len());
+        report.set("hull_size", d.hull.len());
+        if d.collinear {
+            let note = "all points are collinear: no triangles, the hull is the line of points";
+            report.set("note", note);
+            eprintln!("note: {note}");
+        }
+        let tris = d.to_input_indices();
+        report.time("write", || -> morpho::Result<()> {
+            match fmt {
+                Format::Json => io::write_atomic(path, |w| {
+                    let v = json!({
+                        "points": p2.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+                        "triangles": tris,
+                        "hull": d.hull.iter().map(|&v| d.input_of_vertex[v as usize]).collect::<Vec<_>>(),
+                    });
+                    serde_json::to_writer(&mut *w, &v).map_err(|e| morpho::Error::invalid(e.to_string()))?;
+                    writeln!(w).map_err(werr)
+                }),
+                Format::Svg => {
+                    let svg = picture_2d(&d, args.voronoi);
+                    io::write_atomic(path, |w| w.write_all(svg.as_bytes()).map_err(werr))
+                }
+                Format::Ply | Format::Obj | Format::Off | Format::Stl => {
+                    let mesh = TriMesh::new(p2.iter().map(|p| Point3::new(p.x, p.y, 0.0)).collect(), tris.clone());
+                    io::write_mesh(path, &mesh, Encoding::BinaryLittleEndian)
+                }
+                _ => Err(morpho::Error::unsupported("triangulate writes .json, .svg, .ply, .obj, .off or .stl").with_path(path)),
+            }
+        })?;
+    } else {
+        let p3 = pts.to_points3();
+        let d = report
+            .time("compute", || d3::triangulate(&p3))
+            .map_err(|e| e.with_path(&args.input))?;
+        let unique = d.points.len();
+        if unique < 4 {
+            return Err(Failure::usage(format!(
+                "{}: a 3D triangulation needs at least 4 distinct points, the file has {unique}",
+                args.input.display()
+            )));
+        }
+        report.set("unique_points", unique);
+        report.set("duplicates", d.duplicates);
+        report.set("tetrahedra", d.tets.len());
+        report.set("hull_size", d.hull.len());
+        if let Some(why) = &d.degenerate {
+            report.set("note", why.as_str());
+            eprintln!("note: {why}: no tetrahedra");
+        }
+        let tets = d.to_input_indices();
+        let hull: Vec<[u32; 3]> = d
+            .hull
+            .iter()
+            .map(|t| t.map(|v| d.input_of_vertex[v as usize]))
+            .collect();
+        report.time("write", || -> morpho::Result<()> {
+            match fmt {
+                Format::Json => io::write_atomic(path, |w| {
+                    let v = json!({
+                        "points": p3.iter().map(|p| [p.x, p.y, p.z]).collect::<Vec<_>>(),
+                        "tetrahedra": tets,
+                        "hull": hull,
+                    });
+                    serde_json::to_writer(&mut *w, &v)
+                        .map_err(|e| morpho::Error::invalid(e.to_string()))?;
+                    writeln!(w).map_err(werr)
+                }),
+                Format::Ply if args.tets => {
+                    io::write_atomic(path, |w| write_tet_ply(w, &p3, &tets).map_err(werr))
+                }
+                Format::Ply | Format::Obj | Format::Off | Format::Stl => {
+                    let mesh = TriMesh::new(p3.clone(), hull.clone());
+                    io::write_mesh(path, &mesh, Encoding::BinaryLittleEndian)
+                }
+                Format::Svg => Err(morpho::Error::unsupported(
+                    "SVG pictures are for 2D points; render the hull with `morpho render`",
+                )
+                .with_path(path)),
+                _ => Err(morpho::Error::unsupported(
+                    "triangulate writes .json, .ply, .obj, .off or .stl",
+                )
+                .with_path(path)),
+            }
+        })?;
+    }
+    Ok(0)
+}
+
+/// Binary little-endian PLY with `vertex` (x, y, z as double) and `tetra` (4 indices).
+fn write_tet_ply(w: &mut dyn Write, p: &[Point3], tets: &[[u32; 4]]) -> std::io::Result<()> {
+    write!(
+        w,
+        "ply\nformat binary_little_endian 1.0\ncomment morpho tetrahedralization\nelement vertex {}\nproperty double x\nproperty double y\nproperty double z\nelement tetra {}\nproperty list uchar int vertex_indices\nend_header\n",
+        p.len(),
+        tets.len()
+    )?;
+    let mut buf = Vec::with_capacity(p.len() * 24 + tets.len() * 17);
+    for q in p {
+        for c in [q.x, q.y, q.z] {
+            buf.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    for t in tets {
+        buf.push(4);
+        for &v in t {
+            buf.extend_from_slice(&(v as i32).to_le_bytes());
+        }
+    }
+    w.write_all(&buf)
+}
+
+/// The triangulation (and optionally its Voronoi diagram, clipped to a margin around the
+/// points) as SVG.
+pub fn picture_2d(d: &d2::Delaunay2, with_voronoi: bool) -> String {
+    use morpho::render::svg::{Stroke, Svg};
+    let b = morpho::geom::bbox2(&d.points);
+    let mut svg = Svg::new(b, 900.0);
+    let edges: Vec<_> = d
+        .edges()
+        .iter()
+        .map(|e| (d.points[e[0] as usize], d.points[e[1] as usize]))
+        .collect();
+    svg.segments(&edges, &Stroke::solid([58, 110, 165], 0.8));
+    if with_voronoi && !d.collinear {
+        svg.segments(&voronoi_segments(d, b), &Stroke::dashed([209, 73, 91], 0.8));
+    }
+    svg.points(
+        &d.points,
+        morpho::render::svg::point_radius(d.points.len()),
+        [30, 30, 30],
+    );
+    svg.finish()
+}
+
+/// The Voronoi edges as segments; rays and lines are cut at a distance of the box diagonal.
+pub fn voronoi_segments(
+    d: &d2::Delaunay2,
+    b: morpho::geom::Aabb2,
+) -> Vec<(morpho::geom::Point2, morpho::geom::Point2)> {
+    let v = voronoi::voronoi(d);
+    let reach = b.diagonal().max(f64::MIN_POSITIVE);
+    v.edges
+        .iter()
+        .map(|e| match *e {
+            voronoi::VoronoiEdge::Segment { vertices, .. } => (
+                v.vertices[vertices[0] as usize],
+                v.vertices[vertices[1] as usize],
+            ),
+            voronoi::VoronoiEdge::Ray {
+                from, direction, ..
+            } => {
+                let p = v.vertices[from as usize];
+                (p, p + direction.normalize() * reach)
+            }
+            voronoi::VoronoiEdge::Line {
+                point, direction, ..
+            } => {
+                let u = direction.normalize() * reach;
+                (point - u, point + u)
+            }
+        })
+        .collect()
 }

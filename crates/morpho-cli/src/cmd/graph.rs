@@ -1,0 +1,202 @@
+//! `morpho graph POINTS --kind KIND [params] -o OUT`: geometric graphs and the γ-neighbourhood
+//! graph (Veltkamp 1992, ch. 2–3; issue 4). Indices in the output refer to the input order.
+//!
+//! Outputs: `.json` (`{"kind", "dim", "points", "edges"}`; 3D hull, Delaunay, α and γ give
+//! `"triangles"`; γ kinds add `"gamma": [[c0′, c1′]…]` aligned with the simplices), `.svg` (2D),
+//! `.ply` (edges as a PLY `edge` element, triangles as faces).
+
+use super::check_not_input;
+use crate::report::Report;
+use crate::Failure;
+use morpho::geom::{Point2, Point3};
+use morpho::graphs::{graph_2d, graph_3d, Graph, Kind};
+use morpho::io::{self, Format};
+use serde_json::json;
+use std::io::Write;
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Points (CSV with header, XYZ, PLY, JSON array).
+    pub input: PathBuf,
+    /// closest-pairs, nng, emst, strip, sig, rng, gabriel, hull, delaunay, alpha, beta-circle,
+    /// beta-lune, gamma, gamma-range.
+    #[arg(long)]
+    pub kind: String,
+    /// α-shape parameter a (radius 1/a; a < 0: empty discs; a = 0: hull).
+    #[arg(long, allow_hyphen_values = true)]
+    pub a: Option<f64>,
+    /// β-skeleton parameter b ∈ [−1, 1].
+    #[arg(long, allow_hyphen_values = true)]
+    pub b: Option<f64>,
+    /// γ(c0, c1): first parameter.
+    #[arg(long, allow_hyphen_values = true)]
+    pub c0: Option<f64>,
+    /// γ(c0, c1): second parameter (|c0| ≤ |c1|).
+    #[arg(long, allow_hyphen_values = true)]
+    pub c1: Option<f64>,
+    /// γ([c0,c1],[c2,c3]) as "c0,c1,c2,c3".
+    #[arg(long, allow_hyphen_values = true)]
+    pub range: Option<String>,
+    /// Output file (.json, .svg, .ply).
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+fn need(v: Option<f64>, name: &str, kind: &str) -> Result<f64, Failure> {
+    v.ok_or_else(|| Failure::usage(format!("--kind {kind} needs --{name}")))
+}
+
+/// The graph kind from the command-line words.
+pub fn parse_kind(a: &Args) -> Result<Kind, Failure> {
+    let k = a.kind.as_str();
+    Ok(match k {
+        "closest-pairs" | "cp" => Kind::ClosestPairs,
+        "nng" => Kind::Nng,
+        "emst" => Kind::Emst,
+        "strip" => Kind::Strip,
+        "sig" => Kind::Sig,
+        "rng" => Kind::Rng,
+        "gabriel" | "gg" => Kind::Gabriel,
+        "hull" => Kind::Hull,
+        "delaunay" | "dt" => Kind::Delaunay,
+        "alpha" => Kind::Alpha(need(a.a, "a", k)?),
+        "beta-circle" => Kind::BetaCircle(need(a.b, "b", k)?),
+        "beta-lune" => Kind::BetaLune(need(a.b, "b", k)?),
+        "gamma" => Kind::Gamma(need(a.c0, "c0", k)?, need(a.c1, "c1", k)?),
+        "gamma-range" => {
+            let r = a
+                .range
+                .as_deref()
+                .ok_or_else(|| Failure::usage("--kind gamma-range needs --range c0,c1,c2,c3"))?;
+            let v: Vec<f64> = r
+                .split(',')
+                .map(|x| x.trim().parse::<f64>())
+                .collect::<Result<_, _>>()
+                .map_err(|_| {
+                    Failure::usage(format!("--range '{r}': expected four numbers c0,c1,c2,c3"))
+                })?;
+            if v.len() != 4 {
+                return Err(Failure::usage(format!(
+                    "--range '{r}': expected four numbers c0,c1,c2,c3"
+                )));
+            }
+            Kind::GammaRange([v[0], v[1], v[2], v[3]])
+        }
+        other => {
+            return Err(Failure::usage(format!(
+                "unknown --kind '{other}' (see 'morpho graph --help')"
+            )))
+        }
+    })
+}
+
+pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
+    check_not_input(&args.output, &[&args.input])?;
+    let kind = parse_kind(&args)?;
+    kind.validate().map_err(|e| Failure::usage(e.to_string()))?;
+    let fmt = Format::of(&args.output)?;
+    let pts = report.time("read", || io::read_points(&args.input))?;
+    report.set("kind", kind.name());
+    report.set("dim", pts.dim);
+    report.set("points", pts.len());
+    let g = if pts.dim == 2 {
+        let p = pts.to_points2();
+        report.time("compute", || graph_2d(&p, kind))
+    } else {
+        let p = pts.to_points3();
+        report.time("compute", || graph_3d(&p, kind))
+    }
+    .map_err(|e| e.with_path(&args.input))?;
+    report.set("edges", g.edges.len());
+    report.set("triangles", g.triangles.len());
+    let out = &args.output;
+    report.time("write", || -> morpho::Result<()> {
+        match fmt {
+            Format::Json => io::write_atomic(out, |w| {
+                let mut v = json!({
+                    "kind": kind.name(),
+                    "dim": pts.dim,
+                    "points": (0..pts.len()).map(|i| pts.point(i).to_vec()).collect::<Vec<_>>(),
+                });
+                if g.triangles.is_empty() || !g.edges.is_empty() {
+                    v["edges"] = json!(g.edges);
+                }
+                if !g.triangles.is_empty() || (g.dim == 3 && g.edges.is_empty()) {
+                    v["triangles"] = json!(g.triangles);
+                }
+                if matches!(kind, Kind::Gamma(..) | Kind::GammaRange(_)) {
+                    v["gamma"] = json!(g.gamma);
+                }
+                serde_json::to_writer(&mut *w, &v)
+                    .map_err(|e| morpho::Error::invalid(e.to_string()))?;
+                writeln!(w).map_err(|e| morpho::Error::io(out, e))
+            }),
+            Format::Svg => {
+                if pts.dim != 2 {
+                    return Err(morpho::Error::unsupported(
+                        "SVG pictures are for 2D graphs; write .ply or .json",
+                    )
+                    .with_path(out));
+                }
+                let svg = picture(&pts.to_points2(), &g, None);
+                io::write_atomic(out, |w| {
+                    w.write_all(svg.as_bytes())
+                        .map_err(|e| morpho::Error::io(out, e))
+                })
+            }
+            Format::Ply => io::write_atomic(out, |w| {
+                write_ply(w, &pts.to_points3(), &g).map_err(|e| morpho::Error::io(out, e))
+            }),
+            _ => Err(morpho::Error::unsupported("graph writes .json, .svg or .ply").with_path(out)),
+        }
+    })?;
+    Ok(0)
+}
+
+/// A 2D graph drawn over faint points: edges in colour, with an optional title.
+pub fn picture(p: &[Point2], g: &Graph, title: Option<&str>) -> String {
+    use morpho::render::svg::{point_radius, Stroke, Svg};
+    let mut svg = Svg::fit(p, 420.0);
+    if let Some(t) = title {
+        svg.title(t);
+    }
+    let segs: Vec<_> = g
+        .edges
+        .iter()
+        .map(|e| (p[e[0] as usize], p[e[1] as usize]))
+        .collect();
+    svg.segments(&segs, &Stroke::solid([40, 90, 160], 1.2));
+    svg.points(p, point_radius(p.len()).max(2.0), [20, 20, 20]);
+    svg.finish()
+}
+
+/// PLY with vertices, an `edge` element and triangles as faces (ASCII: graphs are small files).
+fn write_ply(w: &mut dyn Write, p: &[Point3], g: &Graph) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "ply\nformat ascii 1.0\ncomment morpho graph\nelement vertex {}",
+        p.len()
+    )?;
+    writeln!(w, "property double x\nproperty double y\nproperty double z")?;
+    writeln!(
+        w,
+        "element face {}\nproperty list uchar int vertex_indices",
+        g.triangles.len()
+    )?;
+    writeln!(
+        w,
+        "element edge {}\nproperty int vertex1\nproperty int vertex2\nend_header",
+        g.edges.len()
+    )?;
+    for q in p {
+        writeln!(w, "{} {} {}", q.x, q.y, q.z)?;
+    }
+    for t in &g.triangles {
+        writeln!(w, "3 {} {} {}", t[0], t[1], t[2])?;
+    }
+    for e in &g.edges {
+        writeln!(w, "{} {}", e[0], e[1])?;
+    }
+    Ok(())
+}
