@@ -283,7 +283,9 @@ fn gamma_section(ctx: &Ctx) -> Result<Vec<Section>> {
     use rand_pts::points25;
     let p = points25();
     let mut out = Vec::new();
-    let strips: [(&str, &str, Vec<(Kind, String)>); 3] = [
+    /// (title, text, graphs with their labels)
+    type Strip<'a> = (&'a str, &'a str, Vec<(Kind, String)>);
+    let strips: [Strip; 3] = [
         (
             "γ([-1,1],[c,1]) for decreasing c (Veltkamp Fig. 3.3)",
             "From the convex hull (c = 1) through the Delaunay triangulation (c = 0) to graphs with crossing edges (c < 0).",
