@@ -299,3 +299,170 @@ fn info_on_real_meshes_matches_the_data_readme() {
         assert_eq!(r["genus"], serde_json::json!(genus), "{name}");
     }
 }
+
+#[test]
+fn triangulate_2d_and_3d() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // unit square corners, its centre and a duplicate of corner 1
+    let f = write(d, "p.csv", b"x,y\n0,0\n1,0\n1,1\n0,1\n0.5,0.5\n1,0\n");
+    let out = d.join("t.json");
+    let rep = d.join("r.json");
+    let o = morpho(&[
+        "triangulate",
+        f.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    let tris = v["triangles"].as_array().unwrap();
+    assert_eq!(tris.len(), 4, "2n − 2 − h = 10 − 2 − 4");
+    for t in tris {
+        for i in t.as_array().unwrap() {
+            assert_ne!(
+                i.as_u64().unwrap(),
+                5,
+                "the duplicate is represented by its first occurrence"
+            );
+        }
+    }
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&rep).unwrap()).unwrap();
+    assert_eq!(r["points"], 6);
+    assert_eq!(r["unique_points"], 5);
+    assert_eq!(r["hull_size"], 4);
+    // SVG and mesh outputs
+    for ext in ["svg", "ply", "off"] {
+        let out = d.join(format!("t.{ext}"));
+        let o = morpho(&[
+            "triangulate",
+            f.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--voronoi",
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{ext}: {}", stderr(&o));
+        assert!(std::fs::metadata(&out).unwrap().len() > 0);
+    }
+    // collinear: no triangles, a note, exit 0
+    let f = write(d, "line.xyz", b"0 0\n1 1\n3 3\n2 2\n");
+    let o = morpho(&[
+        "triangulate",
+        f.to_str().unwrap(),
+        "-o",
+        d.join("l.json").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stderr(&o).contains("collinear"));
+    // too few distinct points, NaN, empty: exit 2
+    for (name, bytes) in [
+        ("two.xyz", &b"0 0\n1 1\n0 0\n"[..]),
+        ("nan.xyz", b"0 0\n1 nan\n2 0\n"),
+        ("empty.csv", b""),
+    ] {
+        let f = write(d, name, bytes);
+        let o = morpho(&[
+            "triangulate",
+            f.to_str().unwrap(),
+            "-o",
+            d.join("bad.json").to_str().unwrap(),
+        ]);
+        assert_input_error(&o, &f);
+        assert!(!d.join("bad.json").exists());
+    }
+    // 3D: the cube corners and centre
+    let f = write(
+        d,
+        "c.xyz",
+        b"0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n0.5 0.5 0.5\n",
+    );
+    let out = d.join("c.json");
+    let o = morpho(&[
+        "triangulate",
+        f.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    // the centre sees all 6 faces, each split into 2 triangles: 12 tetrahedra
+    assert_eq!(v["tetrahedra"].as_array().unwrap().len(), 12);
+    let o = morpho(&[
+        "triangulate",
+        f.to_str().unwrap(),
+        "-o",
+        d.join("c.ply").to_str().unwrap(),
+        "--tets",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+}
+
+#[test]
+fn graph_command() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let f = write(d, "p.csv", b"x,y\n0,0\n4,0\n4,3\n0,3\n2,1.4\n1,2\n3,2.2\n");
+    let out = d.join("g.json");
+    let o = morpho(&[
+        "graph",
+        f.to_str().unwrap(),
+        "--kind",
+        "gamma",
+        "--c0",
+        "-0.2",
+        "--c1",
+        "0.4",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(v["kind"], "gamma");
+    assert_eq!(
+        v["edges"].as_array().unwrap().len(),
+        v["gamma"].as_array().unwrap().len()
+    );
+    // the hull of a rectangle with interior points: 4 edges
+    let o = morpho(&[
+        "graph",
+        f.to_str().unwrap(),
+        "--kind",
+        "hull",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(
+        v["edges"],
+        serde_json::json!([[0, 1], [0, 3], [1, 2], [2, 3]])
+    );
+    for args in [
+        vec!["--kind", "nonsense"],
+        vec!["--kind", "gamma", "--c0", "0.5", "--c1", "0.1"],
+        vec!["--kind", "alpha"],
+        vec!["--kind", "gamma-range", "--range", "1,2"],
+    ] {
+        let mut a = vec!["graph", f.to_str().unwrap()];
+        a.extend(args.iter().copied());
+        let x = d.join("x.json");
+        a.extend(["-o", x.to_str().unwrap()]);
+        let o = morpho(&a);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).starts_with("error: "));
+    }
+    for ext in ["svg", "ply"] {
+        let out = d.join(format!("g.{ext}"));
+        let o = morpho(&[
+            "graph",
+            f.to_str().unwrap(),
+            "--kind",
+            "gabriel",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    }
+}
