@@ -15,13 +15,15 @@
 //! # Beyond the Delaunay triangulation (c < 0)
 //! An edge outside γ([-1,1],[0,1]) belongs to γ([-1,1],[c,1]) iff the lens of two balls with
 //! offsets ±F(c) is empty. The lens contains the disc of radius w = λ·|uv| around the edge's
-//! midpoint (λ = (k − √(k² − 1))/2, k = 1/(1 − |c|)), and an empty disc centred in the convex hull
-//! has radius at most the largest Delaunay circumradius R. So only pairs closer than 2R/λ' can
-//! qualify; for each we test the midpoint disc with a grid query and then compute the exact
-//! interval from the points within F + ρ of the midpoint (all that can bind). The cost is
-//! O(N·K·Q) with K the number of points within 2R/λ' of a vertex and Q the cost of a grid query:
-//! output-sensitive in practice (K ~ log N / λ² for uniform points), far below the O(N³) of
-//! V Thm 3.1. 3D beyond-Delaunay graphs use the brute force (limited to small inputs).
+//! midpoint (λ = (k − √(k² − 1))/2, k = 1/(1 − |c|)), and an empty disc centred at a point m of
+//! Delaunay triangle T has radius at most B_T (the circumradius of an acute T, the longest edge
+//! over √2 otherwise). A grid with a max pyramid of these bounds lists, for each vertex u, only
+//! the midpoint cells m with 2λ·|m − u| ≤ B(m); the partners v = 2m − u come from a grid query.
+//! Each candidate is tested with the midpoint disc and then its exact interval is computed from
+//! the points within F + ρ of the midpoint (all that can bind). The work is proportional to the
+//! number of candidate pairs the bound admits — local for evenly spread points, larger where the
+//! hull is long and thin — instead of the O(N³) of V Thm 3.1. 3D beyond-Delaunay graphs use the
+//! brute force (limited to small inputs).
 
 use super::gamma::{CenterInterval, EdgeFrame, TriFrame};
 use super::grid::Grid;
@@ -157,23 +159,120 @@ pub fn candidates_2d(d: &Delaunay2) -> Candidates2 {
     out
 }
 
-/// Largest circumradius of the triangulation's triangles.
-fn max_circumradius_2d(d: &Delaunay2, p: &[[f64; 2]]) -> f64 {
-    d.triangles
-        .iter()
-        .map(|t| {
-            let (a, b, c) = (p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]);
-            let la = ((b[0] - c[0]).powi(2) + (b[1] - c[1]).powi(2)).sqrt();
-            let lb = ((a[0] - c[0]).powi(2) + (a[1] - c[1]).powi(2)).sqrt();
-            let lc = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
-            let area2 = raw::orient2d(a, b, c).abs();
-            if area2 > 0.0 {
-                la * lb * lc / (2.0 * area2)
+/// An upper bound of the empty-disc radius at every point of the hull, on a grid with a max
+/// pyramid: for a point m in triangle T the nearest vertex of T is at most B_T away, with
+/// B_T = circumradius for acute T and (longest edge)/√2 otherwise (T then lies in the disc on
+/// its longest edge). Each cell stores the largest B_T of the triangles whose box meets it.
+struct MidpointBound {
+    origin: [f64; 2],
+    h: f64,
+    /// side of the finest level (power of two)
+    side: usize,
+    /// levels[0] is the finest: side × side; levels[k] has side >> k.
+    levels: Vec<Vec<f64>>,
+}
+
+impl MidpointBound {
+    fn new(d: &Delaunay2, p: &[[f64; 2]]) -> Self {
+        let b = crate::geom::bbox2(&d.points);
+        let n = p.len().max(1);
+        let ext = b.extent();
+        let size = ext[0].max(ext[1]).max(f64::MIN_POSITIVE);
+        let mut side = 1usize;
+        while side * side < n && side < 4096 {
+            side *= 2;
+        }
+        let h = size / side as f64 * (1.0 + 1e-12);
+        let mut fine = vec![0.0f64; side * side];
+        let origin = b.min;
+        let ci = |x: f64, o: f64| (((x - o) / h).floor().max(0.0) as usize).min(side - 1);
+        for t in &d.triangles {
+            let (a, bb, c) = (p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]);
+            let l2 = |u: [f64; 2], v: [f64; 2]| (u[0] - v[0]).powi(2) + (u[1] - v[1]).powi(2);
+            let (ea, eb, ec) = (l2(bb, c), l2(a, c), l2(a, bb));
+            let longest = ea.max(eb).max(ec);
+            let acute = 2.0 * longest < ea + eb + ec; // largest angle < 90°
+            let bt = if acute {
+                let area2 = raw::orient2d(a, bb, c).abs();
+                (ea * eb * ec).sqrt() / (2.0 * area2)
             } else {
-                f64::INFINITY
+                (longest / 2.0).sqrt()
+            };
+            let bt = if bt.is_finite() { bt } else { longest.sqrt() };
+            let (x0, x1) = (
+                ci(a[0].min(bb[0]).min(c[0]), origin[0]),
+                ci(a[0].max(bb[0]).max(c[0]), origin[0]),
+            );
+            let (y0, y1) = (
+                ci(a[1].min(bb[1]).min(c[1]), origin[1]),
+                ci(a[1].max(bb[1]).max(c[1]), origin[1]),
+            );
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let v = &mut fine[y * side + x];
+                    *v = v.max(bt);
+                }
             }
-        })
-        .fold(0.0, f64::max)
+        }
+        let mut levels = vec![fine];
+        let mut s = side;
+        while s > 1 {
+            let prev = levels.last().map(Vec::as_slice).unwrap_or(&[]);
+            let ns = s / 2;
+            let mut next = vec![0.0f64; ns * ns];
+            for y in 0..ns {
+                for x in 0..ns {
+                    let m = prev[(2 * y) * s + 2 * x]
+                        .max(prev[(2 * y) * s + 2 * x + 1])
+                        .max(prev[(2 * y + 1) * s + 2 * x])
+                        .max(prev[(2 * y + 1) * s + 2 * x + 1]);
+                    next[y * ns + x] = m;
+                }
+            }
+            levels.push(next);
+            s = ns;
+        }
+        MidpointBound {
+            origin,
+            h,
+            side,
+            levels,
+        }
+    }
+
+    /// The finest cell containing m (clamped to the grid).
+    fn cell_of(&self, m: [f64; 2]) -> usize {
+        let ci = |x: f64, o: f64| (((x - o) / self.h).floor().max(0.0) as usize).min(self.side - 1);
+        ci(m[1], self.origin[1]) * self.side + ci(m[0], self.origin[0])
+    }
+
+    /// Calls `f(lo, hi, cell)` for every finest cell whose bound B satisfies
+    /// `slope · dist(u, cell) ≤ B`, by descending the pyramid.
+    fn for_each_cell(&self, u: [f64; 2], slope: f64, mut f: impl FnMut([f64; 2], [f64; 2], usize)) {
+        let top = self.levels.len() - 1;
+        let mut stack = vec![(top, 0usize, 0usize)];
+        while let Some((lvl, x, y)) = stack.pop() {
+            let cells = 1usize << lvl;
+            let w = self.h * cells as f64;
+            let lo = [self.origin[0] + x as f64 * w, self.origin[1] + y as f64 * w];
+            let hi = [lo[0] + w, lo[1] + w];
+            let dx = (lo[0] - u[0]).max(0.0).max(u[0] - hi[0]);
+            let dy = (lo[1] - u[1]).max(0.0).max(u[1] - hi[1]);
+            let dist = (dx * dx + dy * dy).sqrt();
+            let ls = self.side >> lvl;
+            let bnd = self.levels[lvl][y * ls + x];
+            if slope * dist > bnd * (1.0 + 1e-9) {
+                continue;
+            }
+            if lvl == 0 {
+                f(lo, hi, y * self.side + x);
+            } else {
+                for (cx, cy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                    stack.push((lvl - 1, 2 * x + cx, 2 * y + cy));
+                }
+            }
+        }
+    }
 }
 
 /// The edges outside γ([-1,1],[0,1]) whose largest intersection parameter c₁′ is ≥ `c` (c < 0),
@@ -217,32 +316,31 @@ pub fn beyond_dt_2d(
     }
     let k = 1.0 / (1.0 - cabs);
     let lam = 0.5 * (k - (k * k - 1.0).sqrt()); // midpoint disc radius / edge length
-    let big_r = if d.collinear {
-        f64::INFINITY
-    } else {
-        max_circumradius_2d(d, &p)
-    };
-    let dmax = if big_r.is_finite() {
-        big_r / lam
-    } else {
-        f64::INFINITY
-    };
     let f_over_r = (k * k - 1.0).sqrt();
+    let bound = MidpointBound::new(d, &p);
+    let mut near: Vec<u32> = Vec::new();
     for a in 0..n {
         let pa = p[a];
-        let mut near: Vec<u32> = Vec::new();
-        if dmax.is_finite() {
-            grid.for_each_within(pa, dmax * (1.0 + 1e-12), |b| {
+        near.clear();
+        // candidate partners: v = 2m − u for midpoints m in cells whose bound allows
+        // λ·|uv| = 2λ·|m − u| ≤ B(m)
+        bound.for_each_cell(pa, 2.0 * lam, |lo, hi, cell| {
+            let vlo = [2.0 * lo[0] - pa[0], 2.0 * lo[1] - pa[1]];
+            let vhi = [2.0 * hi[0] - pa[0], 2.0 * hi[1] - pa[1]];
+            grid.for_each_in_box(vlo, vhi, |b| {
                 if b as usize > a {
-                    near.push(b);
+                    let pb = p[b as usize];
+                    let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+                    if bound.cell_of(m) == cell {
+                        near.push(b);
+                    }
                 }
                 true
             });
-        } else {
-            near.extend((a as u32 + 1)..n as u32);
-        }
+        });
         near.sort_unstable();
-        for b in near {
+        near.dedup();
+        for &b in &near {
             let key = [a as u32, b];
             if existing.contains(&key) {
                 continue;
