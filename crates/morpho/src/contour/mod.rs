@@ -42,10 +42,14 @@
 
 pub mod cycles;
 pub mod dual;
+pub mod output;
+pub mod pipeline;
 pub mod rating;
 pub mod tet;
+// integration: `pub mod samples;` (contour_samples, uses delaunay::d2/d3) is declared after merging.
 
 pub use cycles::{boundary_regions, external_contour, external_contour_with};
+pub use pipeline::{PlaneContour, SampleContour, SampleOptions, SpaceContour};
 pub use rating::{classify, rate_tetrahedra, rate_triangles, Rating};
 pub use tet::{external_surface, external_surface_with, Surface3};
 
