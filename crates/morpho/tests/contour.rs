@@ -1012,3 +1012,80 @@ proptest! {
         check_3d(&tets, &pts, &black);
     }
 }
+
+// ---------------------------------------------------------------- real data and larger sets
+
+fn delaunay_of(pts: &[Point2]) -> Vec<[u32; 3]> {
+    let dp: Vec<delaunator::Point> = pts
+        .iter()
+        .map(|p| delaunator::Point { x: p.x, y: p.y })
+        .collect();
+    let t = delaunator::triangulate(&dp);
+    t.triangles
+        .chunks_exact(3)
+        .map(|c| [c[0] as u32, c[1] as u32, c[2] as u32])
+        .collect()
+}
+
+/// Reads columns `cx`, `cy`, `cv` of a CSV file with a header (plain comma-separated numbers).
+fn read_csv(path: &std::path::Path, cx: &str, cy: &str, cv: &str) -> (Vec<Point2>, Vec<f64>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|s| s.trim_matches('"'))
+        .collect();
+    let col = |n: &str| head.iter().position(|h| *h == n).unwrap();
+    let (ix, iy, iv) = (col(cx), col(cy), col(cv));
+    let mut pts = Vec::new();
+    let mut vals = Vec::new();
+    for l in lines.filter(|l| !l.trim().is_empty()) {
+        let f: Vec<&str> = l.split(',').collect();
+        pts.push(Point2::new(f[ix].parse().unwrap(), f[iy].parse().unwrap()));
+        vals.push(f[iv].parse().unwrap());
+    }
+    (pts, vals)
+}
+
+#[test]
+fn real_samples_meuse_zinc_and_jura_cadmium() {
+    let dir = std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/data/geostat"
+    ));
+    if !dir.exists() {
+        eprintln!("skipping: {} not found", dir.display());
+        return;
+    }
+    for (file, cx, cy, cv, thr) in [
+        ("meuse.csv", "x", "y", "zinc", 500.0),
+        ("jura_pred.csv", "Xloc", "Yloc", "Cd", 0.8),
+        ("jura_val.csv", "Xloc", "Yloc", "Cd", 0.8),
+    ] {
+        let (pts, vals) = read_csv(&dir.join(file), cx, cy, cv);
+        let tri = delaunay_of(&pts);
+        for rating in [Rating::Mean, Rating::Max, Rating::AreaMean] {
+            let r = rate_triangles(&tri, &pts, &vals, rating).unwrap();
+            for below in [false, true] {
+                let black = classify(&r, thr, below);
+                let (ext, _) = check_all(&tri, &pts, &black);
+                assert!(ext.black == 0 || !ext.cycles.is_empty(), "{file}");
+            }
+        }
+    }
+}
+
+#[test]
+fn larger_random_delaunay_match_oracle() {
+    let mut rng = ChaCha8Rng::seed_from_u64(2024);
+    let pts: Vec<Point2> = (0..600)
+        .map(|_| Point2::new(rng.gen_range(0.0..100.0), rng.gen_range(0.0..100.0)))
+        .collect();
+    let tri = delaunay_of(&pts);
+    for (k, p) in [0.45, 0.6].iter().enumerate() {
+        let black = random_colours(tri.len(), *p, 99 + k as u64);
+        check_all(&tri, &pts, &black);
+    }
+}

@@ -134,7 +134,7 @@ pub fn external_contour_with(
     // Marked vertices grouped by component (counting sort), then §3.5 per component.
     let mut start = vec![0u32; ncomp + 1];
     for (u, &c) in comp.iter().enumerate() {
-        if g.marked[u] {
+        if g.marked(u) {
             start[c as usize + 1] += 1;
         }
     }
@@ -144,7 +144,7 @@ pub fn external_contour_with(
     let mut fill = start.clone();
     let mut by_comp = vec![0u32; start[ncomp] as usize];
     for (u, &c) in comp.iter().enumerate() {
-        if g.marked[u] {
+        if g.marked(u) {
             by_comp[fill[c as usize] as usize] = u as u32;
             fill[c as usize] += 1;
         }
@@ -181,7 +181,7 @@ pub fn external_contour_with(
 fn contour_of_component(
     marked: &[u32],
     tri: &[[u32; 3]],
-    g: &Dual<3>,
+    g: &Dual<'_, 3>,
     visited: &mut [u8],
 ) -> Result<Vec<Vec<u32>>> {
     let mut cycles = Vec::new();
@@ -201,7 +201,7 @@ fn trace(
     t0: usize,
     k0: usize,
     tri: &[[u32; 3]],
-    g: &Dual<3>,
+    g: &Dual<'_, 3>,
     visited: &mut [u8],
 ) -> Result<Vec<u32>> {
     let mut cycle = Vec::new();
@@ -359,7 +359,7 @@ pub fn boundary_regions(
     }
     let mut external = vec![false; ncomp as usize];
     for t in 0..n {
-        if g.marked[t] {
+        if g.marked(t) {
             external[comp[t] as usize] = true;
         }
     }

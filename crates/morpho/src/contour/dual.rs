@@ -17,10 +17,10 @@
 //!   breadth-first search.
 //!
 //! `v_ext` is not stored as a vertex with an adjacency list (its degree is unbounded); the edge
-//! `{u, v_ext}` is the flag `ext[u]`, so that every step keeps O(1) work per incidence.
+//! `{u, v_ext}` is a flag on u, and deleting a vertex (with its edges) is a flag as well, so that
+//! every step keeps O(1) work per incidence.
 
 use crate::{Error, Result};
-use std::collections::VecDeque;
 
 /// "No neighbour" (a hull facet) in neighbour arrays.
 pub const NONE: u32 = u32::MAX;
@@ -184,110 +184,125 @@ pub fn check_neighbors<const K: usize>(simplices: &[[u32; K]], nb: &[[u32; K]]) 
     Ok(())
 }
 
+const EXT: u8 = 1;
+const REMOVED: u8 = 2;
+const MARKED: u8 = 4;
+
 /// The coloured dual graph G of a triangulation (tetrahedrization), with the state of the graph
 /// steps of the contour algorithm.
+///
+/// G_init is the neighbour array itself (borrowed). Deleting a vertex of G deletes its edges, so
+/// G is stored as G_init plus a flag per vertex: an edge of G_init is in G while both its ends are
+/// present. The edge `{u, v_ext}` is a flag on u. Flags are packed in one byte per vertex.
 #[derive(Debug, Clone)]
-pub struct Dual<const K: usize> {
+pub struct Dual<'a, const K: usize> {
     /// G_init: the dual as built by `construct_dual` (kept for `contour_of_component`).
-    pub init: Vec<[u32; K]>,
-    /// G: the current adjacency between simplex vertices ([`NONE`] for a removed edge).
-    pub adj: Vec<[u32; K]>,
+    pub init: &'a [[u32; K]],
     /// Colour of each vertex (`true` = black).
-    pub black: Vec<bool>,
-    /// The edge `{u, v_ext}` is in G.
-    pub ext: Vec<bool>,
-    /// `u` was deleted from V by `hollow_out` (a white simplex reachable from the exterior).
-    pub removed: Vec<bool>,
-    /// `u` was marked by `hollow_out` (a black simplex touching the exterior white region).
-    pub marked: Vec<bool>,
+    pub black: &'a [bool],
+    state: Vec<u8>,
 }
 
-impl<const K: usize> Dual<K> {
+impl<'a, const K: usize> Dual<'a, K> {
     /// §3.1: one vertex per simplex with its colour, one edge per shared facet.
-    pub fn construct_dual(neighbors: &[[u32; K]], black: &[bool]) -> Self {
-        let n = neighbors.len();
+    pub fn construct_dual(neighbors: &'a [[u32; K]], black: &'a [bool]) -> Self {
         Dual {
-            init: neighbors.to_vec(),
-            adj: neighbors.to_vec(),
-            black: black.to_vec(),
-            ext: vec![false; n],
-            removed: vec![false; n],
-            marked: vec![false; n],
+            init: neighbors,
+            black,
+            state: vec![0; neighbors.len()],
         }
+    }
+
+    /// The edge `{u, v_ext}` is in G.
+    #[inline]
+    pub fn ext(&self, u: usize) -> bool {
+        self.state[u] & EXT != 0
+    }
+    /// `u` was deleted from V by `hollow_out` (a white simplex reachable from the exterior).
+    #[inline]
+    pub fn removed(&self, u: usize) -> bool {
+        self.state[u] & REMOVED != 0
+    }
+    /// `u` was marked by `hollow_out` (a black simplex touching the exterior white region).
+    #[inline]
+    pub fn marked(&self, u: usize) -> bool {
+        self.state[u] & MARKED != 0
     }
 
     /// Number of neighbours of `u` in G, not counting `v_ext`.
     #[inline]
     pub fn degree(&self, u: usize) -> usize {
-        self.adj[u].iter().filter(|&&v| v != NONE).count()
+        self.init[u]
+            .iter()
+            .filter(|&&v| v != NONE && !self.removed(v as usize))
+            .count()
     }
 
     /// §3.2, Fig. 1: adds `v_ext` and joins it to every vertex of degree < K.
     pub fn extend(&mut self) {
-        for u in 0..self.adj.len() {
-            if self.degree(u) < K {
-                self.ext[u] = true;
+        for u in 0..self.init.len() {
+            if self.init[u].contains(&NONE) {
+                self.state[u] |= EXT;
             }
         }
     }
 
     /// §3.3, Fig. 2: hollows out the white region connected to the exterior and marks the black
-    /// simplices that touch it.
+    /// simplices that touch it. S is a FIFO queue; each vertex enters it at most once (when it
+    /// is joined to `v_ext`).
     pub fn hollow_out(&mut self) {
-        let mut s: VecDeque<u32> = (0..self.adj.len() as u32)
-            .filter(|&u| self.ext[u as usize])
+        let mut s: Vec<u32> = (0..self.init.len() as u32)
+            .filter(|&u| self.ext(u as usize))
             .collect();
-        while let Some(u) = s.pop_front() {
-            let u = u as usize;
+        let mut head = 0;
+        while head < s.len() {
+            let u = s[head] as usize;
+            head += 1;
             if !self.black[u] {
-                for k in 0..K {
-                    let v = self.adj[u][k];
-                    if v == NONE {
+                for &v in &self.init[u] {
+                    // for each v ∈ N(u) − {v_ext} (edges to deleted vertices are gone)
+                    if v == NONE || self.removed(v as usize) {
                         continue;
                     }
                     let v = v as usize;
-                    if !self.ext[v] {
-                        self.ext[v] = true;
-                        s.push_back(v as u32);
+                    // if v_ext ∉ N(v): E := E ∪ {v, v_ext}, S := S ∪ {v}
+                    if !self.ext(v) {
+                        self.state[v] |= EXT;
+                        s.push(v as u32);
                     }
-                    // E := E − {v, u}
-                    if let Some(slot) = self.adj[v].iter_mut().find(|w| **w == u as u32) {
-                        *slot = NONE;
-                    }
-                    self.adj[u][k] = NONE;
                 }
-                self.ext[u] = false;
-                self.removed[u] = true;
+                // E := E − {u, v_ext}, V := V − {u} (with all edges {v, u})
+                self.state[u] = (self.state[u] & !EXT) | REMOVED;
             } else {
-                self.marked[u] = true;
+                self.state[u] |= MARKED;
             }
         }
     }
 
     /// §3.4, Fig. 3: removes `v_ext` and its edges.
     pub fn remove_v_ext(&mut self) {
-        self.ext.iter_mut().for_each(|e| *e = false);
+        self.state.iter_mut().for_each(|e| *e &= !EXT);
     }
 
     /// §3.4: the connected components of the remaining graph (black simplices and the white ones
-    /// they enclose), by breadth-first search. Returns the component of each vertex ([`NONE`]
+    /// they enclose), by depth-first search. Returns the component of each vertex ([`NONE`]
     /// for removed vertices) and the number of components.
     pub fn black_components(&self) -> (Vec<u32>, usize) {
-        let n = self.adj.len();
+        let n = self.init.len();
         let mut comp = vec![NONE; n];
         let mut count = 0u32;
-        let mut queue = Vec::new();
+        let mut stack = Vec::new();
         for start in 0..n {
-            if self.removed[start] || comp[start] != NONE {
+            if self.removed(start) || comp[start] != NONE {
                 continue;
             }
             comp[start] = count;
-            queue.push(start as u32);
-            while let Some(u) = queue.pop() {
-                for &v in &self.adj[u as usize] {
-                    if v != NONE && comp[v as usize] == NONE {
+            stack.push(start as u32);
+            while let Some(u) = stack.pop() {
+                for &v in &self.init[u as usize] {
+                    if v != NONE && comp[v as usize] == NONE && !self.removed(v as usize) {
                         comp[v as usize] = count;
-                        queue.push(v);
+                        stack.push(v);
                     }
                 }
             }
@@ -297,7 +312,7 @@ impl<const K: usize> Dual<K> {
     }
 
     /// Runs §3.1–§3.4 (`construct_dual`, `extend`, `hollow_out`, `remove_v_ext`).
-    pub fn run(neighbors: &[[u32; K]], black: &[bool]) -> Self {
+    pub fn run(neighbors: &'a [[u32; K]], black: &'a [bool]) -> Self {
         let mut g = Self::construct_dual(neighbors, black);
         g.extend();
         g.hollow_out();
@@ -310,7 +325,7 @@ impl<const K: usize> Dual<K> {
     #[inline]
     pub fn is_contour_facet(&self, u: usize, k: usize) -> bool {
         let v = self.init[u][k];
-        v == NONE || self.removed[v as usize]
+        v == NONE || self.removed(v as usize)
     }
 }
 
@@ -350,9 +365,11 @@ mod tests {
         ];
         let black = [false, true, false, true, false, true, true, true];
         let g = Dual::run(&nb, &black);
-        assert!(g.removed[0] && g.removed[4] && !g.removed[2]);
-        assert!(g.marked[1] && g.marked[3] && g.marked[5] && g.marked[7]);
-        assert!(!g.marked[6]);
+        assert!(g.removed(0) && g.removed(4) && !g.removed(2));
+        assert!(g.marked(1) && g.marked(3) && g.marked(5) && g.marked(7));
+        assert!(!g.marked(6));
+        assert_eq!(g.degree(1), 2);
+        assert!(!g.ext(1));
         let (comp, n) = g.black_components();
         assert_eq!(n, 1);
         assert_eq!(comp[0], NONE);

@@ -130,7 +130,7 @@ pub fn external_surface_with(
         ..Default::default()
     };
     for (u, t) in tets.iter().enumerate() {
-        if !g.marked[u] {
+        if !g.marked(u) {
             continue;
         }
         for k in 0..4 {
