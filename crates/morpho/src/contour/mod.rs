@@ -39,6 +39,26 @@
 //!
 //! In 3D ([`tet`]) the same steps on tetrahedra give the closed boundary surfaces of the black
 //! components that are not enclosed by another, as outward-oriented triangles.
+//!
+//! [`pipeline`] runs rating, colouring and contour on rated samples given their triangulation
+//! (value column by name, samples without a value skipped, duplicates averaged), [`output`]
+//! writes GeoJSON, a JSON list of cycles and an SVG picture. `samples::contour_samples` puts the
+//! Delaunay triangulation in front (declared once the Delaunay module is merged).
+//!
+//! ```
+//! use morpho::contour::external_contour;
+//! use morpho::geom::Point2;
+//! // A square of four triangles around its centre (vertex 4); two opposite ones are black.
+//! let p = [
+//!     Point2::new(0.0, 0.0), Point2::new(2.0, 0.0), Point2::new(2.0, 2.0),
+//!     Point2::new(0.0, 2.0), Point2::new(1.0, 1.0),
+//! ];
+//! let tri = [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]];
+//! let c = external_contour(&tri, &p, &[true, false, true, false]).unwrap();
+//! // Two black triangles touching at the centre: two cycles, split at the shared vertex.
+//! assert_eq!(c.cycles.len(), 2);
+//! assert!(c.cycles.iter().all(|cy| cy.len() == 3 && cy.contains(&4)));
+//! ```
 
 pub mod cycles;
 pub mod dual;
