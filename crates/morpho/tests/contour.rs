@@ -1089,3 +1089,85 @@ fn larger_random_delaunay_match_oracle() {
         check_all(&tri, &pts, &black);
     }
 }
+
+/// 3D Delaunay by brute force: every positively oriented 4-subset whose circumsphere is empty.
+fn brute_delaunay_3d(n: usize, seed: u64) -> (Vec<Point3>, Vec<[u32; 4]>) {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let pts: Vec<Point3> = (0..n)
+        .map(|_| Point3::new(rng.gen(), rng.gen(), rng.gen()))
+        .collect();
+    let mut tets = Vec::new();
+    for a in 0..n {
+        for b in a + 1..n {
+            for c in b + 1..n {
+                for d in c + 1..n {
+                    let o = orient3d(&pts[a], &pts[b], &pts[c], &pts[d]);
+                    if o == 0.0 {
+                        continue;
+                    }
+                    let (c2, d2) = if o > 0.0 { (c, d) } else { (d, c) };
+                    let empty = (0..n).all(|e| {
+                        [a, b, c, d].contains(&e)
+                            || morpho::geom::insphere(&pts[a], &pts[b], &pts[c2], &pts[d2], &pts[e])
+                                < 0.0
+                    });
+                    if empty {
+                        tets.push([a as u32, b as u32, c2 as u32, d2 as u32]);
+                    }
+                }
+            }
+        }
+    }
+    (pts, tets)
+}
+
+/// Volume of the convex hull by brute force (facets with all other points strictly on one side).
+fn hull_volume(pts: &[Point3]) -> f64 {
+    let n = pts.len();
+    let mut vol = 0.0;
+    for a in 0..n {
+        for b in a + 1..n {
+            for c in b + 1..n {
+                let sides: Vec<f64> = (0..n)
+                    .filter(|&k| k != a && k != b && k != c)
+                    .map(|k| orient3d(&pts[a], &pts[b], &pts[c], &pts[k]))
+                    .collect();
+                let (pa, pb, pc) = (pts[a].coords, pts[b].coords, pts[c].coords);
+                let v = pa.dot(&pb.cross(&pc)) / 6.0;
+                // orient3d > 0 for all others: others below (a, b, c) seen counter-clockwise,
+                // so (a, b, c) is outward.
+                if sides.iter().all(|&s| s > 0.0) {
+                    vol += v;
+                } else if sides.iter().all(|&s| s < 0.0) {
+                    vol -= v;
+                }
+            }
+        }
+    }
+    vol
+}
+
+#[test]
+fn random_delaunay_3d_match_oracle() {
+    for seed in 0..4u64 {
+        let (pts, tets) = brute_delaunay_3d(22, seed);
+        let tet_vol: f64 = tets
+            .iter()
+            .map(|t| {
+                let [a, b, c, d] = t.map(|v| pts[v as usize].coords);
+                (b - a).cross(&(c - a)).dot(&(d - a)).abs() / 6.0
+            })
+            .sum();
+        assert!(
+            (tet_vol - hull_volume(&pts)).abs() < 1e-9,
+            "brute-force tetrahedrization incomplete"
+        );
+        for (k, p) in [0.35, 0.6, 0.85].iter().enumerate() {
+            let black = random_colours(tets.len(), *p, seed * 3 + k as u64);
+            check_3d(&tets, &pts, &black);
+        }
+        // All black: the convex hull.
+        let s = check_3d(&tets, &pts, &vec![true; tets.len()]);
+        assert!((s.to_trimesh(&pts).signed_volume() - hull_volume(&pts)).abs() < 1e-9);
+    }
+}
