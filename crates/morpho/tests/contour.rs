@@ -1171,3 +1171,95 @@ fn random_delaunay_3d_match_oracle() {
         assert!((s.to_trimesh(&pts).signed_volume() - hull_volume(&pts)).abs() < 1e-9);
     }
 }
+
+#[test]
+fn pipeline_and_geojson_on_meuse() {
+    use morpho::contour::output::geojson_value;
+    use morpho::contour::pipeline::{finish_plane, select_samples, SampleOptions, Triangulation2};
+    use morpho::mesh::{Column, PointSet};
+    let file = std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/data/geostat/meuse.csv"
+    ));
+    if !file.exists() {
+        eprintln!("skipping: {} not found", file.display());
+        return;
+    }
+    let (pts, zinc) = read_csv(file, "x", "y", "zinc");
+    // Add a duplicate of sample 0 with another value and a sample without a value.
+    let mut all = pts.clone();
+    all.push(pts[0]);
+    all.push(Point2::new(0.0, 0.0));
+    let mut vals = zinc.clone();
+    vals.push(zinc[0] + 100.0);
+    vals.push(f64::NAN);
+    let mut ps = PointSet::from_points2(&all);
+    ps.columns.push(Column {
+        name: "zinc".into(),
+        values: vals,
+    });
+    let sel = select_samples(&ps, Some("zinc")).unwrap();
+    assert_eq!(sel.skipped, 1);
+    // The triangulation of the distinct positions; the duplicate maps to vertex 0.
+    let tri = delaunay_of(&pts);
+    let mut voi: Vec<u32> = (0..pts.len() as u32).collect();
+    voi.push(0);
+    let ioi: Vec<u32> = (0..pts.len() as u32).collect();
+    for holes in [false, true] {
+        let opts = SampleOptions {
+            value: Some("zinc".into()),
+            threshold: 500.0,
+            holes,
+            ..Default::default()
+        };
+        let t = Triangulation2 {
+            points: &pts,
+            vertex_of_input: &voi,
+            input_of_vertex: &ioi,
+            triangles: &tri,
+            neighbors: None,
+        };
+        let r = finish_plane(sel.clone(), t, &opts).unwrap();
+        assert_eq!(r.values[0], zinc[0] + 50.0);
+        let mut vals = zinc.clone();
+        vals[0] += 50.0;
+        let black = classify(
+            &rate_triangles(&tri, &pts, &vals, Rating::Mean).unwrap(),
+            500.0,
+            false,
+        );
+        assert_eq!(r.black, black);
+        let want = if holes {
+            boundary_regions(&tri, None, &pts, &black, &ContourOptions::default()).unwrap()
+        } else {
+            external_contour(&tri, &pts, &black).unwrap()
+        };
+        assert_eq!(r.contour, want);
+        // GeoJSON: closed rings, outer counter-clockwise, holes clockwise.
+        let g = geojson_value(&r, 500.0, false);
+        let feats = g["features"].as_array().unwrap();
+        assert_eq!(feats.len(), r.contour.regions.len());
+        for f in feats {
+            assert_eq!(f["properties"]["threshold"], 500.0);
+            for (k, ring) in f["geometry"]["coordinates"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .enumerate()
+            {
+                let ring: Vec<(f64, f64)> = ring
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
+                    .collect();
+                assert_eq!(ring.first(), ring.last());
+                let a: f64 = ring
+                    .windows(2)
+                    .map(|w| w[0].0 * w[1].1 - w[1].0 * w[0].1)
+                    .sum();
+                assert_eq!(a > 0.0, k == 0, "ring orientation");
+            }
+        }
+    }
+}

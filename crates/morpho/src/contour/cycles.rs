@@ -64,6 +64,14 @@ fn prepare<'a>(
         )));
     }
     check_indices(tri, points.len())?;
+    if let Some(i) = points
+        .iter()
+        .position(|p| !(p.x.is_finite() && p.y.is_finite()))
+    {
+        return Err(Error::invalid(format!(
+            "point {i} has a non-finite coordinate"
+        )));
+    }
     let mut flip = Vec::new();
     for (t, &[a, b, c]) in tri.iter().enumerate() {
         let o = orient2d(

@@ -87,6 +87,14 @@ pub fn external_surface_with(
         )));
     }
     check_indices(tets, points.len())?;
+    if let Some(i) = points
+        .iter()
+        .position(|p| !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite()))
+    {
+        return Err(Error::invalid(format!(
+            "point {i} has a non-finite coordinate"
+        )));
+    }
     let mut flip = Vec::new();
     for (t, &[a, b, c, d]) in tets.iter().enumerate() {
         let p = |v: u32| &points[v as usize];
