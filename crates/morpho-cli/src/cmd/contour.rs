@@ -88,6 +88,11 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             args.input.display()
         )));
     }
+    if samples.dim == 3 && (args.holes || args.min_area > 0.0) {
+        return Err(Failure::usage(
+            "--holes and --min-area apply to 2D samples; 3D gives the external surfaces",
+        ));
+    }
     if samples.dim == 2 && mesh_out {
         return Err(Failure::usage(format!(
             "{}: the samples are 2D; write the contour as .geojson, .json or .svg",
