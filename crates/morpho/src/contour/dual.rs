@@ -1,0 +1,378 @@
+//! The coloured dual graph and the graph steps of the contour algorithm (Dorgerloh et al.,
+//! §3.1–§3.4, Figures 1–3), shared by triangles (K = 3) and tetrahedra (K = 4, §3.7): the
+//! algorithm is the same, only the number of neighbours differs.
+//!
+//! * [`simplex_neighbors`] — the adjacency of the simplices across shared facets, computed in
+//!   O(n + |V|) by radix-sorting the facets (no hashing); it also checks that no facet is shared
+//!   by more than two simplices and that twins have opposite orientations.
+//! * [`Dual::construct_dual`] (§3.1): one graph vertex per simplex, one edge per shared facet.
+//! * [`Dual::extend`] (§3.2, Fig. 1): the vertex `v_ext` for the exterior, joined to every
+//!   vertex of degree < K (the simplices with a facet on the hull).
+//! * [`Dual::hollow_out`] (§3.3, Fig. 2): from `v_ext`, deletes every white vertex that can be
+//!   reached through white vertices, re-joining its neighbours to `v_ext`, and *marks* the black
+//!   vertices so reached. O(n): each vertex enters the work list at most once and has at most K
+//!   neighbours (Lemma 3).
+//! * [`Dual::remove_v_ext`] (§3.4, Fig. 3) and [`Dual::black_components`] (§3.4): the connected
+//!   components of what remains — black simplices plus the white ones they enclose — by
+//!   breadth-first search.
+//!
+//! `v_ext` is not stored as a vertex with an adjacency list (its degree is unbounded); the edge
+//! `{u, v_ext}` is a flag on u, and deleting a vertex (with its edges) is a flag as well, so that
+//! every step keeps O(1) work per incidence.
+
+use crate::{Error, Result};
+
+/// "No neighbour" (a hull facet) in neighbour arrays.
+pub const NONE: u32 = u32::MAX;
+
+/// Checks that every index of `simplices` is below `n`.
+pub fn check_indices<const K: usize>(simplices: &[[u32; K]], n: usize) -> Result<()> {
+    if simplices.len() >= NONE as usize {
+        return Err(Error::invalid("too many simplices"));
+    }
+    for (s, simplex) in simplices.iter().enumerate() {
+        for &v in simplex {
+            if v as usize >= n {
+                return Err(Error::invalid(format!(
+                    "simplex {s} refers to vertex {v}, but there are only {n} vertices"
+                )));
+            }
+        }
+        for i in 0..K {
+            for j in i + 1..K {
+                if simplex[i] == simplex[j] {
+                    return Err(Error::invalid(format!(
+                        "simplex {s} repeats vertex {}",
+                        simplex[i]
+                    )));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The facet opposite corner `i` of a positively oriented simplex, oriented outwards
+/// (counter-clockwise edge of a triangle; for a tetrahedron a face that is counter-clockwise
+/// seen from outside).
+#[inline]
+pub fn facet<const K: usize>(s: &[u32; K], i: usize) -> [u32; 3] {
+    if K == 3 {
+        [s[(i + 1) % 3], s[(i + 2) % 3], NONE]
+    } else {
+        const T: [[usize; 3]; 4] = [[1, 3, 2], [0, 2, 3], [0, 3, 1], [0, 1, 2]];
+        [s[T[i][0]], s[T[i][1]], s[T[i][2]]]
+    }
+}
+
+/// The vertices of a facet sorted, and the parity of the sorting permutation.
+#[inline]
+fn sorted_facet<const K: usize>(s: &[u32; K], i: usize) -> ([u32; 3], bool) {
+    let mut f = facet(s, i);
+    let m = K - 1;
+    let mut odd = false;
+    for a in 0..m {
+        for b in 0..m - 1 - a {
+            if f[b] > f[b + 1] {
+                f.swap(b, b + 1);
+                odd = !odd;
+            }
+        }
+    }
+    (f, odd)
+}
+
+/// Neighbours of positively oriented simplices across their facets: `nb[s][i]` is the simplex
+/// sharing the facet opposite corner `i` of `s`, or [`NONE`] on the hull. O(n + nverts) time by
+/// radix sort of the facets. Errors when a facet is shared by more than two simplices or by two
+/// simplices on the same side (inconsistent orientation or overlap).
+pub fn simplex_neighbors<const K: usize>(
+    simplices: &[[u32; K]],
+    nverts: usize,
+) -> Result<Vec<[u32; K]>> {
+    check_indices(simplices, nverts)?;
+    let nf = simplices.len() * K;
+    let key = |f: u32, d: usize| -> u32 {
+        let (s, i) = (f as usize / K, f as usize % K);
+        sorted_facet(&simplices[s], i).0[d]
+    };
+    // LSD radix sort by the sorted facet's coordinates, last digit first.
+    let mut order: Vec<u32> = (0..nf as u32).collect();
+    let mut tmp = vec![0u32; nf];
+    let mut count = vec![0u32; nverts + 1];
+    for d in (0..K - 1).rev() {
+        count.iter_mut().for_each(|c| *c = 0);
+        for &f in &order {
+            count[key(f, d) as usize + 1] += 1;
+        }
+        for v in 0..nverts {
+            count[v + 1] += count[v];
+        }
+        for &f in &order {
+            let k = key(f, d) as usize;
+            tmp[count[k] as usize] = f;
+            count[k] += 1;
+        }
+        std::mem::swap(&mut order, &mut tmp);
+    }
+    drop(tmp);
+    let mut nb = vec![[NONE; K]; simplices.len()];
+    let mut i = 0;
+    while i < nf {
+        let f0 = order[i] as usize;
+        let (k0, p0) = sorted_facet(&simplices[f0 / K], f0 % K);
+        let mut j = i + 1;
+        while j < nf
+            && sorted_facet(&simplices[order[j] as usize / K], order[j] as usize % K).0 == k0
+        {
+            j += 1;
+        }
+        match j - i {
+            1 => {}
+            2 => {
+                let f1 = order[i + 1] as usize;
+                let p1 = sorted_facet(&simplices[f1 / K], f1 % K).1;
+                if p0 == p1 {
+                    return Err(Error::invalid(format!(
+                        "simplices {} and {} lie on the same side of their common facet \
+                         (overlapping or inconsistently oriented)",
+                        f0 / K,
+                        f1 / K
+                    )));
+                }
+                nb[f0 / K][f0 % K] = (f1 / K) as u32;
+                nb[f1 / K][f1 % K] = (f0 / K) as u32;
+            }
+            n => {
+                return Err(Error::invalid(format!(
+                    "a facet of simplex {} is shared by {n} simplices (not a manifold)",
+                    f0 / K
+                )))
+            }
+        }
+        i = j;
+    }
+    Ok(nb)
+}
+
+/// Checks a given neighbour array against the simplices: right length, symmetric, and each pair
+/// really shares the facet. O(n).
+pub fn check_neighbors<const K: usize>(simplices: &[[u32; K]], nb: &[[u32; K]]) -> Result<()> {
+    if nb.len() != simplices.len() {
+        return Err(Error::invalid(
+            "neighbour array and simplices differ in length",
+        ));
+    }
+    for (s, row) in nb.iter().enumerate() {
+        for (i, &t) in row.iter().enumerate() {
+            if t == NONE {
+                continue;
+            }
+            let ok = (t as usize) < simplices.len()
+                && (0..K).any(|j| {
+                    nb[t as usize][j] as usize == s
+                        && sorted_facet(&simplices[t as usize], j).0
+                            == sorted_facet(&simplices[s], i).0
+                });
+            if !ok {
+                return Err(Error::invalid(format!(
+                    "neighbour {i} of simplex {s} is inconsistent with the simplices"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+const EXT: u8 = 1;
+const REMOVED: u8 = 2;
+const MARKED: u8 = 4;
+
+/// The coloured dual graph G of a triangulation (tetrahedrization), with the state of the graph
+/// steps of the contour algorithm.
+///
+/// G_init is the neighbour array itself (borrowed). Deleting a vertex of G deletes its edges, so
+/// G is stored as G_init plus a flag per vertex: an edge of G_init is in G while both its ends are
+/// present. The edge `{u, v_ext}` is a flag on u. Flags are packed in one byte per vertex.
+#[derive(Debug, Clone)]
+pub struct Dual<'a, const K: usize> {
+    /// G_init: the dual as built by `construct_dual` (kept for `contour_of_component`).
+    pub init: &'a [[u32; K]],
+    /// Colour of each vertex (`true` = black).
+    pub black: &'a [bool],
+    state: Vec<u8>,
+}
+
+impl<'a, const K: usize> Dual<'a, K> {
+    /// §3.1: one vertex per simplex with its colour, one edge per shared facet.
+    pub fn construct_dual(neighbors: &'a [[u32; K]], black: &'a [bool]) -> Self {
+        Dual {
+            init: neighbors,
+            black,
+            state: vec![0; neighbors.len()],
+        }
+    }
+
+    /// The edge `{u, v_ext}` is in G.
+    #[inline]
+    pub fn ext(&self, u: usize) -> bool {
+        self.state[u] & EXT != 0
+    }
+    /// `u` was deleted from V by `hollow_out` (a white simplex reachable from the exterior).
+    #[inline]
+    pub fn removed(&self, u: usize) -> bool {
+        self.state[u] & REMOVED != 0
+    }
+    /// `u` was marked by `hollow_out` (a black simplex touching the exterior white region).
+    #[inline]
+    pub fn marked(&self, u: usize) -> bool {
+        self.state[u] & MARKED != 0
+    }
+
+    /// Number of neighbours of `u` in G, not counting `v_ext`.
+    #[inline]
+    pub fn degree(&self, u: usize) -> usize {
+        self.init[u]
+            .iter()
+            .filter(|&&v| v != NONE && !self.removed(v as usize))
+            .count()
+    }
+
+    /// §3.2, Fig. 1: adds `v_ext` and joins it to every vertex of degree < K.
+    pub fn extend(&mut self) {
+        for u in 0..self.init.len() {
+            if self.init[u].contains(&NONE) {
+                self.state[u] |= EXT;
+            }
+        }
+    }
+
+    /// §3.3, Fig. 2: hollows out the white region connected to the exterior and marks the black
+    /// simplices that touch it. S is a FIFO queue; each vertex enters it at most once (when it
+    /// is joined to `v_ext`).
+    pub fn hollow_out(&mut self) {
+        let mut s: Vec<u32> = (0..self.init.len() as u32)
+            .filter(|&u| self.ext(u as usize))
+            .collect();
+        let mut head = 0;
+        while head < s.len() {
+            let u = s[head] as usize;
+            head += 1;
+            if !self.black[u] {
+                for &v in &self.init[u] {
+                    // for each v ∈ N(u) − {v_ext} (edges to deleted vertices are gone)
+                    if v == NONE || self.removed(v as usize) {
+                        continue;
+                    }
+                    let v = v as usize;
+                    // if v_ext ∉ N(v): E := E ∪ {v, v_ext}, S := S ∪ {v}
+                    if !self.ext(v) {
+                        self.state[v] |= EXT;
+                        s.push(v as u32);
+                    }
+                }
+                // E := E − {u, v_ext}, V := V − {u} (with all edges {v, u})
+                self.state[u] = (self.state[u] & !EXT) | REMOVED;
+            } else {
+                self.state[u] |= MARKED;
+            }
+        }
+    }
+
+    /// §3.4, Fig. 3: removes `v_ext` and its edges.
+    pub fn remove_v_ext(&mut self) {
+        self.state.iter_mut().for_each(|e| *e &= !EXT);
+    }
+
+    /// §3.4: the connected components of the remaining graph (black simplices and the white ones
+    /// they enclose), by depth-first search. Returns the component of each vertex ([`NONE`]
+    /// for removed vertices) and the number of components.
+    pub fn black_components(&self) -> (Vec<u32>, usize) {
+        let n = self.init.len();
+        let mut comp = vec![NONE; n];
+        let mut count = 0u32;
+        let mut stack = Vec::new();
+        for start in 0..n {
+            if self.removed(start) || comp[start] != NONE {
+                continue;
+            }
+            comp[start] = count;
+            stack.push(start as u32);
+            while let Some(u) = stack.pop() {
+                for &v in &self.init[u as usize] {
+                    if v != NONE && comp[v as usize] == NONE && !self.removed(v as usize) {
+                        comp[v as usize] = count;
+                        stack.push(v);
+                    }
+                }
+            }
+            count += 1;
+        }
+        (comp, count as usize)
+    }
+
+    /// Runs §3.1–§3.4 (`construct_dual`, `extend`, `hollow_out`, `remove_v_ext`).
+    pub fn run(neighbors: &'a [[u32; K]], black: &'a [bool]) -> Self {
+        let mut g = Self::construct_dual(neighbors, black);
+        g.extend();
+        g.hollow_out();
+        g.remove_v_ext();
+        g
+    }
+
+    /// True when the facet opposite corner `k` of the marked simplex `u` belongs to the external
+    /// contour: its other side is the exterior face or a white simplex deleted by `hollow_out`.
+    #[inline]
+    pub fn is_contour_facet(&self, u: usize, k: usize) -> bool {
+        let v = self.init[u][k];
+        v == NONE || self.removed(v as usize)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn neighbors_of_two_triangles() {
+        // Square split along 0-2: triangles (0,1,2) and (0,2,3).
+        let t = [[0, 1, 2], [0, 2, 3]];
+        let nb = simplex_neighbors(&t, 4).unwrap();
+        // Edge opposite corner 1 of t0 is (2,0); opposite corner 2 of t1 is... (0,2).
+        assert_eq!(nb[0], [NONE, 1, NONE]);
+        assert_eq!(nb[1], [NONE, NONE, 0]);
+        check_neighbors(&t, &nb).unwrap();
+        // Same orientation on both sides: an overlap.
+        assert!(simplex_neighbors(&[[0, 1, 2], [0, 1, 3]], 4).is_err());
+        // Three triangles on one edge.
+        assert!(simplex_neighbors(&[[0, 1, 2], [1, 0, 3], [1, 0, 4]], 5).is_err());
+        assert!(check_neighbors(&t, &[[NONE, 1, NONE], [NONE, NONE, NONE]]).is_err());
+    }
+
+    #[test]
+    fn hollow_out_keeps_enclosed_white() {
+        // A path of triangles 0-1-2-3-4 where 0 and 4 touch the hull; 2 is white and enclosed
+        // only if it has no hull facet and all its neighbours are black.
+        let nb: Vec<[u32; 3]> = vec![
+            [1, NONE, NONE],
+            [0, 2, 5],
+            [1, 3, 6],
+            [2, 4, 7],
+            [3, NONE, NONE],
+            [1, 6, NONE],
+            [2, 5, 7],
+            [3, 6, NONE],
+        ];
+        let black = [false, true, false, true, false, true, true, true];
+        let g = Dual::run(&nb, &black);
+        assert!(g.removed(0) && g.removed(4) && !g.removed(2));
+        assert!(g.marked(1) && g.marked(3) && g.marked(5) && g.marked(7));
+        assert!(!g.marked(6));
+        assert_eq!(g.degree(1), 2);
+        assert!(!g.ext(1));
+        let (comp, n) = g.black_components();
+        assert_eq!(n, 1);
+        assert_eq!(comp[0], NONE);
+        assert_eq!(comp[2], comp[6]);
+    }
+}

@@ -1,0 +1,393 @@
+//! The whole pipeline of Dorgerloh et al. §1 on rated samples, without the triangulation call
+//! itself: choose the value column, drop samples without a value, give each triangulation
+//! vertex a value (the mean over samples at the same position), rate the simplices, colour them
+//! and compute the contour. The thin `contour_samples` (file `samples.rs`) adds the Delaunay
+//! triangulation in front. O(n) after the triangulation.
+
+use super::{
+    boundary_regions, classify, external_contour_with, external_surface_with, rate_tetrahedra,
+    rate_triangles, Contour2, ContourOptions, Rating, Surface3,
+};
+use crate::geom::{Point2, Point3};
+use crate::mesh::{Column, PointSet};
+use crate::{Error, Result};
+
+/// What to compute from rated samples.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SampleOptions {
+    /// The value column by name; `None` takes the column `value` or the only column there is.
+    pub value: Option<String>,
+    /// Threshold of the rating.
+    pub threshold: f64,
+    /// How a simplex is rated from its corner values.
+    pub rating: Rating,
+    /// Black where the rating is below the threshold (instead of above).
+    pub below: bool,
+    /// 2D: the complete boundary (polygons with holes) instead of the external contour.
+    pub holes: bool,
+    /// 2D: regions with a smaller area are dropped.
+    pub min_area: f64,
+}
+
+impl Default for SampleOptions {
+    fn default() -> Self {
+        SampleOptions {
+            value: None,
+            threshold: 0.0,
+            rating: Rating::Mean,
+            below: false,
+            holes: false,
+            min_area: 0.0,
+        }
+    }
+}
+
+/// The samples that enter the triangulation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SelectedSamples {
+    /// Name of the value column used.
+    pub column: String,
+    /// Input index of each kept sample.
+    pub input: Vec<u32>,
+    /// Value of each kept sample.
+    pub values: Vec<f64>,
+    /// Samples dropped because their value is missing (NaN) or not finite.
+    pub skipped: usize,
+}
+
+/// The value column: by name, else `value`, else the only column.
+pub fn value_column<'a>(samples: &'a PointSet, name: Option<&str>) -> Result<&'a Column> {
+    let names = || {
+        samples
+            .columns
+            .iter()
+            .map(|c| c.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match name {
+        Some(n) => samples
+            .column(n)
+            .ok_or_else(|| Error::invalid(format!("no column '{n}' (columns: {})", names()))),
+        None => {
+            if let Some(c) = samples.column("value") {
+                Ok(c)
+            } else if samples.columns.len() == 1 {
+                Ok(&samples.columns[0])
+            } else if samples.columns.is_empty() {
+                Err(Error::invalid(
+                    "the samples have no value column (CSV header x,y,value or x,y,z,value)",
+                ))
+            } else {
+                Err(Error::invalid(format!(
+                    "several value columns; choose one with --value (columns: {})",
+                    names()
+                )))
+            }
+        }
+    }
+}
+
+/// Chooses the value column and keeps the samples whose value is finite.
+pub fn select_samples(samples: &PointSet, name: Option<&str>) -> Result<SelectedSamples> {
+    let col = value_column(samples, name)?;
+    if col.values.len() != samples.len() {
+        return Err(Error::invalid(format!(
+            "column {} has the wrong length",
+            col.name
+        )));
+    }
+    let mut input = Vec::with_capacity(samples.len());
+    let mut values = Vec::with_capacity(samples.len());
+    for (i, &v) in col.values.iter().enumerate() {
+        if v.is_finite() {
+            input.push(i as u32);
+            values.push(v);
+        }
+    }
+    Ok(SelectedSamples {
+        column: col.name.clone(),
+        skipped: samples.len() - input.len(),
+        input,
+        values,
+    })
+}
+
+/// The value of each vertex: the mean of the values of the samples merged into it.
+pub fn vertex_values(nverts: usize, vertex_of_input: &[u32], values: &[f64]) -> Result<Vec<f64>> {
+    if vertex_of_input.len() != values.len() {
+        return Err(Error::invalid("vertex map and values differ in length"));
+    }
+    let mut sum = vec![0.0; nverts];
+    let mut cnt = vec![0u32; nverts];
+    for (&v, &x) in vertex_of_input.iter().zip(values) {
+        let v = v as usize;
+        if v >= nverts {
+            return Err(Error::invalid("vertex map refers to a missing vertex"));
+        }
+        sum[v] += x;
+        cnt[v] += 1;
+    }
+    Ok(sum
+        .iter()
+        .zip(&cnt)
+        .map(|(&s, &c)| if c > 0 { s / c as f64 } else { 0.0 })
+        .collect())
+}
+
+/// A triangulation of the kept samples, as produced by a Delaunay triangulator.
+#[derive(Debug, Clone, Copy)]
+pub struct Triangulation2<'a> {
+    pub points: &'a [Point2],
+    pub vertex_of_input: &'a [u32],
+    pub input_of_vertex: &'a [u32],
+    pub triangles: &'a [[u32; 3]],
+    pub neighbors: Option<&'a [[u32; 3]]>,
+}
+
+/// A tetrahedrization of the kept samples.
+#[derive(Debug, Clone, Copy)]
+pub struct Triangulation3<'a> {
+    pub points: &'a [Point3],
+    pub vertex_of_input: &'a [u32],
+    pub input_of_vertex: &'a [u32],
+    pub tets: &'a [[u32; 4]],
+    pub neighbors: Option<&'a [[u32; 4]]>,
+}
+
+/// The result in the plane.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlaneContour {
+    pub selected: SelectedSamples,
+    /// Triangulation vertices.
+    pub points: Vec<Point2>,
+    /// Input sample index of each vertex.
+    pub sample_of_vertex: Vec<u32>,
+    pub triangles: Vec<[u32; 3]>,
+    /// Value of each vertex.
+    pub values: Vec<f64>,
+    /// Rating of each triangle.
+    pub ratings: Vec<f64>,
+    /// Colour of each triangle.
+    pub black: Vec<bool>,
+    /// The contour (vertex indices of `points`).
+    pub contour: Contour2,
+}
+
+impl PlaneContour {
+    /// The contour cycles as input sample indices.
+    pub fn cycles_as_samples(&self) -> Vec<Vec<u32>> {
+        self.contour
+            .cycles
+            .iter()
+            .map(|c| {
+                c.iter()
+                    .map(|&v| self.sample_of_vertex[v as usize])
+                    .collect()
+            })
+            .collect()
+    }
+}
+
+/// The result in space.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpaceContour {
+    pub selected: SelectedSamples,
+    pub points: Vec<Point3>,
+    pub sample_of_vertex: Vec<u32>,
+    pub tets: Vec<[u32; 4]>,
+    pub values: Vec<f64>,
+    pub ratings: Vec<f64>,
+    pub black: Vec<bool>,
+    pub surface: Surface3,
+}
+
+/// Either result.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SampleContour {
+    Plane(PlaneContour),
+    Space(SpaceContour),
+}
+
+/// Rating, colouring and contour phases on a triangulation of the selected samples.
+pub fn finish_plane(
+    selected: SelectedSamples,
+    tri: Triangulation2<'_>,
+    opts: &SampleOptions,
+) -> Result<PlaneContour> {
+    let values = vertex_values(tri.points.len(), tri.vertex_of_input, &selected.values)?;
+    let ratings = rate_triangles(tri.triangles, tri.points, &values, opts.rating)?;
+    let black = classify(&ratings, opts.threshold, opts.below);
+    let copts = ContourOptions {
+        min_area: opts.min_area,
+    };
+    let contour = if opts.holes {
+        boundary_regions(tri.triangles, tri.neighbors, tri.points, &black, &copts)?
+    } else {
+        external_contour_with(tri.triangles, tri.neighbors, tri.points, &black, &copts)?
+    };
+    let sample_of_vertex = map_vertices(tri.input_of_vertex, &selected.input)?;
+    Ok(PlaneContour {
+        points: tri.points.to_vec(),
+        sample_of_vertex,
+        triangles: tri.triangles.to_vec(),
+        values,
+        ratings,
+        black,
+        contour,
+        selected,
+    })
+}
+
+/// Rating, colouring and contour phases on a tetrahedrization of the selected samples.
+pub fn finish_space(
+    selected: SelectedSamples,
+    tri: Triangulation3<'_>,
+    opts: &SampleOptions,
+) -> Result<SpaceContour> {
+    let values = vertex_values(tri.points.len(), tri.vertex_of_input, &selected.values)?;
+    let ratings = rate_tetrahedra(tri.tets, tri.points, &values, opts.rating)?;
+    let black = classify(&ratings, opts.threshold, opts.below);
+    let surface = external_surface_with(tri.tets, tri.neighbors, tri.points, &black)?;
+    let sample_of_vertex = map_vertices(tri.input_of_vertex, &selected.input)?;
+    Ok(SpaceContour {
+        points: tri.points.to_vec(),
+        sample_of_vertex,
+        tets: tri.tets.to_vec(),
+        values,
+        ratings,
+        black,
+        surface,
+        selected,
+    })
+}
+
+fn map_vertices(input_of_vertex: &[u32], input: &[u32]) -> Result<Vec<u32>> {
+    input_of_vertex
+        .iter()
+        .map(|&i| {
+            input
+                .get(i as usize)
+                .copied()
+                .ok_or_else(|| Error::invalid("vertex refers to a missing sample"))
+        })
+        .collect()
+}
+
+/// A synthetic "borehole" field for demos and benchmarks (the paper's oil-company scenario):
+/// `n` boreholes at random positions in a 1000 × 1000 area, with a column `oil` that is a sum of
+/// a few Gaussian deposits plus noise. Deterministic in `seed`.
+pub fn synthetic_boreholes(n: usize, seed: u64) -> PointSet {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let deposits: Vec<(f64, f64, f64, f64)> = (0..6)
+        .map(|_| {
+            (
+                rng.gen_range(100.0..900.0),
+                rng.gen_range(100.0..900.0),
+                rng.gen_range(60.0..180.0),
+                rng.gen_range(0.5..1.0),
+            )
+        })
+        .collect();
+    let mut coords = Vec::with_capacity(2 * n);
+    let mut oil = Vec::with_capacity(n);
+    for _ in 0..n {
+        let (x, y) = (rng.gen_range(0.0..1000.0), rng.gen_range(0.0..1000.0));
+        let v: f64 = deposits
+            .iter()
+            .map(|&(cx, cy, r, a)| a * (-((x - cx).powi(2) + (y - cy).powi(2)) / (r * r)).exp())
+            .sum::<f64>()
+            + rng.gen_range(-0.08..0.08);
+        coords.extend([x, y]);
+        oil.push(v);
+    }
+    PointSet {
+        dim: 2,
+        coords,
+        columns: vec![Column {
+            name: "oil".into(),
+            values: oil,
+        }],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn samples() -> PointSet {
+        let mut p = PointSet::from_points2(&[
+            Point2::new(0.0, 0.0),
+            Point2::new(1.0, 0.0),
+            Point2::new(0.0, 1.0),
+            Point2::new(1.0, 1.0),
+            Point2::new(1.0, 1.0),
+        ]);
+        p.columns.push(Column {
+            name: "zinc".into(),
+            values: vec![1.0, f64::NAN, 3.0, 4.0, 6.0],
+        });
+        p
+    }
+
+    #[test]
+    fn columns_and_selection() {
+        let mut p = samples();
+        assert_eq!(value_column(&p, None).unwrap().name, "zinc");
+        assert!(value_column(&p, Some("lead")).is_err());
+        let s = select_samples(&p, Some("zinc")).unwrap();
+        assert_eq!(s.input, [0, 2, 3, 4]);
+        assert_eq!(s.skipped, 1);
+        p.columns.push(Column {
+            name: "lead".into(),
+            values: vec![0.0; 5],
+        });
+        assert!(value_column(&p, None).is_err());
+        p.columns[1].name = "value".into();
+        assert_eq!(value_column(&p, None).unwrap().name, "value");
+        // Duplicates share a vertex whose value is their mean.
+        assert_eq!(
+            vertex_values(3, &[0, 1, 2, 2], &s.values).unwrap(),
+            [1.0, 3.0, 5.0]
+        );
+    }
+
+    #[test]
+    fn plane_pipeline_on_a_given_triangulation() {
+        let p = samples();
+        let sel = select_samples(&p, None).unwrap();
+        let pts = [
+            Point2::new(0.0, 0.0),
+            Point2::new(0.0, 1.0),
+            Point2::new(1.0, 1.0),
+        ];
+        let tri = Triangulation2 {
+            points: &pts,
+            vertex_of_input: &[0, 1, 2, 2],
+            input_of_vertex: &[0, 1, 2],
+            triangles: &[[0, 2, 1]],
+            neighbors: None,
+        };
+        let opts = SampleOptions {
+            threshold: 2.0,
+            ..Default::default()
+        };
+        let r = finish_plane(sel, tri, &opts).unwrap();
+        assert_eq!(r.ratings, [3.0]);
+        assert_eq!(r.contour.cycles.len(), 1);
+        // Cycles in input indices: vertex 2 is sample 3 (the first of the duplicates).
+        let mut c = r.cycles_as_samples()[0].clone();
+        c.sort();
+        assert_eq!(c, [0, 2, 3]);
+    }
+
+    #[test]
+    fn boreholes_are_deterministic() {
+        let a = synthetic_boreholes(100, 3);
+        assert_eq!(a, synthetic_boreholes(100, 3));
+        assert_eq!(a.len(), 100);
+        a.validate().unwrap();
+        assert_eq!(value_column(&a, None).unwrap().name, "oil");
+    }
+}
