@@ -46,14 +46,9 @@ pub struct Args {
     pub min_area: f64,
 }
 
-/// integration: replace the body by `morpho::contour::samples::contour_samples(samples, opts)`
-/// once the Delaunay branches are merged and `contour::samples` is declared (see
-/// `morpho/src/contour/samples.rs`).
+/// Triangulates the samples (2D or 3D by their dimension), rates and contours them.
 fn contour_samples(samples: &PointSet, opts: &SampleOptions) -> morpho::Result<SampleContour> {
-    let _ = (samples, opts);
-    Err(morpho::Error::unsupported(
-        "contour: the Delaunay triangulation is not available in this build yet",
-    ))
+    morpho::contour::samples::contour_samples(samples, opts)
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {

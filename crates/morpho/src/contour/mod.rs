@@ -66,7 +66,8 @@ pub mod output;
 pub mod pipeline;
 pub mod rating;
 pub mod tet;
-// integration: `pub mod samples;` (contour_samples, uses delaunay::d2/d3) is declared after merging.
+pub mod samples;
+pub use samples::contour_samples;
 
 pub use cycles::{boundary_regions, external_contour, external_contour_with};
 pub use pipeline::{PlaneContour, SampleContour, SampleOptions, SpaceContour};
