@@ -28,7 +28,7 @@ fn time<T>(f: impl FnOnce() -> T) -> (f64, T) {
 }
 
 fn run(name: &str, pts: &[Point2], only: Option<&str>) {
-    let want = |lib: &str| only.is_none_or(|o| o == lib);
+    let want = |lib: &str| only.map_or(true, |o| o == lib);
     let mut base = None;
     if want("delaunator") {
         let dp: Vec<delaunator::Point> = pts

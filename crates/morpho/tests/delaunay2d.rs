@@ -31,13 +31,12 @@ fn scale_of(d: &Delaunay2) -> f64 {
         .points
         .iter()
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
-    let s = if m > 0.0 {
+    if m > 0.0 {
         let e = m.log2().round() as i32;
         2f64.powi(-e / 2) * 2f64.powi(-e - (-e / 2))
     } else {
         1.0
-    };
-    s
+    }
 }
 
 /// All invariants; `brute` enables the O(T·n) empty-circle check against every vertex.

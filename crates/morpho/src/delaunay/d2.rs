@@ -123,26 +123,8 @@ pub fn incircle_sos(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> i32 {
     incircle_tiebreak(a, b, c, d)
 }
 
-#[cold]
 fn incircle_tiebreak(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> i32 {
-    let pts = [a, b, c, d];
-    let mut order = [0usize, 1, 2, 3];
-    order.sort_by(|&i, &j| lex_cmp(pts[j], pts[i])); // greatest first
-    for &k in &order {
-        let coef = match k {
-            0 => orient2d(d, b, c),
-            1 => orient2d(a, d, c),
-            2 => orient2d(a, b, d),
-            _ => -orient2d(a, b, c),
-        };
-        if coef > 0.0 {
-            return 1;
-        }
-        if coef < 0.0 {
-            return -1;
-        }
-    }
-    0
+    sos_tiebreak([a, b, c, d], FloatKernel::orient, lex_cmp)
 }
 
 /// Lexicographic order of points (x, then y).
@@ -211,9 +193,104 @@ fn power_of_two_scale(m: f64) -> f64 {
     2f64.powi(half) * 2f64.powi(-e - half)
 }
 
-struct Builder {
-    /// Scaled coordinates, vertex order.
-    c: Vec<[f64; 2]>,
+/// Exact predicates on the construction's vertex coordinates.
+trait Kernel {
+    type P: Copy;
+    fn p(&self, v: u32) -> Self::P;
+    /// Sign of orient2d (+1 counter-clockwise).
+    fn orient(a: Self::P, b: Self::P, c: Self::P) -> i32;
+    /// Sign of the perturbed in-circle test ([`incircle_sos`]).
+    fn incircle_sos(a: Self::P, b: Self::P, c: Self::P, d: Self::P) -> i32;
+}
+
+/// Floating-point coordinates, Shewchuk's adaptive predicates.
+struct FloatKernel(Vec<[f64; 2]>);
+
+impl Kernel for FloatKernel {
+    type P = [f64; 2];
+    #[inline]
+    fn p(&self, v: u32) -> [f64; 2] {
+        self.0[v as usize]
+    }
+    #[inline]
+    fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i32 {
+        let o = orient2d(a, b, c);
+        (o > 0.0) as i32 - (o < 0.0) as i32
+    }
+    #[inline]
+    fn incircle_sos(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> i32 {
+        incircle_sos(a, b, c, d)
+    }
+}
+
+/// Integer coordinates with |x| < 2^28 (inputs on a power-of-two lattice, e.g. integer grids):
+/// orient2d in i64 and in-circle in i128 are exact and need no adaptive stages, which matters
+/// because such inputs make most in-circle tests exactly zero.
+struct IntKernel(Vec<[i64; 2]>);
+
+/// Bound on |coordinate| for [`IntKernel`]: differences < 2^29, lifts < 2^59, products < 2^118.
+const INT_LIMIT: f64 = (1u64 << 28) as f64;
+
+#[inline]
+fn orient_i(a: [i64; 2], b: [i64; 2], c: [i64; 2]) -> i64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+impl Kernel for IntKernel {
+    type P = [i64; 2];
+    #[inline]
+    fn p(&self, v: u32) -> [i64; 2] {
+        self.0[v as usize]
+    }
+    #[inline]
+    fn orient(a: [i64; 2], b: [i64; 2], c: [i64; 2]) -> i32 {
+        orient_i(a, b, c).signum() as i32
+    }
+    #[inline]
+    fn incircle_sos(a: [i64; 2], b: [i64; 2], c: [i64; 2], d: [i64; 2]) -> i32 {
+        let (adx, ady) = (a[0] - d[0], a[1] - d[1]);
+        let (bdx, bdy) = (b[0] - d[0], b[1] - d[1]);
+        let (cdx, cdy) = (c[0] - d[0], c[1] - d[1]);
+        let al = (adx * adx + ady * ady) as i128;
+        let bl = (bdx * bdx + bdy * bdy) as i128;
+        let cl = (cdx * cdx + cdy * cdy) as i128;
+        let det = al * (bdx * cdy - cdx * bdy) as i128
+            + bl * (cdx * ady - adx * cdy) as i128
+            + cl * (adx * bdy - bdx * ady) as i128;
+        if det != 0 {
+            return det.signum() as i32;
+        }
+        sos_tiebreak([a, b, c, d], Self::orient, |p, q| p.cmp(&q))
+    }
+}
+
+/// The symbolic-perturbation decision of [`incircle_sos`] for an exactly cocircular quadruple.
+#[cold]
+fn sos_tiebreak<P: Copy>(
+    pts: [P; 4],
+    orient: impl Fn(P, P, P) -> i32,
+    lex: impl Fn(P, P) -> std::cmp::Ordering,
+) -> i32 {
+    let [a, b, c, d] = pts;
+    let mut order = [0usize, 1, 2, 3];
+    order.sort_by(|&i, &j| lex(pts[j], pts[i])); // greatest first
+    for &k in &order {
+        let s = match k {
+            0 => orient(d, b, c),
+            1 => orient(a, d, c),
+            2 => orient(a, b, d),
+            _ => -orient(a, b, c),
+        };
+        if s != 0 {
+            return s;
+        }
+    }
+    0
+}
+
+struct Builder<K: Kernel> {
+    /// Vertex coordinates and predicates.
+    k: K,
     /// Triangle corners (3 per triangle), `INF` for the infinite vertex.
     tv: Vec<u32>,
     /// Twin half-edge of half-edge `3t+i` (edge opposite corner i of t).
@@ -229,7 +306,7 @@ enum Found {
     Ghost(u32),
 }
 
-impl Builder {
+impl<K: Kernel> Builder<K> {
     #[inline]
     fn next_rand(&mut self) -> u32 {
         let mut x = self.rng;
@@ -260,7 +337,7 @@ impl Builder {
     }
 
     /// Visibility walk from triangle `t` towards `p`.
-    fn walk(&mut self, mut t: u32, p: [f64; 2]) -> Found {
+    fn walk(&mut self, mut t: u32, p: K::P) -> Found {
         if self.is_ghost(t) {
             let b = 3 * t as usize;
             let i = (0..3).find(|&i| self.tv[b + i] == INF).unwrap_or(0);
@@ -282,17 +359,13 @@ impl Builder {
                 if n == from {
                     continue;
                 }
-                let o = orient2d(
-                    self.c[v[(e + 1) % 3] as usize],
-                    self.c[v[(e + 2) % 3] as usize],
-                    p,
-                );
-                if o < 0.0 {
+                let o = K::orient(self.k.p(v[(e + 1) % 3]), self.k.p(v[(e + 2) % 3]), p);
+                if o < 0 {
                     from = t;
                     t = n;
                     continue 'walk;
                 }
-                if o == 0.0 {
+                if o == 0 {
                     zeros += 1;
                     zero_edge = e;
                 }
@@ -343,16 +416,11 @@ impl Builder {
             } else {
                 (d, b)
             };
-            orient2d(self.c[x as usize], self.c[y as usize], self.c[p as usize]) > 0.0
+            K::orient(self.k.p(x), self.k.p(y), self.k.p(p)) > 0
         } else if d == INF {
             false
         } else {
-            incircle_sos(
-                self.c[d as usize],
-                self.c[b as usize],
-                self.c[a as usize],
-                self.c[p as usize],
-            ) > 0
+            K::incircle_sos(self.k.p(d), self.k.p(b), self.k.p(a), self.k.p(p)) > 0
         }
     }
 
@@ -393,7 +461,7 @@ impl Builder {
 
     /// Inserts vertex `p`, walking from `start`; returns a triangle incident to `p`.
     fn insert(&mut self, p: u32, start: u32) -> u32 {
-        let pc = self.c[p as usize];
+        let pc = self.k.p(p);
         match self.walk(start, pc) {
             Found::Inside(t) | Found::Ghost(t) => {
                 let b = 3 * t as usize;
@@ -434,10 +502,14 @@ impl Builder {
 
 fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
     if points.is_empty() {
-        return Err(Error::invalid("Delaunay triangulation of an empty point set"));
+        return Err(Error::invalid(
+            "Delaunay triangulation of an empty point set",
+        ));
     }
     if points.len() >= u32::MAX as usize / 4 {
-        return Err(Error::invalid("too many points for a 2D Delaunay triangulation"));
+        return Err(Error::invalid(
+            "too many points for a 2D Delaunay triangulation",
+        ));
     }
     let mut lo = [f64::INFINITY; 2];
     let mut hi = [f64::NEG_INFINITY; 2];
@@ -541,14 +613,50 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
             scale,
         });
     };
+    // Power-of-two lattice inputs (integer grids, …) use the integer kernel.
+    let int_scale = (1u64 << 27) as f64;
+    let lattice = c.iter().all(|p| {
+        p.iter().all(|&x| {
+            let y = x * int_scale;
+            y.fract() == 0.0 && y.abs() < INT_LIMIT
+        })
+    });
+    let tv = if lattice {
+        let ci = c
+            .iter()
+            .map(|p| [(p[0] * int_scale) as i64, (p[1] * int_scale) as i64])
+            .collect();
+        drop(c);
+        run_insertion(IntKernel(ci), n, k0, order_seed)
+    } else {
+        run_insertion(FloatKernel(c), n, k0, order_seed)
+    };
+    Ok(finish(
+        tv,
+        points_out,
+        vertex_of_input,
+        input_of_vertex,
+        duplicates,
+        scale,
+    ))
+}
+
+/// Runs the insertion with kernel `k`, starting from the triangle (0, 1, k0); returns the
+/// corner and twin arrays (ghosts included).
+fn run_insertion<K: Kernel>(
+    k: K,
+    n: usize,
+    k0: usize,
+    order_seed: Option<u64>,
+) -> (Vec<u32>, Vec<u32>) {
     let mut bld = Builder {
-        c,
+        k,
         tv: Vec::with_capacity(6 * n + 12),
         th: Vec::with_capacity(6 * n + 12),
         stack: Vec::with_capacity(64),
         rng: 0x9e37_79b9,
     };
-    let (a, b, cc) = if orient2d(bld.c[0], bld.c[1], bld.c[k0]) > 0.0 {
+    let (a, b, cc) = if K::orient(bld.k.p(0), bld.k.p(1), bld.k.p(k0 as u32)) > 0 {
         (0u32, 1u32, k0 as u32)
     } else {
         (1u32, 0u32, k0 as u32)
@@ -562,11 +670,13 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
     bld.link(2, 5);
     bld.link(0, 8); // (b,c) ↔ ghost 2 (c,b)
     bld.link(1, 11); // (c,a) ↔ ghost 3 (a,c)
-    // ghost edges through INF: ghost1 (b,a,INF): corner0 opp (a,INF), corner1 opp (INF,b)
+                     // ghost edges through INF: ghost1 (b,a,INF): corner0 opp (a,INF), corner1 opp (INF,b)
     bld.link(3, 10); // g1 (a,INF) ↔ g3 (INF,a): g3 = (a,c,INF) corner 1 opp (INF,a)
     bld.link(4, 6); // g1 (INF,b) ↔ g2 (b,INF): g2 = (c,b,INF) corner 0 opp (b,INF)
     bld.link(7, 9); // g2 (INF,c) ↔ g3 (c,INF)
-    let mut order: Vec<u32> = (0..n as u32).filter(|&v| v as usize != k0 && v > 1).collect();
+    let mut order: Vec<u32> = (0..n as u32)
+        .filter(|&v| v as usize != k0 && v > 1)
+        .collect();
     if let Some(seed) = order_seed {
         let mut st = seed | 1;
         for i in (1..order.len()).rev() {
@@ -580,18 +690,11 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
     for &v in &order {
         last_t = bld.insert(v, last_t);
     }
-    Ok(finish(
-        bld,
-        points_out,
-        vertex_of_input,
-        input_of_vertex,
-        duplicates,
-        scale,
-    ))
+    (bld.tv, bld.th)
 }
 
 fn finish(
-    bld: Builder,
+    (tv, th): (Vec<u32>, Vec<u32>),
     points: Vec<Point2>,
     vertex_of_input: Vec<u32>,
     input_of_vertex: Vec<u32>,
@@ -599,11 +702,12 @@ fn finish(
     scale: f64,
 ) -> Delaunay2 {
     let n = points.len();
-    let nt_all = bld.tv.len() / 3;
+    let nt_all = tv.len() / 3;
+    let xy = |p: &Point2| [p.x, p.y];
     let mut new_id = vec![NONE; nt_all];
     let mut count = 0u32;
     for t in 0..nt_all {
-        if !bld.is_ghost(t as u32) {
+        if !tv[3 * t..3 * t + 3].contains(&INF) {
             new_id[t] = count;
             count += 1;
         }
@@ -614,22 +718,22 @@ fn finish(
     let mut next_ccw = vec![NONE; n];
     for t in 0..nt_all {
         let b = 3 * t;
-        let v = [bld.tv[b], bld.tv[b + 1], bld.tv[b + 2]];
+        let v = [tv[b], tv[b + 1], tv[b + 2]];
         if new_id[t] == NONE {
             // ghost (x, y, INF): the hull runs y -> x counter-clockwise
             let i = (0..3).find(|&i| v[i] == INF).unwrap_or(2);
             let x = v[(i + 1) % 3];
             let y = v[(i + 2) % 3];
             next_ccw[y as usize] = x;
-            let real = new_id[(bld.th[b + i] / 3) as usize];
+            let real = new_id[(th[b + i] / 3) as usize];
             vertex_tri[y as usize] = real;
             continue;
         }
         triangles.push(v);
         neighbors.push([
-            new_id[(bld.th[b] / 3) as usize],
-            new_id[(bld.th[b + 1] / 3) as usize],
-            new_id[(bld.th[b + 2] / 3) as usize],
+            new_id[(th[b] / 3) as usize],
+            new_id[(th[b + 1] / 3) as usize],
+            new_id[(th[b + 2] / 3) as usize],
         ]);
         for &w in &v {
             if vertex_tri[w as usize] == NONE {
@@ -641,7 +745,7 @@ fn finish(
     let mut start = NONE;
     for v in 0..n {
         if next_ccw[v] != NONE
-            && (start == NONE || lex_cmp(bld.c[v], bld.c[start as usize]).is_lt())
+            && (start == NONE || lex_cmp(xy(&points[v]), xy(&points[start as usize])).is_lt())
         {
             start = v as u32;
         }
