@@ -1025,6 +1025,35 @@ mod tests {
     }
 
     #[test]
+    fn integer_kernel_agrees_with_float_kernel() {
+        let mut s = 12345u64;
+        let mut next = |m: i64| {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s % (2 * m as u64 + 1)) as i64 - m
+        };
+        for k in 0..4000 {
+            // small ranges give many exact ties; large ones test the i128 range
+            let m = if k % 2 == 0 { 3 } else { (1 << 27) - 1 };
+            let q: Vec<[i64; 2]> = (0..4).map(|_| [next(m), next(m)]).collect();
+            let f: Vec<[f64; 2]> = q.iter().map(|p| [p[0] as f64, p[1] as f64]).collect();
+            assert_eq!(
+                IntKernel::orient(q[0], q[1], q[2]),
+                FloatKernel::orient(f[0], f[1], f[2])
+            );
+            if q.iter().enumerate().any(|(i, a)| q[..i].contains(a)) {
+                continue;
+            }
+            assert_eq!(
+                IntKernel::incircle_sos(q[0], q[1], q[2], q[3]),
+                incircle_sos(f[0], f[1], f[2], f[3]),
+                "{q:?}"
+            );
+        }
+    }
+
+    #[test]
     fn hilbert_is_a_bijection_on_small_grid() {
         let mut seen = std::collections::HashSet::new();
         for x in 0..64 {
