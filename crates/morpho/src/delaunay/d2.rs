@@ -291,10 +291,10 @@ fn sos_tiebreak<P: Copy>(
 struct Builder<K: Kernel> {
     /// Vertex coordinates and predicates.
     k: K,
-    /// Triangle corners (3 per triangle), `INF` for the infinite vertex.
-    tv: Vec<u32>,
-    /// Twin half-edge of half-edge `3t+i` (edge opposite corner i of t).
-    th: Vec<u32>,
+    /// Triangle corners, `INF` for the infinite vertex.
+    tv: Vec<[u32; 3]>,
+    /// `th[t][i]` = twin half-edge `3u + j` of the edge opposite corner i of t (j opposite in u).
+    th: Vec<[u32; 3]>,
     stack: Vec<u32>,
     rng: u32,
 }
@@ -318,44 +318,36 @@ impl<K: Kernel> Builder<K> {
     }
 
     #[inline]
-    fn is_ghost(&self, t: u32) -> bool {
-        let b = 3 * t as usize;
-        self.tv[b] == INF || self.tv[b + 1] == INF || self.tv[b + 2] == INF
-    }
-
-    #[inline]
     fn link(&mut self, a: u32, b: u32) {
-        self.th[a as usize] = b;
-        self.th[b as usize] = a;
+        self.th[(a / 3) as usize][(a % 3) as usize] = b;
+        self.th[(b / 3) as usize][(b % 3) as usize] = a;
     }
 
     fn new_tri(&mut self) -> u32 {
-        let t = (self.tv.len() / 3) as u32;
-        self.tv.extend_from_slice(&[INF; 3]);
-        self.th.extend_from_slice(&[NONE; 3]);
+        let t = self.tv.len() as u32;
+        self.tv.push([INF; 3]);
+        self.th.push([NONE; 3]);
         t
     }
 
     /// Visibility walk from triangle `t` towards `p`.
     fn walk(&mut self, mut t: u32, p: K::P) -> Found {
-        if self.is_ghost(t) {
-            let b = 3 * t as usize;
-            let i = (0..3).find(|&i| self.tv[b + i] == INF).unwrap_or(0);
-            t = self.th[b + i] / 3;
+        if let Some(i) = self.tv[t as usize].iter().position(|&v| v == INF) {
+            t = self.th[t as usize][i] / 3;
         }
         let mut from = NONE;
         'walk: loop {
-            let b = 3 * t as usize;
-            let v = [self.tv[b], self.tv[b + 1], self.tv[b + 2]];
+            let v = self.tv[t as usize];
             if v[0] == INF || v[1] == INF || v[2] == INF {
                 return Found::Ghost(t);
             }
+            let nb = self.th[t as usize];
             let r = (self.next_rand() % 3) as usize;
             let mut zeros = 0;
             let mut zero_edge = 0;
             for k in 0..3 {
                 let e = (r + k) % 3;
-                let n = self.th[b + e] / 3;
+                let n = nb[e] / 3;
                 if n == from {
                     continue;
                 }
@@ -383,13 +375,10 @@ impl<K: Kernel> Builder<K> {
     fn fan(&mut self, p: u32, bnd: &[(u32, u32)], slots: &[u32]) -> u32 {
         let m = bnd.len();
         for k in 0..m {
-            let t = slots[k] as usize;
+            let t = slots[k];
             let (a, ext) = bnd[k];
-            let bv = bnd[(k + 1) % m].0;
-            self.tv[3 * t] = p;
-            self.tv[3 * t + 1] = a;
-            self.tv[3 * t + 2] = bv;
-            self.link(3 * t as u32, ext);
+            self.tv[t as usize] = [p, a, bnd[(k + 1) % m].0];
+            self.link(3 * t, ext);
         }
         for k in 0..m {
             let t = slots[k];
@@ -397,7 +386,7 @@ impl<K: Kernel> Builder<K> {
             self.link(3 * t + 1, 3 * tn + 2);
         }
         for k in 0..m {
-            self.stack.push(3 * slots[k]);
+            self.stack.push(slots[k]);
         }
         self.legalize(p);
         slots[0]
@@ -424,38 +413,31 @@ impl<K: Kernel> Builder<K> {
         }
     }
 
-    /// Lawson flips of the half-edges on the stack (each opposite `p` at corner 0 of its triangle).
+    /// Lawson flips of the triangles on the stack: each has `p` at corner 0 and its edge
+    /// opposite `p` is tested.
     fn legalize(&mut self, p: u32) {
-        while let Some(h) = self.stack.pop() {
-            let t = h / 3;
-            let tb = 3 * t as usize;
-            let a = self.tv[tb + 1];
-            let b = self.tv[tb + 2];
-            let o = self.th[tb];
+        while let Some(t) = self.stack.pop() {
+            let [_, a, b] = self.tv[t as usize];
+            let o = self.th[t as usize][0];
             let u = o / 3;
             let j = (o % 3) as usize;
-            let ub = 3 * u as usize;
-            let d = self.tv[ub + j];
-            let j1 = ub + (j + 1) % 3;
-            let j2 = ub + (j + 2) % 3;
+            let d = self.tv[u as usize][j];
             let t_ghost = a == INF || b == INF;
             if !self.conflict(d, b, a, p, t_ghost) {
                 continue;
             }
-            let a_ext = self.th[j1];
-            let b_ext = self.th[j2];
-            let t1_ext = self.th[tb + 1];
+            let a_ext = self.th[u as usize][(j + 1) % 3];
+            let b_ext = self.th[u as usize][(j + 2) % 3];
+            let t1_ext = self.th[t as usize][1];
             // t = (p, a, d), u = (p, d, b)
-            self.tv[tb + 2] = d;
-            self.tv[ub] = p;
-            self.tv[ub + 1] = d;
-            self.tv[ub + 2] = b;
+            self.tv[t as usize] = [p, a, d];
+            self.tv[u as usize] = [p, d, b];
             self.link(3 * t, a_ext);
             self.link(3 * t + 1, 3 * u + 2);
             self.link(3 * u, b_ext);
             self.link(3 * u + 1, t1_ext);
-            self.stack.push(3 * t);
-            self.stack.push(3 * u);
+            self.stack.push(t);
+            self.stack.push(u);
         }
     }
 
@@ -464,32 +446,27 @@ impl<K: Kernel> Builder<K> {
         let pc = self.k.p(p);
         match self.walk(start, pc) {
             Found::Inside(t) | Found::Ghost(t) => {
-                let b = 3 * t as usize;
-                let v = [self.tv[b], self.tv[b + 1], self.tv[b + 2]];
-                let bnd = [
-                    (v[0], self.th[b + 2]),
-                    (v[1], self.th[b]),
-                    (v[2], self.th[b + 1]),
-                ];
+                let v = self.tv[t as usize];
+                let h = self.th[t as usize];
+                let bnd = [(v[0], h[2]), (v[1], h[0]), (v[2], h[1])];
                 let t1 = self.new_tri();
                 let t2 = self.new_tri();
                 self.fan(p, &bnd, &[t, t1, t2])
             }
             Found::OnEdge(t, i) => {
-                let b = 3 * t as usize;
-                let c = self.tv[b + i];
-                let a = self.tv[b + (i + 1) % 3];
-                let bv = self.tv[b + (i + 2) % 3];
-                let o = self.th[b + i];
+                let v = self.tv[t as usize];
+                let h = self.th[t as usize];
+                let (c, a, bv) = (v[i], v[(i + 1) % 3], v[(i + 2) % 3]);
+                let o = h[i];
                 let u = o / 3;
                 let j = (o % 3) as usize;
-                let ub = 3 * u as usize;
-                let d = self.tv[ub + j];
+                let d = self.tv[u as usize][j];
+                let hu = self.th[u as usize];
                 let bnd = [
-                    (bv, self.th[b + (i + 1) % 3]),
-                    (c, self.th[b + (i + 2) % 3]),
-                    (a, self.th[ub + (j + 1) % 3]),
-                    (d, self.th[ub + (j + 2) % 3]),
+                    (bv, h[(i + 1) % 3]),
+                    (c, h[(i + 2) % 3]),
+                    (a, hu[(j + 1) % 3]),
+                    (d, hu[(j + 2) % 3]),
                 ];
                 let t1 = self.new_tri();
                 let t2 = self.new_tri();
@@ -648,11 +625,11 @@ fn run_insertion<K: Kernel>(
     n: usize,
     k0: usize,
     order_seed: Option<u64>,
-) -> (Vec<u32>, Vec<u32>) {
+) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
     let mut bld = Builder {
         k,
-        tv: Vec::with_capacity(6 * n + 12),
-        th: Vec::with_capacity(6 * n + 12),
+        tv: Vec::with_capacity(2 * n + 4),
+        th: Vec::with_capacity(2 * n + 4),
         stack: Vec::with_capacity(64),
         rng: 0x9e37_79b9,
     };
@@ -665,7 +642,7 @@ fn run_insertion<K: Kernel>(
     for _ in 0..4 {
         bld.new_tri();
     }
-    bld.tv[0..12].copy_from_slice(&[a, b, cc, b, a, INF, cc, b, INF, a, cc, INF]);
+    bld.tv[0..4].copy_from_slice(&[[a, b, cc], [b, a, INF], [cc, b, INF], [a, cc, INF]]);
     // edge opposite corner 2 of t0 = (a,b) ↔ ghost 1 edge (b,a) opposite corner 2
     bld.link(2, 5);
     bld.link(0, 8); // (b,c) ↔ ghost 2 (c,b)
@@ -694,7 +671,7 @@ fn run_insertion<K: Kernel>(
 }
 
 fn finish(
-    (tv, th): (Vec<u32>, Vec<u32>),
+    (mut tv, mut th): (Vec<[u32; 3]>, Vec<[u32; 3]>),
     points: Vec<Point2>,
     vertex_of_input: Vec<u32>,
     input_of_vertex: Vec<u32>,
@@ -702,45 +679,49 @@ fn finish(
     scale: f64,
 ) -> Delaunay2 {
     let n = points.len();
-    let nt_all = tv.len() / 3;
+    let nt_all = tv.len();
     let xy = |p: &Point2| [p.x, p.y];
     let mut new_id = vec![NONE; nt_all];
     let mut count = 0u32;
-    for t in 0..nt_all {
-        if !tv[3 * t..3 * t + 3].contains(&INF) {
+    for (t, v) in tv.iter().enumerate() {
+        if !v.contains(&INF) {
             new_id[t] = count;
             count += 1;
         }
     }
-    let mut triangles = Vec::with_capacity(count as usize);
-    let mut neighbors = Vec::with_capacity(count as usize);
     let mut vertex_tri = vec![NONE; n];
     let mut next_ccw = vec![NONE; n];
-    for t in 0..nt_all {
-        let b = 3 * t;
-        let v = [tv[b], tv[b + 1], tv[b + 2]];
-        if new_id[t] == NONE {
+    // ghosts first: hull successor and the triangle on each vertex's outgoing hull edge
+    for (v, h) in tv.iter().zip(&th) {
+        if let Some(i) = v.iter().position(|&w| w == INF) {
             // ghost (x, y, INF): the hull runs y -> x counter-clockwise
-            let i = (0..3).find(|&i| v[i] == INF).unwrap_or(2);
             let x = v[(i + 1) % 3];
             let y = v[(i + 2) % 3];
             next_ccw[y as usize] = x;
-            let real = new_id[(th[b + i] / 3) as usize];
-            vertex_tri[y as usize] = real;
+            vertex_tri[y as usize] = new_id[(h[i] / 3) as usize];
+        }
+    }
+    // compact the real triangles in place
+    for t in 0..nt_all {
+        let id = new_id[t];
+        if id == NONE {
             continue;
         }
-        triangles.push(v);
-        neighbors.push([
-            new_id[(th[b] / 3) as usize],
-            new_id[(th[b + 1] / 3) as usize],
-            new_id[(th[b + 2] / 3) as usize],
-        ]);
+        let v = tv[t];
+        let h = th[t];
+        tv[id as usize] = v;
+        th[id as usize] = h.map(|e| new_id[(e / 3) as usize]);
         for &w in &v {
             if vertex_tri[w as usize] == NONE {
-                vertex_tri[w as usize] = new_id[t];
+                vertex_tri[w as usize] = id;
             }
         }
     }
+    drop(new_id);
+    tv.truncate(count as usize);
+    th.truncate(count as usize);
+    tv.shrink_to_fit();
+    th.shrink_to_fit();
     // hull cycle from the lexicographically smallest hull vertex
     let mut start = NONE;
     for v in 0..n {
@@ -765,8 +746,8 @@ fn finish(
         points,
         vertex_of_input,
         input_of_vertex,
-        triangles,
-        neighbors,
+        triangles: tv,
+        neighbors: th,
         hull,
         vertex_tri,
         duplicates,
