@@ -39,12 +39,18 @@
 //!   `collinear == true`, and `hull` lists every vertex once, sorted lexicographically, i.e. from
 //!   one end of the line to the other.
 //!
-//! # Valid coordinate range
-//! All decisions use the exact predicates of [`crate::geom::predicates::raw`], which are exact as
+//! # Exactness and valid coordinate range
+//! All decisions use the exact predicates of [`crate::geom::predicates::raw`], except when every
+//! (scaled) coordinate is a multiple of 2⁻²⁷ — integer grids and other power-of-two lattices,
+//! where most in-circle tests are exactly zero and Shewchuk's adaptive stages would be slow —
+//! in which case the same predicates are evaluated exactly in `i64`/`i128` integer arithmetic
+//! (coordinates < 2²⁸ in magnitude, so no overflow). Shewchuk's predicates are exact as
 //! long as no intermediate result over- or underflows. Before any test the coordinates are
 //! multiplied by a power of two (exact) so that the largest magnitude `M` becomes ≈ 1; decisions
 //! are therefore exact for any absolute scale (1e-300 … 1e+300, including large offsets such as
-//! 1e300 + k·ulp) provided every non-zero coordinate difference is at least ≈ 2⁻¹⁹⁰·M ≈ 1e-57·M.
+//! 1e300 + k·ulp) provided every non-zero coordinate difference is at least ≈ 2⁻¹⁹⁰·M ≈ 1e-57·M
+//! (an estimate from the degree-4 in-circle expansion staying above the underflow threshold; the
+//! tests cover relative spreads down to 1e-16, not the limit itself).
 //! Constructions (circumcentres) are ordinary floating point.
 
 use crate::geom::predicates::raw::{incircle, orient2d};
