@@ -612,3 +612,46 @@ proptest! {
         prop_assert_eq!(geometric(&s), geometric(&d));
     }
 }
+
+/// For random points in general position the triangle set equals Qhull's (scipy), when python3
+/// with scipy is available; skipped otherwise.
+#[test]
+fn matches_qhull_when_available() {
+    let mut r = rng(8);
+    let p: Vec<Point2> = (0..500)
+        .map(|_| Point2::new(r.gen::<f64>(), r.gen::<f64>()))
+        .collect();
+    let json = serde_json::to_string(&p.iter().map(|q| [q.x, q.y]).collect::<Vec<_>>()).unwrap();
+    let script = "import sys, json\nfrom scipy.spatial import Delaunay\n\
+                  p = json.load(sys.stdin)\nprint(json.dumps(Delaunay(p).simplices.tolist()))\n";
+    let child = std::process::Command::new("python3")
+        .args(["-c", script])
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::null())
+        .spawn();
+    let Ok(mut child) = child else {
+        eprintln!("note: python3 not available, skipping the Qhull comparison");
+        return;
+    };
+    {
+        use std::io::Write;
+        let mut stdin = child.stdin.take().unwrap();
+        stdin.write_all(json.as_bytes()).unwrap();
+    }
+    let out = child.wait_with_output().unwrap();
+    if !out.status.success() {
+        eprintln!("note: scipy not available, skipping the Qhull comparison");
+        return;
+    }
+    let simplices: Vec<[u32; 3]> = serde_json::from_slice(&out.stdout).unwrap();
+    let d = triangulate(&p).unwrap();
+    let sort = |t: [u32; 3]| {
+        let mut t = t;
+        t.sort();
+        t
+    };
+    let ours: BTreeSet<[u32; 3]> = d.to_input_indices().into_iter().map(sort).collect();
+    let qhull: BTreeSet<[u32; 3]> = simplices.into_iter().map(sort).collect();
+    assert_eq!(ours, qhull);
+}
