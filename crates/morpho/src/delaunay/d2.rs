@@ -16,7 +16,10 @@
 //! 2. the first non-degenerate triangle found in that order starts the triangulation; the outside
 //!    is covered by *ghost triangles* (one per hull edge, with an infinite vertex), so a point
 //!    outside the current hull is inserted exactly like a point inside a triangle;
-//! 3. each point is located by a visibility walk (exact `orient2d`) starting from the triangle of
+//! 3. the insertion order is a biased randomized insertion order (BRIO, rounds of geometrically
+//!    growing size, each in Hilbert order; the "random" choice is a fixed hash of the canonical
+//!    vertex index, so it is deterministic);
+//! 4. each point is located by a visibility walk (exact `orient2d`) starting from the triangle of
 //!    the previously inserted point, the containing triangle (or edge) is split, and the new
 //!    edges are legalised by Lawson flips using the exact, symbolically perturbed in-circle test
 //!    [`incircle_sos`]; a ghost triangle is "in conflict" when the point lies strictly outside its
@@ -278,20 +281,31 @@ fn sos_tiebreak<P: Copy>(
     lex: impl Fn(P, P) -> std::cmp::Ordering,
 ) -> i32 {
     let [a, b, c, d] = pts;
-    let mut order = [0usize, 1, 2, 3];
-    order.sort_by(|&i, &j| lex(pts[j], pts[i])); // greatest first
-    for &k in &order {
-        let s = match k {
-            0 => orient(d, b, c),
-            1 => orient(a, d, c),
-            2 => orient(a, b, d),
-            _ => -orient(a, b, c),
-        };
-        if s != 0 {
-            return s;
+    let coef = |k: usize| match k {
+        0 => orient(d, b, c),
+        1 => orient(a, d, c),
+        2 => orient(a, b, d),
+        _ => -orient(a, b, c),
+    };
+    // the greatest point decides unless its coefficient vanishes (never for four distinct
+    // cocircular points with a, b, c not collinear)
+    let mut top = 0;
+    for k in 1..4 {
+        if lex(pts[k], pts[top]).is_gt() {
+            top = k;
         }
     }
-    0
+    let s = coef(top);
+    if s != 0 {
+        return s;
+    }
+    let mut order = [0usize, 1, 2, 3];
+    order.sort_by(|&i, &j| lex(pts[j], pts[i])); // greatest first
+    order
+        .iter()
+        .map(|&k| coef(k))
+        .find(|&s| s != 0)
+        .unwrap_or(0)
 }
 
 struct Builder<K: Kernel> {
@@ -624,6 +638,40 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
     ))
 }
 
+/// Biased randomized insertion order (Amenta, Choi & Rote 2003) over the Hilbert-sorted
+/// vertices: vertex `v` belongs to round `min(tz(hash(v)), 24)` (so each round holds about half
+/// of the remaining points), rounds are inserted from the sparsest to the densest, each in
+/// Hilbert order. The hash is a fixed function of the canonical vertex index, so the order is
+/// deterministic. Compared with the plain Hilbert order this keeps the new point inside the
+/// already triangulated region most of the time, which saves about a third of the flips.
+/// Vertices 0, 1 and `k0` (the initial triangle) are left out.
+fn brio_order(n: usize, k0: usize) -> Vec<u32> {
+    const ROUNDS: usize = 25;
+    let level = |v: u32| -> usize {
+        // splitmix64 finaliser
+        let mut h = (v as u64).wrapping_add(0x9e37_79b9_7f4a_7c15);
+        h = (h ^ (h >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        h = (h ^ (h >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        h ^= h >> 31;
+        (h.trailing_zeros() as usize).min(ROUNDS - 1)
+    };
+    let keep = |v: u32| v as usize != k0 && v > 1;
+    let mut start = [0usize; ROUNDS + 1];
+    for v in (0..n as u32).filter(|&v| keep(v)) {
+        start[ROUNDS - 1 - level(v) + 1] += 1;
+    }
+    for r in 0..ROUNDS {
+        start[r + 1] += start[r];
+    }
+    let mut order = vec![0u32; start[ROUNDS]];
+    for v in (0..n as u32).filter(|&v| keep(v)) {
+        let r = ROUNDS - 1 - level(v);
+        order[start[r]] = v;
+        start[r] += 1;
+    }
+    order
+}
+
 /// Runs the insertion with kernel `k`, starting from the triangle (0, 1, k0); returns the
 /// corner and twin arrays (ghosts included).
 fn run_insertion<K: Kernel>(
@@ -657,9 +705,7 @@ fn run_insertion<K: Kernel>(
     bld.link(3, 10); // g1 (a,INF) ↔ g3 (INF,a): g3 = (a,c,INF) corner 1 opp (INF,a)
     bld.link(4, 6); // g1 (INF,b) ↔ g2 (b,INF): g2 = (c,b,INF) corner 0 opp (b,INF)
     bld.link(7, 9); // g2 (INF,c) ↔ g3 (c,INF)
-    let mut order: Vec<u32> = (0..n as u32)
-        .filter(|&v| v as usize != k0 && v > 1)
-        .collect();
+    let mut order = brio_order(n, k0);
     if let Some(seed) = order_seed {
         let mut st = seed | 1;
         for i in (1..order.len()).rev() {
