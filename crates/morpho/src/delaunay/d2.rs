@@ -566,6 +566,7 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
     let mut vertex_of_input = vec![0u32; n_in];
     let mut input_of_vertex: Vec<u32> = Vec::with_capacity(n_in);
     let mut c: Vec<[f64; 2]> = Vec::with_capacity(n_in);
+    let mut points_out: Vec<Point2> = Vec::with_capacity(n_in);
     let mut last: Option<[f64; 2]> = None;
     for &k in &keys {
         let i = (k & 0xffff_ffff) as usize;
@@ -573,6 +574,7 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
         if last != Some(p) {
             input_of_vertex.push(i as u32);
             c.push([p[0] * scale, p[1] * scale]);
+            points_out.push(Point2::new(p[0], p[1]));
             last = Some(p);
         }
         vertex_of_input[i] = (input_of_vertex.len() - 1) as u32;
@@ -580,13 +582,11 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
     drop(keys);
     let n = c.len();
     let duplicates = n_in - n;
-    let points_out: Vec<Point2> = input_of_vertex
-        .iter()
-        .map(|&i| {
-            let p = norm(i as usize);
-            Point2::new(p[0], p[1])
-        })
-        .collect();
+    if duplicates > 0 {
+        c.shrink_to_fit();
+        points_out.shrink_to_fit();
+        input_of_vertex.shrink_to_fit();
+    }
 
     // Initial triangle: vertex 0, vertex 1, and the first vertex not collinear with them.
     let third = if n >= 3 {
