@@ -666,3 +666,21 @@ fn matches_qhull_when_available() {
     let qhull: BTreeSet<[u32; 3]> = simplices.into_iter().map(sort).collect();
     assert_eq!(ours, qhull);
 }
+
+#[test]
+fn out_of_range_coordinates_are_an_error_not_a_wrong_answer() {
+    // four points within 1e-200 of each other next to points of size 1: the in-circle
+    // expansions would underflow, so the input is rejected
+    let p = pts(&[
+        [0.0, 0.0],
+        [1e-200, 0.0],
+        [0.0, 1e-200],
+        [1e-200, 1e-200],
+        [1.0, 1.0],
+    ]);
+    assert!(triangulate(&p).is_err());
+    // the four tiny points alone are fine (the power-of-two scaling brings them to ≈ 1)
+    let r: Vec<Point2> = p[..4].to_vec();
+    let d = full_check(&r);
+    assert_eq!(d.triangles.len(), 2);
+}

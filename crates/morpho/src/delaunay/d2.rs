@@ -49,11 +49,14 @@
 //! in which case the same predicates are evaluated exactly in `i64`/`i128` integer arithmetic
 //! (coordinates < 2²⁸ in magnitude, so no overflow). Shewchuk's predicates are exact as
 //! long as no intermediate result over- or underflows. Before any test the coordinates are
-//! multiplied by a power of two (exact) so that the largest magnitude `M` becomes ≈ 1; decisions
-//! are therefore exact for any absolute scale (1e-300 … 1e+300, including large offsets such as
-//! 1e300 + k·ulp) provided every non-zero coordinate difference is at least ≈ 2⁻¹⁹⁰·M ≈ 1e-57·M
-//! (an estimate from the degree-4 in-circle expansion staying above the underflow threshold; the
-//! tests cover relative spreads down to 1e-16, not the limit itself).
+//! multiplied by a power of two (exact) so that the largest magnitude `M` becomes ≈ 1, so nothing
+//! overflows at any absolute scale (1e-300 … 1e+300, including large offsets such as
+//! 1e300 + k·ulp). Nothing underflows when every non-zero coordinate is at least 2⁻¹⁸⁰·M
+//! (≈ 6.5e-55·M) in magnitude: then every coordinate difference is a multiple of 2⁻²³², every
+//! term of the degree-4 in-circle expansion a multiple of 2⁻⁹²⁸, above the smallest normal
+//! double. Inputs outside this range are rejected with an error instead of risking an inexact
+//! decision; as a second safety net the walk and the flip loop have bounds that can only be hit
+//! with inconsistent predicates, and hitting them is also an error.
 //! Constructions (circumcentres) are ordinary floating point.
 
 use crate::geom::predicates::raw::{incircle, orient2d};
@@ -316,10 +319,14 @@ struct Builder<K: Kernel> {
     /// `th[t][i]` = twin half-edge `3u + j` of the edge opposite corner i of t (j opposite in u).
     th: Vec<[u32; 3]>,
     stack: Vec<u32>,
+    /// Set when a safety bound is hit (only possible if the predicates were inexact).
+    failed: bool,
     rng: u32,
 }
 
 enum Found {
+    /// The walk did not terminate within its bound.
+    Lost,
     Inside(u32),
     OnEdge(u32, usize),
     OnVertex,
@@ -356,7 +363,13 @@ impl<K: Kernel> Builder<K> {
             t = self.th[t as usize][i] / 3;
         }
         let mut from = NONE;
+        // a visibility walk in a Delaunay triangulation visits each triangle at most once
+        let mut budget = self.tv.len() + 8;
         'walk: loop {
+            if budget == 0 {
+                return Found::Lost;
+            }
+            budget -= 1;
             let v = self.tv[t as usize];
             if v[0] == INF || v[1] == INF || v[2] == INF {
                 return Found::Ghost(t);
@@ -436,6 +449,8 @@ impl<K: Kernel> Builder<K> {
     /// Lawson flips of the triangles on the stack: each has `p` at corner 0 and its edge
     /// opposite `p` is tested.
     fn legalize(&mut self, p: u32) {
+        // every flip raises the degree of p by one, and its degree is below the vertex count
+        let mut budget = self.tv.len() + 8;
         while let Some(t) = self.stack.pop() {
             let [_, a, b] = self.tv[t as usize];
             let o = self.th[t as usize][0];
@@ -446,6 +461,12 @@ impl<K: Kernel> Builder<K> {
             if !self.conflict(d, b, a, p, t_ghost) {
                 continue;
             }
+            if budget == 0 {
+                self.failed = true;
+                self.stack.clear();
+                return;
+            }
+            budget -= 1;
             let a_ext = self.th[u as usize][(j + 1) % 3];
             let b_ext = self.th[u as usize][(j + 2) % 3];
             let t1_ext = self.th[t as usize][1];
@@ -492,7 +513,11 @@ impl<K: Kernel> Builder<K> {
                 let t2 = self.new_tri();
                 self.fan(p, &bnd, &[t, t1, u, t2])
             }
-            Found::OnVertex => start, // unreachable after de-duplication
+            Found::OnVertex | Found::Lost => {
+                // impossible with exact predicates and distinct points
+                self.failed = true;
+                start
+            }
         }
     }
 }
@@ -624,9 +649,23 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
             .map(|p| [(p[0] * int_scale) as i64, (p[1] * int_scale) as i64])
             .collect();
         drop(c);
-        run_insertion(IntKernel(ci), n, k0, order_seed)
+        run_insertion(IntKernel(ci), n, k0, order_seed)?
     } else {
-        run_insertion(FloatKernel(c), n, k0, order_seed)
+        // Shewchuk's expansions stay above the underflow threshold when no non-zero scaled
+        // coordinate is below 2^-180 (the largest is ≈ 1).
+        let tiny = 2f64.powi(-180);
+        if let Some(v) = c
+            .iter()
+            .position(|p| p.iter().any(|&x| x != 0.0 && x.abs() < tiny))
+        {
+            let p = points_out[v];
+            return Err(Error::invalid(format!(
+                "2D Delaunay: coordinate ({}, {}) is non-zero but below 2^-180 times the largest \
+                 coordinate magnitude; exact predicates cannot be guaranteed",
+                p.x, p.y
+            )));
+        }
+        run_insertion(FloatKernel(c), n, k0, order_seed)?
     };
     Ok(finish(
         tv,
@@ -679,13 +718,14 @@ fn run_insertion<K: Kernel>(
     n: usize,
     k0: usize,
     order_seed: Option<u64>,
-) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
+) -> Result<(Vec<[u32; 3]>, Vec<[u32; 3]>)> {
     let mut bld = Builder {
         k,
         tv: Vec::with_capacity(2 * n + 4),
         th: Vec::with_capacity(2 * n + 4),
         stack: Vec::with_capacity(64),
         rng: 0x9e37_79b9,
+        failed: false,
     };
     let (a, b, cc) = if K::orient(bld.k.p(0), bld.k.p(1), bld.k.p(k0 as u32)) > 0 {
         (0u32, 1u32, k0 as u32)
@@ -718,8 +758,13 @@ fn run_insertion<K: Kernel>(
     let mut last_t = 0u32;
     for &v in &order {
         last_t = bld.insert(v, last_t);
+        if bld.failed {
+            return Err(Error::invalid(
+                "2D Delaunay: inconsistent predicates (coordinates outside the exact range)",
+            ));
+        }
     }
-    (bld.tv, bld.th)
+    Ok((bld.tv, bld.th))
 }
 
 fn finish(
