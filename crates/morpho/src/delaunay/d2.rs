@@ -711,14 +711,12 @@ fn brio_order(n: usize, k0: usize) -> Vec<u32> {
     order
 }
 
+/// Triangle corners and twin half-edges (ghosts included).
+type Arrays = (Vec<[u32; 3]>, Vec<[u32; 3]>);
+
 /// Runs the insertion with kernel `k`, starting from the triangle (0, 1, k0); returns the
 /// corner and twin arrays (ghosts included).
-fn run_insertion<K: Kernel>(
-    k: K,
-    n: usize,
-    k0: usize,
-    order_seed: Option<u64>,
-) -> Result<(Vec<[u32; 3]>, Vec<[u32; 3]>)> {
+fn run_insertion<K: Kernel>(k: K, n: usize, k0: usize, order_seed: Option<u64>) -> Result<Arrays> {
     let mut bld = Builder {
         k,
         tv: Vec::with_capacity(2 * n + 4),
@@ -768,7 +766,7 @@ fn run_insertion<K: Kernel>(
 }
 
 fn finish(
-    (mut tv, mut th): (Vec<[u32; 3]>, Vec<[u32; 3]>),
+    (mut tv, mut th): Arrays,
     points: Vec<Point2>,
     vertex_of_input: Vec<u32>,
     input_of_vertex: Vec<u32>,
