@@ -172,23 +172,24 @@ pub fn triangulate_with_insertion_seed(points: &[Point2], seed: u64) -> Result<D
 /// Number of bits per axis of the Hilbert key.
 const HILBERT_BITS: u32 = 16;
 
-/// Hilbert curve index of the cell (x, y), each coordinate < 2^HILBERT_BITS.
+/// Hilbert curve index of the cell (x, y), each coordinate < 2^HILBERT_BITS (the classic
+/// quadrant-rotation algorithm, written without data-dependent branches).
 #[inline]
 fn hilbert_index(mut x: u32, mut y: u32) -> u32 {
-    let n: u32 = 1 << HILBERT_BITS;
+    let mask = (1u32 << HILBERT_BITS) - 1;
     let mut d: u32 = 0;
-    let mut s = n >> 1;
+    let mut s = 1u32 << (HILBERT_BITS - 1);
     while s > 0 {
-        let rx = ((x & s) > 0) as u32;
-        let ry = ((y & s) > 0) as u32;
+        let rx = ((x & s) != 0) as u32;
+        let ry = ((y & s) != 0) as u32;
         d += s * s * ((3 * rx) ^ ry);
-        if ry == 0 {
-            if rx == 1 {
-                x = n - 1 - x;
-                y = n - 1 - y;
-            }
-            std::mem::swap(&mut x, &mut y);
-        }
+        // if ry == 0: reflect when rx == 1, then swap x and y
+        let flip = 0u32.wrapping_sub(rx & (ry ^ 1)) & mask;
+        x ^= flip;
+        y ^= flip;
+        let swap = (x ^ y) & 0u32.wrapping_sub(ry ^ 1);
+        x ^= swap;
+        y ^= swap;
         s >>= 1;
     }
     d
@@ -1138,5 +1139,16 @@ mod tests {
             }
         }
         assert_eq!(seen.len(), 4096);
+        // consecutive cells along the curve are edge neighbours
+        let mut cells: Vec<(u32, i32, i32)> = (0..64 * 64)
+            .map(|k| {
+                let (x, y) = (k % 64, k / 64);
+                (hilbert_index(x << 10, y << 10) >> 20, x as i32, y as i32)
+            })
+            .collect();
+        cells.sort();
+        for w in cells.windows(2) {
+            assert_eq!((w[0].1 - w[1].1).abs() + (w[0].2 - w[1].2).abs(), 1);
+        }
     }
 }
