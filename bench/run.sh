@@ -17,8 +17,8 @@ cd "$ROOT"
 cargo run --quiet --release --example bench_delaunay2d -p morpho -- "$N" \
     --write-points "$TMP/uniform.f64" | tee "$TMP/rust.txt"
 
-base_u="$(awk '$1=="uniform" && $2=="delaunator" {print $3}' "$TMP/rust.txt")"
-base_g="$(awk '$1=="grid" && $2=="delaunator" {print $3}' "$TMP/rust.txt")"
+base_u="$(awk '$1=="uniform" && $2=="delaunator" {print $3 "," $8}' "$TMP/rust.txt")"
+base_g="$(awk '$1=="grid" && $2=="delaunator" {print $3 "," $8}' "$TMP/rust.txt")"
 
 PY="${PYTHON:-python3}"
 if [ -z "${NO_PIP:-}" ]; then
@@ -28,7 +28,17 @@ fi
 
 "$PY" - "$TMP/uniform.f64" "$N" "$base_u" "$base_g" <<'PYEOF'
 import sys, time
-path, n, base_u, base_g = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4])
+path, n = sys.argv[1], int(sys.argv[2])
+base_u = [float(v) for v in sys.argv[3].split(",")]  # delaunator wall, cpu
+base_g = [float(v) for v in sys.argv[4].split(",")]
+
+def ratio(a, b):
+    return a / b if b > 0 else float("nan")
+
+def report(name, lib, wall, cpu, base, tris):
+    print(f"{name:8} {lib:10} {wall:8.3f} s  ratio {ratio(wall, base[0]):.3f}  cpu {cpu:7.2f} s"
+          f"  cpu-ratio {ratio(cpu, base[1]):.3f}  triangles {tris}")
+
 try:
     import numpy as np
 except ImportError:
@@ -42,10 +52,10 @@ inputs = [("uniform", uni, base_u), ("grid", grid, base_g)]
 try:
     from scipy.spatial import Delaunay
     for name, p, base in inputs:
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.process_time()
         d = Delaunay(p)
-        s = time.perf_counter() - t
-        print(f"{name:8} scipy      {s:8.3f} s  ratio {s / base:.3f}  triangles {len(d.simplices)}")
+        report(name, "scipy", time.perf_counter() - t, time.process_time() - c, base,
+               len(d.simplices))
 except ImportError:
     print("# scipy not installable here: no Qhull comparison")
 try:
@@ -53,11 +63,11 @@ try:
     from CGAL.CGAL_Triangulation_2 import Delaunay_triangulation_2
     for name, p, base in inputs:
         pts = [Point_2(float(x), float(y)) for x, y in p]
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.process_time()
         dt = Delaunay_triangulation_2()
         dt.insert(pts)
-        s = time.perf_counter() - t
-        print(f"{name:8} cgal       {s:8.3f} s  ratio {s / base:.3f}  triangles {dt.number_of_faces()}")
+        report(name, "cgal", time.perf_counter() - t, time.process_time() - c, base,
+               dt.number_of_faces())
 except ImportError:
     print("# CGAL Python bindings not installable here: no CGAL comparison")
 PYEOF

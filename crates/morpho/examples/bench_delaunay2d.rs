@@ -6,7 +6,8 @@
 //! ```
 //!
 //! Inputs: N uniform random points in the unit square (seeded), and a √N × √N integer grid.
-//! Prints one line per (input, library) with seconds and the ratio to delaunator, then the peak
+//! Prints one line per (input, library) with wall-clock seconds and the ratio to delaunator, the
+//! same for the process CPU time (fairer on a loaded machine), then the peak
 //! resident memory (VmHWM) per point. `--write-points FILE` also writes the uniform points as
 //! little-endian f64 pairs (for bench/run.sh to time scipy on the same points).
 
@@ -21,43 +22,60 @@ fn vm_hwm_kib() -> Option<u64> {
     line.split_whitespace().nth(1)?.parse().ok()
 }
 
-fn time<T>(f: impl FnOnce() -> T) -> (f64, T) {
+/// CPU time (user + system) of this process in seconds, from /proc/self/stat (clock ticks of
+/// 1/100 s); `None` where unavailable.
+fn cpu_seconds() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/self/stat").ok()?;
+    let rest = &s[s.rfind(')')? + 2..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let utime: f64 = f.get(11)?.parse().ok()?;
+    let stime: f64 = f.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
+}
+
+/// Runs `f`, returning (wall seconds, CPU seconds, result). On a loaded machine the CPU time is
+/// the fairer measure; both are printed.
+fn time<T>(f: impl FnOnce() -> T) -> (f64, f64, T) {
+    let c0 = cpu_seconds();
     let t = Instant::now();
     let r = f();
-    (t.elapsed().as_secs_f64(), r)
+    let wall = t.elapsed().as_secs_f64();
+    let cpu = match (c0, cpu_seconds()) {
+        (Some(a), Some(b)) => b - a,
+        _ => f64::NAN,
+    };
+    (wall, cpu, r)
 }
 
 fn run(name: &str, pts: &[Point2], only: Option<&str>) {
     let want = |lib: &str| only.map_or(true, |o| o == lib);
-    let mut base = None;
+    let mut base: Option<(f64, f64)> = None;
+    let line = |lib: &str, s: f64, c: f64, tris: usize, base: Option<(f64, f64)>| {
+        let (rw, rc) = base.map_or((f64::NAN, f64::NAN), |(bw, bc)| (s / bw, c / bc));
+        println!(
+            "{name:8} {lib:10} {s:8.3} s  ratio {rw:.3}  cpu {c:7.2} s  cpu-ratio {rc:.3}  triangles {tris}"
+        );
+    };
     if want("delaunator") {
         let dp: Vec<delaunator::Point> = pts
             .iter()
             .map(|p| delaunator::Point { x: p.x, y: p.y })
             .collect();
-        let (s, t) = time(|| delaunator::triangulate(&dp));
-        println!(
-            "{name:8} delaunator {s:8.3} s  ratio 1.000  triangles {}",
-            t.triangles.len() / 3
-        );
-        base = Some(s);
+        let (s, c, t) = time(|| delaunator::triangulate(&dp));
+        base = Some((s, c));
+        line("delaunator", s, c, t.triangles.len() / 3, base);
     }
     if want("spade") {
         use spade::{DelaunayTriangulation, Point2 as SP, Triangulation};
         let sp: Vec<SP<f64>> = pts.iter().map(|p| SP::new(p.x, p.y)).collect();
-        let (s, t) = time(|| DelaunayTriangulation::<SP<f64>>::bulk_load(sp).ok());
+        let (s, c, t) = time(|| DelaunayTriangulation::<SP<f64>>::bulk_load(sp).ok());
         let nt = t.map(|t| t.num_inner_faces()).unwrap_or(0);
-        let r = base.map(|b| s / b).unwrap_or(f64::NAN);
-        println!("{name:8} spade      {s:8.3} s  ratio {r:.3}  triangles {nt}");
+        line("spade", s, c, nt, base);
     }
     if want("morpho") {
-        let (s, d) = time(|| triangulate(pts));
+        let (s, c, d) = time(|| triangulate(pts));
         let d = d.expect("triangulate");
-        let r = base.map(|b| s / b).unwrap_or(f64::NAN);
-        println!(
-            "{name:8} morpho     {s:8.3} s  ratio {r:.3}  triangles {}",
-            d.triangles.len()
-        );
+        line("morpho", s, c, d.triangles.len(), base);
     }
 }
 
