@@ -284,6 +284,16 @@ fn integer_grids() {
     let d = full_check(&p);
     assert_eq!(d.triangles.len(), 2 * 29 * 29);
     assert_order_independent(&p);
+    // the same kind of grid plus one point off the power-of-two lattice: the floating-point
+    // kernel (Shewchuk's predicates) now resolves the exact ties
+    for extra in [[0.1, -3.3], [2.5, 2.7]] {
+        let mut p: Vec<Point2> = (0..36)
+            .map(|k| Point2::new((k % 6) as f64, (k / 6) as f64))
+            .collect();
+        p.push(Point2::new(extra[0], extra[1]));
+        full_check(&p);
+        assert_order_independent(&p);
+    }
 }
 
 #[test]
@@ -601,11 +611,18 @@ fn arb_points() -> impl Strategy<Value = Vec<Point2>> {
     let random = prop::collection::vec((-1e3f64..1e3, -1e3f64..1e3), 1..60);
     let grid = prop::collection::vec((0i32..6, 0i32..6), 1..60);
     let line = prop::collection::vec((0i32..30, 0i32..2), 1..40);
+    // integer grid points plus one point off the lattice (floating-point kernel with ties)
+    let grid_float = prop::collection::vec((0i32..6, 0i32..6), 1..40);
     prop_oneof![
         random.prop_map(|v| v.into_iter().map(|(x, y)| Point2::new(x, y)).collect()),
         grid.prop_map(|v| v
             .into_iter()
             .map(|(x, y)| Point2::new(x as f64 * 0.25, y as f64 * 0.5))
+            .collect()),
+        grid_float.prop_map(|v| v
+            .into_iter()
+            .map(|(x, y)| Point2::new(x as f64, y as f64))
+            .chain(std::iter::once(Point2::new(0.1, 7.3)))
             .collect()),
         line.prop_map(|v| v
             .into_iter()
