@@ -1130,6 +1130,93 @@ mod tests {
         }
     }
 
+    /// 4×4 determinant of rows (x, y, z, 1), exact in i128.
+    fn det4(r: [[i128; 4]; 4]) -> i128 {
+        fn det3(m: [[i128; 3]; 3]) -> i128 {
+            m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+                - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+        }
+        let mut s = 0;
+        for col in 0..4 {
+            let mut m = [[0i128; 3]; 3];
+            for (i, row) in r.iter().skip(1).enumerate() {
+                let mut k = 0;
+                for (j, &v) in row.iter().enumerate() {
+                    if j != col {
+                        m[i][k] = v;
+                        k += 1;
+                    }
+                }
+            }
+            let sign = if col % 2 == 0 { 1 } else { -1 };
+            s += sign * r[0][col] * det3(m);
+        }
+        s
+    }
+
+    #[test]
+    fn perturbation_matches_an_explicitly_lifted_determinant() {
+        // Independent check of the coefficients in `sos_tiebreak`: lift every point to
+        // x² + y² + B^rank (rank = lexicographic rank among the four). The determinant is linear
+        // in the lifts, so for a cocircular quadruple it equals the perturbation sum exactly,
+        // and with B large its sign is that of the greatest point's coefficient.
+        let circle: Vec<[i64; 2]> = {
+            let mut v = Vec::new();
+            for x in -25i64..=25 {
+                for y in -25i64..=25 {
+                    if x * x + y * y == 25 * 25 {
+                        v.push([x, y]);
+                    }
+                }
+            }
+            v
+        };
+        assert!(circle.len() >= 12);
+        let lifted = |q: [[i64; 2]; 4], bump: bool| -> i128 {
+            let mut rank = [0u32; 4];
+            for i in 0..4 {
+                rank[i] = (0..4).filter(|&j| q[j] < q[i]).count() as u32;
+            }
+            let b: i128 = 1 << 30;
+            let rows = [0, 1, 2, 3].map(|i| {
+                let (x, y) = (q[i][0] as i128, q[i][1] as i128);
+                let eps = if bump { b.pow(rank[i]) } else { 0 };
+                [x, y, x * x + y * y + eps, 1]
+            });
+            det4(rows)
+        };
+        // calibrate the sign convention on a point strictly inside
+        let inside = [[25, 0], [0, 25], [-25, 0], [1, 2]];
+        let s0 = lifted(inside, false).signum() as i32
+            * IntKernel::incircle_sos(inside[0], inside[1], inside[2], inside[3]);
+        assert!(s0 == 1 || s0 == -1);
+        let mut checked = 0;
+        for i in 0..circle.len() {
+            for j in 0..circle.len() {
+                for k in 0..circle.len() {
+                    let (a, b, c) = (circle[i], circle[j], circle[k]);
+                    if IntKernel::orient(a, b, c) <= 0 {
+                        continue;
+                    }
+                    for &d in &circle {
+                        if d == a || d == b || d == c {
+                            continue;
+                        }
+                        let q = [a, b, c, d];
+                        assert_eq!(lifted(q, false), 0);
+                        let want = s0 * lifted(q, true).signum() as i32;
+                        assert_eq!(IntKernel::incircle_sos(a, b, c, d), want, "{q:?}");
+                        let f = q.map(|p| [p[0] as f64, p[1] as f64]);
+                        assert_eq!(incircle_sos(f[0], f[1], f[2], f[3]), want);
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked > 1000);
+    }
+
     #[test]
     fn hilbert_is_a_bijection_on_small_grid() {
         let mut seen = std::collections::HashSet::new();
