@@ -65,8 +65,8 @@ pub mod dual;
 pub mod output;
 pub mod pipeline;
 pub mod rating;
-pub mod tet;
 pub mod samples;
+pub mod tet;
 pub use samples::contour_samples;
 
 pub use cycles::{boundary_regions, external_contour, external_contour_with};

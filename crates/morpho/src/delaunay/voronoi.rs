@@ -1,7 +1,8 @@
 //! Voronoi diagram of a planar point set as the dual of its Delaunay triangulation
-//! (Veltkamp 1992, §2.2.9: every k-simplex of the Delaunay triangulation corresponds to a
-//! (k−j)… here: triangle ↔ Voronoi vertex, Delaunay edge ↔ Voronoi edge, vertex ↔ cell;
-//! Dorgerloh et al. §2, Definition 1).
+//! (Veltkamp 1992, §2.2.9: each j-simplex of the k-D Delaunay triangulation corresponds to a
+//! (k−j)-face of the Voronoi diagram — in 2D triangle ↔ Voronoi vertex, Delaunay edge ↔ Voronoi
+//! edge, site ↔ cell; Dorgerloh et al. §2, Definition 1: the cell V(p) is the intersection of the
+//! half-planes H(p, q) bounded by the bisectors).
 //!
 //! [`voronoi`] returns one Voronoi vertex per Delaunay triangle (its circumcentre), one Voronoi
 //! edge per Delaunay edge: a segment between the circumcentres of the two triangles of an
@@ -11,7 +12,8 @@
 //!
 //! Complexity O(n) after the triangulation. Circumcentres are floating-point constructions; with
 //! cocircular input several Voronoi vertices coincide (zero-length segments), as the dual of the
-//! perturbed triangulation.
+//! perturbed triangulation. For collinear input there are no Voronoi vertices, the edges are
+//! [`VoronoiEdge::Line`]s and [`Voronoi2::cell`] returns an empty vertex list.
 
 use super::d2::{Delaunay2, NONE};
 use crate::geom::{Point2, Vector2};
