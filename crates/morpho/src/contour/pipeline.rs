@@ -274,44 +274,6 @@ fn map_vertices(input_of_vertex: &[u32], input: &[u32]) -> Result<Vec<u32>> {
         .collect()
 }
 
-/// A synthetic "borehole" field for demos and benchmarks (the paper's oil-company scenario):
-/// `n` boreholes at random positions in a 1000 × 1000 area, with a column `oil` that is a sum of
-/// a few Gaussian deposits plus noise. Deterministic in `seed`.
-pub fn synthetic_boreholes(n: usize, seed: u64) -> PointSet {
-    use rand::{Rng, SeedableRng};
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let deposits: Vec<(f64, f64, f64, f64)> = (0..6)
-        .map(|_| {
-            (
-                rng.gen_range(100.0..900.0),
-                rng.gen_range(100.0..900.0),
-                rng.gen_range(60.0..180.0),
-                rng.gen_range(0.5..1.0),
-            )
-        })
-        .collect();
-    let mut coords = Vec::with_capacity(2 * n);
-    let mut oil = Vec::with_capacity(n);
-    for _ in 0..n {
-        let (x, y) = (rng.gen_range(0.0..1000.0), rng.gen_range(0.0..1000.0));
-        let v: f64 = deposits
-            .iter()
-            .map(|&(cx, cy, r, a)| a * (-((x - cx).powi(2) + (y - cy).powi(2)) / (r * r)).exp())
-            .sum::<f64>()
-            + rng.gen_range(-0.08..0.08);
-        coords.extend([x, y]);
-        oil.push(v);
-    }
-    PointSet {
-        dim: 2,
-        coords,
-        columns: vec![Column {
-            name: "oil".into(),
-            values: oil,
-        }],
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -380,14 +342,5 @@ mod tests {
         let mut c = r.cycles_as_samples()[0].clone();
         c.sort();
         assert_eq!(c, [0, 2, 3]);
-    }
-
-    #[test]
-    fn boreholes_are_deterministic() {
-        let a = synthetic_boreholes(100, 3);
-        assert_eq!(a, synthetic_boreholes(100, 3));
-        assert_eq!(a.len(), 100);
-        a.validate().unwrap();
-        assert_eq!(value_column(&a, None).unwrap().name, "oil");
     }
 }
