@@ -22,6 +22,26 @@
 //!
 //! Orientation convention: triangles are counter-clockwise seen from outside; back faces get
 //! [`RenderOptions::back_color`] if set, so inside-out parts show up.
+//!
+//! ```
+//! use morpho::geom::Point3;
+//! use morpho::mesh::TriMesh;
+//! use morpho::render::raster::{render_mesh, RenderOptions};
+//!
+//! let tet = TriMesh::new(
+//!     vec![
+//!         Point3::new(0.0, 0.0, 0.0),
+//!         Point3::new(1.0, 0.0, 0.0),
+//!         Point3::new(0.0, 1.0, 0.0),
+//!         Point3::new(0.0, 0.0, 1.0),
+//!     ],
+//!     vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+//! );
+//! let opts = RenderOptions { width: 64, height: 48, ..Default::default() };
+//! let img = render_mesh(&tet, &opts);
+//! assert_eq!((img.width, img.height), (64, 48));
+//! // img.save_png(std::path::Path::new("tet.png"))?;
+//! ```
 
 use super::colormap::{finite_range, normalize, Colormap};
 use super::Image;
