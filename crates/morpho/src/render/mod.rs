@@ -2,6 +2,7 @@
 
 pub mod colormap;
 pub mod font;
+pub mod legend;
 pub mod raster;
 pub mod slice;
 pub mod svg;

@@ -139,7 +139,7 @@ impl Default for RenderOptions {
 }
 
 /// What [`render_mesh_stats`] drew.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RenderStats {
     /// Triangles sent to the rasterizer.
     pub drawn: usize,
@@ -149,6 +149,8 @@ pub struct RenderStats {
     pub degenerate: usize,
     /// Supersampling factor actually used.
     pub supersample: u32,
+    /// Value range mapped to the colour map ends (when scalars were shown).
+    pub range: Option<(f64, f64)>,
 }
 
 /// Renders `mesh` (see the module documentation). Never fails: invalid triangles are skipped,
@@ -394,6 +396,7 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
                 }
             });
             let (lo, hi) = range.unwrap_or((0.0, 1.0));
+            stats.range = Some((lo, hi));
             s.values.iter().map(|&v| normalize(v, lo, hi)).collect()
         }
     };
