@@ -5,6 +5,7 @@ pub mod font;
 pub mod legend;
 pub mod raster;
 pub mod slice;
+pub mod subdivision;
 pub mod svg;
 
 use crate::{Error, Result};
