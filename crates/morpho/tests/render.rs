@@ -1075,6 +1075,28 @@ fn pictures() {
             },
         ),
     );
+    // Hamann Fig. 2.2: domain subdivision, q = 5, α = 1 (on the same function, x, y, z in [0, 39]).
+    let cube = Volume::from_fn([40, 40, 40], [0.0; 3], [39.0; 3], f);
+    let dm = morpho::render::subdivision::domain_subdivision_mesh(&cube, [5, 5, 5], [1.0; 3], 4)
+        .unwrap();
+    let dv = dm.vertex_prop("value").unwrap().values.clone();
+    save(
+        "subdivision.png",
+        &render_mesh(
+            &dm,
+            &RenderOptions {
+                up: UpAxis::Z,
+                shading: Shading::Flat,
+                scalars: Some(Scalars {
+                    values: dv,
+                    per_face: false,
+                    colormap: Colormap::Viridis,
+                    range: None,
+                }),
+                ..o.clone()
+            },
+        ),
+    );
     if let Ok(text) = std::fs::read_to_string(data_dir().join("meshes/bunny_npm.obj")) {
         let b = tiny_obj(&text);
         save("bunny.png", &render_mesh(&b, &o));

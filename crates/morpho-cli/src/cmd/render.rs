@@ -15,6 +15,7 @@ use morpho::geom::{Aabb2, Point2};
 use morpho::io::{self, read_any, Data, Format};
 use morpho::mesh::{PointSet, TriMesh};
 use morpho::render::colormap::{finite_range, Colormap};
+use morpho::render::legend;
 use morpho::render::raster::{
     camera_basis, render_mesh_stats, Projection, RenderOptions, Scalars, Shading, UpAxis,
 };
@@ -71,6 +72,9 @@ pub struct Args {
     /// Draw triangle edges (for small meshes).
     #[arg(long)]
     pub wireframe: bool,
+    /// No colour bar below meshes coloured with --color-by.
+    #[arg(long)]
+    pub no_legend: bool,
     /// Supersampling factor per axis for meshes (1 = no anti-aliasing).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
     pub supersample: u32,
@@ -394,7 +398,20 @@ fn mesh(
         supersample: args.supersample,
         ..Default::default()
     };
-    let (img, st) = report.time("compute", || render_mesh_stats(m, &opts));
+    let (img, st) = report.time("compute", || {
+        let (img, st) = render_mesh_stats(m, &opts);
+        // A colour bar below the picture when a property is shown.
+        match (st.range, &args.color_by) {
+            (Some((lo, hi)), Some(name)) if !args.no_legend => (
+                legend::with_colorbar(&img, colormap, lo, hi, Some(name)),
+                st,
+            ),
+            _ => (img, st),
+        }
+    });
+    if let Some((lo, hi)) = st.range {
+        report.set("range", serde_json::json!([lo, hi]));
+    }
     report.set("width", img.width);
     report.set("height", img.height);
     report.set("drawn", st.drawn);

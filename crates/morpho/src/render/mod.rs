@@ -2,8 +2,10 @@
 
 pub mod colormap;
 pub mod font;
+pub mod legend;
 pub mod raster;
 pub mod slice;
+pub mod subdivision;
 pub mod svg;
 
 use crate::{Error, Result};

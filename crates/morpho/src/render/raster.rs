@@ -22,6 +22,26 @@
 //!
 //! Orientation convention: triangles are counter-clockwise seen from outside; back faces get
 //! [`RenderOptions::back_color`] if set, so inside-out parts show up.
+//!
+//! ```
+//! use morpho::geom::Point3;
+//! use morpho::mesh::TriMesh;
+//! use morpho::render::raster::{render_mesh, RenderOptions};
+//!
+//! let tet = TriMesh::new(
+//!     vec![
+//!         Point3::new(0.0, 0.0, 0.0),
+//!         Point3::new(1.0, 0.0, 0.0),
+//!         Point3::new(0.0, 1.0, 0.0),
+//!         Point3::new(0.0, 0.0, 1.0),
+//!     ],
+//!     vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+//! );
+//! let opts = RenderOptions { width: 64, height: 48, ..Default::default() };
+//! let img = render_mesh(&tet, &opts);
+//! assert_eq!((img.width, img.height), (64, 48));
+//! // img.save_png(std::path::Path::new("tet.png"))?;
+//! ```
 
 use super::colormap::{finite_range, normalize, Colormap};
 use super::Image;
@@ -119,7 +139,7 @@ impl Default for RenderOptions {
 }
 
 /// What [`render_mesh_stats`] drew.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RenderStats {
     /// Triangles sent to the rasterizer.
     pub drawn: usize,
@@ -129,6 +149,8 @@ pub struct RenderStats {
     pub degenerate: usize,
     /// Supersampling factor actually used.
     pub supersample: u32,
+    /// Value range mapped to the colour map ends (when scalars were shown).
+    pub range: Option<(f64, f64)>,
 }
 
 /// Renders `mesh` (see the module documentation). Never fails: invalid triangles are skipped,
@@ -151,19 +173,43 @@ struct Vert {
     invw: f64,
 }
 
-/// A triangle ready for scan conversion.
+/// A triangle ready for scan conversion: corners ordered so that the edge functions are
+/// positive inside, with everything that is constant over the triangle precomputed.
 struct Tri {
-    v: [u32; 3],
-    face: usize,
+    /// Vertex ids in edge-function order.
+    ids: [u32; 3],
+    p: [Vert; 3],
     /// Bounding box in sample coordinates (inclusive).
     x0: usize,
     x1: usize,
     y0: usize,
     y1: usize,
-    /// Twice the signed screen area, oriented so that it is positive.
-    area: f64,
+    /// 1 / (twice the screen area).
+    inv_area: f64,
+    /// Lengths of the edges opposite each corner (for the wireframe distance).
+    lens: [f64; 3],
     /// True when the triangle shows its back (clockwise on screen).
     back: bool,
+    /// Lighting normal of the face (flipped on back faces).
+    face_n: Vector3,
+    /// Base colour when it does not vary over the triangle.
+    face_base: [u8; 3],
+    /// Flat-shaded colour.
+    flat_col: [u8; 4],
+}
+
+/// What triangle setup made of a triangle.
+enum Setup {
+    Degenerate,
+    /// Drawn but covering no sample (off screen or thinner than a sample spacing).
+    Empty,
+    Tri(Box<Tri>),
+}
+
+/// Edge function of the directed edge a→b at (x, y): twice the signed area of (a, b, p).
+#[inline]
+fn edge(a: &Vert, b: &Vert, x: f64, y: f64) -> f64 {
+    (b.px - a.px) * (y - a.py) - (b.py - a.py) * (x - a.px)
 }
 
 /// Like [`render_mesh`], also returning counts.
@@ -350,57 +396,11 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
                 }
             });
             let (lo, hi) = range.unwrap_or((0.0, 1.0));
+            stats.range = Some((lo, hi));
             s.values.iter().map(|&v| normalize(v, lo, hi)).collect()
         }
     };
     let cmap = scal.map(|s| s.colormap);
-
-    // Triangle setup and binning into bands.
-    let nbands = sh.div_ceil(BAND).max(1);
-    let mut tris: Vec<Tri> = Vec::with_capacity(valid.len());
-    for &t in &valid {
-        let [a, b, c] = mesh.triangles[t];
-        let (va, vb, vc) = (verts[a as usize], verts[b as usize], verts[c as usize]);
-        let signed = (vb.px - va.px) * (vc.py - va.py) - (vb.py - va.py) * (vc.px - va.px);
-        if signed == 0.0 || !signed.is_finite() {
-            stats.degenerate += 1;
-            continue;
-        }
-        let xmin = va.px.min(vb.px).min(vc.px);
-        let xmax = va.px.max(vb.px).max(vc.px);
-        let ymin = va.py.min(vb.py).min(vc.py);
-        let ymax = va.py.max(vb.py).max(vc.py);
-        // Samples at (i + 0.5); the covered range is ceil(min - 0.5) ..= floor(max - 0.5).
-        let (fx0, fx1) = ((xmin - 0.5).ceil(), (xmax - 0.5).floor());
-        let (fy0, fy1) = ((ymin - 0.5).ceil(), (ymax - 0.5).floor());
-        if fx1 < 0.0 || fy1 < 0.0 || fx0 > (sw - 1) as f64 || fy0 > (sh - 1) as f64 {
-            stats.drawn += 1;
-            continue;
-        }
-        if fx0 > fx1 || fy0 > fy1 {
-            // Too thin to cover a sample centre.
-            stats.drawn += 1;
-            continue;
-        }
-        stats.drawn += 1;
-        // Pixel y grows downwards, so a counter-clockwise (front) triangle has signed < 0.
-        tris.push(Tri {
-            v: [a, b, c],
-            face: t,
-            x0: fx0.max(0.0) as usize,
-            x1: (fx1 as usize).min(sw - 1),
-            y0: fy0.max(0.0) as usize,
-            y1: (fy1 as usize).min(sh - 1),
-            area: signed.abs(),
-            back: signed > 0.0,
-        });
-    }
-    let mut bins: Vec<Vec<u32>> = vec![Vec::new(); nbands];
-    for (i, t) in tris.iter().enumerate() {
-        for b in bins.iter_mut().take(t.y1 / BAND + 1).skip(t.y0 / BAND) {
-            b.push(i as u32);
-        }
-    }
 
     // Lights (camera space, towards the light).
     let head = Vector3::new(0.0, 0.0, 1.0);
@@ -420,6 +420,103 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
         c[3] = 255;
         c
     };
+    // Triangle setup (parallel, order kept) and binning into bands.
+    let nbands = sh.div_ceil(BAND).max(1);
+    let setups: Vec<Setup> = valid
+        .par_iter()
+        .map(|&t| {
+            let [a, b, c] = mesh.triangles[t];
+            let (va, vb, vc) = (verts[a as usize], verts[b as usize], verts[c as usize]);
+            let signed = edge(&va, &vb, vc.px, vc.py);
+            if signed == 0.0 || !signed.is_finite() {
+                return Setup::Degenerate;
+            }
+            let xmin = va.px.min(vb.px).min(vc.px);
+            let xmax = va.px.max(vb.px).max(vc.px);
+            let ymin = va.py.min(vb.py).min(vc.py);
+            let ymax = va.py.max(vb.py).max(vc.py);
+            // Samples at (i + 0.5); the covered range is ceil(min - 0.5) ..= floor(max - 0.5).
+            let (fx0, fx1) = ((xmin - 0.5).ceil(), (xmax - 0.5).floor());
+            let (fy0, fy1) = ((ymin - 0.5).ceil(), (ymax - 0.5).floor());
+            if fx1 < 0.0
+                || fy1 < 0.0
+                || fx0 > (sw - 1) as f64
+                || fy0 > (sh - 1) as f64
+                || fx0 > fx1
+                || fy0 > fy1
+            {
+                return Setup::Empty;
+            }
+            // Pixel y grows downwards, so a counter-clockwise (front) triangle has signed < 0.
+            let back = signed > 0.0;
+            let (p, ids) = if back {
+                ([va, vb, vc], [a, b, c])
+            } else {
+                ([va, vc, vb], [a, c, b])
+            };
+            let lens = [
+                (p[2].px - p[1].px).hypot(p[2].py - p[1].py),
+                (p[0].px - p[2].px).hypot(p[0].py - p[2].py),
+                (p[1].px - p[0].px).hypot(p[1].py - p[0].py),
+            ];
+            let face_n = {
+                let f = face_normal(t);
+                let l = f.norm();
+                let f = if l > 0.0 && l.is_finite() {
+                    f / l
+                } else {
+                    head
+                };
+                if back {
+                    -f
+                } else {
+                    f
+                }
+            };
+            let face_base = match (&cmap, scal) {
+                (Some(m), Some(s)) if s.per_face => m.color(tvals[t]),
+                _ => {
+                    if back {
+                        opts.back_color.unwrap_or(opts.color)
+                    } else {
+                        opts.color
+                    }
+                }
+            };
+            Setup::Tri(Box::new(Tri {
+                ids,
+                p,
+                x0: fx0.max(0.0) as usize,
+                x1: (fx1 as usize).min(sw - 1),
+                y0: fy0.max(0.0) as usize,
+                y1: (fy1 as usize).min(sh - 1),
+                inv_area: 1.0 / signed.abs(),
+                lens,
+                back,
+                face_n,
+                face_base,
+                flat_col: shade(face_n, face_base),
+            }))
+        })
+        .collect();
+    let mut tris: Vec<Box<Tri>> = Vec::with_capacity(setups.len());
+    for st in setups {
+        match st {
+            Setup::Degenerate => stats.degenerate += 1,
+            Setup::Empty => stats.drawn += 1,
+            Setup::Tri(t) => {
+                stats.drawn += 1;
+                tris.push(t);
+            }
+        }
+    }
+    let mut bins: Vec<Vec<u32>> = vec![Vec::new(); nbands];
+    for (i, t) in tris.iter().enumerate() {
+        for b in bins.iter_mut().take(t.y1 / BAND + 1).skip(t.y0 / BAND) {
+            b.push(i as u32);
+        }
+    }
+
     let wire_half = 0.55 * ss as f64;
 
     // 4.–5. Bands in parallel.
@@ -436,60 +533,39 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
             let y_base = bi * BAND;
             for &ti in &bins[bi] {
                 let t = &tris[ti as usize];
-                let [ia, ib, ic] = t.v;
-                let v = [verts[ia as usize], verts[ib as usize], verts[ic as usize]];
-                // Order corners so the edge functions are positive inside.
-                let (p0, p1, p2, ord) = if t.back {
-                    (v[0], v[1], v[2], [0usize, 1, 2])
-                } else {
-                    (v[0], v[2], v[1], [0usize, 2, 1])
-                };
-                let ids = [t.v[ord[0]], t.v[ord[1]], t.v[ord[2]]];
-                let inv_area = 1.0 / t.area;
-                let e = |a: Vert, b: Vert, x: f64, y: f64| {
-                    (b.px - a.px) * (y - a.py) - (b.py - a.py) * (x - a.px)
-                };
-                let lens = [
-                    (p2.px - p1.px).hypot(p2.py - p1.py),
-                    (p0.px - p2.px).hypot(p0.py - p2.py),
-                    (p1.px - p0.px).hypot(p1.py - p0.py),
-                ];
-                let face_n = {
-                    let f = face_normal(t.face);
-                    let l = f.norm();
-                    let f = if l > 0.0 && l.is_finite() {
-                        f / l
-                    } else {
-                        head
-                    };
-                    if t.back {
-                        -f
-                    } else {
-                        f
-                    }
-                };
-                let face_base = match (&cmap, scal) {
-                    (Some(m), Some(s)) if s.per_face => m.color(tvals[t.face]),
-                    _ => {
-                        if t.back {
-                            opts.back_color.unwrap_or(opts.color)
-                        } else {
-                            opts.color
-                        }
-                    }
-                };
-                let flat_col = shade(face_n, face_base);
+                let [p0, p1, p2] = &t.p;
+                let ids = t.ids;
+                let inv_area = t.inv_area;
+                let (lens, face_n, face_base, flat_col) =
+                    (t.lens, t.face_n, t.face_base, t.flat_col);
                 let ylo = t.y0.max(y_base);
                 let yhi = t.y1.min(y_base + rows - 1);
                 for y in ylo..=yhi {
                     let fy = y as f64 + 0.5;
                     let row = (y - y_base) * sw;
-                    for x in t.x0..=t.x1 {
+                    // Span of this row inside all three half-planes (one sample of slack; the
+                    // edge test below decides).
+                    let (mut xa, mut xb) = (t.x0 as f64, t.x1 as f64);
+                    for (a, b) in [(p1, p2), (p2, p0), (p0, p1)] {
+                        // edge(a, b, x, fy) = k * x + m
+                        let k = -(b.py - a.py);
+                        let m = edge(a, b, 0.0, fy);
+                        if k > 0.0 {
+                            xa = xa.max((-m / k - 0.5).floor() - 1.0);
+                        } else if k < 0.0 {
+                            xb = xb.min((-m / k - 0.5).ceil() + 1.0);
+                        }
+                    }
+                    if xa > xb {
+                        continue;
+                    }
+                    let (xs, xe) = (xa.max(t.x0 as f64) as usize, xb.min(t.x1 as f64) as usize);
+                    for x in xs..=xe {
                         let fx = x as f64 + 0.5;
                         // Edge functions: w0 opposite p0, etc. Positive inside (inclusive).
-                        let w0 = e(p1, p2, fx, fy);
-                        let w1 = e(p2, p0, fx, fy);
-                        let w2 = e(p0, p1, fx, fy);
+                        let w0 = edge(p1, p2, fx, fy);
+                        let w1 = edge(p2, p0, fx, fy);
+                        let w2 = edge(p0, p1, fx, fy);
                         if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
                             continue;
                         }

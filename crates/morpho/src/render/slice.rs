@@ -22,6 +22,7 @@
 
 use super::colormap::{finite_range, normalize, Colormap};
 use super::font::{draw_text, text_height, text_width};
+use super::legend::{label_num, with_colorbar};
 use super::Image;
 use crate::geom::Point3;
 use crate::mesh::{Property, ScalarKind, TriMesh};
@@ -312,26 +313,6 @@ pub fn middle(vol: &Volume) -> [usize; 3] {
     [vol.dims[0] / 2, vol.dims[1] / 2, vol.dims[2] / 2]
 }
 
-/// Compact number for labels (up to 4 significant digits).
-fn label_num(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let a = v.abs();
-    let s = if !(1e-3..1e5).contains(&a) {
-        format!("{v:.2e}")
-    } else {
-        let dec = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
-        let s = format!("{v:.dec$}");
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s
-        }
-    };
-    s
-}
-
 /// Three slices `x = c[ix]`, `y = c[iy]`, `z = c[iz]` side by side at one common scale, each
 /// labelled with its axis, coordinate and index (`x = 1.5 [12]`), with a colour bar and the
 /// value range below when `opts.labels`. Hamann 1991, §2.3, first possibility.
@@ -359,11 +340,6 @@ pub fn orthogonal_slices(vol: &Volume, index: [usize; 3], opts: &SliceOptions) -
     } else {
         0
     };
-    let bar_h = if opts.labels {
-        12 + 8 + text_height(scale) as usize + 8
-    } else {
-        0
-    };
     let mut width = gap + sizes.iter().map(|s| s.0 + gap).sum::<usize>();
     let range = value_range(vol, opts);
     let labels: Vec<String> = axes
@@ -387,7 +363,7 @@ pub fn orthogonal_slices(vol: &Volume, index: [usize; 3], opts: &SliceOptions) -
                 .sum::<usize>();
         width = width.max(need);
     }
-    let height = gap + label_h + sizes.iter().map(|s| s.1).max().unwrap_or(1) + gap + bar_h;
+    let height = gap + label_h + sizes.iter().map(|s| s.1).max().unwrap_or(1) + gap;
     let mut img = Image::new(width as u32, height as u32, [255; 4]);
     let black = [0, 0, 0, 255];
     let mut x = gap;
@@ -416,19 +392,7 @@ pub fn orthogonal_slices(vol: &Volume, index: [usize; 3], opts: &SliceOptions) -
         x += cell_w + gap;
     }
     if opts.labels {
-        let y0 = gap + label_h + sizes.iter().map(|s| s.1).max().unwrap_or(1) + gap;
-        let bw = width - 2 * gap;
-        for bx in 0..bw {
-            let c = opts.colormap.color((bx as f64 + 0.5) / bw as f64);
-            for by in 0..12 {
-                img.put((gap + bx) as u32, (y0 + by) as u32, [c[0], c[1], c[2], 255]);
-            }
-        }
-        let ty = (y0 + 12 + 8) as i64;
-        draw_text(&mut img, gap as i64, ty, &label_num(range.0), scale, black);
-        let hi = label_num(range.1);
-        let tw = text_width(&hi, scale) as i64;
-        draw_text(&mut img, (width - gap) as i64 - tw, ty, &hi, scale, black);
+        img = with_colorbar(&img, opts.colormap, range.0, range.1, None);
     }
     Ok(img)
 }
@@ -502,15 +466,6 @@ pub fn slice_height_mesh(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn label_numbers() {
-        assert_eq!(label_num(12.0), "12");
-        assert_eq!(label_num(0.25), "0.25");
-        assert_eq!(label_num(-3.25159), "-3.252");
-        assert_eq!(label_num(1e-7), "1.00e-7");
-        assert_eq!(label_num(0.0), "0");
-    }
 
     #[test]
     fn axis_parse() {

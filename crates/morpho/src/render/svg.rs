@@ -9,6 +9,19 @@
 //!
 //! Element kinds: points → `<circle>`, single segments → `<line>`, batches of segments,
 //! polylines, polygons and triangles → `<path>`, labels and title → `<text>`.
+//!
+//! ```
+//! use morpho::geom::{bbox2, Point2};
+//! use morpho::render::svg::{Stroke, Svg};
+//!
+//! let pts = [Point2::new(0.0, 0.0), Point2::new(2.0, 1.0)];
+//! let mut svg = Svg::new(bbox2(&pts), 400.0);
+//! svg.title("two points");
+//! svg.points(&pts, 3.0, [0, 0, 0]);
+//! svg.segment(pts[0], pts[1], &Stroke::dashed([200, 0, 0], 1.0));
+//! let text = svg.finish();
+//! assert_eq!(text.matches("<circle").count(), 2);
+//! ```
 
 use crate::geom::{bbox2, Aabb2, Point2};
 use crate::mesh::{Polygon, Shapes2};
