@@ -40,7 +40,7 @@
 //! moment curve, where the output itself is quadratic). Memory: about 8 tetrahedra per point
 //! during the construction, 36 bytes each.
 
-use crate::geom::predicates::raw::{orient2d, orient3d};
+use crate::geom::predicates::raw::{insphere, orient2d, orient3d};
 use crate::geom::Point3;
 use crate::{Error, Result};
 use rand::seq::SliceRandom;
@@ -55,7 +55,7 @@ const INF: u32 = u32::MAX;
 const FREE: u32 = u32::MAX - 1;
 
 /// Vertex positions of the face opposite corner `i`, ordered so that
-/// `orient3d(face…, v_i) > 0` for a positive tetrahedron.
+/// `orient3d(face…, v_i) > 0` for a positive tetrahedron, i.e. oriented outward.
 pub const FACE_OF: [[usize; 3]; 4] = [[1, 3, 2], [0, 2, 3], [0, 3, 1], [0, 1, 2]];
 
 /// A 3D Delaunay tetrahedralization.
@@ -105,11 +105,11 @@ pub(crate) fn perturbed_insphere(q: &[[f64; 3]; 5], ids: &[u32; 5]) -> bool {
     idx.sort_unstable_by(|a, b| ids[*b].cmp(&ids[*a]));
     for &k in &idx {
         let s = if k == 4 {
-            -orient3d(q[0], q[1], q[2], q[3])
+            -orient3d_exact(q[0], q[1], q[2], q[3])
         } else {
             let mut w = [q[0], q[1], q[2], q[3]];
             w[k] = q[4];
-            orient3d(w[0], w[1], w[2], w[3])
+            orient3d_exact(w[0], w[1], w[2], w[3])
         };
         if s != 0.0 {
             return s > 0.0;
@@ -193,7 +193,7 @@ impl<'a> Builder<'a> {
     fn in_conflict(&self, t: u32, p: u32) -> bool {
         let v = self.tv[t as usize];
         if v[3] == INF {
-            let o = orient3d(self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(p));
+            let o = orient3d_exact(self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(p));
             if o != 0.0 {
                 return o > 0.0;
             }
@@ -231,7 +231,7 @@ impl<'a> Builder<'a> {
                 }
                 let mut w = q;
                 w[i] = pp;
-                if orient3d(w[0], w[1], w[2], w[3]) < 0.0 {
+                if orient3d_exact(w[0], w[1], w[2], w[3]) < 0.0 {
                     prev = t;
                     t = n;
                     continue 'walk;
@@ -356,7 +356,51 @@ impl<'a> Builder<'a> {
 /// Filtered in-sphere: exact sign via Shewchuk's adaptive predicate.
 #[inline]
 fn insphere_fast(q: &[[f64; 3]; 5]) -> f64 {
-    crate::geom::predicates::raw::insphere(q[0], q[1], q[2], q[3], q[4])
+    insphere_exact(q[0], q[1], q[2], q[3], q[4])
+}
+
+/// True when every coordinate is 0 or has a magnitude in [2^-120, 2^120], the range in which
+/// Shewchuk's adaptive predicates (degree ≤ 5) can neither overflow nor underflow.
+#[inline]
+fn safe_range(q: &[[f64; 3]]) -> bool {
+    q.iter().all(|p| {
+        p.iter().all(|x| {
+            let e = ((x.to_bits() >> 52) & 0x7ff) as i32;
+            *x == 0.0 || (1023 - 120..=1023 + 120).contains(&e)
+        })
+    })
+}
+
+/// Exact `orient3d` (sign exact, magnitude approximate) for any finite coordinates: Shewchuk's
+/// adaptive predicate in its safe range, big-integer arithmetic ([`super::dd::orient_sign`])
+/// outside it (tiny or huge coordinates such as 1e-300 or 1e300).
+#[inline]
+pub fn orient3d_exact(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+    if safe_range(&[a, b, c, d]) {
+        orient3d(a, b, c, d)
+    } else {
+        super::dd::orient_sign(&[&a, &b, &c, &d]) as f64
+    }
+}
+
+/// Exact `insphere` for any finite coordinates (see [`orient3d_exact`]).
+#[inline]
+pub fn insphere_exact(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> f64 {
+    if safe_range(&[a, b, c, d, e]) {
+        insphere(a, b, c, d, e)
+    } else {
+        super::dd::insphere_sign(&[&a, &b, &c, &d, &e]) as f64
+    }
+}
+
+#[inline]
+fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    let z = |p: [f64; 2]| [p[0], p[1], 0.0];
+    if safe_range(&[z(a), z(b), z(c)]) {
+        orient2d(a, b, c)
+    } else {
+        super::dd::orient_sign(&[&a, &b, &c]) as f64
+    }
 }
 
 /// 3D Hilbert index of integer coordinates with `bits` bits each (Skilling's transpose method).
@@ -449,9 +493,7 @@ pub(crate) type Dedup<const D: usize> = (Vec<[f64; D]>, Vec<u32>, Vec<u32>);
 
 /// Checks the input and merges duplicates: returns the sorted distinct points, the vertex of each
 /// input point and the first input point of each vertex.
-pub(crate) fn dedup_sorted<const D: usize>(
-    coords: &[[f64; D]],
-) -> Result<Dedup<D>> {
+pub(crate) fn dedup_sorted<const D: usize>(coords: &[[f64; D]]) -> Result<Dedup<D>> {
     if coords.is_empty() {
         return Err(Error::invalid("no points"));
     }
@@ -527,9 +569,9 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     let b = order[1];
     let (pa, pb) = (pts[a as usize], pts[b as usize]);
     let collinear = |c: &[f64; 3]| {
-        orient2d([pa[0], pa[1]], [pb[0], pb[1]], [c[0], c[1]]) == 0.0
-            && orient2d([pa[1], pa[2]], [pb[1], pb[2]], [c[1], c[2]]) == 0.0
-            && orient2d([pa[0], pa[2]], [pb[0], pb[2]], [c[0], c[2]]) == 0.0
+        orient2d_exact([pa[0], pa[1]], [pb[0], pb[1]], [c[0], c[1]]) == 0.0
+            && orient2d_exact([pa[1], pa[2]], [pb[1], pb[2]], [c[1], c[2]]) == 0.0
+            && orient2d_exact([pa[0], pa[2]], [pb[0], pb[2]], [c[0], c[2]]) == 0.0
     };
     let Some(ci) = order.iter().position(|&c| !collinear(&pts[c as usize])) else {
         return Ok(mk(&pts, Some("all points collinear".into())));
@@ -538,17 +580,17 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     let pc = pts[c as usize];
     let Some(di) = order
         .iter()
-        .position(|&d| orient3d(pa, pb, pc, pts[d as usize]) != 0.0)
+        .position(|&d| orient3d_exact(pa, pb, pc, pts[d as usize]) != 0.0)
     else {
         return Ok(mk(&pts, Some("all points coplanar".into())));
     };
     let d = order[di];
-    let mut first = if orient3d(pa, pb, pc, pts[d as usize]) > 0.0 {
+    let mut first = if orient3d_exact(pa, pb, pc, pts[d as usize]) > 0.0 {
         [a, b, c, d]
     } else {
         [b, a, c, d]
     };
-    if orient3d(
+    if orient3d_exact(
         pts[first[0] as usize],
         pts[first[1] as usize],
         pts[first[2] as usize],
@@ -696,7 +738,7 @@ impl Delaunay3 {
             for i in 0..4 {
                 let mut w = q;
                 w[i] = pp;
-                if orient3d(w[0], w[1], w[2], w[3]) < 0.0 {
+                if orient3d_exact(w[0], w[1], w[2], w[3]) < 0.0 {
                     let n = self.neighbors[t as usize][i];
                     if n == NONE {
                         return None;
@@ -713,7 +755,7 @@ impl Delaunay3 {
             (0..4).all(|i| {
                 let mut w = q;
                 w[i] = pp;
-                orient3d(w[0], w[1], w[2], w[3]) >= 0.0
+                orient3d_exact(w[0], w[1], w[2], w[3]) >= 0.0
             })
         })
     }
@@ -808,9 +850,9 @@ impl Delaunay3 {
                 let n = self.neighbors[t][i];
                 if n == NONE || (t as u32) < n {
                     let f = FACE_OF[i];
-                    // FACE_OF is oriented towards corner i; outward = reversed
+                    // corner i lies on the side opposite the right-hand normal: outward
                     out.push(Face3 {
-                        v: [v[f[1]], v[f[0]], v[f[2]]],
+                        v: [v[f[0]], v[f[1]], v[f[2]]],
                         tets: [t as u32, n],
                     });
                 }
@@ -852,7 +894,7 @@ impl Delaunay3 {
     pub fn check_topology(&self) -> std::result::Result<(), String> {
         for (t, v) in self.tets.iter().enumerate() {
             let q = v.map(|x| self.pa(x));
-            if orient3d(q[0], q[1], q[2], q[3]) <= 0.0 {
+            if orient3d_exact(q[0], q[1], q[2], q[3]) <= 0.0 {
                 return Err(format!("tet {t} not positive"));
             }
             for i in 0..4 {
@@ -916,7 +958,7 @@ mod tests {
             .iter()
             .map(|t| {
                 let q = t.map(|x| arr(&d.points[x as usize]));
-                orient3d(q[0], q[1], q[2], q[3]) / 6.0
+                orient3d_exact(q[0], q[1], q[2], q[3]) / 6.0
             })
             .sum();
         assert!((vol - 8.0).abs() < 1e-12, "{vol}");
