@@ -128,7 +128,12 @@ struct Bnd {
 }
 
 struct Builder<'a> {
+    /// Points in insertion order (internal vertex ids).
     pts: &'a [[f64; 3]],
+    /// Canonical (lexicographic) index of each internal vertex: the perturbation rank.
+    rank: &'a [u32],
+    /// All coordinates are in the safe range of Shewchuk's predicates.
+    safe: bool,
     tv: Vec<[u32; 4]>,
     tn: Vec<[u32; 4]>,
     stamp: Vec<u32>,
@@ -171,29 +176,37 @@ impl<'a> Builder<'a> {
         }
     }
 
+        #[inline]
+    fn o3(&self, a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+        if self.safe {
+            orient3d(a, b, c, d)
+        } else {
+            orient3d_exact(a, b, c, d)
+        }
+    }
+
     /// Conflict of the finite tetrahedron `t` with point `p` (exact, perturbed).
     #[inline]
     fn finite_conflict(&self, t: u32, p: u32) -> bool {
         let v = self.tv[t as usize];
-        let q = [
-            self.p(v[0]),
-            self.p(v[1]),
-            self.p(v[2]),
-            self.p(v[3]),
-            self.p(p),
-        ];
-        let s = insphere_fast(&q);
+        let q = [self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(v[3]), self.p(p)];
+        let s = if self.safe {
+            insphere(q[0], q[1], q[2], q[3], q[4])
+        } else {
+            insphere_exact(q[0], q[1], q[2], q[3], q[4])
+        };
         if s != 0.0 {
             return s > 0.0;
         }
-        perturbed_insphere(&q, &[v[0], v[1], v[2], v[3], p])
+        let r = |x: u32| self.rank[x as usize];
+        perturbed_insphere(&q, &[r(v[0]), r(v[1]), r(v[2]), r(v[3]), r(p)])
     }
 
     #[inline]
     fn in_conflict(&self, t: u32, p: u32) -> bool {
         let v = self.tv[t as usize];
         if v[3] == INF {
-            let o = orient3d_exact(self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(p));
+                        let o = self.o3(self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(p));
             if o != 0.0 {
                 return o > 0.0;
             }
@@ -231,7 +244,7 @@ impl<'a> Builder<'a> {
                 }
                 let mut w = q;
                 w[i] = pp;
-                if orient3d_exact(w[0], w[1], w[2], w[3]) < 0.0 {
+                                if self.o3(w[0], w[1], w[2], w[3]) < 0.0 {
                     prev = t;
                     t = n;
                     continue 'walk;
@@ -353,11 +366,7 @@ impl<'a> Builder<'a> {
     }
 }
 
-/// Filtered in-sphere: exact sign via Shewchuk's adaptive predicate.
-#[inline]
-fn insphere_fast(q: &[[f64; 3]; 5]) -> f64 {
-    insphere_exact(q[0], q[1], q[2], q[3], q[4])
-}
+
 
 /// True when every coordinate is 0 or has a magnitude in [2^-120, 2^120], the range in which
 /// Shewchuk's adaptive predicates (degree ≤ 5) can neither overflow nor underflow.
@@ -599,9 +608,22 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     {
         first.swap(0, 1);
     }
-    let n = pts.len();
+        let n = pts.len();
+    // internal numbering = insertion order (memory locality); `canon` maps back
+    let mut canon: Vec<u32> = Vec::with_capacity(n);
+    canon.extend_from_slice(&first);
+    canon.extend(
+        order
+            .iter()
+            .copied()
+            .filter(|&p| p != a && p != b && p != c && p != d),
+    );
+    drop(order);
+    let ipts: Vec<[f64; 3]> = canon.iter().map(|&v| pts[v as usize]).collect();
     let mut bld = Builder {
-        pts: &pts,
+        pts: &ipts,
+        rank: &canon,
+        safe: safe_range(&ipts),
         tv: Vec::with_capacity(7 * n + 16),
         tn: Vec::with_capacity(7 * n + 16),
         stamp: Vec::with_capacity(7 * n + 16),
@@ -614,6 +636,7 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
         table: Vec::new(),
         gen: 0,
     };
+        let first = [0, 1, 2, 3];
     bld.tv.push(first);
     for f in FACE_OF {
         bld.tv.push([first[f[1]], first[f[0]], first[f[2]], INF]);
@@ -621,13 +644,8 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     bld.tn = vec![[0; 4]; 5];
     bld.stamp = vec![0; 5];
     link_brute(&bld.tv, &mut bld.tn);
-    let mut k = 0u32;
-    for &p in &order {
-        if p == a || p == b || p == c || p == d {
-            continue;
-        }
-        bld.insert(p, k);
-        k += 1;
+        for p in 4..n as u32 {
+        bld.insert(p, p - 4);
     }
     // compact in place
     let Builder { mut tv, mut tn, .. } = bld;
@@ -646,10 +664,11 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
         if v[0] == FREE {
             continue;
         }
-        if v[3] == INF {
-            hull.push([v[0], v[2], v[1]]);
+                if v[3] == INF {
+            hull.push([v[0], v[2], v[1]].map(|x| canon[x as usize]));
             continue;
         }
+        let v = v.map(|x| canon[x as usize]);
         let mut nb = [NONE; 4];
         for i in 0..4 {
             nb[i] = map[(tn[t][i] >> 2) as usize];
