@@ -1,10 +1,11 @@
 //! Benchmark of the 3D Delaunay tetrahedralization on N uniform random points in the unit cube.
 //!
 //! ```text
-//! cargo run --release -p morpho --example bench_delaunay3d -- [N] [--seed S] [--write points.f64]
+//! cargo run --release -p morpho --example bench_delaunay3d -- [N] [--seed S] [--write points.f64] [--tets tets.u32]
 //! ```
 //! Prints points/second and the peak resident memory (VmHWM) per point. `--write` stores the
-//! points as little-endian f64 triples for `bench/delaunay3d_qhull.py` (scipy/Qhull comparison).
+//! points as little-endian f64 triples, `--tets` the tetrahedra (input indices, little-endian u32
+//! quadruples) for `bench/delaunay3d_qhull.py` (scipy/Qhull timing and tetrahedron-set check).
 
 use morpho::delaunay::d3::triangulate;
 use morpho::geom::Point3;
@@ -34,12 +35,17 @@ fn main() {
     let mut n = 1_000_000usize;
     let mut seed = 1u64;
     let mut write: Option<String> = None;
+    let mut tets: Option<String> = None;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
             "--seed" => {
                 i += 1;
                 seed = args[i].parse().expect("seed");
+            }
+            "--tets" => {
+                i += 1;
+                tets = Some(args[i].clone());
             }
             "--write" => {
                 i += 1;
@@ -75,6 +81,15 @@ fn main() {
         n as f64 / secs,
         n as f64 / cpu.max(0.01)
     );
+    if let Some(path) = tets {
+        let bytes: Vec<u8> = d
+            .to_input_indices()
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        std::fs::write(&path, bytes).expect("write tets");
+    }
     println!(
         "peak memory (VmHWM) {:.1} MiB = {:.0} bytes/point (before triangulate: {:.1} MiB, input 24 bytes/point)",
         hwm as f64 / 1024.0,

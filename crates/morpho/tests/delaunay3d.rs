@@ -455,7 +455,7 @@ fn check_d(g: &DelaunayD) {
 #[test]
 fn dd_random_and_grids() {
     for dim in 2..=5 {
-        let n = [0, 0, 60, 40, 25, 16][dim];
+        let n = [0, 0, 50, 30, 20, 14][dim];
         let mut r = rng(dim as u64);
         let c: Vec<f64> = (0..n * dim).map(|_| r.gen()).collect();
         let g = triangulate_d(&c, dim).unwrap();
@@ -551,4 +551,43 @@ proptest! {
         let d = triangulate(&p).unwrap();
         check(&d, &p);
     }
+}
+
+/// Same tetrahedra as scipy's Qhull on random points (skipped when python3/scipy is absent).
+#[test]
+fn matches_qhull_when_available() {
+    let p = random_points(300, 42);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("pts.txt");
+    let text: String = p
+        .iter()
+        .map(|q| format!("{:e} {:e} {:e}\n", q.x, q.y, q.z))
+        .collect();
+    std::fs::write(&path, text).unwrap();
+    let script = "import sys, numpy as np\nfrom scipy.spatial import Delaunay\n\
+                  d = Delaunay(np.loadtxt(sys.argv[1]))\n\
+                  [print(*sorted(s)) for s in d.simplices.tolist()]";
+    let out = std::process::Command::new("python3")
+        .arg("-c")
+        .arg(script)
+        .arg(&path)
+        .output();
+    let Ok(out) = out else {
+        eprintln!("python3 not available: skipping the Qhull comparison");
+        return;
+    };
+    if !out.status.success() {
+        eprintln!("scipy not available: skipping the Qhull comparison");
+        return;
+    }
+    let qhull: BTreeSet<[u32; 4]> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| {
+            let v: Vec<u32> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2], v[3]]
+        })
+        .collect();
+    let d = triangulate(&p).unwrap();
+    let ours: BTreeSet<[u32; 4]> = d.to_input_indices().into_iter().map(sorted).collect();
+    assert_eq!(ours, qhull);
 }
