@@ -176,7 +176,7 @@ impl<'a> Builder<'a> {
         }
     }
 
-        #[inline]
+    #[inline]
     fn o3(&self, a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
         if self.safe {
             orient3d(a, b, c, d)
@@ -189,7 +189,13 @@ impl<'a> Builder<'a> {
     #[inline]
     fn finite_conflict(&self, t: u32, p: u32) -> bool {
         let v = self.tv[t as usize];
-        let q = [self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(v[3]), self.p(p)];
+        let q = [
+            self.p(v[0]),
+            self.p(v[1]),
+            self.p(v[2]),
+            self.p(v[3]),
+            self.p(p),
+        ];
         let s = if self.safe {
             insphere(q[0], q[1], q[2], q[3], q[4])
         } else {
@@ -206,7 +212,7 @@ impl<'a> Builder<'a> {
     fn in_conflict(&self, t: u32, p: u32) -> bool {
         let v = self.tv[t as usize];
         if v[3] == INF {
-                        let o = self.o3(self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(p));
+            let o = self.o3(self.p(v[0]), self.p(v[1]), self.p(v[2]), self.p(p));
             if o != 0.0 {
                 return o > 0.0;
             }
@@ -244,7 +250,7 @@ impl<'a> Builder<'a> {
                 }
                 let mut w = q;
                 w[i] = pp;
-                                if self.o3(w[0], w[1], w[2], w[3]) < 0.0 {
+                if self.o3(w[0], w[1], w[2], w[3]) < 0.0 {
                     prev = t;
                     t = n;
                     continue 'walk;
@@ -365,8 +371,6 @@ impl<'a> Builder<'a> {
         self.last = last;
     }
 }
-
-
 
 /// True when every coordinate is 0 or has a magnitude in [2^-120, 2^120], the range in which
 /// Shewchuk's adaptive predicates (degree ≤ 5) can neither overflow nor underflow.
@@ -608,7 +612,7 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     {
         first.swap(0, 1);
     }
-        let n = pts.len();
+    let n = pts.len();
     // internal numbering = insertion order (memory locality); `canon` maps back
     let mut canon: Vec<u32> = Vec::with_capacity(n);
     canon.extend_from_slice(&first);
@@ -636,7 +640,7 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
         table: Vec::new(),
         gen: 0,
     };
-        let first = [0, 1, 2, 3];
+    let first = [0, 1, 2, 3];
     bld.tv.push(first);
     for f in FACE_OF {
         bld.tv.push([first[f[1]], first[f[0]], first[f[2]], INF]);
@@ -644,7 +648,7 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     bld.tn = vec![[0; 4]; 5];
     bld.stamp = vec![0; 5];
     link_brute(&bld.tv, &mut bld.tn);
-        for p in 4..n as u32 {
+    for p in 4..n as u32 {
         bld.insert(p, p - 4);
     }
     // compact in place
@@ -664,7 +668,7 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
         if v[0] == FREE {
             continue;
         }
-                if v[3] == INF {
+        if v[3] == INF {
             hull.push([v[0], v[2], v[1]].map(|x| canon[x as usize]));
             continue;
         }
