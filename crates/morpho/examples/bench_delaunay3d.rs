@@ -36,6 +36,8 @@ fn main() {
     let mut seed = 1u64;
     let mut write: Option<String> = None;
     let mut tets: Option<String> = None;
+    let mut grid = 0usize;
+    let mut check = false;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -43,6 +45,11 @@ fn main() {
                 i += 1;
                 seed = args[i].parse().expect("seed");
             }
+            "--grid" => {
+                i += 1;
+                grid = args[i].parse().expect("grid size");
+            }
+            "--check" => check = true,
             "--tets" => {
                 i += 1;
                 tets = Some(args[i].clone());
@@ -56,9 +63,26 @@ fn main() {
         i += 1;
     }
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let pts: Vec<Point3> = (0..n)
-        .map(|_| Point3::new(rng.gen(), rng.gen(), rng.gen()))
-        .collect();
+    let pts: Vec<Point3> = if grid > 0 {
+        // integer lattice grid³ (maximally cospherical), in a shuffled order
+        use rand::seq::SliceRandom;
+        let mut v: Vec<Point3> = (0..grid * grid * grid)
+            .map(|i| {
+                Point3::new(
+                    (i % grid) as f64,
+                    ((i / grid) % grid) as f64,
+                    (i / grid / grid) as f64,
+                )
+            })
+            .collect();
+        v.shuffle(&mut rng);
+        v
+    } else {
+        (0..n)
+            .map(|_| Point3::new(rng.gen(), rng.gen(), rng.gen()))
+            .collect()
+    };
+    let n = pts.len();
     if let Some(path) = write {
         let bytes: Vec<u8> = pts
             .iter()
@@ -81,6 +105,15 @@ fn main() {
         n as f64 / secs,
         n as f64 / cpu.max(0.01)
     );
+    if check {
+        let t = Instant::now();
+        d.check_topology().expect("topology");
+        d.check_delaunay_local().expect("local Delaunay");
+        println!(
+            "check: topology and local Delaunay certificate OK ({:.2} s)",
+            t.elapsed().as_secs_f64()
+        );
+    }
     if let Some(path) = tets {
         let bytes: Vec<u8> = d
             .to_input_indices()

@@ -83,6 +83,7 @@ fn check(d: &Delaunay3, input: &[Point3]) -> BTreeSet<[[u64; 3]; 4]> {
     }
     assert!(d.degenerate.is_none());
     d.check_topology().unwrap();
+    d.check_delaunay_local().unwrap();
     let p = |v: u32| arr(&d.points[v as usize]);
     // every tet positive, empty (perturbed) circumsphere
     for t in &d.tets {
@@ -222,6 +223,31 @@ fn random_sets() {
     for seed in 0..6 {
         full(&random_points(60, seed), true);
     }
+}
+
+#[test]
+fn larger_lattice_local_certificate() {
+    // 9³ lattice in shuffled order; plus a lattice with a random jitter on one axis
+    let p = shuffled(&grid(9, 1.0, 0.0), 5);
+    let d = triangulate(&p).unwrap();
+    d.check_topology().unwrap();
+    d.check_delaunay_local().unwrap();
+    assert_eq!(d.hull.len(), 6 * 8 * 8 * 2);
+    // exact integer volumes: 6·vol = Σ orient3d
+    let six_vol: i64 = d
+        .tets
+        .iter()
+        .map(|t| {
+            let q = t.map(|v| arr(&d.points[v as usize]).map(|x| x as i64));
+            let e = |i: usize, k: usize| q[i][k] - q[3][k];
+            e(0, 0) * (e(1, 1) * e(2, 2) - e(1, 2) * e(2, 1))
+                - e(0, 1) * (e(1, 0) * e(2, 2) - e(1, 2) * e(2, 0))
+                + e(0, 2) * (e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0))
+        })
+        .sum();
+    assert_eq!(six_vol, 6 * 512);
+    let e = triangulate(&shuffled(&p, 6)).unwrap();
+    assert_eq!(canonical(&e), canonical(&d));
 }
 
 #[test]

@@ -913,6 +913,58 @@ impl Delaunay3 {
             .collect()
     }
 
+    /// Local certificate of the (perturbed) Delaunay property in `O(T)`: for every interior face,
+    /// the apex of each neighbour is outside the circumsphere of the other tetrahedron (exact
+    /// `insphere`, ties decided by the symbolic perturbation), and along every hull edge the two
+    /// hull triangles are locally convex. Together with [`Self::check_topology`] this implies the
+    /// global empty-sphere property (Delaunay's lemma).
+    pub fn check_delaunay_local(&self) -> std::result::Result<(), String> {
+        for (t, v) in self.tets.iter().enumerate() {
+            for i in 0..4 {
+                let n = self.neighbors[t][i];
+                if n == NONE || n < t as u32 {
+                    continue;
+                }
+                let nv = self.tets[n as usize];
+                let Some(&apex) = nv.iter().find(|x| !v.contains(x)) else {
+                    return Err(format!("tets {t} and {n} have the same vertices"));
+                };
+                let q = [
+                    self.pa(v[0]),
+                    self.pa(v[1]),
+                    self.pa(v[2]),
+                    self.pa(v[3]),
+                    self.pa(apex),
+                ];
+                let s = insphere_exact(q[0], q[1], q[2], q[3], q[4]);
+                if s > 0.0 || (s == 0.0 && perturbed_insphere(&q, &[v[0], v[1], v[2], v[3], apex]))
+                {
+                    return Err(format!("face between {t} and {n} is not locally Delaunay"));
+                }
+            }
+        }
+        let mut edge: std::collections::HashMap<(u32, u32), usize> = Default::default();
+        for (h, f) in self.hull.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (f[k], f[(k + 1) % 3]);
+                if let Some(&g) = edge.get(&(b, a)) {
+                    let other = self.hull[g];
+                    let Some(&apex) = other.iter().find(|x| !f.contains(x)) else {
+                        return Err(format!("hull triangles {h} and {g} coincide"));
+                    };
+                    let o =
+                        orient3d_exact(self.pa(f[0]), self.pa(f[1]), self.pa(f[2]), self.pa(apex));
+                    if o < 0.0 {
+                        return Err(format!("hull not convex at edge {a}-{b}"));
+                    }
+                } else {
+                    edge.insert((a, b), h);
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Checks the combinatorial invariants (positive orientation, neighbour symmetry); for tests.
     pub fn check_topology(&self) -> std::result::Result<(), String> {
         for (t, v) in self.tets.iter().enumerate() {
