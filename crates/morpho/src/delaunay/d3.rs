@@ -53,6 +53,8 @@ pub const NONE: u32 = u32::MAX;
 const INF: u32 = u32::MAX;
 /// Marks a freed tetrahedron slot (internal, in vertex slot 0).
 const FREE: u32 = u32::MAX - 1;
+/// Most tetrahedra (including ghosts) during the construction: neighbour codes are `tet << 2 | face`.
+const MAX_TETS: usize = 1 << 30;
 
 /// Vertex positions of the face opposite corner `i`, ordered so that
 /// `orient3d(face…, v_i) > 0` for a positive tetrahedron, i.e. oriented outward.
@@ -134,6 +136,8 @@ struct Builder<'a> {
     rank: &'a [u32],
     /// All coordinates are in the safe range of Shewchuk's predicates.
     safe: bool,
+    /// Set when the tetrahedron count reached [`MAX_TETS`].
+    overflow: bool,
     tv: Vec<[u32; 4]>,
     tn: Vec<[u32; 4]>,
     stamp: Vec<u32>,
@@ -169,6 +173,11 @@ impl<'a> Builder<'a> {
             self.stamp[t as usize] = 0;
             t
         } else {
+            if self.tv.len() >= MAX_TETS {
+                // neighbour codes `tet << 2 | face` would overflow: abandon (checked by caller)
+                self.overflow = true;
+                return 0;
+            }
             self.tv.push([FREE; 4]);
             self.tn.push([0; 4]);
             self.stamp.push(0);
@@ -628,6 +637,7 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
         pts: &ipts,
         rank: &canon,
         safe: safe_range(&ipts),
+        overflow: false,
         tv: Vec::with_capacity(7 * n + 16),
         tn: Vec::with_capacity(7 * n + 16),
         stamp: Vec::with_capacity(7 * n + 16),
@@ -650,6 +660,11 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     link_brute(&bld.tv, &mut bld.tn);
     for p in 4..n as u32 {
         bld.insert(p, p - 4);
+        if bld.overflow {
+            return Err(Error::unsupported(format!(
+                "more than {MAX_TETS} tetrahedra (input too large or too degenerate)"
+            )));
+        }
     }
     // compact in place
     let Builder { mut tv, mut tn, .. } = bld;
