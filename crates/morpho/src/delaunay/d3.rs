@@ -138,6 +138,8 @@ struct Builder<'a> {
     safe: bool,
     /// Set when the tetrahedron count reached [`MAX_TETS`].
     overflow: bool,
+    /// All coordinates are integers of magnitude ≤ 2^20 (lattices): exact integer in-sphere.
+    small_int: bool,
     tv: Vec<[u32; 4]>,
     tn: Vec<[u32; 4]>,
     stamp: Vec<u32>,
@@ -205,7 +207,9 @@ impl<'a> Builder<'a> {
             self.p(v[3]),
             self.p(p),
         ];
-        let s = if self.safe {
+        let s = if self.small_int {
+            insphere_small_int(&q)
+        } else if self.safe {
             insphere(q[0], q[1], q[2], q[3], q[4])
         } else {
             insphere_exact(q[0], q[1], q[2], q[3], q[4])
@@ -379,6 +383,36 @@ impl<'a> Builder<'a> {
         }
         self.last = last;
     }
+}
+
+/// Exact `insphere` (same sign as Shewchuk's) for integer coordinates of magnitude ≤ 2^20:
+/// differences ≤ 2^21, 2×2 minors ≤ 2^43 (i64), the determinant ≤ 2^112 (i128). Lattice inputs
+/// hit exact zeros constantly; this avoids the expansion arithmetic of the adaptive predicate.
+#[inline]
+fn insphere_small_int(q: &[[f64; 3]; 5]) -> f64 {
+    let e = q[4];
+    let d = |p: [f64; 3]| {
+        [
+            (p[0] - e[0]) as i64,
+            (p[1] - e[1]) as i64,
+            (p[2] - e[2]) as i64,
+        ]
+    };
+    let (a, b, c, dd) = (d(q[0]), d(q[1]), d(q[2]), d(q[3]));
+    let ab = a[0] * b[1] - b[0] * a[1];
+    let bc = b[0] * c[1] - c[0] * b[1];
+    let cd = c[0] * dd[1] - dd[0] * c[1];
+    let da = dd[0] * a[1] - a[0] * dd[1];
+    let ac = a[0] * c[1] - c[0] * a[1];
+    let bd = b[0] * dd[1] - dd[0] * b[1];
+    let w = |x: i64| x as i128;
+    let abc = w(a[2]) * w(bc) - w(b[2]) * w(ac) + w(c[2]) * w(ab);
+    let bcd = w(b[2]) * w(cd) - w(c[2]) * w(bd) + w(dd[2]) * w(bc);
+    let cda = w(c[2]) * w(da) + w(dd[2]) * w(ac) + w(a[2]) * w(cd);
+    let dab = w(dd[2]) * w(ab) + w(a[2]) * w(bd) + w(b[2]) * w(da);
+    let lift = |p: [i64; 3]| w(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    let det = (lift(dd) * abc - lift(c) * dab) + (lift(b) * cda - lift(a) * bcd);
+    det.signum() as f64
 }
 
 /// True when every coordinate is 0 or has a magnitude in [2^-120, 2^120], the range in which
@@ -638,6 +672,10 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
         rank: &canon,
         safe: safe_range(&ipts),
         overflow: false,
+        small_int: ipts
+            .iter()
+            .flatten()
+            .all(|x| x.fract() == 0.0 && x.abs() <= (1u32 << 20) as f64),
         tv: Vec::with_capacity(7 * n + 16),
         tn: Vec::with_capacity(7 * n + 16),
         stamp: Vec::with_capacity(7 * n + 16),
@@ -1069,6 +1107,22 @@ mod tests {
         keys.dedup();
         assert_eq!(keys.len(), 512);
         assert_eq!(*keys.last().unwrap(), 511);
+    }
+
+    #[test]
+    fn small_int_insphere_matches_shewchuk() {
+        use rand::Rng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        for k in 0..3000 {
+            let r = if k % 2 == 0 { 3 } else { 1 << 20 };
+            let q: [[f64; 3]; 5] =
+                std::array::from_fn(|_| std::array::from_fn(|_| rng.gen_range(-r..=r) as f64));
+            let s = crate::geom::predicates::raw::insphere(q[0], q[1], q[2], q[3], q[4]);
+            assert_eq!(
+                insphere_small_int(&q),
+                s.signum() * (s != 0.0) as i32 as f64
+            );
+        }
     }
 
     #[test]
