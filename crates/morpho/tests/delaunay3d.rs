@@ -541,6 +541,8 @@ fn dd_random_and_grids() {
     let g = triangulate_d(&c, 3).unwrap();
     assert!(g.simplices.is_empty() && g.degenerate.is_some());
     assert!(triangulate_d(&[1.0, f64::NAN], 2).is_err());
+    assert!(triangulate_d(&[1.0, 2.0], 1).is_err());
+    assert!(triangulate_d(&[1.0, 2.0, 3.0], 2).is_err());
     assert!(triangulate_d(&[], 2).is_err());
 }
 
@@ -568,6 +570,21 @@ proptest! {
             let gs: BTreeSet<[u32; 4]> = g.simplices.iter().map(|s| sorted([s[0], s[1], s[2], s[3]])).collect();
             let ds: BTreeSet<[u32; 4]> = d.tets.iter().map(|t| sorted(*t)).collect();
             prop_assert_eq!(gs, ds);
+        }
+    }
+
+    #[test]
+    fn prop_dd_small_integer_sets_4d(pts in proptest::collection::vec(proptest::collection::vec(0i32..3, 4), 1..24)) {
+        let c: Vec<f64> = pts.iter().flatten().map(|&x| x as f64).collect();
+        let g = triangulate_d(&c, 4).unwrap();
+        // every input maps to its vertex
+        for (i, &v) in g.vertex_of_input.iter().enumerate() {
+            prop_assert_eq!(g.point(v), &c[i * 4..i * 4 + 4]);
+        }
+        if g.simplices.is_empty() {
+            prop_assert!(g.degenerate.is_some());
+        } else {
+            check_d(&g);
         }
     }
 

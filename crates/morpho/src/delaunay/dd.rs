@@ -499,13 +499,13 @@ impl<'a> Builder<'a> {
 
 /// Computes the Delaunay triangulation of the points `coords` (flat, `dim` coordinates each).
 ///
-/// Errors: `dim` outside 1..=7, `coords.len()` not a multiple of `dim`, no points, non-finite
+/// Errors: `dim` outside 2..=7, `coords.len()` not a multiple of `dim`, no points, non-finite
 /// coordinates. Affinely degenerate input (all points in a hyperplane) gives `Ok` with no
 /// simplices and [`DelaunayD::degenerate`] set.
 pub fn triangulate_d(coords: &[f64], dim: usize) -> Result<DelaunayD> {
-    if !(1..=MAX_DIM).contains(&dim) {
+    if !(2..=MAX_DIM).contains(&dim) {
         return Err(Error::unsupported(format!(
-            "dimension {dim} (supported: 1 to {MAX_DIM})"
+            "dimension {dim} (supported: 2 to {MAX_DIM})"
         )));
     }
     if coords.len() % dim != 0 {
