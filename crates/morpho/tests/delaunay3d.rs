@@ -347,6 +347,32 @@ fn extreme_scales() {
         let b: BTreeSet<[u32; 4]> = u.tets.iter().map(|t| sorted(*t)).collect();
         assert_eq!(a, b, "scale {s}");
     }
+    // huge offset with distinct representable coordinates: 1e300 + k·1e300·2^-40
+    let p = grid(3, 1e300 / (1u64 << 40) as f64, 1e300);
+    let d = triangulate(&p).unwrap();
+    assert_eq!(d.points.len(), 27);
+    d.check_topology().unwrap();
+    d.check_delaunay_local().unwrap();
+    let flat: Vec<f64> = p.iter().flat_map(arr).collect();
+    let g = triangulate_d(&flat, 3).unwrap();
+    let a: BTreeSet<[u32; 4]> = d.tets.iter().map(|t| sorted(*t)).collect();
+    let b: BTreeSet<[u32; 4]> = g
+        .simplices
+        .iter()
+        .map(|s| sorted([s[0], s[1], s[2], s[3]]))
+        .collect();
+    assert_eq!(a, b);
+    for (s, o) in [(1e-300, 0.0), (1e300, 0.0)] {
+        let d = triangulate(
+            &random_points(40, 4)
+                .iter()
+                .map(|q| Point3::from(q.coords * s + nalgebra::Vector3::repeat(o)))
+                .collect::<Vec<_>>(),
+        )
+        .unwrap();
+        d.check_topology().unwrap();
+        d.check_delaunay_local().unwrap();
+    }
     // a grid with an offset of 2^60 (representable steps)
     let o = (1u64 << 60) as f64;
     let p = grid(3, 256.0, o);

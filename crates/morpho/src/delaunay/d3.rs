@@ -786,7 +786,7 @@ impl Delaunay3 {
     }
 
     /// A tetrahedron containing `p` (in its closure), or `None` when `p` is outside the convex
-    /// hull or there are no tetrahedra. Visibility walk with exact `orient3d` (it terminates on
+    /// hull, not finite, or there are no tetrahedra. Visibility walk with exact `orient3d` (it terminates on
     /// Delaunay triangulations).
     pub fn locate(&self, p: &Point3) -> Option<u32> {
         self.locate_from(p, 0)
@@ -794,7 +794,7 @@ impl Delaunay3 {
 
     /// [`Self::locate`] starting the walk at tetrahedron `hint`.
     pub fn locate_from(&self, p: &Point3, hint: u32) -> Option<u32> {
-        if self.tets.is_empty() {
+        if self.tets.is_empty() || !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite()) {
             return None;
         }
         let pp = arr(p);
