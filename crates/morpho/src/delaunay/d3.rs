@@ -35,10 +35,17 @@
 //! All-collinear or all-coplanar input is not an error: the result has no tetrahedra and
 //! [`Delaunay3::degenerate`] says why.
 //!
+//! # Predicates
+//! Shewchuk's adaptive `orient3d`/`insphere` (via `geom::predicates`) when every coordinate is 0
+//! or within 2^±120 (no overflow/underflow possible); an exact i128 in-sphere when all
+//! coordinates are integers of magnitude ≤ 2^20 (lattices hit exact ties constantly); otherwise
+//! (e.g. 1e-300 or 1e300) the big-integer predicates of [`super::dd`].
+//!
 //! # Complexity
 //! Expected `O(n log n)` for points spread in space (`O(n²)` worst case, e.g. points on the
-//! moment curve, where the output itself is quadratic). Memory: about 8 tetrahedra per point
-//! during the construction, 36 bytes each.
+//! moment curve, where the output itself is quadratic). Memory: about 7.7 tetrahedra (with
+//! ghosts) per point during the construction, 36 bytes each; measured peak ≈ 370 bytes per
+//! point for 1M uniform points (see `examples/bench_delaunay3d.rs`).
 
 use crate::geom::predicates::raw::{insphere, orient2d, orient3d};
 use crate::geom::Point3;
