@@ -326,6 +326,7 @@ struct Builder<'a> {
     free: Vec<u32>,
     last: u32,
     rng: u64,
+    overflow: bool,
 }
 
 impl<'a> Builder<'a> {
@@ -358,6 +359,11 @@ impl<'a> Builder<'a> {
             self.stamp[s as usize] = 0;
             s
         } else {
+            if self.stamp.len() >= 1 << 28 {
+                // neighbour codes `simplex << 3 | face` would overflow (checked by the caller)
+                self.overflow = true;
+                return 0;
+            }
             self.sv.extend(std::iter::repeat(FREE).take(d1));
             self.sn.extend(std::iter::repeat(0).take(d1));
             self.stamp.push(0);
@@ -493,13 +499,13 @@ impl<'a> Builder<'a> {
 
 /// Computes the Delaunay triangulation of the points `coords` (flat, `dim` coordinates each).
 ///
-/// Errors: `dim` outside 1..=7, `coords.len()` not a multiple of `dim`, no points, non-finite
+/// Errors: `dim` outside 2..=7, `coords.len()` not a multiple of `dim`, no points, non-finite
 /// coordinates. Affinely degenerate input (all points in a hyperplane) gives `Ok` with no
 /// simplices and [`DelaunayD::degenerate`] set.
 pub fn triangulate_d(coords: &[f64], dim: usize) -> Result<DelaunayD> {
-    if !(1..=MAX_DIM).contains(&dim) {
+    if !(2..=MAX_DIM).contains(&dim) {
         return Err(Error::unsupported(format!(
-            "dimension {dim} (supported: 1 to {MAX_DIM})"
+            "dimension {dim} (supported: 2 to {MAX_DIM})"
         )));
     }
     if coords.len() % dim != 0 {
@@ -597,6 +603,7 @@ pub fn triangulate_d(coords: &[f64], dim: usize) -> Result<DelaunayD> {
         free: Vec::new(),
         last: 0,
         rng: 0x2545_F491_4F6C_DD1D,
+        overflow: false,
     };
     for i in 0..d1 {
         let mut f: Vec<u32> = (0..d1).filter(|&k| k != i).map(|k| first[k]).collect();
@@ -641,6 +648,9 @@ pub fn triangulate_d(coords: &[f64], dim: usize) -> Result<DelaunayD> {
         }
         bld.insert(v, k);
         k += 1;
+        if bld.overflow {
+            return Err(Error::unsupported("more than 2^28 simplices"));
+        }
     }
     let nslots = bld.stamp.len();
     let mut map = vec![NONE; nslots];

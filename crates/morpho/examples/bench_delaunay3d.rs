@@ -1,0 +1,132 @@
+//! Benchmark of the 3D Delaunay tetrahedralization on N uniform random points in the unit cube.
+//!
+//! ```text
+//! cargo run --release -p morpho --example bench_delaunay3d -- [N] [--seed S] [--write points.f64] [--tets tets.u32]
+//! ```
+//! Prints points/second and the peak resident memory (VmHWM) per point. `--write` stores the
+//! points as little-endian f64 triples, `--tets` the tetrahedra (input indices, little-endian u32
+//! quadruples) for `bench/delaunay3d_qhull.py` (scipy/Qhull timing and tetrahedron-set check).
+
+use morpho::delaunay::d3::triangulate;
+use morpho::geom::Point3;
+use rand::{Rng, SeedableRng};
+use std::time::Instant;
+
+fn vm_hwm_kib() -> Option<u64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = s.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// User + system CPU seconds of this process (from /proc/self/stat, clock ticks of 1/100 s).
+fn cpu_secs() -> f64 {
+    let Ok(s) = std::fs::read_to_string("/proc/self/stat") else {
+        return 0.0;
+    };
+    let rest = s.rsplit(')').next().unwrap_or("");
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let t = |i: usize| f.get(i).and_then(|x| x.parse::<f64>().ok()).unwrap_or(0.0);
+    // fields 14 and 15 of stat; after the ')' they are at positions 11 and 12
+    (t(11) + t(12)) / 100.0
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut n = 1_000_000usize;
+    let mut seed = 1u64;
+    let mut write: Option<String> = None;
+    let mut tets: Option<String> = None;
+    let mut grid = 0usize;
+    let mut check = false;
+    let mut i = 0;
+    while i < args.len() {
+        match args[i].as_str() {
+            "--seed" => {
+                i += 1;
+                seed = args[i].parse().expect("seed");
+            }
+            "--grid" => {
+                i += 1;
+                grid = args[i].parse().expect("grid size");
+            }
+            "--check" => check = true,
+            "--tets" => {
+                i += 1;
+                tets = Some(args[i].clone());
+            }
+            "--write" => {
+                i += 1;
+                write = Some(args[i].clone());
+            }
+            a => n = a.parse().expect("N"),
+        }
+        i += 1;
+    }
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let pts: Vec<Point3> = if grid > 0 {
+        // integer lattice grid³ (maximally cospherical), in a shuffled order
+        use rand::seq::SliceRandom;
+        let mut v: Vec<Point3> = (0..grid * grid * grid)
+            .map(|i| {
+                Point3::new(
+                    (i % grid) as f64,
+                    ((i / grid) % grid) as f64,
+                    (i / grid / grid) as f64,
+                )
+            })
+            .collect();
+        v.shuffle(&mut rng);
+        v
+    } else {
+        (0..n)
+            .map(|_| Point3::new(rng.gen(), rng.gen(), rng.gen()))
+            .collect()
+    };
+    let n = pts.len();
+    if let Some(path) = write {
+        let bytes: Vec<u8> = pts
+            .iter()
+            .flat_map(|p| [p.x, p.y, p.z])
+            .flat_map(f64::to_le_bytes)
+            .collect();
+        std::fs::write(&path, bytes).expect("write points");
+    }
+    let before = vm_hwm_kib().unwrap_or(0);
+    let c0 = cpu_secs();
+    let t = Instant::now();
+    let d = triangulate(&pts).expect("triangulate");
+    let secs = t.elapsed().as_secs_f64();
+    let cpu = cpu_secs() - c0;
+    let hwm = vm_hwm_kib().unwrap_or(0);
+    println!(
+        "points {n}  tets {}  hull {}  wall {secs:.3} s  {:.0} points/s  cpu {cpu:.2} s  {:.0} points/cpu-s",
+        d.tets.len(),
+        d.hull.len(),
+        n as f64 / secs,
+        n as f64 / cpu.max(0.01)
+    );
+    if check {
+        let t = Instant::now();
+        d.check_topology().expect("topology");
+        d.check_delaunay_local().expect("local Delaunay");
+        println!(
+            "check: topology and local Delaunay certificate OK ({:.2} s)",
+            t.elapsed().as_secs_f64()
+        );
+    }
+    if let Some(path) = tets {
+        let bytes: Vec<u8> = d
+            .to_input_indices()
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        std::fs::write(&path, bytes).expect("write tets");
+    }
+    println!(
+        "peak memory (VmHWM) {:.1} MiB = {:.0} bytes/point (before triangulate: {:.1} MiB, input 24 bytes/point)",
+        hwm as f64 / 1024.0,
+        hwm as f64 * 1024.0 / n as f64,
+        before as f64 / 1024.0
+    );
+}
