@@ -1,0 +1,416 @@
+//! Slab-wise extraction of contour points and triangles (Hamann 1991, §3.2) for one range of
+//! cell layers `z0..z1`.
+//!
+//! Contour points live on grid *entities*: cell edges (all methods), face diagonals and body
+//! diagonals (tetra method). Entities of a z-plane (x-edges, y-edges, xy-diagonals) form that
+//! plane's block; entities spanning a layer (z-edges, yz/xz-diagonals, body diagonals) form the
+//! layer's block. A slab emits, in this order, plane z0, layer z0, plane z0+1, layer z0+1, …,
+//! plane z1, each block scanned (y, x, slot); cell-interior points (decider fans) go to a separate
+//! list in cell order. The order depends only on the data, never on how layers are split into
+//! slabs, so concatenating slabs (dropping each slab's last plane, which the next slab starts
+//! with) gives the same vertex numbering as one serial pass. Work space: three index arrays of
+//! O(nx·ny) per slab.
+
+use super::tables::{self, polygon_table, tet_table, FACE_CORNERS, NO_FACE, TETS};
+use super::{Method, NormalMethod};
+use crate::geom::{Point3, Vector3};
+use crate::volume::gradient::{gradient_at, GradientOperator};
+use crate::volume::Volume;
+
+pub(super) const NONE: u32 = u32::MAX;
+/// Chunk-local triangle corners with this bit refer to the interior point list.
+pub(super) const INTERIOR: u32 = 1 << 31;
+/// Key of vertices not on a grid entity (cell-interior points).
+pub(super) const KEY_INTERIOR: u64 = u64::MAX;
+
+/// Entity types packed into keys: 0 x-edge, 1 y-edge, 2 z-edge, 3 xy-diag, 4 yz-diag,
+/// 5 xz-diag, 6 body diagonal.
+pub(super) fn key(kind: u64, x: usize, y: usize, z: usize) -> u64 {
+    (kind << 60) | ((x as u64) << 40) | ((y as u64) << 20) | z as u64
+}
+
+/// Integer extent [lo, hi] of the entity `key` along `axis` (`None` for interior points).
+pub(super) fn extent(key: u64, axis: usize) -> Option<(usize, usize)> {
+    if key == KEY_INTERIOR {
+        return None;
+    }
+    let kind = key >> 60;
+    let c = [
+        (key >> 40 & 0xFFFFF) as usize,
+        (key >> 20 & 0xFFFFF) as usize,
+        (key & 0xFFFFF) as usize,
+    ];
+    let spans: [bool; 3] = match kind {
+        0 => [true, false, false],
+        1 => [false, true, false],
+        2 => [false, false, true],
+        3 => [true, true, false],
+        4 => [false, true, true],
+        5 => [true, false, true],
+        _ => [true, true, true],
+    };
+    Some((c[axis], c[axis] + spans[axis] as usize))
+}
+
+pub(super) struct Ctx<'a> {
+    pub vol: &'a Volume,
+    pub axes: &'a [Vec<f64>; 3],
+    pub alpha: f64,
+    pub eps: f64,
+    pub method: Method,
+    pub normals: NormalMethod,
+    /// −1: normals point out of {f > α} (default), +1 when flipped.
+    pub flip: bool,
+}
+
+#[derive(Default)]
+pub(super) struct ChunkOut {
+    pub pos: Vec<Point3>,
+    pub nrm: Vec<Vector3>,
+    pub keys: Vec<u64>,
+    pub ipos: Vec<Point3>,
+    pub inrm: Vec<Vector3>,
+    pub tris: Vec<[u32; 3]>,
+    pub last_plane_start: usize,
+    pub fans: usize,
+    pub centroids: usize,
+    pub skipped_cells: usize,
+}
+
+impl Ctx<'_> {
+    /// f − α with values equal to α raised by ε (H Rem. 3.8); NaN stays NaN.
+    #[inline]
+    fn g(&self, v: f32) -> f64 {
+        let d = v as f64 - self.alpha;
+        if d == 0.0 {
+            self.eps
+        } else {
+            d
+        }
+    }
+    #[inline]
+    fn gi(&self, x: usize, y: usize, z: usize) -> f64 {
+        let d = self.vol.dims;
+        self.g(self.vol.data[x + d[0] * (y + d[1] * z)])
+    }
+    fn op(&self) -> Option<GradientOperator> {
+        match self.normals {
+            NormalMethod::ZuckerHummel => Some(GradientOperator::ZuckerHummel),
+            NormalMethod::Central => Some(GradientOperator::Central),
+            _ => None,
+        }
+    }
+    fn grad(&self, p: [usize; 3]) -> Vector3 {
+        match self.op() {
+            Some(op) => {
+                let g = gradient_at(self.vol, self.axes, p, op);
+                Vector3::new(g[0], g[1], g[2])
+            }
+            None => Vector3::zeros(),
+        }
+    }
+    /// Oriented unit normal from a gradient (zero when undefined).
+    fn orient(&self, g: Vector3) -> Vector3 {
+        let g = if self.flip { g } else { -g };
+        match g.try_normalize(0.0) {
+            Some(n) if n.iter().all(|c| c.is_finite()) => n,
+            _ => Vector3::zeros(),
+        }
+    }
+    fn point(&self, p: [usize; 3]) -> Point3 {
+        Point3::new(self.axes[0][p[0]], self.axes[1][p[1]], self.axes[2][p[2]])
+    }
+
+    /// Adds the contour point on the entity from grid point `a` to `b`, if it is cut.
+    fn vertex(&self, a: [usize; 3], b: [usize; 3], k: u64, out: &mut ChunkOut) -> u32 {
+        let ga = self.gi(a[0], a[1], a[2]);
+        let gb = self.gi(b[0], b[1], b[2]);
+        if !((ga > 0.0 && gb < 0.0) || (ga < 0.0 && gb > 0.0)) {
+            return NONE;
+        }
+        let t = ga / (ga - gb);
+        let (pa, pb) = (self.point(a), self.point(b));
+        out.pos.push(pa + (pb - pa) * t);
+        if self.op().is_some() {
+            let (na, nb) = (self.grad(a), self.grad(b));
+            out.nrm.push(self.orient(na * (1.0 - t) + nb * t));
+        }
+        out.keys.push(k);
+        (out.pos.len() - 1) as u32
+    }
+
+    fn build_plane(&self, z: usize, arr: &mut [u32], out: &mut ChunkOut) {
+        let [nx, ny, _] = self.vol.dims;
+        let tet = self.method == Method::Tetra;
+        for y in 0..ny {
+            for x in 0..nx {
+                let s = 3 * (x + nx * y);
+                arr[s] = if x + 1 < nx {
+                    self.vertex([x, y, z], [x + 1, y, z], key(0, x, y, z), out)
+                } else {
+                    NONE
+                };
+                arr[s + 1] = if y + 1 < ny {
+                    self.vertex([x, y, z], [x, y + 1, z], key(1, x, y, z), out)
+                } else {
+                    NONE
+                };
+                arr[s + 2] = if tet && x + 1 < nx && y + 1 < ny {
+                    self.vertex([x + 1, y, z], [x, y + 1, z], key(3, x, y, z), out)
+                } else {
+                    NONE
+                };
+            }
+        }
+    }
+
+    fn build_layer(&self, z: usize, arr: &mut [u32], out: &mut ChunkOut) {
+        let [nx, ny, _] = self.vol.dims;
+        let tet = self.method == Method::Tetra;
+        for y in 0..ny {
+            for x in 0..nx {
+                let s = 4 * (x + nx * y);
+                arr[s] = self.vertex([x, y, z], [x, y, z + 1], key(2, x, y, z), out);
+                arr[s + 1] = if tet && y + 1 < ny {
+                    self.vertex([x, y + 1, z], [x, y, z + 1], key(4, x, y, z), out)
+                } else {
+                    NONE
+                };
+                arr[s + 2] = if tet && x + 1 < nx {
+                    self.vertex([x + 1, y, z], [x, y, z + 1], key(5, x, y, z), out)
+                } else {
+                    NONE
+                };
+                arr[s + 3] = if tet && x + 1 < nx && y + 1 < ny {
+                    self.vertex([x + 1, y, z], [x, y + 1, z + 1], key(6, x, y, z), out)
+                } else {
+                    NONE
+                };
+            }
+        }
+    }
+
+    /// Extracts layers `z0..z1` (cells with lower z index in that range).
+    pub fn chunk(&self, z0: usize, z1: usize) -> ChunkOut {
+        let [nx, ny, _] = self.vol.dims;
+        let mut out = ChunkOut::default();
+        let mut plo = vec![NONE; 3 * nx * ny];
+        let mut phi = vec![NONE; 3 * nx * ny];
+        let mut lay = vec![NONE; 4 * nx * ny];
+        self.build_plane(z0, &mut plo, &mut out);
+        for z in z0..z1 {
+            self.build_layer(z, &mut lay, &mut out);
+            out.last_plane_start = out.pos.len();
+            self.build_plane(z + 1, &mut phi, &mut out);
+            self.cells(z, &plo, &phi, &lay, &mut out);
+            std::mem::swap(&mut plo, &mut phi);
+        }
+        out
+    }
+
+    fn cells(&self, z: usize, plo: &[u32], phi: &[u32], lay: &[u32], out: &mut ChunkOut) {
+        let [nx, ny, _] = self.vol.dims;
+        let table = polygon_table();
+        let tets = tet_table();
+        let data = &self.vol.data;
+        let sy = nx;
+        let sz = nx * ny;
+        for y in 0..ny - 1 {
+            for x in 0..nx - 1 {
+                let b = x + sy * y + sz * z;
+                let idx = [
+                    b,
+                    b + 1,
+                    b + sy,
+                    b + sy + 1,
+                    b + sz,
+                    b + sz + 1,
+                    b + sz + sy,
+                    b + sz + sy + 1,
+                ];
+                let mut g = [0.0f64; 8];
+                let mut cfg = 0u8;
+                let mut nan = false;
+                for c in 0..8 {
+                    let v = self.g(data[idx[c]]);
+                    nan |= v.is_nan();
+                    g[c] = v;
+                    cfg |= ((v > 0.0) as u8) << c;
+                }
+                if nan {
+                    out.skipped_cells += 1;
+                    continue;
+                }
+                if cfg == 0 || cfg == 255 {
+                    continue;
+                }
+                let ent = |e: u8| -> u32 {
+                    match e {
+                        0..=11 => {
+                            let axis = e / 4;
+                            let j = (e % 4) as usize;
+                            let (l, h) = (j & 1, j >> 1);
+                            match axis {
+                                0 => (if h == 1 { phi } else { plo })[3 * (x + nx * (y + l))],
+                                1 => (if h == 1 { phi } else { plo })[3 * (x + l + nx * y) + 1],
+                                _ => lay[4 * (x + l + nx * (y + h))],
+                            }
+                        }
+                        12 => lay[4 * (x + nx * y) + 1],
+                        13 => lay[4 * (x + 1 + nx * y) + 1],
+                        14 => lay[4 * (x + nx * y) + 2],
+                        15 => lay[4 * (x + nx * (y + 1)) + 2],
+                        16 => plo[3 * (x + nx * y) + 2],
+                        17 => phi[3 * (x + nx * y) + 2],
+                        _ => lay[4 * (x + nx * y) + 3],
+                    }
+                };
+                let push = |out: &mut ChunkOut, a: u32, b: u32, c: u32| {
+                    out.tris.push(if self.flip { [a, c, b] } else { [a, b, c] });
+                };
+                if self.method == Method::Tetra {
+                    for (t, tet) in TETS.iter().enumerate() {
+                        let mut c4 = 0usize;
+                        for (i, &c) in tet.iter().enumerate() {
+                            c4 |= ((cfg >> c & 1) as usize) << i;
+                        }
+                        for tri in &tets.tris[t * 16 + c4] {
+                            push(out, ent(tri[0]), ent(tri[1]), ent(tri[2]));
+                        }
+                    }
+                    continue;
+                }
+                let amb = table.ambiguous[cfg as usize];
+                let connect = if self.method == Method::Lorensen {
+                    tables::lorensen_connect(cfg)
+                } else {
+                    let mut m = 0u8;
+                    for (f, fc) in FACE_CORNERS.iter().enumerate() {
+                        if amb >> f & 1 == 0 {
+                            continue;
+                        }
+                        // asymptotic decider (Thm. 3.3): the bilinear saddle value is above α iff
+                        // the product of the positive diagonal exceeds that of the negative one;
+                        // a tie (two straight lines) cuts off the positive corners (H's choice).
+                        let (p, q) = if cfg >> fc[0] & 1 == 1 {
+                            (
+                                g[fc[0] as usize] * g[fc[2] as usize],
+                                g[fc[1] as usize] * g[fc[3] as usize],
+                            )
+                        } else {
+                            (
+                                g[fc[1] as usize] * g[fc[3] as usize],
+                                g[fc[0] as usize] * g[fc[2] as usize],
+                            )
+                        };
+                        if p > q {
+                            m |= 1 << f;
+                        }
+                    }
+                    m
+                };
+                for poly in &table.entries[cfg as usize * 64 + connect as usize] {
+                    let n = poly.edges.len();
+                    let mut v = [0u32; 12];
+                    for (i, &e) in poly.edges.iter().enumerate() {
+                        v[i] = ent(e);
+                    }
+                    if poly.fan_face == NO_FACE || self.method == Method::Lorensen {
+                        for i in 1..n - 1 {
+                            push(out, v[0], v[i], v[i + 1]);
+                        }
+                    } else {
+                        let c = self.interior_point(&g, poly.fan_face, &v[..n], [x, y, z], out);
+                        for i in 0..n {
+                            push(out, v[i], v[(i + 1) % n], c);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The interior contour point y_n of Thm. 3.6 (Eqs. 3.10–3.11) for a polygon with two
+    /// segments on face `f`, or the centroid of the polygon (Rem. 3.9) when the denominator
+    /// vanishes or the point falls outside the cell (Rem. 3.10). Returns its interior id.
+    fn interior_point(
+        &self,
+        g: &[f64; 8],
+        f: u8,
+        poly: &[u32],
+        cell: [usize; 3],
+        out: &mut ChunkOut,
+    ) -> u32 {
+        let a = (f / 2) as usize;
+        let side = (f % 2) as usize;
+        let (b, c) = ((a + 1) % 3, (a + 2) % 3);
+        let (b, c) = (b.min(c), b.max(c));
+        let corner = |ia: usize, ib: usize, ic: usize| (ia << a) | (ib << b) | (ic << c);
+        let h = |i: usize, j: usize| g[corner(side, i, j)];
+        let d10 = h(1, 0) - h(0, 0);
+        let d01 = h(0, 1) - h(0, 0);
+        let d11 = h(1, 1) - h(1, 0) - h(0, 1) + h(0, 0);
+        let ub = -d01 / d11;
+        let uc = -d10 / d11;
+        let bil = |s: usize| {
+            let q = |i: usize, j: usize| g[corner(s, i, j)];
+            q(0, 0) * (1.0 - ub) * (1.0 - uc)
+                + q(1, 0) * ub * (1.0 - uc)
+                + q(0, 1) * (1.0 - ub) * uc
+                + q(1, 1) * ub * uc
+        };
+        let (f0, f1) = (bil(0), bil(1));
+        let den = f1 - f0;
+        let t0 = -f0 / den;
+        let mut local = [0.0; 3];
+        let p;
+        out.fans += 1;
+        let inside = |s: f64| (0.0..=1.0).contains(&s);
+        if den != 0.0 && t0.is_finite() && inside(t0) && inside(ub) && inside(uc) {
+            local[a] = t0;
+            local[b] = ub;
+            local[c] = uc;
+            p = Point3::new(
+                self.lerp_axis(0, cell[0], local[0]),
+                self.lerp_axis(1, cell[1], local[1]),
+                self.lerp_axis(2, cell[2], local[2]),
+            );
+        } else {
+            out.centroids += 1;
+            let mut s = Vector3::zeros();
+            for &v in poly {
+                s += out.pos[v as usize].coords;
+            }
+            p = Point3::from(s / poly.len() as f64);
+            for k in 0..3 {
+                let (lo, hi) = (self.axes[k][cell[k]], self.axes[k][cell[k] + 1]);
+                local[k] = ((p[k] - lo) / (hi - lo)).clamp(0.0, 1.0);
+            }
+        }
+        out.ipos.push(p);
+        if self.op().is_some() {
+            // Eq. 3.19: trilinear interpolation of the eight corner gradients
+            let mut gsum = Vector3::zeros();
+            for cc in 0..8usize {
+                let bit = |k: usize| cc >> k & 1;
+                let w: f64 = (0..3)
+                    .map(|k| {
+                        if bit(k) == 1 {
+                            local[k]
+                        } else {
+                            1.0 - local[k]
+                        }
+                    })
+                    .product();
+                gsum += self.grad([cell[0] + bit(0), cell[1] + bit(1), cell[2] + bit(2)]) * w;
+            }
+            out.inrm.push(self.orient(gsum));
+        }
+        INTERIOR | (out.ipos.len() - 1) as u32
+    }
+
+    fn lerp_axis(&self, k: usize, i: usize, t: f64) -> f64 {
+        let (lo, hi) = (self.axes[k][i], self.axes[k][i + 1]);
+        lo + (hi - lo) * t
+    }
+}
