@@ -363,19 +363,22 @@ impl Ctx<'_> {
         let den = f1 - f0;
         let t0 = -f0 / den;
         let mut local = [0.0; 3];
-        let p;
+        local[a] = t0;
+        local[b] = ub;
+        local[c] = uc;
+        let mut p = Point3::new(
+            self.lerp_axis(0, cell[0], local[0]),
+            self.lerp_axis(1, cell[1], local[1]),
+            self.lerp_axis(2, cell[2], local[2]),
+        );
         out.fans += 1;
-        let inside = |s: f64| (0.0..=1.0).contains(&s);
-        if den != 0.0 && t0.is_finite() && inside(t0) && inside(ub) && inside(uc) {
-            local[a] = t0;
-            local[b] = ub;
-            local[c] = uc;
-            p = Point3::new(
-                self.lerp_axis(0, cell[0], local[0]),
-                self.lerp_axis(1, cell[1], local[1]),
-                self.lerp_axis(2, cell[2], local[2]),
-            );
-        } else {
+        // the point must lie strictly inside the cell: a point on a face would put fan edges on
+        // that face (Condition 3.1) and a point outside may fold the surface (Rem. 3.10)
+        let strictly_inside = (0..3).all(|k| {
+            let (lo, hi) = (self.axes[k][cell[k]], self.axes[k][cell[k] + 1]);
+            p[k] > lo && p[k] < hi
+        });
+        if !(den != 0.0 && t0.is_finite() && strictly_inside) {
             out.centroids += 1;
             let mut s = Vector3::zeros();
             for &v in poly {
