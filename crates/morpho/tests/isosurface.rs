@@ -240,14 +240,13 @@ fn all_256_configurations_give_valid_cell_pieces() {
                                         let (ep, eq) =
                                             (cube_edge_of(p).unwrap(), cube_edge_of(q).unwrap());
                                         // the common corner of the two edges
-                                        let mut cc = [0usize; 3];
-                                        for k in 0..3 {
-                                            cc[k] = if ep.1[k] != 2 {
+                                        let cc: [usize; 3] = std::array::from_fn(|k| {
+                                            if ep.1[k] != 2 {
                                                 ep.1[k] as usize
                                             } else {
                                                 eq.1[k] as usize
-                                            };
-                                        }
+                                            }
+                                        });
                                         let ci = cc[0] | cc[1] << 1 | cc[2] << 2;
                                         let corner_pos = vals[ci] > 0.0;
                                         assert_eq!(
