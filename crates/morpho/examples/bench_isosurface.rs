@@ -1,0 +1,119 @@
+//! Throughput of `volume::isosurface` for peer comparison (bench/isosurface_peers.py).
+//!
+//! Usage: `cargo run --release -p morpho --example bench_isosurface -- [N] [RAW_OUT] [RAW_IN DIMS]`
+//! * builds an N³ f32 gyroid-like field (default N = 256) on [0, 6π]³, level 0, or reads a raw
+//!   little-endian f32 volume `RAW_IN` with dims "nx,ny,nz" and level from `LEVEL` (env);
+//! * optionally writes the volume as raw little-endian f32 to `RAW_OUT` (x fastest);
+//! * times single-thread and all-core runs of several option sets (one run each, no
+//!   warm-up) and prints one JSON object per line, plus the process's peak RSS (VmHWM).
+
+use morpho::volume::isosurface::{isosurface, Method, NormalMethod, Options};
+use morpho::volume::Volume;
+use std::io::Write;
+use std::time::Instant;
+
+fn peak_rss_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1))
+                .and_then(|v| v.parse::<f64>().ok())
+        })
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(256);
+    let mut level = 0.0;
+    let vol = if let (Some(path), Some(dims)) = (args.get(3), args.get(4)) {
+        let d: Vec<usize> = dims.split(',').map(|s| s.parse().unwrap()).collect();
+        let bytes = std::fs::read(path).unwrap();
+        let data: Vec<f32> = bytes
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect();
+        level = std::env::var("LEVEL")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(0.0);
+        Volume::new([d[0], d[1], d[2]], [0.0; 3], [1.0; 3], data).unwrap()
+    } else {
+        let t = 6.0 * std::f64::consts::PI;
+        Volume::from_fn([n; 3], [0.0; 3], [t; 3], |x, y, z| {
+            x.sin() * y.cos() + y.sin() * z.cos() + z.sin() * x.cos()
+        })
+    };
+    if let Some(out) = args.get(2).filter(|s| !s.is_empty() && *s != "-") {
+        let mut f = std::io::BufWriter::new(std::fs::File::create(out).unwrap());
+        for v in &vol.data {
+            f.write_all(&v.to_le_bytes()).unwrap();
+        }
+    }
+    let threads_all = rayon::current_num_threads();
+    let variants = [
+        (
+            "decider_nonormals_notopo",
+            Method::Decider,
+            NormalMethod::None,
+            false,
+        ),
+        (
+            "decider_central_notopo",
+            Method::Decider,
+            NormalMethod::Central,
+            false,
+        ),
+        (
+            "decider_zucker_topo",
+            Method::Decider,
+            NormalMethod::ZuckerHummel,
+            true,
+        ),
+        (
+            "tetra_nonormals_notopo",
+            Method::Tetra,
+            NormalMethod::None,
+            false,
+        ),
+        (
+            "lorensen_nonormals_notopo",
+            Method::Lorensen,
+            NormalMethod::None,
+            false,
+        ),
+    ];
+    for (name, method, normals, topology) in variants {
+        for threads in [1, threads_all] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let opts = Options {
+                level,
+                method,
+                normals,
+                flip: false,
+                parallel: threads > 1,
+                topology,
+            };
+            let (secs, r) = pool.install(|| {
+                let t = Instant::now();
+                let r = isosurface(&vol, &opts).unwrap();
+                (t.elapsed().as_secs_f64(), r)
+            });
+            println!(
+                "{{\"variant\":\"{name}\",\"threads\":{threads},\"dims\":{:?},\"seconds\":{secs:.4},\"vertices\":{},\"triangles\":{},\"tri_per_s\":{:.0},\"parts\":{},\"interior_holes\":{},\"peak_rss_mb\":{:.1}}}",
+                vol.dims,
+                r.mesh.positions.len(),
+                r.mesh.triangles.len(),
+                r.mesh.triangles.len() as f64 / secs,
+                r.parts,
+                r.interior_holes,
+                peak_rss_mb()
+            );
+        }
+    }
+}
