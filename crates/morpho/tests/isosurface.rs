@@ -708,3 +708,44 @@ fn regression_fan_point_on_outer_face() {
     check_watertight(&r.mesh, [4.0, 4.0, 1.0]).unwrap();
     assert!(r.centroid_fallbacks > 0);
 }
+
+#[test]
+fn ct_head_bone_surface_has_no_interior_holes() {
+    // MORPHO_SHARED_DATA overrides the location (e.g. when run from a git worktree)
+    let dir = std::env::var("MORPHO_SHARED_DATA")
+        .unwrap_or_else(|_| concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data").into());
+    let path = std::path::Path::new(&dir).join("volumes/cthead_8bit_256x256x99.raw.gz");
+    if !path.exists() {
+        eprintln!("skipping: {} absent", path.display());
+        return;
+    }
+    let bytes = morpho::io::read_bytes(&path).unwrap();
+    assert_eq!(bytes.len(), 256 * 256 * 99);
+    // a crop of the skull (x 80..144, y 40..104, z 24..48), spacing 1:1:2 as documented
+    let (x0, y0, z0, n) = (80, 40, 24, [64usize, 64, 24]);
+    let mut data = Vec::with_capacity(n[0] * n[1] * n[2]);
+    for z in 0..n[2] {
+        for y in 0..n[1] {
+            for x in 0..n[0] {
+                data.push(bytes[(x0 + x) + 256 * ((y0 + y) + 256 * (z0 + z))] as f32);
+            }
+        }
+    }
+    let v = Volume::new(n, [0.0; 3], [1.0, 1.0, 2.0], data).unwrap();
+    let hi = [63.0, 63.0, 46.0];
+    for m in [Method::Decider, Method::Tetra] {
+        let r = run(&v, 120.0, m);
+        assert!(r.mesh.triangles.len() > 2_000, "{}", r.mesh.triangles.len());
+        assert_eq!(r.interior_holes, 0, "{m:?}");
+        assert_eq!(r.non_manifold_edges, 0, "{m:?}");
+        check_watertight(&r.mesh, hi).unwrap();
+        assert!(r.parts >= 1);
+    }
+    // integer data hits the level exactly and has ambiguous faces: Lorensen shows holes
+    let l = run(&v, 120.0, Method::Lorensen);
+    assert!(l.interior_holes > 0);
+    eprintln!(
+        "CT crop: lorensen interior holes {}, boundary edges {}",
+        l.interior_holes, l.boundary_edges
+    );
+}
