@@ -667,6 +667,26 @@ mod tests {
     }
 
     #[test]
+    fn degenerate_face_cuts_off_positive_corners() {
+        // face z = 0 with f = +1, -1, -1, +1: the face contour is the two asymptotes (Eq. 3.9
+        // collapses); H's adhoc rule cuts off the positive corners -> two separate triangles.
+        let v = cube([1.0, -1.0, -1.0, 1.0, -1.0, -1.0, -1.0, -1.0]);
+        let r = isosurface(&v, &Options::default()).unwrap();
+        assert_eq!(r.mesh.triangles.len(), 2);
+        assert_eq!(r.parts, 2);
+        // a slightly larger positive diagonal joins them (saddle above α): one hexagon with two
+        // segments on face z = 0, fanned around an interior point (Thm. 3.5)
+        let v = cube([1.1, -1.0, -1.0, 1.0, -1.0, -1.0, -1.0, -1.0]);
+        let r = isosurface(&v, &Options::default()).unwrap();
+        assert_eq!(r.parts, 1);
+        assert_eq!(r.fan_points, 1);
+        assert_eq!(r.mesh.triangles.len(), 6);
+        // and a smaller one separates them
+        let v = cube([0.9, -1.0, -1.0, 1.0, -1.0, -1.0, -1.0, -1.0]);
+        assert_eq!(isosurface(&v, &Options::default()).unwrap().parts, 2);
+    }
+
+    #[test]
     fn value_equal_to_level_is_perturbed() {
         // corner 0 exactly at α: treated as above α (Rem. 3.8)
         let v = cube([0.0, -1.0, -1.0, -1.0, -1.0, -1.0, -1.0, -1.0]);
