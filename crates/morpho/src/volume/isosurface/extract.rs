@@ -52,6 +52,20 @@ pub(super) fn extent(key: u64, axis: usize) -> Option<(usize, usize)> {
     Some((c[axis], c[axis] + spans[axis] as usize))
 }
 
+/// True when the entity between samples with sign codes `a`, `b` carries a contour point.
+#[inline]
+fn cut(a: u8, b: u8) -> bool {
+    (a ^ b) == 1
+}
+
+/// Sign codes of the two planes of a layer and their row summaries.
+pub(super) struct Signs<'a> {
+    s0: &'a [u8],
+    s1: &'a [u8],
+    r0: &'a [u8],
+    r1: &'a [u8],
+}
+
 pub(super) struct Ctx<'a> {
     pub vol: &'a Volume,
     pub axes: &'a [Vec<f64>; 3],
@@ -121,13 +135,33 @@ impl Ctx<'_> {
         Point3::new(self.axes[0][p[0]], self.axes[1][p[1]], self.axes[2][p[2]])
     }
 
-    /// Adds the contour point on the entity from grid point `a` to `b`, if it is cut.
+    /// Sign codes of plane z: bit 0 set for f ≥ α (f > α after Rem. 3.8), 2 for NaN; and per
+    /// row y: 0 all negative, 1 all positive, 2 mixed or NaN.
+    fn signs(&self, z: usize, s: &mut [u8], rows: &mut [u8]) {
+        let [nx, ny, _] = self.vol.dims;
+        let data = &self.vol.data[nx * ny * z..nx * ny * (z + 1)];
+        for y in 0..ny {
+            let (src, dst) = (&data[nx * y..nx * (y + 1)], &mut s[nx * y..nx * (y + 1)]);
+            let mut or = 0u8;
+            let mut and = 1u8;
+            for (d, &v) in dst.iter_mut().zip(src) {
+                let c = if v.is_nan() {
+                    2
+                } else {
+                    (v as f64 >= self.alpha) as u8
+                };
+                *d = c;
+                or |= c;
+                and &= c;
+            }
+            rows[y] = if or & 2 != 0 || or != and { 2 } else { and };
+        }
+    }
+
+    /// Adds the contour point on the entity from grid point `a` to `b` (known to be cut).
     fn vertex(&self, a: [usize; 3], b: [usize; 3], k: u64, out: &mut ChunkOut) -> u32 {
         let ga = self.gi(a[0], a[1], a[2]);
         let gb = self.gi(b[0], b[1], b[2]);
-        if !((ga > 0.0 && gb < 0.0) || (ga < 0.0 && gb > 0.0)) {
-            return NONE;
-        }
         let t = ga / (ga - gb);
         let (pa, pb) = (self.point(a), self.point(b));
         out.pos.push(pa + (pb - pa) * t);
@@ -139,23 +173,24 @@ impl Ctx<'_> {
         (out.pos.len() - 1) as u32
     }
 
-    fn build_plane(&self, z: usize, arr: &mut [u32], out: &mut ChunkOut) {
+    fn build_plane(&self, z: usize, s: &[u8], arr: &mut [u32], out: &mut ChunkOut) {
         let [nx, ny, _] = self.vol.dims;
         let tet = self.method == Method::Tetra;
         for y in 0..ny {
             for x in 0..nx {
-                let s = 3 * (x + nx * y);
-                arr[s] = if x + 1 < nx {
+                let i = x + nx * y;
+                let o = 3 * i;
+                arr[o] = if x + 1 < nx && cut(s[i], s[i + 1]) {
                     self.vertex([x, y, z], [x + 1, y, z], key(0, x, y, z), out)
                 } else {
                     NONE
                 };
-                arr[s + 1] = if y + 1 < ny {
+                arr[o + 1] = if y + 1 < ny && cut(s[i], s[i + nx]) {
                     self.vertex([x, y, z], [x, y + 1, z], key(1, x, y, z), out)
                 } else {
                     NONE
                 };
-                arr[s + 2] = if tet && x + 1 < nx && y + 1 < ny {
+                arr[o + 2] = if tet && x + 1 < nx && y + 1 < ny && cut(s[i + 1], s[i + nx]) {
                     self.vertex([x + 1, y, z], [x, y + 1, z], key(3, x, y, z), out)
                 } else {
                     NONE
@@ -164,24 +199,32 @@ impl Ctx<'_> {
         }
     }
 
-    fn build_layer(&self, z: usize, arr: &mut [u32], out: &mut ChunkOut) {
+    fn build_layer(&self, z: usize, s0: &[u8], s1: &[u8], arr: &mut [u32], out: &mut ChunkOut) {
         let [nx, ny, _] = self.vol.dims;
         let tet = self.method == Method::Tetra;
         for y in 0..ny {
             for x in 0..nx {
-                let s = 4 * (x + nx * y);
-                arr[s] = self.vertex([x, y, z], [x, y, z + 1], key(2, x, y, z), out);
-                arr[s + 1] = if tet && y + 1 < ny {
+                let i = x + nx * y;
+                let o = 4 * i;
+                arr[o] = if cut(s0[i], s1[i]) {
+                    self.vertex([x, y, z], [x, y, z + 1], key(2, x, y, z), out)
+                } else {
+                    NONE
+                };
+                if !tet {
+                    continue;
+                }
+                arr[o + 1] = if y + 1 < ny && cut(s0[i + nx], s1[i]) {
                     self.vertex([x, y + 1, z], [x, y, z + 1], key(4, x, y, z), out)
                 } else {
                     NONE
                 };
-                arr[s + 2] = if tet && x + 1 < nx {
+                arr[o + 2] = if x + 1 < nx && cut(s0[i + 1], s1[i]) {
                     self.vertex([x + 1, y, z], [x, y, z + 1], key(5, x, y, z), out)
                 } else {
                     NONE
                 };
-                arr[s + 3] = if tet && x + 1 < nx && y + 1 < ny {
+                arr[o + 3] = if x + 1 < nx && y + 1 < ny && cut(s0[i + 1], s1[i + nx]) {
                     self.vertex([x + 1, y, z], [x, y + 1, z + 1], key(6, x, y, z), out)
                 } else {
                     NONE
@@ -197,27 +240,76 @@ impl Ctx<'_> {
         let mut plo = vec![NONE; 3 * nx * ny];
         let mut phi = vec![NONE; 3 * nx * ny];
         let mut lay = vec![NONE; 4 * nx * ny];
-        self.build_plane(z0, &mut plo, &mut out);
+        let (mut slo, mut shi) = (vec![0u8; nx * ny], vec![0u8; nx * ny]);
+        let (mut rlo, mut rhi) = (vec![0u8; ny], vec![0u8; ny]);
+        self.signs(z0, &mut slo, &mut rlo);
+        self.build_plane(z0, &slo, &mut plo, &mut out);
         for z in z0..z1 {
-            self.build_layer(z, &mut lay, &mut out);
+            self.signs(z + 1, &mut shi, &mut rhi);
+            self.build_layer(z, &slo, &shi, &mut lay, &mut out);
             out.last_plane_start = out.pos.len();
-            self.build_plane(z + 1, &mut phi, &mut out);
-            self.cells(z, &plo, &phi, &lay, &mut out);
+            self.build_plane(z + 1, &shi, &mut phi, &mut out);
+            let sg = Signs {
+                s0: &slo,
+                s1: &shi,
+                r0: &rlo,
+                r1: &rhi,
+            };
+            self.cells(z, &sg, &plo, &phi, &lay, &mut out);
             std::mem::swap(&mut plo, &mut phi);
+            std::mem::swap(&mut slo, &mut shi);
+            std::mem::swap(&mut rlo, &mut rhi);
         }
         out
     }
 
-    fn cells(&self, z: usize, plo: &[u32], phi: &[u32], lay: &[u32], out: &mut ChunkOut) {
+    fn cells(
+        &self,
+        z: usize,
+        sg: &Signs,
+        plo: &[u32],
+        phi: &[u32],
+        lay: &[u32],
+        out: &mut ChunkOut,
+    ) {
         let [nx, ny, _] = self.vol.dims;
         let table = polygon_table();
         let tets = tet_table();
         let data = &self.vol.data;
         let sy = nx;
         let sz = nx * ny;
+        let (s0, s1) = (sg.s0, sg.s1);
         for y in 0..ny - 1 {
+            let r = [sg.r0[y], sg.r0[y + 1], sg.r1[y], sg.r1[y + 1]];
+            if r[0] < 2 && r.iter().all(|&q| q == r[0]) {
+                continue; // a row of cells with all corners on one side
+            }
             for x in 0..nx - 1 {
-                let b = x + sy * y + sz * z;
+                let i = x + sy * y;
+                let c = [
+                    s0[i],
+                    s0[i + 1],
+                    s0[i + sy],
+                    s0[i + sy + 1],
+                    s1[i],
+                    s1[i + 1],
+                    s1[i + sy],
+                    s1[i + sy + 1],
+                ];
+                let mut cfg = 0u8;
+                let mut any = 0u8;
+                for (k, &ck) in c.iter().enumerate() {
+                    cfg |= (ck & 1) << k;
+                    any |= ck;
+                }
+                if any & 2 != 0 {
+                    out.skipped_cells += 1;
+                    continue;
+                }
+                if cfg == 0 || cfg == 255 {
+                    continue;
+                }
+                let b = i + sz * z;
                 let idx = [
                     b,
                     b + 1,
@@ -228,22 +320,7 @@ impl Ctx<'_> {
                     b + sz + sy,
                     b + sz + sy + 1,
                 ];
-                let mut g = [0.0f64; 8];
-                let mut cfg = 0u8;
-                let mut nan = false;
-                for c in 0..8 {
-                    let v = self.g(data[idx[c]]);
-                    nan |= v.is_nan();
-                    g[c] = v;
-                    cfg |= ((v > 0.0) as u8) << c;
-                }
-                if nan {
-                    out.skipped_cells += 1;
-                    continue;
-                }
-                if cfg == 0 || cfg == 255 {
-                    continue;
-                }
+                let g: [f64; 8] = std::array::from_fn(|k| self.g(data[idx[k]]));
                 let ent = |e: u8| -> u32 {
                     match e {
                         0..=11 => {
