@@ -5,7 +5,8 @@
 //!   little-endian f32 volume `RAW_IN` with dims "nx,ny,nz" and level from `LEVEL` (env);
 //! * optionally writes the volume as raw little-endian f32 to `RAW_OUT` (x fastest);
 //! * times single-thread and all-core runs of several option sets (one run each, no
-//!   warm-up) and prints one JSON object per line, plus the process's peak RSS (VmHWM).
+//!   warm-up) and prints one JSON object per line, plus the process's peak RSS (VmHWM);
+//!   `VARIANT=name` runs only that option set.
 
 use morpho::volume::isosurface::{isosurface, Method, NormalMethod, Options};
 use morpho::volume::Volume;
@@ -85,7 +86,11 @@ fn main() {
             false,
         ),
     ];
+    let only = std::env::var("VARIANT").ok();
     for (name, method, normals, topology) in variants {
+        if only.as_deref().is_some_and(|o| o != name) {
+            continue;
+        }
         for threads in [1, threads_all] {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)

@@ -45,6 +45,9 @@ pub fn gradient_at(
     op: GradientOperator,
 ) -> [f64; 3] {
     let d = vol.dims;
+    if (0..3).all(|k| p[k] >= 1 && p[k] + 1 < d[k]) {
+        return gradient_interior(vol, axes, p, op);
+    }
     let lo = |k: usize| p[k].saturating_sub(1);
     let hi = |k: usize| (p[k] + 1).min(d[k] - 1);
     let at = |x: usize, y: usize, z: usize| vol.data[x + d[0] * (y + d[1] * z)] as f64;
@@ -100,6 +103,50 @@ pub fn gradient_at(
         }
     }
     g
+}
+
+/// [`gradient_at`] for a point with all neighbours inside the volume (same arithmetic as the
+/// general path, without clamping).
+#[inline]
+fn gradient_interior(
+    vol: &Volume,
+    axes: &[Vec<f64>; 3],
+    p: [usize; 3],
+    op: GradientOperator,
+) -> [f64; 3] {
+    let d = vol.dims;
+    let st = [1usize, d[0], d[0] * d[1]];
+    let i = p[0] + st[1] * p[1] + st[2] * p[2];
+    let data = &vol.data;
+    let span = |k: usize| axes[k][p[k] + 1] - axes[k][p[k] - 1];
+    match op {
+        GradientOperator::Central => {
+            std::array::from_fn(|k| (data[i + st[k]] as f64 - data[i - st[k]] as f64) / span(k))
+        }
+        GradientOperator::ZuckerHummel => {
+            const W: f64 =
+                1.0 + 4.0 * std::f64::consts::FRAC_1_SQRT_2 + 4.0 / 1.732_050_807_568_877_2;
+            const C: [f64; 3] = [
+                1.0,
+                std::f64::consts::FRAC_1_SQRT_2,
+                0.577_350_269_189_625_8,
+            ];
+            std::array::from_fn(|k| {
+                let (a, b) = (st[(k + 1) % 3], st[(k + 2) % 3]);
+                let (hi, lo) = (i + st[k], i - st[k]);
+                let mut s = 0.0;
+                for (o1, w1) in [(0isize, 0usize), (-1, 1), (1, 1)] {
+                    for (o2, w2) in [(0isize, 0usize), (-1, 1), (1, 1)] {
+                        let off = o1 * a as isize + o2 * b as isize;
+                        let h = data[hi.wrapping_add_signed(off)] as f64;
+                        let l = data[lo.wrapping_add_signed(off)] as f64;
+                        s += C[w1 + w2] * (h - l);
+                    }
+                }
+                s / (W * span(k))
+            })
+        }
+    }
 }
 
 /// Vertex normals from the triangulation alone (H Rem. 3.15), oriented like the triangles.

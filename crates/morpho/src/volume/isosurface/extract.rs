@@ -58,6 +58,55 @@ fn cut(a: u8, b: u8) -> bool {
     (a ^ b) == 1
 }
 
+/// Corner bits of a 4-bit column code (bit 0: y0 z0, 1: y1 z0, 2: y0 z1, 3: y1 z1) at x = 0.
+const SPREAD: [u8; 16] = {
+    let mut t = [0u8; 16];
+    let mut a = 0;
+    while a < 16 {
+        t[a] = ((a & 1) | (a >> 1 & 1) << 2 | (a >> 2 & 1) << 4 | (a >> 3 & 1) << 6) as u8;
+        a += 1;
+    }
+    t
+};
+
+/// Vertex index arrays of the planes below and above a layer and of the layer itself.
+pub(super) struct Index<'a> {
+    plo: &'a [u32],
+    phi: &'a [u32],
+    lay: &'a [u32],
+    ps: usize,
+    ls: usize,
+    /// Per cell entity (0..19): array (0 plane below, 1 plane above, 2 layer) and offset from
+    /// the cell's base slot.
+    delta: &'a [(u8, usize); 19],
+}
+
+/// The [`Index::delta`] table for row length `nx` and strides `ps`, `ls`.
+fn delta_table(nx: usize, ps: usize, ls: usize) -> [(u8, usize); 19] {
+    std::array::from_fn(|e| {
+        let p = |dx: usize, dy: usize, slot: usize| ps * (dx + nx * dy) + slot;
+        let l = |dx: usize, dy: usize, slot: usize| ls * (dx + nx * dy) + slot;
+        match e {
+            0..=11 => {
+                let (axis, j) = (e / 4, e % 4);
+                let (lo, hi) = (j & 1, j >> 1);
+                match axis {
+                    0 => (hi as u8, p(0, lo, 0)),
+                    1 => (hi as u8, p(lo, 0, 1)),
+                    _ => (2, l(lo, hi, 0)),
+                }
+            }
+            12 => (2, l(0, 0, 1)),
+            13 => (2, l(1, 0, 1)),
+            14 => (2, l(0, 0, 2)),
+            15 => (2, l(0, 1, 2)),
+            16 => (0, p(0, 0, 2)),
+            17 => (1, p(0, 0, 2)),
+            _ => (2, l(0, 0, 3)),
+        }
+    })
+}
+
 /// Sign codes of the two planes of a layer and their row summaries.
 pub(super) struct Signs<'a> {
     s0: &'a [u8],
@@ -136,7 +185,7 @@ impl Ctx<'_> {
     }
 
     /// Sign codes of plane z: bit 0 set for f ≥ α (f > α after Rem. 3.8), 2 for NaN; and per
-    /// row y: 0 all negative, 1 all positive, 2 mixed or NaN.
+    /// row y: 0 all negative, 1 all positive, 2 mixed, 3 with a NaN.
     fn signs(&self, z: usize, s: &mut [u8], rows: &mut [u8]) {
         let [nx, ny, _] = self.vol.dims;
         let data = &self.vol.data[nx * ny * z..nx * ny * (z + 1)];
@@ -154,7 +203,13 @@ impl Ctx<'_> {
                 or |= c;
                 and &= c;
             }
-            rows[y] = if or & 2 != 0 || or != and { 2 } else { and };
+            rows[y] = if or & 2 != 0 {
+                3
+            } else if or != and {
+                2
+            } else {
+                and
+            };
         }
     }
 
@@ -173,89 +228,113 @@ impl Ctx<'_> {
         (out.pos.len() - 1) as u32
     }
 
-    fn build_plane(&self, z: usize, s: &[u8], arr: &mut [u32], out: &mut ChunkOut) {
+    fn build_plane(&self, z: usize, s: &[u8], rows: &[u8], arr: &mut [u32], out: &mut ChunkOut) {
         let [nx, ny, _] = self.vol.dims;
         let tet = self.method == Method::Tetra;
+        let ps = self.strides().0;
         for y in 0..ny {
+            let xe = rows[y] >= 2;
+            let ye = y + 1 < ny && (rows[y] >= 2 || rows[y] != rows[y + 1]);
+            if !xe && !ye {
+                continue;
+            }
             for x in 0..nx {
                 let i = x + nx * y;
-                let o = 3 * i;
-                arr[o] = if x + 1 < nx && cut(s[i], s[i + 1]) {
-                    self.vertex([x, y, z], [x + 1, y, z], key(0, x, y, z), out)
-                } else {
-                    NONE
-                };
-                arr[o + 1] = if y + 1 < ny && cut(s[i], s[i + nx]) {
-                    self.vertex([x, y, z], [x, y + 1, z], key(1, x, y, z), out)
-                } else {
-                    NONE
-                };
-                arr[o + 2] = if tet && x + 1 < nx && y + 1 < ny && cut(s[i + 1], s[i + nx]) {
-                    self.vertex([x + 1, y, z], [x, y + 1, z], key(3, x, y, z), out)
-                } else {
-                    NONE
-                };
+                let o = ps * i;
+                if xe && x + 1 < nx && cut(s[i], s[i + 1]) {
+                    arr[o] = self.vertex([x, y, z], [x + 1, y, z], key(0, x, y, z), out);
+                }
+                if ye && cut(s[i], s[i + nx]) {
+                    arr[o + 1] = self.vertex([x, y, z], [x, y + 1, z], key(1, x, y, z), out);
+                }
+                if tet && ye && x + 1 < nx && cut(s[i + 1], s[i + nx]) {
+                    arr[o + 2] = self.vertex([x + 1, y, z], [x, y + 1, z], key(3, x, y, z), out);
+                }
             }
         }
     }
 
-    fn build_layer(&self, z: usize, s0: &[u8], s1: &[u8], arr: &mut [u32], out: &mut ChunkOut) {
+    fn build_layer(&self, z: usize, sg: &Signs, arr: &mut [u32], out: &mut ChunkOut) {
         let [nx, ny, _] = self.vol.dims;
         let tet = self.method == Method::Tetra;
+        let ls = self.strides().1;
+        let (s0, s1) = (sg.s0, sg.s1);
         for y in 0..ny {
+            let same = |r: &[u8]| r.iter().all(|&q| q < 2 && q == r[0]);
+            let ze = !same(&[sg.r0[y], sg.r1[y]]);
+            let de = tet && y + 1 < ny && !same(&[sg.r0[y], sg.r1[y], sg.r0[y + 1], sg.r1[y + 1]]);
+            if !ze && !de {
+                continue;
+            }
             for x in 0..nx {
                 let i = x + nx * y;
-                let o = 4 * i;
-                arr[o] = if cut(s0[i], s1[i]) {
-                    self.vertex([x, y, z], [x, y, z + 1], key(2, x, y, z), out)
-                } else {
-                    NONE
-                };
+                let o = ls * i;
+                if cut(s0[i], s1[i]) {
+                    arr[o] = self.vertex([x, y, z], [x, y, z + 1], key(2, x, y, z), out);
+                }
                 if !tet {
                     continue;
                 }
-                arr[o + 1] = if y + 1 < ny && cut(s0[i + nx], s1[i]) {
-                    self.vertex([x, y + 1, z], [x, y, z + 1], key(4, x, y, z), out)
-                } else {
-                    NONE
-                };
-                arr[o + 2] = if x + 1 < nx && cut(s0[i + 1], s1[i]) {
-                    self.vertex([x + 1, y, z], [x, y, z + 1], key(5, x, y, z), out)
-                } else {
-                    NONE
-                };
-                arr[o + 3] = if x + 1 < nx && y + 1 < ny && cut(s0[i + 1], s1[i + nx]) {
-                    self.vertex([x + 1, y, z], [x, y + 1, z + 1], key(6, x, y, z), out)
-                } else {
-                    NONE
-                };
+                if y + 1 < ny && cut(s0[i + nx], s1[i]) {
+                    arr[o + 1] = self.vertex([x, y + 1, z], [x, y, z + 1], key(4, x, y, z), out);
+                }
+                if x + 1 < nx && cut(s0[i + 1], s1[i]) {
+                    arr[o + 2] = self.vertex([x + 1, y, z], [x, y, z + 1], key(5, x, y, z), out);
+                }
+                if x + 1 < nx && y + 1 < ny && cut(s0[i + 1], s1[i + nx]) {
+                    arr[o + 3] =
+                        self.vertex([x + 1, y, z], [x, y + 1, z + 1], key(6, x, y, z), out);
+                }
             }
+        }
+    }
+
+    /// Slots per grid position in the plane and layer index arrays.
+    fn strides(&self) -> (usize, usize) {
+        if self.method == Method::Tetra {
+            (3, 4)
+        } else {
+            (2, 1)
         }
     }
 
     /// Extracts layers `z0..z1` (cells with lower z index in that range).
+    ///
+    /// The index arrays are never cleared: a cell only looks up entities its sign
+    /// configuration says are cut, and those were written for the current plane/layer.
     pub fn chunk(&self, z0: usize, z1: usize) -> ChunkOut {
         let [nx, ny, _] = self.vol.dims;
         let mut out = ChunkOut::default();
-        let mut plo = vec![NONE; 3 * nx * ny];
-        let mut phi = vec![NONE; 3 * nx * ny];
-        let mut lay = vec![NONE; 4 * nx * ny];
+        let (ps, ls) = self.strides();
+        let mut plo = vec![NONE; ps * nx * ny];
+        let mut phi = vec![NONE; ps * nx * ny];
+        let mut lay = vec![NONE; ls * nx * ny];
         let (mut slo, mut shi) = (vec![0u8; nx * ny], vec![0u8; nx * ny]);
         let (mut rlo, mut rhi) = (vec![0u8; ny], vec![0u8; ny]);
+        let mut col = vec![0u8; nx];
+        let delta = delta_table(nx, ps, ls);
         self.signs(z0, &mut slo, &mut rlo);
-        self.build_plane(z0, &slo, &mut plo, &mut out);
+        self.build_plane(z0, &slo, &rlo, &mut plo, &mut out);
         for z in z0..z1 {
             self.signs(z + 1, &mut shi, &mut rhi);
-            self.build_layer(z, &slo, &shi, &mut lay, &mut out);
-            out.last_plane_start = out.pos.len();
-            self.build_plane(z + 1, &shi, &mut phi, &mut out);
             let sg = Signs {
                 s0: &slo,
                 s1: &shi,
                 r0: &rlo,
                 r1: &rhi,
             };
-            self.cells(z, &sg, &plo, &phi, &lay, &mut out);
+            self.build_layer(z, &sg, &mut lay, &mut out);
+            out.last_plane_start = out.pos.len();
+            self.build_plane(z + 1, &shi, &rhi, &mut phi, &mut out);
+            let ix = Index {
+                plo: &plo,
+                phi: &phi,
+                lay: &lay,
+                ps,
+                ls,
+                delta: &delta,
+            };
+            self.cells(z, &sg, &ix, &mut col, &mut out);
             std::mem::swap(&mut plo, &mut phi);
             std::mem::swap(&mut slo, &mut shi);
             std::mem::swap(&mut rlo, &mut rhi);
@@ -263,145 +342,162 @@ impl Ctx<'_> {
         out
     }
 
-    fn cells(
-        &self,
-        z: usize,
-        sg: &Signs,
-        plo: &[u32],
-        phi: &[u32],
-        lay: &[u32],
-        out: &mut ChunkOut,
-    ) {
+    /// Finds the cells of layer z that the contour crosses.
+    fn cells(&self, z: usize, sg: &Signs, ix: &Index, col: &mut [u8], out: &mut ChunkOut) {
         let [nx, ny, _] = self.vol.dims;
-        let table = polygon_table();
-        let tets = tet_table();
-        let data = &self.vol.data;
-        let sy = nx;
-        let sz = nx * ny;
         let (s0, s1) = (sg.s0, sg.s1);
+        let sy = nx;
         for y in 0..ny - 1 {
             let r = [sg.r0[y], sg.r0[y + 1], sg.r1[y], sg.r1[y + 1]];
             if r[0] < 2 && r.iter().all(|&q| q == r[0]) {
                 continue; // a row of cells with all corners on one side
             }
-            for x in 0..nx - 1 {
+            if r.contains(&3) {
+                // a NaN nearby: check each cell
+                for x in 0..nx - 1 {
+                    let i = x + sy * y;
+                    let c = [
+                        s0[i],
+                        s0[i + 1],
+                        s0[i + sy],
+                        s0[i + sy + 1],
+                        s1[i],
+                        s1[i + 1],
+                        s1[i + sy],
+                        s1[i + sy + 1],
+                    ];
+                    let mut cfg = 0u8;
+                    let mut any = 0u8;
+                    for (k, &ck) in c.iter().enumerate() {
+                        cfg |= (ck & 1) << k;
+                        any |= ck;
+                    }
+                    if any & 2 != 0 {
+                        out.skipped_cells += 1;
+                    } else if cfg != 0 && cfg != 255 {
+                        self.cell([x, y, z], cfg, ix, out);
+                    }
+                }
+                continue;
+            }
+            // 4-bit column codes (y, z) per x; a cell's configuration joins two columns
+            for (x, cx) in col.iter_mut().enumerate() {
                 let i = x + sy * y;
-                let c = [
-                    s0[i],
-                    s0[i + 1],
-                    s0[i + sy],
-                    s0[i + sy + 1],
-                    s1[i],
-                    s1[i + 1],
-                    s1[i + sy],
-                    s1[i + sy + 1],
-                ];
-                let mut cfg = 0u8;
-                let mut any = 0u8;
-                for (k, &ck) in c.iter().enumerate() {
-                    cfg |= (ck & 1) << k;
-                    any |= ck;
-                }
-                if any & 2 != 0 {
-                    out.skipped_cells += 1;
+                *cx = s0[i] | s0[i + sy] << 1 | s1[i] << 2 | s1[i + sy] << 3;
+            }
+            for x in 0..nx - 1 {
+                let (a, b) = (col[x], col[x + 1]);
+                if a == b && (a == 0 || a == 15) {
                     continue;
                 }
-                if cfg == 0 || cfg == 255 {
+                let cfg = SPREAD[a as usize] | SPREAD[b as usize] << 1;
+                self.cell([x, y, z], cfg, ix, out);
+            }
+        }
+    }
+
+    /// Triangulates one cell crossed by the contour (`cfg` not 0 or 255, no NaN corner).
+    fn cell(&self, p: [usize; 3], cfg: u8, ix: &Index, out: &mut ChunkOut) {
+        let [x, y, z] = p;
+        let [nx, ny, _] = self.vol.dims;
+        let (plo, phi, lay) = (ix.plo, ix.phi, ix.lay);
+        let data = &self.vol.data;
+        let sy = nx;
+        let sz = nx * ny;
+        let pos = x + nx * y;
+        let (bp, bl) = (ix.ps * pos, ix.ls * pos);
+        let ent = |e: u8| -> u32 {
+            let (arr, d) = ix.delta[e as usize];
+            match arr {
+                0 => plo[bp + d],
+                1 => phi[bp + d],
+                _ => lay[bl + d],
+            }
+        };
+        let flip = self.flip;
+        let push = |out: &mut ChunkOut, a: u32, b: u32, c: u32| {
+            out.tris.push(if flip { [a, c, b] } else { [a, b, c] });
+        };
+        if self.method == Method::Tetra {
+            let tets = tet_table();
+            for (t, tet) in TETS.iter().enumerate() {
+                let mut c4 = 0usize;
+                for (i, &c) in tet.iter().enumerate() {
+                    c4 |= ((cfg >> c & 1) as usize) << i;
+                }
+                for tri in &tets.tris[t * 16 + c4] {
+                    push(out, ent(tri[0]), ent(tri[1]), ent(tri[2]));
+                }
+            }
+            return;
+        }
+        let table = polygon_table();
+        let amb = table.ambiguous[cfg as usize];
+        let b = x + sy * y + sz * z;
+        let idx = [
+            b,
+            b + 1,
+            b + sy,
+            b + sy + 1,
+            b + sz,
+            b + sz + 1,
+            b + sz + sy,
+            b + sz + sy + 1,
+        ];
+        let mut g = [0.0f64; 8];
+        let mut have_g = false;
+        let mut load = |g: &mut [f64; 8]| {
+            if !have_g {
+                *g = std::array::from_fn(|k| self.g(data[idx[k]]));
+                have_g = true;
+            }
+        };
+        let connect = if amb == 0 {
+            0
+        } else if self.method == Method::Lorensen {
+            tables::lorensen_connect(cfg)
+        } else {
+            load(&mut g);
+            let mut m = 0u8;
+            for (f, fc) in FACE_CORNERS.iter().enumerate() {
+                if amb >> f & 1 == 0 {
                     continue;
                 }
-                let b = i + sz * z;
-                let idx = [
-                    b,
-                    b + 1,
-                    b + sy,
-                    b + sy + 1,
-                    b + sz,
-                    b + sz + 1,
-                    b + sz + sy,
-                    b + sz + sy + 1,
-                ];
-                let g: [f64; 8] = std::array::from_fn(|k| self.g(data[idx[k]]));
-                let ent = |e: u8| -> u32 {
-                    match e {
-                        0..=11 => {
-                            let axis = e / 4;
-                            let j = (e % 4) as usize;
-                            let (l, h) = (j & 1, j >> 1);
-                            match axis {
-                                0 => (if h == 1 { phi } else { plo })[3 * (x + nx * (y + l))],
-                                1 => (if h == 1 { phi } else { plo })[3 * (x + l + nx * y) + 1],
-                                _ => lay[4 * (x + l + nx * (y + h))],
-                            }
-                        }
-                        12 => lay[4 * (x + nx * y) + 1],
-                        13 => lay[4 * (x + 1 + nx * y) + 1],
-                        14 => lay[4 * (x + nx * y) + 2],
-                        15 => lay[4 * (x + nx * (y + 1)) + 2],
-                        16 => plo[3 * (x + nx * y) + 2],
-                        17 => phi[3 * (x + nx * y) + 2],
-                        _ => lay[4 * (x + nx * y) + 3],
-                    }
-                };
-                let push = |out: &mut ChunkOut, a: u32, b: u32, c: u32| {
-                    out.tris.push(if self.flip { [a, c, b] } else { [a, b, c] });
-                };
-                if self.method == Method::Tetra {
-                    for (t, tet) in TETS.iter().enumerate() {
-                        let mut c4 = 0usize;
-                        for (i, &c) in tet.iter().enumerate() {
-                            c4 |= ((cfg >> c & 1) as usize) << i;
-                        }
-                        for tri in &tets.tris[t * 16 + c4] {
-                            push(out, ent(tri[0]), ent(tri[1]), ent(tri[2]));
-                        }
-                    }
-                    continue;
-                }
-                let amb = table.ambiguous[cfg as usize];
-                let connect = if self.method == Method::Lorensen {
-                    tables::lorensen_connect(cfg)
+                // asymptotic decider (Thm. 3.3): the bilinear saddle value is above α iff the
+                // product of the positive diagonal exceeds that of the negative one; a tie (two
+                // straight lines) cuts off the positive corners (H's choice).
+                let (p, q) = if cfg >> fc[0] & 1 == 1 {
+                    (
+                        g[fc[0] as usize] * g[fc[2] as usize],
+                        g[fc[1] as usize] * g[fc[3] as usize],
+                    )
                 } else {
-                    let mut m = 0u8;
-                    for (f, fc) in FACE_CORNERS.iter().enumerate() {
-                        if amb >> f & 1 == 0 {
-                            continue;
-                        }
-                        // asymptotic decider (Thm. 3.3): the bilinear saddle value is above α iff
-                        // the product of the positive diagonal exceeds that of the negative one;
-                        // a tie (two straight lines) cuts off the positive corners (H's choice).
-                        let (p, q) = if cfg >> fc[0] & 1 == 1 {
-                            (
-                                g[fc[0] as usize] * g[fc[2] as usize],
-                                g[fc[1] as usize] * g[fc[3] as usize],
-                            )
-                        } else {
-                            (
-                                g[fc[1] as usize] * g[fc[3] as usize],
-                                g[fc[0] as usize] * g[fc[2] as usize],
-                            )
-                        };
-                        if p > q {
-                            m |= 1 << f;
-                        }
-                    }
-                    m
+                    (
+                        g[fc[1] as usize] * g[fc[3] as usize],
+                        g[fc[0] as usize] * g[fc[2] as usize],
+                    )
                 };
-                for poly in &table.entries[cfg as usize * 64 + connect as usize] {
-                    let n = poly.edges.len();
-                    let mut v = [0u32; 12];
-                    for (i, &e) in poly.edges.iter().enumerate() {
-                        v[i] = ent(e);
-                    }
-                    if poly.fan_face == NO_FACE || self.method == Method::Lorensen {
-                        for i in 1..n - 1 {
-                            push(out, v[0], v[i], v[i + 1]);
-                        }
-                    } else {
-                        let c = self.interior_point(&g, poly.fan_face, &v[..n], [x, y, z], out);
-                        for i in 0..n {
-                            push(out, v[i], v[(i + 1) % n], c);
-                        }
-                    }
+                if p > q {
+                    m |= 1 << f;
+                }
+            }
+            m
+        };
+        for poly in table.get(cfg, connect) {
+            let n = poly.len as usize;
+            let mut v = [0u32; 12];
+            for i in 0..n {
+                v[i] = ent(poly.edges[i]);
+            }
+            if poly.fan_face == NO_FACE || self.method == Method::Lorensen {
+                for i in 1..n - 1 {
+                    push(out, v[0], v[i], v[i + 1]);
+                }
+            } else {
+                load(&mut g);
+                let c = self.interior_point(&g, poly.fan_face, &v[..n], p, out);
+                for i in 0..n {
+                    push(out, v[i], v[(i + 1) % n], c);
                 }
             }
         }

@@ -289,10 +289,8 @@ fn assemble(chunks: Vec<ChunkOut>, opts: &Options) -> Result<(IsoResult, Vec<u64
         NormalMethod::ZuckerHummel | NormalMethod::Central
     );
     let mut r = IsoResult::default();
-    let mut pos = Vec::with_capacity(ne + ni);
-    let mut nrm = Vec::with_capacity(if grid_normals { ne + ni } else { 0 });
-    let mut keys = Vec::with_capacity(ne + ni);
-    let mut tris = Vec::with_capacity(nt);
+    // the first slab's buffers become the output (no copy for a serial run)
+    let (mut pos, mut nrm, mut keys, mut tris) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut ipos = Vec::with_capacity(ni);
     let mut inrm = Vec::with_capacity(if grid_normals { ni } else { 0 });
     for (i, mut c) in chunks.into_iter().enumerate() {
@@ -303,24 +301,34 @@ fn assemble(chunks: Vec<ChunkOut>, opts: &Options) -> Result<(IsoResult, Vec<u64
         };
         c.pos.truncate(keep);
         c.keys.truncate(keep);
-        if grid_normals {
-            c.nrm.truncate(keep);
+        c.nrm.truncate(keep);
+        let (eo, io) = (edge_off[i] as u32, (ne + int_off[i]) as u32);
+        let remap = |t: &mut [u32; 3]| {
+            for v in t.iter_mut() {
+                *v = if *v & INTERIOR != 0 {
+                    io + (*v & !INTERIOR)
+                } else {
+                    eo + *v
+                };
+            }
+        };
+        if i == 0 {
+            pos = std::mem::take(&mut c.pos);
+            pos.reserve_exact(ne + ni - pos.len());
+            nrm = std::mem::take(&mut c.nrm);
+            keys = std::mem::take(&mut c.keys);
+            tris = std::mem::take(&mut c.tris);
+            tris.reserve_exact(nt - tris.len());
+            tris.iter_mut().for_each(remap);
+        } else {
+            pos.append(&mut c.pos);
             nrm.append(&mut c.nrm);
+            keys.append(&mut c.keys);
+            c.tris.iter_mut().for_each(remap);
+            tris.append(&mut c.tris);
         }
-        pos.append(&mut c.pos);
-        keys.append(&mut c.keys);
         ipos.append(&mut c.ipos);
         inrm.append(&mut c.inrm);
-        let (eo, io) = (edge_off[i] as u32, (ne + int_off[i]) as u32);
-        tris.extend(c.tris.iter().map(|t| {
-            t.map(|v| {
-                if v & INTERIOR != 0 {
-                    io + (v & !INTERIOR)
-                } else {
-                    eo + v
-                }
-            })
-        }));
         r.fan_points += c.fans;
         r.centroid_fallbacks += c.centroids;
         r.skipped_cells += c.skipped_cells;

@@ -154,30 +154,62 @@ pub fn lorensen_connect(cfg: u8) -> u8 {
     }
 }
 
-/// Precomputed polygons for all (cfg, connect) pairs, indexed `cfg * 64 + connect`.
+/// A [`CellPolygon`] without heap storage.
+#[derive(Debug, Clone, Copy)]
+pub struct FlatPolygon {
+    pub edges: [u8; 12],
+    pub len: u8,
+    pub fan_face: u8,
+}
+
+/// Precomputed polygons for all (cfg, connect) pairs: entry `cfg * 64 + connect` is
+/// `polys[offsets[entry]..offsets[entry + 1]]`.
 pub struct PolygonTable {
-    pub entries: Vec<Vec<CellPolygon>>,
+    pub offsets: Vec<u32>,
+    pub polys: Vec<FlatPolygon>,
     pub ambiguous: [u8; 256],
+}
+
+impl PolygonTable {
+    /// The polygons of a cell.
+    #[inline]
+    pub fn get(&self, cfg: u8, connect: u8) -> &[FlatPolygon] {
+        let e = cfg as usize * 64 + connect as usize;
+        &self.polys[self.offsets[e] as usize..self.offsets[e + 1] as usize]
+    }
 }
 
 /// The polygon table (built on first use).
 pub fn polygon_table() -> &'static PolygonTable {
     static T: OnceLock<PolygonTable> = OnceLock::new();
     T.get_or_init(|| {
-        let mut entries = Vec::with_capacity(256 * 64);
+        let mut offsets = Vec::with_capacity(256 * 64 + 1);
+        let mut polys = Vec::new();
         let mut ambiguous = [0u8; 256];
+        offsets.push(0);
         for cfg in 0..=255u8 {
             let amb = ambiguous_faces(cfg);
             ambiguous[cfg as usize] = amb;
             for connect in 0..64u8 {
-                if connect & !amb != 0 {
-                    entries.push(Vec::new());
-                } else {
-                    entries.push(cell_polygons(cfg, connect));
+                if connect & !amb == 0 {
+                    for p in cell_polygons(cfg, connect) {
+                        let mut edges = [0u8; 12];
+                        edges[..p.edges.len()].copy_from_slice(&p.edges);
+                        polys.push(FlatPolygon {
+                            edges,
+                            len: p.edges.len() as u8,
+                            fan_face: p.fan_face,
+                        });
+                    }
                 }
+                offsets.push(polys.len() as u32);
             }
         }
-        PolygonTable { entries, ambiguous }
+        PolygonTable {
+            offsets,
+            polys,
+            ambiguous,
+        }
     })
 }
 
