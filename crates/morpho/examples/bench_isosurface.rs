@@ -5,7 +5,9 @@
 //!   little-endian f32 volume `RAW_IN` with dims "nx,ny,nz" and level from `LEVEL` (env);
 //! * optionally writes the volume as raw little-endian f32 to `RAW_OUT` (x fastest);
 //! * times single-thread and all-core runs of several option sets (one run each, no
-//!   warm-up) and prints one JSON object per line, plus the process's peak RSS (VmHWM);
+//!   warm-up) and prints one JSON object per line: wall seconds, CPU seconds (thread CPU time
+//!   for the single-thread run, process CPU time otherwise — use these on a loaded machine),
+//!   triangles per wall second, and the process's peak RSS (VmHWM);
 //!   `VARIANT=name` runs only that option set.
 
 use morpho::volume::isosurface::{isosurface, Method, NormalMethod, Options};
@@ -23,6 +25,26 @@ fn peak_rss_mb() -> f64 {
                 .and_then(|v| v.parse::<f64>().ok())
         })
         .map_or(f64::NAN, |kb| kb / 1024.0)
+}
+
+/// CPU time of the calling thread in seconds (Linux /proc/thread-self/schedstat).
+fn thread_cpu() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(f64::NAN, |ns| ns * 1e-9)
+}
+
+/// CPU time of the process in seconds (user + system, 100 Hz ticks).
+fn process_cpu() -> f64 {
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            let rest = &s[s.rfind(')')? + 2..];
+            let f: Vec<&str> = rest.split_whitespace().collect();
+            Some((f[11].parse::<f64>().ok()? + f[12].parse::<f64>().ok()?) / 100.0)
+        })
+        .unwrap_or(f64::NAN)
 }
 
 fn main() {
@@ -104,13 +126,20 @@ fn main() {
                 parallel: threads > 1,
                 topology,
             };
-            let (secs, r) = pool.install(|| {
-                let t = Instant::now();
+            let (secs, cpu, r) = if threads == 1 {
+                // on this thread: its CPU time is meaningful on a loaded machine
+                let (c0, t) = (thread_cpu(), Instant::now());
                 let r = isosurface(&vol, &opts).unwrap();
-                (t.elapsed().as_secs_f64(), r)
-            });
+                (t.elapsed().as_secs_f64(), thread_cpu() - c0, r)
+            } else {
+                pool.install(|| {
+                    let (c0, t) = (process_cpu(), Instant::now());
+                    let r = isosurface(&vol, &opts).unwrap();
+                    (t.elapsed().as_secs_f64(), process_cpu() - c0, r)
+                })
+            };
             println!(
-                "{{\"variant\":\"{name}\",\"threads\":{threads},\"dims\":{:?},\"seconds\":{secs:.4},\"vertices\":{},\"triangles\":{},\"tri_per_s\":{:.0},\"parts\":{},\"interior_holes\":{},\"peak_rss_mb\":{:.1}}}",
+                "{{\"variant\":\"{name}\",\"threads\":{threads},\"dims\":{:?},\"seconds\":{secs:.4},\"cpu_seconds\":{cpu:.4},\"vertices\":{},\"triangles\":{},\"tri_per_s\":{:.0},\"parts\":{},\"interior_holes\":{},\"peak_rss_mb\":{:.1}}}",
                 vol.dims,
                 r.mesh.positions.len(),
                 r.mesh.triangles.len(),

@@ -121,7 +121,8 @@ fn gradient_interior(
     let span = |k: usize| axes[k][p[k] + 1] - axes[k][p[k] - 1];
     match op {
         GradientOperator::Central => {
-            std::array::from_fn(|k| (data[i + st[k]] as f64 - data[i - st[k]] as f64) / span(k))
+            let c = |k: usize| (data[i + st[k]] as f64 - data[i - st[k]] as f64) / span(k);
+            [c(0), c(1), c(2)]
         }
         GradientOperator::ZuckerHummel => {
             const W: f64 =
@@ -131,7 +132,7 @@ fn gradient_interior(
                 std::f64::consts::FRAC_1_SQRT_2,
                 0.577_350_269_189_625_8,
             ];
-            std::array::from_fn(|k| {
+            let comp = |k: usize| {
                 let (a, b) = (st[(k + 1) % 3], st[(k + 2) % 3]);
                 let (hi, lo) = (i + st[k], i - st[k]);
                 let mut s = 0.0;
@@ -144,7 +145,8 @@ fn gradient_interior(
                     }
                 }
                 s / (W * span(k))
-            })
+            };
+            [comp(0), comp(1), comp(2)]
         }
     }
 }

@@ -173,11 +173,14 @@ impl Ctx<'_> {
         }
     }
     /// Oriented unit normal from a gradient (zero when undefined).
+    #[inline]
     fn orient(&self, g: Vector3) -> Vector3 {
-        let g = if self.flip { g } else { -g };
-        match g.try_normalize(0.0) {
-            Some(n) if n.iter().all(|c| c.is_finite()) => n,
-            _ => Vector3::zeros(),
+        let l2 = g.x * g.x + g.y * g.y + g.z * g.z;
+        if l2 > 0.0 && l2.is_finite() {
+            let s = if self.flip { 1.0 } else { -1.0 } / l2.sqrt();
+            Vector3::new(g.x * s, g.y * s, g.z * s)
+        } else {
+            Vector3::zeros()
         }
     }
     fn point(&self, p: [usize; 3]) -> Point3 {
@@ -448,7 +451,9 @@ impl Ctx<'_> {
         let mut have_g = false;
         let mut load = |g: &mut [f64; 8]| {
             if !have_g {
-                *g = std::array::from_fn(|k| self.g(data[idx[k]]));
+                for k in 0..8 {
+                    g[k] = self.g(data[idx[k]]);
+                }
                 have_g = true;
             }
         };

@@ -211,7 +211,7 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
                 .mesh
                 .normals
                 .as_ref()
-                .is_some_and(|nr| nr.iter().any(|n| *n == Vector3::zeros()));
+                .is_some_and(|nr| nr.iter().any(|n| n.x == 0.0 && n.y == 0.0 && n.z == 0.0));
             if missing {
                 let m = mesh_normals(&r.mesh);
                 if let Some(nr) = &mut r.mesh.normals {
