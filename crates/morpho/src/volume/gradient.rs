@@ -154,6 +154,11 @@ fn gradient_interior(
 /// Vertex normals from the triangulation alone (H Rem. 3.15), oriented like the triangles.
 /// Vertices without triangles get the zero vector.
 pub fn mesh_normals(mesh: &TriMesh) -> Vec<Vector3> {
+    mesh_normals_where(mesh, |_| true)
+}
+
+/// [`mesh_normals`] for the vertices `v` with `want(v)`; the others get the zero vector.
+pub fn mesh_normals_where(mesh: &TriMesh, want: impl Fn(usize) -> bool) -> Vec<Vector3> {
     let n = mesh.positions.len();
     // area-weighted face normals: initial frame and orientation reference
     let mut acc = vec![Vector3::zeros(); n];
@@ -187,6 +192,9 @@ pub fn mesh_normals(mesh: &TriMesh) -> Vec<Vector3> {
     }
     (0..n)
         .map(|v| {
+            if !want(v) {
+                return Vector3::zeros();
+            }
             let reference = acc[v];
             let Some(mut nrm) = reference.try_normalize(0.0) else {
                 return Vector3::zeros();
@@ -239,8 +247,8 @@ fn fit_normal(mesh: &TriMesh, v: usize, ring: &[u32], n: &Vector3) -> Option<Vec
     if distinct < 3 {
         return None;
     }
-    let mut ata = nalgebra::DMatrix::<f64>::zeros(ncoef, ncoef);
-    let mut atb = nalgebra::DVector::<f64>::zeros(ncoef);
+    let mut ata = nalgebra::SMatrix::<f64, 6, 6>::zeros();
+    let mut atb = nalgebra::SVector::<f64, 6>::zeros();
     for &(x, y, d) in &pts {
         let (x, y, d) = (x / scale, y / scale, d / scale);
         let row = [1.0, x, y, x * x, x * y, y * y];
@@ -251,7 +259,15 @@ fn fit_normal(mesh: &TriMesh, v: usize, ring: &[u32], n: &Vector3) -> Option<Vec
             }
         }
     }
-    let c = ata.lu().solve(&atb)?;
+    let c: [f64; 3] = if ncoef == 6 {
+        let c = ata.lu().solve(&atb)?;
+        [c[0], c[1], c[2]]
+    } else {
+        let a3: nalgebra::Matrix3<f64> = ata.fixed_view::<3, 3>(0, 0).into_owned();
+        let b3: nalgebra::Vector3<f64> = atb.fixed_view::<3, 1>(0, 0).into_owned();
+        let c = a3.lu().solve(&b3)?;
+        [c[0], c[1], c[2]]
+    };
     // graph z = c0 + c1 x + c2 y + ...; normal at origin ∝ (-c1, -c2, 1) (scale cancels)
     let m = d1 * (-c[1]) + d2 * (-c[2]) + n;
     let m = m.try_normalize(0.0)?;

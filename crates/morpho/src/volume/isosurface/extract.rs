@@ -138,6 +138,8 @@ pub(super) struct ChunkOut {
     pub fans: usize,
     pub centroids: usize,
     pub skipped_cells: usize,
+    /// More than 2³¹ − 1 vertices in this slab (indices no longer fit).
+    pub overflow: bool,
 }
 
 impl Ctx<'_> {
@@ -228,6 +230,7 @@ impl Ctx<'_> {
             out.nrm.push(self.orient(na * (1.0 - t) + nb * t));
         }
         out.keys.push(k);
+        out.overflow |= out.pos.len() >= INTERIOR as usize;
         (out.pos.len() - 1) as u32
     }
 
@@ -587,6 +590,7 @@ impl Ctx<'_> {
             }
             out.inrm.push(self.orient(gsum));
         }
+        out.overflow |= out.ipos.len() >= INTERIOR as usize;
         INTERIOR | (out.ipos.len() - 1) as u32
     }
 

@@ -45,7 +45,7 @@ pub mod tables;
 
 use crate::geom::Vector3;
 use crate::mesh::{Property, ScalarKind, TriMesh};
-use crate::volume::gradient::{axis_coords, mesh_normals};
+use crate::volume::gradient::{axis_coords, mesh_normals, mesh_normals_where};
 use crate::volume::Volume;
 use crate::{Error, Result};
 use extract::{extent, ChunkOut, Ctx, INTERIOR, KEY_INTERIOR};
@@ -213,10 +213,16 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
                 .as_ref()
                 .is_some_and(|nr| nr.iter().any(|n| n.x == 0.0 && n.y == 0.0 && n.z == 0.0));
             if missing {
-                let m = mesh_normals(&r.mesh);
+                // flat spots (zero gradient) or NaN stencils: normals from the mesh there
+                let mut m = Vec::new();
+                if let Some(nr) = &r.mesh.normals {
+                    m = mesh_normals_where(&r.mesh, |v| {
+                        nr[v].x == 0.0 && nr[v].y == 0.0 && nr[v].z == 0.0
+                    });
+                }
                 if let Some(nr) = &mut r.mesh.normals {
                     for (n, mn) in nr.iter_mut().zip(m) {
-                        if *n == Vector3::zeros() {
+                        if n.x == 0.0 && n.y == 0.0 && n.z == 0.0 {
                             *n = mn;
                         }
                     }
@@ -278,7 +284,7 @@ fn assemble(chunks: Vec<ChunkOut>, opts: &Options) -> Result<(IsoResult, Vec<u64
         ni += c.ipos.len();
         nt += c.tris.len();
     }
-    if ne + ni >= INTERIOR as usize {
+    if ne + ni >= INTERIOR as usize || chunks.iter().any(|c| c.overflow) {
         return Err(Error::invalid(format!(
             "contour has {} vertices, more than 2^31 - 1",
             ne + ni
