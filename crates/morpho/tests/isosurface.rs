@@ -398,6 +398,37 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Random volumes with NaN samples and values equal to the level: never a panic, a valid
+    /// mesh, no interior holes for the consistent methods, identical parallel and serial output.
+    #[test]
+    fn random_volumes_with_nan(
+        nx in 2usize..7, ny in 2usize..7, nz in 2usize..9, seed in 0u64..1_000_000,
+        nan_rate in 0.0f64..0.15
+    ) {
+        let mut v = random_volume([nx, ny, nz], seed, true);
+        let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
+        for s in v.data.iter_mut() {
+            if rng.gen_bool(nan_rate) {
+                *s = f32::NAN;
+            }
+        }
+        for m in [Method::Decider, Method::Tetra, Method::Lorensen] {
+            let o = |parallel| Options { level: 0.0, method: m, parallel, ..Default::default() };
+            let r = isosurface(&v, &o(false)).unwrap();
+            r.mesh.validate().unwrap();
+            if m != Method::Lorensen {
+                prop_assert_eq!(r.interior_holes, 0);
+                prop_assert_eq!(r.non_manifold_edges, 0);
+            }
+            let p = isosurface(&v, &o(true)).unwrap();
+            prop_assert!(r == p);
+        }
+    }
+}
+
 #[test]
 fn large_random_volume_is_watertight() {
     for (seed, dims) in [(7u64, [16, 16, 16]), (8, [16, 5, 11]), (9, [3, 16, 2])] {
