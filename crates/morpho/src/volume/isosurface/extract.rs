@@ -140,6 +140,9 @@ pub(super) struct ChunkOut {
     pub skipped_cells: usize,
     /// More than 2³¹ − 1 vertices in this slab (indices no longer fit).
     pub overflow: bool,
+    /// Work space: gradients of two grid planes (freed when the slab is done).
+    gcache: [Vec<[f64; 3]>; 2],
+    gstamp: [Vec<u32>; 2],
 }
 
 impl Ctx<'_> {
@@ -165,14 +168,29 @@ impl Ctx<'_> {
             _ => None,
         }
     }
-    fn grad(&self, p: [usize; 3]) -> Vector3 {
-        match self.op() {
-            Some(op) => {
-                let g = gradient_at(self.vol, self.axes, p, op);
-                Vector3::new(g[0], g[1], g[2])
+    /// Gradient at grid point `p`, cached per plane (planes z and z + 1 of the current layer
+    /// use slots z mod 2; a stamp z + 1 marks valid entries, so nothing is ever cleared).
+    fn grad(&self, p: [usize; 3], out: &mut ChunkOut) -> Vector3 {
+        let Some(op) = self.op() else {
+            return Vector3::zeros();
+        };
+        let nxy = self.vol.dims[0] * self.vol.dims[1];
+        if out.gcache[0].len() != nxy {
+            for k in 0..2 {
+                out.gcache[k] = vec![[0.0; 3]; nxy];
+                out.gstamp[k] = vec![0; nxy];
             }
-            None => Vector3::zeros(),
         }
+        let (slot, i, stamp) = (p[2] % 2, p[0] + self.vol.dims[0] * p[1], p[2] as u32 + 1);
+        let g = if out.gstamp[slot][i] == stamp {
+            out.gcache[slot][i]
+        } else {
+            let g = gradient_at(self.vol, self.axes, p, op);
+            out.gcache[slot][i] = g;
+            out.gstamp[slot][i] = stamp;
+            g
+        };
+        Vector3::new(g[0], g[1], g[2])
     }
     /// Oriented unit normal from a gradient (zero when undefined).
     #[inline]
@@ -226,7 +244,7 @@ impl Ctx<'_> {
         let (pa, pb) = (self.point(a), self.point(b));
         out.pos.push(pa + (pb - pa) * t);
         if self.op().is_some() {
-            let (na, nb) = (self.grad(a), self.grad(b));
+            let (na, nb) = (self.grad(a, out), self.grad(b, out));
             out.nrm.push(self.orient(na * (1.0 - t) + nb * t));
         }
         out.keys.push(k);
@@ -345,6 +363,8 @@ impl Ctx<'_> {
             std::mem::swap(&mut slo, &mut shi);
             std::mem::swap(&mut rlo, &mut rhi);
         }
+        out.gcache = Default::default();
+        out.gstamp = Default::default();
         out
     }
 
@@ -586,7 +606,7 @@ impl Ctx<'_> {
                         }
                     })
                     .product();
-                gsum += self.grad([cell[0] + bit(0), cell[1] + bit(1), cell[2] + bit(2)]) * w;
+                gsum += self.grad([cell[0] + bit(0), cell[1] + bit(1), cell[2] + bit(2)], out) * w;
             }
             out.inrm.push(self.orient(gsum));
         }
