@@ -545,6 +545,18 @@ fn parallel_equals_serial() {
                     .collect()
             };
             assert_eq!(bits(&s.mesh), bits(&p.mesh));
+            // without the topology pass: the same triangulation, no part labels
+            let nt = isosurface(
+                &v,
+                &Options {
+                    topology: false,
+                    ..o(true)
+                },
+            )
+            .unwrap();
+            assert_eq!(nt.mesh.positions, s.mesh.positions);
+            assert_eq!(nt.mesh.triangles, s.mesh.triangles);
+            assert!(nt.mesh.face_props.is_empty() && nt.parts == 0);
         }
     }
 }

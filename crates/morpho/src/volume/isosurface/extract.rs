@@ -122,8 +122,10 @@ pub(super) struct Ctx<'a> {
     pub eps: f64,
     pub method: Method,
     pub normals: NormalMethod,
-    /// −1: normals point out of {f > α} (default), +1 when flipped.
+    /// false: triangles and normals point out of {f > α} (along −∇f); true: along +∇f.
     pub flip: bool,
+    /// Record grid keys of vertices (needed for the topology analysis only).
+    pub keys: bool,
 }
 
 #[derive(Default)]
@@ -247,7 +249,9 @@ impl Ctx<'_> {
             let (na, nb) = (self.grad(a, out), self.grad(b, out));
             out.nrm.push(self.orient(na * (1.0 - t) + nb * t));
         }
-        out.keys.push(k);
+        if self.keys {
+            out.keys.push(k);
+        }
         out.overflow |= out.pos.len() >= INTERIOR as usize;
         (out.pos.len() - 1) as u32
     }

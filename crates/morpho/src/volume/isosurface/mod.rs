@@ -178,6 +178,7 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
         method: opts.method,
         normals: opts.normals,
         flip: opts.flip,
+        keys: opts.topology,
     };
     let layers = vol.dims[2] - 1;
     let threads = rayon::current_num_threads().max(1);
@@ -339,7 +340,9 @@ fn assemble(chunks: Vec<ChunkOut>, opts: &Options) -> Result<(IsoResult, Vec<u64
         r.centroid_fallbacks += c.centroids;
         r.skipped_cells += c.skipped_cells;
     }
-    keys.resize(ne + ni, KEY_INTERIOR);
+    if opts.topology {
+        keys.resize(ne + ni, KEY_INTERIOR);
+    }
     pos.append(&mut ipos);
     nrm.append(&mut inrm);
     r.mesh = TriMesh::new(pos, tris);
