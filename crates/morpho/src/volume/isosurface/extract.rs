@@ -5,7 +5,8 @@
 //! diagonals (tetra method). Entities of a z-plane (x-edges, y-edges, xy-diagonals) form that
 //! plane's block; entities spanning a layer (z-edges, yz/xz-diagonals, body diagonals) form the
 //! layer's block. A slab emits, in this order, plane z0, layer z0, plane z0+1, layer z0+1, …,
-//! plane z1, each block scanned (y, x, slot); cell-interior points (decider fans) go to a separate
+//! plane z1 (a plane block row by row: the row's x-edges, then its y-edges and xy-diagonals; a
+//! layer block by (y, x, slot)); cell-interior points (decider fans) go to a separate
 //! list in cell order. The order depends only on the data, never on how layers are split into
 //! slabs, so concatenating slabs (dropping each slab's last plane, which the next slab starts
 //! with) gives the same vertex numbering as one serial pass. Work space: three index arrays of
@@ -266,17 +267,26 @@ impl Ctx<'_> {
             if !xe && !ye {
                 continue;
             }
-            for x in 0..nx {
-                let i = x + nx * y;
-                let o = ps * i;
-                if xe && x + 1 < nx && cut(s[i], s[i + 1]) {
-                    arr[o] = self.vertex([x, y, z], [x + 1, y, z], key(0, x, y, z), out);
+            let row = nx * y;
+            if xe {
+                for x in 0..nx - 1 {
+                    let i = row + x;
+                    if cut(s[i], s[i + 1]) {
+                        arr[ps * i] = self.vertex([x, y, z], [x + 1, y, z], key(0, x, y, z), out);
+                    }
                 }
-                if ye && cut(s[i], s[i + nx]) {
-                    arr[o + 1] = self.vertex([x, y, z], [x, y + 1, z], key(1, x, y, z), out);
-                }
-                if tet && ye && x + 1 < nx && cut(s[i + 1], s[i + nx]) {
-                    arr[o + 2] = self.vertex([x + 1, y, z], [x, y + 1, z], key(3, x, y, z), out);
+            }
+            if ye {
+                for x in 0..nx {
+                    let i = row + x;
+                    if cut(s[i], s[i + nx]) {
+                        arr[ps * i + 1] =
+                            self.vertex([x, y, z], [x, y + 1, z], key(1, x, y, z), out);
+                    }
+                    if tet && x + 1 < nx && cut(s[i + 1], s[i + nx]) {
+                        arr[ps * i + 2] =
+                            self.vertex([x + 1, y, z], [x, y + 1, z], key(3, x, y, z), out);
+                    }
                 }
             }
         }

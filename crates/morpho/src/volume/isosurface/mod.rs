@@ -153,7 +153,7 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
             vol.dims
         )));
     }
-    let Some((lo, hi)) = vol.value_range() else {
+    let Some((lo, hi)) = fast_range(&vol.data).or_else(|| vol.value_range()) else {
         return Ok(empty("volume has no finite sample".into()));
     };
     let (lo, hi) = (lo as f64, hi as f64);
@@ -266,6 +266,28 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
         r.note = Some(format!("no contour at level {}", opts.level));
     }
     Ok(r)
+}
+
+/// Smallest and largest sample ignoring NaN (`f32::min`/`max` skip a NaN operand), in chunks
+/// that vectorise; `None` when a sample is infinite or there is no finite one (then
+/// [`Volume::value_range`] decides).
+fn fast_range(data: &[f32]) -> Option<(f32, f32)> {
+    let (mut lo, mut hi) = ([f32::INFINITY; 8], [f32::NEG_INFINITY; 8]);
+    let mut it = data.chunks_exact(8);
+    for c in &mut it {
+        for k in 0..8 {
+            lo[k] = lo[k].min(c[k]);
+            hi[k] = hi[k].max(c[k]);
+        }
+    }
+    let (mut l, mut h) = (f32::INFINITY, f32::NEG_INFINITY);
+    for &v in it.remainder().iter().chain(&lo) {
+        l = l.min(v);
+    }
+    for &v in it.remainder().iter().chain(&hi) {
+        h = h.max(v);
+    }
+    (l.is_finite() && h.is_finite()).then_some((l, h))
 }
 
 /// Concatenates slab outputs in canonical order; returns the result and per-vertex grid keys.
@@ -658,6 +680,18 @@ mod tests {
             assert_eq!(r.parts, 1);
             assert_eq!(r.interior_holes, 0);
         }
+    }
+
+    #[test]
+    fn fast_range_matches_value_range() {
+        let mut d: Vec<f32> = (0..37).map(|i| (i as f32 * 0.37).sin()).collect();
+        d[3] = f32::NAN;
+        d[36] = f32::NAN;
+        let v = Volume::new([37, 1, 1], [0.0; 3], [1.0; 3], d.clone()).unwrap();
+        assert_eq!(fast_range(&d), v.value_range());
+        d[5] = f32::INFINITY;
+        assert_eq!(fast_range(&d), None);
+        assert_eq!(fast_range(&[f32::NAN; 9]), None);
     }
 
     #[test]
