@@ -37,8 +37,11 @@
 //! edges of Def. 3.6, otherwise they belong to an interior hole (Def. 3.10).
 //!
 //! Complexity: O(N + T) for N samples and T triangles; parallel over z-slabs (rayon) with output
-//! identical to the serial run; memory: the volume, the output, per-vertex grid keys (8 bytes)
-//! and O(nx·ny) index arrays per running slab.
+//! identical to the serial run (the vertex order is canonical, see `extract`). Memory: the
+//! volume, the output, and per running slab O(nx·ny) work space (sign codes, vertex index arrays,
+//! a two-plane gradient cache); the slabs' outputs are appended into the first slab's buffers,
+//! so a parallel run may hold up to about twice the output briefly. With `topology`, per-vertex
+//! grid keys (8 bytes) and a transient edge table (≈ 40 bytes per triangle) are added.
 
 mod extract;
 pub mod tables;
