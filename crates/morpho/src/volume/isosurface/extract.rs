@@ -1,0 +1,635 @@
+//! Slab-wise extraction of contour points and triangles (Hamann 1991, §3.2) for one range of
+//! cell layers `z0..z1`.
+//!
+//! Contour points live on grid *entities*: cell edges (all methods), face diagonals and body
+//! diagonals (tetra method). Entities of a z-plane (x-edges, y-edges, xy-diagonals) form that
+//! plane's block; entities spanning a layer (z-edges, yz/xz-diagonals, body diagonals) form the
+//! layer's block. A slab emits, in this order, plane z0, layer z0, plane z0+1, layer z0+1, …,
+//! plane z1 (a plane block row by row: the row's x-edges, then its y-edges and xy-diagonals; a
+//! layer block by (y, x, slot)); cell-interior points (decider fans) go to a separate
+//! list in cell order. The order depends only on the data, never on how layers are split into
+//! slabs, so concatenating slabs (dropping each slab's last plane, which the next slab starts
+//! with) gives the same vertex numbering as one serial pass. Work space: three index arrays of
+//! O(nx·ny) per slab.
+
+use super::tables::{self, polygon_table, tet_table, FACE_CORNERS, NO_FACE, TETS};
+use super::{Method, NormalMethod};
+use crate::geom::{Point3, Vector3};
+use crate::volume::gradient::{gradient_at, GradientOperator};
+use crate::volume::Volume;
+
+pub(super) const NONE: u32 = u32::MAX;
+/// Chunk-local triangle corners with this bit refer to the interior point list.
+pub(super) const INTERIOR: u32 = 1 << 31;
+/// Key of vertices not on a grid entity (cell-interior points).
+pub(super) const KEY_INTERIOR: u64 = u64::MAX;
+
+/// Entity types packed into keys: 0 x-edge, 1 y-edge, 2 z-edge, 3 xy-diag, 4 yz-diag,
+/// 5 xz-diag, 6 body diagonal.
+pub(super) fn key(kind: u64, x: usize, y: usize, z: usize) -> u64 {
+    (kind << 60) | ((x as u64) << 40) | ((y as u64) << 20) | z as u64
+}
+
+/// Integer extent [lo, hi] of the entity `key` along `axis` (`None` for interior points).
+pub(super) fn extent(key: u64, axis: usize) -> Option<(usize, usize)> {
+    if key == KEY_INTERIOR {
+        return None;
+    }
+    let kind = key >> 60;
+    let c = [
+        (key >> 40 & 0xFFFFF) as usize,
+        (key >> 20 & 0xFFFFF) as usize,
+        (key & 0xFFFFF) as usize,
+    ];
+    let spans: [bool; 3] = match kind {
+        0 => [true, false, false],
+        1 => [false, true, false],
+        2 => [false, false, true],
+        3 => [true, true, false],
+        4 => [false, true, true],
+        5 => [true, false, true],
+        _ => [true, true, true],
+    };
+    Some((c[axis], c[axis] + spans[axis] as usize))
+}
+
+/// True when the entity between samples with sign codes `a`, `b` carries a contour point.
+#[inline]
+fn cut(a: u8, b: u8) -> bool {
+    (a ^ b) == 1
+}
+
+/// Corner bits of a 4-bit column code (bit 0: y0 z0, 1: y1 z0, 2: y0 z1, 3: y1 z1) at x = 0.
+const SPREAD: [u8; 16] = {
+    let mut t = [0u8; 16];
+    let mut a = 0;
+    while a < 16 {
+        t[a] = ((a & 1) | (a >> 1 & 1) << 2 | (a >> 2 & 1) << 4 | (a >> 3 & 1) << 6) as u8;
+        a += 1;
+    }
+    t
+};
+
+/// Vertex index arrays of the planes below and above a layer and of the layer itself.
+pub(super) struct Index<'a> {
+    plo: &'a [u32],
+    phi: &'a [u32],
+    lay: &'a [u32],
+    ps: usize,
+    ls: usize,
+    /// Per cell entity (0..19): array (0 plane below, 1 plane above, 2 layer) and offset from
+    /// the cell's base slot.
+    delta: &'a [(u8, usize); 19],
+}
+
+/// The [`Index::delta`] table for row length `nx` and strides `ps`, `ls`.
+fn delta_table(nx: usize, ps: usize, ls: usize) -> [(u8, usize); 19] {
+    std::array::from_fn(|e| {
+        let p = |dx: usize, dy: usize, slot: usize| ps * (dx + nx * dy) + slot;
+        let l = |dx: usize, dy: usize, slot: usize| ls * (dx + nx * dy) + slot;
+        match e {
+            0..=11 => {
+                let (axis, j) = (e / 4, e % 4);
+                let (lo, hi) = (j & 1, j >> 1);
+                match axis {
+                    0 => (hi as u8, p(0, lo, 0)),
+                    1 => (hi as u8, p(lo, 0, 1)),
+                    _ => (2, l(lo, hi, 0)),
+                }
+            }
+            12 => (2, l(0, 0, 1)),
+            13 => (2, l(1, 0, 1)),
+            14 => (2, l(0, 0, 2)),
+            15 => (2, l(0, 1, 2)),
+            16 => (0, p(0, 0, 2)),
+            17 => (1, p(0, 0, 2)),
+            _ => (2, l(0, 0, 3)),
+        }
+    })
+}
+
+/// Sign codes of the two planes of a layer and their row summaries.
+pub(super) struct Signs<'a> {
+    s0: &'a [u8],
+    s1: &'a [u8],
+    r0: &'a [u8],
+    r1: &'a [u8],
+}
+
+pub(super) struct Ctx<'a> {
+    pub vol: &'a Volume,
+    pub axes: &'a [Vec<f64>; 3],
+    pub alpha: f64,
+    pub eps: f64,
+    pub method: Method,
+    pub normals: NormalMethod,
+    /// false: triangles and normals point out of {f > α} (along −∇f); true: along +∇f.
+    pub flip: bool,
+    /// Record grid keys of vertices (needed for the topology analysis only).
+    pub keys: bool,
+}
+
+#[derive(Default)]
+pub(super) struct ChunkOut {
+    pub pos: Vec<Point3>,
+    pub nrm: Vec<Vector3>,
+    pub keys: Vec<u64>,
+    pub ipos: Vec<Point3>,
+    pub inrm: Vec<Vector3>,
+    pub tris: Vec<[u32; 3]>,
+    pub last_plane_start: usize,
+    pub fans: usize,
+    pub centroids: usize,
+    pub skipped_cells: usize,
+    /// More than 2³¹ − 1 vertices in this slab (indices no longer fit).
+    pub overflow: bool,
+    /// Work space: gradients of two grid planes (freed when the slab is done).
+    gcache: [Vec<[f64; 3]>; 2],
+    gstamp: [Vec<u32>; 2],
+}
+
+impl Ctx<'_> {
+    /// f − α with values equal to α raised by ε (H Rem. 3.8); NaN stays NaN.
+    #[inline]
+    fn g(&self, v: f32) -> f64 {
+        let d = v as f64 - self.alpha;
+        if d == 0.0 {
+            self.eps
+        } else {
+            d
+        }
+    }
+    #[inline]
+    fn gi(&self, x: usize, y: usize, z: usize) -> f64 {
+        let d = self.vol.dims;
+        self.g(self.vol.data[x + d[0] * (y + d[1] * z)])
+    }
+    fn op(&self) -> Option<GradientOperator> {
+        match self.normals {
+            NormalMethod::ZuckerHummel => Some(GradientOperator::ZuckerHummel),
+            NormalMethod::Central => Some(GradientOperator::Central),
+            _ => None,
+        }
+    }
+    /// Gradient at grid point `p`, cached per plane (planes z and z + 1 of the current layer
+    /// use slots z mod 2; a stamp z + 1 marks valid entries, so nothing is ever cleared).
+    fn grad(&self, p: [usize; 3], out: &mut ChunkOut) -> Vector3 {
+        let Some(op) = self.op() else {
+            return Vector3::zeros();
+        };
+        let nxy = self.vol.dims[0] * self.vol.dims[1];
+        if out.gcache[0].len() != nxy {
+            for k in 0..2 {
+                out.gcache[k] = vec![[0.0; 3]; nxy];
+                out.gstamp[k] = vec![0; nxy];
+            }
+        }
+        let (slot, i, stamp) = (p[2] % 2, p[0] + self.vol.dims[0] * p[1], p[2] as u32 + 1);
+        let g = if out.gstamp[slot][i] == stamp {
+            out.gcache[slot][i]
+        } else {
+            let g = gradient_at(self.vol, self.axes, p, op);
+            out.gcache[slot][i] = g;
+            out.gstamp[slot][i] = stamp;
+            g
+        };
+        Vector3::new(g[0], g[1], g[2])
+    }
+    /// Oriented unit normal from a gradient (zero when undefined).
+    #[inline]
+    fn orient(&self, g: Vector3) -> Vector3 {
+        let l2 = g.x * g.x + g.y * g.y + g.z * g.z;
+        if l2 > 0.0 && l2.is_finite() {
+            let s = if self.flip { 1.0 } else { -1.0 } / l2.sqrt();
+            Vector3::new(g.x * s, g.y * s, g.z * s)
+        } else {
+            Vector3::zeros()
+        }
+    }
+    fn point(&self, p: [usize; 3]) -> Point3 {
+        Point3::new(self.axes[0][p[0]], self.axes[1][p[1]], self.axes[2][p[2]])
+    }
+
+    /// Sign codes of plane z: bit 0 set for f ≥ α (f > α after Rem. 3.8), 2 for NaN; and per
+    /// row y: 0 all negative, 1 all positive, 2 mixed, 3 with a NaN.
+    fn signs(&self, z: usize, s: &mut [u8], rows: &mut [u8]) {
+        let [nx, ny, _] = self.vol.dims;
+        let data = &self.vol.data[nx * ny * z..nx * ny * (z + 1)];
+        for y in 0..ny {
+            let (src, dst) = (&data[nx * y..nx * (y + 1)], &mut s[nx * y..nx * (y + 1)]);
+            let mut or = 0u8;
+            let mut and = 1u8;
+            for (d, &v) in dst.iter_mut().zip(src) {
+                let c = if v.is_nan() {
+                    2
+                } else {
+                    (v as f64 >= self.alpha) as u8
+                };
+                *d = c;
+                or |= c;
+                and &= c;
+            }
+            rows[y] = if or & 2 != 0 {
+                3
+            } else if or != and {
+                2
+            } else {
+                and
+            };
+        }
+    }
+
+    /// Adds the contour point on the entity from grid point `a` to `b` (known to be cut).
+    fn vertex(&self, a: [usize; 3], b: [usize; 3], k: u64, out: &mut ChunkOut) -> u32 {
+        let ga = self.gi(a[0], a[1], a[2]);
+        let gb = self.gi(b[0], b[1], b[2]);
+        let t = ga / (ga - gb);
+        let (pa, pb) = (self.point(a), self.point(b));
+        out.pos.push(pa + (pb - pa) * t);
+        if self.op().is_some() {
+            let (na, nb) = (self.grad(a, out), self.grad(b, out));
+            out.nrm.push(self.orient(na * (1.0 - t) + nb * t));
+        }
+        if self.keys {
+            out.keys.push(k);
+        }
+        out.overflow |= out.pos.len() >= INTERIOR as usize;
+        (out.pos.len() - 1) as u32
+    }
+
+    fn build_plane(&self, z: usize, s: &[u8], rows: &[u8], arr: &mut [u32], out: &mut ChunkOut) {
+        let [nx, ny, _] = self.vol.dims;
+        let tet = self.method == Method::Tetra;
+        let ps = self.strides().0;
+        for y in 0..ny {
+            let xe = rows[y] >= 2;
+            let ye = y + 1 < ny && (rows[y] >= 2 || rows[y] != rows[y + 1]);
+            if !xe && !ye {
+                continue;
+            }
+            let row = nx * y;
+            if xe {
+                for x in 0..nx - 1 {
+                    let i = row + x;
+                    if cut(s[i], s[i + 1]) {
+                        arr[ps * i] = self.vertex([x, y, z], [x + 1, y, z], key(0, x, y, z), out);
+                    }
+                }
+            }
+            if ye {
+                for x in 0..nx {
+                    let i = row + x;
+                    if cut(s[i], s[i + nx]) {
+                        arr[ps * i + 1] =
+                            self.vertex([x, y, z], [x, y + 1, z], key(1, x, y, z), out);
+                    }
+                    if tet && x + 1 < nx && cut(s[i + 1], s[i + nx]) {
+                        arr[ps * i + 2] =
+                            self.vertex([x + 1, y, z], [x, y + 1, z], key(3, x, y, z), out);
+                    }
+                }
+            }
+        }
+    }
+
+    fn build_layer(&self, z: usize, sg: &Signs, arr: &mut [u32], out: &mut ChunkOut) {
+        let [nx, ny, _] = self.vol.dims;
+        let tet = self.method == Method::Tetra;
+        let ls = self.strides().1;
+        let (s0, s1) = (sg.s0, sg.s1);
+        for y in 0..ny {
+            let same = |r: &[u8]| r.iter().all(|&q| q < 2 && q == r[0]);
+            let ze = !same(&[sg.r0[y], sg.r1[y]]);
+            let de = tet && y + 1 < ny && !same(&[sg.r0[y], sg.r1[y], sg.r0[y + 1], sg.r1[y + 1]]);
+            if !ze && !de {
+                continue;
+            }
+            for x in 0..nx {
+                let i = x + nx * y;
+                let o = ls * i;
+                if cut(s0[i], s1[i]) {
+                    arr[o] = self.vertex([x, y, z], [x, y, z + 1], key(2, x, y, z), out);
+                }
+                if !tet {
+                    continue;
+                }
+                if y + 1 < ny && cut(s0[i + nx], s1[i]) {
+                    arr[o + 1] = self.vertex([x, y + 1, z], [x, y, z + 1], key(4, x, y, z), out);
+                }
+                if x + 1 < nx && cut(s0[i + 1], s1[i]) {
+                    arr[o + 2] = self.vertex([x + 1, y, z], [x, y, z + 1], key(5, x, y, z), out);
+                }
+                if x + 1 < nx && y + 1 < ny && cut(s0[i + 1], s1[i + nx]) {
+                    arr[o + 3] =
+                        self.vertex([x + 1, y, z], [x, y + 1, z + 1], key(6, x, y, z), out);
+                }
+            }
+        }
+    }
+
+    /// Slots per grid position in the plane and layer index arrays.
+    fn strides(&self) -> (usize, usize) {
+        if self.method == Method::Tetra {
+            (3, 4)
+        } else {
+            (2, 1)
+        }
+    }
+
+    /// Extracts layers `z0..z1` (cells with lower z index in that range).
+    ///
+    /// The index arrays are never cleared: a cell only looks up entities its sign
+    /// configuration says are cut, and those were written for the current plane/layer.
+    pub fn chunk(&self, z0: usize, z1: usize) -> ChunkOut {
+        let [nx, ny, _] = self.vol.dims;
+        let mut out = ChunkOut::default();
+        let (ps, ls) = self.strides();
+        let mut plo = vec![NONE; ps * nx * ny];
+        let mut phi = vec![NONE; ps * nx * ny];
+        let mut lay = vec![NONE; ls * nx * ny];
+        let (mut slo, mut shi) = (vec![0u8; nx * ny], vec![0u8; nx * ny]);
+        let (mut rlo, mut rhi) = (vec![0u8; ny], vec![0u8; ny]);
+        let mut col = vec![0u8; nx];
+        let delta = delta_table(nx, ps, ls);
+        self.signs(z0, &mut slo, &mut rlo);
+        self.build_plane(z0, &slo, &rlo, &mut plo, &mut out);
+        for z in z0..z1 {
+            self.signs(z + 1, &mut shi, &mut rhi);
+            let sg = Signs {
+                s0: &slo,
+                s1: &shi,
+                r0: &rlo,
+                r1: &rhi,
+            };
+            self.build_layer(z, &sg, &mut lay, &mut out);
+            out.last_plane_start = out.pos.len();
+            self.build_plane(z + 1, &shi, &rhi, &mut phi, &mut out);
+            let ix = Index {
+                plo: &plo,
+                phi: &phi,
+                lay: &lay,
+                ps,
+                ls,
+                delta: &delta,
+            };
+            self.cells(z, &sg, &ix, &mut col, &mut out);
+            std::mem::swap(&mut plo, &mut phi);
+            std::mem::swap(&mut slo, &mut shi);
+            std::mem::swap(&mut rlo, &mut rhi);
+        }
+        out.gcache = Default::default();
+        out.gstamp = Default::default();
+        out
+    }
+
+    /// Finds the cells of layer z that the contour crosses.
+    fn cells(&self, z: usize, sg: &Signs, ix: &Index, col: &mut [u8], out: &mut ChunkOut) {
+        let [nx, ny, _] = self.vol.dims;
+        let (s0, s1) = (sg.s0, sg.s1);
+        let sy = nx;
+        for y in 0..ny - 1 {
+            let r = [sg.r0[y], sg.r0[y + 1], sg.r1[y], sg.r1[y + 1]];
+            if r[0] < 2 && r.iter().all(|&q| q == r[0]) {
+                continue; // a row of cells with all corners on one side
+            }
+            if r.contains(&3) {
+                // a NaN nearby: check each cell
+                for x in 0..nx - 1 {
+                    let i = x + sy * y;
+                    let c = [
+                        s0[i],
+                        s0[i + 1],
+                        s0[i + sy],
+                        s0[i + sy + 1],
+                        s1[i],
+                        s1[i + 1],
+                        s1[i + sy],
+                        s1[i + sy + 1],
+                    ];
+                    let mut cfg = 0u8;
+                    let mut any = 0u8;
+                    for (k, &ck) in c.iter().enumerate() {
+                        cfg |= (ck & 1) << k;
+                        any |= ck;
+                    }
+                    if any & 2 != 0 {
+                        out.skipped_cells += 1;
+                    } else if cfg != 0 && cfg != 255 {
+                        self.cell([x, y, z], cfg, ix, out);
+                    }
+                }
+                continue;
+            }
+            // 4-bit column codes (y, z) per x; a cell's configuration joins two columns
+            for (x, cx) in col.iter_mut().enumerate() {
+                let i = x + sy * y;
+                *cx = s0[i] | s0[i + sy] << 1 | s1[i] << 2 | s1[i + sy] << 3;
+            }
+            for x in 0..nx - 1 {
+                let (a, b) = (col[x], col[x + 1]);
+                if a == b && (a == 0 || a == 15) {
+                    continue;
+                }
+                let cfg = SPREAD[a as usize] | SPREAD[b as usize] << 1;
+                self.cell([x, y, z], cfg, ix, out);
+            }
+        }
+    }
+
+    /// Triangulates one cell crossed by the contour (`cfg` not 0 or 255, no NaN corner).
+    fn cell(&self, p: [usize; 3], cfg: u8, ix: &Index, out: &mut ChunkOut) {
+        let [x, y, z] = p;
+        let [nx, ny, _] = self.vol.dims;
+        let (plo, phi, lay) = (ix.plo, ix.phi, ix.lay);
+        let data = &self.vol.data;
+        let sy = nx;
+        let sz = nx * ny;
+        let pos = x + nx * y;
+        let (bp, bl) = (ix.ps * pos, ix.ls * pos);
+        let ent = |e: u8| -> u32 {
+            let (arr, d) = ix.delta[e as usize];
+            match arr {
+                0 => plo[bp + d],
+                1 => phi[bp + d],
+                _ => lay[bl + d],
+            }
+        };
+        let flip = self.flip;
+        let push = |out: &mut ChunkOut, a: u32, b: u32, c: u32| {
+            out.tris.push(if flip { [a, c, b] } else { [a, b, c] });
+        };
+        if self.method == Method::Tetra {
+            let tets = tet_table();
+            for (t, tet) in TETS.iter().enumerate() {
+                let mut c4 = 0usize;
+                for (i, &c) in tet.iter().enumerate() {
+                    c4 |= ((cfg >> c & 1) as usize) << i;
+                }
+                for tri in &tets.tris[t * 16 + c4] {
+                    push(out, ent(tri[0]), ent(tri[1]), ent(tri[2]));
+                }
+            }
+            return;
+        }
+        let table = polygon_table();
+        let amb = table.ambiguous[cfg as usize];
+        let b = x + sy * y + sz * z;
+        let idx = [
+            b,
+            b + 1,
+            b + sy,
+            b + sy + 1,
+            b + sz,
+            b + sz + 1,
+            b + sz + sy,
+            b + sz + sy + 1,
+        ];
+        let mut g = [0.0f64; 8];
+        let mut have_g = false;
+        let mut load = |g: &mut [f64; 8]| {
+            if !have_g {
+                for k in 0..8 {
+                    g[k] = self.g(data[idx[k]]);
+                }
+                have_g = true;
+            }
+        };
+        let connect = if amb == 0 {
+            0
+        } else if self.method == Method::Lorensen {
+            tables::lorensen_connect(cfg)
+        } else {
+            load(&mut g);
+            let mut m = 0u8;
+            for (f, fc) in FACE_CORNERS.iter().enumerate() {
+                if amb >> f & 1 == 0 {
+                    continue;
+                }
+                // asymptotic decider (Thm. 3.3): the bilinear saddle value is above α iff the
+                // product of the positive diagonal exceeds that of the negative one; a tie (two
+                // straight lines) cuts off the positive corners (H's choice).
+                let (p, q) = if cfg >> fc[0] & 1 == 1 {
+                    (
+                        g[fc[0] as usize] * g[fc[2] as usize],
+                        g[fc[1] as usize] * g[fc[3] as usize],
+                    )
+                } else {
+                    (
+                        g[fc[1] as usize] * g[fc[3] as usize],
+                        g[fc[0] as usize] * g[fc[2] as usize],
+                    )
+                };
+                if p > q {
+                    m |= 1 << f;
+                }
+            }
+            m
+        };
+        for poly in table.get(cfg, connect) {
+            let n = poly.len as usize;
+            let mut v = [0u32; 12];
+            for i in 0..n {
+                v[i] = ent(poly.edges[i]);
+            }
+            if poly.fan_face == NO_FACE || self.method == Method::Lorensen {
+                for i in 1..n - 1 {
+                    push(out, v[0], v[i], v[i + 1]);
+                }
+            } else {
+                load(&mut g);
+                let c = self.interior_point(&g, poly.fan_face, &v[..n], p, out);
+                for i in 0..n {
+                    push(out, v[i], v[(i + 1) % n], c);
+                }
+            }
+        }
+    }
+
+    /// The interior contour point y_n of Thm. 3.6 (Eqs. 3.10–3.11) for a polygon with two
+    /// segments on face `f`, or the centroid of the polygon (Rem. 3.9) when the denominator
+    /// vanishes or the point falls outside the cell (Rem. 3.10). Returns its interior id.
+    fn interior_point(
+        &self,
+        g: &[f64; 8],
+        f: u8,
+        poly: &[u32],
+        cell: [usize; 3],
+        out: &mut ChunkOut,
+    ) -> u32 {
+        let a = (f / 2) as usize;
+        let side = (f % 2) as usize;
+        let (b, c) = ((a + 1) % 3, (a + 2) % 3);
+        let (b, c) = (b.min(c), b.max(c));
+        let corner = |ia: usize, ib: usize, ic: usize| (ia << a) | (ib << b) | (ic << c);
+        let h = |i: usize, j: usize| g[corner(side, i, j)];
+        let d10 = h(1, 0) - h(0, 0);
+        let d01 = h(0, 1) - h(0, 0);
+        let d11 = h(1, 1) - h(1, 0) - h(0, 1) + h(0, 0);
+        let ub = -d01 / d11;
+        let uc = -d10 / d11;
+        let bil = |s: usize| {
+            let q = |i: usize, j: usize| g[corner(s, i, j)];
+            q(0, 0) * (1.0 - ub) * (1.0 - uc)
+                + q(1, 0) * ub * (1.0 - uc)
+                + q(0, 1) * (1.0 - ub) * uc
+                + q(1, 1) * ub * uc
+        };
+        let (f0, f1) = (bil(0), bil(1));
+        let den = f1 - f0;
+        let t0 = -f0 / den;
+        let mut local = [0.0; 3];
+        local[a] = t0;
+        local[b] = ub;
+        local[c] = uc;
+        let mut p = Point3::new(
+            self.lerp_axis(0, cell[0], local[0]),
+            self.lerp_axis(1, cell[1], local[1]),
+            self.lerp_axis(2, cell[2], local[2]),
+        );
+        out.fans += 1;
+        // the point must lie strictly inside the cell: a point on a face would put fan edges on
+        // that face (Condition 3.1) and a point outside may fold the surface (Rem. 3.10)
+        let strictly_inside = (0..3).all(|k| {
+            let (lo, hi) = (self.axes[k][cell[k]], self.axes[k][cell[k] + 1]);
+            p[k] > lo && p[k] < hi
+        });
+        if !(den != 0.0 && t0.is_finite() && strictly_inside) {
+            out.centroids += 1;
+            let mut s = Vector3::zeros();
+            for &v in poly {
+                s += out.pos[v as usize].coords;
+            }
+            p = Point3::from(s / poly.len() as f64);
+            for k in 0..3 {
+                let (lo, hi) = (self.axes[k][cell[k]], self.axes[k][cell[k] + 1]);
+                local[k] = ((p[k] - lo) / (hi - lo)).clamp(0.0, 1.0);
+            }
+        }
+        out.ipos.push(p);
+        if self.op().is_some() {
+            // Eq. 3.19: trilinear interpolation of the eight corner gradients
+            let mut gsum = Vector3::zeros();
+            for cc in 0..8usize {
+                let bit = |k: usize| cc >> k & 1;
+                let w: f64 = (0..3)
+                    .map(|k| {
+                        if bit(k) == 1 {
+                            local[k]
+                        } else {
+                            1.0 - local[k]
+                        }
+                    })
+                    .product();
+                gsum += self.grad([cell[0] + bit(0), cell[1] + bit(1), cell[2] + bit(2)], out) * w;
+            }
+            out.inrm.push(self.orient(gsum));
+        }
+        out.overflow |= out.ipos.len() >= INTERIOR as usize;
+        INTERIOR | (out.ipos.len() - 1) as u32
+    }
+
+    fn lerp_axis(&self, k: usize, i: usize, t: f64) -> f64 {
+        let (lo, hi) = (self.axes[k][i], self.axes[k][i + 1]);
+        lo + (hi - lo) * t
+    }
+}
