@@ -43,6 +43,31 @@ pub struct Candidates2 {
     pub in_dt: Vec<bool>,
 }
 
+/// The sorted vertex sets of the union-find groups of simplices with more than one member.
+fn union_groups<const K: usize>(parent: &mut [u32], simplices: &[[u32; K]]) -> Vec<Vec<u32>> {
+    let mut size: HashMap<u32, usize> = HashMap::new();
+    for t in 0..simplices.len() as u32 {
+        *size.entry(find(parent, t)).or_default() += 1;
+    }
+    let mut groups: HashMap<u32, Vec<u32>> = HashMap::new();
+    for (t, simplex) in simplices.iter().enumerate() {
+        let r = find(parent, t as u32);
+        if size[&r] > 1 {
+            groups.entry(r).or_default().extend_from_slice(simplex);
+        }
+    }
+    let mut out: Vec<Vec<u32>> = groups
+        .into_values()
+        .map(|mut v| {
+            v.sort_unstable();
+            v.dedup();
+            v
+        })
+        .collect();
+    out.sort();
+    out
+}
+
 fn find(parent: &mut [u32], mut x: u32) -> u32 {
     while parent[x as usize] != x {
         let p = parent[parent[x as usize] as usize];
@@ -107,29 +132,10 @@ pub fn candidates_2d(d: &Delaunay2) -> Candidates2 {
         }
     }
     // cocircular groups: all chords
-    let mut groups: HashMap<u32, Vec<u32>> = HashMap::new();
-    let mut size: HashMap<u32, usize> = HashMap::new();
-    for t in 0..nt as u32 {
-        let r = find(&mut parent, t);
-        *size.entry(r).or_default() += 1;
-    }
-    for t in 0..nt as u32 {
-        let r = find(&mut parent, t);
-        if size[&r] > 1 {
-            groups
-                .entry(r)
-                .or_default()
-                .extend_from_slice(&d.triangles[t as usize]);
-        }
-    }
+    let groups = union_groups(&mut parent, &d.triangles);
     if !groups.is_empty() {
         let existing: HashSet<[u32; 2]> = out.edges.iter().copied().collect();
-        let mut roots: Vec<u32> = groups.keys().copied().collect();
-        roots.sort_unstable();
-        for r in roots {
-            let mut vs = groups.remove(&r).unwrap_or_default();
-            vs.sort_unstable();
-            vs.dedup();
+        for vs in groups {
             for i in 0..vs.len() {
                 for j in i + 1..vs.len() {
                     let (a, b) = (vs[i], vs[j]);
@@ -143,12 +149,8 @@ pub fn candidates_2d(d: &Delaunay2) -> Candidates2 {
                             f.add(&mut iv, p[x as usize]);
                         }
                     }
-                    // all group points lie on one circle (exactly): both ends are its offset
-                    if iv.lo > iv.hi {
-                        let mid = 0.5 * (iv.lo + iv.hi);
-                        iv.lo = mid;
-                        iv.hi = mid;
-                    }
+                    // all group points lie on one circle: the exact tie-breaking of
+                    // `EdgeFrame::add` makes both ends its offset
                     out.edges.push([a, b]);
                     out.intervals.push(iv);
                     out.in_dt.push(false);
@@ -439,21 +441,7 @@ pub fn candidates_3d(d: &Delaunay3) -> Candidates3 {
     }
     // groups of vertices whose triples all belong to γ([-1,1],[0,1]):
     // (a) cospherical tetrahedra (common empty sphere)
-    let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
-    let mut count: HashMap<u32, usize> = HashMap::new();
-    for t in 0..nt as u32 {
-        *count.entry(find(&mut parent, t)).or_default() += 1;
-    }
-    for t in 0..nt as u32 {
-        let r = find(&mut parent, t);
-        if count[&r] > 1 {
-            members
-                .entry(r)
-                .or_default()
-                .extend_from_slice(&d.tets[t as usize]);
-        }
-    }
-    let mut groups: Vec<Vec<u32>> = members.into_values().collect();
+    let mut groups = union_groups(&mut parent, &d.tets);
     // (b) coplanar, cocircular faces sharing an edge (their common circle bounds the same
     // family of balls); (c) coplanar hull facets (every empty triangle of a facet is a hull
     // triangle, Def. 2.10, whose half-space is empty)
@@ -499,11 +487,6 @@ pub fn candidates_3d(d: &Delaunay3) -> Candidates3 {
                     }
                     if iv.gamma_values().is_none() {
                         continue;
-                    }
-                    if iv.lo > iv.hi && iv.lo - iv.hi <= 1e-12 * (iv.lo.abs() + iv.hi.abs()) {
-                        let mid = 0.5 * (iv.lo + iv.hi);
-                        iv.lo = mid;
-                        iv.hi = mid;
                     }
                     if iv.lo <= iv.hi {
                         existing.insert(t);
