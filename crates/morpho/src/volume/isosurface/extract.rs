@@ -243,7 +243,15 @@ impl Ctx<'_> {
     fn vertex(&self, a: [usize; 3], b: [usize; 3], k: u64, out: &mut ChunkOut) -> u32 {
         let ga = self.gi(a[0], a[1], a[2]);
         let gb = self.gi(b[0], b[1], b[2]);
-        let t = ga / (ga - gb);
+        let mut t = ga / (ga - gb);
+        if t.is_nan() {
+            // an infinite sample: the contour point sits at the finite end
+            t = match (ga.is_infinite(), gb.is_infinite()) {
+                (true, true) => 0.5,
+                (true, false) => 1.0,
+                _ => 0.0,
+            };
+        }
         let (pa, pb) = (self.point(a), self.point(b));
         out.pos.push(pa + (pb - pa) * t);
         if self.op().is_some() {

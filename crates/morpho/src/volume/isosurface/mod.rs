@@ -28,6 +28,8 @@
 //! NaN samples: cells with a NaN corner are skipped; the surface then has boundary edges on the
 //! faces of skipped cells, which are counted as boundary edges (like the volume's outer faces),
 //! not as interior holes; the count of skipped cells is put in the note. NaN never panics.
+//! Infinite samples are ordinary samples on their side of α; a contour point on an edge with
+//! an infinite end sits at the finite end.
 //!
 //! Topology (H §3.3): edges are grouped per vertex (counting sort, O(n)); triangles sharing an
 //! edge are neighbours (Def. 3.7) and are merged into parts with union–find (the result of
