@@ -171,12 +171,18 @@ impl Ctx<'_> {
             _ => None,
         }
     }
-    /// Gradient at grid point `p`, cached per plane (planes z and z + 1 of the current layer
-    /// use slots z mod 2; a stamp z + 1 marks valid entries, so nothing is ever cleared).
+    /// Gradient at grid point `p`. Zucker–Hummel gradients (54 samples) are cached per plane:
+    /// planes z and z + 1 of the current layer use slots z mod 2, and a stamp z + 1 marks valid
+    /// entries, so nothing is ever cleared.
     fn grad(&self, p: [usize; 3], out: &mut ChunkOut) -> Vector3 {
         let Some(op) = self.op() else {
             return Vector3::zeros();
         };
+        if op == GradientOperator::Central {
+            // six samples: recomputing is as cheap as the cache lookup
+            let g = gradient_at(self.vol, self.axes, p, op);
+            return Vector3::new(g[0], g[1], g[2]);
+        }
         let nxy = self.vol.dims[0] * self.vol.dims[1];
         if out.gcache[0].len() != nxy {
             for k in 0..2 {
