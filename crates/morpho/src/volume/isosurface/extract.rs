@@ -108,6 +108,32 @@ fn delta_table(nx: usize, ps: usize, ls: usize) -> [(u8, usize); 19] {
     })
 }
 
+/// Calls `f(k)` for every k with `cut(a[k], b[k])`, in increasing k, testing eight sign codes
+/// at a time (`a` and `b` have the same length).
+#[inline]
+fn for_each_cut(a: &[u8], b: &[u8], mut f: impl FnMut(usize)) {
+    let n = a.len().min(b.len());
+    let mut k = 0;
+    while k + 8 <= n {
+        let wa = u64::from_le_bytes(a[k..k + 8].try_into().unwrap_or([0; 8]));
+        let wb = u64::from_le_bytes(b[k..k + 8].try_into().unwrap_or([0; 8]));
+        let mut d = wa ^ wb;
+        while d != 0 {
+            let j = (d.trailing_zeros() / 8) as usize;
+            if (d >> (8 * j)) & 0xFF == 1 {
+                f(k + j);
+            }
+            d &= !(0xFFu64 << (8 * j));
+        }
+        k += 8;
+    }
+    for j in k..n {
+        if cut(a[j], b[j]) {
+            f(j);
+        }
+    }
+}
+
 /// Sign codes of the two planes of a layer and their row summaries.
 pub(super) struct Signs<'a> {
     s0: &'a [u8],
@@ -283,14 +309,17 @@ impl Ctx<'_> {
             }
             let row = nx * y;
             if xe {
-                for x in 0..nx - 1 {
-                    let i = row + x;
-                    if cut(s[i], s[i + 1]) {
-                        arr[ps * i] = self.vertex([x, y, z], [x + 1, y, z], key(0, x, y, z), out);
-                    }
-                }
+                for_each_cut(&s[row..row + nx - 1], &s[row + 1..row + nx], |x| {
+                    arr[ps * (row + x)] =
+                        self.vertex([x, y, z], [x + 1, y, z], key(0, x, y, z), out);
+                });
             }
-            if ye {
+            if ye && !tet {
+                for_each_cut(&s[row..row + nx], &s[row + nx..row + 2 * nx], |x| {
+                    arr[ps * (row + x) + 1] =
+                        self.vertex([x, y, z], [x, y + 1, z], key(1, x, y, z), out);
+                });
+            } else if ye {
                 for x in 0..nx {
                     let i = row + x;
                     if cut(s[i], s[i + nx]) {
@@ -316,6 +345,14 @@ impl Ctx<'_> {
             let ze = !same(&[sg.r0[y], sg.r1[y]]);
             let de = tet && y + 1 < ny && !same(&[sg.r0[y], sg.r1[y], sg.r0[y + 1], sg.r1[y + 1]]);
             if !ze && !de {
+                continue;
+            }
+            if !tet {
+                let row = nx * y;
+                for_each_cut(&s0[row..row + nx], &s1[row..row + nx], |x| {
+                    arr[ls * (row + x)] =
+                        self.vertex([x, y, z], [x, y, z + 1], key(2, x, y, z), out);
+                });
                 continue;
             }
             for x in 0..nx {
@@ -439,11 +476,23 @@ impl Ctx<'_> {
                 let i = x + sy * y;
                 *cx = s0[i] | s0[i + sy] << 1 | s1[i] << 2 | s1[i + sy] << 3;
             }
-            for x in 0..nx - 1 {
+            let mut x = 0;
+            while x + 1 < nx {
+                // eight cells at once when their nine columns are all inside or all outside
+                if x + 9 <= nx {
+                    let w = u64::from_le_bytes(col[x..x + 8].try_into().unwrap_or([1; 8]));
+                    let w1 = u64::from_le_bytes(col[x + 1..x + 9].try_into().unwrap_or([1; 8]));
+                    if w == w1 && (w == 0 || w == 0x0F0F_0F0F_0F0F_0F0F) {
+                        x += 8;
+                        continue;
+                    }
+                }
                 let (a, b) = (col[x], col[x + 1]);
+                x += 1;
                 if a == b && (a == 0 || a == 15) {
                     continue;
                 }
+                let x = x - 1;
                 let cfg = SPREAD[a as usize] | SPREAD[b as usize] << 1;
                 self.cell([x, y, z], cfg, ix, out);
             }
