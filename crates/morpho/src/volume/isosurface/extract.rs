@@ -696,3 +696,42 @@ impl Ctx<'_> {
         lo + (hi - lo) * t
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    #[test]
+    fn for_each_cut_matches_the_definition() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4);
+        for n in [0usize, 1, 7, 8, 9, 16, 17, 40] {
+            for density in [0.0, 0.1, 0.5] {
+                let code = |rng: &mut rand_chacha::ChaCha8Rng| -> u8 {
+                    if rng.gen_bool(density) {
+                        rng.gen_range(0..3)
+                    } else {
+                        0
+                    }
+                };
+                let a: Vec<u8> = (0..n).map(|_| code(&mut rng)).collect();
+                let b: Vec<u8> = (0..n).map(|_| code(&mut rng)).collect();
+                let mut got = Vec::new();
+                for_each_cut(&a, &b, |k| got.push(k));
+                let want: Vec<usize> = (0..n).filter(|&k| cut(a[k], b[k])).collect();
+                assert_eq!(got, want);
+            }
+        }
+    }
+
+    #[test]
+    fn spread_places_column_bits_on_corners() {
+        for a in 0..16usize {
+            let s = SPREAD[a];
+            for (bit, corner) in [(0, 0), (1, 2), (2, 4), (3, 6)] {
+                assert_eq!(s >> corner & 1, (a >> bit & 1) as u8);
+            }
+            assert_eq!(s & 0b1010_1010, 0);
+        }
+    }
+}
