@@ -792,3 +792,43 @@ fn ct_head_bone_surface_has_no_interior_holes() {
         l.interior_holes, l.boundary_edges
     );
 }
+
+#[test]
+fn infinite_samples_give_finite_vertices() {
+    let mut v = Volume::from_fn(
+        [10, 10, 10],
+        [-1.0; 3],
+        [1.0; 3],
+        sphere_field([0.0; 3], 0.6),
+    );
+    let i = v.index(5, 5, 5);
+    v.data[i] = f32::INFINITY;
+    let j = v.index(1, 1, 1);
+    v.data[j] = f32::NEG_INFINITY;
+    let k = v.index(5, 5, 2);
+    v.data[k] = f32::INFINITY; // next to the surface
+    for m in [Method::Decider, Method::Tetra, Method::Lorensen] {
+        for nm in [NormalMethod::ZuckerHummel, NormalMethod::Mesh] {
+            let r = isosurface(
+                &v,
+                &Options {
+                    level: 0.0,
+                    method: m,
+                    normals: nm,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            r.mesh.validate().unwrap();
+            assert!(r
+                .mesh
+                .normals
+                .unwrap()
+                .iter()
+                .all(|n| n.iter().all(|c| c.is_finite())));
+            if m != Method::Lorensen {
+                assert_eq!(r.interior_holes, 0);
+            }
+        }
+    }
+}

@@ -108,6 +108,32 @@ fn delta_table(nx: usize, ps: usize, ls: usize) -> [(u8, usize); 19] {
     })
 }
 
+/// Calls `f(k)` for every k with `cut(a[k], b[k])`, in increasing k, testing eight sign codes
+/// at a time (`a` and `b` have the same length).
+#[inline]
+fn for_each_cut(a: &[u8], b: &[u8], mut f: impl FnMut(usize)) {
+    let n = a.len().min(b.len());
+    let mut k = 0;
+    while k + 8 <= n {
+        let wa = u64::from_le_bytes(a[k..k + 8].try_into().unwrap_or([0; 8]));
+        let wb = u64::from_le_bytes(b[k..k + 8].try_into().unwrap_or([0; 8]));
+        let mut d = wa ^ wb;
+        while d != 0 {
+            let j = (d.trailing_zeros() / 8) as usize;
+            if (d >> (8 * j)) & 0xFF == 1 {
+                f(k + j);
+            }
+            d &= !(0xFFu64 << (8 * j));
+        }
+        k += 8;
+    }
+    for j in k..n {
+        if cut(a[j], b[j]) {
+            f(j);
+        }
+    }
+}
+
 /// Sign codes of the two planes of a layer and their row summaries.
 pub(super) struct Signs<'a> {
     s0: &'a [u8],
@@ -171,12 +197,18 @@ impl Ctx<'_> {
             _ => None,
         }
     }
-    /// Gradient at grid point `p`, cached per plane (planes z and z + 1 of the current layer
-    /// use slots z mod 2; a stamp z + 1 marks valid entries, so nothing is ever cleared).
+    /// Gradient at grid point `p`. Zucker–Hummel gradients (54 samples) are cached per plane:
+    /// planes z and z + 1 of the current layer use slots z mod 2, and a stamp z + 1 marks valid
+    /// entries, so nothing is ever cleared.
     fn grad(&self, p: [usize; 3], out: &mut ChunkOut) -> Vector3 {
         let Some(op) = self.op() else {
             return Vector3::zeros();
         };
+        if op == GradientOperator::Central {
+            // six samples: recomputing is as cheap as the cache lookup
+            let g = gradient_at(self.vol, self.axes, p, op);
+            return Vector3::new(g[0], g[1], g[2]);
+        }
         let nxy = self.vol.dims[0] * self.vol.dims[1];
         if out.gcache[0].len() != nxy {
             for k in 0..2 {
@@ -239,11 +271,31 @@ impl Ctx<'_> {
         }
     }
 
+    /// Reads one sample per cache line of plane `z` (if it exists).
+    fn touch(&self, z: usize) {
+        let n = self.vol.dims[0] * self.vol.dims[1];
+        if let Some(plane) = self.vol.data.get(n * z..n * (z + 1)) {
+            let mut acc = 0.0f32;
+            for k in (0..plane.len()).step_by(16) {
+                acc += plane[k];
+            }
+            std::hint::black_box(acc);
+        }
+    }
+
     /// Adds the contour point on the entity from grid point `a` to `b` (known to be cut).
     fn vertex(&self, a: [usize; 3], b: [usize; 3], k: u64, out: &mut ChunkOut) -> u32 {
         let ga = self.gi(a[0], a[1], a[2]);
         let gb = self.gi(b[0], b[1], b[2]);
-        let t = ga / (ga - gb);
+        let mut t = ga / (ga - gb);
+        if t.is_nan() {
+            // an infinite sample: the contour point sits at the finite end
+            t = match (ga.is_infinite(), gb.is_infinite()) {
+                (true, true) => 0.5,
+                (true, false) => 1.0,
+                _ => 0.0,
+            };
+        }
         let (pa, pb) = (self.point(a), self.point(b));
         out.pos.push(pa + (pb - pa) * t);
         if self.op().is_some() {
@@ -269,14 +321,17 @@ impl Ctx<'_> {
             }
             let row = nx * y;
             if xe {
-                for x in 0..nx - 1 {
-                    let i = row + x;
-                    if cut(s[i], s[i + 1]) {
-                        arr[ps * i] = self.vertex([x, y, z], [x + 1, y, z], key(0, x, y, z), out);
-                    }
-                }
+                for_each_cut(&s[row..row + nx - 1], &s[row + 1..row + nx], |x| {
+                    arr[ps * (row + x)] =
+                        self.vertex([x, y, z], [x + 1, y, z], key(0, x, y, z), out);
+                });
             }
-            if ye {
+            if ye && !tet {
+                for_each_cut(&s[row..row + nx], &s[row + nx..row + 2 * nx], |x| {
+                    arr[ps * (row + x) + 1] =
+                        self.vertex([x, y, z], [x, y + 1, z], key(1, x, y, z), out);
+                });
+            } else if ye {
                 for x in 0..nx {
                     let i = row + x;
                     if cut(s[i], s[i + nx]) {
@@ -302,6 +357,14 @@ impl Ctx<'_> {
             let ze = !same(&[sg.r0[y], sg.r1[y]]);
             let de = tet && y + 1 < ny && !same(&[sg.r0[y], sg.r1[y], sg.r0[y + 1], sg.r1[y + 1]]);
             if !ze && !de {
+                continue;
+            }
+            if !tet {
+                let row = nx * y;
+                for_each_cut(&s0[row..row + nx], &s1[row..row + nx], |x| {
+                    arr[ls * (row + x)] =
+                        self.vertex([x, y, z], [x, y, z + 1], key(2, x, y, z), out);
+                });
                 continue;
             }
             for x in 0..nx {
@@ -354,6 +417,11 @@ impl Ctx<'_> {
         self.signs(z0, &mut slo, &mut rlo);
         self.build_plane(z0, &slo, &rlo, &mut plo, &mut out);
         for z in z0..z1 {
+            if self.op().is_some() {
+                // gradients of plane z + 1 read plane z + 2: bring it into the cache in one
+                // sequential sweep instead of scattered misses
+                self.touch(z + 2);
+            }
             self.signs(z + 1, &mut shi, &mut rhi);
             let sg = Signs {
                 s0: &slo,
@@ -425,11 +493,23 @@ impl Ctx<'_> {
                 let i = x + sy * y;
                 *cx = s0[i] | s0[i + sy] << 1 | s1[i] << 2 | s1[i + sy] << 3;
             }
-            for x in 0..nx - 1 {
+            let mut x = 0;
+            while x + 1 < nx {
+                // eight cells at once when their nine columns are all inside or all outside
+                if x + 9 <= nx {
+                    let w = u64::from_le_bytes(col[x..x + 8].try_into().unwrap_or([1; 8]));
+                    let w1 = u64::from_le_bytes(col[x + 1..x + 9].try_into().unwrap_or([1; 8]));
+                    if w == w1 && (w == 0 || w == 0x0F0F_0F0F_0F0F_0F0F) {
+                        x += 8;
+                        continue;
+                    }
+                }
                 let (a, b) = (col[x], col[x + 1]);
+                x += 1;
                 if a == b && (a == 0 || a == 15) {
                     continue;
                 }
+                let x = x - 1;
                 let cfg = SPREAD[a as usize] | SPREAD[b as usize] << 1;
                 self.cell([x, y, z], cfg, ix, out);
             }
@@ -631,5 +711,44 @@ impl Ctx<'_> {
     fn lerp_axis(&self, k: usize, i: usize, t: f64) -> f64 {
         let (lo, hi) = (self.axes[k][i], self.axes[k][i + 1]);
         lo + (hi - lo) * t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    #[test]
+    fn for_each_cut_matches_the_definition() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4);
+        for n in [0usize, 1, 7, 8, 9, 16, 17, 40] {
+            for density in [0.0, 0.1, 0.5] {
+                let code = |rng: &mut rand_chacha::ChaCha8Rng| -> u8 {
+                    if rng.gen_bool(density) {
+                        rng.gen_range(0..3)
+                    } else {
+                        0
+                    }
+                };
+                let a: Vec<u8> = (0..n).map(|_| code(&mut rng)).collect();
+                let b: Vec<u8> = (0..n).map(|_| code(&mut rng)).collect();
+                let mut got = Vec::new();
+                for_each_cut(&a, &b, |k| got.push(k));
+                let want: Vec<usize> = (0..n).filter(|&k| cut(a[k], b[k])).collect();
+                assert_eq!(got, want);
+            }
+        }
+    }
+
+    #[test]
+    fn spread_places_column_bits_on_corners() {
+        for a in 0..16usize {
+            let s = SPREAD[a];
+            for (bit, corner) in [(0, 0), (1, 2), (2, 4), (3, 6)] {
+                assert_eq!(s >> corner & 1, (a >> bit & 1) as u8);
+            }
+            assert_eq!(s & 0b1010_1010, 0);
+        }
     }
 }

@@ -28,6 +28,8 @@
 //! NaN samples: cells with a NaN corner are skipped; the surface then has boundary edges on the
 //! faces of skipped cells, which are counted as boundary edges (like the volume's outer faces),
 //! not as interior holes; the count of skipped cells is put in the note. NaN never panics.
+//! Infinite samples are ordinary samples on their side of α; a contour point on an edge with
+//! an infinite end sits at the finite end.
 //!
 //! Topology (H §3.3): edges are grouped per vertex (counting sort, O(n)); triangles sharing an
 //! edge are neighbours (Def. 3.7) and are merged into parts with union–find (the result of
@@ -571,6 +573,7 @@ fn on_domain_boundary(ka: u64, kb: u64, valid_cell: &impl Fn([i64; 3]) -> bool) 
 }
 
 /// The triangles of part `part` (face property `part`), with unused vertices removed.
+/// `mesh` must satisfy [`TriMesh::validate`] (vertex indices in range).
 pub fn extract_part(mesh: &TriMesh, part: u32) -> TriMesh {
     let Some(labels) = mesh.face_prop("part") else {
         return mesh.clone();
@@ -579,7 +582,7 @@ pub fn extract_part(mesh: &TriMesh, part: u32) -> TriMesh {
     let mut out = TriMesh::default();
     let mut kept_faces = Vec::new();
     for (t, tri) in mesh.triangles.iter().enumerate() {
-        if labels.values[t] as u32 != part {
+        if labels.values.get(t) != Some(&(part as f64)) {
             continue;
         }
         kept_faces.push(t);
@@ -596,7 +599,7 @@ pub fn extract_part(mesh: &TriMesh, part: u32) -> TriMesh {
         let mut o = vec![Vector3::zeros(); out.positions.len()];
         for (v, &m) in map.iter().enumerate() {
             if m != u32::MAX {
-                o[m as usize] = nr[v];
+                o[m as usize] = nr.get(v).copied().unwrap_or_else(Vector3::zeros);
             }
         }
         out.normals = Some(o);
@@ -605,7 +608,7 @@ pub fn extract_part(mesh: &TriMesh, part: u32) -> TriMesh {
         let mut vals = vec![0.0; out.positions.len()];
         for (v, &m) in map.iter().enumerate() {
             if m != u32::MAX {
-                vals[m as usize] = p.values[v];
+                vals[m as usize] = p.values.get(v).copied().unwrap_or(f64::NAN);
             }
         }
         out.vertex_props.push(Property {
@@ -618,17 +621,26 @@ pub fn extract_part(mesh: &TriMesh, part: u32) -> TriMesh {
         out.face_props.push(Property {
             name: p.name.clone(),
             kind: p.kind,
-            values: kept_faces.iter().map(|&t| p.values[t]).collect(),
+            values: kept_faces
+                .iter()
+                .map(|&t| p.values.get(t).copied().unwrap_or(f64::NAN))
+                .collect(),
         });
     }
     out
 }
 
-/// The part with the most triangles (lowest label on ties), or `None` without parts.
+/// The part with the most triangles (lowest label on ties), or `None` without parts. Labels
+/// that are not integers in `0..triangles` are ignored.
 pub fn largest_part(mesh: &TriMesh) -> Option<u32> {
     let labels = mesh.face_prop("part")?;
     let mut count: Vec<usize> = Vec::new();
+    let nt = mesh.triangles.len();
     for &l in &labels.values {
+        // labels of a foreign mesh: only integers in 0..nt count (no allocation from values)
+        if !(l >= 0.0 && l < nt as f64 && l.fract() == 0.0) {
+            continue;
+        }
         let l = l as usize;
         if l >= count.len() {
             count.resize(l + 1, 0);
@@ -695,6 +707,22 @@ mod tests {
         d[5] = f32::INFINITY;
         assert_eq!(fast_range(&d), None);
         assert_eq!(fast_range(&[f32::NAN; 9]), None);
+    }
+
+    #[test]
+    fn largest_part_ignores_bad_labels() {
+        let mut m = TriMesh::new(
+            vec![crate::geom::Point3::origin(); 3],
+            vec![[0, 1, 2], [0, 2, 1], [1, 2, 0]],
+        );
+        m.face_props.push(Property {
+            name: "part".into(),
+            kind: ScalarKind::F64,
+            values: vec![1e300, 2.0, f64::NAN],
+        });
+        assert_eq!(largest_part(&m), Some(2));
+        m.face_props[0].values = vec![-1.0, 0.5, 7.0];
+        assert_eq!(largest_part(&m), None);
     }
 
     #[test]
