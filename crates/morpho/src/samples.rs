@@ -149,9 +149,23 @@ pub fn shepp_logan(x: f64, y: f64, z: f64) -> f64 {
     v
 }
 
-/// The Shepp–Logan phantom sampled on an `n³` grid over [-1, 1]³.
+/// The Shepp–Logan phantom sampled on an `n³` grid over [-1, 1]³, each sample the mean of 2³
+/// point samples spread over its voxel (the partial-volume effect of a real scanner, which
+/// gives contour surfaces without staircase terraces).
 pub fn shepp_logan_volume(n: usize) -> Volume {
-    Volume::from_fn([n, n, n], [-1.0; 3], [1.0; 3], shepp_logan)
+    let h = if n > 1 { 2.0 / (n - 1) as f64 } else { 1.0 };
+    let q = 0.25 * h;
+    Volume::from_fn([n, n, n], [-1.0; 3], [1.0; 3], |x, y, z| {
+        let mut s = 0.0;
+        for dx in [-q, q] {
+            for dy in [-q, q] {
+                for dz in [-q, q] {
+                    s += shepp_logan(x + dx, y + dy, z + dz);
+                }
+            }
+        }
+        s / 8.0
+    })
 }
 
 /// `n` points spread uniformly over the unit sphere (Fibonacci lattice), scaled by `r`.
