@@ -206,6 +206,54 @@ fn zbuffer_small_triangle_in_front_covers_big_one() {
 }
 
 #[test]
+fn transparency_blends_back_to_front() {
+    // Front square (value 1 → white) listed first, back square (value 0 → black) second; red
+    // background; t = 0.5. Back to front: red → (0.5 black + 0.5 red) → (0.5 white + 0.5 that).
+    let sq = |z: f64| {
+        vec![
+            Point3::new(-1.0, -1.0, z),
+            Point3::new(1.0, -1.0, z),
+            Point3::new(1.0, 1.0, z),
+            Point3::new(-1.0, 1.0, z),
+        ]
+    };
+    let mut pos = sq(0.5);
+    pos.extend(sq(0.0));
+    let m = TriMesh::new(pos, vec![[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]]);
+    let o = RenderOptions {
+        transparency: Some(0.5),
+        background: [255, 0, 0, 255],
+        scalars: Some(Scalars {
+            values: vec![1.0, 1.0, 0.0, 0.0],
+            per_face: true,
+            colormap: Colormap::Greys,
+            range: Some((0.0, 1.0)),
+        }),
+        ..ortho_front(20, 20)
+    };
+    let img = render_mesh(&m, &o);
+    assert_eq!(img.get(10, 10), [192, 128, 128, 255]);
+    // t = 0: opaque painter's order, the front square wins.
+    let img = render_mesh(
+        &m,
+        &RenderOptions {
+            transparency: Some(0.0),
+            ..o.clone()
+        },
+    );
+    assert_eq!(img.get(10, 10), [255, 255, 255, 255]);
+    // t = 1: invisible.
+    let img = render_mesh(
+        &m,
+        &RenderOptions {
+            transparency: Some(1.0),
+            ..o
+        },
+    );
+    assert_eq!(img.get(10, 10), [255, 0, 0, 255]);
+}
+
+#[test]
 fn zbuffer_behind_is_hidden_in_perspective() {
     // The small triangle behind the big square must not show (perspective camera).
     let pos = vec![
@@ -1089,6 +1137,27 @@ fn pictures() {
                 shading: Shading::Flat,
                 scalars: Some(Scalars {
                     values: dv,
+                    per_face: false,
+                    colormap: Colormap::Viridis,
+                    range: None,
+                }),
+                ..o.clone()
+            },
+        ),
+    );
+    // Hamann Fig. 2.5: the three sets of grid rectangles, alpha blended with t = 0.5.
+    let small = Volume::from_fn([9, 9, 9], [0.0; 3], [39.0; 3], f);
+    let gm = morpho::render::subdivision::grid_planes_mesh(&small, [1, 1, 1]).unwrap();
+    let gv = gm.vertex_prop("value").unwrap().values.clone();
+    save(
+        "transparency.png",
+        &render_mesh(
+            &gm,
+            &RenderOptions {
+                up: UpAxis::Z,
+                transparency: Some(0.75),
+                scalars: Some(Scalars {
+                    values: gv,
                     per_face: false,
                     colormap: Colormap::Viridis,
                     range: None,
