@@ -16,6 +16,9 @@
 //!    lighting with a headlight and a key light, normals flipped on back faces (two-sided);
 //! 6. the samples of each pixel are averaged (box filter).
 //!
+//! With [`RenderOptions::transparency`] the z-buffer is replaced by Hamann's alpha blending
+//! (1991, §2.2): triangles sorted back to front, each sample `(1 − t) c_triangle + t c_old`.
+//!
 //! Complexity: O(n + covered samples) time, O(W·H·s²) memory. Hamann (1991, §2.3) shades
 //! slice surfaces with Gouraud shading; [`Shading::Smooth`] interpolates normals instead
 //! (per-sample lighting), which keeps highlights round on coarse meshes.
