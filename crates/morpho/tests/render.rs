@@ -1210,7 +1210,7 @@ mod props {
             8 => -10.0..10.0f64,
             1 => Just(0.0),
             1 => Just(f64::NAN),
-            1 => prop_oneof![Just(1e300), Just(-1e-300), Just(f64::INFINITY)],
+            1 => prop_oneof![Just(1e300), Just(-1e-300), Just(f64::INFINITY), Just(-1.7e308), Just(f64::MAX)],
         ]
     }
 
@@ -1259,6 +1259,11 @@ mod props {
             let c = xml_check(&s);
             prop_assert_eq!(c.get("circle").copied().unwrap_or(0), finite);
             prop_assert!(!s.contains("NaN") && !s.contains("inf"));
+            // Every circle lies inside the 800-pixel-wide figure, whatever the magnitudes.
+            for part in s.split("cx=\"").skip(1) {
+                let cx: f64 = part.split('"').next().unwrap().parse().unwrap();
+                prop_assert!((0.0..=800.0).contains(&cx), "{}", cx);
+            }
         }
 
         /// Nearest-sample slice pixels are exactly the mapped samples, for random volumes.

@@ -23,7 +23,7 @@
 //! assert_eq!(text.matches("<circle").count(), 2);
 //! ```
 
-use crate::geom::{bbox2, Aabb2, Point2};
+use crate::geom::{Aabb2, Point2};
 use crate::mesh::{Polygon, Shapes2};
 use std::fmt::Write as _;
 
@@ -151,9 +151,9 @@ impl Svg {
         }
     }
 
-    /// A figure fitted to a set of points.
+    /// A figure fitted to the finite points of a set.
     pub fn fit(points: &[Point2], width_px: f64) -> Self {
-        Svg::new(bbox2(points), width_px)
+        Svg::new(finite_bbox(points), width_px)
     }
 
     /// Width and height of the figure in pixels (without the title band).
@@ -485,6 +485,17 @@ fn escape(s: &mut String, text: &str) {
             c => s.push(c),
         }
     }
+}
+
+/// Bounding box of the points with finite coordinates.
+pub fn finite_bbox(points: &[Point2]) -> Aabb2 {
+    let mut b = Aabb2::empty();
+    for p in points {
+        if p.x.is_finite() && p.y.is_finite() {
+            b.add(p.coords.as_slice());
+        }
+    }
+    b
 }
 
 /// Default figure width in pixels of the helpers below.
