@@ -206,6 +206,54 @@ fn zbuffer_small_triangle_in_front_covers_big_one() {
 }
 
 #[test]
+fn transparency_blends_back_to_front() {
+    // Front square (value 1 → white) listed first, back square (value 0 → black) second; red
+    // background; t = 0.5. Back to front: red → (0.5 black + 0.5 red) → (0.5 white + 0.5 that).
+    let sq = |z: f64| {
+        vec![
+            Point3::new(-1.0, -1.0, z),
+            Point3::new(1.0, -1.0, z),
+            Point3::new(1.0, 1.0, z),
+            Point3::new(-1.0, 1.0, z),
+        ]
+    };
+    let mut pos = sq(0.5);
+    pos.extend(sq(0.0));
+    let m = TriMesh::new(pos, vec![[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]]);
+    let o = RenderOptions {
+        transparency: Some(0.5),
+        background: [255, 0, 0, 255],
+        scalars: Some(Scalars {
+            values: vec![1.0, 1.0, 0.0, 0.0],
+            per_face: true,
+            colormap: Colormap::Greys,
+            range: Some((0.0, 1.0)),
+        }),
+        ..ortho_front(20, 20)
+    };
+    let img = render_mesh(&m, &o);
+    assert_eq!(img.get(10, 10), [192, 128, 128, 255]);
+    // t = 0: opaque painter's order, the front square wins.
+    let img = render_mesh(
+        &m,
+        &RenderOptions {
+            transparency: Some(0.0),
+            ..o.clone()
+        },
+    );
+    assert_eq!(img.get(10, 10), [255, 255, 255, 255]);
+    // t = 1: invisible.
+    let img = render_mesh(
+        &m,
+        &RenderOptions {
+            transparency: Some(1.0),
+            ..o
+        },
+    );
+    assert_eq!(img.get(10, 10), [255, 0, 0, 255]);
+}
+
+#[test]
 fn zbuffer_behind_is_hidden_in_perspective() {
     // The small triangle behind the big square must not show (perspective camera).
     let pos = vec![
@@ -1097,6 +1145,27 @@ fn pictures() {
             },
         ),
     );
+    // Hamann Fig. 2.5: the three sets of grid rectangles, alpha blended with t = 0.5.
+    let small = Volume::from_fn([9, 9, 9], [0.0; 3], [39.0; 3], f);
+    let gm = morpho::render::subdivision::grid_planes_mesh(&small, [1, 1, 1]).unwrap();
+    let gv = gm.vertex_prop("value").unwrap().values.clone();
+    save(
+        "transparency.png",
+        &render_mesh(
+            &gm,
+            &RenderOptions {
+                up: UpAxis::Z,
+                transparency: Some(0.75),
+                scalars: Some(Scalars {
+                    values: gv,
+                    per_face: false,
+                    colormap: Colormap::Viridis,
+                    range: None,
+                }),
+                ..o.clone()
+            },
+        ),
+    );
     if let Ok(text) = std::fs::read_to_string(data_dir().join("meshes/bunny_npm.obj")) {
         let b = tiny_obj(&text);
         save("bunny.png", &render_mesh(&b, &o));
@@ -1141,7 +1210,7 @@ mod props {
             8 => -10.0..10.0f64,
             1 => Just(0.0),
             1 => Just(f64::NAN),
-            1 => prop_oneof![Just(1e300), Just(-1e-300), Just(f64::INFINITY)],
+            1 => prop_oneof![Just(1e300), Just(-1e-300), Just(f64::INFINITY), Just(-1.7e308), Just(f64::MAX)],
         ]
     }
 
@@ -1190,6 +1259,11 @@ mod props {
             let c = xml_check(&s);
             prop_assert_eq!(c.get("circle").copied().unwrap_or(0), finite);
             prop_assert!(!s.contains("NaN") && !s.contains("inf"));
+            // Every circle lies inside the 800-pixel-wide figure, whatever the magnitudes.
+            for part in s.split("cx=\"").skip(1) {
+                let cx: f64 = part.split('"').next().unwrap().parse().unwrap();
+                prop_assert!((0.0..=800.0).contains(&cx), "{}", cx);
+            }
         }
 
         /// Nearest-sample slice pixels are exactly the mapped samples, for random volumes.

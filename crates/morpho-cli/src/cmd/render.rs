@@ -36,9 +36,9 @@ pub struct Args {
     /// Viewpoint height above the horizontal plane, degrees (−90…90).
     #[arg(long, default_value_t = 25.0, allow_negative_numbers = true)]
     pub elevation: f64,
-    /// Which axis points up: y (mesh files) or z (volumes, terrain).
-    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
-    pub up: String,
+    /// Which axis points up: y or z (default: y for meshes and points, z for volume views).
+    #[arg(long, value_parser = ["y", "z"])]
+    pub up: Option<String>,
     /// Flat shading (one normal per triangle).
     #[arg(long, conflicts_with = "smooth")]
     pub flat: bool,
@@ -66,6 +66,15 @@ pub struct Args {
     /// One volume slice `AXIS,INDEX` (e.g. `z,10`; INDEX may be `mid`) instead of three.
     #[arg(long, value_name = "AXIS,INDEX")]
     pub slice: Option<String>,
+    /// Volume view as Q×Q×Q sub-boxes with gaps, coloured by the values (Hamann §2.2).
+    #[arg(long, value_name = "Q", conflicts_with_all = ["slice", "planes"])]
+    pub boxes: Option<usize>,
+    /// Volume view as translucent grid planes, every STRIDE-th plane per axis (Hamann §2.2).
+    #[arg(long, value_name = "STRIDE", conflicts_with = "slice")]
+    pub planes: Option<usize>,
+    /// Transparency t of --planes (0 opaque … 1 invisible).
+    #[arg(long, default_value_t = 0.75)]
+    pub transparency: f64,
     /// Nearest-sample blocks instead of bilinear interpolation in volume slices.
     #[arg(long)]
     pub nearest: bool,
@@ -148,6 +157,10 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                 },
                 labels: true,
             };
+            if args.boxes.is_some() || args.planes.is_some() {
+                volume_view(&args, v, colormap, range, report)?;
+                return Ok(0);
+            }
             let img = match &args.slice {
                 Some(s) => {
                     let (axis, index) = parse_slice(s, v)?;
@@ -268,7 +281,11 @@ fn points(
             let o = RenderOptions {
                 azimuth_deg: args.azimuth,
                 elevation_deg: args.elevation,
-                up: if args.up == "z" { UpAxis::Z } else { UpAxis::Y },
+                up: if args.up.as_deref() == Some("z") {
+                    UpAxis::Z
+                } else {
+                    UpAxis::Y
+                },
                 ..Default::default()
             };
             let (r, u, e) = camera_basis(&o);
@@ -382,7 +399,11 @@ fn mesh(
         height: args.height,
         azimuth_deg: args.azimuth,
         elevation_deg: args.elevation,
-        up: if args.up == "z" { UpAxis::Z } else { UpAxis::Y },
+        up: if args.up.as_deref() == Some("z") {
+            UpAxis::Z
+        } else {
+            UpAxis::Y
+        },
         projection: if args.ortho {
             Projection::Orthographic
         } else {
@@ -417,6 +438,80 @@ fn mesh(
     report.set("drawn", st.drawn);
     report.set("skipped_invalid", st.invalid);
     report.set("degenerate", st.degenerate);
+    report.time("write", || img.save_png(&args.output))?;
+    Ok(())
+}
+
+/// `--boxes` and `--planes`: a volume drawn as a coloured mesh through the rasterizer.
+fn volume_view(
+    args: &Args,
+    v: &morpho::volume::Volume,
+    colormap: Colormap,
+    range: Option<(f64, f64)>,
+    report: &mut Report,
+) -> Result<(), Failure> {
+    use morpho::render::subdivision::{domain_subdivision_mesh, grid_planes_mesh};
+    if !(0.0..=1.0).contains(&args.transparency) {
+        return Err(Failure::usage("--transparency must be between 0 and 1"));
+    }
+    let (m, view) = report.time("compute", || match (args.boxes, args.planes) {
+        (Some(q), _) => {
+            if !(1..=64).contains(&q) {
+                return Err(Failure::usage("--boxes Q needs 1 <= Q <= 64"));
+            }
+            Ok((domain_subdivision_mesh(v, [q; 3], [1.0; 3], 4)?, "boxes"))
+        }
+        (None, Some(s)) => {
+            if s == 0 {
+                return Err(Failure::usage("--planes STRIDE needs STRIDE >= 1"));
+            }
+            Ok((grid_planes_mesh(v, [s; 3])?, "planes"))
+        }
+        _ => Err(Failure::usage("no volume view chosen")),
+    })?;
+    report.set("view", view);
+    report.set("triangles", m.num_triangles());
+    let values = m
+        .vertex_prop("value")
+        .map(|p| p.values.clone())
+        .unwrap_or_default();
+    let opts = RenderOptions {
+        width: args.width,
+        height: args.height,
+        azimuth_deg: args.azimuth,
+        elevation_deg: args.elevation,
+        up: if args.up.as_deref() == Some("y") {
+            UpAxis::Y
+        } else {
+            UpAxis::Z
+        },
+        projection: if args.ortho {
+            Projection::Orthographic
+        } else {
+            Projection::Perspective { fov_deg: 30.0 }
+        },
+        shading: Shading::Flat,
+        scalars: Some(Scalars {
+            values,
+            per_face: false,
+            colormap,
+            range,
+        }),
+        transparency: (view == "planes").then_some(args.transparency),
+        supersample: args.supersample,
+        ..Default::default()
+    };
+    let img = report.time("compute", || {
+        let (img, st) = render_mesh_stats(&m, &opts);
+        match st.range {
+            Some((lo, hi)) if !args.no_legend => {
+                legend::with_colorbar(&img, colormap, lo, hi, None)
+            }
+            _ => img,
+        }
+    });
+    report.set("width", img.width);
+    report.set("height", img.height);
     report.time("write", || img.save_png(&args.output))?;
     Ok(())
 }

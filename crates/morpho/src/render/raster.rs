@@ -16,6 +16,9 @@
 //!    lighting with a headlight and a key light, normals flipped on back faces (two-sided);
 //! 6. the samples of each pixel are averaged (box filter).
 //!
+//! With [`RenderOptions::transparency`] the z-buffer is replaced by Hamann's alpha blending
+//! (1991, §2.2): triangles sorted back to front, each sample `(1 − t) c_triangle + t c_old`.
+//!
 //! Complexity: O(n + covered samples) time, O(W·H·s²) memory. Hamann (1991, §2.3) shades
 //! slice surfaces with Gouraud shading; [`Shading::Smooth`] interpolates normals instead
 //! (per-sample lighting), which keeps highlights round on coarse meshes.
@@ -114,6 +117,12 @@ pub struct RenderOptions {
     pub supersample: u32,
     /// Empty border as a fraction of the smaller image side (clamped to 0…0.45).
     pub margin: f64,
+    /// Alpha blending instead of the z-buffer (Hamann 1991, §2.2): triangles are sorted by
+    /// depth (Hamann sorts polygons by their corner nearest to the screen; here the midpoint of
+    /// the longest edge, which keeps both halves of a split rectangle together), drawn back to
+    /// front, unlit, each sample becoming
+    /// `(1 − t) c_triangle + t c_old`; `t` is clamped to [0, 1] (0: opaque painter's order).
+    pub transparency: Option<f64>,
 }
 
 impl Default for RenderOptions {
@@ -134,6 +143,7 @@ impl Default for RenderOptions {
             background: [255, 255, 255, 255],
             supersample: 2,
             margin: 0.05,
+            transparency: None,
         }
     }
 }
@@ -196,6 +206,8 @@ struct Tri {
     face_base: [u8; 3],
     /// Flat-shaded colour.
     flat_col: [u8; 4],
+    /// Depth key for back-to-front sorting (larger is nearer).
+    near: f64,
 }
 
 /// What triangle setup made of a triangle.
@@ -496,6 +508,20 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
                 face_n,
                 face_base,
                 flat_col: shade(face_n, face_base),
+                near: {
+                    // Depth at the midpoint of the longest edge (in camera space): the two
+                    // halves of a rectangle split along its diagonal get the same key, so the
+                    // stable sort keeps them together.
+                    let (ca, cb, cc) = (cam[a as usize], cam[b as usize], cam[c as usize]);
+                    let (lab, lbc, lca) = ((cb - ca).norm(), (cc - cb).norm(), (ca - cc).norm());
+                    if lab >= lbc && lab >= lca {
+                        0.5 * (va.depth + vb.depth)
+                    } else if lbc >= lca {
+                        0.5 * (vb.depth + vc.depth)
+                    } else {
+                        0.5 * (vc.depth + va.depth)
+                    }
+                },
             }))
         })
         .collect();
@@ -509,6 +535,17 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
                 tris.push(t);
             }
         }
+    }
+    let translucent = opts.transparency.map(|t| {
+        if t.is_finite() {
+            t.clamp(0.0, 1.0)
+        } else {
+            0.5
+        }
+    });
+    if translucent.is_some() {
+        // Back to front (stable: ties keep the mesh order).
+        tris.sort_by(|a, b| a.near.total_cmp(&b.near));
     }
     let mut bins: Vec<Vec<u32>> = vec![Vec::new(); nbands];
     for (i, t) in tris.iter().enumerate() {
@@ -572,10 +609,12 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
                         let l = [w0 * inv_area, w1 * inv_area, w2 * inv_area];
                         let depth = l[0] * p0.depth + l[1] * p1.depth + l[2] * p2.depth;
                         let zi = row + x;
-                        if depth.partial_cmp(&zbuf[zi]) != Some(std::cmp::Ordering::Greater) {
-                            continue;
+                        if translucent.is_none() {
+                            if depth.partial_cmp(&zbuf[zi]) != Some(std::cmp::Ordering::Greater) {
+                                continue;
+                            }
+                            zbuf[zi] = depth;
                         }
-                        zbuf[zi] = depth;
                         // Perspective-correct weights.
                         let pw = [l[0] * p0.invw, l[1] * p1.invw, l[2] * p2.invw];
                         let s = pw[0] + pw[1] + pw[2];
@@ -604,6 +643,15 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
                             }
                             _ => face_base,
                         };
+                        if let Some(tr) = translucent {
+                            let o = zi * 4;
+                            for k in 0..4 {
+                                let c = if k < 3 { base[k] as f64 } else { 255.0 };
+                                let old = band[o + k] as f64;
+                                band[o + k] = ((1.0 - tr) * c + tr * old).round() as u8;
+                            }
+                            continue;
+                        }
                         let mut col = if opts.shading == Shading::Smooth {
                             let nn = b[0] * vnormals[ids[0] as usize]
                                 + b[1] * vnormals[ids[1] as usize]

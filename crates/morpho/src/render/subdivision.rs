@@ -13,8 +13,11 @@
 //!
 //! Output: a [`TriMesh`] with outward faces and the vertex property `value`; render it with
 //! [`super::raster::render_mesh`] and `Scalars` from that property. Size: `6 q_x q_y q_z (k+1)²`
-//! vertices, `12 q_x q_y q_z k²` triangles; time linear in that. The alpha-blended transparency
-//! view of §2.2 is not implemented.
+//! vertices, `12 q_x q_y q_z k²` triangles; time linear in that.
+//!
+//! The transparency view of §2.2 is [`grid_planes_mesh`]: the three sets of grid rectangles
+//! parallel to the xy-, xz- and yz-planes coloured by the samples at their corners; render it
+//! with `RenderOptions::transparency = Some(t)` (back-to-front alpha blending).
 
 use crate::geom::Point3;
 use crate::mesh::{Property, ScalarKind, TriMesh};
@@ -150,6 +153,79 @@ pub fn domain_subdivision_mesh(
     Ok(m)
 }
 
+/// Hamann's three sets of rectangles (§2.2, transparency): every grid cell of the planes
+/// `z = z_k`, `y = y_j`, `x = x_i`, taking every `stride[a]`-th plane along axis `a` (the last
+/// plane always included), each rectangle split into two triangles, vertex property `value` =
+/// the samples. Planes with fewer than 2 × 2 samples are left out.
+pub fn grid_planes_mesh(vol: &Volume, stride: [usize; 3]) -> Result<TriMesh> {
+    vol.validate()?;
+    if vol.dims.contains(&0) {
+        return Err(Error::invalid("volume has no samples"));
+    }
+    let stride = stride.map(|s| s.max(1));
+    let planes = |a: usize| -> Vec<usize> {
+        let n = vol.dims[a];
+        let mut v: Vec<usize> = (0..n).step_by(stride[a]).collect();
+        if v.last() != Some(&(n - 1)) {
+            v.push(n - 1);
+        }
+        v
+    };
+    let mut total = 0usize;
+    for a in 0..3 {
+        let (u, w) = ((a + 1) % 3, (a + 2) % 3);
+        let cells = vol.dims[u].saturating_sub(1) * vol.dims[w].saturating_sub(1);
+        total = total.saturating_add(planes(a).len().saturating_mul(2 * cells));
+    }
+    if total > MAX_TRIANGLES {
+        return Err(Error::invalid(format!(
+            "too many triangles ({total}); use a larger plane stride"
+        )));
+    }
+    let mut positions = Vec::new();
+    let mut values = Vec::new();
+    let mut triangles = Vec::with_capacity(total);
+    for a in 0..3 {
+        // In-plane axes (u, w) cyclic after a, so that u × w points along +a.
+        let (u, w) = ((a + 1) % 3, (a + 2) % 3);
+        let (nu, nw) = (vol.dims[u], vol.dims[w]);
+        if nu < 2 || nw < 2 {
+            continue;
+        }
+        for c in planes(a) {
+            let base = positions.len() as u32;
+            for j in 0..nw {
+                for i in 0..nu {
+                    let mut g = [0usize; 3];
+                    g[a] = c;
+                    g[u] = i;
+                    g[w] = j;
+                    positions.push(Point3::new(
+                        vol.coord(0, g[0]),
+                        vol.coord(1, g[1]),
+                        vol.coord(2, g[2]),
+                    ));
+                    values.push(vol.at(g[0], g[1], g[2]) as f64);
+                }
+            }
+            let id = |i: usize, j: usize| base + (j * nu + i) as u32;
+            for j in 0..nw - 1 {
+                for i in 0..nu - 1 {
+                    triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                    triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+                }
+            }
+        }
+    }
+    let mut m = TriMesh::new(positions, triangles);
+    m.vertex_props.push(Property {
+        name: "value".into(),
+        kind: ScalarKind::F64,
+        values,
+    });
+    Ok(m)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -203,5 +279,23 @@ mod tests {
         assert!(domain_subdivision_mesh(&v, [0, 1, 1], a, 1).is_err());
         assert!(domain_subdivision_mesh(&v, [1, 1, 1], [-1.0, 0.0, 0.0], 1).is_err());
         assert!(domain_subdivision_mesh(&v, [100_000, 100_000, 100_000], a, 1).is_err());
+    }
+
+    #[test]
+    fn grid_planes_counts() {
+        let v = Volume::from_fn([4, 3, 5], [0.0; 3], [3.0, 2.0, 4.0], |x, y, z| {
+            x + 10.0 * y + 100.0 * z
+        });
+        let m = grid_planes_mesh(&v, [1, 1, 1]).unwrap();
+        m.validate().unwrap();
+        // x-planes: 4 × (2·4 cells); y-planes: 3 × (4·3); z-planes: 5 × (3·2); two triangles each.
+        assert_eq!(m.triangles.len(), 2 * (4 * 8 + 3 * 12 + 5 * 6));
+        let val = &m.vertex_prop("value").unwrap().values;
+        for (p, f) in m.positions.iter().zip(val) {
+            assert!((p.x + 10.0 * p.y + 100.0 * p.z - f).abs() < 1e-3);
+        }
+        // Stride 2 along z: planes 0, 2, 4.
+        let m2 = grid_planes_mesh(&v, [100, 100, 2]).unwrap();
+        assert_eq!(m2.triangles.len(), 2 * (2 * 8 + 2 * 12 + 3 * 6));
     }
 }

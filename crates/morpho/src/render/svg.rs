@@ -23,7 +23,7 @@
 //! assert_eq!(text.matches("<circle").count(), 2);
 //! ```
 
-use crate::geom::{bbox2, Aabb2, Point2};
+use crate::geom::{Aabb2, Point2};
 use crate::mesh::{Polygon, Shapes2};
 use std::fmt::Write as _;
 
@@ -119,25 +119,23 @@ impl Svg {
             } else {
                 (bbox.min, bbox.max)
             };
-        let mut ext = [max[0] - min[0], max[1] - min[1]];
-        let big = ext[0].max(ext[1]);
-        if big <= 0.0 || !big.is_finite() {
-            let c = [0.5 * (min[0] + max[0]), 0.5 * (min[1] + max[1])];
-            let h = if c[0].abs().max(c[1].abs()) > 0.0 {
-                0.5 * c[0].abs().max(c[1].abs())
-            } else {
-                0.5
-            };
+        // Half extents and halved coordinates never overflow, even for boxes near ±f64::MAX.
+        let inner = width - 2.0 * margin;
+        let mut half = [0.5 * max[0] - 0.5 * min[0], 0.5 * max[1] - 0.5 * min[1]];
+        let mut scale = 0.5 * inner / half[0].max(half[1]);
+        if !(scale.is_finite() && scale > 0.0) {
+            // Zero (or subnormal) extent: a square around the centre.
+            let c = [0.5 * min[0] + 0.5 * max[0], 0.5 * min[1] + 0.5 * max[1]];
+            let m = c[0].abs().max(c[1].abs());
+            let h = if m > 1e-300 { 0.5 * m } else { 0.5 };
             min = [c[0] - h, c[1] - h];
             max = [c[0] + h, c[1] + h];
-            ext = [2.0 * h, 2.0 * h];
+            half = [h, h];
+            scale = 0.5 * inner / h;
         }
-        let big = ext[0].max(ext[1]);
-        let inner = width - 2.0 * margin;
-        let scale = inner / big;
         // Centre the shorter side horizontally; the height shrinks to the content.
-        let used_w = ext[0] * scale;
-        let height = (ext[1] * scale + 2.0 * margin).max(2.0 * margin + 1.0);
+        let used_w = 2.0 * (half[0] * scale);
+        let height = (2.0 * (half[1] * scale) + 2.0 * margin).max(2.0 * margin + 1.0);
         let offset = [margin + 0.5 * (inner - used_w), margin];
         Svg {
             body: String::new(),
@@ -153,9 +151,9 @@ impl Svg {
         }
     }
 
-    /// A figure fitted to a set of points.
+    /// A figure fitted to the finite points of a set.
     pub fn fit(points: &[Point2], width_px: f64) -> Self {
-        Svg::new(bbox2(points), width_px)
+        Svg::new(finite_bbox(points), width_px)
     }
 
     /// Width and height of the figure in pixels (without the title band).
@@ -181,8 +179,8 @@ impl Svg {
     /// Maps a data point to SVG pixel coordinates (y flipped).
     pub fn to_px(&self, p: Point2) -> [f64; 2] {
         [
-            self.offset[0] + (p.x - self.min[0]) * self.scale,
-            self.offset[1] + (self.max[1] - p.y) * self.scale,
+            self.offset[0] + (0.5 * p.x - 0.5 * self.min[0]) * (2.0 * self.scale),
+            self.offset[1] + (0.5 * self.max[1] - 0.5 * p.y) * (2.0 * self.scale),
         ]
     }
 
@@ -489,6 +487,17 @@ fn escape(s: &mut String, text: &str) {
     }
 }
 
+/// Bounding box of the points with finite coordinates.
+pub fn finite_bbox(points: &[Point2]) -> Aabb2 {
+    let mut b = Aabb2::empty();
+    for p in points {
+        if p.x.is_finite() && p.y.is_finite() {
+            b.add(p.coords.as_slice());
+        }
+    }
+    b
+}
+
 /// Default figure width in pixels of the helpers below.
 pub const DEFAULT_WIDTH: f64 = 800.0;
 
@@ -638,6 +647,25 @@ mod tests {
         assert!((p[0] - 50.0).abs() < 1e-9, "{p:?}");
         let svg = Svg::new(b, f64::NAN);
         assert_eq!(svg.size().0, 800.0);
+        // Extreme boxes: near ±f64::MAX and subnormal.
+        for (lo, hi) in [(-1.7e308, 1.7e308), (0.0, 1e-320), (1e300, 1e300)] {
+            let mut b = Aabb2::empty();
+            b.add(&[lo, lo]);
+            b.add(&[hi, hi]);
+            let svg = Svg::new(b, 100.0);
+            let (w, h) = svg.size();
+            assert!(
+                svg.scale() > 0.0 && svg.scale().is_finite() && h <= w,
+                "{lo} {hi}"
+            );
+            for v in [lo, hi] {
+                let p = svg.to_px(Point2::new(v, v));
+                assert!(
+                    p.iter().all(|c| (0.0..=100.0).contains(c)),
+                    "{lo} {hi} {p:?}"
+                );
+            }
+        }
     }
 
     #[test]
