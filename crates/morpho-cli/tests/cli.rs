@@ -466,3 +466,167 @@ fn graph_command() {
         assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     }
 }
+
+/// A raw f32 volume of a sphere function with its JSON sidecar.
+fn sphere_volume(dir: &Path, n: usize, dims_claimed: usize) -> PathBuf {
+    let mut raw = Vec::new();
+    let c = (n as f32 - 1.0) / 2.0;
+    for z in 0..n {
+        for y in 0..n {
+            for x in 0..n {
+                let d = ((x as f32 - c).powi(2) + (y as f32 - c).powi(2) + (z as f32 - c).powi(2))
+                    .sqrt();
+                raw.extend_from_slice(&(c - d).to_le_bytes());
+            }
+        }
+    }
+    std::fs::write(dir.join("s.raw"), raw).unwrap();
+    let side = format!(
+        r#"{{"data":"s.raw","dims":[{d},{d},{d}],"spacing":[1,1,1],"origin":[0,0,0],"dtype":"f32","endian":"little"}}"#,
+        d = dims_claimed
+    );
+    write(dir, &format!("s{dims_claimed}.json"), side.as_bytes())
+}
+
+#[test]
+fn isosurface_command() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let vol = sphere_volume(d, 16, 16);
+    let out = d.join("s.ply");
+    let rep = d.join("r.json");
+    let o = morpho(&[
+        "isosurface",
+        vol.to_str().unwrap(),
+        "--level",
+        "5",
+        "-o",
+        out.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&rep).unwrap()).unwrap();
+    assert_eq!(r["parts"], 1);
+    assert_eq!(r["interior_holes"], 0);
+    assert_eq!(
+        r["boundary_edges"], 0,
+        "a sphere inside the volume is closed"
+    );
+    assert!(r["triangles"].as_u64().unwrap() > 100);
+    // the written mesh is a closed genus-0 surface
+    let rep2 = d.join("i.json");
+    let o = morpho(&[
+        "info",
+        out.to_str().unwrap(),
+        "--report",
+        rep2.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let i: serde_json::Value = serde_json::from_slice(&std::fs::read(&rep2).unwrap()).unwrap();
+    assert_eq!(i["genus"], 0);
+    assert_eq!(i["boundary_loops"], 0);
+    assert_eq!(i["euler_characteristic"], 2);
+    // a level outside the data: empty mesh, a note, exit 0
+    let o = morpho(&[
+        "isosurface",
+        vol.to_str().unwrap(),
+        "--level",
+        "1000",
+        "-o",
+        d.join("e.ply").to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&rep).unwrap()).unwrap();
+    assert_eq!(r["triangles"], 0);
+    assert!(r["note"].is_string());
+    // dims that disagree with the data size: exit 2, no output
+    let bad = sphere_volume(d, 16, 17);
+    let o = morpho(&[
+        "isosurface",
+        bad.to_str().unwrap(),
+        "--level",
+        "5",
+        "-o",
+        d.join("b.ply").to_str().unwrap(),
+    ]);
+    // the error names the data file the sidecar points to, whose size is wrong
+    assert_input_error(&o, &d.join("s.raw"));
+    assert!(!d.join("b.ply").exists());
+}
+
+#[test]
+fn contour_command() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // a 6 × 6 grid of samples with a high block in the middle
+    let mut csv = String::from("x,y,zinc\n");
+    for j in 0..6 {
+        for i in 0..6 {
+            let v = if (2..4).contains(&i) && (2..4).contains(&j) {
+                900.0
+            } else {
+                100.0
+            };
+            csv.push_str(&format!(
+                "{},{},{}\n",
+                i as f64 + 0.01 * j as f64,
+                j as f64 + 0.013 * i as f64,
+                v
+            ));
+        }
+    }
+    let f = write(d, "s.csv", csv.as_bytes());
+    let out = d.join("c.geojson");
+    let rep = d.join("r.json");
+    let o = morpho(&[
+        "contour",
+        f.to_str().unwrap(),
+        "--value",
+        "zinc",
+        "--threshold",
+        "500",
+        "-o",
+        out.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&rep).unwrap()).unwrap();
+    assert_eq!(r["samples"], 36);
+    assert_eq!(r["components"], 1);
+    assert_eq!(r["cycles"], 1);
+    let g: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert_eq!(g["type"], "FeatureCollection");
+    assert_eq!(g["features"][0]["geometry"]["type"], "Polygon");
+    // the JSON cycles use input sample indices of the high block's neighbourhood
+    let out = d.join("c.json");
+    let o = morpho(&[
+        "contour",
+        f.to_str().unwrap(),
+        "--value",
+        "zinc",
+        "--threshold",
+        "500",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let c: serde_json::Value = serde_json::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    assert!(!c["cycles"][0].as_array().unwrap().is_empty());
+    // an unknown column: exit 2
+    let o = morpho(&[
+        "contour",
+        f.to_str().unwrap(),
+        "--value",
+        "lead",
+        "--threshold",
+        "500",
+        "-o",
+        d.join("x.geojson").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).starts_with("error: "));
+}

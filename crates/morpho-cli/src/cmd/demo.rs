@@ -520,7 +520,10 @@ fn iso_figures(s: &mut Section, r: &morpho::volume::isosurface::IsoResult, dt: f
     s.fig("parts", r.parts);
     s.fig("boundary edges (on the volume's faces)", r.boundary_edges);
     s.fig("interior holes (Def. 3.10)", r.interior_holes);
-    s.fig("extraction + normals + topology", format!("{:.0} ms", dt * 1e3));
+    s.fig(
+        "extraction + normals + topology",
+        format!("{:.0} ms", dt * 1e3),
+    );
 }
 
 fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
@@ -529,18 +532,33 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
     let mut out = Vec::new();
     let v = morpho::samples::shepp_logan_volume(128);
     let t = Instant::now();
-    let r = isosurface(&v, &Options { level: 0.1, ..Default::default() })?;
+    let r = isosurface(
+        &v,
+        &Options {
+            level: 0.1,
+            ..Default::default()
+        },
+    )?;
     let dt = t.elapsed().as_secs_f64();
     let mut s = Section::new(
         "Contour surface of the Shepp–Logan phantom (f = 0.1)",
         "Marching cubes made consistent by the asymptotic decider and interior points (Hamann §3.2); \
          the head's outer surface and the inner surfaces around the ventricles are separate parts.",
     );
-    let opts = RenderOptions { up: UpAxis::Z, azimuth_deg: 30.0, elevation_deg: 20.0, ..Default::default() };
+    let opts = RenderOptions {
+        up: UpAxis::Z,
+        azimuth_deg: 30.0,
+        elevation_deg: 20.0,
+        ..Default::default()
+    };
     render_mesh(&r.mesh, &opts).save_png(&ctx.path("phantom_surface.png"))?;
     s.img("phantom_surface.png", "f = 0.1, Zucker–Hummel normals");
     iso_figures(&mut s, &r, dt);
-    morpho::io::write_mesh(&ctx.path("phantom_surface.ply"), &r.mesh, morpho::io::Encoding::BinaryLittleEndian)?;
+    morpho::io::write_mesh(
+        &ctx.path("phantom_surface.ply"),
+        &r.mesh,
+        morpho::io::Encoding::BinaryLittleEndian,
+    )?;
     s.files.push("phantom_surface.ply".into());
     out.push(s);
     if let Some(path) = ctx.data_file("volumes/cthead_8bit_256x256x99.json") {
@@ -551,7 +569,13 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
              holes, the Lorensen–Cline table does (H Fig. 3.2).",
         );
         let t = Instant::now();
-        let r = isosurface(&v, &Options { level: 120.0, ..Default::default() })?;
+        let r = isosurface(
+            &v,
+            &Options {
+                level: 120.0,
+                ..Default::default()
+            },
+        )?;
         let dt = t.elapsed().as_secs_f64();
         // slices run from the top of the skull (z = 0) down: mirror z so the head stands upright
         let mut m = r.mesh.clone();
@@ -559,14 +583,33 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
             p.z = -p.z;
         }
         m.normals = None;
-        let opts = RenderOptions { up: UpAxis::Z, azimuth_deg: 25.0, elevation_deg: 5.0, ..Default::default() };
+        let opts = RenderOptions {
+            up: UpAxis::Z,
+            azimuth_deg: 25.0,
+            elevation_deg: 5.0,
+            ..Default::default()
+        };
         render_mesh(&m, &opts).save_png(&ctx.path("cthead_bone.png"))?;
         s.img("cthead_bone.png", "decider method, level 120");
         iso_figures(&mut s, &r, dt);
-        let lor = isosurface(&v, &Options { level: 120.0, method: Method::Lorensen, ..Default::default() })?;
+        let lor = isosurface(
+            &v,
+            &Options {
+                level: 120.0,
+                method: Method::Lorensen,
+                ..Default::default()
+            },
+        )?;
         s.fig("Lorensen–Cline: triangles", lor.mesh.num_triangles());
         s.fig("Lorensen–Cline: interior holes", lor.interior_holes);
-        let tet = isosurface(&v, &Options { level: 120.0, method: Method::Tetra, ..Default::default() })?;
+        let tet = isosurface(
+            &v,
+            &Options {
+                level: 120.0,
+                method: Method::Tetra,
+                ..Default::default()
+            },
+        )?;
         s.fig("6-tetrahedra method: triangles", tet.mesh.num_triangles());
         s.fig("6-tetrahedra method: interior holes", tet.interior_holes);
         out.push(s);
