@@ -126,24 +126,36 @@ pub struct Graph {
     pub gamma: Vec<[f64; 2]>,
 }
 
-fn finish2(d: &d2::Delaunay2, mut e: Vec<([u32; 2], Option<[f64; 2]>)>) -> Graph {
-    for (k, _) in e.iter_mut() {
-        let (a, b) = (
-            d.input_of_vertex[k[0] as usize],
-            d.input_of_vertex[k[1] as usize],
-        );
-        *k = [a.min(b), a.max(b)];
-    }
-    e.sort_by_key(|x| x.0);
-    e.dedup_by(|x, y| x.0 == y.0);
-    let gamma = if e.iter().all(|x| x.1.is_some()) && !e.is_empty() {
-        e.iter().map(|x| x.1.unwrap_or_default()).collect()
+fn finish2(d: &d2::Delaunay2, e: Vec<([u32; 2], Option<[f64; 2]>)>) -> Graph {
+    let with_gamma = !e.is_empty() && e.iter().all(|x| x.1.is_some());
+    // sort by the packed input-index pair (an unstable sort of 12-byte records)
+    let mut keyed: Vec<(u64, u32)> = e
+        .iter()
+        .enumerate()
+        .map(|(i, (k, _))| {
+            let (a, b) = (
+                d.input_of_vertex[k[0] as usize],
+                d.input_of_vertex[k[1] as usize],
+            );
+            (((a.min(b) as u64) << 32) | a.max(b) as u64, i as u32)
+        })
+        .collect();
+    keyed.sort_unstable();
+    keyed.dedup_by_key(|x| x.0);
+    let gamma = if with_gamma {
+        keyed
+            .iter()
+            .map(|&(_, i)| e[i as usize].1.unwrap_or_default())
+            .collect()
     } else {
         vec![]
     };
     Graph {
         dim: 2,
-        edges: e.into_iter().map(|x| x.0).collect(),
+        edges: keyed
+            .iter()
+            .map(|&(k, _)| [(k >> 32) as u32, k as u32])
+            .collect(),
         triangles: vec![],
         gamma,
     }
@@ -198,11 +210,19 @@ fn classic<const D: usize>(
             e
         }
         Kind::Emst => {
-            let mut e: Vec<(f64, [u32; 2])> = dt_edges
+            // Kruskal over the Delaunay edges; a non-negative f64's bits sort like the value,
+            // so (length bits, edge index) is an exact and deterministic u64 sort key
+            let mut keyed: Vec<(u64, u32)> = dt_edges
                 .iter()
-                .map(|e| (dist(&p[e[0] as usize], &p[e[1] as usize]), *e))
+                .enumerate()
+                .map(|(i, e)| {
+                    (
+                        dist(&p[e[0] as usize], &p[e[1] as usize]).to_bits(),
+                        i as u32,
+                    )
+                })
                 .collect();
-            e.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            keyed.sort_unstable();
             let mut parent: Vec<u32> = (0..n as u32).collect();
             fn root(p: &mut [u32], mut x: u32) -> u32 {
                 while p[x as usize] != x {
@@ -213,7 +233,8 @@ fn classic<const D: usize>(
                 x
             }
             let mut out = Vec::with_capacity(n.saturating_sub(1));
-            for (_, [a, b]) in e {
+            for &(_, i) in &keyed {
+                let [a, b] = dt_edges[i as usize];
                 let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
                 if ra != rb {
                     parent[ra as usize] = rb;
@@ -316,14 +337,14 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
     kind.validate()?;
     let d = d2::triangulate(points)?;
     let p = fast::coords2(&d);
-    let cand = fast::candidates_2d(&d);
-    let gab = |c: &Candidates2| -> Vec<[u32; 2]> {
-        c.edges
-            .iter()
-            .zip(&c.intervals)
-            .filter(|(_, iv)| iv.gamma_values().is_some_and(|v| in_gamma(v, 0.0, 0.0)))
-            .map(|(e, _)| *e)
-            .collect()
+    // the candidates (Delaunay edges with their empty-ball intervals, cocircular chords) are
+    // built only for the kinds that need them
+    let needs_cand = matches!(kind, Kind::Gamma(..) | Kind::GammaRange(_))
+        || matches!(kind, Kind::Alpha(a) if a < 0.0);
+    let cand = if needs_cand {
+        fast::candidates_2d(&d)
+    } else {
+        Candidates2::default()
     };
     let no_gamma = |e: Vec<[u32; 2]>| -> Vec<([u32; 2], Option<[f64; 2]>)> {
         e.into_iter().map(|e| (e, None)).collect()
@@ -347,7 +368,7 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             }
             no_gamma(e)
         }
-        Kind::Gabriel => no_gamma(gab(&cand)),
+        Kind::Gabriel => no_gamma(fast::gabriel_2d(&d)),
         Kind::Alpha(a) if a < 0.0 => {
             let rad = 1.0 / a.abs();
             no_gamma(
@@ -427,7 +448,15 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             }
             e
         }
-        _ => no_gamma(classic(&p, &dt_edges, &gab(&cand), kind)?),
+        _ => {
+            let needs_gabriel = matches!(kind, Kind::Rng | Kind::BetaLune(_) | Kind::Strip);
+            let g = if needs_gabriel {
+                fast::gabriel_2d(&d)
+            } else {
+                vec![]
+            };
+            no_gamma(classic(&p, &dt_edges, &g, kind)?)
+        }
     };
     Ok(finish2(&d, g))
 }

@@ -45,15 +45,19 @@ pub struct Candidates2 {
 
 /// The sorted vertex sets of the union-find groups of simplices with more than one member.
 fn union_groups<const K: usize>(parent: &mut [u32], simplices: &[[u32; K]]) -> Vec<Vec<u32>> {
-    let mut size: HashMap<u32, usize> = HashMap::new();
-    for t in 0..simplices.len() as u32 {
-        *size.entry(find(parent, t)).or_default() += 1;
+    let mut size = vec![0u32; simplices.len()];
+    let mut root = vec![0u32; simplices.len()];
+    for t in 0..simplices.len() {
+        root[t] = find(parent, t as u32);
+        size[root[t] as usize] += 1;
     }
     let mut groups: HashMap<u32, Vec<u32>> = HashMap::new();
     for (t, simplex) in simplices.iter().enumerate() {
-        let r = find(parent, t as u32);
-        if size[&r] > 1 {
-            groups.entry(r).or_default().extend_from_slice(simplex);
+        if size[root[t] as usize] > 1 {
+            groups
+                .entry(root[t])
+                .or_default()
+                .extend_from_slice(simplex);
         }
     }
     let mut out: Vec<Vec<u32>> = groups
@@ -154,6 +158,74 @@ pub fn candidates_2d(d: &Delaunay2) -> Candidates2 {
                     out.edges.push([a, b]);
                     out.intervals.push(iv);
                     out.in_dt.push(false);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The Gabriel graph (V Def. 2.9) from the triangulation without intervals: a Delaunay edge
+/// (a, b) is a Gabriel edge iff neither adjacent apex x lies strictly inside the disc with
+/// diameter ab, i.e. (x − a)·(x − b) ≥ 0 (the largest empty balls on its two sides are the two
+/// circumcircles); a chord of a cocircular group is one iff no other group point has
+/// (x − a)·(x − b) < 0 (it is then a diameter of the group's circle). O(N).
+pub fn gabriel_2d(d: &Delaunay2) -> Vec<[u32; 2]> {
+    let p = coords2(d);
+    let q = |a: u32, b: u32, x: u32| -> f64 {
+        let (a, b, x) = (p[a as usize], p[b as usize], p[x as usize]);
+        (x[0] - a[0]) * (x[0] - b[0]) + (x[1] - a[1]) * (x[1] - b[1])
+    };
+    if d.collinear {
+        return d
+            .hull
+            .windows(2)
+            .map(|w| [w[0].min(w[1]), w[0].max(w[1])])
+            .collect();
+    }
+    let nt = d.triangles.len();
+    let mut parent: Vec<u32> = (0..nt as u32).collect();
+    let mut out = Vec::with_capacity(2 * p.len());
+    let mut any_group = false;
+    for (t, tri) in d.triangles.iter().enumerate() {
+        for i in 0..3 {
+            let nb = d.neighbors[t][i];
+            if nb != NONE && (nb as usize) < t {
+                continue;
+            }
+            let (u, v) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+            let mut ok = q(u, v, tri[i]) >= 0.0;
+            if nb != NONE {
+                let ntri = d.triangles[nb as usize];
+                let apex = ntri
+                    .iter()
+                    .copied()
+                    .find(|&x| x != u && x != v)
+                    .unwrap_or(tri[i]);
+                ok = ok && q(u, v, apex) >= 0.0;
+                let c = tri.map(|x| p[x as usize]);
+                if raw::incircle(c[0], c[1], c[2], p[apex as usize]) == 0.0 {
+                    let (r1, r2) = (find(&mut parent, t as u32), find(&mut parent, nb));
+                    parent[r1 as usize] = r2;
+                    any_group = true;
+                }
+            }
+            if ok {
+                out.push([u.min(v), u.max(v)]);
+            }
+        }
+    }
+    if any_group {
+        let existing: HashSet<[u32; 2]> = out.iter().copied().collect();
+        for vs in union_groups(&mut parent, &d.triangles) {
+            for i in 0..vs.len() {
+                for j in i + 1..vs.len() {
+                    let (a, b) = (vs[i], vs[j]);
+                    if !existing.contains(&[a, b])
+                        && vs.iter().all(|&x| x == a || x == b || q(a, b, x) >= 0.0)
+                    {
+                        out.push([a, b]);
+                    }
                 }
             }
         }
