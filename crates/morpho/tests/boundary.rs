@@ -358,3 +358,81 @@ fn duplicates_and_errors() {
     };
     assert!(boundary_2d(&c, &o).is_err());
 }
+
+fn data_dir() -> Option<std::path::PathBuf> {
+    for d in [
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"),
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data"),
+    ] {
+        let p = std::path::PathBuf::from(d);
+        if p.is_dir() {
+            return Some(p);
+        }
+    }
+    None
+}
+
+/// Fraction of the ground-truth polygon edges that are boundary edges.
+fn recovered(truth: &[u32], poly: &[u32]) -> f64 {
+    let set = |c: &[u32]| {
+        let n = c.len();
+        (0..n)
+            .map(|k| (c[k].min(c[(k + 1) % n]), c[k].max(c[(k + 1) % n])))
+            .collect::<std::collections::HashSet<_>>()
+    };
+    let (t, p) = (set(truth), set(poly));
+    t.intersection(&p).count() as f64 / t.len() as f64
+}
+
+#[test]
+fn real_single_curve_data_sets() {
+    let Some(dir) = data_dir() else {
+        eprintln!("shared data not found: skipped");
+        return;
+    };
+    // (file, minimum recovered fraction for gamma, as measured: 1.0 except the sparse thin
+    // spiral, 0.946 — the two sides of the band come closer than the sample spacing there)
+    let sets = [
+        ("simple_samples.csv", 1.0),
+        ("blob2_samples.csv", 1.0),
+        ("spiral_samples.csv", 1.0),
+        ("simple_samples_sparse.csv", 1.0),
+        ("blob2_samples_sparse.csv", 1.0),
+        ("spiral_samples_sparse.csv", 0.94),
+    ];
+    for (f, min_gamma) in sets {
+        let path = dir.join("curves2d/svg_groundtruth").join(f);
+        if !path.is_file() {
+            eprintln!("{f} missing: skipped");
+            continue;
+        }
+        let ps = morpho::io::read_points(&path).unwrap();
+        let order = ps.column("order").unwrap().values.clone();
+        let pts0 = ps.to_points2();
+        let mut truth_order: Vec<usize> = (0..pts0.len()).collect();
+        truth_order.sort_by(|&a, &b| order[a].total_cmp(&order[b]));
+        let curve: Vec<Point2> = truth_order.iter().map(|&i| pts0[i]).collect();
+        let (pts, perm) = shuffled(&curve, 17);
+        for m in [
+            Method::Gamma,
+            Method::MinAreaChange,
+            Method::VoronoiSkeleton,
+        ] {
+            let t = std::time::Instant::now();
+            let b = boundary_2d(&pts, &opts(m)).unwrap();
+            let el = t.elapsed().as_secs_f64();
+            assert_valid(&pts, &b);
+            let r = recovered(&perm, &b.polygon);
+            eprintln!(
+                "{f:28} {:17} all={} recovered={:.3} c={} t={el:.3}s",
+                m.name(),
+                b.all_on_boundary,
+                r,
+                b.c_used
+            );
+            if m == Method::Gamma {
+                assert!(r >= min_gamma, "{f}: recovered {r}");
+            }
+        }
+    }
+}

@@ -168,7 +168,8 @@ pub fn constrict_dt(d: &Delaunay2, p: &[[f64; 2]], key: Key) -> DtState {
 /// The counter-clockwise boundary cycle (vertex indices) of a set of live triangles forming a
 /// triangulated disc; starts at the smallest boundary vertex.
 pub fn region_cycle(d: &Delaunay2, alive: &[bool]) -> Vec<u32> {
-    let mut next: HashMap<u32, u32> = HashMap::new();
+    let mut next = vec![NONE; d.points.len()];
+    let mut count = 0usize;
     for (t, tri) in d.triangles.iter().enumerate() {
         if !alive[t] {
             continue;
@@ -176,17 +177,20 @@ pub fn region_cycle(d: &Delaunay2, alive: &[bool]) -> Vec<u32> {
         for e in 0..3 {
             let n = d.neighbors[t][e];
             if n == NONE || !alive[n as usize] {
-                next.insert(tri[(e + 1) % 3], tri[(e + 2) % 3]);
+                next[tri[(e + 1) % 3] as usize] = tri[(e + 2) % 3];
+                count += 1;
             }
         }
     }
-    let Some(&start) = next.keys().min() else {
+    let Some(start) = next.iter().position(|&w| w != NONE) else {
         return Vec::new();
     };
+    let start = start as u32;
     let mut cyc = vec![start];
     let mut v = start;
-    while let Some(&w) = next.get(&v) {
-        if w == start || cyc.len() > next.len() {
+    loop {
+        let w = next[v as usize];
+        if w == NONE || w == start || cyc.len() > count {
             break;
         }
         cyc.push(w);

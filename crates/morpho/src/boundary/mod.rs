@@ -389,7 +389,7 @@ fn finish(
         area2 += a[0] * b[1] - a[1] * b[0];
     }
     let mut bedges = std::collections::HashSet::new();
-    for k in 0..m {
+    for k in 0..if keep.is_empty() { 0 } else { m } {
         let (a, b) = (cyc[k], cyc[(k + 1) % m]);
         bedges.insert((a.min(b), a.max(b)));
     }
