@@ -1,5 +1,5 @@
 //! Boundary through all scattered points (Veltkamp 1992, ch. 4–5): the γ-graph constriction
-//! and the two comparison methods, in 2D.
+//! and the two comparison methods in 2D; the γ constriction in 3D.
 //!
 //! [`boundary_2d`] returns a simple polygon through every input point when it finds one, or
 //! the best simple polygon found together with the points it leaves out:
@@ -10,6 +10,10 @@
 //!   triangulation (V §4.3.3, Eq. 4.1);
 //! - [`Method::VoronoiSkeleton`] — O'Rourke et al.'s shortest Voronoi skeleton (V §4.3.4).
 //!
+//! [`boundary_3d`] constricts the 3D Delaunay tetrahedralization (V §5.3, [`constrict3`]) to a
+//! closed genus-0 triangle mesh through (ideally) every point, checked with
+//! [`crate::mesh::topology::analyze`].
+//!
 //! The result is checked, never assumed: [`validity::check_polygon`] decides simplicity and
 //! coverage with exact predicates. Duplicate input points map to one vertex (the first input
 //! index of the group stands for it in the polygon; the others count as on the boundary).
@@ -18,6 +22,7 @@
 //! simple polygon exists and an `invalid` error is returned).
 
 pub mod constrict2;
+pub mod constrict3;
 pub mod indicator;
 pub mod validity;
 pub mod voronoi_skeleton;
@@ -418,4 +423,76 @@ fn finish(
             .collect(),
         skeleton_length: None,
     }
+}
+
+/// A 3D boundary (all indices are input indices).
+#[derive(Debug, Clone)]
+pub struct Boundary3 {
+    /// Boundary triangles, oriented outward.
+    pub triangles: Vec<[u32; 3]>,
+    /// Every input point is a vertex of the boundary.
+    pub all_on_boundary: bool,
+    /// Input points not on the boundary.
+    pub left_out: Vec<u32>,
+    /// Deleted tetrahedra.
+    pub iterations: usize,
+    /// The boundary is a closed 2-manifold (checked by `mesh::topology::analyze`).
+    pub closed_manifold: bool,
+    /// Its genus (`None` when not an orientable manifold).
+    pub genus: Option<i64>,
+    /// The interior tetrahedralization.
+    pub interior: Vec<[u32; 4]>,
+    /// Enclosed volume (sum of the interior tetrahedra).
+    pub volume: f64,
+}
+
+/// Constructs a closed boundary mesh through 3D points by γ-constriction of the Delaunay
+/// tetrahedralization (V §5.3). Errors when the points are coplanar or fewer than four.
+pub fn boundary_3d(points: &[crate::geom::Point3], until: constrict3::Until) -> Result<Boundary3> {
+    let d = crate::delaunay::d3::triangulate(points)?;
+    if d.tets.is_empty() {
+        return Err(Error::invalid(format!(
+            "boundary: no closed surface exists ({})",
+            d.degenerate.as_deref().unwrap_or("degenerate input")
+        )));
+    }
+    let c = constrict3::constrict_3d(&d, until);
+    let mesh = crate::mesh::TriMesh::new(d.points.clone(), c.triangles.clone());
+    let topo = crate::mesh::topology::analyze(&mesh);
+    let nv = d.points.len();
+    let mut on = vec![false; nv];
+    for t in &c.triangles {
+        for &v in t {
+            on[v as usize] = true;
+        }
+    }
+    let inp = |v: u32| d.input_of_vertex[v as usize];
+    let left_out: Vec<u32> = (0..d.vertex_of_input.len())
+        .filter(|&i| !on[d.vertex_of_input[i] as usize])
+        .map(|i| i as u32)
+        .collect();
+    let mut volume = 0.0;
+    let mut interior = Vec::new();
+    for (t, tet) in d.tets.iter().enumerate() {
+        if c.alive[t] {
+            let q = |k: usize| d.points[tet[k] as usize];
+            let (a, b, cc, dd) = (q(0), q(1), q(2), q(3));
+            volume += ((b - a).cross(&(cc - a)).dot(&(dd - a))).abs() / 6.0;
+            interior.push([inp(tet[0]), inp(tet[1]), inp(tet[2]), inp(tet[3])]);
+        }
+    }
+    Ok(Boundary3 {
+        triangles: c
+            .triangles
+            .iter()
+            .map(|t| [inp(t[0]), inp(t[1]), inp(t[2])])
+            .collect(),
+        all_on_boundary: left_out.is_empty(),
+        left_out,
+        iterations: c.iterations,
+        closed_manifold: topo.is_closed() && topo.manifold && topo.parts.len() == 1,
+        genus: topo.genus(),
+        interior,
+        volume,
+    })
 }
