@@ -11,6 +11,7 @@
 //! - **two** boundary triangles vᵢvⱼvₖ, vⱼvₖvₗ is removable iff the edge vᵢvₗ is not on the
 //!   boundary; its key is the sum of the two γ-indicators;
 //! - three or four boundary triangles is never removable.
+//!
 //! These are exactly V's conditions; they keep the boundary a closed 2-manifold of genus 0
 //! (removing a one-triangle tetrahedron pushes a new vertex into a face; removing a
 //! two-triangle tetrahedron flips the shared edge vⱼvₖ to vᵢvₗ, which is allowed only when vᵢvₗ is
