@@ -1,7 +1,12 @@
-//! `morpho boundary POINTS -o OUT`: a simple polygon through all scattered 2D points (issue 5;
-//! Veltkamp 1992 ch. 4–5), by γ-graph constriction or one of the two comparison methods.
+//! `morpho boundary POINTS -o OUT`: a simple polygon through all scattered 2D points, or a
+//! closed genus-0 mesh through 3D points (issue 5; Veltkamp 1992 ch. 4–5), by γ-graph
+//! constriction or (2D) one of the two comparison methods.
 //!
-//! Outputs by extension: `.csv` (`index,x,y` in boundary order), `.geojson` (one Polygon
+//! 3D: `-o` `.ply/.obj/.off` (every input point is a vertex, in input order) or `.json`
+//! (`{"triangles":[[i,j,k],…]}`); `--until all|locked`; report keys `closed_manifold`, `genus`,
+//! `volume`; `--interior FILE.json` writes `{"tetrahedra":[…]}`. Only the γ method, c = 0.
+//!
+//! 2D outputs by extension: `.csv` (`index,x,y` in boundary order), `.geojson` (one Polygon
 //! feature), `.json` (`{"polygon":[input indices]}`), `.svg` (points, Delaunay graph faint,
 //! boundary bold, deleted edges dashed). `--interior FILE` writes the interior triangulation
 //! (`.json` `{"triangles":[[i,j,k],…]}` or a mesh format with z = 0). Exit code 1 when not every
@@ -10,7 +15,10 @@
 
 use crate::report::Report;
 use crate::Failure;
-use morpho::boundary::{boundary_2d, check_polygon, Boundary2, CParam, Method, Options2};
+use morpho::boundary::constrict3::Until;
+use morpho::boundary::{
+    boundary_2d, boundary_3d, check_polygon, Boundary2, CParam, Method, Options2,
+};
 use morpho::geom::Point2;
 use morpho::io::{read_points, write_atomic};
 use morpho::Error;
@@ -39,6 +47,10 @@ pub struct Args {
     /// Write the interior triangulation here (.json, .ply, .obj, .off).
     #[arg(long)]
     pub interior: Option<PathBuf>,
+    /// 3D: stop when every point is on the boundary (`all`) or continue while tetrahedra are
+    /// removable (`locked`).
+    #[arg(long, default_value = "all")]
+    pub until: String,
     /// Seeds tried by the Voronoi skeleton method.
     #[arg(long, default_value_t = 200)]
     pub seeds: usize,
@@ -63,13 +75,12 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             _ => return Err(Failure::usage("--c must be `auto` or a number in [-1, 0]")),
         }
     };
+    let until = match args.until.as_str() {
+        "all" => Until::All,
+        "locked" => Until::Locked,
+        _ => return Err(Failure::usage("--until must be `all` or `locked`")),
+    };
     let ext = ext_of(&args.output);
-    if !matches!(ext.as_str(), "csv" | "geojson" | "json" | "svg") {
-        return Err(Failure::usage(format!(
-            "{}: output must be .csv, .geojson, .json or .svg",
-            args.output.display()
-        )));
-    }
     let mut inputs: Vec<&Path> = vec![&args.input];
     if let Some(k) = &args.keep {
         inputs.push(k);
@@ -78,13 +89,26 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     if let Some(i) = &args.interior {
         super::check_not_input(i, &inputs)?;
     }
+    let ps = report.time("read", || read_points(&args.input))?;
+    if ps.dim == 3 {
+        if method != Method::Gamma || args.keep.is_some() || c != CParam::Auto {
+            return Err(Failure::usage(
+                "3D boundary: only --method gamma without --keep and --c is implemented",
+            ));
+        }
+        return run_3d(&args, ps.to_points3(), until, &ext, report);
+    }
+    if !matches!(ext.as_str(), "csv" | "geojson" | "json" | "svg") {
+        return Err(Failure::usage(format!(
+            "{}: output must be .csv, .geojson, .json or .svg",
+            args.output.display()
+        )));
+    }
     let (pts, keep) = report.time("read", || -> morpho::Result<_> {
-        let ps = read_points(&args.input)?;
         if ps.dim != 2 {
-            return Err(Error::unsupported(
-                "boundary: only 2D points are supported so far (3D constriction is not implemented)",
-            )
-            .with_path(&args.input));
+            return Err(
+                Error::unsupported("boundary: points must be 2D or 3D").with_path(&args.input)
+            );
         }
         let keep = match &args.keep {
             Some(k) => read_keep(k)?,
@@ -318,4 +342,61 @@ fn write_interior(path: &Path, pts: &[Point2], b: &Boundary2) -> morpho::Result<
 /// An I/O error while writing (the path is added by the caller).
 fn werr(e: std::io::Error) -> Error {
     Error::io("", e)
+}
+
+fn run_3d(
+    args: &Args,
+    pts: Vec<morpho::geom::Point3>,
+    until: Until,
+    ext: &str,
+    report: &mut Report,
+) -> Result<u8, Failure> {
+    if !matches!(ext, "ply" | "obj" | "off" | "json") {
+        return Err(Failure::usage(format!(
+            "{}: 3D output must be .ply, .obj, .off or .json",
+            args.output.display()
+        )));
+    }
+    let b = report.time("compute", || boundary_3d(&pts, until))?;
+    let vertices: std::collections::HashSet<u32> = b.triangles.iter().flatten().copied().collect();
+    report.set("method", "gamma");
+    report.set("points", pts.len());
+    report.set("boundary_vertices", vertices.len());
+    report.set("all_on_boundary", b.all_on_boundary);
+    report.set("c_used", 0.0);
+    report.set("iterations", b.iterations);
+    report.set("closed_manifold", b.closed_manifold);
+    report.set("genus", json!(b.genus));
+    report.set("triangles", b.triangles.len());
+    report.set("volume", b.volume);
+    report.set("left_out", json!(b.left_out));
+    report.time("write", || -> morpho::Result<()> {
+        if ext == "json" {
+            let v = json!({ "triangles": b.triangles });
+            write_atomic(&args.output, |w| writeln!(w, "{v}").map_err(werr))
+                .map_err(|e| e.with_path(&args.output))?;
+        } else {
+            let mesh = morpho::mesh::TriMesh::new(pts.clone(), b.triangles.clone());
+            morpho::io::write_mesh(&args.output, &mesh, morpho::io::Encoding::default())?;
+        }
+        if let Some(i) = &args.interior {
+            let v = json!({ "tetrahedra": b.interior, "volume": b.volume });
+            write_atomic(i, |w| writeln!(w, "{v}").map_err(werr)).map_err(|e| e.with_path(i))?;
+        }
+        Ok(())
+    })?;
+    if !b.closed_manifold || b.genus != Some(0) {
+        return Err(Failure {
+            code: 1,
+            msg: "boundary: internal error, the result is not a closed genus-0 manifold".into(),
+        });
+    }
+    if !b.all_on_boundary {
+        eprintln!(
+            "boundary: {} point(s) are not on the boundary; the best closed mesh was written",
+            b.left_out.len()
+        );
+        return Ok(1);
+    }
+    Ok(0)
 }
