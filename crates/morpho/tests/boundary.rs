@@ -447,6 +447,11 @@ use morpho::geom::Point3;
 fn check_3d(pts: &[Point3], b: &morpho::boundary::Boundary3) {
     assert!(b.closed_manifold, "not a closed manifold");
     assert_eq!(b.genus, Some(0));
+    assert!(
+        b.intersections.is_empty(),
+        "self-intersections {:?}",
+        b.intersections
+    );
     let mesh = morpho::mesh::TriMesh::new(pts.to_vec(), b.triangles.clone());
     let topo = morpho::mesh::topology::analyze(&mesh);
     assert!(topo.consistently_oriented);
@@ -595,4 +600,57 @@ fn bunny_vertices_give_a_closed_genus0_mesh() {
     // measured: 0.633 of the original triangles, volume 223.9 vs 194.3 (concavities bridged);
     // the original is a closed genus-0 mesh on the same vertices
     assert!(frac > 0.5, "only {frac} of the original triangles");
+}
+
+mod props {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn pts2() -> impl Strategy<Value = Vec<Point2>> {
+        prop_oneof![
+            proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0), 3..30),
+            // degenerate: small integer grid (collinear runs, cocircular groups, duplicates)
+            proptest::collection::vec((0i32..5, 0i32..5), 3..30)
+                .prop_map(|v| v.into_iter().map(|(x, y)| (x as f64, y as f64)).collect()),
+        ]
+        .prop_map(|v| v.into_iter().map(|(x, y)| Point2::new(x, y)).collect())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        #[test]
+        fn every_method_gives_a_valid_polygon_or_the_documented_error(pts in pts2()) {
+            for m in [Method::Gamma, Method::MinAreaChange, Method::VoronoiSkeleton] {
+                match boundary_2d(&pts, &opts(m)) {
+                    Ok(b) => {
+                        let chk = check_polygon(&pts, &b.polygon);
+                        prop_assert!(chk.simple);
+                        prop_assert!(is_simple_brute(&pts, &b.polygon));
+                        prop_assert_eq!(&chk.missing, &b.left_out);
+                        if m == Method::Gamma {
+                            // auto: a failure is only reported after the fallback reached c = −1
+                            prop_assert!(b.all_on_boundary || b.c_used <= -1.0);
+                        }
+                    }
+                    Err(_) => {
+                        let d = morpho::delaunay::d2::triangulate(&pts).unwrap();
+                        prop_assert!(d.collinear);
+                    }
+                }
+            }
+        }
+
+        #[test]
+        fn random_3d_points_give_a_closed_genus0_mesh(
+            v in proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), 4..30)
+        ) {
+            let pts: Vec<Point3> = v.into_iter().map(|(x, y, z)| Point3::new(x, y, z)).collect();
+            if let Ok(b) = boundary_3d(&pts, Until::All) {
+                prop_assert!(b.closed_manifold);
+                prop_assert_eq!(b.genus, Some(0));
+                prop_assert!(b.intersections.is_empty());
+            }
+        }
+    }
 }

@@ -367,6 +367,7 @@ fn run_3d(
     report.set("iterations", b.iterations);
     report.set("closed_manifold", b.closed_manifold);
     report.set("genus", json!(b.genus));
+    report.set("self_intersections", b.intersections.len());
     report.set("triangles", b.triangles.len());
     report.set("volume", b.volume);
     report.set("left_out", json!(b.left_out));
@@ -385,10 +386,10 @@ fn run_3d(
         }
         Ok(())
     })?;
-    if !b.closed_manifold || b.genus != Some(0) {
+    if !b.closed_manifold || b.genus != Some(0) || !b.intersections.is_empty() {
         return Err(Failure {
             code: 1,
-            msg: "boundary: internal error, the result is not a closed genus-0 manifold".into(),
+            msg: "boundary: internal error, the result is not a closed genus-0 manifold without self-intersections".into(),
         });
     }
     if !b.all_on_boundary {

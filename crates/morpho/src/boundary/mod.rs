@@ -25,6 +25,7 @@ pub mod constrict2;
 pub mod constrict3;
 pub mod indicator;
 pub mod validity;
+pub mod validity3;
 pub mod voronoi_skeleton;
 
 pub use indicator::Key;
@@ -440,6 +441,9 @@ pub struct Boundary3 {
     pub closed_manifold: bool,
     /// Its genus (`None` when not an orientable manifold).
     pub genus: Option<i64>,
+    /// Pairs of boundary triangles that intersect although they must not (exact test,
+    /// [`validity3::self_intersections`]; at most 10 listed). Empty for a valid boundary.
+    pub intersections: Vec<(u32, u32)>,
     /// The interior tetrahedralization.
     pub interior: Vec<[u32; 4]>,
     /// Enclosed volume (sum of the interior tetrahedra).
@@ -459,6 +463,8 @@ pub fn boundary_3d(points: &[crate::geom::Point3], until: constrict3::Until) -> 
     let c = constrict3::constrict_3d(&d, until);
     let mesh = crate::mesh::TriMesh::new(d.points.clone(), c.triangles.clone());
     let topo = crate::mesh::topology::analyze(&mesh);
+    let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+    let intersections = validity3::self_intersections(&pos, &c.triangles, 10);
     let nv = d.points.len();
     let mut on = vec![false; nv];
     for t in &c.triangles {
@@ -492,6 +498,7 @@ pub fn boundary_3d(points: &[crate::geom::Point3], until: constrict3::Until) -> 
         iterations: c.iterations,
         closed_manifold: topo.is_closed() && topo.manifold && topo.parts.len() == 1,
         genus: topo.genus(),
+        intersections,
         interior,
         volume,
     })
