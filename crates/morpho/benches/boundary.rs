@@ -16,7 +16,12 @@ fn curve(n: usize) -> Vec<Point2> {
 fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("boundary_2d");
     g.sample_size(10);
-    for n in [100_000usize, 1_000_000] {
+    // 1M points: set MORPHO_BENCH_BOUNDARY_1M=1 (about a minute per sample on a loaded machine)
+    let mut sizes = vec![100_000usize];
+    if std::env::var_os("MORPHO_BENCH_BOUNDARY_1M").is_some() {
+        sizes.push(1_000_000);
+    }
+    for n in sizes {
         let pts = curve(n);
         g.bench_function(format!("delaunay {n}"), |b| {
             b.iter(|| {

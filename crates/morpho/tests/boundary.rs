@@ -393,24 +393,31 @@ fn real_single_curve_data_sets() {
     // (file, minimum recovered fraction for gamma, as measured: 1.0 except the sparse thin
     // spiral, 0.946 — the two sides of the band come closer than the sample spacing there)
     let sets = [
-        ("simple_samples.csv", 1.0),
-        ("blob2_samples.csv", 1.0),
-        ("spiral_samples.csv", 1.0),
-        ("simple_samples_sparse.csv", 1.0),
-        ("blob2_samples_sparse.csv", 1.0),
-        ("spiral_samples_sparse.csv", 0.94),
+        ("svg_groundtruth/simple_samples.csv", 1.0),
+        ("svg_groundtruth/blob2_samples.csv", 1.0),
+        ("svg_groundtruth/spiral_samples.csv", 1.0),
+        ("svg_groundtruth/simple_samples_sparse.csv", 1.0),
+        ("svg_groundtruth/blob2_samples_sparse.csv", 1.0),
+        ("svg_groundtruth/spiral_samples_sparse.csv", 0.94),
+        // noisy outlines in curve order (file order = truth); thresholds just below measured
+        ("ohrhallinger_fitconnect/apple_2percent_noise.txt", 0.95),
+        ("ohrhallinger_fitconnect/butterfly_2percent_noise.txt", 0.92),
+        ("ohrhallinger_fitconnect/crab_2percent_noise.txt", 0.82),
+        ("ohrhallinger_fitconnect/dolphin_2percent_noise.txt", 0.87),
     ];
     for (f, min_gamma) in sets {
-        let path = dir.join("curves2d/svg_groundtruth").join(f);
+        let path = dir.join("curves2d").join(f);
         if !path.is_file() {
             eprintln!("{f} missing: skipped");
             continue;
         }
         let ps = morpho::io::read_points(&path).unwrap();
-        let order = ps.column("order").unwrap().values.clone();
         let pts0 = ps.to_points2();
         let mut truth_order: Vec<usize> = (0..pts0.len()).collect();
-        truth_order.sort_by(|&a, &b| order[a].total_cmp(&order[b]));
+        if let Some(order) = ps.column("order") {
+            let order = order.values.clone();
+            truth_order.sort_by(|&a, &b| order[a].total_cmp(&order[b]));
+        }
         let curve: Vec<Point2> = truth_order.iter().map(|&i| pts0[i]).collect();
         let (pts, perm) = shuffled(&curve, 17);
         for m in [
@@ -419,12 +426,17 @@ fn real_single_curve_data_sets() {
             Method::VoronoiSkeleton,
         ] {
             let t = std::time::Instant::now();
-            let b = boundary_2d(&pts, &opts(m)).unwrap();
+            // (skeleton: 50 seeds keep the debug test fast; the CLI default is 200)
+            let o = Options2 {
+                max_seeds: 50,
+                ..opts(m)
+            };
+            let b = boundary_2d(&pts, &o).unwrap();
             let el = t.elapsed().as_secs_f64();
             assert_valid(&pts, &b);
             let r = recovered(&perm, &b.polygon);
             eprintln!(
-                "{f:28} {:17} all={} recovered={:.3} c={} t={el:.3}s",
+                "{f:50} {:17} all={} recovered={:.3} c={} t={el:.3}s",
                 m.name(),
                 b.all_on_boundary,
                 r,
@@ -653,4 +665,30 @@ mod props {
             }
         }
     }
+}
+
+/// Timing at 1M points (run in release: `cargo test --release -p morpho --test boundary
+/// million -- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn million_points_timing() {
+    let mut p = morpho::samples::chalice_outline(1_000_000, 0.0, 1);
+    p.shuffle(&mut ChaCha8Rng::seed_from_u64(5));
+    let t = std::time::Instant::now();
+    let d = morpho::delaunay::d2::triangulate(&p).unwrap();
+    let t_dt = t.elapsed().as_secs_f64();
+    let t = std::time::Instant::now();
+    let b = boundary_2d(&p, &Options2::default()).unwrap();
+    let t_all = t.elapsed().as_secs_f64();
+    let t = std::time::Instant::now();
+    let chk = check_polygon(&p, &b.polygon);
+    let t_chk = t.elapsed().as_secs_f64();
+    eprintln!(
+        "1M: delaunay {t_dt:.2}s ({} triangles), boundary total {t_all:.2}s (ratio {:.2}), all={}, simple={}, check {t_chk:.2}s",
+        d.triangles.len(),
+        t_all / t_dt,
+        b.all_on_boundary,
+        chk.simple
+    );
+    assert!(b.all_on_boundary && chk.simple);
 }
