@@ -667,28 +667,91 @@ mod props {
     }
 }
 
-/// Timing at 1M points (run in release: `cargo test --release -p morpho --test boundary
-/// million -- --ignored --nocapture`).
+/// Timing of the stages at 1M points (run in release: `cargo test --release -p morpho --test
+/// boundary million -- --ignored --nocapture`; `MORPHO_BOUNDARY_N` changes the size).
 #[test]
 #[ignore]
 fn million_points_timing() {
-    let mut p = morpho::samples::chalice_outline(1_000_000, 0.0, 1);
+    use morpho::boundary::constrict2::{constrict_dt, region_cycle};
+    use morpho::boundary::Key;
+    let n = std::env::var("MORPHO_BOUNDARY_N")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(1_000_000usize);
+    let mut p = morpho::samples::chalice_outline(n, 0.0, 1);
     p.shuffle(&mut ChaCha8Rng::seed_from_u64(5));
     let t = std::time::Instant::now();
     let d = morpho::delaunay::d2::triangulate(&p).unwrap();
     let t_dt = t.elapsed().as_secs_f64();
     let t = std::time::Instant::now();
-    let b = boundary_2d(&p, &Options2::default()).unwrap();
-    let t_all = t.elapsed().as_secs_f64();
+    let c = morpho::graphs::fast::coords2(&d);
+    let st = constrict_dt(&d, &c, Key::Gamma);
+    let cyc = region_cycle(&d, &st.alive);
+    let t_con = t.elapsed().as_secs_f64();
+    let poly: Vec<u32> = cyc.iter().map(|&v| d.input_of_vertex[v as usize]).collect();
     let t = std::time::Instant::now();
-    let chk = check_polygon(&p, &b.polygon);
+    let chk = check_polygon(&p, &poly);
     let t_chk = t.elapsed().as_secs_f64();
     eprintln!(
-        "1M: delaunay {t_dt:.2}s ({} triangles), boundary total {t_all:.2}s (ratio {:.2}), all={}, simple={}, check {t_chk:.2}s",
+        "{n}: delaunay {t_dt:.2}s ({} triangles), constriction {t_con:.2}s ({} removals), total/delaunay {:.2}, all={}, simple={}, check {t_chk:.2}s",
         d.triangles.len(),
-        t_all / t_dt,
-        b.all_on_boundary,
+        st.iterations,
+        (t_dt + t_con) / t_dt,
+        st.boundary_vertices == d.points.len(),
         chk.simple
     );
-    assert!(b.all_on_boundary && chk.simple);
+    assert!(st.boundary_vertices == d.points.len() && chk.simple);
+}
+
+/// 3D timing on the full Stanford bunny's vertices (run in release with `-- --ignored`).
+#[test]
+#[ignore]
+fn stanford_bunny_3d_timing() {
+    let Some(dir) = data_dir() else {
+        return;
+    };
+    let mesh = morpho::io::read_mesh(&dir.join("meshes/stanford-bunny.obj.gz")).unwrap();
+    // only the vertices used by the mesh (some are unreferenced)
+    let mut used = vec![false; mesh.positions.len()];
+    for t in &mesh.triangles {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    let pts: Vec<Point3> = mesh
+        .positions
+        .iter()
+        .zip(&used)
+        .filter(|(_, &u)| u)
+        .map(|(p, _)| *p)
+        .collect();
+    let t = std::time::Instant::now();
+    let d = morpho::delaunay::d3::triangulate(&pts).unwrap();
+    let t_dt = t.elapsed().as_secs_f64();
+    let t = std::time::Instant::now();
+    let c = morpho::boundary::constrict3::constrict_3d(&d, Until::All);
+    let t_con = t.elapsed().as_secs_f64();
+    let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+    let t = std::time::Instant::now();
+    let _ = morpho::boundary::validity3::self_intersections(&pos, &c.triangles, 10);
+    let t_si = t.elapsed().as_secs_f64();
+    eprintln!(
+        "constriction {t_con:.2}s ({} removals), self-intersection check {t_si:.2}s",
+        c.iterations
+    );
+    let t = std::time::Instant::now();
+    let b = boundary_3d(&pts, Until::All).unwrap();
+    let t_all = t.elapsed().as_secs_f64();
+    eprintln!(
+        "stanford bunny {} points: delaunay {t_dt:.2}s ({} tets), boundary total {t_all:.2}s (ratio {:.2}), all={} ({} left out), closed={}, genus={:?}, intersections={}",
+        pts.len(),
+        d.tets.len(),
+        t_all / t_dt,
+        b.all_on_boundary,
+        b.left_out.len(),
+        b.closed_manifold,
+        b.genus,
+        b.intersections.len()
+    );
+    assert!(b.closed_manifold && b.genus == Some(0));
 }

@@ -140,7 +140,7 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
     }
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
-    let mut total = 0.0;
+    let mut lens = Vec::with_capacity(3 * tris.len());
     for t in tris {
         let q = t.map(|v| pos[v as usize]);
         for k in 0..3 {
@@ -151,10 +151,14 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
         }
         for k in 0..3 {
             let (a, b) = (q[k], q[(k + 1) % 3]);
-            total += ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+            lens.push(
+                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt(),
+            );
         }
     }
-    let mut cell = 2.0 * total / (3 * tris.len()) as f64;
+    // cell: twice the median edge length (the mean is dominated by a few long edges)
+    let mid = lens.len() / 2;
+    let mut cell = 2.0 * *lens.select_nth_unstable_by(mid, f64::total_cmp).1;
     let ext = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
     while cell > 0.0
         && ext.iter().map(|e| (e / cell) as u64 + 1).product::<u64>() > 8 * tris.len() as u64 + 64
@@ -166,10 +170,24 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
     }
     let cidx = |x: f64, k: usize| ((x - lo[k]) / cell).floor().max(0.0) as u64;
     let mut grid: HashMap<(u64, u64, u64), Vec<u32>> = HashMap::new();
-    for (i, t) in tris.iter().enumerate() {
+    let bbox = |t: &[u32; 3]| -> ([f64; 3], [f64; 3]) {
         let q = t.map(|v| pos[v as usize]);
-        let mn: [u64; 3] = std::array::from_fn(|k| cidx(q[0][k].min(q[1][k]).min(q[2][k]), k));
-        let mx: [u64; 3] = std::array::from_fn(|k| cidx(q[0][k].max(q[1][k]).max(q[2][k]), k));
+        (
+            std::array::from_fn(|k| q[0][k].min(q[1][k]).min(q[2][k])),
+            std::array::from_fn(|k| q[0][k].max(q[1][k]).max(q[2][k])),
+        )
+    };
+    // triangles spanning many cells are tested against everything by bounding boxes instead
+    let mut big: Vec<u32> = Vec::new();
+    for (i, t) in tris.iter().enumerate() {
+        let (bl, bh) = bbox(t);
+        let mn: [u64; 3] = std::array::from_fn(|k| cidx(bl[k], k));
+        let mx: [u64; 3] = std::array::from_fn(|k| cidx(bh[k], k));
+        let span: u64 = (0..3).map(|k| mx[k] - mn[k] + 1).product();
+        if span > 512 {
+            big.push(i as u32);
+            continue;
+        }
         for x in mn[0]..=mx[0] {
             for y in mn[1]..=mx[1] {
                 for z in mn[2]..=mx[2] {
@@ -178,31 +196,50 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
             }
         }
     }
-    let mut seen = std::collections::HashSet::new();
+    let boxes: Vec<([f64; 3], [f64; 3])> = tris.iter().map(bbox).collect();
+    let overlap = |a: u32, b: u32| {
+        let ((al, ah), (bl, bh)) = (boxes[a as usize], boxes[b as usize]);
+        (0..3).all(|k| al[k] <= bh[k] && bl[k] <= ah[k])
+    };
+    let mut pairs: Vec<(u32, u32)> = Vec::new();
     for ids in grid.values() {
         for (a_i, &a) in ids.iter().enumerate() {
             for &b in &ids[a_i + 1..] {
-                let (a, b) = (a.min(b), a.max(b));
-                if !seen.insert((a, b)) {
-                    continue;
+                if overlap(a, b) {
+                    pairs.push((a.min(b), a.max(b)));
                 }
-                let (ta, tb) = (tris[a as usize], tris[b as usize]);
-                let shared: Vec<(usize, usize)> = (0..3)
-                    .flat_map(|i| (0..3).map(move |j| (i, j)))
-                    .filter(|&(i, j)| ta[i] == tb[j])
-                    .collect();
-                let (pa, pb) = (ta.map(|v| pos[v as usize]), tb.map(|v| pos[v as usize]));
-                let bad = match shared.len() {
-                    0 => triangles_intersect(pa, pb),
-                    1 => meet_beyond_vertex(pa, shared[0].0, pb, shared[0].1),
-                    _ => false,
-                };
-                if bad {
-                    out.push((a, b));
-                    if out.len() >= limit {
-                        return out;
-                    }
-                }
+            }
+        }
+    }
+    let is_big: std::collections::HashSet<u32> = big.iter().copied().collect();
+    for &a in &big {
+        for b in 0..tris.len() as u32 {
+            if b == a || (is_big.contains(&b) && b < a) {
+                continue;
+            }
+            if overlap(a, b) {
+                pairs.push((a.min(b), a.max(b)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    for (a, b) in pairs {
+        let (ta, tb) = (tris[a as usize], tris[b as usize]);
+        let shared: Vec<(usize, usize)> = (0..3)
+            .flat_map(|i| (0..3).map(move |j| (i, j)))
+            .filter(|&(i, j)| ta[i] == tb[j])
+            .collect();
+        let (pa, pb) = (ta.map(|v| pos[v as usize]), tb.map(|v| pos[v as usize]));
+        let bad = match shared.len() {
+            0 => triangles_intersect(pa, pb),
+            1 => meet_beyond_vertex(pa, shared[0].0, pb, shared[0].1),
+            _ => false,
+        };
+        if bad {
+            out.push((a, b));
+            if out.len() >= limit {
+                return out;
             }
         }
     }
