@@ -38,7 +38,7 @@ pub struct Args {
     #[arg(long, default_value = "gamma")]
     pub method: String,
     /// γ([-1,1],[c,1]) parameter: `auto` (Delaunay first, adaptive augmentation down to −1 when
-    /// constriction locks) or a number in [−1, 0].
+    /// constriction locks; gamma method only) or a number in [−1, 0].
     #[arg(long, default_value = "auto")]
     pub c: String,
     /// Edges that must be on the boundary: one `i,j` (input indices) per line.
