@@ -142,6 +142,30 @@ fn circle_is_recovered_by_all_methods() {
 }
 
 #[test]
+fn constriction_steps_are_simple_and_shrink() {
+    let c = morpho::samples::chalice_outline(80, 0.0, 1);
+    let (pts, _) = shuffled(&c, 3);
+    let steps = morpho::boundary::constriction_steps_2d(
+        &pts,
+        morpho::boundary::Key::Gamma,
+        &[0, 10, 30, 1000],
+    )
+    .unwrap();
+    let d = morpho::delaunay::d2::triangulate(&pts).unwrap();
+    assert_eq!(steps[0].len(), d.hull.len());
+    let mut last_area = f64::INFINITY;
+    for (k, poly) in steps.iter().enumerate() {
+        let chk = check_polygon(&pts, poly);
+        assert!(chk.simple, "step {k}");
+        assert!(chk.area2 <= last_area);
+        last_area = chk.area2;
+    }
+    // each deletion adds one vertex
+    assert_eq!(steps[1].len(), steps[0].len() + 10);
+    assert_eq!(steps[3].len(), 80);
+}
+
+#[test]
 fn star_is_recovered() {
     expect_curve("star", &star(400, 5.0, 0.3), &[Method::Gamma]);
 }

@@ -91,6 +91,9 @@ pub struct DtState {
     pub iterations: usize,
     /// Deleted boundary edges (vertex indices) in deletion order.
     pub deleted: Vec<[u32; 2]>,
+    /// Removed triangles in removal order (replaying a prefix gives the intermediate
+    /// boundaries, e.g. for pictures of the constriction steps).
+    pub removed: Vec<u32>,
 }
 
 /// Constricts the Delaunay triangulation (see the module documentation). Requires a
@@ -104,6 +107,7 @@ pub fn constrict_dt(d: &Delaunay2, p: &[[f64; 2]], key: Key) -> DtState {
         boundary_vertices: 0,
         iterations: 0,
         deleted: Vec::new(),
+        removed: Vec::new(),
     };
     for &v in &d.hull {
         if !st.on_boundary[v as usize] {
@@ -150,6 +154,7 @@ pub fn constrict_dt(d: &Delaunay2, p: &[[f64; 2]], key: Key) -> DtState {
         st.boundary_vertices += 1;
         st.iterations += 1;
         st.deleted.push([tri[(e + 1) % 3], tri[(e + 2) % 3]]);
+        st.removed.push(t as u32);
         for f in 1..3 {
             let ef = (e + f) % 3;
             let n = d.neighbors[t][ef];

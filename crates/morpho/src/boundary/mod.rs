@@ -242,6 +242,34 @@ pub fn boundary_2d(points: &[Point2], opts: &Options2) -> Result<Boundary2> {
     Ok(b)
 }
 
+/// The intermediate boundaries of the Delaunay γ-constriction (V Fig. 5.2 style "steps"): for
+/// each `k` in `steps`, the counter-clockwise polygon (input indices) after `k` deletions
+/// (clamped to the number of deletions made). Points as for [`boundary_2d`].
+pub fn constriction_steps_2d(
+    points: &[Point2],
+    key: Key,
+    steps: &[usize],
+) -> Result<Vec<Vec<u32>>> {
+    let d = triangulate(points)?;
+    if d.collinear || d.triangles.is_empty() {
+        return Err(Error::invalid(
+            "boundary: fewer than 3 distinct points or all collinear: no simple polygon exists",
+        ));
+    }
+    let p = coords2(&d);
+    let st = constrict_dt(&d, &p, key);
+    let mut out = Vec::with_capacity(steps.len());
+    for &k in steps {
+        let mut alive = vec![true; d.triangles.len()];
+        for &t in st.removed.iter().take(k) {
+            alive[t as usize] = false;
+        }
+        let cyc = region_cycle(&d, &alive);
+        out.push(cyc.iter().map(|&v| d.input_of_vertex[v as usize]).collect());
+    }
+    Ok(out)
+}
+
 /// Runs `g` and, while locked, augments it with γ([-1,1],[c,1]) for c = from − 0.1, … −1.
 /// Returns the last c used.
 fn augment_until_done(d: &Delaunay2, g: &mut General<'_>, from: f64) -> f64 {
