@@ -779,3 +779,28 @@ fn stanford_bunny_3d_timing() {
     );
     assert!(b.closed_manifold && b.genus == Some(0));
 }
+
+#[test]
+fn keep_triangles_stay_in_3d() {
+    // bumpy sphere: keep the Delaunay hull triangles of one region; they must survive
+    let pts = bumpy_sphere(400, 0.15);
+    let d = morpho::delaunay::d3::triangulate(&pts).unwrap();
+    let keep: Vec<[u32; 3]> = d
+        .hull
+        .iter()
+        .take(20)
+        .map(|t| t.map(|v| d.input_of_vertex[v as usize]))
+        .collect();
+    let b = morpho::boundary::boundary_3d_keep(&pts, Until::Locked, &keep).unwrap();
+    check_3d(&pts, &b);
+    assert!(b.keep_missing.is_empty(), "{:?}", b.keep_missing);
+    let plain = boundary_3d(&pts, Until::Locked).unwrap();
+    let key = |t: &[u32; 3]| {
+        let mut k = *t;
+        k.sort_unstable();
+        k
+    };
+    let on: std::collections::HashSet<_> = plain.triangles.iter().map(key).collect();
+    // the constraint matters: without it some of these hull triangles are carved away
+    assert!(keep.iter().any(|k| !on.contains(&key(k))));
+}

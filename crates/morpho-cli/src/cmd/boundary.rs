@@ -3,7 +3,7 @@
 //! constriction or (2D) one of the two comparison methods.
 //!
 //! 3D: `-o` `.ply/.obj/.off` (every input point is a vertex, in input order) or `.json`
-//! (`{"triangles":[[i,j,k],…]}`); `--until all|locked`; report keys `closed_manifold`, `genus`,
+//! (`{"triangles":[[i,j,k],…]}`); `--until all|locked`; `--keep` triangles; report keys `closed_manifold`, `genus`,
 //! `volume`; `--interior FILE.json` writes `{"tetrahedra":[…]}`. Only the γ method, c = 0.
 //!
 //! 2D outputs by extension: `.csv` (`index,x,y` in boundary order), `.geojson` (one Polygon
@@ -17,7 +17,7 @@ use crate::report::Report;
 use crate::Failure;
 use morpho::boundary::constrict3::Until;
 use morpho::boundary::{
-    boundary_2d, boundary_3d, check_polygon, Boundary2, CParam, Method, Options2,
+    boundary_2d, boundary_3d_keep, check_polygon, Boundary2, CParam, Method, Options2,
 };
 use morpho::geom::Point2;
 use morpho::io::{read_points, write_atomic};
@@ -41,7 +41,8 @@ pub struct Args {
     /// constriction locks; gamma method only) or a number in [−1, 0].
     #[arg(long, default_value = "auto")]
     pub c: String,
-    /// Edges that must be on the boundary: one `i,j` (input indices) per line.
+    /// Edges (2D: `i,j`) or triangles (3D: `i,j,k`) that must be on the boundary, input
+    /// indices, one per line.
     #[arg(long)]
     pub keep: Option<PathBuf>,
     /// Write the interior triangulation here (.json, .ply, .obj, .off).
@@ -91,12 +92,16 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     }
     let ps = report.time("read", || read_points(&args.input))?;
     if ps.dim == 3 {
-        if method != Method::Gamma || args.keep.is_some() || c != CParam::Auto {
+        if method != Method::Gamma || c != CParam::Auto {
             return Err(Failure::usage(
-                "3D boundary: only --method gamma without --keep and --c is implemented",
+                "3D boundary: only --method gamma with c = 0 (Delaunay) is implemented",
             ));
         }
-        return run_3d(&args, ps.to_points3(), until, &ext, report);
+        let keep = match &args.keep {
+            Some(k) => report.time("read", || read_rows::<3>(k))?,
+            None => Vec::new(),
+        };
+        return run_3d(&args, ps.to_points3(), until, &keep, &ext, report);
     }
     if !matches!(ext.as_str(), "csv" | "geojson" | "json" | "svg") {
         return Err(Failure::usage(format!(
@@ -173,6 +178,11 @@ fn ext_of(p: &Path) -> String {
 /// Keep edges: one `i,j` (or `i j`, `i;j`, tab) per line; blank lines and `#` comments skipped;
 /// a first line that is not two integers is a header.
 fn read_keep(path: &Path) -> morpho::Result<Vec<[u32; 2]>> {
+    read_rows::<2>(path)
+}
+
+/// Rows of `K` point indices, in the format of [`read_keep`].
+fn read_rows<const K: usize>(path: &Path) -> morpho::Result<Vec<[u32; K]>> {
     let bytes = morpho::io::read_bytes(path)?;
     let text = std::str::from_utf8(&bytes)
         .map_err(|_| Error::format("keep file is not UTF-8").with_path(path))?;
@@ -187,11 +197,9 @@ fn read_keep(path: &Path) -> morpho::Result<Vec<[u32; 2]>> {
             .split([',', ';', '\t', ' '])
             .filter(|s| !s.is_empty())
             .collect();
-        let parsed = if f.len() == 2 {
-            match (f[0].parse::<u32>(), f[1].parse::<u32>()) {
-                (Ok(a), Ok(b)) => Some([a, b]),
-                _ => None,
-            }
+        let parsed: Option<[u32; K]> = if f.len() == K {
+            let v: Vec<u32> = f.iter().filter_map(|x| x.parse::<u32>().ok()).collect();
+            v.try_into().ok()
         } else {
             None
         };
@@ -199,10 +207,11 @@ fn read_keep(path: &Path) -> morpho::Result<Vec<[u32; 2]>> {
             Some(e) => out.push(e),
             None if first => {}
             None => {
-                return Err(
-                    Error::at_line(ln as u64 + 1, "expected two point indices `i,j`")
-                        .with_path(path),
+                return Err(Error::at_line(
+                    ln as u64 + 1,
+                    format!("expected {K} point indices per line"),
                 )
+                .with_path(path))
             }
         }
         first = false;
@@ -348,6 +357,7 @@ fn run_3d(
     args: &Args,
     pts: Vec<morpho::geom::Point3>,
     until: Until,
+    keep: &[[u32; 3]],
     ext: &str,
     report: &mut Report,
 ) -> Result<u8, Failure> {
@@ -357,7 +367,7 @@ fn run_3d(
             args.output.display()
         )));
     }
-    let b = report.time("compute", || boundary_3d(&pts, until))?;
+    let b = report.time("compute", || boundary_3d_keep(&pts, until, keep))?;
     let vertices: std::collections::HashSet<u32> = b.triangles.iter().flatten().copied().collect();
     report.set("method", "gamma");
     report.set("points", pts.len());
@@ -371,6 +381,9 @@ fn run_3d(
     report.set("triangles", b.triangles.len());
     report.set("volume", b.volume);
     report.set("left_out", json!(b.left_out));
+    if !keep.is_empty() {
+        report.set("keep_missing", json!(b.keep_missing));
+    }
     report.time("write", || -> morpho::Result<()> {
         if ext == "json" {
             let v = json!({ "triangles": b.triangles });
@@ -392,10 +405,11 @@ fn run_3d(
             msg: "boundary: internal error, the result is not a closed genus-0 manifold without self-intersections".into(),
         });
     }
-    if !b.all_on_boundary {
+    if !b.all_on_boundary || !b.keep_missing.is_empty() {
         eprintln!(
-            "boundary: {} point(s) are not on the boundary; the best closed mesh was written",
-            b.left_out.len()
+            "boundary: {} point(s) are not on the boundary, {} keep triangle(s) missing; the best closed mesh was written",
+            b.left_out.len(),
+            b.keep_missing.len()
         );
         return Ok(1);
     }

@@ -235,6 +235,12 @@ struct State<'a> {
     vcount: Vec<u32>,
     ecount: HashMap<u64, u32>,
     nbv: usize,
+    keep: std::collections::HashSet<[u32; 3]>,
+}
+
+fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
+    f.sort_unstable();
+    f
 }
 
 impl State<'_> {
@@ -259,6 +265,13 @@ impl State<'_> {
     fn key(&self, t: usize, m: u8) -> Option<f64> {
         let v = self.d.tets[t];
         let faces: Vec<usize> = (0..4).filter(|&f| m >> f & 1 == 1).collect();
+        if !self.keep.is_empty()
+            && faces
+                .iter()
+                .any(|&f| self.keep.contains(&sorted3(self.face(t, f))))
+        {
+            return None; // a keep triangle is never deleted (V §5.7)
+        }
         let ind = |f: usize| -> f64 {
             let fc = self.face(t, f);
             let r = self.d.circumsphere(t as u32).1;
@@ -314,6 +327,14 @@ impl State<'_> {
 
 /// Constricts the Delaunay tetrahedralization (see the module documentation).
 pub fn constrict_3d(d: &Delaunay3, until: Until) -> Constriction3 {
+    constrict_3d_keep(d, until, &[])
+}
+
+/// [`constrict_3d`] with keep triangles (vertex indices; V §5.7): a boundary triangle in
+/// `keep` is never deleted. Only triangles of the Delaunay tetrahedralization can be kept (the
+/// crossing case of V Fig. 5.12 right needs γ-graphs beyond Delaunay, not implemented); others
+/// are ignored by the constriction and reported missing by the caller.
+pub fn constrict_3d_keep(d: &Delaunay3, until: Until, keep: &[[u32; 3]]) -> Constriction3 {
     let nt = d.tets.len();
     let nv = d.points.len();
     let mut st = State {
@@ -323,6 +344,7 @@ pub fn constrict_3d(d: &Delaunay3, until: Until) -> Constriction3 {
         vcount: vec![0; nv],
         ecount: HashMap::new(),
         nbv: 0,
+        keep: keep.iter().map(|&f| sorted3(f)).collect(),
     };
     for t in 0..nt {
         for f in 0..4 {

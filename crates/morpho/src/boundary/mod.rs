@@ -474,6 +474,8 @@ pub struct Boundary3 {
     pub intersections: Vec<(u32, u32)>,
     /// The interior tetrahedralization.
     pub interior: Vec<[u32; 4]>,
+    /// Keep triangles (input indices) that are not boundary triangles.
+    pub keep_missing: Vec<[u32; 3]>,
     /// Enclosed volume (sum of the interior tetrahedra).
     pub volume: f64,
 }
@@ -481,6 +483,17 @@ pub struct Boundary3 {
 /// Constructs a closed boundary mesh through 3D points by γ-constriction of the Delaunay
 /// tetrahedralization (V §5.3). Errors when the points are coplanar or fewer than four.
 pub fn boundary_3d(points: &[crate::geom::Point3], until: constrict3::Until) -> Result<Boundary3> {
+    boundary_3d_keep(points, until, &[])
+}
+
+/// [`boundary_3d`] with keep triangles (input indices) that are never deleted (V §5.7; only
+/// Delaunay triangles can be kept — see [`constrict3::constrict_3d_keep`]). Keep triangles not
+/// on the result are listed in [`Boundary3::keep_missing`].
+pub fn boundary_3d_keep(
+    points: &[crate::geom::Point3],
+    until: constrict3::Until,
+    keep: &[[u32; 3]],
+) -> Result<Boundary3> {
     let d = crate::delaunay::d3::triangulate(points)?;
     if d.tets.is_empty() {
         return Err(Error::invalid(format!(
@@ -488,7 +501,16 @@ pub fn boundary_3d(points: &[crate::geom::Point3], until: constrict3::Until) -> 
             d.degenerate.as_deref().unwrap_or("degenerate input")
         )));
     }
-    let c = constrict3::constrict_3d(&d, until);
+    let mut keep_v = Vec::with_capacity(keep.len());
+    for k in keep {
+        if k.iter().any(|&i| i as usize >= points.len()) {
+            return Err(Error::invalid(format!(
+                "boundary: keep triangle {k:?} refers to a point that does not exist"
+            )));
+        }
+        keep_v.push(k.map(|i| d.vertex_of_input[i as usize]));
+    }
+    let c = constrict3::constrict_3d_keep(&d, until, &keep_v);
     let mesh = crate::mesh::TriMesh::new(d.points.clone(), c.triangles.clone());
     let topo = crate::mesh::topology::analyze(&mesh);
     let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
@@ -527,6 +549,26 @@ pub fn boundary_3d(points: &[crate::geom::Point3], until: constrict3::Until) -> 
         closed_manifold: topo.is_closed() && topo.manifold && topo.parts.len() == 1,
         genus: topo.genus(),
         intersections,
+        keep_missing: {
+            let on: std::collections::HashSet<[u32; 3]> = c
+                .triangles
+                .iter()
+                .map(|t| {
+                    let mut s = *t;
+                    s.sort_unstable();
+                    s
+                })
+                .collect();
+            keep.iter()
+                .zip(&keep_v)
+                .filter(|(_, v)| {
+                    let mut s = **v;
+                    s.sort_unstable();
+                    !on.contains(&s)
+                })
+                .map(|(k, _)| *k)
+                .collect()
+        },
         interior,
         volume,
     })
