@@ -37,6 +37,8 @@ enum Command {
     Render(cmd::render::Args),
     /// Delaunay triangulation of 2D or 3D points.
     Triangulate(cmd::triangulate::Args),
+    /// A boundary through all points: simple polygon (2D) or closed mesh (3D) by γ-graph constriction.
+    Boundary(cmd::boundary::Args),
     /// Geometric graphs (NNG, EMST, RNG, Gabriel, α-shape, β-skeletons, γ-graph, …).
     Graph(cmd::graph::Args),
     /// Contour surface f = level of a volume (consistent marching cubes).
@@ -98,6 +100,7 @@ fn main() -> ExitCode {
         Command::Triangulate(_) => "triangulate",
         Command::Isosurface(_) => "isosurface",
         Command::Graph(_) => "graph",
+        Command::Boundary(_) => "boundary",
         Command::Contour(_) => "contour",
     };
     let mut report = Report::new(name);
@@ -109,6 +112,7 @@ fn main() -> ExitCode {
         Command::Triangulate(a) => cmd::triangulate::run(a, &mut report),
         Command::Isosurface(a) => cmd::isosurface::run(a, &mut report),
         Command::Graph(a) => cmd::graph::run(a, &mut report),
+        Command::Boundary(a) => cmd::boundary::run(a, &mut report),
         Command::Contour(a) => cmd::contour::run(a, &mut report),
     };
     let code = match result {

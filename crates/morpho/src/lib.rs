@@ -22,6 +22,7 @@
 // Geometry code indexes coordinates by axis on purpose.
 #![allow(clippy::needless_range_loop)]
 
+pub mod boundary;
 pub mod contour;
 pub mod delaunay;
 pub mod error;

@@ -1,5 +1,6 @@
 //! One file per subcommand. Each has `Args` (clap) and `run(args, report) -> Result<exit code>`.
 
+pub mod boundary;
 pub mod contour;
 pub mod convert;
 pub mod demo;

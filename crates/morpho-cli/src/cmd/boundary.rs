@@ -1,0 +1,417 @@
+//! `morpho boundary POINTS -o OUT`: a simple polygon through all scattered 2D points, or a
+//! closed genus-0 mesh through 3D points (issue 5; Veltkamp 1992 ch. 4–5), by γ-graph
+//! constriction or (2D) one of the two comparison methods.
+//!
+//! 3D: `-o` `.ply/.obj/.off` (every input point is a vertex, in input order) or `.json`
+//! (`{"triangles":[[i,j,k],…]}`); `--until all|locked`; `--keep` triangles; report keys `closed_manifold`, `genus`,
+//! `volume`; `--interior FILE.json` writes `{"tetrahedra":[…]}`. Only the γ method, c = 0.
+//!
+//! 2D outputs by extension: `.csv` (`index,x,y` in boundary order), `.geojson` (one Polygon
+//! feature), `.json` (`{"polygon":[input indices]}`), `.svg` (points, Delaunay graph faint,
+//! boundary bold, deleted edges dashed). `--interior FILE` writes the interior triangulation
+//! (`.json` `{"triangles":[[i,j,k],…]}` or a mesh format with z = 0). Exit code 1 when not every
+//! point is on the boundary (or a keep edge is not on it): the best valid polygon is still
+//! written and the report lists the points left out.
+
+use crate::report::Report;
+use crate::Failure;
+use morpho::boundary::constrict3::Until;
+use morpho::boundary::{
+    boundary_2d, boundary_3d_keep, check_polygon, Boundary2, CParam, Method, Options2,
+};
+use morpho::geom::Point2;
+use morpho::io::{read_points, write_atomic};
+use morpho::Error;
+use serde_json::json;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Points (CSV with header, XYZ, PLY, JSON array); 2D.
+    pub input: PathBuf,
+    /// Output: .csv, .geojson, .json or .svg.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// gamma (V §5.2), min-area-change (Boissonnat, V §4.3.3) or voronoi-skeleton (O'Rourke et
+    /// al., V §4.3.4).
+    #[arg(long, default_value = "gamma")]
+    pub method: String,
+    /// γ([-1,1],[c,1]) parameter: `auto` (Delaunay first, adaptive augmentation down to −1 when
+    /// constriction locks; gamma method only) or a number in [−1, 0].
+    #[arg(long, default_value = "auto")]
+    pub c: String,
+    /// Edges (2D: `i,j`) or triangles (3D: `i,j,k`) that must be on the boundary, input
+    /// indices, one per line.
+    #[arg(long)]
+    pub keep: Option<PathBuf>,
+    /// Write the interior triangulation here (.json, .ply, .obj, .off).
+    #[arg(long)]
+    pub interior: Option<PathBuf>,
+    /// 3D: stop when every point is on the boundary (`all`) or continue while tetrahedra are
+    /// removable (`locked`).
+    #[arg(long, default_value = "all")]
+    pub until: String,
+    /// Seeds tried by the Voronoi skeleton method.
+    #[arg(long, default_value_t = 200)]
+    pub seeds: usize,
+}
+
+pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
+    let method = match args.method.as_str() {
+        "gamma" => Method::Gamma,
+        "min-area-change" => Method::MinAreaChange,
+        "voronoi-skeleton" => Method::VoronoiSkeleton,
+        m => {
+            return Err(Failure::usage(format!(
+                "unknown --method {m}: use gamma, min-area-change or voronoi-skeleton"
+            )))
+        }
+    };
+    let c = if args.c == "auto" {
+        CParam::Auto
+    } else {
+        match args.c.parse::<f64>() {
+            Ok(v) if (-1.0..=0.0).contains(&v) => CParam::Fixed(v),
+            _ => return Err(Failure::usage("--c must be `auto` or a number in [-1, 0]")),
+        }
+    };
+    let until = match args.until.as_str() {
+        "all" => Until::All,
+        "locked" => Until::Locked,
+        _ => return Err(Failure::usage("--until must be `all` or `locked`")),
+    };
+    let ext = ext_of(&args.output);
+    let mut inputs: Vec<&Path> = vec![&args.input];
+    if let Some(k) = &args.keep {
+        inputs.push(k);
+    }
+    super::check_not_input(&args.output, &inputs)?;
+    if let Some(i) = &args.interior {
+        super::check_not_input(i, &inputs)?;
+    }
+    let ps = report.time("read", || read_points(&args.input))?;
+    if ps.dim == 3 {
+        if method != Method::Gamma || c != CParam::Auto {
+            return Err(Failure::usage(
+                "3D boundary: only --method gamma with c = 0 (Delaunay) is implemented",
+            ));
+        }
+        let keep = match &args.keep {
+            Some(k) => report.time("read", || read_rows::<3>(k))?,
+            None => Vec::new(),
+        };
+        return run_3d(&args, ps.to_points3(), until, &keep, &ext, report);
+    }
+    if !matches!(ext.as_str(), "csv" | "geojson" | "json" | "svg") {
+        return Err(Failure::usage(format!(
+            "{}: output must be .csv, .geojson, .json or .svg",
+            args.output.display()
+        )));
+    }
+    let (pts, keep) = report.time("read", || -> morpho::Result<_> {
+        if ps.dim != 2 {
+            return Err(
+                Error::unsupported("boundary: points must be 2D or 3D").with_path(&args.input)
+            );
+        }
+        let keep = match &args.keep {
+            Some(k) => read_keep(k)?,
+            None => Vec::new(),
+        };
+        Ok((ps.to_points2(), keep))
+    })?;
+    let opts = Options2 {
+        method,
+        c,
+        keep,
+        max_seeds: args.seeds.max(1),
+    };
+    let b = report.time("compute", || boundary_2d(&pts, &opts))?;
+    let check = report.time("compute", || check_polygon(&pts, &b.polygon));
+    report.set("method", method.name());
+    report.set("points", pts.len());
+    report.set("boundary_vertices", b.polygon.len());
+    report.set("all_on_boundary", b.all_on_boundary);
+    report.set("c_used", b.c_used);
+    report.set("iterations", b.iterations);
+    report.set("simple", check.simple);
+    report.set("area", b.area);
+    report.set("left_out", json!(b.left_out));
+    if !opts.keep.is_empty() {
+        report.set("keep_missing", json!(b.keep_missing));
+    }
+    if let Some(l) = b.skeleton_length {
+        report.set("skeleton_length", l);
+    }
+    report.time("write", || -> morpho::Result<()> {
+        write_boundary(&args.output, &ext, &pts, &b)?;
+        if let Some(i) = &args.interior {
+            write_interior(i, &pts, &b)?;
+        }
+        Ok(())
+    })?;
+    if !check.simple {
+        return Err(Failure {
+            code: 1,
+            msg: "boundary: internal error, the result is not a simple polygon".into(),
+        });
+    }
+    if !b.all_on_boundary || !b.keep_missing.is_empty() {
+        eprintln!(
+            "boundary: no simple polygon through all points found: {} point(s) left out, {} keep edge(s) missing; the best polygon was written",
+            b.left_out.len(),
+            b.keep_missing.len()
+        );
+        return Ok(1);
+    }
+    Ok(0)
+}
+
+fn ext_of(p: &Path) -> String {
+    p.extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
+
+/// Keep edges: one `i,j` (or `i j`, `i;j`, tab) per line; blank lines and `#` comments skipped;
+/// a first line that is not two integers is a header.
+fn read_keep(path: &Path) -> morpho::Result<Vec<[u32; 2]>> {
+    read_rows::<2>(path)
+}
+
+/// Rows of `K` point indices, in the format of [`read_keep`].
+fn read_rows<const K: usize>(path: &Path) -> morpho::Result<Vec<[u32; K]>> {
+    let bytes = morpho::io::read_bytes(path)?;
+    let text = std::str::from_utf8(&bytes)
+        .map_err(|_| Error::format("keep file is not UTF-8").with_path(path))?;
+    let mut out = Vec::new();
+    let mut first = true;
+    for (ln, line) in text.lines().enumerate() {
+        let l = line.trim();
+        if l.is_empty() || l.starts_with('#') {
+            continue;
+        }
+        let f: Vec<&str> = l
+            .split([',', ';', '\t', ' '])
+            .filter(|s| !s.is_empty())
+            .collect();
+        let parsed: Option<[u32; K]> = if f.len() == K {
+            let v: Vec<u32> = f.iter().filter_map(|x| x.parse::<u32>().ok()).collect();
+            v.try_into().ok()
+        } else {
+            None
+        };
+        match parsed {
+            Some(e) => out.push(e),
+            None if first => {}
+            None => {
+                return Err(Error::at_line(
+                    ln as u64 + 1,
+                    format!("expected {K} point indices per line"),
+                )
+                .with_path(path))
+            }
+        }
+        first = false;
+    }
+    Ok(out)
+}
+
+fn write_boundary(path: &Path, ext: &str, pts: &[Point2], b: &Boundary2) -> morpho::Result<()> {
+    write_atomic(path, |w| {
+        match ext {
+            "csv" => {
+                writeln!(w, "index,x,y").map_err(werr)?;
+                for &i in &b.polygon {
+                    let p = pts[i as usize];
+                    writeln!(w, "{i},{},{}", p.x, p.y).map_err(werr)?;
+                }
+            }
+            "json" => {
+                let v = json!({ "polygon": b.polygon });
+                writeln!(w, "{v}").map_err(werr)?;
+            }
+            "geojson" => {
+                let mut ring: Vec<[f64; 2]> = b
+                    .polygon
+                    .iter()
+                    .map(|&i| [pts[i as usize].x, pts[i as usize].y])
+                    .collect();
+                if let Some(&f) = ring.first() {
+                    ring.push(f);
+                }
+                let v = json!({
+                    "type": "FeatureCollection",
+                    "features": [{
+                        "type": "Feature",
+                        "properties": { "all_on_boundary": b.all_on_boundary, "indices": b.polygon },
+                        "geometry": { "type": "Polygon", "coordinates": [ring] }
+                    }]
+                });
+                writeln!(w, "{v}").map_err(werr)?;
+            }
+            _ => write_svg(w, pts, b)?,
+        }
+        Ok(())
+    })
+    .map_err(|e| e.with_path(path))
+}
+
+fn write_svg(w: &mut dyn Write, pts: &[Point2], b: &Boundary2) -> morpho::Result<()> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in pts {
+        lo = [lo[0].min(p.x), lo[1].min(p.y)];
+        hi = [hi[0].max(p.x), hi[1].max(p.y)];
+    }
+    let size = 800.0;
+    let ext = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(f64::MIN_POSITIVE);
+    let s = (size - 40.0) / ext;
+    let tx = |p: &Point2| (20.0 + (p.x - lo[0]) * s, size - 20.0 - (p.y - lo[1]) * s);
+    let width = 40.0 + (hi[0] - lo[0]) * s;
+    let height = 40.0 + (hi[1] - lo[1]) * s;
+    let off = size - height;
+    writeln!(
+        w,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 {off:.1} {width:.1} {height:.1}">"#
+    )
+    .map_err(werr)?;
+    writeln!(
+        w,
+        r#"<rect x="0" y="{off:.1}" width="{width:.1}" height="{height:.1}" fill="white"/>"#
+    )
+    .map_err(werr)?;
+    let line = |w: &mut dyn Write, e: &[u32; 2], style: &str| -> morpho::Result<()> {
+        let (a, c) = (tx(&pts[e[0] as usize]), tx(&pts[e[1] as usize]));
+        writeln!(
+            w,
+            r#"<line x1="{:.2}" y1="{:.2}" x2="{:.2}" y2="{:.2}" {style}/>"#,
+            a.0, a.1, c.0, c.1
+        )
+        .map_err(werr)
+    };
+    writeln!(w, r##"<g stroke="#bbb" stroke-width="0.5">"##).map_err(werr)?;
+    for e in &b.graph_edges {
+        line(w, e, "")?;
+    }
+    writeln!(w, "</g>").map_err(werr)?;
+    writeln!(
+        w,
+        r##"<g stroke="#d33" stroke-width="0.8" stroke-dasharray="3 2">"##
+    )
+    .map_err(werr)?;
+    for e in &b.deleted {
+        line(w, e, "")?;
+    }
+    writeln!(w, "</g>").map_err(werr)?;
+    let poly: Vec<String> = b
+        .polygon
+        .iter()
+        .map(|&i| {
+            let (x, y) = tx(&pts[i as usize]);
+            format!("{x:.2},{y:.2}")
+        })
+        .collect();
+    writeln!(
+        w,
+        r##"<polygon points="{}" fill="none" stroke="#000" stroke-width="2"/>"##,
+        poly.join(" ")
+    )
+    .map_err(werr)?;
+    writeln!(w, r##"<g fill="#16c">"##).map_err(werr)?;
+    for p in pts {
+        let (x, y) = tx(p);
+        writeln!(w, r#"<circle cx="{x:.2}" cy="{y:.2}" r="2"/>"#).map_err(werr)?;
+    }
+    writeln!(w, "</g>").map_err(werr)?;
+    writeln!(w, r##"<g fill="#e80">"##).map_err(werr)?;
+    for &i in &b.left_out {
+        let (x, y) = tx(&pts[i as usize]);
+        writeln!(w, r#"<circle cx="{x:.2}" cy="{y:.2}" r="4"/>"#).map_err(werr)?;
+    }
+    writeln!(w, "</g>\n</svg>").map_err(werr)?;
+    Ok(())
+}
+
+fn write_interior(path: &Path, pts: &[Point2], b: &Boundary2) -> morpho::Result<()> {
+    if ext_of(path) == "json" {
+        let v = json!({ "triangles": b.interior, "area": b.area });
+        return write_atomic(path, |w| writeln!(w, "{v}").map_err(werr))
+            .map_err(|e| e.with_path(path));
+    }
+    let positions = pts
+        .iter()
+        .map(|p| morpho::geom::Point3::new(p.x, p.y, 0.0))
+        .collect();
+    let mesh = morpho::mesh::TriMesh::new(positions, b.interior.clone());
+    morpho::io::write_mesh(path, &mesh, morpho::io::Encoding::default())
+}
+
+/// An I/O error while writing (the path is added by the caller).
+fn werr(e: std::io::Error) -> Error {
+    Error::io("", e)
+}
+
+fn run_3d(
+    args: &Args,
+    pts: Vec<morpho::geom::Point3>,
+    until: Until,
+    keep: &[[u32; 3]],
+    ext: &str,
+    report: &mut Report,
+) -> Result<u8, Failure> {
+    if !matches!(ext, "ply" | "obj" | "off" | "json") {
+        return Err(Failure::usage(format!(
+            "{}: 3D output must be .ply, .obj, .off or .json",
+            args.output.display()
+        )));
+    }
+    let b = report.time("compute", || boundary_3d_keep(&pts, until, keep))?;
+    let vertices: std::collections::HashSet<u32> = b.triangles.iter().flatten().copied().collect();
+    report.set("method", "gamma");
+    report.set("points", pts.len());
+    report.set("boundary_vertices", vertices.len());
+    report.set("all_on_boundary", b.all_on_boundary);
+    report.set("c_used", 0.0);
+    report.set("iterations", b.iterations);
+    report.set("closed_manifold", b.closed_manifold);
+    report.set("genus", json!(b.genus));
+    report.set("self_intersections", b.intersections.len());
+    report.set("triangles", b.triangles.len());
+    report.set("volume", b.volume);
+    report.set("left_out", json!(b.left_out));
+    if !keep.is_empty() {
+        report.set("keep_missing", json!(b.keep_missing));
+    }
+    report.time("write", || -> morpho::Result<()> {
+        if ext == "json" {
+            let v = json!({ "triangles": b.triangles });
+            write_atomic(&args.output, |w| writeln!(w, "{v}").map_err(werr))
+                .map_err(|e| e.with_path(&args.output))?;
+        } else {
+            let mesh = morpho::mesh::TriMesh::new(pts.clone(), b.triangles.clone());
+            morpho::io::write_mesh(&args.output, &mesh, morpho::io::Encoding::default())?;
+        }
+        if let Some(i) = &args.interior {
+            let v = json!({ "tetrahedra": b.interior, "volume": b.volume });
+            write_atomic(i, |w| writeln!(w, "{v}").map_err(werr)).map_err(|e| e.with_path(i))?;
+        }
+        Ok(())
+    })?;
+    if !b.closed_manifold || b.genus != Some(0) || !b.intersections.is_empty() {
+        return Err(Failure {
+            code: 1,
+            msg: "boundary: internal error, the result is not a closed genus-0 manifold without self-intersections".into(),
+        });
+    }
+    if !b.all_on_boundary || !b.keep_missing.is_empty() {
+        eprintln!(
+            "boundary: {} point(s) are not on the boundary, {} keep triangle(s) missing; the best closed mesh was written",
+            b.left_out.len(),
+            b.keep_missing.len()
+        );
+        return Ok(1);
+    }
+    Ok(0)
+}

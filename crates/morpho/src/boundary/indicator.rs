@@ -1,0 +1,260 @@
+//! Selection keys of the 2D constriction: the γ-indicator (Veltkamp 1992, §5.2, Def. 5.1,
+//! Eq. 5.1) and the minimal-area-change value (Boissonnat 1984 as summarised in V §4.3.3,
+//! Eq. 4.1).
+//!
+//! # γ-indicator of boundary edge vᵢvⱼ w.r.t. vₖ
+//! With r = |vᵢvⱼ|/2 and R the circumradius of vᵢvⱼvₖ, Def. 5.1 sets |c₀| = 1 − r/R and by the
+//! sine rule r/R = sin θ, θ the angle at vₖ. The sign (Eq. 5.1) is + when the circumcentre lies
+//! on vₖ's side of vᵢvⱼ, − on the other side, 0 on the line. By the inscribed-angle theorem the
+//! centre lies on vₖ's side iff θ is acute, on the line iff θ is right, i.e. the sign is the
+//! sign of the dot product (vᵢ − vₖ)·(vⱼ − vₖ). That sign is decided **exactly**
+//! ([`dot_sign`]: a floating-point filter, then an exact expansion sum of the 16 error-free
+//! partial products), so the sign of Eq. 5.1 is never wrong; the magnitude 1 − sin θ is a
+//! floating-point value (it only orders the heap). The indicator is then a strictly
+//! decreasing function of θ ∈ (0, π): 1 for a flat spike, 0 for a right angle, → −1 as vₖ
+//! approaches the edge.
+//!
+//! # Minimal area change (Eq. 4.1)
+//! (|vᵢvₖ| + |vⱼvₖ| − |vᵢvⱼ|) / (|vᵢvₖ| + |vⱼvₖ| + |vᵢvⱼ|): "face area" is edge length in 2D.
+
+/// Which selection key a constriction uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Key {
+    /// The γ-indicator (Def. 5.1).
+    Gamma,
+    /// Boissonnat's minimal area change (Eq. 4.1).
+    MinAreaChange,
+}
+
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    let err = (a - (s - bb)) + (b - bb);
+    (s, err)
+}
+
+#[inline]
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+/// Adds `b` to the non-overlapping expansion `e` (Shewchuk's GROW-EXPANSION with zero
+/// elimination).
+fn grow(e: &mut Vec<f64>, b: f64) {
+    let mut q = b;
+    let mut out = Vec::with_capacity(e.len() + 1);
+    for &x in e.iter() {
+        let (s, h) = two_sum(q, x);
+        if h != 0.0 {
+            out.push(h);
+        }
+        q = s;
+    }
+    if q != 0.0 {
+        out.push(q);
+    }
+    *e = out;
+}
+
+/// The exact sign (−1, 0, 1) of (a − c)·(b − c). Exact unless an intermediate product
+/// under- or overflows (the same range as the predicates of `geom::predicates`).
+pub fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i32 {
+    let u = [a[0] - c[0], a[1] - c[1]];
+    let v = [b[0] - c[0], b[1] - c[1]];
+    let d = u[0] * v[0] + u[1] * v[1];
+    let mag = (u[0] * v[0]).abs() + (u[1] * v[1]).abs();
+    // each difference has relative error ≤ ε, each product ≤ (1+ε)³, the sum one more ε
+    let bound = 8.0 * f64::EPSILON * mag;
+    if d > bound {
+        return 1;
+    }
+    if d < -bound {
+        return -1;
+    }
+    // exact: a − c = s + e exactly, products split error-free
+    let mut terms = Vec::with_capacity(16);
+    for k in 0..2 {
+        let (s1, e1) = two_sum(a[k], -c[k]);
+        let (s2, e2) = two_sum(b[k], -c[k]);
+        for (x, y) in [(s1, s2), (s1, e2), (e1, s2), (e1, e2)] {
+            let (p, q) = two_prod(x, y);
+            terms.push(p);
+            terms.push(q);
+        }
+    }
+    let mut e: Vec<f64> = Vec::new();
+    for t in terms {
+        if t != 0.0 {
+            grow(&mut e, t);
+        }
+    }
+    match e.last() {
+        Some(&x) if x > 0.0 => 1,
+        Some(&x) if x < 0.0 => -1,
+        _ => 0,
+    }
+}
+
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}
+
+/// The γ-indicator of edge (pi, pj) with respect to pk (Def. 5.1 with the exact sign of
+/// Eq. 5.1; see the module documentation).
+pub fn gamma_indicator(pi: [f64; 2], pj: [f64; 2], pk: [f64; 2]) -> f64 {
+    let s = dot_sign(pi, pj, pk);
+    if s == 0 {
+        return 0.0;
+    }
+    let u = [pi[0] - pk[0], pi[1] - pk[1]];
+    let v = [pj[0] - pk[0], pj[1] - pk[1]];
+    let cross = (u[0] * v[1] - u[1] * v[0]).abs();
+    let lu = u[0].hypot(u[1]);
+    let lv = v[0].hypot(v[1]);
+    let sin = if lu > 0.0 && lv > 0.0 {
+        (cross / lu / lv).min(1.0)
+    } else {
+        0.0
+    };
+    let mag = 1.0 - sin;
+    if s > 0 {
+        mag
+    } else {
+        -mag
+    }
+}
+
+/// Boissonnat's Eq. 4.1 for deleting edge (pi, pj) and exposing pk.
+pub fn min_area_change(pi: [f64; 2], pj: [f64; 2], pk: [f64; 2]) -> f64 {
+    let b = dist(pi, pj);
+    let i = dist(pi, pk) + dist(pj, pk);
+    let all = b + i;
+    if all > 0.0 {
+        (i - b) / all
+    } else {
+        0.0
+    }
+}
+
+impl Key {
+    /// The key of deleting boundary edge (pi, pj) with respect to pk (smaller is deleted
+    /// first).
+    pub fn value(self, pi: [f64; 2], pj: [f64; 2], pk: [f64; 2]) -> f64 {
+        match self {
+            Key::Gamma => gamma_indicator(pi, pj, pk),
+            Key::MinAreaChange => min_area_change(pi, pj, pk),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_bigint::BigInt;
+
+    /// Exact dot sign through big integers (coordinates scaled to integers).
+    fn dot_sign_big(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i32 {
+        // represent each coordinate as m · 2^e with a common exponent
+        let parts: Vec<(i64, i32)> = [a[0], a[1], b[0], b[1], c[0], c[1]]
+            .iter()
+            .map(|&x| {
+                if x == 0.0 {
+                    return (0, 0);
+                }
+                let bits = x.to_bits();
+                let exp = ((bits >> 52) & 0x7ff) as i32;
+                let mant = if exp == 0 {
+                    (bits & ((1 << 52) - 1)) << 1
+                } else {
+                    (bits & ((1 << 52) - 1)) | (1 << 52)
+                } as i64;
+                let m = if x < 0.0 { -mant } else { mant };
+                (m, exp - 1075)
+            })
+            .collect();
+        let emin = parts
+            .iter()
+            .filter(|p| p.0 != 0)
+            .map(|p| p.1)
+            .min()
+            .unwrap_or(0);
+        let v: Vec<BigInt> = parts
+            .iter()
+            .map(|&(m, e)| BigInt::from(m) << ((e - emin).max(0) as usize))
+            .collect();
+        let (ax, ay, bx, by, cx, cy) = (&v[0], &v[1], &v[2], &v[3], &v[4], &v[5]);
+        let d = (ax - cx) * (bx - cx) + (ay - cy) * (by - cy);
+        match d.sign() {
+            num_bigint::Sign::Plus => 1,
+            num_bigint::Sign::Minus => -1,
+            num_bigint::Sign::NoSign => 0,
+        }
+    }
+
+    #[test]
+    fn right_angle_is_zero_acute_positive() {
+        assert_eq!(dot_sign([1.0, 0.0], [0.0, 1.0], [0.0, 0.0]), 0);
+        assert_eq!(gamma_indicator([0.0, 0.0], [2.0, 0.0], [1.0, 1.0]), 0.0);
+        assert!(gamma_indicator([0.0, 0.0], [2.0, 0.0], [1.0, 3.0]) > 0.0);
+        assert!(gamma_indicator([0.0, 0.0], [2.0, 0.0], [1.0, 0.1]) < -0.8);
+        // equilateral: sin 60° → 1 − √3/2
+        let g = gamma_indicator([0.0, 0.0], [2.0, 0.0], [1.0, 3f64.sqrt()]);
+        assert!((g - (1.0 - 3f64.sqrt() / 2.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn indicator_matches_circumcentre_definition() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        for _ in 0..2000 {
+            let a = [rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0)];
+            let b = [rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0)];
+            let c = [rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0)];
+            let pa = crate::geom::Point2::new(a[0], a[1]);
+            let pb = crate::geom::Point2::new(b[0], b[1]);
+            let pc = crate::geom::Point2::new(c[0], c[1]);
+            let o = crate::geom::predicates::raw::orient2d(a, b, c);
+            if o.abs() < 1e-3 {
+                continue;
+            }
+            let cc = crate::delaunay::d2::circumcenter(&pa, &pb, &pc);
+            let r = 0.5 * (pa - pb).norm();
+            let big_r = (cc - pa).norm();
+            let side_c = crate::geom::predicates::raw::orient2d(a, b, [cc.x, cc.y]);
+            let expect = if side_c * o > 0.0 {
+                1.0 - r / big_r
+            } else {
+                -(1.0 - r / big_r)
+            };
+            let g = gamma_indicator(a, b, c);
+            assert!((g - expect).abs() < 1e-6, "{g} vs {expect}");
+        }
+    }
+
+    #[test]
+    fn dot_sign_exact_on_near_degenerate() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        for _ in 0..3000 {
+            // points near the Thales circle of a b, perturbed by a few ulps
+            let a: [f64; 2] = [rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0)];
+            let b: [f64; 2] = [rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0)];
+            let t: f64 = rng.gen_range(0.0..std::f64::consts::TAU);
+            let m = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+            let r = 0.5 * (a[0] - b[0]).hypot(a[1] - b[1]);
+            let mut c = [m[0] + r * t.cos(), m[1] + r * t.sin()];
+            let k: i64 = rng.gen_range(-3..=3);
+            c[0] = f64::from_bits((c[0].to_bits() as i64 + k) as u64);
+            assert_eq!(
+                dot_sign(a, b, c),
+                dot_sign_big(a, b, c),
+                "{a:?} {b:?} {c:?}"
+            );
+        }
+        // exactly representable right angles with offsets
+        let o = [1e15, -3.0];
+        assert_eq!(dot_sign([o[0] + 3.0, o[1]], [o[0], o[1] + 5.0], o), 0);
+    }
+}

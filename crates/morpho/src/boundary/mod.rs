@@ -1,0 +1,575 @@
+//! Boundary through all scattered points (Veltkamp 1992, ch. 4–5): the γ-graph constriction
+//! and the two comparison methods in 2D; the γ constriction in 3D.
+//!
+//! [`boundary_2d`] returns a simple polygon through every input point when it finds one, or
+//! the best simple polygon found together with the points it leaves out:
+//! - [`Method::Gamma`] — constriction of γ([-1,1],[0,1]) by the γ-indicator (V §5.2,
+//!   Algorithm 5.1), with the Hamiltonicity fallback of §5.4 (γ([-1,1],[c,1]), c < 0, by
+//!   adaptive augmentation; [`CParam`]) and constraints (§5.7);
+//! - [`Method::MinAreaChange`] — Boissonnat's minimal area change constriction of the Delaunay
+//!   triangulation (V §4.3.3, Eq. 4.1);
+//! - [`Method::VoronoiSkeleton`] — O'Rourke et al.'s shortest Voronoi skeleton (V §4.3.4).
+//!
+//! [`boundary_3d`] constricts the 3D Delaunay tetrahedralization (V §5.3, [`constrict3`]) to a
+//! closed genus-0 triangle mesh through (ideally) every point, checked with
+//! [`crate::mesh::topology::analyze`].
+//!
+//! The result is checked, never assumed: [`validity::check_polygon`] decides simplicity and
+//! coverage with exact predicates. Duplicate input points map to one vertex (the first input
+//! index of the group stands for it in the polygon; the others count as on the boundary).
+//!
+//! Preconditions: at least three distinct, not all collinear, finite points (otherwise no
+//! simple polygon exists and an `invalid` error is returned).
+
+pub mod constrict2;
+pub mod constrict3;
+pub mod indicator;
+pub mod validity;
+pub mod validity3;
+pub mod voronoi_skeleton;
+
+pub use indicator::Key;
+pub use validity::{check_polygon, PolygonCheck};
+
+use crate::delaunay::d2::{triangulate, Delaunay2};
+use crate::geom::Point2;
+use crate::graphs::fast::{beyond_dt_2d, candidates_2d, coords2};
+use crate::{Error, Result};
+use constrict2::{constrict_dt, region_cycle, General};
+
+/// Boundary construction method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// γ-indicator constriction (V §5.2).
+    Gamma,
+    /// Minimal area change constriction (V §4.3.3).
+    MinAreaChange,
+    /// Shortest Voronoi skeleton (V §4.3.4).
+    VoronoiSkeleton,
+}
+
+impl Method {
+    /// The name used by the CLI and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Gamma => "gamma",
+            Method::MinAreaChange => "min-area-change",
+            Method::VoronoiSkeleton => "voronoi-skeleton",
+        }
+    }
+}
+
+/// The γ-graph parameter c of γ([-1,1],[c,1]) used for constriction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CParam {
+    /// Start with the Delaunay graph (c = 0); when constriction locks, add the edges of
+    /// c = −0.1, −0.2, …, −1 inside the current boundary one step at a time (V §5.4 adaptive
+    /// augmentation) until every point is on the boundary.
+    Auto,
+    /// Constrict γ([-1,1],[c,1]) from the convex hull (c ∈ [−1, 0]; c = 0 is the Delaunay
+    /// graph, no fallback).
+    Fixed(f64),
+}
+
+/// Options of [`boundary_2d`].
+#[derive(Debug, Clone)]
+pub struct Options2 {
+    pub method: Method,
+    pub c: CParam,
+    /// Edges (input indices) that must be on the boundary (V §5.7; γ and min-area-change).
+    pub keep: Vec<[u32; 2]>,
+    /// Seeds tried by the Voronoi skeleton method (all triangles when there are fewer).
+    pub max_seeds: usize,
+}
+
+impl Default for Options2 {
+    fn default() -> Self {
+        Options2 {
+            method: Method::Gamma,
+            c: CParam::Auto,
+            keep: Vec::new(),
+            max_seeds: 200,
+        }
+    }
+}
+
+/// A 2D boundary and how it was found. All indices are input indices.
+#[derive(Debug, Clone)]
+pub struct Boundary2 {
+    /// The simple polygon, counter-clockwise.
+    pub polygon: Vec<u32>,
+    /// Every input point is on the polygon.
+    pub all_on_boundary: bool,
+    /// Input points not on the polygon.
+    pub left_out: Vec<u32>,
+    /// The c of the last graph γ([-1,1],[c,1]) used (0 = Delaunay).
+    pub c_used: f64,
+    /// Number of deletions (γ, min-area) or triangle additions (skeleton).
+    pub iterations: usize,
+    /// The Delaunay edges the construction started from.
+    pub graph_edges: Vec<[u32; 2]>,
+    /// The edges deleted during constriction, in order.
+    pub deleted: Vec<[u32; 2]>,
+    /// A triangulation of the interior (empty when the general engine ran and the polygon has
+    /// more than 5000 vertices: it is then not computed).
+    pub interior: Vec<[u32; 3]>,
+    /// Area enclosed by the polygon.
+    pub area: f64,
+    /// Keep edges that did not end on the boundary.
+    pub keep_missing: Vec<[u32; 2]>,
+    /// Length of the Voronoi skeleton (skeleton method only).
+    pub skeleton_length: Option<f64>,
+}
+
+/// Constructs a boundary polygon through the points (see the module documentation).
+pub fn boundary_2d(points: &[Point2], opts: &Options2) -> Result<Boundary2> {
+    if points.iter().any(|p| !p.x.is_finite() || !p.y.is_finite()) {
+        return Err(Error::invalid("boundary: non-finite coordinate"));
+    }
+    let d = triangulate(points)?;
+    if d.collinear || d.triangles.is_empty() {
+        return Err(Error::invalid(
+            "boundary: fewer than 3 distinct points or all collinear: no simple polygon exists",
+        ));
+    }
+    let p = coords2(&d);
+    let n_in = points.len();
+    let mut keep = Vec::with_capacity(opts.keep.len());
+    for &[a, b] in &opts.keep {
+        if a as usize >= n_in || b as usize >= n_in {
+            return Err(Error::invalid(format!(
+                "boundary: keep edge ({a}, {b}) refers to a point that does not exist ({n_in} points)"
+            )));
+        }
+        let (u, v) = (d.vertex_of_input[a as usize], d.vertex_of_input[b as usize]);
+        if u == v {
+            return Err(Error::invalid(format!(
+                "boundary: keep edge ({a}, {b}) joins two copies of one point"
+            )));
+        }
+        keep.push([u, v]);
+    }
+    check_keep(&p, &keep)?;
+    let graph_edges: Vec<[u32; 2]> = d
+        .edges()
+        .iter()
+        .map(|e| {
+            [
+                d.input_of_vertex[e[0] as usize],
+                d.input_of_vertex[e[1] as usize],
+            ]
+        })
+        .collect();
+    let key = match opts.method {
+        Method::Gamma => Key::Gamma,
+        Method::MinAreaChange => Key::MinAreaChange,
+        Method::VoronoiSkeleton => {
+            if !keep.is_empty() {
+                return Err(Error::unsupported(
+                    "boundary: keep edges are supported by the gamma and min-area-change methods",
+                ));
+            }
+            let sk = voronoi_skeleton::shortest_skeleton(&d, opts.max_seeds);
+            let cyc = region_cycle(&d, &sk.alive);
+            let interior = alive_triangles(&d, &sk.alive);
+            let mut b = finish(&d, &p, cyc, interior, 0.0, sk.iterations, Vec::new(), &keep);
+            b.graph_edges = graph_edges;
+            b.skeleton_length = Some(sk.length);
+            return Ok(b);
+        }
+    };
+    let fallback = opts.method == Method::Gamma;
+    let fixed_c = match opts.c {
+        CParam::Auto => None,
+        CParam::Fixed(c) => {
+            if !(-1.0..=0.0).contains(&c) {
+                return Err(Error::invalid(format!(
+                    "boundary: c = {c} is not in [-1, 0]"
+                )));
+            }
+            Some(c)
+        }
+    };
+    let nv = d.points.len();
+    let mut b = if keep.is_empty() && fixed_c.map_or(true, |c| c == 0.0) {
+        // fast path: Delaunay constriction
+        let st = constrict_dt(&d, &p, key);
+        if st.boundary_vertices == nv || !fallback || fixed_c.is_some() {
+            let cyc = region_cycle(&d, &st.alive);
+            let interior = alive_triangles(&d, &st.alive);
+            finish(&d, &p, cyc, interior, 0.0, st.iterations, st.deleted, &keep)
+        } else {
+            // locked: continue in the general engine with adaptive augmentation
+            let cyc = region_cycle(&d, &st.alive);
+            let edges = live_tri_edges(&d, &st.alive);
+            let mut g = General::new(&p, key, &cyc, edges, &keep);
+            let mut deleted = st.deleted.clone();
+            let c = augment_until_done(&d, &mut g, 0.0);
+            deleted.extend(g.deleted.iter().copied());
+            let cyc = g.cycle();
+            let interior = triangulate_polygon(&p, &cyc);
+            finish(
+                &d,
+                &p,
+                cyc,
+                interior,
+                c,
+                st.iterations + g.iterations,
+                deleted,
+                &keep,
+            )
+        }
+    } else {
+        let cand = candidates_2d(&d);
+        let mut edges = cand.edges.clone();
+        let c0 = fixed_c.unwrap_or(0.0);
+        if c0 < 0.0 {
+            edges.extend(beyond_dt_2d(&d, &cand, c0).0);
+        }
+        let mut g = General::new(&p, key, &d.hull, edges, &keep);
+        g.run();
+        let c = if fixed_c.is_none() && fallback && g.boundary_vertices < nv {
+            augment_until_done(&d, &mut g, 0.0)
+        } else {
+            c0
+        };
+        let cyc = g.cycle();
+        let interior = triangulate_polygon(&p, &cyc);
+        let del = g.deleted.clone();
+        finish(&d, &p, cyc, interior, c, g.iterations, del, &keep)
+    };
+    b.graph_edges = graph_edges;
+    Ok(b)
+}
+
+/// The intermediate boundaries of the Delaunay γ-constriction (V Fig. 5.2 style "steps"): for
+/// each `k` in `steps`, the counter-clockwise polygon (input indices) after `k` deletions
+/// (clamped to the number of deletions made). Points as for [`boundary_2d`].
+pub fn constriction_steps_2d(
+    points: &[Point2],
+    key: Key,
+    steps: &[usize],
+) -> Result<Vec<Vec<u32>>> {
+    let d = triangulate(points)?;
+    if d.collinear || d.triangles.is_empty() {
+        return Err(Error::invalid(
+            "boundary: fewer than 3 distinct points or all collinear: no simple polygon exists",
+        ));
+    }
+    let p = coords2(&d);
+    let st = constrict_dt(&d, &p, key);
+    let mut out = Vec::with_capacity(steps.len());
+    for &k in steps {
+        let mut alive = vec![true; d.triangles.len()];
+        for &t in st.removed.iter().take(k) {
+            alive[t as usize] = false;
+        }
+        let cyc = region_cycle(&d, &alive);
+        out.push(cyc.iter().map(|&v| d.input_of_vertex[v as usize]).collect());
+    }
+    Ok(out)
+}
+
+/// Runs `g` and, while locked, augments it with γ([-1,1],[c,1]) for c = from − 0.1, … −1.
+/// Returns the last c used.
+fn augment_until_done(d: &Delaunay2, g: &mut General<'_>, from: f64) -> f64 {
+    let nv = d.points.len();
+    g.run();
+    if g.boundary_vertices >= nv {
+        return from;
+    }
+    let cand = candidates_2d(d);
+    let chords: Vec<[u32; 2]> = cand
+        .edges
+        .iter()
+        .zip(&cand.in_dt)
+        .filter(|(_, &dt)| !dt)
+        .map(|(e, _)| *e)
+        .collect();
+    if !chords.is_empty() {
+        g.augment(&chords);
+        g.run();
+    }
+    let mut step = 1;
+    let mut c = from;
+    while g.boundary_vertices < nv && step <= 10 {
+        c = (from - 0.1 * step as f64).max(-1.0);
+        let (extra, _) = beyond_dt_2d(d, &cand, c);
+        g.augment(&extra);
+        g.run();
+        step += 1;
+    }
+    c
+}
+
+fn live_tri_edges(d: &Delaunay2, alive: &[bool]) -> Vec<[u32; 2]> {
+    let mut out = Vec::new();
+    for (t, tri) in d.triangles.iter().enumerate() {
+        if alive[t] {
+            for e in 0..3 {
+                let (a, b) = (tri[(e + 1) % 3], tri[(e + 2) % 3]);
+                let nb = d.neighbors[t][e];
+                if nb == crate::delaunay::d2::NONE || !alive[nb as usize] || a < b {
+                    out.push([a, b]);
+                }
+            }
+        }
+    }
+    out
+}
+
+fn alive_triangles(d: &Delaunay2, alive: &[bool]) -> Vec<[u32; 3]> {
+    d.triangles
+        .iter()
+        .zip(alive)
+        .filter(|(_, &a)| a)
+        .map(|(t, _)| *t)
+        .collect()
+}
+
+/// Keep edges must not pass through another point or cross each other.
+fn check_keep(p: &[[f64; 2]], keep: &[[u32; 2]]) -> Result<()> {
+    use crate::geom::predicates::raw::orient2d;
+    if keep.is_empty() {
+        return Ok(());
+    }
+    for (k, &[a, b]) in keep.iter().enumerate() {
+        let (pa, pb) = (p[a as usize], p[b as usize]);
+        for (v, &q) in p.iter().enumerate() {
+            if v as u32 != a
+                && v as u32 != b
+                && orient2d(pa, pb, q) == 0.0
+                && validity::on_segment(pa, pb, q)
+            {
+                return Err(Error::invalid(format!(
+                    "boundary: keep edge {k} passes through another point"
+                )));
+            }
+        }
+        for &[c, e] in &keep[k + 1..] {
+            if validity::segments_cross_properly(pa, pb, p[c as usize], p[e as usize]) {
+                return Err(Error::invalid("boundary: keep edges cross each other"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Ear-clipping triangulation of a simple counter-clockwise polygon (vertex indices), exact
+/// orientation tests; O(n²). Returns nothing for more than 5000 vertices.
+pub fn triangulate_polygon(p: &[[f64; 2]], cyc: &[u32]) -> Vec<[u32; 3]> {
+    use crate::geom::predicates::raw::orient2d;
+    let mut out = Vec::new();
+    if cyc.len() > 5000 || cyc.len() < 3 {
+        return out;
+    }
+    let mut v: Vec<u32> = cyc.to_vec();
+    let mut guard = 0;
+    let mut i = 0;
+    while v.len() > 3 && guard < 4 * cyc.len() * cyc.len() {
+        guard += 1;
+        let m = v.len();
+        let (a, b, c) = (v[(i + m - 1) % m], v[i % m], v[(i + 1) % m]);
+        let (pa, pb, pc) = (p[a as usize], p[b as usize], p[c as usize]);
+        let mut ear = orient2d(pa, pb, pc) > 0.0;
+        if ear {
+            for &w in &v {
+                if w == a || w == b || w == c {
+                    continue;
+                }
+                let q = p[w as usize];
+                if orient2d(pa, pb, q) >= 0.0
+                    && orient2d(pb, pc, q) >= 0.0
+                    && orient2d(pc, pa, q) >= 0.0
+                {
+                    ear = false;
+                    break;
+                }
+            }
+        }
+        if ear {
+            out.push([a, b, c]);
+            v.remove(i % m);
+        } else {
+            i += 1;
+        }
+    }
+    if v.len() == 3 {
+        out.push([v[0], v[1], v[2]]);
+    }
+    out
+}
+
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    d: &Delaunay2,
+    p: &[[f64; 2]],
+    cyc: Vec<u32>,
+    interior: Vec<[u32; 3]>,
+    c_used: f64,
+    iterations: usize,
+    deleted: Vec<[u32; 2]>,
+    keep: &[[u32; 2]],
+) -> Boundary2 {
+    let nv = d.points.len();
+    let mut on = vec![false; nv];
+    for &v in &cyc {
+        on[v as usize] = true;
+    }
+    let m = cyc.len();
+    let mut area2 = 0.0;
+    for k in 0..m {
+        let (a, b) = (p[cyc[k] as usize], p[cyc[(k + 1) % m] as usize]);
+        area2 += a[0] * b[1] - a[1] * b[0];
+    }
+    let mut bedges = std::collections::HashSet::new();
+    for k in 0..if keep.is_empty() { 0 } else { m } {
+        let (a, b) = (cyc[k], cyc[(k + 1) % m]);
+        bedges.insert((a.min(b), a.max(b)));
+    }
+    let inp = |v: u32| d.input_of_vertex[v as usize];
+    let left_out: Vec<u32> = (0..d.vertex_of_input.len())
+        .filter(|&i| !on[d.vertex_of_input[i] as usize])
+        .map(|i| i as u32)
+        .collect();
+    Boundary2 {
+        polygon: cyc.iter().map(|&v| inp(v)).collect(),
+        all_on_boundary: left_out.is_empty(),
+        left_out,
+        c_used,
+        iterations,
+        graph_edges: Vec::new(),
+        deleted: deleted.iter().map(|e| [inp(e[0]), inp(e[1])]).collect(),
+        interior: interior
+            .iter()
+            .map(|t| [inp(t[0]), inp(t[1]), inp(t[2])])
+            .collect(),
+        area: 0.5 * area2,
+        keep_missing: keep
+            .iter()
+            .filter(|e| !bedges.contains(&(e[0].min(e[1]), e[0].max(e[1]))))
+            .map(|e| [inp(e[0]), inp(e[1])])
+            .collect(),
+        skeleton_length: None,
+    }
+}
+
+/// A 3D boundary (all indices are input indices).
+#[derive(Debug, Clone)]
+pub struct Boundary3 {
+    /// Boundary triangles, oriented outward.
+    pub triangles: Vec<[u32; 3]>,
+    /// Every input point is a vertex of the boundary.
+    pub all_on_boundary: bool,
+    /// Input points not on the boundary.
+    pub left_out: Vec<u32>,
+    /// Deleted tetrahedra.
+    pub iterations: usize,
+    /// The boundary is a closed 2-manifold (checked by `mesh::topology::analyze`).
+    pub closed_manifold: bool,
+    /// Its genus (`None` when not an orientable manifold).
+    pub genus: Option<i64>,
+    /// Pairs of boundary triangles that intersect although they must not (exact test,
+    /// [`validity3::self_intersections`]; at most 10 listed). Empty for a valid boundary.
+    pub intersections: Vec<(u32, u32)>,
+    /// The interior tetrahedralization.
+    pub interior: Vec<[u32; 4]>,
+    /// Keep triangles (input indices) that are not boundary triangles.
+    pub keep_missing: Vec<[u32; 3]>,
+    /// Enclosed volume (sum of the interior tetrahedra).
+    pub volume: f64,
+}
+
+/// Constructs a closed boundary mesh through 3D points by γ-constriction of the Delaunay
+/// tetrahedralization (V §5.3). Errors when the points are coplanar or fewer than four.
+pub fn boundary_3d(points: &[crate::geom::Point3], until: constrict3::Until) -> Result<Boundary3> {
+    boundary_3d_keep(points, until, &[])
+}
+
+/// [`boundary_3d`] with keep triangles (input indices) that are never deleted (V §5.7; only
+/// Delaunay triangles can be kept — see [`constrict3::constrict_3d_keep`]). Keep triangles not
+/// on the result are listed in [`Boundary3::keep_missing`].
+pub fn boundary_3d_keep(
+    points: &[crate::geom::Point3],
+    until: constrict3::Until,
+    keep: &[[u32; 3]],
+) -> Result<Boundary3> {
+    let d = crate::delaunay::d3::triangulate(points)?;
+    if d.tets.is_empty() {
+        return Err(Error::invalid(format!(
+            "boundary: no closed surface exists ({})",
+            d.degenerate.as_deref().unwrap_or("degenerate input")
+        )));
+    }
+    let mut keep_v = Vec::with_capacity(keep.len());
+    for k in keep {
+        if k.iter().any(|&i| i as usize >= points.len()) {
+            return Err(Error::invalid(format!(
+                "boundary: keep triangle {k:?} refers to a point that does not exist"
+            )));
+        }
+        keep_v.push(k.map(|i| d.vertex_of_input[i as usize]));
+    }
+    let c = constrict3::constrict_3d_keep(&d, until, &keep_v);
+    let mesh = crate::mesh::TriMesh::new(d.points.clone(), c.triangles.clone());
+    let topo = crate::mesh::topology::analyze(&mesh);
+    let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+    let intersections = validity3::self_intersections(&pos, &c.triangles, 10);
+    let nv = d.points.len();
+    let mut on = vec![false; nv];
+    for t in &c.triangles {
+        for &v in t {
+            on[v as usize] = true;
+        }
+    }
+    let inp = |v: u32| d.input_of_vertex[v as usize];
+    let left_out: Vec<u32> = (0..d.vertex_of_input.len())
+        .filter(|&i| !on[d.vertex_of_input[i] as usize])
+        .map(|i| i as u32)
+        .collect();
+    let mut volume = 0.0;
+    let mut interior = Vec::new();
+    for (t, tet) in d.tets.iter().enumerate() {
+        if c.alive[t] {
+            let q = |k: usize| d.points[tet[k] as usize];
+            let (a, b, cc, dd) = (q(0), q(1), q(2), q(3));
+            volume += ((b - a).cross(&(cc - a)).dot(&(dd - a))).abs() / 6.0;
+            interior.push([inp(tet[0]), inp(tet[1]), inp(tet[2]), inp(tet[3])]);
+        }
+    }
+    Ok(Boundary3 {
+        triangles: c
+            .triangles
+            .iter()
+            .map(|t| [inp(t[0]), inp(t[1]), inp(t[2])])
+            .collect(),
+        all_on_boundary: left_out.is_empty(),
+        left_out,
+        iterations: c.iterations,
+        closed_manifold: topo.is_closed() && topo.manifold && topo.parts.len() == 1,
+        genus: topo.genus(),
+        intersections,
+        keep_missing: {
+            let on: std::collections::HashSet<[u32; 3]> = c
+                .triangles
+                .iter()
+                .map(|t| {
+                    let mut s = *t;
+                    s.sort_unstable();
+                    s
+                })
+                .collect();
+            keep.iter()
+                .zip(&keep_v)
+                .filter(|(_, v)| {
+                    let mut s = **v;
+                    s.sort_unstable();
+                    !on.contains(&s)
+                })
+                .map(|(k, _)| *k)
+                .collect()
+        },
+        interior,
+        volume,
+    })
+}

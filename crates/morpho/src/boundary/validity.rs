@@ -1,0 +1,346 @@
+//! Validity of a 2D boundary (Veltkamp 1992, §4.2 "Boundary construction 2D": a simple polygon
+//! through all vertices).
+//!
+//! [`check_polygon`] decides, with exact predicates only, whether a vertex cycle is a simple
+//! polygon (no two non-adjacent edges meet, adjacent edges share only their common vertex, no
+//! repeated vertex) and which input points it misses. Segment pairs are found through a uniform
+//! bucket grid ([`SegGrid`]): expected O(n) for boundaries with edges of similar length, worst
+//! case O(n²). [`segments_intersect`] is the exact closed-segment test used throughout
+//! `boundary`.
+
+use crate::geom::predicates::raw::orient2d;
+use crate::geom::Point2;
+use std::collections::HashMap;
+
+/// True when the closed segments ab and cd have a point in common (exact).
+pub fn segments_intersect(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+    let o1 = orient2d(a, b, c);
+    let o2 = orient2d(a, b, d);
+    let o3 = orient2d(c, d, a);
+    let o4 = orient2d(c, d, b);
+    if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0))
+        && ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0))
+    {
+        return true;
+    }
+    (o1 == 0.0 && on_segment(a, b, c))
+        || (o2 == 0.0 && on_segment(a, b, d))
+        || (o3 == 0.0 && on_segment(c, d, a))
+        || (o4 == 0.0 && on_segment(c, d, b))
+}
+
+/// True when the open segments ab and cd cross at one point interior to both (exact).
+pub fn segments_cross_properly(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+    let o1 = orient2d(a, b, c);
+    let o2 = orient2d(a, b, d);
+    if !((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) {
+        return false;
+    }
+    let o3 = orient2d(c, d, a);
+    let o4 = orient2d(c, d, b);
+    (o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0)
+}
+
+/// For p collinear with ab: p lies on the closed segment ab (exact: coordinate comparisons).
+pub fn on_segment(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
+    a[0].min(b[0]) <= p[0]
+        && p[0] <= a[0].max(b[0])
+        && a[1].min(b[1]) <= p[1]
+        && p[1] <= a[1].max(b[1])
+}
+
+/// A uniform grid of segments (each registered in every cell its bounding box meets) and
+/// points, for local intersection queries.
+pub struct SegGrid {
+    min: [f64; 2],
+    cell: f64,
+    dims: [usize; 2],
+    cells: HashMap<u64, Vec<u32>>,
+}
+
+impl SegGrid {
+    /// A grid with cell size `cell` over the box `[min, max]` (at most ~`max_cells` cells: the
+    /// cell is enlarged when needed).
+    pub fn new(min: [f64; 2], max: [f64; 2], cell: f64, max_cells: usize) -> Self {
+        let ext = [(max[0] - min[0]).max(0.0), (max[1] - min[1]).max(0.0)];
+        let mut cell = if cell.is_finite() && cell > 0.0 {
+            cell
+        } else {
+            ext[0].max(ext[1]).max(1.0)
+        };
+        let mut dims;
+        loop {
+            dims = [
+                (ext[0] / cell).floor() as usize + 1,
+                (ext[1] / cell).floor() as usize + 1,
+            ];
+            if dims[0].saturating_mul(dims[1]) <= max_cells.max(16) {
+                break;
+            }
+            cell *= 1.5;
+        }
+        SegGrid {
+            min,
+            cell,
+            dims,
+            cells: HashMap::new(),
+        }
+    }
+
+    fn range(&self, lo: [f64; 2], hi: [f64; 2]) -> [[usize; 2]; 2] {
+        let f = |v: f64, k: usize| -> usize {
+            let c = ((v - self.min[k]) / self.cell).floor();
+            if c.is_nan() || c < 0.0 {
+                0
+            } else {
+                (c as usize).min(self.dims[k] - 1)
+            }
+        };
+        [[f(lo[0], 0), f(hi[0], 0)], [f(lo[1], 1), f(hi[1], 1)]]
+    }
+
+    fn key(&self, x: usize, y: usize) -> u64 {
+        (y as u64) * (self.dims[0] as u64) + x as u64
+    }
+
+    /// Registers item `id` in every cell meeting the box of `a` and `b`.
+    pub fn insert(&mut self, id: u32, a: [f64; 2], b: [f64; 2]) {
+        let r = self.range(
+            [a[0].min(b[0]), a[1].min(b[1])],
+            [a[0].max(b[0]), a[1].max(b[1])],
+        );
+        for y in r[1][0]..=r[1][1] {
+            for x in r[0][0]..=r[0][1] {
+                let k = self.key(x, y);
+                self.cells.entry(k).or_default().push(id);
+            }
+        }
+    }
+
+    /// Calls `f` for every item registered in a cell meeting the box `[lo, hi]` (an item may be
+    /// reported more than once).
+    pub fn query(&self, lo: [f64; 2], hi: [f64; 2], mut f: impl FnMut(u32)) {
+        let r = self.range(lo, hi);
+        for y in r[1][0]..=r[1][1] {
+            for x in r[0][0]..=r[0][1] {
+                if let Some(v) = self.cells.get(&self.key(x, y)) {
+                    for &id in v {
+                        f(id);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The result of [`check_polygon`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct PolygonCheck {
+    /// The cycle is a simple polygon (≥ 3 distinct vertices, no self-intersection).
+    pub simple: bool,
+    /// A pair of edges (by the index of their first vertex in the cycle) that meet although
+    /// they must not, or a repeated vertex (both positions), when not simple.
+    pub conflict: Option<(usize, usize)>,
+    /// Input points whose coordinates are not a vertex of the polygon.
+    pub missing: Vec<u32>,
+    /// Twice the signed area (> 0: counter-clockwise).
+    pub area2: f64,
+}
+
+/// Checks that `cycle` (indices into `points`) is a simple polygon and lists the points of
+/// `points` not on it (a point is on it when a cycle vertex has the same coordinates, so
+/// duplicated input points count as covered). Exact; expected O(n) for well-spread polygons.
+pub fn check_polygon(points: &[Point2], cycle: &[u32]) -> PolygonCheck {
+    let n = cycle.len();
+    let mut out = PolygonCheck {
+        simple: false,
+        conflict: None,
+        missing: Vec::new(),
+        area2: 0.0,
+    };
+    let valid_idx = cycle.iter().all(|&i| (i as usize) < points.len());
+    if !valid_idx {
+        out.missing = (0..points.len() as u32).collect();
+        return out;
+    }
+    let key = |p: &Point2| ((p.x + 0.0).to_bits(), (p.y + 0.0).to_bits());
+    let mut seen: HashMap<(u64, u64), usize> = HashMap::new();
+    let mut repeated = None;
+    for (pos, &i) in cycle.iter().enumerate() {
+        if let Some(&q) = seen.get(&key(&points[i as usize])) {
+            repeated.get_or_insert((q, pos));
+        } else {
+            seen.insert(key(&points[i as usize]), pos);
+        }
+    }
+    for (i, p) in points.iter().enumerate() {
+        if !seen.contains_key(&key(p)) {
+            out.missing.push(i as u32);
+        }
+    }
+    let pt = |k: usize| {
+        let p = points[cycle[k % n] as usize];
+        [p.x, p.y]
+    };
+    for k in 0..n {
+        let (a, b) = (pt(k), pt(k + 1));
+        out.area2 += a[0] * b[1] - a[1] * b[0];
+    }
+    if n < 3 {
+        return out;
+    }
+    if let Some(r) = repeated {
+        out.conflict = Some(r);
+        return out;
+    }
+    // adjacent edges: only a fold-back (collinear overlap) is a conflict
+    for k in 0..n {
+        let (u, v, w) = (pt(k), pt(k + 1), pt(k + 2));
+        if orient2d(u, v, w) == 0.0 && (on_segment(v, w, u) || on_segment(u, v, w)) {
+            out.conflict = Some((k, (k + 1) % n));
+            return out;
+        }
+    }
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    let mut total = 0.0;
+    for k in 0..n {
+        let p = pt(k);
+        for d in 0..2 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+        let q = pt(k + 1);
+        total += ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt();
+    }
+    let mut grid = SegGrid::new(lo, hi, 2.0 * total / n as f64, 4 * n);
+    for k in 0..n {
+        grid.insert(k as u32, pt(k), pt(k + 1));
+    }
+    for k in 0..n {
+        let (a, b) = (pt(k), pt(k + 1));
+        let mut found = None;
+        grid.query(
+            [a[0].min(b[0]), a[1].min(b[1])],
+            [a[0].max(b[0]), a[1].max(b[1])],
+            |m| {
+                let m = m as usize;
+                if found.is_some() || m <= k {
+                    return;
+                }
+                let adjacent = m == k + 1 || (k == 0 && m == n - 1);
+                if adjacent {
+                    return;
+                }
+                if segments_intersect(a, b, pt(m), pt(m + 1)) {
+                    found = Some(m);
+                }
+            },
+        );
+        if let Some(m) = found {
+            out.conflict = Some((k, m));
+            return out;
+        }
+    }
+    out.simple = true;
+    out
+}
+
+/// The O(n²) reference check of simplicity (every pair of edges), for tests.
+pub fn is_simple_brute(points: &[Point2], cycle: &[u32]) -> bool {
+    let n = cycle.len();
+    if n < 3 {
+        return false;
+    }
+    let pt = |k: usize| {
+        let p = points[cycle[k % n] as usize];
+        [p.x, p.y]
+    };
+    for i in 0..n {
+        for j in i + 1..n {
+            if pt(i) == pt(j) {
+                return false;
+            }
+        }
+    }
+    for i in 0..n {
+        for j in i + 1..n {
+            let adjacent = j == i + 1 || (i == 0 && j == n - 1);
+            if adjacent {
+                // share exactly one vertex: overlap iff collinear fold-back
+                let (s, v, t) = if j == i + 1 {
+                    (pt(i), pt(i + 1), pt(i + 2))
+                } else {
+                    (pt(n - 1), pt(0), pt(1))
+                };
+                if orient2d(s, v, t) == 0.0 && (on_segment(v, t, s) || on_segment(s, v, t)) {
+                    return false;
+                }
+            } else if segments_intersect(pt(i), pt(i + 1), pt(j), pt(j + 1)) {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(v: &[[f64; 2]]) -> Vec<Point2> {
+        v.iter().map(|a| Point2::new(a[0], a[1])).collect()
+    }
+
+    #[test]
+    fn square_and_bowtie() {
+        let pts = p(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+        let c = check_polygon(&pts, &[0, 1, 2, 3]);
+        assert!(c.simple && c.missing.is_empty() && c.area2 > 0.0);
+        let c = check_polygon(&pts, &[0, 2, 1, 3]);
+        assert!(!c.simple);
+        assert!(!is_simple_brute(&pts, &[0, 2, 1, 3]));
+        let c = check_polygon(&pts, &[0, 1, 2]);
+        assert!(c.simple && c.missing == vec![3]);
+    }
+
+    #[test]
+    fn touching_vertex_and_foldback() {
+        // vertex 4 touches edge 0-1 from above
+        let pts = p(&[
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 2.0],
+            [1.0, 1.0],
+            [1.0, 0.0],
+            [0.0, 2.0],
+        ]);
+        let c = check_polygon(&pts, &[0, 1, 2, 4, 5]);
+        assert!(!c.simple);
+        assert!(!is_simple_brute(&pts, &[0, 1, 2, 4, 5]));
+        // collinear fold-back 0 -> 1 -> 4
+        let c = check_polygon(&pts, &[0, 1, 4, 3]);
+        assert!(!c.simple);
+        assert!(!is_simple_brute(&pts, &[0, 1, 4, 3]));
+        // collinear but straight: fine
+        let c = check_polygon(&pts, &[0, 4, 1, 2, 5]);
+        assert!(c.simple && is_simple_brute(&pts, &[0, 4, 1, 2, 5]));
+    }
+
+    #[test]
+    fn grid_agrees_with_brute_on_random_cycles() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        for _ in 0..300 {
+            let n = rng.gen_range(3..9);
+            let pts: Vec<Point2> = (0..n)
+                .map(|_| Point2::new(rng.gen_range(0..4) as f64, rng.gen_range(0..4) as f64))
+                .collect();
+            let cycle: Vec<u32> = (0..n as u32).collect();
+            assert_eq!(
+                check_polygon(&pts, &cycle).simple,
+                is_simple_brute(&pts, &cycle)
+            );
+        }
+    }
+}

@@ -1,0 +1,296 @@
+//! Validity of a 3D boundary (Veltkamp 1992, §4.2 "Boundary construction 3D": a simple closed
+//! polyhedron through all vertices): no two triangles may meet except in their shared
+//! vertices/edge.
+//!
+//! [`self_intersections`] tests, with exact `orient3d`/`orient2d` only, every pair of triangles
+//! whose bounding boxes share a cell of a uniform grid:
+//! - pairs with no common vertex: full closed triangle–triangle test (non-coplanar: some edge of
+//!   one meets the other closed triangle — the intersection of two triangles in different planes
+//!   is a segment whose ends lie on edges; coplanar: 2D test in an exact non-degenerate axis
+//!   projection);
+//! - pairs with one common vertex v: the edge opposite v of each must not meet the other
+//!   triangle, and for coplanar pairs the projected triangles must not overlap beyond v;
+//! - pairs with a common edge are not tested (a fold along a shared edge; the constriction,
+//!   whose faces are faces of one tetrahedralization, cannot create it).
+//!
+//! Expected O(n) for meshes of evenly sized triangles, O(n²) worst case.
+
+use super::validity::segments_intersect;
+use crate::geom::predicates::raw::{orient2d, orient3d};
+use std::collections::HashMap;
+
+type P = [f64; 3];
+
+fn proj(p: P, axis: usize) -> [f64; 2] {
+    match axis {
+        0 => [p[1], p[2]],
+        1 => [p[2], p[0]],
+        _ => [p[0], p[1]],
+    }
+}
+
+/// An axis whose projection keeps triangle abc non-degenerate (exact), if any.
+fn good_axis(a: P, b: P, c: P) -> Option<usize> {
+    (0..3).find(|&ax| orient2d(proj(a, ax), proj(b, ax), proj(c, ax)) != 0.0)
+}
+
+fn point_in_tri2(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
+    let o = orient2d(a, b, c);
+    let s = |u, v| orient2d(u, v, p) * o;
+    s(a, b) >= 0.0 && s(b, c) >= 0.0 && s(c, a) >= 0.0
+}
+
+fn tri_tri_2d(t: [[f64; 2]; 3], u: [[f64; 2]; 3]) -> bool {
+    for i in 0..3 {
+        for j in 0..3 {
+            if segments_intersect(t[i], t[(i + 1) % 3], u[j], u[(j + 1) % 3]) {
+                return true;
+            }
+        }
+    }
+    point_in_tri2(t[0], u[0], u[1], u[2]) || point_in_tri2(u[0], t[0], t[1], t[2])
+}
+
+/// Closed segment pq meets closed triangle abc (exact; abc non-degenerate).
+pub fn segment_meets_triangle(p: P, q: P, a: P, b: P, c: P) -> bool {
+    let sp = orient3d(a, b, c, p);
+    let sq = orient3d(a, b, c, q);
+    if (sp > 0.0 && sq > 0.0) || (sp < 0.0 && sq < 0.0) {
+        return false;
+    }
+    if sp == 0.0 && sq == 0.0 {
+        let Some(ax) = good_axis(a, b, c) else {
+            return false;
+        };
+        let (a2, b2, c2) = (proj(a, ax), proj(b, ax), proj(c, ax));
+        let (p2, q2) = (proj(p, ax), proj(q, ax));
+        return point_in_tri2(p2, a2, b2, c2)
+            || segments_intersect(p2, q2, a2, b2)
+            || segments_intersect(p2, q2, b2, c2)
+            || segments_intersect(p2, q2, c2, a2);
+    }
+    let s1 = orient3d(p, q, a, b);
+    let s2 = orient3d(p, q, b, c);
+    let s3 = orient3d(p, q, c, a);
+    (s1 >= 0.0 && s2 >= 0.0 && s3 >= 0.0) || (s1 <= 0.0 && s2 <= 0.0 && s3 <= 0.0)
+}
+
+/// Closed triangles t and u (no common vertex) intersect (exact).
+pub fn triangles_intersect(t: [P; 3], u: [P; 3]) -> bool {
+    let su: Vec<f64> = u.iter().map(|&x| orient3d(t[0], t[1], t[2], x)).collect();
+    if su.iter().all(|&s| s > 0.0) || su.iter().all(|&s| s < 0.0) {
+        return false;
+    }
+    let st: Vec<f64> = t.iter().map(|&x| orient3d(u[0], u[1], u[2], x)).collect();
+    if st.iter().all(|&s| s > 0.0) || st.iter().all(|&s| s < 0.0) {
+        return false;
+    }
+    if su.iter().all(|&s| s == 0.0) {
+        let Some(ax) = good_axis(t[0], t[1], t[2]) else {
+            return false;
+        };
+        return tri_tri_2d(t.map(|x| proj(x, ax)), u.map(|x| proj(x, ax)));
+    }
+    (0..3).any(|i| segment_meets_triangle(t[i], t[(i + 1) % 3], u[0], u[1], u[2]))
+        || (0..3).any(|i| segment_meets_triangle(u[i], u[(i + 1) % 3], t[0], t[1], t[2]))
+}
+
+/// Triangles t, u sharing exactly the vertex at positions (it, iu) meet elsewhere (exact).
+fn meet_beyond_vertex(t: [P; 3], it: usize, u: [P; 3], iu: usize) -> bool {
+    let (t1, t2) = (t[(it + 1) % 3], t[(it + 2) % 3]);
+    let (u1, u2) = (u[(iu + 1) % 3], u[(iu + 2) % 3]);
+    if segment_meets_triangle(t1, t2, u[0], u[1], u[2])
+        || segment_meets_triangle(u1, u2, t[0], t[1], t[2])
+    {
+        return true;
+    }
+    let coplanar = orient3d(t[0], t[1], t[2], u1) == 0.0 && orient3d(t[0], t[1], t[2], u2) == 0.0;
+    if !coplanar {
+        return false;
+    }
+    // coplanar wedges at the shared vertex v: they overlap beyond v iff an edge from v of one
+    // lies inside the other's wedge, or the wedges coincide along an edge direction
+    let Some(ax) = good_axis(t[0], t[1], t[2]) else {
+        return false;
+    };
+    let v = proj(t[it], ax);
+    let (a, b) = (proj(t1, ax), proj(t2, ax));
+    let (c, d) = (proj(u1, ax), proj(u2, ax));
+    let inside = |x: [f64; 2], p: [f64; 2], q: [f64; 2]| -> bool {
+        // x strictly inside wedge (p, q) at v, or along one of its rays
+        let o = orient2d(v, p, q);
+        let s1 = orient2d(v, p, x) * o;
+        let s2 = orient2d(v, x, q) * o;
+        let along = |r: [f64; 2]| {
+            orient2d(v, r, x) == 0.0
+                && ((r[0] - v[0]) * (x[0] - v[0]) + (r[1] - v[1]) * (x[1] - v[1])) > 0.0
+        };
+        (s1 > 0.0 && s2 > 0.0) || along(p) || along(q)
+    };
+    // (a wedge containing the other has the other's edges inside it)
+    inside(c, a, b) || inside(d, a, b) || inside(a, c, d) || inside(b, c, d)
+}
+
+/// Pairs of triangles (indices into `tris`) that intersect although they must not (see the
+/// module documentation); at most `limit` are returned.
+pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    if tris.is_empty() {
+        return out;
+    }
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    let mut lens = Vec::with_capacity(3 * tris.len());
+    for t in tris {
+        let q = t.map(|v| pos[v as usize]);
+        for k in 0..3 {
+            for x in &q {
+                lo[k] = lo[k].min(x[k]);
+                hi[k] = hi[k].max(x[k]);
+            }
+        }
+        for k in 0..3 {
+            let (a, b) = (q[k], q[(k + 1) % 3]);
+            lens.push(
+                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt(),
+            );
+        }
+    }
+    // cell: twice the median edge length (the mean is dominated by a few long edges)
+    let mid = lens.len() / 2;
+    let mut cell = 2.0 * *lens.select_nth_unstable_by(mid, f64::total_cmp).1;
+    let ext = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    while cell > 0.0
+        && ext.iter().map(|e| (e / cell) as u64 + 1).product::<u64>() > 8 * tris.len() as u64 + 64
+    {
+        cell *= 1.5;
+    }
+    if !(cell > 0.0 && cell.is_finite()) {
+        cell = 1.0;
+    }
+    let cidx = |x: f64, k: usize| ((x - lo[k]) / cell).floor().max(0.0) as u64;
+    let mut grid: HashMap<(u64, u64, u64), Vec<u32>> = HashMap::new();
+    let bbox = |t: &[u32; 3]| -> ([f64; 3], [f64; 3]) {
+        let q = t.map(|v| pos[v as usize]);
+        (
+            std::array::from_fn(|k| q[0][k].min(q[1][k]).min(q[2][k])),
+            std::array::from_fn(|k| q[0][k].max(q[1][k]).max(q[2][k])),
+        )
+    };
+    // triangles spanning many cells are tested against everything by bounding boxes instead
+    let mut big: Vec<u32> = Vec::new();
+    for (i, t) in tris.iter().enumerate() {
+        let (bl, bh) = bbox(t);
+        let mn: [u64; 3] = std::array::from_fn(|k| cidx(bl[k], k));
+        let mx: [u64; 3] = std::array::from_fn(|k| cidx(bh[k], k));
+        let span: u64 = (0..3).map(|k| mx[k] - mn[k] + 1).product();
+        if span > 512 {
+            big.push(i as u32);
+            continue;
+        }
+        for x in mn[0]..=mx[0] {
+            for y in mn[1]..=mx[1] {
+                for z in mn[2]..=mx[2] {
+                    grid.entry((x, y, z)).or_default().push(i as u32);
+                }
+            }
+        }
+    }
+    let boxes: Vec<([f64; 3], [f64; 3])> = tris.iter().map(bbox).collect();
+    let overlap = |a: u32, b: u32| {
+        let ((al, ah), (bl, bh)) = (boxes[a as usize], boxes[b as usize]);
+        (0..3).all(|k| al[k] <= bh[k] && bl[k] <= ah[k])
+    };
+    let mut pairs: Vec<(u32, u32)> = Vec::new();
+    for ids in grid.values() {
+        for (a_i, &a) in ids.iter().enumerate() {
+            for &b in &ids[a_i + 1..] {
+                if overlap(a, b) {
+                    pairs.push((a.min(b), a.max(b)));
+                }
+            }
+        }
+    }
+    let is_big: std::collections::HashSet<u32> = big.iter().copied().collect();
+    for &a in &big {
+        for b in 0..tris.len() as u32 {
+            if b == a || (is_big.contains(&b) && b < a) {
+                continue;
+            }
+            if overlap(a, b) {
+                pairs.push((a.min(b), a.max(b)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    for (a, b) in pairs {
+        let (ta, tb) = (tris[a as usize], tris[b as usize]);
+        let shared: Vec<(usize, usize)> = (0..3)
+            .flat_map(|i| (0..3).map(move |j| (i, j)))
+            .filter(|&(i, j)| ta[i] == tb[j])
+            .collect();
+        let (pa, pb) = (ta.map(|v| pos[v as usize]), tb.map(|v| pos[v as usize]));
+        let bad = match shared.len() {
+            0 => triangles_intersect(pa, pb),
+            1 => meet_beyond_vertex(pa, shared[0].0, pb, shared[0].1),
+            _ => false,
+        };
+        if bad {
+            out.push((a, b));
+            if out.len() >= limit {
+                return out;
+            }
+        }
+    }
+    out.sort_unstable();
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crossing_and_separate_triangles() {
+        let t = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]];
+        let piercing = [[0.5, 0.5, -1.0], [0.5, 0.5, 1.0], [3.0, 3.0, 0.5]];
+        assert!(triangles_intersect(t, piercing));
+        let above = [[0.5, 0.5, 0.1], [0.5, 0.6, 1.0], [3.0, 3.0, 0.5]];
+        assert!(!triangles_intersect(t, above));
+        // coplanar overlap and coplanar disjoint
+        let co = [[1.0, 1.0, 0.0], [3.0, 1.0, 0.0], [1.0, 3.0, 0.0]];
+        assert!(triangles_intersect(t, co));
+        let co2 = [[1.5, 1.5, 0.0], [3.0, 1.5, 0.0], [1.5, 3.0, 0.0]];
+        assert!(!triangles_intersect(t, co2));
+        // touching at a point of an edge
+        let touch = [[1.0, 1.0, 0.0], [1.0, 1.0, 1.0], [2.0, 2.0, 1.0]];
+        assert!(triangles_intersect(t, touch));
+    }
+
+    #[test]
+    fn closed_tetrahedron_surface_is_clean_and_a_pierced_one_is_not() {
+        let pos = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let tris = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        assert!(self_intersections(&pos, &tris, 10).is_empty());
+        let mut pos2 = pos.to_vec();
+        pos2.extend([[0.2, 0.2, -0.5], [0.2, 0.2, 0.5], [0.3, 0.25, 2.0]]);
+        let mut tris2 = tris.to_vec();
+        tris2.push([4, 5, 6]);
+        assert!(!self_intersections(&pos2, &tris2, 10).is_empty());
+        // shared vertex, coplanar overlapping wedges
+        let pos3 = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [1.0, 2.0, 0.0],
+        ];
+        assert!(!self_intersections(&pos3, &[[0, 1, 2], [0, 3, 4]], 10).is_empty());
+    }
+}
