@@ -75,6 +75,7 @@ const SECTIONS: &[(&str, Builder)] = &[
     ("sample points", points_section),
     ("delaunay", delaunay_section),
     ("gamma graphs", gamma_section),
+    ("boundary", boundary_section),
     ("meshes", mesh_section),
     ("volumes", volume_section),
     ("contour surfaces", isosurface_section),
@@ -612,6 +613,161 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
         )?;
         s.fig("6-tetrahedra method: triangles", tet.mesh.num_triangles());
         s.fig("6-tetrahedra method: interior holes", tet.interior_holes);
+        out.push(s);
+    }
+    Ok(out)
+}
+
+/// A polygon (input indices) over faint points, with an optional title.
+fn polygon_picture(p: &[morpho::geom::Point2], cycle: &[u32], title: &str, width: f64) -> String {
+    use morpho::render::svg::{point_radius, Stroke, Svg};
+    let mut svg = Svg::fit(p, width);
+    svg.title(title);
+    let poly: Vec<morpho::geom::Point2> = cycle.iter().map(|&i| p[i as usize]).collect();
+    svg.polyline(&poly, true, &Stroke::solid([200, 60, 40], 1.6));
+    svg.points(p, point_radius(p.len()), [30, 30, 30]);
+    svg.finish()
+}
+
+fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
+    use morpho::boundary::{
+        boundary_2d, boundary_3d, constrict3::Until, constriction_steps_2d, indicator::Key, Method,
+        Options2,
+    };
+    let mut out = Vec::new();
+    let p = chalice();
+    let mut s = Section::new(
+        "Boundary through all points: γ-constriction of the chalice (Veltkamp §5.2)",
+        "Starting from the convex hull of the Delaunay triangulation, the removable boundary edge with the smallest \
+         γ-indicator is deleted until every point is on the boundary (Algorithm 5.1, with a heap).",
+    );
+    let t = Instant::now();
+    let b = boundary_2d(&p, &Options2::default())?;
+    let dt = t.elapsed().as_secs_f64();
+    let total = b.iterations.max(1);
+    let steps: Vec<usize> = [0, total / 4, total / 2, 3 * total / 4, total].to_vec();
+    let polys = constriction_steps_2d(&p, Key::Gamma, &steps)?;
+    for (k, (cyc, step)) in polys.iter().zip(&steps).enumerate() {
+        let name = format!("chalice_step{k}.svg");
+        write_svg(
+            ctx,
+            &name,
+            &polygon_picture(&p, cyc, &format!("after {step} deletions"), 260.0),
+        )?;
+        s.img(
+            &name,
+            &format!("{} of {} points on the boundary", cyc.len(), p.len()),
+        );
+    }
+    s.fig("points", p.len());
+    s.fig("deletions", b.iterations);
+    s.fig("all points on the boundary", b.all_on_boundary);
+    s.fig("area", format!("{:.4}", b.area));
+    s.fig("time", format!("{:.1} ms", dt * 1e3));
+    out.push(s);
+    // the three methods on a real data set with ground truth
+    if let Some(path) = ctx.data_file("curves2d/ohrhallinger_fitconnect/apple_2percent_noise.txt") {
+        let pts = morpho::io::read_points(&path)?.to_points2();
+        let mut s = Section::new(
+            "Three methods on a noisy outline",
+            "curves2d/ohrhallinger_fitconnect/apple_2percent_noise.txt: γ-indicator (V §5.2), minimal area change \
+             (Boissonnat, V §4.3.3) and the shortest Voronoi skeleton (O'Rourke et al., V §4.3.4). The file lists the \
+             points in curve order, so the fraction of its consecutive pairs that are polygon edges measures recovery.",
+        );
+        for (m, name) in [
+            (Method::Gamma, "gamma"),
+            (Method::MinAreaChange, "min-area-change"),
+            (Method::VoronoiSkeleton, "voronoi-skeleton"),
+        ] {
+            let t = Instant::now();
+            let b = boundary_2d(
+                &pts,
+                &Options2 {
+                    method: m,
+                    ..Default::default()
+                },
+            )?;
+            let dt = t.elapsed().as_secs_f64();
+            let mut on: std::collections::HashSet<[u32; 2]> = std::collections::HashSet::new();
+            for i in 0..b.polygon.len() {
+                let (a, c) = (b.polygon[i], b.polygon[(i + 1) % b.polygon.len()]);
+                on.insert([a.min(c), a.max(c)]);
+            }
+            let n = pts.len() as u32;
+            let hit = (0..n)
+                .filter(|&i| on.contains(&[i.min((i + 1) % n), i.max((i + 1) % n)]))
+                .count();
+            let file = format!("apple_{name}.svg");
+            write_svg(ctx, &file, &polygon_picture(&pts, &b.polygon, name, 300.0))?;
+            s.img(&file, name);
+            s.fig(
+                &format!("{name}: ground-truth edges recovered"),
+                format!("{:.3}", hit as f64 / n as f64),
+            );
+            s.fig(
+                &format!("{name}: all points on the boundary / time"),
+                format!("{} / {:.1} ms", b.all_on_boundary, dt * 1e3),
+            );
+        }
+        out.push(s);
+    }
+    if let Some(path) = ctx.data_file("meshes/bunny_npm.obj") {
+        use morpho::render::raster::{render_mesh, RenderOptions, Shading};
+        let m = morpho::io::read_mesh(&path)?;
+        let t = Instant::now();
+        let b = boundary_3d(&m.positions, Until::All)?;
+        let dt = t.elapsed().as_secs_f64();
+        let mut s = Section::new(
+            "A closed boundary through the vertices of a scan (Veltkamp §5.3)",
+            "The 1839 vertices of meshes/bunny_npm.obj, without their triangles: the Delaunay tetrahedralization is \
+             constricted (tetrahedra with one or two boundary triangles, the γ-indicator of Def. 5.2 and the sum rule) \
+             until every point lies on the boundary.",
+        );
+        let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), b.triangles.clone());
+        let opts = RenderOptions {
+            shading: Shading::Flat,
+            azimuth_deg: 20.0,
+            ..Default::default()
+        };
+        render_mesh(&mesh, &opts).save_png(&ctx.path("bunny_boundary.png"))?;
+        s.img(
+            "bunny_boundary.png",
+            "--until all: stop as soon as every point is on the boundary",
+        );
+        let bl = boundary_3d(&m.positions, Until::Locked)?;
+        let mesh_l = morpho::mesh::TriMesh::new(m.positions.clone(), bl.triangles.clone());
+        render_mesh(&mesh_l, &opts).save_png(&ctx.path("bunny_boundary_locked.png"))?;
+        s.img(
+            "bunny_boundary_locked.png",
+            "--until locked: continue while removals keep the boundary valid",
+        );
+        s.fig(
+            "--until locked: triangles / closed / genus / volume",
+            format!(
+                "{} / {} / {} / {:.1}",
+                bl.triangles.len(),
+                bl.closed_manifold,
+                bl.genus
+                    .map(|g| g.to_string())
+                    .unwrap_or_else(|| "undefined".into()),
+                bl.volume
+            ),
+        );
+        s.fig("points", m.positions.len());
+        s.fig("boundary triangles", b.triangles.len());
+        s.fig("all points on the boundary", b.all_on_boundary);
+        s.fig("closed 2-manifold", b.closed_manifold);
+        s.fig(
+            "genus",
+            b.genus
+                .map(|g| g.to_string())
+                .unwrap_or_else(|| "undefined".into()),
+        );
+        s.fig(
+            "enclosed volume (original mesh: 194.3)",
+            format!("{:.1}", b.volume),
+        );
+        s.fig("time", format!("{:.0} ms", dt * 1e3));
         out.push(s);
     }
     Ok(out)
