@@ -17,6 +17,8 @@
 //! # Minimal area change (Eq. 4.1)
 //! (|vᵢvₖ| + |vⱼvₖ| − |vᵢvⱼ|) / (|vᵢvₖ| + |vⱼvₖ| + |vᵢvⱼ|): "face area" is edge length in 2D.
 
+use crate::geom::expansion::{grow, two_prod, two_sum};
+
 /// Which selection key a constriction uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Key {
@@ -24,38 +26,6 @@ pub enum Key {
     Gamma,
     /// Boissonnat's minimal area change (Eq. 4.1).
     MinAreaChange,
-}
-
-#[inline]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    let err = (a - (s - bb)) + (b - bb);
-    (s, err)
-}
-
-#[inline]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    (p, a.mul_add(b, -p))
-}
-
-/// Adds `b` to the non-overlapping expansion `e` (Shewchuk's GROW-EXPANSION with zero
-/// elimination).
-fn grow(e: &mut Vec<f64>, b: f64) {
-    let mut q = b;
-    let mut out = Vec::with_capacity(e.len() + 1);
-    for &x in e.iter() {
-        let (s, h) = two_sum(q, x);
-        if h != 0.0 {
-            out.push(h);
-        }
-        q = s;
-    }
-    if q != 0.0 {
-        out.push(q);
-    }
-    *e = out;
 }
 
 /// The exact sign (−1, 0, 1) of (a − c)·(b − c). Exact unless an intermediate product

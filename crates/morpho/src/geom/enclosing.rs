@@ -40,6 +40,7 @@
 //! # Errors
 //! Empty input and non-finite coordinates.
 
+use super::expansion::{two_prod, two_sum};
 use super::predicates::raw;
 use super::{Point2, Point3};
 use crate::{Error, Result};
@@ -307,20 +308,6 @@ fn xdot(x: &[Expansion; 3], y: &[Expansion; 3]) -> Expansion {
 /// components, stored in increasing magnitude, zeros removed.
 #[derive(Debug, Clone)]
 struct Expansion(Vec<f64>);
-
-#[inline]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let x = a + b;
-    let bv = x - a;
-    let av = x - bv;
-    (x, (a - av) + (b - bv))
-}
-
-#[inline]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let x = a * b;
-    (x, a.mul_add(b, -x))
-}
 
 impl Expansion {
     fn zero() -> Self {

@@ -5,6 +5,7 @@
 //! points) are ordinary `f64` arithmetic.
 
 pub mod enclosing;
+pub mod expansion;
 pub mod predicates;
 
 pub use predicates::{incircle, insphere, orient2d, orient3d};

@@ -19,6 +19,7 @@
 //!
 //! Complexity: linear in the input size.
 
+use crate::geom::expansion::grow;
 use crate::geom::Point2;
 use crate::mesh::{Polygon, Polyline, Shapes2};
 use crate::{Error, Result};
@@ -171,33 +172,6 @@ pub fn read(bytes: &[u8]) -> Result<Shapes2> {
         walk(&v, &mut out)?;
     }
     Ok(out)
-}
-
-/// Error-free transformation: `a + b = s + t` exactly.
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    let t = (a - (s - bb)) + (b - bb);
-    (s, t)
-}
-
-/// Adds `b` to the nonoverlapping expansion `e` (increasing magnitude), zero components dropped
-/// (Shewchuk 1997, Grow-Expansion with zero elimination).
-fn grow(e: &mut Vec<f64>, b: f64) {
-    let mut q = b;
-    let mut k = 0;
-    for i in 0..e.len() {
-        let (s, h) = two_sum(q, e[i]);
-        q = s;
-        if h != 0.0 {
-            e[k] = h;
-            k += 1;
-        }
-    }
-    e.truncate(k);
-    if q != 0.0 {
-        e.push(q);
-    }
 }
 
 /// Sign of the signed area of a ring (positive = counter-clockwise), computed exactly: the
