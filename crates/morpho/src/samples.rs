@@ -230,7 +230,7 @@ mod tests {
         // the outline is a simple polygon (exact segment intersection test)
         let n = p.len();
         let o = |a: usize, b: usize, c: usize| {
-            crate::geom::orient2d(&p[a % n], &p[b % n], &p[c % n]).signum()
+            crate::graphs::gamma::sign(crate::geom::orient2d(&p[a % n], &p[b % n], &p[c % n]))
         };
         for i in 0..n {
             for j in i + 2..n {
