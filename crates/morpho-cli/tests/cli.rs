@@ -630,3 +630,72 @@ fn contour_command() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).starts_with("error: "));
 }
+
+#[test]
+fn info_check_reports_simplicity_and_closedness() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // a bow-tie ring (edges 0 and 2 cross) and a square
+    let bow = write(
+        d,
+        "bow.geojson",
+        br#"{"type":"Polygon","coordinates":[[[0,0],[2,2],[2,0],[0,2],[0,0]]]}"#,
+    );
+    let o = morpho(&["info", bow.to_str().unwrap(), "--check"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stdout(&o));
+    assert!(stdout(&o).contains("edges 0 and 2 meet"), "{}", stdout(&o));
+    let sq = write(
+        d,
+        "sq.geojson",
+        br#"{"type":"Polygon","coordinates":[[[0,0],[2,0],[2,2],[0,2],[0,0]]]}"#,
+    );
+    let o = morpho(&["info", sq.to_str().unwrap(), "--check"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    // a closed cube passes; the same cube with one face missing fails
+    let cube = write(d, "cube.obj", CUBE_OBJ.as_bytes());
+    let rep = d.join("r.json");
+    let o = morpho(&[
+        "info",
+        cube.to_str().unwrap(),
+        "--check",
+        "--report",
+        rep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&rep).unwrap()).unwrap();
+    assert_eq!(r["valid"], true);
+    assert_eq!(r["closed_manifold"], true);
+    let open: String = CUBE_OBJ
+        .lines()
+        .filter(|l| *l != "f 1 3 2")
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let open = write(d, "open.obj", open.as_bytes());
+    let o = morpho(&["info", open.to_str().unwrap(), "--check"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stdout(&o).contains("closed 2-manifold: no"));
+    // two cubes passing through each other: closed but self-intersecting
+    let mut two = String::from(CUBE_OBJ);
+    for l in CUBE_OBJ.lines().filter(|l| l.starts_with("v ")) {
+        let c: Vec<f64> = l[2..]
+            .split(' ')
+            .map(|x| x.parse::<f64>().unwrap() + 0.5)
+            .collect();
+        two.push_str(&format!("v {} {} {}\n", c[0], c[1], c[2]));
+    }
+    for l in CUBE_OBJ.lines().filter(|l| l.starts_with("f ")) {
+        let f: Vec<u32> = l[2..]
+            .split(' ')
+            .map(|x| x.parse::<u32>().unwrap() + 8)
+            .collect();
+        two.push_str(&format!("f {} {} {}\n", f[0], f[1], f[2]));
+    }
+    let two = write(d, "two.obj", two.as_bytes());
+    let o = morpho(&["info", two.to_str().unwrap(), "--check"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stdout(&o));
+    assert!(
+        !stdout(&o).contains("self-intersections: none"),
+        "{}",
+        stdout(&o)
+    );
+}

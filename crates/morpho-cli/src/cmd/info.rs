@@ -12,6 +12,11 @@ use std::path::PathBuf;
 pub struct Args {
     /// Any file morpho reads (points, polygons, mesh, volume).
     pub input: PathBuf,
+    /// Validity checks by exact predicates: polygons are simple (no two non-adjacent edges
+    /// meet); meshes are closed 2-manifolds without self-intersections (genus reported).
+    /// Exit code 1 when a check fails.
+    #[arg(long)]
+    pub check: bool,
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
@@ -23,7 +28,80 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     for l in lines {
         println!("{l}");
     }
+    if args.check {
+        let t = std::time::Instant::now();
+        let (valid, lines) = check(&data, report);
+        report.add_time("compute", t.elapsed().as_secs_f64());
+        for l in lines {
+            println!("{l}");
+        }
+        report.set("valid", valid);
+        return Ok(if valid { 0 } else { 1 });
+    }
     Ok(0)
+}
+
+/// The `--check` validity tests; returns whether everything passed and the lines to print.
+fn check(data: &Data, report: &mut Report) -> (bool, Vec<String>) {
+    use morpho::boundary::{validity, validity3};
+    let mut out = Vec::new();
+    let mut valid = true;
+    match data {
+        Data::Shapes(s) => {
+            let mut bad = Vec::new();
+            for (pi, poly) in s.polygons.iter().enumerate() {
+                for (ri, ring) in poly.rings.iter().enumerate() {
+                    let cycle: Vec<u32> = (0..ring.len() as u32).collect();
+                    let c = validity::check_polygon(ring, &cycle);
+                    if !c.simple {
+                        valid = false;
+                        let what = match c.conflict {
+                            Some((a, b)) if ring[a] == ring[b] => {
+                                format!("vertices {a} and {b} coincide")
+                            }
+                            Some((a, b)) => format!("edges {a} and {b} meet"),
+                            None => "fewer than 3 distinct vertices".into(),
+                        };
+                        out.push(format!(
+                            "check: polygon {pi} ring {ri} is not simple: {what}"
+                        ));
+                        bad.push(json!({"polygon": pi, "ring": ri, "conflict": c.conflict}));
+                    }
+                }
+            }
+            if valid {
+                out.push("check: every ring is a simple polygon".into());
+            }
+            report.set("not_simple", bad);
+        }
+        Data::Mesh(m) => {
+            let t = topology::analyze(m);
+            let closed = t.manifold && t.boundary_loops.is_empty() && !m.triangles.is_empty();
+            let pos: Vec<[f64; 3]> = m.positions.iter().map(|p| [p.x, p.y, p.z]).collect();
+            let hits = validity3::self_intersections(&pos, &m.triangles, 10);
+            valid = closed && hits.is_empty();
+            out.push(format!("check: closed 2-manifold: {}", yes(closed)));
+            out.push(format!(
+                "check: self-intersections: {}",
+                if hits.is_empty() {
+                    "none".to_string()
+                } else {
+                    format!(
+                        "{} or more, e.g. triangles {} and {}",
+                        hits.len(),
+                        hits[0].0,
+                        hits[0].1
+                    )
+                }
+            ));
+            report.set("closed_manifold", closed);
+            report.set("self_intersections", json!(hits));
+        }
+        _ => {
+            out.push("check: nothing to check for points and volumes".into());
+        }
+    }
+    (valid, out)
 }
 
 fn fmt_bbox(min: &[f64], max: &[f64]) -> String {

@@ -353,6 +353,15 @@ pub fn write_volume(path: &Path, v: &Volume) -> Result<()> {
     .map_err(|e| e.with_path(path))
 }
 
+/// An array of rings (arrays of `[x, y]`), the format of the earcut polygon fixtures.
+fn is_ring_array(v: &serde_json::Value) -> bool {
+    v.as_array()
+        .and_then(|a| a.first())
+        .and_then(|r| r.as_array())
+        .and_then(|r| r.first())
+        .is_some_and(|p| p.is_array())
+}
+
 /// What a file holds, as far as morpho can tell from its extension and content.
 #[derive(Debug, Clone)]
 pub enum Data {
@@ -389,7 +398,7 @@ pub fn read_any(path: &Path) -> Result<Data> {
             })?;
             if rawjson::is_sidecar(&v) {
                 Ok(Data::Volume(read_volume(path)?))
-            } else if v.get("type").is_some() {
+            } else if v.get("type").is_some() || is_ring_array(&v) {
                 Ok(Data::Shapes(read_shapes2(path)?))
             } else {
                 Ok(Data::Points(read_points(path)?))
