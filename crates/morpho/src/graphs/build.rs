@@ -15,6 +15,7 @@ use super::grid::Grid;
 use crate::delaunay::{d2, d3};
 use crate::geom::{Point2, Point3};
 use crate::{Error, Result};
+use rayon::prelude::*;
 
 /// Largest input for the brute-force 3D constructions.
 pub const BRUTE_LIMIT_3D: usize = 150;
@@ -254,7 +255,7 @@ fn classic<const D: usize>(
             }
             let k = 1.0 / (2.0 * (1.0 - b));
             gabriel
-                .iter()
+                .par_iter()
                 .copied()
                 .filter(|e| {
                     let (u, v) = (p[e[0] as usize], p[e[1] as usize]);
@@ -290,16 +291,21 @@ fn classic<const D: usize>(
             let nn = nn_over(p, dt_edges);
             let rmax = nn.iter().cloned().fold(0.0, f64::max);
             let grid = Grid::new(p, 2.0);
-            let mut out = Vec::new();
-            for a in 0..n {
-                grid.for_each_within(p[a], nn[a] + rmax, |b| {
-                    if (b as usize) > a && dist(&p[a], &p[b as usize]) < nn[a] + nn[b as usize] {
-                        out.push([a as u32, b]);
-                    }
-                    true
-                });
-            }
-            out
+            let per: Vec<Vec<[u32; 2]>> = (0..n)
+                .into_par_iter()
+                .map(|a| {
+                    let mut out = Vec::new();
+                    grid.for_each_within(p[a], nn[a] + rmax, |b| {
+                        if (b as usize) > a && dist(&p[a], &p[b as usize]) < nn[a] + nn[b as usize]
+                        {
+                            out.push([a as u32, b]);
+                        }
+                        true
+                    });
+                    out
+                })
+                .collect();
+            per.into_iter().flatten().collect()
         }
         Kind::Strip => strip(p, gabriel),
         _ => {
@@ -315,7 +321,7 @@ fn classic<const D: usize>(
 /// early exit at the first point inside.
 fn strip<const D: usize>(p: &[[f64; D]], gabriel: &[[u32; 2]]) -> Vec<[u32; 2]> {
     gabriel
-        .iter()
+        .par_iter()
         .copied()
         .filter(|e| {
             let (u, v) = (p[e[0] as usize], p[e[1] as usize]);

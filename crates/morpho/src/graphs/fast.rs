@@ -30,6 +30,7 @@ use super::grid::Grid;
 use crate::delaunay::d2::{Delaunay2, NONE};
 use crate::delaunay::d3::Delaunay3;
 use crate::geom::predicates::raw;
+use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
 
 /// Every edge of γ([-1,1],[0,1]) of a 2D point set with its interval of empty-ball offsets.
@@ -103,34 +104,54 @@ pub fn candidates_2d(d: &Delaunay2) -> Candidates2 {
     }
     let nt = d.triangles.len();
     let mut parent: Vec<u32> = (0..nt as u32).collect();
-    for (t, tri) in d.triangles.iter().enumerate() {
-        for i in 0..3 {
-            let nb = d.neighbors[t][i];
-            if nb != NONE && (nb as usize) < t {
-                continue; // handled from the other side
-            }
-            let (u, v) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-            let (a, b) = (u.min(v), u.max(v));
-            let f = EdgeFrame::new(p[a as usize], p[b as usize]);
-            let mut iv = f.start();
-            f.add(&mut iv, p[tri[i] as usize]);
-            if nb != NONE {
-                let ntri = d.triangles[nb as usize];
-                let apex = ntri
-                    .iter()
-                    .copied()
-                    .find(|&x| x != u && x != v)
-                    .unwrap_or(tri[i]);
-                f.add(&mut iv, p[apex as usize]);
-                let pa = p[tri[0] as usize];
-                let pb = p[tri[1] as usize];
-                let pc = p[tri[2] as usize];
-                if raw::incircle(pa, pb, pc, p[apex as usize]) == 0.0 {
-                    let (r1, r2) = (find(&mut parent, t as u32), find(&mut parent, nb));
-                    parent[r1 as usize] = r2;
+    // every edge once (from the triangle with the smaller index), in parallel; the result order
+    // is the sequential one
+    let per_tri: Vec<Vec<([u32; 2], CenterInterval, Option<u32>)>> = d
+        .triangles
+        .par_iter()
+        .enumerate()
+        .map(|(t, tri)| {
+            let mut v3 = Vec::with_capacity(3);
+            for i in 0..3 {
+                let nb = d.neighbors[t][i];
+                if nb != NONE && (nb as usize) < t {
+                    continue; // handled from the other side
                 }
+                let (u, v) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+                let (a, b) = (u.min(v), u.max(v));
+                let f = EdgeFrame::new(p[a as usize], p[b as usize]);
+                let mut iv = f.start();
+                f.add(&mut iv, p[tri[i] as usize]);
+                let mut tie = None;
+                if nb != NONE {
+                    let ntri = d.triangles[nb as usize];
+                    let apex = ntri
+                        .iter()
+                        .copied()
+                        .find(|&x| x != u && x != v)
+                        .unwrap_or(tri[i]);
+                    f.add(&mut iv, p[apex as usize]);
+                    let c = tri.map(|x| p[x as usize]);
+                    if raw::incircle(c[0], c[1], c[2], p[apex as usize]) == 0.0 {
+                        tie = Some(nb);
+                    }
+                }
+                v3.push(([a, b], iv, tie));
             }
-            out.edges.push([a, b]);
+            v3
+        })
+        .collect();
+    let ne: usize = per_tri.iter().map(Vec::len).sum();
+    out.edges.reserve(ne);
+    out.intervals.reserve(ne);
+    out.in_dt.reserve(ne);
+    for (t, edges) in per_tri.into_iter().enumerate() {
+        for (e, iv, tie) in edges {
+            if let Some(nb) = tie {
+                let (r1, r2) = (find(&mut parent, t as u32), find(&mut parent, nb));
+                parent[r1 as usize] = r2;
+            }
+            out.edges.push(e);
             out.intervals.push(iv);
             out.in_dt.push(true);
         }
@@ -392,65 +413,73 @@ pub fn beyond_dt_2d(
     let lam = 0.5 * (k - (k * k - 1.0).sqrt()); // midpoint disc radius / edge length
     let f_over_r = (k * k - 1.0).sqrt();
     let bound = MidpointBound::new(d, &p);
-    let mut near: Vec<u32> = Vec::new();
-    for a in 0..n {
-        let pa = p[a];
-        near.clear();
-        // candidate partners: v = 2m − u for midpoints m in cells whose bound allows
-        // λ·|uv| = 2λ·|m − u| ≤ B(m)
-        bound.for_each_cell(pa, 2.0 * lam, |lo, hi, cell| {
-            let vlo = [2.0 * lo[0] - pa[0], 2.0 * lo[1] - pa[1]];
-            let vhi = [2.0 * hi[0] - pa[0], 2.0 * hi[1] - pa[1]];
-            grid.for_each_in_box(vlo, vhi, |b| {
-                if b as usize > a {
-                    let pb = p[b as usize];
-                    let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
-                    if bound.cell_of(m) == cell {
-                        near.push(b);
+    // one vertex's partners at a time, vertices in parallel (results in vertex order)
+    let per_vertex: Vec<Vec<([u32; 2], CenterInterval)>> = (0..n)
+        .into_par_iter()
+        .map(|a| {
+            let mut found = Vec::new();
+            let mut near: Vec<u32> = Vec::new();
+            let pa = p[a];
+            // candidate partners: v = 2m − u for midpoints m in cells whose bound allows
+            // λ·|uv| = 2λ·|m − u| ≤ B(m)
+            bound.for_each_cell(pa, 2.0 * lam, |lo, hi, cell| {
+                let vlo = [2.0 * lo[0] - pa[0], 2.0 * lo[1] - pa[1]];
+                let vhi = [2.0 * hi[0] - pa[0], 2.0 * hi[1] - pa[1]];
+                grid.for_each_in_box(vlo, vhi, |b| {
+                    if b as usize > a {
+                        let pb = p[b as usize];
+                        let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+                        if bound.cell_of(m) == cell {
+                            near.push(b);
+                        }
+                    }
+                    true
+                });
+            });
+            near.sort_unstable();
+            near.dedup();
+            for &b in &near {
+                let key = [a as u32, b];
+                if existing.contains(&key) {
+                    continue;
+                }
+                let pb = p[b as usize];
+                let len = ((pb[0] - pa[0]).powi(2) + (pb[1] - pa[1]).powi(2)).sqrt();
+                let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+                let w = lam * len;
+                // midpoint disc must be empty
+                let empty = grid.for_each_within(m, w, |x| x == a as u32 || x == b);
+                if !empty {
+                    continue;
+                }
+                let r = 0.5 * len;
+                let reach = r * (k + f_over_r) * (1.0 + 1e-9);
+                let f = EdgeFrame::new(pa, pb);
+                let mut iv = f.start();
+                grid.for_each_within(m, reach, |x| {
+                    if x != a as u32 && x != b {
+                        f.add(&mut iv, p[x as usize]);
+                    }
+                    true
+                });
+                // Only a gap can be trusted: a non-Delaunay edge always has one, and when its true
+                // c₁′ ≥ c every binding point is within reach, so the local interval is exact. A
+                // local interval without a gap means a binding point beyond reach, i.e. c₁′ < c.
+                if iv.lo <= iv.hi {
+                    continue;
+                }
+                if let Some((_, c1)) = iv.gamma_values() {
+                    if c1 >= c {
+                        found.push((key, iv));
                     }
                 }
-                true
-            });
-        });
-        near.sort_unstable();
-        near.dedup();
-        for &b in &near {
-            let key = [a as u32, b];
-            if existing.contains(&key) {
-                continue;
             }
-            let pb = p[b as usize];
-            let len = ((pb[0] - pa[0]).powi(2) + (pb[1] - pa[1]).powi(2)).sqrt();
-            let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
-            let w = lam * len;
-            // midpoint disc must be empty
-            let empty = grid.for_each_within(m, w, |x| x == a as u32 || x == b);
-            if !empty {
-                continue;
-            }
-            let r = 0.5 * len;
-            let reach = r * (k + f_over_r) * (1.0 + 1e-9);
-            let f = EdgeFrame::new(pa, pb);
-            let mut iv = f.start();
-            grid.for_each_within(m, reach, |x| {
-                if x != a as u32 && x != b {
-                    f.add(&mut iv, p[x as usize]);
-                }
-                true
-            });
-            // Only a gap can be trusted: a non-Delaunay edge always has one, and when its true
-            // c₁′ ≥ c every binding point is within reach, so the local interval is exact. A
-            // local interval without a gap means a binding point beyond reach, i.e. c₁′ < c.
-            if iv.lo <= iv.hi {
-                continue;
-            }
-            if let Some((_, c1)) = iv.gamma_values() {
-                if c1 >= c {
-                    edges.push(key);
-                    ivs.push(iv);
-                }
-            }
-        }
+            found
+        })
+        .collect();
+    for (e, iv) in per_vertex.into_iter().flatten() {
+        edges.push(e);
+        ivs.push(iv);
     }
     (edges, ivs)
 }
