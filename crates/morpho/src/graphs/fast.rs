@@ -106,7 +106,9 @@ pub fn candidates_2d(d: &Delaunay2) -> Candidates2 {
     let mut parent: Vec<u32> = (0..nt as u32).collect();
     // every edge once (from the triangle with the smaller index), in parallel; the result order
     // is the sequential one
-    let per_tri: Vec<Vec<([u32; 2], CenterInterval, Option<u32>)>> = d
+    // (edge, interval, neighbour across it when the two triangles are cocircular)
+    type EdgeJob = ([u32; 2], CenterInterval, Option<u32>);
+    let per_tri: Vec<Vec<EdgeJob>> = d
         .triangles
         .par_iter()
         .enumerate()
