@@ -395,20 +395,6 @@ fn mesh(
         None => None,
     };
     let opts = RenderOptions {
-        width: args.width,
-        height: args.height,
-        azimuth_deg: args.azimuth,
-        elevation_deg: args.elevation,
-        up: if args.up.as_deref() == Some("z") {
-            UpAxis::Z
-        } else {
-            UpAxis::Y
-        },
-        projection: if args.ortho {
-            Projection::Orthographic
-        } else {
-            Projection::Perspective { fov_deg: 30.0 }
-        },
         shading: if args.flat {
             Shading::Flat
         } else {
@@ -416,8 +402,7 @@ fn mesh(
         },
         scalars,
         wireframe: args.wireframe,
-        supersample: args.supersample,
-        ..Default::default()
+        ..view_options(args, UpAxis::Y)
     };
     let (img, st) = report.time("compute", || {
         let (img, st) = render_mesh_stats(m, &opts);
@@ -476,20 +461,6 @@ fn volume_view(
         .map(|p| p.values.clone())
         .unwrap_or_default();
     let opts = RenderOptions {
-        width: args.width,
-        height: args.height,
-        azimuth_deg: args.azimuth,
-        elevation_deg: args.elevation,
-        up: if args.up.as_deref() == Some("y") {
-            UpAxis::Y
-        } else {
-            UpAxis::Z
-        },
-        projection: if args.ortho {
-            Projection::Orthographic
-        } else {
-            Projection::Perspective { fov_deg: 30.0 }
-        },
         shading: Shading::Flat,
         scalars: Some(Scalars {
             values,
@@ -498,8 +469,7 @@ fn volume_view(
             range,
         }),
         transparency: (view == "planes").then_some(args.transparency),
-        supersample: args.supersample,
-        ..Default::default()
+        ..view_options(args, UpAxis::Z)
     };
     let img = report.time("compute", || {
         let (img, st) = render_mesh_stats(&m, &opts);
@@ -514,4 +484,27 @@ fn volume_view(
     report.set("height", img.height);
     report.time("write", || img.save_png(&args.output))?;
     Ok(())
+}
+
+/// The camera and image settings shared by mesh and volume pictures; `--up` overrides
+/// `default_up`.
+fn view_options(args: &Args, default_up: UpAxis) -> RenderOptions {
+    RenderOptions {
+        width: args.width,
+        height: args.height,
+        azimuth_deg: args.azimuth,
+        elevation_deg: args.elevation,
+        up: match args.up.as_deref() {
+            Some("z") => UpAxis::Z,
+            Some("y") => UpAxis::Y,
+            _ => default_up,
+        },
+        projection: if args.ortho {
+            Projection::Orthographic
+        } else {
+            Projection::Perspective { fov_deg: 30.0 }
+        },
+        supersample: args.supersample,
+        ..Default::default()
+    }
 }
