@@ -105,6 +105,50 @@ pub fn gradient_at(
     g
 }
 
+/// Central differences with per-axis tables of the clamped neighbour offsets and plane
+/// distances, for evaluating many grid points of one volume: the same arithmetic (and so the
+/// same bits) as [`gradient_at`] with [`GradientOperator::Central`], without its branches.
+pub(crate) struct CentralTable {
+    /// `lo[k][i]`, `hi[k][i]`: linear-index offsets to the lower and upper neighbour along k.
+    lo: [Vec<usize>; 3],
+    hi: [Vec<usize>; 3],
+    /// `span[k][i]`: coordinate distance between those neighbours.
+    span: [Vec<f64>; 3],
+}
+
+impl CentralTable {
+    /// Tables for `vol` (every dim ≥ 2) with plane coordinates `axes` from [`axis_coords`].
+    pub(crate) fn new(vol: &Volume, axes: &[Vec<f64>; 3]) -> Self {
+        let d = vol.dims;
+        let st = [1usize, d[0], d[0] * d[1]];
+        let lo = std::array::from_fn(|k| {
+            (0..d[k])
+                .map(|i| st[k] * (i - i.saturating_sub(1)))
+                .collect()
+        });
+        let hi = std::array::from_fn(|k| {
+            (0..d[k])
+                .map(|i| st[k] * ((i + 1).min(d[k] - 1) - i))
+                .collect()
+        });
+        let span = std::array::from_fn(|k| {
+            (0..d[k])
+                .map(|i| axes[k][(i + 1).min(d[k] - 1)] - axes[k][i.saturating_sub(1)])
+                .collect()
+        });
+        CentralTable { lo, hi, span }
+    }
+
+    /// Gradient at grid point `p` with linear index `j` of `data` (the volume's samples).
+    #[inline(always)]
+    pub(crate) fn at(&self, data: &[f32], j: usize, p: [usize; 3]) -> [f64; 3] {
+        std::array::from_fn(|k| {
+            let (l, h, s) = (self.lo[k][p[k]], self.hi[k][p[k]], self.span[k][p[k]]);
+            (data[j + h] as f64 - data[j - l] as f64) / s
+        })
+    }
+}
+
 /// [`gradient_at`] for a point with all neighbours inside the volume (same arithmetic as the
 /// general path, without clamping).
 #[inline]
@@ -315,6 +359,32 @@ mod tests {
                     assert!((g[0] - 3.0).abs() < 1e-5, "{op:?} {p:?} {g:?}");
                     assert!((g[1] + 2.0).abs() < 1e-5, "{op:?} {p:?} {g:?}");
                     assert!((g[2] - 0.5).abs() < 1e-5, "{op:?} {p:?} {g:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn central_table_matches_gradient_at_bitwise() {
+        let mut v = Volume::from_fn([5, 2, 4], [0.0; 3], [1.0, 2.0, 3.0], |x, y, z| {
+            (3.0 * x).sin() + y * z * z
+        });
+        v.axes = Axes::Coords([
+            vec![0.0, 0.1, 0.5, 0.6, 2.0],
+            vec![-1.0, 0.3],
+            vec![2.0, 2.1, 2.25, 2.9],
+        ]);
+        v.data[7] = f32::NAN;
+        let ax = axis_coords(&v);
+        let tab = CentralTable::new(&v, &ax);
+        for z in 0..4 {
+            for y in 0..2 {
+                for x in 0..5 {
+                    let want = gradient_at(&v, &ax, [x, y, z], GradientOperator::Central);
+                    let got = tab.at(&v.data, v.index(x, y, z), [x, y, z]);
+                    for k in 0..3 {
+                        assert_eq!(want[k].to_bits(), got[k].to_bits(), "{x} {y} {z} {k}");
+                    }
                 }
             }
         }

@@ -15,7 +15,7 @@
 use super::tables::{self, polygon_table, tet_table, FACE_CORNERS, NO_FACE, TETS};
 use super::{Method, NormalMethod};
 use crate::geom::{Point3, Vector3};
-use crate::volume::gradient::{gradient_at, GradientOperator};
+use crate::volume::gradient::{gradient_at, CentralTable, GradientOperator};
 use crate::volume::Volume;
 
 pub(super) const NONE: u32 = u32::MAX;
@@ -153,6 +153,9 @@ pub(super) struct Ctx<'a> {
     pub flip: bool,
     /// Record grid keys of vertices (needed for the topology analysis only).
     pub keys: bool,
+    /// Offset and span tables for central-difference normals (`Some` iff `normals` is
+    /// `Central`).
+    pub central: Option<&'a CentralTable>,
 }
 
 #[derive(Default)]
@@ -185,11 +188,6 @@ impl Ctx<'_> {
             d
         }
     }
-    #[inline]
-    fn gi(&self, x: usize, y: usize, z: usize) -> f64 {
-        let d = self.vol.dims;
-        self.g(self.vol.data[x + d[0] * (y + d[1] * z)])
-    }
     fn op(&self) -> Option<GradientOperator> {
         match self.normals {
             NormalMethod::ZuckerHummel => Some(GradientOperator::ZuckerHummel),
@@ -204,9 +202,10 @@ impl Ctx<'_> {
         let Some(op) = self.op() else {
             return Vector3::zeros();
         };
-        if op == GradientOperator::Central {
+        if let Some(tab) = self.central {
             // six samples: recomputing is as cheap as the cache lookup
-            let g = gradient_at(self.vol, self.axes, p, op);
+            let [nx, ny, _] = self.vol.dims;
+            let g = tab.at(&self.vol.data, p[0] + nx * (p[1] + ny * p[2]), p);
             return Vector3::new(g[0], g[1], g[2]);
         }
         let nxy = self.vol.dims[0] * self.vol.dims[1];
@@ -285,8 +284,13 @@ impl Ctx<'_> {
 
     /// Adds the contour point on the entity from grid point `a` to `b` (known to be cut).
     fn vertex(&self, a: [usize; 3], b: [usize; 3], k: u64, out: &mut ChunkOut) -> u32 {
-        let ga = self.gi(a[0], a[1], a[2]);
-        let gb = self.gi(b[0], b[1], b[2]);
+        let [nx, ny, _] = self.vol.dims;
+        let (ia, ib) = (
+            a[0] + nx * (a[1] + ny * a[2]),
+            b[0] + nx * (b[1] + ny * b[2]),
+        );
+        let ga = self.g(self.vol.data[ia]);
+        let gb = self.g(self.vol.data[ib]);
         let mut t = ga / (ga - gb);
         if t.is_nan() {
             // an infinite sample: the contour point sits at the finite end
@@ -298,7 +302,16 @@ impl Ctx<'_> {
         }
         let (pa, pb) = (self.point(a), self.point(b));
         out.pos.push(pa + (pb - pa) * t);
-        if self.op().is_some() {
+        if let Some(tab) = self.central {
+            let data = &self.vol.data;
+            let (na, nb) = (tab.at(data, ia, a), tab.at(data, ib, b));
+            let u = 1.0 - t;
+            out.nrm.push(self.orient(Vector3::new(
+                na[0] * u + nb[0] * t,
+                na[1] * u + nb[1] * t,
+                na[2] * u + nb[2] * t,
+            )));
+        } else if self.op().is_some() {
             let (na, nb) = (self.grad(a, out), self.grad(b, out));
             out.nrm.push(self.orient(na * (1.0 - t) + nb * t));
         }

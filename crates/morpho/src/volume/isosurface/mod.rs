@@ -50,7 +50,7 @@ pub mod tables;
 
 use crate::geom::Vector3;
 use crate::mesh::{Property, ScalarKind, TriMesh};
-use crate::volume::gradient::{axis_coords, mesh_normals, mesh_normals_where};
+use crate::volume::gradient::{axis_coords, mesh_normals, mesh_normals_where, CentralTable};
 use crate::volume::Volume;
 use crate::{Error, Result};
 use extract::{extent, ChunkOut, Ctx, INTERIOR, KEY_INTERIOR};
@@ -175,6 +175,7 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
     } else {
         1e-9 * opts.level.abs().max(1.0)
     };
+    let central = (opts.normals == NormalMethod::Central).then(|| CentralTable::new(vol, &axes));
     let ctx = Ctx {
         vol,
         axes: &axes,
@@ -184,6 +185,7 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
         normals: opts.normals,
         flip: opts.flip,
         keys: opts.topology,
+        central: central.as_ref(),
     };
     let layers = vol.dims[2] - 1;
     let threads = rayon::current_num_threads().max(1);
