@@ -142,10 +142,17 @@ impl CentralTable {
     /// Gradient at grid point `p` with linear index `j` of `data` (the volume's samples).
     #[inline(always)]
     pub(crate) fn at(&self, data: &[f32], j: usize, p: [usize; 3]) -> [f64; 3] {
-        std::array::from_fn(|k| {
-            let (l, h, s) = (self.lo[k][p[k]], self.hi[k][p[k]], self.span[k][p[k]]);
-            (data[j + h] as f64 - data[j - l] as f64) / s
-        })
+        [
+            self.component(data, j, p, 0),
+            self.component(data, j, p, 1),
+            self.component(data, j, p, 2),
+        ]
+    }
+
+    #[inline(always)]
+    fn component(&self, data: &[f32], j: usize, p: [usize; 3], k: usize) -> f64 {
+        let (l, h, s) = (self.lo[k][p[k]], self.hi[k][p[k]], self.span[k][p[k]]);
+        (data[j + h] as f64 - data[j - l] as f64) / s
     }
 }
 
