@@ -149,6 +149,33 @@ impl CentralTable {
         ]
     }
 
+    /// [`CentralTable::at`] at two grid points (`ja`, `a`) and (`jb`, `b`), with the six
+    /// divisions written as one loop so that they can be done two at a time.
+    #[inline(always)]
+    pub(crate) fn at2(
+        &self,
+        data: &[f32],
+        ja: usize,
+        a: [usize; 3],
+        jb: usize,
+        b: [usize; 3],
+    ) -> [[f64; 3]; 2] {
+        let mut num = [0.0f64; 6];
+        let mut den = [1.0f64; 6];
+        for k in 0..3 {
+            for (s, (j, p)) in [(ja, a), (jb, b)].into_iter().enumerate() {
+                let (l, h) = (self.lo[k][p[k]], self.hi[k][p[k]]);
+                num[2 * k + s] = data[j + h] as f64 - data[j - l] as f64;
+                den[2 * k + s] = self.span[k][p[k]];
+            }
+        }
+        let mut q = [0.0f64; 6];
+        for i in 0..6 {
+            q[i] = num[i] / den[i];
+        }
+        [[q[0], q[2], q[4]], [q[1], q[3], q[5]]]
+    }
+
     #[inline(always)]
     fn component(&self, data: &[f32], j: usize, p: [usize; 3], k: usize) -> f64 {
         let (l, h, s) = (self.lo[k][p[k]], self.hi[k][p[k]], self.span[k][p[k]]);

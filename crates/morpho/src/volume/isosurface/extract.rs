@@ -172,6 +172,8 @@ pub(super) struct ChunkOut {
     pub skipped_cells: usize,
     /// More than 2³¹ − 1 vertices in this slab (indices no longer fit).
     pub overflow: bool,
+    /// Some grid-gradient normal is the zero vector (undefined).
+    pub zero_normals: bool,
     /// Work space: gradients of two grid planes (freed when the slab is done).
     gcache: [Vec<[f64; 3]>; 2],
     gstamp: [Vec<u32>; 2],
@@ -236,6 +238,21 @@ impl Ctx<'_> {
         } else {
             Vector3::zeros()
         }
+    }
+    /// [`Ctx::orient`] applied in place to the edge-point gradients `out.nrm[from..]` (a
+    /// separate loop: its iterations are independent, so the square roots and divisions of
+    /// neighbouring points overlap instead of stalling the point generation); records whether
+    /// a normal came out zero.
+    fn orient_from(&self, from: usize, out: &mut ChunkOut) {
+        if self.op().is_none() {
+            return;
+        }
+        let mut zero = false;
+        for n in out.nrm.get_mut(from..).unwrap_or_default() {
+            *n = self.orient(*n);
+            zero |= n.x == 0.0 && n.y == 0.0 && n.z == 0.0;
+        }
+        out.zero_normals |= zero;
     }
     fn point(&self, p: [usize; 3]) -> Point3 {
         Point3::new(self.axes[0][p[0]], self.axes[1][p[1]], self.axes[2][p[2]])
@@ -304,16 +321,17 @@ impl Ctx<'_> {
         out.pos.push(pa + (pb - pa) * t);
         if let Some(tab) = self.central {
             let data = &self.vol.data;
-            let (na, nb) = (tab.at(data, ia, a), tab.at(data, ib, b));
+            let [na, nb] = tab.at2(data, ia, a, ib, b);
             let u = 1.0 - t;
-            out.nrm.push(self.orient(Vector3::new(
+            // normalised later in a batch (`orient_from`)
+            out.nrm.push(Vector3::new(
                 na[0] * u + nb[0] * t,
                 na[1] * u + nb[1] * t,
                 na[2] * u + nb[2] * t,
-            )));
+            ));
         } else if self.op().is_some() {
             let (na, nb) = (self.grad(a, out), self.grad(b, out));
-            out.nrm.push(self.orient(na * (1.0 - t) + nb * t));
+            out.nrm.push(na * (1.0 - t) + nb * t);
         }
         if self.keys {
             out.keys.push(k);
@@ -429,6 +447,7 @@ impl Ctx<'_> {
         let delta = delta_table(nx, ps, ls);
         self.signs(z0, &mut slo, &mut rlo);
         self.build_plane(z0, &slo, &rlo, &mut plo, &mut out);
+        self.orient_from(0, &mut out);
         for z in z0..z1 {
             if self.op().is_some() {
                 // gradients of plane z + 1 read plane z + 2: bring it into the cache in one
@@ -442,9 +461,11 @@ impl Ctx<'_> {
                 r0: &rlo,
                 r1: &rhi,
             };
+            let from = out.pos.len();
             self.build_layer(z, &sg, &mut lay, &mut out);
             out.last_plane_start = out.pos.len();
             self.build_plane(z + 1, &shi, &rhi, &mut phi, &mut out);
+            self.orient_from(from, &mut out);
             let ix = Index {
                 plo: &plo,
                 phi: &phi,
@@ -715,7 +736,9 @@ impl Ctx<'_> {
                     .product();
                 gsum += self.grad([cell[0] + bit(0), cell[1] + bit(1), cell[2] + bit(2)], out) * w;
             }
-            out.inrm.push(self.orient(gsum));
+            let n = self.orient(gsum);
+            out.zero_normals |= n.x == 0.0 && n.y == 0.0 && n.z == 0.0;
+            out.inrm.push(n);
         }
         out.overflow |= out.ipos.len() >= INTERIOR as usize;
         INTERIOR | (out.ipos.len() - 1) as u32

@@ -203,6 +203,7 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
     } else {
         ranges.iter().map(|&(a, b)| ctx.chunk(a, b)).collect()
     };
+    let zero_normals = chunks.iter().any(|c| c.zero_normals);
     let mut res = assemble(chunks, opts)?;
     let mut keys = std::mem::take(&mut res.1);
     let mut r = res.0;
@@ -215,11 +216,11 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
     }
     match opts.normals {
         NormalMethod::ZuckerHummel | NormalMethod::Central => {
-            let missing = r
-                .mesh
-                .normals
-                .as_ref()
-                .is_some_and(|nr| nr.iter().any(|n| n.x == 0.0 && n.y == 0.0 && n.z == 0.0));
+            let missing = zero_normals
+                && r.mesh
+                    .normals
+                    .as_ref()
+                    .is_some_and(|nr| nr.iter().any(|n| n.x == 0.0 && n.y == 0.0 && n.z == 0.0));
             if missing {
                 // flat spots (zero gradient) or NaN stencils: normals from the mesh there
                 let mut m = Vec::new();
