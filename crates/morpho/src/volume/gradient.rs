@@ -185,7 +185,7 @@ impl CentralTable {
 
 /// [`gradient_at`] for a point with all neighbours inside the volume (same arithmetic as the
 /// general path, without clamping).
-#[inline]
+#[inline(always)]
 fn gradient_interior(
     vol: &Volume,
     axes: &[Vec<f64>; 3],
@@ -205,28 +205,36 @@ fn gradient_interior(
         GradientOperator::ZuckerHummel => {
             const W: f64 =
                 1.0 + 4.0 * std::f64::consts::FRAC_1_SQRT_2 + 4.0 / 1.732_050_807_568_877_2;
-            const C: [f64; 3] = [
-                1.0,
-                std::f64::consts::FRAC_1_SQRT_2,
-                0.577_350_269_189_625_8,
-            ];
-            let comp = |k: usize| {
-                let (a, b) = (st[(k + 1) % 3], st[(k + 2) % 3]);
-                let (hi, lo) = (i + st[k], i - st[k]);
-                let mut s = 0.0;
-                for (o1, w1) in [(0isize, 0usize), (-1, 1), (1, 1)] {
-                    for (o2, w2) in [(0isize, 0usize), (-1, 1), (1, 1)] {
-                        let off = o1 * a as isize + o2 * b as isize;
-                        let h = data[hi.wrapping_add_signed(off)] as f64;
-                        let l = data[lo.wrapping_add_signed(off)] as f64;
-                        s += C[w1 + w2] * (h - l);
-                    }
-                }
-                s / (W * span(k))
-            };
-            [comp(0), comp(1), comp(2)]
+            [
+                zh_component(data, i, st, 0, W * span(0)),
+                zh_component(data, i, st, 1, W * span(1)),
+                zh_component(data, i, st, 2, W * span(2)),
+            ]
         }
     }
+}
+
+/// Component k of the interior Zucker–Hummel gradient at linear index `i` (strides `st`),
+/// divided by `wspan` = W · (x₊ − x₋).
+#[inline(always)]
+fn zh_component(data: &[f32], i: usize, st: [usize; 3], k: usize, wspan: f64) -> f64 {
+    const C: [f64; 3] = [
+        1.0,
+        std::f64::consts::FRAC_1_SQRT_2,
+        0.577_350_269_189_625_8,
+    ];
+    let (a, b) = (st[(k + 1) % 3], st[(k + 2) % 3]);
+    let (hi, lo) = (i + st[k], i - st[k]);
+    let mut s = 0.0;
+    for (o1, w1) in [(0isize, 0usize), (-1, 1), (1, 1)] {
+        for (o2, w2) in [(0isize, 0usize), (-1, 1), (1, 1)] {
+            let off = o1 * a as isize + o2 * b as isize;
+            let h = data[hi.wrapping_add_signed(off)] as f64;
+            let l = data[lo.wrapping_add_signed(off)] as f64;
+            s += C[w1 + w2] * (h - l);
+        }
+    }
+    s / wspan
 }
 
 /// Vertex normals from the triangulation alone (H Rem. 3.15), oriented like the triangles.
