@@ -448,7 +448,13 @@ impl Ctx<'_> {
         self.signs(z0, &mut slo, &mut rlo);
         self.build_plane(z0, &slo, &rlo, &mut plo, &mut out);
         self.orient_from(0, &mut out);
+        // after an eighth of the layers, reserve the output for the projected total: saves
+        // most of the copies of repeated doubling
+        let project_at = z0 + ((z1 - z0) / 8).max(1);
         for z in z0..z1 {
+            if z == project_at {
+                Self::reserve_projected(&mut out, z - z0, z1 - z0);
+            }
             if self.op().is_some() {
                 // gradients of plane z + 1 read plane z + 2: bring it into the cache in one
                 // sequential sweep instead of scattered misses
@@ -481,7 +487,34 @@ impl Ctx<'_> {
         }
         out.gcache = Default::default();
         out.gstamp = Default::default();
+        // a projection far above the real size: give the excess back
+        if out.pos.capacity() > 2 * out.pos.len() + 1024 {
+            out.pos.shrink_to_fit();
+            out.nrm.shrink_to_fit();
+            out.keys.shrink_to_fit();
+        }
+        if out.tris.capacity() > 2 * out.tris.len() + 1024 {
+            out.tris.shrink_to_fit();
+        }
         out
+    }
+
+    /// Reserves the output buffers for `total` layers at the rate of the `done` ones so far,
+    /// plus an eighth.
+    fn reserve_projected(out: &mut ChunkOut, done: usize, total: usize) {
+        let more = |len: usize| {
+            let p = (len as u64).saturating_mul(total as u64) / done.max(1) as u64;
+            (p + p / 8).saturating_sub(len as u64).min(INTERIOR as u64) as usize
+        };
+        let (np, nt) = (more(out.pos.len()), more(out.tris.len()));
+        out.pos.reserve(np);
+        if !out.nrm.is_empty() {
+            out.nrm.reserve(np);
+        }
+        if !out.keys.is_empty() {
+            out.keys.reserve(np);
+        }
+        out.tris.reserve(nt);
     }
 
     /// Finds the cells of layer z that the contour crosses.

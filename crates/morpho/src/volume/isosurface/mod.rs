@@ -353,7 +353,14 @@ fn assemble(chunks: Vec<ChunkOut>, opts: &Options) -> Result<(IsoResult, Vec<u64
             pos = std::mem::take(&mut c.pos);
             pos.reserve_exact(ne + ni - pos.len());
             nrm = std::mem::take(&mut c.nrm);
+            if grid_normals {
+                // room for the interior points' normals, so that no full copy is needed
+                nrm.reserve_exact(ne + ni - nrm.len());
+            }
             keys = std::mem::take(&mut c.keys);
+            if opts.topology {
+                keys.reserve_exact(ne + ni - keys.len());
+            }
             tris = std::mem::take(&mut c.tris);
             tris.reserve_exact(nt - tris.len());
             tris.iter_mut().for_each(remap);
