@@ -8,7 +8,9 @@
 //! * [`GradientOperator::Central`]: central differences (f₊ − f₋)/(x₊ − x₋).
 //!
 //! At the volume border the neighbour index is clamped (one-sided differences). Cost: O(1) per
-//! grid point (18 resp. 2 samples per component); nothing is stored for the whole volume.
+//! grid point (18 resp. 2 samples per component); nothing is stored for the whole volume
+//! (`CentralTable` keeps O(nx + ny + nz) per-axis offsets and plane distances so that many
+//! central differences are evaluated without branches, bit-identical to [`gradient_at`]).
 //! Contour points interpolate these grid gradients: linearly along a cell edge (Eq. 3.18) and
 //! trilinearly inside a cell (Eq. 3.19) — see `volume::isosurface`.
 //!
