@@ -200,6 +200,7 @@ impl Ctx<'_> {
     /// Gradient at grid point `p`. Zucker–Hummel gradients (54 samples) are cached per plane:
     /// planes z and z + 1 of the current layer use slots z mod 2, and a stamp z + 1 marks valid
     /// entries, so nothing is ever cleared.
+    #[inline]
     fn grad(&self, p: [usize; 3], out: &mut ChunkOut) -> Vector3 {
         let Some(op) = self.op() else {
             return Vector3::zeros();
@@ -209,13 +210,6 @@ impl Ctx<'_> {
             let [nx, ny, _] = self.vol.dims;
             let g = tab.at(&self.vol.data, p[0] + nx * (p[1] + ny * p[2]), p);
             return Vector3::new(g[0], g[1], g[2]);
-        }
-        let nxy = self.vol.dims[0] * self.vol.dims[1];
-        if out.gcache[0].len() != nxy {
-            for k in 0..2 {
-                out.gcache[k] = vec![[0.0; 3]; nxy];
-                out.gstamp[k] = vec![0; nxy];
-            }
         }
         let (slot, i, stamp) = (p[2] % 2, p[0] + self.vol.dims[0] * p[1], p[2] as u32 + 1);
         let g = if out.gstamp[slot][i] == stamp {
@@ -437,6 +431,12 @@ impl Ctx<'_> {
     pub fn chunk(&self, z0: usize, z1: usize) -> ChunkOut {
         let [nx, ny, _] = self.vol.dims;
         let mut out = ChunkOut::default();
+        if self.normals == NormalMethod::ZuckerHummel {
+            for k in 0..2 {
+                out.gcache[k] = vec![[0.0; 3]; nx * ny];
+                out.gstamp[k] = vec![0; nx * ny];
+            }
+        }
         let (ps, ls) = self.strides();
         let mut plo = vec![NONE; ps * nx * ny];
         let mut phi = vec![NONE; ps * nx * ny];
