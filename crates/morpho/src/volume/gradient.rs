@@ -8,7 +8,9 @@
 //! * [`GradientOperator::Central`]: central differences (f₊ − f₋)/(x₊ − x₋).
 //!
 //! At the volume border the neighbour index is clamped (one-sided differences). Cost: O(1) per
-//! grid point (18 resp. 2 samples per component); nothing is stored for the whole volume.
+//! grid point (18 resp. 2 samples per component); nothing is stored for the whole volume
+//! (`CentralTable` keeps O(nx + ny + nz) per-axis offsets and plane distances so that many
+//! central differences are evaluated without branches, bit-identical to [`gradient_at`]).
 //! Contour points interpolate these grid gradients: linearly along a cell edge (Eq. 3.18) and
 //! trilinearly inside a cell (Eq. 3.19) — see `volume::isosurface`.
 //!
@@ -105,9 +107,87 @@ pub fn gradient_at(
     g
 }
 
+/// Central differences with per-axis tables of the clamped neighbour offsets and plane
+/// distances, for evaluating many grid points of one volume: the same arithmetic (and so the
+/// same bits) as [`gradient_at`] with [`GradientOperator::Central`], without its branches.
+pub(crate) struct CentralTable {
+    /// `lo[k][i]`, `hi[k][i]`: linear-index offsets to the lower and upper neighbour along k.
+    lo: [Vec<usize>; 3],
+    hi: [Vec<usize>; 3],
+    /// `span[k][i]`: coordinate distance between those neighbours.
+    span: [Vec<f64>; 3],
+}
+
+impl CentralTable {
+    /// Tables for `vol` (every dim ≥ 2) with plane coordinates `axes` from [`axis_coords`].
+    pub(crate) fn new(vol: &Volume, axes: &[Vec<f64>; 3]) -> Self {
+        let d = vol.dims;
+        let st = [1usize, d[0], d[0] * d[1]];
+        let lo = std::array::from_fn(|k| {
+            (0..d[k])
+                .map(|i| st[k] * (i - i.saturating_sub(1)))
+                .collect()
+        });
+        let hi = std::array::from_fn(|k| {
+            (0..d[k])
+                .map(|i| st[k] * ((i + 1).min(d[k] - 1) - i))
+                .collect()
+        });
+        let span = std::array::from_fn(|k| {
+            (0..d[k])
+                .map(|i| axes[k][(i + 1).min(d[k] - 1)] - axes[k][i.saturating_sub(1)])
+                .collect()
+        });
+        CentralTable { lo, hi, span }
+    }
+
+    /// Gradient at grid point `p` with linear index `j` of `data` (the volume's samples).
+    #[inline(always)]
+    pub(crate) fn at(&self, data: &[f32], j: usize, p: [usize; 3]) -> [f64; 3] {
+        [
+            self.component(data, j, p, 0),
+            self.component(data, j, p, 1),
+            self.component(data, j, p, 2),
+        ]
+    }
+
+    /// [`CentralTable::at`] at two grid points (`ja`, `a`) and (`jb`, `b`), with the six
+    /// divisions written as one loop so that they can be done two at a time.
+    #[inline(always)]
+    pub(crate) fn at2(
+        &self,
+        data: &[f32],
+        ja: usize,
+        a: [usize; 3],
+        jb: usize,
+        b: [usize; 3],
+    ) -> [[f64; 3]; 2] {
+        let mut num = [0.0f64; 6];
+        let mut den = [1.0f64; 6];
+        for k in 0..3 {
+            for (s, (j, p)) in [(ja, a), (jb, b)].into_iter().enumerate() {
+                let (l, h) = (self.lo[k][p[k]], self.hi[k][p[k]]);
+                num[2 * k + s] = data[j + h] as f64 - data[j - l] as f64;
+                den[2 * k + s] = self.span[k][p[k]];
+            }
+        }
+        let mut q = [0.0f64; 6];
+        for i in 0..6 {
+            q[i] = num[i] / den[i];
+        }
+        [[q[0], q[2], q[4]], [q[1], q[3], q[5]]]
+    }
+
+    #[inline(always)]
+    fn component(&self, data: &[f32], j: usize, p: [usize; 3], k: usize) -> f64 {
+        let (l, h, s) = (self.lo[k][p[k]], self.hi[k][p[k]], self.span[k][p[k]]);
+        (data[j + h] as f64 - data[j - l] as f64) / s
+    }
+}
+
 /// [`gradient_at`] for a point with all neighbours inside the volume (same arithmetic as the
 /// general path, without clamping).
-#[inline]
+#[inline(always)]
 fn gradient_interior(
     vol: &Volume,
     axes: &[Vec<f64>; 3],
@@ -127,28 +207,36 @@ fn gradient_interior(
         GradientOperator::ZuckerHummel => {
             const W: f64 =
                 1.0 + 4.0 * std::f64::consts::FRAC_1_SQRT_2 + 4.0 / 1.732_050_807_568_877_2;
-            const C: [f64; 3] = [
-                1.0,
-                std::f64::consts::FRAC_1_SQRT_2,
-                0.577_350_269_189_625_8,
-            ];
-            let comp = |k: usize| {
-                let (a, b) = (st[(k + 1) % 3], st[(k + 2) % 3]);
-                let (hi, lo) = (i + st[k], i - st[k]);
-                let mut s = 0.0;
-                for (o1, w1) in [(0isize, 0usize), (-1, 1), (1, 1)] {
-                    for (o2, w2) in [(0isize, 0usize), (-1, 1), (1, 1)] {
-                        let off = o1 * a as isize + o2 * b as isize;
-                        let h = data[hi.wrapping_add_signed(off)] as f64;
-                        let l = data[lo.wrapping_add_signed(off)] as f64;
-                        s += C[w1 + w2] * (h - l);
-                    }
-                }
-                s / (W * span(k))
-            };
-            [comp(0), comp(1), comp(2)]
+            [
+                zh_component(data, i, st, 0, W * span(0)),
+                zh_component(data, i, st, 1, W * span(1)),
+                zh_component(data, i, st, 2, W * span(2)),
+            ]
         }
     }
+}
+
+/// Component k of the interior Zucker–Hummel gradient at linear index `i` (strides `st`),
+/// divided by `wspan` = W · (x₊ − x₋).
+#[inline(always)]
+fn zh_component(data: &[f32], i: usize, st: [usize; 3], k: usize, wspan: f64) -> f64 {
+    const C: [f64; 3] = [
+        1.0,
+        std::f64::consts::FRAC_1_SQRT_2,
+        0.577_350_269_189_625_8,
+    ];
+    let (a, b) = (st[(k + 1) % 3], st[(k + 2) % 3]);
+    let (hi, lo) = (i + st[k], i - st[k]);
+    let mut s = 0.0;
+    for (o1, w1) in [(0isize, 0usize), (-1, 1), (1, 1)] {
+        for (o2, w2) in [(0isize, 0usize), (-1, 1), (1, 1)] {
+            let off = o1 * a as isize + o2 * b as isize;
+            let h = data[hi.wrapping_add_signed(off)] as f64;
+            let l = data[lo.wrapping_add_signed(off)] as f64;
+            s += C[w1 + w2] * (h - l);
+        }
+    }
+    s / wspan
 }
 
 /// Vertex normals from the triangulation alone (H Rem. 3.15), oriented like the triangles.
@@ -315,6 +403,32 @@ mod tests {
                     assert!((g[0] - 3.0).abs() < 1e-5, "{op:?} {p:?} {g:?}");
                     assert!((g[1] + 2.0).abs() < 1e-5, "{op:?} {p:?} {g:?}");
                     assert!((g[2] - 0.5).abs() < 1e-5, "{op:?} {p:?} {g:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn central_table_matches_gradient_at_bitwise() {
+        let mut v = Volume::from_fn([5, 2, 4], [0.0; 3], [1.0, 2.0, 3.0], |x, y, z| {
+            (3.0 * x).sin() + y * z * z
+        });
+        v.axes = Axes::Coords([
+            vec![0.0, 0.1, 0.5, 0.6, 2.0],
+            vec![-1.0, 0.3],
+            vec![2.0, 2.1, 2.25, 2.9],
+        ]);
+        v.data[7] = f32::NAN;
+        let ax = axis_coords(&v);
+        let tab = CentralTable::new(&v, &ax);
+        for z in 0..4 {
+            for y in 0..2 {
+                for x in 0..5 {
+                    let want = gradient_at(&v, &ax, [x, y, z], GradientOperator::Central);
+                    let got = tab.at(&v.data, v.index(x, y, z), [x, y, z]);
+                    for k in 0..3 {
+                        assert_eq!(want[k].to_bits(), got[k].to_bits(), "{x} {y} {z} {k}");
+                    }
                 }
             }
         }

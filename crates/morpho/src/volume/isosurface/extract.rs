@@ -15,7 +15,7 @@
 use super::tables::{self, polygon_table, tet_table, FACE_CORNERS, NO_FACE, TETS};
 use super::{Method, NormalMethod};
 use crate::geom::{Point3, Vector3};
-use crate::volume::gradient::{gradient_at, GradientOperator};
+use crate::volume::gradient::{gradient_at, CentralTable, GradientOperator};
 use crate::volume::Volume;
 
 pub(super) const NONE: u32 = u32::MAX;
@@ -153,6 +153,9 @@ pub(super) struct Ctx<'a> {
     pub flip: bool,
     /// Record grid keys of vertices (needed for the topology analysis only).
     pub keys: bool,
+    /// Offset and span tables for central-difference normals (`Some` iff `normals` is
+    /// `Central`).
+    pub central: Option<&'a CentralTable>,
 }
 
 #[derive(Default)]
@@ -169,6 +172,8 @@ pub(super) struct ChunkOut {
     pub skipped_cells: usize,
     /// More than 2³¹ − 1 vertices in this slab (indices no longer fit).
     pub overflow: bool,
+    /// Some grid-gradient normal is the zero vector (undefined).
+    pub zero_normals: bool,
     /// Work space: gradients of two grid planes (freed when the slab is done).
     gcache: [Vec<[f64; 3]>; 2],
     gstamp: [Vec<u32>; 2],
@@ -185,11 +190,6 @@ impl Ctx<'_> {
             d
         }
     }
-    #[inline]
-    fn gi(&self, x: usize, y: usize, z: usize) -> f64 {
-        let d = self.vol.dims;
-        self.g(self.vol.data[x + d[0] * (y + d[1] * z)])
-    }
     fn op(&self) -> Option<GradientOperator> {
         match self.normals {
             NormalMethod::ZuckerHummel => Some(GradientOperator::ZuckerHummel),
@@ -200,21 +200,16 @@ impl Ctx<'_> {
     /// Gradient at grid point `p`. Zucker–Hummel gradients (54 samples) are cached per plane:
     /// planes z and z + 1 of the current layer use slots z mod 2, and a stamp z + 1 marks valid
     /// entries, so nothing is ever cleared.
+    #[inline]
     fn grad(&self, p: [usize; 3], out: &mut ChunkOut) -> Vector3 {
         let Some(op) = self.op() else {
             return Vector3::zeros();
         };
-        if op == GradientOperator::Central {
+        if let Some(tab) = self.central {
             // six samples: recomputing is as cheap as the cache lookup
-            let g = gradient_at(self.vol, self.axes, p, op);
+            let [nx, ny, _] = self.vol.dims;
+            let g = tab.at(&self.vol.data, p[0] + nx * (p[1] + ny * p[2]), p);
             return Vector3::new(g[0], g[1], g[2]);
-        }
-        let nxy = self.vol.dims[0] * self.vol.dims[1];
-        if out.gcache[0].len() != nxy {
-            for k in 0..2 {
-                out.gcache[k] = vec![[0.0; 3]; nxy];
-                out.gstamp[k] = vec![0; nxy];
-            }
         }
         let (slot, i, stamp) = (p[2] % 2, p[0] + self.vol.dims[0] * p[1], p[2] as u32 + 1);
         let g = if out.gstamp[slot][i] == stamp {
@@ -237,6 +232,21 @@ impl Ctx<'_> {
         } else {
             Vector3::zeros()
         }
+    }
+    /// [`Ctx::orient`] applied in place to the edge-point gradients `out.nrm[from..]` (a
+    /// separate loop: its iterations are independent, so the square roots and divisions of
+    /// neighbouring points overlap instead of stalling the point generation); records whether
+    /// a normal came out zero.
+    fn orient_from(&self, from: usize, out: &mut ChunkOut) {
+        if self.op().is_none() {
+            return;
+        }
+        let mut zero = false;
+        for n in out.nrm.get_mut(from..).unwrap_or_default() {
+            *n = self.orient(*n);
+            zero |= n.x == 0.0 && n.y == 0.0 && n.z == 0.0;
+        }
+        out.zero_normals |= zero;
     }
     fn point(&self, p: [usize; 3]) -> Point3 {
         Point3::new(self.axes[0][p[0]], self.axes[1][p[1]], self.axes[2][p[2]])
@@ -285,8 +295,13 @@ impl Ctx<'_> {
 
     /// Adds the contour point on the entity from grid point `a` to `b` (known to be cut).
     fn vertex(&self, a: [usize; 3], b: [usize; 3], k: u64, out: &mut ChunkOut) -> u32 {
-        let ga = self.gi(a[0], a[1], a[2]);
-        let gb = self.gi(b[0], b[1], b[2]);
+        let [nx, ny, _] = self.vol.dims;
+        let (ia, ib) = (
+            a[0] + nx * (a[1] + ny * a[2]),
+            b[0] + nx * (b[1] + ny * b[2]),
+        );
+        let ga = self.g(self.vol.data[ia]);
+        let gb = self.g(self.vol.data[ib]);
         let mut t = ga / (ga - gb);
         if t.is_nan() {
             // an infinite sample: the contour point sits at the finite end
@@ -298,9 +313,19 @@ impl Ctx<'_> {
         }
         let (pa, pb) = (self.point(a), self.point(b));
         out.pos.push(pa + (pb - pa) * t);
-        if self.op().is_some() {
+        if let Some(tab) = self.central {
+            let data = &self.vol.data;
+            let [na, nb] = tab.at2(data, ia, a, ib, b);
+            let u = 1.0 - t;
+            // normalised later in a batch (`orient_from`)
+            out.nrm.push(Vector3::new(
+                na[0] * u + nb[0] * t,
+                na[1] * u + nb[1] * t,
+                na[2] * u + nb[2] * t,
+            ));
+        } else if self.op().is_some() {
             let (na, nb) = (self.grad(a, out), self.grad(b, out));
-            out.nrm.push(self.orient(na * (1.0 - t) + nb * t));
+            out.nrm.push(na * (1.0 - t) + nb * t);
         }
         if self.keys {
             out.keys.push(k);
@@ -406,6 +431,12 @@ impl Ctx<'_> {
     pub fn chunk(&self, z0: usize, z1: usize) -> ChunkOut {
         let [nx, ny, _] = self.vol.dims;
         let mut out = ChunkOut::default();
+        if self.normals == NormalMethod::ZuckerHummel {
+            for k in 0..2 {
+                out.gcache[k] = vec![[0.0; 3]; nx * ny];
+                out.gstamp[k] = vec![0; nx * ny];
+            }
+        }
         let (ps, ls) = self.strides();
         let mut plo = vec![NONE; ps * nx * ny];
         let mut phi = vec![NONE; ps * nx * ny];
@@ -416,7 +447,14 @@ impl Ctx<'_> {
         let delta = delta_table(nx, ps, ls);
         self.signs(z0, &mut slo, &mut rlo);
         self.build_plane(z0, &slo, &rlo, &mut plo, &mut out);
+        self.orient_from(0, &mut out);
+        // after an eighth of the layers, reserve the output for the projected total: saves
+        // most of the copies of repeated doubling
+        let project_at = z0 + ((z1 - z0) / 8).max(1);
         for z in z0..z1 {
+            if z == project_at {
+                Self::reserve_projected(&mut out, z - z0, z1 - z0);
+            }
             if self.op().is_some() {
                 // gradients of plane z + 1 read plane z + 2: bring it into the cache in one
                 // sequential sweep instead of scattered misses
@@ -429,9 +467,11 @@ impl Ctx<'_> {
                 r0: &rlo,
                 r1: &rhi,
             };
+            let from = out.pos.len();
             self.build_layer(z, &sg, &mut lay, &mut out);
             out.last_plane_start = out.pos.len();
             self.build_plane(z + 1, &shi, &rhi, &mut phi, &mut out);
+            self.orient_from(from, &mut out);
             let ix = Index {
                 plo: &plo,
                 phi: &phi,
@@ -447,7 +487,34 @@ impl Ctx<'_> {
         }
         out.gcache = Default::default();
         out.gstamp = Default::default();
+        // a projection far above the real size: give the excess back
+        if out.pos.capacity() > 2 * out.pos.len() + 1024 {
+            out.pos.shrink_to_fit();
+            out.nrm.shrink_to_fit();
+            out.keys.shrink_to_fit();
+        }
+        if out.tris.capacity() > 2 * out.tris.len() + 1024 {
+            out.tris.shrink_to_fit();
+        }
         out
+    }
+
+    /// Reserves the output buffers for `total` layers at the rate of the `done` ones so far,
+    /// plus an eighth.
+    fn reserve_projected(out: &mut ChunkOut, done: usize, total: usize) {
+        let more = |len: usize| {
+            let p = (len as u64).saturating_mul(total as u64) / done.max(1) as u64;
+            (p + p / 8).saturating_sub(len as u64).min(INTERIOR as u64) as usize
+        };
+        let (np, nt) = (more(out.pos.len()), more(out.tris.len()));
+        out.pos.reserve(np);
+        if !out.nrm.is_empty() {
+            out.nrm.reserve(np);
+        }
+        if !out.keys.is_empty() {
+            out.keys.reserve(np);
+        }
+        out.tris.reserve(nt);
     }
 
     /// Finds the cells of layer z that the contour crosses.
@@ -702,7 +769,9 @@ impl Ctx<'_> {
                     .product();
                 gsum += self.grad([cell[0] + bit(0), cell[1] + bit(1), cell[2] + bit(2)], out) * w;
             }
-            out.inrm.push(self.orient(gsum));
+            let n = self.orient(gsum);
+            out.zero_normals |= n.x == 0.0 && n.y == 0.0 && n.z == 0.0;
+            out.inrm.push(n);
         }
         out.overflow |= out.ipos.len() >= INTERIOR as usize;
         INTERIOR | (out.ipos.len() - 1) as u32

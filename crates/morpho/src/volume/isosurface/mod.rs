@@ -50,7 +50,7 @@ pub mod tables;
 
 use crate::geom::Vector3;
 use crate::mesh::{Property, ScalarKind, TriMesh};
-use crate::volume::gradient::{axis_coords, mesh_normals, mesh_normals_where};
+use crate::volume::gradient::{axis_coords, mesh_normals, mesh_normals_where, CentralTable};
 use crate::volume::Volume;
 use crate::{Error, Result};
 use extract::{extent, ChunkOut, Ctx, INTERIOR, KEY_INTERIOR};
@@ -175,6 +175,7 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
     } else {
         1e-9 * opts.level.abs().max(1.0)
     };
+    let central = (opts.normals == NormalMethod::Central).then(|| CentralTable::new(vol, &axes));
     let ctx = Ctx {
         vol,
         axes: &axes,
@@ -184,6 +185,7 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
         normals: opts.normals,
         flip: opts.flip,
         keys: opts.topology,
+        central: central.as_ref(),
     };
     let layers = vol.dims[2] - 1;
     let threads = rayon::current_num_threads().max(1);
@@ -201,6 +203,7 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
     } else {
         ranges.iter().map(|&(a, b)| ctx.chunk(a, b)).collect()
     };
+    let zero_normals = chunks.iter().any(|c| c.zero_normals);
     let mut res = assemble(chunks, opts)?;
     let mut keys = std::mem::take(&mut res.1);
     let mut r = res.0;
@@ -213,11 +216,11 @@ pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
     }
     match opts.normals {
         NormalMethod::ZuckerHummel | NormalMethod::Central => {
-            let missing = r
-                .mesh
-                .normals
-                .as_ref()
-                .is_some_and(|nr| nr.iter().any(|n| n.x == 0.0 && n.y == 0.0 && n.z == 0.0));
+            let missing = zero_normals
+                && r.mesh
+                    .normals
+                    .as_ref()
+                    .is_some_and(|nr| nr.iter().any(|n| n.x == 0.0 && n.y == 0.0 && n.z == 0.0));
             if missing {
                 // flat spots (zero gradient) or NaN stencils: normals from the mesh there
                 let mut m = Vec::new();
@@ -350,7 +353,14 @@ fn assemble(chunks: Vec<ChunkOut>, opts: &Options) -> Result<(IsoResult, Vec<u64
             pos = std::mem::take(&mut c.pos);
             pos.reserve_exact(ne + ni - pos.len());
             nrm = std::mem::take(&mut c.nrm);
+            if grid_normals {
+                // room for the interior points' normals, so that no full copy is needed
+                nrm.reserve_exact(ne + ni - nrm.len());
+            }
             keys = std::mem::take(&mut c.keys);
+            if opts.topology {
+                keys.reserve_exact(ne + ni - keys.len());
+            }
             tris = std::mem::take(&mut c.tris);
             tris.reserve_exact(nt - tris.len());
             tris.iter_mut().for_each(remap);
