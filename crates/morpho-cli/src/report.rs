@@ -46,14 +46,6 @@ impl Report {
             .unwrap_or(0.0);
         self.timings.insert(stage.to_string(), (prev + dt).into());
     }
-    /// Seconds spent in `stage` so far.
-    #[allow(dead_code)]
-    pub fn stage_seconds(&self, stage: &str) -> f64 {
-        self.timings
-            .get(stage)
-            .and_then(Value::as_f64)
-            .unwrap_or(0.0)
-    }
     /// The JSON object.
     pub fn to_json(&self) -> Value {
         let mut m = self.fields.clone();

@@ -149,8 +149,7 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
     Ok(())
 }
 
-/// Converts an I/O error during writing into an [`Error`].
-#[allow(dead_code)]
+/// Converts an I/O error during writing into an [`Error`] (the caller adds the path).
 pub(crate) fn werr(e: std::io::Error) -> Error {
     Error::Io {
         path: String::new(),
