@@ -341,6 +341,14 @@ fn strip<const D: usize>(p: &[[f64; D]], gabriel: &[[u32; 2]]) -> Vec<[u32; 2]> 
 /// Builds a graph on 2D points (duplicates merged). Parameters are validated.
 pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
     kind.validate()?;
+    // β_c(b) = γ(b, b) (V §3.2), and the lune-based skeleton with b < 0 is the circle-based one
+    if let Kind::BetaCircle(b) | Kind::BetaLune(b) = kind {
+        if matches!(kind, Kind::BetaCircle(_)) || b < 0.0 {
+            let mut g = graph_2d(points, Kind::Gamma(b, b))?;
+            g.gamma.clear();
+            return Ok(g);
+        }
+    }
     let d = d2::triangulate(points)?;
     let p = fast::coords2(&d);
     // the candidates (Delaunay edges with their empty-ball intervals, cocircular chords) are
@@ -409,13 +417,8 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
                     .collect(),
             )
         }
-        Kind::BetaCircle(b) => {
-            return graph_2d(points, Kind::Gamma(b, b)).map(|mut g| {
-                g.gamma.clear();
-                g
-            })
-        }
-        Kind::BetaLune(b) if b < 0.0 => return graph_2d(points, Kind::BetaCircle(b)),
+        Kind::BetaCircle(_) => unreachable!("dispatched to Gamma(b, b) above"),
+        Kind::BetaLune(b) if b < 0.0 => unreachable!("dispatched to Gamma({b}, {b}) above"),
         Kind::Gamma(c0, c1) => {
             let mut e: Vec<([u32; 2], Option<[f64; 2]>)> = Vec::new();
             let mut take = |edges: &[[u32; 2]], ivs: &[CenterInterval]| {
