@@ -97,25 +97,10 @@ pub fn rate_triangles(
 ) -> Result<Vec<f64>> {
     check_values(values, points.len())?;
     crate::contour::dual::check_indices(tri, points.len())?;
-    let weights = (rating == Rating::AreaMean).then(|| {
-        let mut w = vec![0.0; points.len()];
-        for t in tri {
-            let [a, b, c] = t.map(|v| points[v as usize]);
-            let area = 0.5 * ((b - a).perp(&(c - a))).abs();
-            for &v in t {
-                w[v as usize] += area / 3.0;
-            }
-        }
-        w
-    });
-    Ok(tri
-        .iter()
-        .map(|t| {
-            let c = t.map(|v| values[v as usize]);
-            let w = weights.as_ref().map(|w| t.map(|v| w[v as usize]));
-            rate(c, w, rating)
-        })
-        .collect())
+    Ok(rate_simplices(tri, points.len(), values, rating, |t| {
+        let [a, b, c] = t.map(|v| points[v as usize]);
+        0.5 * ((b - a).perp(&(c - a))).abs()
+    }))
 }
 
 /// Ratings of the tetrahedra `tets` of `points` from the per-vertex `values`.
@@ -127,25 +112,39 @@ pub fn rate_tetrahedra(
 ) -> Result<Vec<f64>> {
     check_values(values, points.len())?;
     crate::contour::dual::check_indices(tets, points.len())?;
+    Ok(rate_simplices(tets, points.len(), values, rating, |t| {
+        let [a, b, c, d] = t.map(|v| points[v as usize]);
+        ((b - a).cross(&(c - a)).dot(&(d - a)) / 6.0).abs()
+    }))
+}
+
+/// Rates every simplex (indices already checked). For the area-weighted mean each corner is
+/// weighted by 1/K of the `measure` (area or volume) of its incident simplices.
+fn rate_simplices<const K: usize>(
+    simplices: &[[u32; K]],
+    n: usize,
+    values: &[f64],
+    rating: Rating,
+    measure: impl Fn(&[u32; K]) -> f64,
+) -> Vec<f64> {
     let weights = (rating == Rating::AreaMean).then(|| {
-        let mut w = vec![0.0; points.len()];
-        for t in tets {
-            let [a, b, c, d] = t.map(|v| points[v as usize]);
-            let vol = ((b - a).cross(&(c - a)).dot(&(d - a)) / 6.0).abs();
+        let mut w = vec![0.0; n];
+        for t in simplices {
+            let m = measure(t) / K as f64;
             for &v in t {
-                w[v as usize] += vol / 4.0;
+                w[v as usize] += m;
             }
         }
         w
     });
-    Ok(tets
+    simplices
         .iter()
         .map(|t| {
             let c = t.map(|v| values[v as usize]);
-            let w = weights.as_ref().map(|w| t.map(|v| w[v as usize]));
-            rate(c, w, rating)
+            let wt = weights.as_ref().map(|w| t.map(|v| w[v as usize]));
+            rate(c, wt, rating)
         })
-        .collect())
+        .collect()
 }
 
 /// Black (`true`) where the rating is strictly above `threshold`, or strictly below it when

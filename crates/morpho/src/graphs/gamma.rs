@@ -214,6 +214,18 @@ pub fn sign(x: f64) -> f64 {
     }
 }
 
+/// The offset τ = q / 2h of a point off the hyperplane with exact side `side` (±1), power `q`
+/// and height `h`. The float h has the sign of `side` up to rounding; the predicate is trusted.
+#[inline]
+fn tau_of(side: f64, q: f64, h: f64) -> f64 {
+    let h = if (h > 0.0) != (side > 0.0) || h == 0.0 {
+        side * f64::MIN_POSITIVE
+    } else {
+        h
+    };
+    q / (2.0 * h)
+}
+
 /// The frame of a 2D edge (a, b) for computing its [`CenterInterval`] point by point.
 #[derive(Debug, Clone, Copy)]
 pub struct EdgeFrame {
@@ -253,13 +265,7 @@ impl EdgeFrame {
             return (0.0, q);
         }
         let h = dx[0] * self.nrm[0] + dx[1] * self.nrm[1];
-        // h has the exact sign of `side` up to rounding; trust the predicate
-        let h = if (h > 0.0) != (side > 0.0) || h == 0.0 {
-            side * f64::MIN_POSITIVE
-        } else {
-            h
-        };
-        (side, q / (2.0 * h))
+        (side, tau_of(side, q, h))
     }
     /// Narrows `iv` by point x (not a or b). Which point binds each end, and whether the ends
     /// are equal or in which order, is decided by exact in-circle tests: τ(x) < τ(y) for points
@@ -375,12 +381,7 @@ impl TriFrame {
             return (0.0, q);
         }
         let h = dot3(dx, self.n);
-        let h = if (h > 0.0) != (side > 0.0) || h == 0.0 {
-            side * f64::MIN_POSITIVE
-        } else {
-            h
-        };
-        (side, q / (2.0 * h))
+        (side, tau_of(side, q, h))
     }
     /// Narrows `iv` by point x (not a corner); binding points and the order of the ends are
     /// decided by exact in-sphere tests (see [`EdgeFrame::add`]).
