@@ -372,25 +372,38 @@ fn classic<const D: usize>(
         }
         Kind::Sig => {
             let nn = nearest_over(p, dt_edges);
-            let r = |a: usize| dist2(&p[a], &p[nn[a] as usize]).sqrt();
-            let rmax = (0..n).map(r).fold(0.0, f64::max);
+            let r: Vec<f64> = (0..n).map(|a| dist2(&p[a], &p[nn[a] as usize]).sqrt()).collect();
+            let rmax = r.iter().cloned().fold(0.0, f64::max);
             let grid = Grid::new(p, 2.0);
-            let per: Vec<Vec<[u32; 2]>> = (0..n)
+            // the largest radius per cell prunes the cells that no ball can reach
+            let cell_r: Vec<f64> = (0..grid.cell_count())
+                .map(|c| grid.cell_items(c).iter().map(|&i| r[i as usize]).fold(0.0, f64::max))
+                .collect();
+            // (the output order does not matter: the edges are sorted afterwards)
+            (0..n)
                 .into_par_iter()
-                .map(|a| {
-                    let mut out = Vec::new();
+                .fold(Vec::new, |mut out, a| {
                     let pn = &p[nn[a] as usize];
-                    grid.for_each_within(p[a], (r(a) + rmax) * (1.0 + 1e-9), |b| {
-                        let bu = b as usize;
-                        if bu > a && sum_of_roots_exceeds(&p[a], &p[bu], pn, &p[nn[bu] as usize]) {
-                            out.push([a as u32, b]);
+                    grid.for_each_cell_near(p[a], (r[a] + rmax) * (1.0 + 1e-9), |cell, d2| {
+                        let reach = (r[a] + cell_r[cell]) * (1.0 + 1e-9);
+                        if d2 < reach * reach {
+                            for &b in grid.cell_items(cell) {
+                                let bu = b as usize;
+                                if bu > a
+                                    && sum_of_roots_exceeds(&p[a], &p[bu], pn, &p[nn[bu] as usize])
+                                {
+                                    out.push([a as u32, b]);
+                                }
+                            }
                         }
                         true
                     });
                     out
                 })
-                .collect();
-            per.into_iter().flatten().collect()
+                .reduce(Vec::new, |mut x, y| {
+                    x.extend(y);
+                    x
+                })
         }
         Kind::Strip => strip(p, gabriel),
         _ => {

@@ -99,6 +99,58 @@ impl<'a, const D: usize> Grid<'a, D> {
         idx
     }
 
+    /// The number of cells.
+    pub fn cell_count(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    /// The points of cell `cell`.
+    pub fn cell_items(&self, cell: usize) -> &[u32] {
+        &self.items[self.start[cell] as usize..self.start[cell + 1] as usize]
+    }
+
+    /// Calls `f(cell, d2)` for every cell meeting the box of half-width `r` around `c`, with
+    /// `d2` the squared distance from `c` to the cell (0 inside); stops early when `f` returns
+    /// false.
+    pub fn for_each_cell_near(&self, c: [f64; D], r: f64, mut f: impl FnMut(usize, f64) -> bool) {
+        let mut a = [0usize; D];
+        let mut b = [0usize; D];
+        for k in 0..D {
+            if c[k] + r < self.min[k] {
+                return;
+            }
+            a[k] = self.coord(c[k] - r, k);
+            b[k] = self.coord(c[k] + r, k);
+        }
+        let mut cur = a;
+        loop {
+            let mut idx = 0;
+            let mut d2 = 0.0;
+            for k in (0..D).rev() {
+                idx = idx * self.dims[k] + cur[k];
+                let lo = self.min[k] + cur[k] as f64 * self.cell;
+                let hi = lo + self.cell;
+                let d = (lo - c[k]).max(c[k] - hi).max(0.0);
+                d2 += d * d;
+            }
+            if !f(idx, d2) {
+                return;
+            }
+            let mut k = 0;
+            loop {
+                if k == D {
+                    return;
+                }
+                if cur[k] < b[k] {
+                    cur[k] += 1;
+                    break;
+                }
+                cur[k] = a[k];
+                k += 1;
+            }
+        }
+    }
+
     /// Calls `f(i)` for every point whose cell meets the box `[lo, hi]` (a superset of the
     /// points in the box). `f` returns false to stop early; the function then returns false.
     pub fn for_each_in_box(
