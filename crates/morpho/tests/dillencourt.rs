@@ -432,3 +432,30 @@ fn fixed_negative_c_as_in_fig_5_7() {
         );
     }
 }
+
+#[test]
+fn mirrored_and_reordered_copies_behave_alike() {
+    // x → −x and a reversed input order are exact transformations: the triangulation stays
+    // non-Hamiltonian and the fallback still reaches every point
+    let base = dillencourt_points();
+    let mirrored: Vec<Point2> = base.iter().map(|q| Point2::new(-q.x, q.y)).collect();
+    let reversed: Vec<Point2> = base.iter().rev().copied().collect();
+    for p in [mirrored, reversed] {
+        let d = triangulate(&p).unwrap();
+        let e: Vec<[usize; 2]> = d
+            .edges()
+            .iter()
+            .map(|&[a, b]| {
+                [
+                    d.input_of_vertex[a as usize] as usize,
+                    d.input_of_vertex[b as usize] as usize,
+                ]
+            })
+            .collect();
+        assert!(hamilton_cycle(&adjacency(p.len(), &e)).is_none());
+        let (b, chk, _) = run(&p, CParam::Auto);
+        assert!(b.all_on_boundary && chk.simple && chk.missing.is_empty());
+        let (b0, _, _) = run(&p, CParam::Fixed(0.0));
+        assert_eq!(b0.polygon.len(), p.len() - 1);
+    }
+}
