@@ -213,6 +213,59 @@ pub fn borehole_field(n: usize, seed: u64) -> PointSet {
     }
 }
 
+/// A non-degenerate Delaunay triangulation without a Hamilton cycle (V §5.4, Fig. 5.7, after
+/// Dillencourt 1987): 20 points whose Delaunay triangulation is two-connected (not
+/// three-connected) and non-Hamiltonian, so the γ-constriction of the Delaunay graph cannot reach
+/// every point and the §5.4 fallback (γ([-1,1],[c,1]), c < 0) is needed.
+///
+/// Construction (our own, from first principles; Dillencourt's coordinates are not reproduced).
+/// Delaunay triangulations are 1-tough (Dillencourt, "Toughness and Delaunay triangulations",
+/// 1990), so no tough set certifies non-Hamiltonicity; *forced edges* do. Indices 0–6 are
+/// consecutive hull vertices (clockwise) s0, h1, s1, h2, s2, h3, s3; 7 and 8 are v and w inside:
+/// - h1, h2, h3 are "ears": hull vertices of degree 2 (h1 ~ s0, s1; h2 ~ s1, s2; h3 ~ s2, s3).
+///   A Hamilton cycle must use both edges of a degree-2 vertex, so s1's two cycle edges are
+///   s1h1 and s1h2, and s2's are s2h2 and s2h3;
+/// - v has degree 3 with neighbours s1, s2 and w. Its edges to s1 and s2 are therefore unusable
+///   and v has one usable edge: no Hamilton cycle exists.
+///
+/// Realising this as a Delaunay triangulation needs care: an ear's apex angle plus the angle
+/// opposite its base must stay below π, and the ears' base angles together must fit in the hull
+/// turning at the s vertices. The coordinates were found by a randomised search over this
+/// template (ears placed from the turning angles at s0..s3; w low in the quadrilateral
+/// s0 s1 s2 s3 so that v's two obtuse triangles have empty circumcircles), then eleven extra
+/// interior points were added one at a time while the structure held, and the coordinates were
+/// rounded to 10⁻³. Verified with the exact predicates in `tests/dillencourt.rs`: the structure
+/// above, no four cocircular points across any Delaunay edge (the triangulation is unique),
+/// two-connectedness, and no Hamilton cycle by exhaustive search. The γ-constriction of the
+/// Delaunay graph leaves v out; the adaptive fallback succeeds with c = −0.1.
+pub fn dillencourt_points() -> Vec<Point2> {
+    [
+        [-1.619, 0.0],   // s0
+        [-4.99, 0.774],  // h1
+        [-0.984, 4.611], // s1
+        [0.045, 5.338],  // h2
+        [1.212, 4.49],   // s2
+        [5.774, 0.188],  // h3
+        [2.376, -0.244], // s3
+        [0.126, 2.946],  // v
+        [0.137, 2.436],  // w
+        [1.755, -0.311],
+        [0.47, 0.375],
+        [-0.034, 1.46],
+        [-0.472, 0.566],
+        [0.646, 0.978],
+        [-0.336, -0.01],
+        [1.065, 0.372],
+        [-0.95, 0.179],
+        [0.572, -0.436],
+        [1.119, -0.293],
+        [0.029, 0.815],
+    ]
+    .iter()
+    .map(|&[x, y]| Point2::new(x, y))
+    .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -76,6 +76,7 @@ const SECTIONS: &[(&str, Builder)] = &[
     ("delaunay", delaunay_section),
     ("gamma graphs", gamma_section),
     ("boundary", boundary_section),
+    ("non-Hamiltonian Delaunay", dillencourt_section),
     ("meshes", mesh_section),
     ("volumes", volume_section),
     ("contour surfaces", isosurface_section),
@@ -771,4 +772,122 @@ fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
         out.push(s);
     }
     Ok(out)
+}
+
+/// The picture of one γ-constriction through the Dillencourt set: the graph's edges thin, the
+/// deleted ones dashed, the polygon fat, the key vertices labelled.
+fn dillencourt_picture(
+    p: &[morpho::geom::Point2],
+    graph: &[[u32; 2]],
+    deleted: &[[u32; 2]],
+    polygon: &[u32],
+    title: &str,
+) -> String {
+    use morpho::render::svg::{Stroke, Svg};
+    let key = |e: &[u32; 2]| [e[0].min(e[1]), e[0].max(e[1])];
+    let dead: std::collections::HashSet<[u32; 2]> = deleted.iter().map(key).collect();
+    let seg = |e: &[u32; 2]| (p[e[0] as usize], p[e[1] as usize]);
+    let mut svg = Svg::fit(p, 330.0);
+    svg.title(title);
+    let (gone, kept): (Vec<_>, Vec<_>) = graph.iter().partition(|e| dead.contains(&key(e)));
+    svg.segments(
+        &kept.into_iter().map(seg).collect::<Vec<_>>(),
+        &Stroke::solid([120, 150, 190], 0.8),
+    );
+    svg.segments(
+        &gone.into_iter().map(seg).collect::<Vec<_>>(),
+        &Stroke::dashed([150, 150, 150], 0.8),
+    );
+    if !polygon.is_empty() {
+        let poly: Vec<_> = polygon.iter().map(|&i| p[i as usize]).collect();
+        svg.polyline(&poly, true, &Stroke::solid([200, 60, 40], 2.4));
+    }
+    svg.points(p, 2.6, [20, 20, 20]);
+    svg.point(p[7], 3.6, [200, 30, 30]);
+    for (i, name) in ["s0", "h1", "s1", "h2", "s2", "h3", "s3", "v", "w"]
+        .iter()
+        .enumerate()
+    {
+        // v and h3 (far right) are labelled on their left
+        let dx = match i {
+            7 => -13.0,
+            5 => -18.0,
+            _ => 3.0,
+        };
+        svg.label(p[i], dx, 3.0, name, 10.0, [60, 60, 60]);
+    }
+    svg.finish()
+}
+
+fn dillencourt_section(ctx: &Ctx) -> Result<Vec<Section>> {
+    use morpho::boundary::{boundary_2d, check_polygon, CParam, Options2};
+    use morpho::graphs::{graph_2d, Kind};
+    let p = morpho::samples::dillencourt_points();
+    let mut s = Section::new(
+        "A non-Hamiltonian Delaunay triangulation and the fallback (Veltkamp §5.4, Fig. 5.7)",
+        "20 points whose Delaunay triangulation is non-degenerate and two-connected but has no Hamilton cycle \
+         (after Dillencourt 1987; our own construction): the ears h1, h2, h3 have degree 2, so a Hamilton cycle \
+         would use s1's edges to h1 and h2 and s2's edges to h2 and h3; v's only other neighbour is w. \
+         Constriction of the Delaunay graph (c = 0) locks with v left out; constriction of γ([-1,1],[c,1]) for \
+         c < 0 (the graph has crossing edges) finds a simple polygon through all points. Fat: the polygon; \
+         dashed: the edges deleted during constriction.",
+    );
+    s.fig("points", p.len());
+    let cases = [
+        (CParam::Fixed(0.0), "γ([-1,1],[0,1]) = Delaunay: locked"),
+        (CParam::Fixed(-0.1), "γ([-1,1],[-0.1,1])"),
+        (CParam::Fixed(-0.2), "γ([-1,1],[-0.2,1])"),
+        (CParam::Fixed(-0.3), "γ([-1,1],[-0.3,1])"),
+        (CParam::Auto, "c = auto (adaptive augmentation)"),
+    ];
+    let dt = graph_2d(&p, Kind::Delaunay)?;
+    write_svg(
+        ctx,
+        "dillencourt_dt.svg",
+        &dillencourt_picture(&p, &dt.edges, &[], &[], "Delaunay triangulation"),
+    )?;
+    s.img(
+        "dillencourt_dt.svg",
+        &format!(
+            "Delaunay triangulation: {} edges, no Hamilton cycle",
+            dt.edges.len()
+        ),
+    );
+    for (k, (c, label)) in cases.into_iter().enumerate() {
+        let b = boundary_2d(
+            &p,
+            &Options2 {
+                c,
+                ..Default::default()
+            },
+        )?;
+        let chk = check_polygon(&p, &b.polygon);
+        let g = graph_2d(&p, Kind::GammaRange([-1.0, 1.0, b.c_used, 1.0]))?;
+        let name = format!("dillencourt_{k}.svg");
+        write_svg(
+            ctx,
+            &name,
+            &dillencourt_picture(&p, &g.edges, &b.deleted, &b.polygon, label),
+        )?;
+        s.img(
+            &name,
+            &format!(
+                "{label}: {} of {} points on the polygon",
+                b.polygon.len(),
+                p.len()
+            ),
+        );
+        s.fig(
+            label,
+            format!(
+                "c_used {} · {} graph edges · {} deleted · boundary vertices {} · simple {}",
+                b.c_used,
+                g.edges.len(),
+                b.deleted.len(),
+                b.polygon.len(),
+                chk.simple
+            ),
+        );
+    }
+    Ok(vec![s])
 }
