@@ -671,3 +671,117 @@ pub fn triangulate_polygon_interior(points: &[Point2], cycle: &[u32]) -> Result<
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pts(v: &[[f64; 2]]) -> Vec<Point2> {
+        v.iter().map(|p| Point2::new(p[0], p[1])).collect()
+    }
+
+    /// Structural invariants: counter-clockwise triangles, symmetric neighbours and flags,
+    /// Euler relation, `vertex_tri` incident.
+    fn check(c: &Cdt2) {
+        let n = c.points().len();
+        for (t, tri) in c.triangles.iter().enumerate() {
+            assert!(
+                c.orient(tri[0], tri[1], tri[2]) > 0.0,
+                "triangle {t} is not CCW"
+            );
+            for i in 0..3 {
+                let nb = c.neighbors[t][i];
+                if nb == NONE {
+                    continue;
+                }
+                let (p, q) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+                let o = c.triangles[nb as usize];
+                assert!(o.contains(&p) && o.contains(&q));
+                let j = opposite_corner(&o, p, q);
+                assert_eq!(c.neighbors[nb as usize][j], t as u32);
+                assert_eq!(c.is_constrained(t as u32, i), c.is_constrained(nb, j));
+            }
+        }
+        assert_eq!(c.triangles.len(), 2 * n - c.hull().len() - 2);
+        for (v, &t) in c.vertex_tri.iter().enumerate() {
+            assert!(c.triangles[t as usize].contains(&(v as u32)));
+        }
+    }
+
+    #[test]
+    fn constraint_forces_the_other_diagonal() {
+        // a flat rhombus: Delaunay takes the short diagonal 1-3, the constraint 0-2 replaces it
+        let p = pts(&[[0.0, 0.0], [2.0, -0.3], [4.0, 0.0], [2.0, 0.3]]);
+        let c = Cdt2::build(&p, &[]).unwrap();
+        let has = |c: &Cdt2, a: u32, b: u32| {
+            c.edges().iter().any(|(e, _)| {
+                let (x, y) = (
+                    c.input_of_vertex()[e[0] as usize],
+                    c.input_of_vertex()[e[1] as usize],
+                );
+                (x, y) == (a, b) || (x, y) == (b, a)
+            })
+        };
+        assert!(has(&c, 1, 3) && !has(&c, 0, 2));
+        let c = Cdt2::build(&p, &[[0, 2]]).unwrap();
+        check(&c);
+        assert!(has(&c, 0, 2) && !has(&c, 1, 3));
+        assert_eq!(c.constrained_edges().len(), 1);
+        // inserting it again changes nothing
+        let mut c2 = c.clone();
+        c2.insert_segment(c.vertex_of_input()[2], c.vertex_of_input()[0])
+            .unwrap();
+        assert_eq!(c2.triangles, c.triangles);
+        assert_eq!(c2.constrained, c.constrained);
+    }
+
+    #[test]
+    fn cavity_with_a_slit_edge() {
+        // found by the random tests: the segment 3-6 crosses both edges 0-4 and 0-2 (in input
+        // indices) of vertex 0 and the fan of vertex 1, so the edge 0-1 hangs into the cavity
+        let p = pts(&[
+            [0.7209027674256375, 0.485803545411819],
+            [0.5327979730391228, 0.529309203456447],
+            [0.45755574044212644, 0.7143716899321997],
+            [0.11035673103209775, 0.07169004523282096],
+            [0.23201469171228506, 0.31769056942231144],
+            [0.6190284083279118, 0.9837345166213834],
+            [0.7625860763323129, 0.9457637740873854],
+            [0.347624160354426, 0.9756050518134698],
+            [0.9298819835587695, 0.4851208476488845],
+            [0.2806311353060852, 0.5080042100283657],
+        ]);
+        let c = Cdt2::build(&p, &[[7, 9], [2, 9], [3, 6]]).unwrap();
+        check(&c);
+        assert_eq!(c.constrained_edges().len(), 3);
+        // and with the slit edge itself constrained first
+        let c = Cdt2::build(&p, &[[0, 1], [7, 9], [2, 9], [3, 6]]).unwrap();
+        check(&c);
+        assert_eq!(c.constrained_edges().len(), 4);
+    }
+
+    #[test]
+    fn depths_of_nested_squares() {
+        let mut v = Vec::new();
+        for s in [1.0, 2.0, 3.0] {
+            v.extend_from_slice(&[[-s, -s], [s, -s], [s, s], [-s, s]]);
+        }
+        let p = pts(&v);
+        let mut segs = Vec::new();
+        for r in 0..3u32 {
+            for k in 0..4u32 {
+                segs.push([4 * r + k, 4 * r + (k + 1) % 4]);
+            }
+        }
+        let c = Cdt2::build(&p, &segs).unwrap();
+        check(&c);
+        let d = c.depths();
+        // hull = outer square, its edges are constrained: every triangle is inside it
+        let mut area = [0.0f64; 4];
+        for (t, tri) in c.triangles.iter().enumerate() {
+            let [a, b, cc] = tri.map(|w| c.points()[w as usize]);
+            area[d[t] as usize] += 0.5 * (b - a).perp(&(cc - a));
+        }
+        assert_eq!(area, [0.0, 36.0 - 16.0, 16.0 - 4.0, 4.0]);
+    }
+}
