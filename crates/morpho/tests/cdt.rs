@@ -602,3 +602,32 @@ proptest! {
         check_interior(&p, &cyc, &t);
     }
 }
+
+#[test]
+fn boundary_interior_in_the_general_engine() {
+    // c < 0 runs the general constriction engine, whose interior comes from
+    // `triangulate_polygon`: always n − 2 triangles with the polygon's area
+    use morpho::boundary::{boundary_2d, CParam, Options2};
+    let mut r = rng(21);
+    for _ in 0..15 {
+        let n = r.gen_range(5..60);
+        let p = random_points(n, None, &mut r);
+        let o = Options2 {
+            c: CParam::Fixed(-0.3),
+            ..Options2::default()
+        };
+        let b = boundary_2d(&p, &o).unwrap();
+        check_interior(&p, &b.polygon, &b.interior);
+        assert!(
+            (b.area
+                - shoelace(
+                    &b.polygon
+                        .iter()
+                        .map(|&i| xy(&p[i as usize]))
+                        .collect::<Vec<_>>()
+                ))
+            .abs()
+                < 1e-12
+        );
+    }
+}
