@@ -53,6 +53,12 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let pts = report.time("read", || io::read_points(&args.input))?;
     if pts.dim == 2 {
         if let Some(c) = &args.constraints {
+            if args.voronoi {
+                return Err(Failure::usage(
+                    "--voronoi and --constraints cannot be combined (the Voronoi diagram is the \
+                     dual of the unconstrained triangulation)",
+                ));
+            }
             let segs = report.time("read", || read_segments(c))?;
             return run_constrained(&args, &pts.to_points2(), &segs, fmt, report);
         }
