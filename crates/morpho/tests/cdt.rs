@@ -343,6 +343,12 @@ fn crossing_and_invalid_segments_are_errors() {
     let e = Cdt2::build(&p, &[[0, 2], [1, 3]]).unwrap_err().to_string();
     assert!(e.contains("segments 0 (0, 2) and 1 (1, 3) cross"), "{e}");
     assert!(Cdt2::build(&p, &[[0, 7]]).is_err());
+    // after an error the triangulation is intact and accepts further segments
+    let mut c = Cdt2::build(&p, &[[0, 2]]).unwrap();
+    assert!(c.insert_input_segments(&[[1, 3]]).is_err());
+    check_cdt(&p, &[[0, 2]], &c, true);
+    c.insert_input_segments(&[[2, 4]]).unwrap();
+    check_cdt(&p, &[[0, 2], [2, 4]], &c, true);
     // segments that share an endpoint or touch at a vertex are fine
     let c = Cdt2::build(&p, &[[0, 2], [2, 4], [0, 1], [1, 2], [3, 4]]).unwrap();
     check_cdt(&p, &[[0, 2], [2, 4], [0, 1], [1, 2], [3, 4]], &c, true);

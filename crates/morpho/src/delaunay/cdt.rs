@@ -146,7 +146,22 @@ impl Cdt2 {
         Ok(())
     }
 
+    /// The CDT of `d` with the constraint `segments` given as vertex pairs (indices of
+    /// [`Delaunay2::points`]), inserted in order (see [`Cdt2::insert_segment`]).
+    pub fn from_delaunay(d: Delaunay2, segments: &[[u32; 2]]) -> Result<Cdt2> {
+        let mut c = Cdt2::new(d);
+        for s in segments {
+            c.insert_segment(s[0], s[1])?;
+        }
+        Ok(c)
+    }
+
     /// Inserts the segment between vertices `a` and `b` (vertex indices of [`Cdt2::points`]).
+    ///
+    /// Errors: a vertex index out of range, or the segment crosses an earlier one (the error
+    /// names both; segments are numbered in insertion order). After an error the triangulation
+    /// is still a valid CDT of the constraints inserted before, possibly plus the part of the
+    /// failing segment up to the last vertex it passed through before the crossing.
     pub fn insert_segment(&mut self, a: u32, b: u32) -> Result<()> {
         let n = self.base.points.len();
         if a as usize >= n || b as usize >= n {
@@ -758,6 +773,13 @@ mod tests {
         let c = Cdt2::build(&p, &[[0, 1], [7, 9], [2, 9], [3, 6]]).unwrap();
         check(&c);
         assert_eq!(c.constrained_edges().len(), 4);
+        // the same through vertex indices
+        let d = triangulate(&p).unwrap();
+        let v = |i: usize| d.vertex_of_input[i];
+        let segs = [[v(0), v(1)], [v(7), v(9)], [v(2), v(9)], [v(3), v(6)]];
+        let c2 = Cdt2::from_delaunay(d, &segs).unwrap();
+        assert_eq!(c2.triangles, c.triangles);
+        assert_eq!(c2.constrained, c.constrained);
     }
 
     #[test]
