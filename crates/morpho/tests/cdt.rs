@@ -695,3 +695,19 @@ fn real_polygons_with_holes_by_depth_parity() {
         );
     }
 }
+
+/// Long stress run of the oracle (`cargo test --test cdt -- --ignored`): 20 000 random sets,
+/// half on a 5 × 5 grid (many collinear and cocircular cases, segments through vertices).
+#[test]
+#[ignore]
+fn stress_random_cdt() {
+    for seed in 0..20000u64 {
+        let mut r = rng(seed);
+        let n = 4 + (seed % 30) as usize;
+        let grid = if seed % 2 == 0 { Some(5) } else { None };
+        let p = random_points(n, grid, &mut r);
+        let segs = noncrossing_segments(&p, 3 + (seed % 10) as usize, &mut r);
+        let c = Cdt2::build(&p, &segs).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        check_cdt(&p, &segs, &c, true);
+    }
+}

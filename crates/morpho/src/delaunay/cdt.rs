@@ -570,11 +570,20 @@ impl Cdt2 {
                 continue;
             }
             let (a, b) = (c[lo], c[hi]);
-            let mut m = lo + 1;
-            for v in lo + 2..hi {
-                if self.base.incircle_sos(a, b, c[m], c[v]) > 0 {
+            // the empty-circle vertex; a repeated occurrence of a base vertex (possible with
+            // slits) is never a candidate
+            let mut m = NONE as usize;
+            for v in lo + 1..hi {
+                let w = c[v];
+                if w == a || w == b {
+                    continue;
+                }
+                if m == NONE as usize || self.base.incircle_sos(a, b, c[m], w) > 0 {
                     m = v;
                 }
+            }
+            if m == NONE as usize {
+                return Err(lost());
             }
             let t = slots.pop().ok_or_else(lost)?;
             let cm = c[m];
