@@ -66,10 +66,12 @@ fn main() {
         c
     });
     println!(
-        "morpho CDT segment insertion {t_ins:8.3} s  triangles {}  constrained edges {}  splits {}",
+        "morpho CDT segment insertion {t_ins:8.3} s  triangles {}  constrained edges {}  splits {}  re-triangulated {} ({:.1} per segment)",
         c.triangles.len(),
         c.constrained_edges().len(),
-        c.splits
+        c.splits,
+        c.retriangulated,
+        c.retriangulated as f64 / m.max(1) as f64
     );
     println!(
         "morpho CDT total             {:8.3} s  ratio to Delaunay {:.2}",

@@ -78,6 +78,9 @@ pub struct Cdt2 {
     pub splits: usize,
     /// Number of zero-length segments skipped (both ends the same vertex).
     pub skipped: usize,
+    /// Number of triangles deleted and re-created by segment insertions (the sum of the
+    /// cavity sizes; a measure of the insertion work).
+    pub retriangulated: usize,
 }
 
 /// The first step of a segment from its start vertex.
@@ -114,6 +117,7 @@ impl Cdt2 {
             segs: Vec::new(),
             splits: 0,
             skipped: 0,
+            retriangulated: 0,
         }
     }
 
@@ -507,6 +511,7 @@ impl Cdt2 {
         // A chain edge can have deleted triangles on both sides (an edge of the cavity that the
         // segment does not cross, hanging into it from one chain): such "slit" edges are linked
         // between the two new triangles that receive its two sides.
+        self.retriangulated += dead.len();
         let mut dead_sorted = dead.clone();
         dead_sorted.sort_unstable();
         let mut slots = dead;
