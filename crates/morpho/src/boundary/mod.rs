@@ -357,7 +357,7 @@ fn check_keep(p: &[[f64; 2]], keep: &[[u32; 2]]) -> Result<()> {
 /// Triangulation of the interior of a simple polygon `cyc` (indices into `p`, either
 /// orientation): the constrained Delaunay triangulation of its vertices restricted to the
 /// inside ([`crate::delaunay::cdt::triangulate_polygon_interior`]), `cyc.len() − 2`
-/// counter-clockwise triangles, O(n log n) expected for any size. Empty when `cyc` is not a
+/// counter-clockwise triangles, for any size (no vertex limit). Empty when `cyc` is not a
 /// simple polygon ([`check_polygon`] reports that case).
 pub fn triangulate_polygon(p: &[[f64; 2]], cyc: &[u32]) -> Vec<[u32; 3]> {
     let pts: Vec<Point2> = p.iter().map(|q| Point2::new(q[0], q[1])).collect();

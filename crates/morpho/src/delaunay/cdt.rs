@@ -44,8 +44,13 @@
 //! # Complexity
 //! Inserting a segment that crosses `k` triangles takes O(k) for the walk and O(k log k)
 //! expected (O(k²) worst case) for the re-triangulation; finding the first triangle costs the
-//! degree of `a`. [`triangulate_polygon_interior`] is O(n log n) expected (Delaunay
-//! triangulation of the polygon vertices, then its `n` edges).
+//! degree of `a`. [`triangulate_polygon_interior`] costs the Delaunay triangulation of the
+//! polygon vertices (O(n log n) expected) plus the insertion of its `n` edges, i.e. the number
+//! `K` of Delaunay triangles they cross: `K = O(n)` when most polygon edges are (nearly)
+//! Delaunay edges, as for sampled curves and the boundaries of [`crate::boundary`], and
+//! measured 3–4 × the Delaunay time for a random star-shaped polygon of 10⁶ vertices
+//! (`examples/bench_cdt.rs`); adversarial polygons (combs of long parallel edges) can make
+//! `K` quadratic.
 //!
 //! # Preconditions
 //! Those of [`crate::delaunay::d2::triangulate`] (finite coordinates in the exact range). For
@@ -632,7 +637,8 @@ fn lost() -> Error {
 ///
 /// Errors (the polygon is not simple): fewer than 3 vertices, an index out of range, a repeated
 /// vertex (same index or same coordinates), all vertices collinear, two crossing edges, a
-/// vertex lying on an edge; and the inputs of [`triangulate`]. O(n log n) expected.
+/// vertex lying on an edge; and the inputs of [`triangulate`]. Cost: see the module
+/// documentation.
 pub fn triangulate_polygon_interior(points: &[Point2], cycle: &[u32]) -> Result<Vec<[u32; 3]>> {
     let n = cycle.len();
     if n < 3 {
