@@ -639,6 +639,17 @@ fn lost() -> Error {
 /// vertex (same index or same coordinates), all vertices collinear, two crossing edges, a
 /// vertex lying on an edge; and the inputs of [`triangulate`]. Cost: see the module
 /// documentation.
+///
+/// ```
+/// use morpho::delaunay::cdt::triangulate_polygon_interior;
+/// use morpho::geom::Point2;
+/// // an L-shaped hexagon, clockwise
+/// let p: Vec<Point2> = [[0., 0.], [0., 2.], [1., 2.], [1., 1.], [2., 1.], [2., 0.]]
+///     .iter().map(|q| Point2::new(q[0], q[1])).collect();
+/// let t = triangulate_polygon_interior(&p, &[0, 1, 2, 3, 4, 5]).unwrap();
+/// assert_eq!(t.len(), 4);
+/// assert!(triangulate_polygon_interior(&p, &[0, 2, 1, 3, 4, 5]).is_err()); // not simple
+/// ```
 pub fn triangulate_polygon_interior(points: &[Point2], cycle: &[u32]) -> Result<Vec<[u32; 3]>> {
     let n = cycle.len();
     if n < 3 {
