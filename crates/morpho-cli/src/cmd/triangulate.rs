@@ -5,17 +5,24 @@
 //! represented by its first occurrence), a mesh format (`.ply/.obj/.off/.stl`: the triangles in
 //! 2D with z = 0, the hull surface in 3D, or with `--tets` a tetrahedral PLY), or `.svg` (2D,
 //! optionally with the Voronoi diagram).
+//!
+//! `--constraints SEGMENTS.csv` (2D): one `i,j` pair of input indices per line (blank lines and
+//! `#` comments skipped; anything else is an error naming the line, exit 2); the result is the
+//! constrained Delaunay triangulation ([`morpho::delaunay::cdt`]). Crossing segments are an
+//! error naming both. The JSON output gains `"constrained": [[i, j], …]` (the constrained edges,
+//! segments split at the points they pass through), the SVG draws them bold, and the report
+//! has `constrained_edges`, `segments`, `splits`.
 
 use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
-use morpho::delaunay::{d2, d3, voronoi};
+use morpho::delaunay::{cdt, d2, d3, voronoi};
 use morpho::geom::Point3;
 use morpho::io::{self, Encoding, Format};
 use morpho::mesh::TriMesh;
 use serde_json::json;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -30,12 +37,36 @@ pub struct Args {
     /// 2D SVG: draw the Voronoi diagram too.
     #[arg(long)]
     pub voronoi: bool,
+    /// 2D: constraint segments, one `i,j` pair of input indices per line: the result is the
+    /// constrained Delaunay triangulation.
+    #[arg(long)]
+    pub constraints: Option<PathBuf>,
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    check_not_input(&args.output, &[&args.input])?;
+    let mut inputs: Vec<&Path> = vec![&args.input];
+    if let Some(c) = &args.constraints {
+        inputs.push(c);
+    }
+    check_not_input(&args.output, &inputs)?;
     let fmt = Format::of(&args.output)?;
     let pts = report.time("read", || io::read_points(&args.input))?;
+    if pts.dim == 2 {
+        if let Some(c) = &args.constraints {
+            if args.voronoi {
+                return Err(Failure::usage(
+                    "--voronoi and --constraints cannot be combined (the Voronoi diagram is the \
+                     dual of the unconstrained triangulation)",
+                ));
+            }
+            let segs = report.time("read", || read_segments(c))?;
+            return run_constrained(&args, &pts.to_points2(), &segs, fmt, report);
+        }
+    } else if args.constraints.is_some() {
+        return Err(Failure::usage(
+            "--constraints is for 2D points (constrained Delaunay triangulation)",
+        ));
+    }
     let n = pts.len();
     report.set("dim", pts.dim);
     report.set("points", n);
@@ -142,6 +173,131 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         })?;
     }
     Ok(0)
+}
+
+/// Constraint segments: one `i,j` pair (comma, or whitespace) of input indices per line; blank
+/// lines and `#` comments are skipped, anything else is an error naming the line.
+fn read_segments(path: &Path) -> morpho::Result<Vec<[u32; 2]>> {
+    let bytes = io::read_bytes(path)?;
+    let text = std::str::from_utf8(&bytes)
+        .map_err(|_| morpho::Error::format("constraints file is not UTF-8").with_path(path))?;
+    let mut out = Vec::new();
+    for (ln, line) in text.lines().enumerate() {
+        let l = line.trim();
+        if l.is_empty() || l.starts_with('#') {
+            continue;
+        }
+        let mut f = l
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|x| !x.is_empty());
+        let pair = match (f.next(), f.next(), f.next()) {
+            (Some(a), Some(b), None) => a.parse::<u32>().ok().zip(b.parse::<u32>().ok()),
+            _ => None,
+        };
+        match pair {
+            Some((a, b)) => out.push([a, b]),
+            None => {
+                return Err(morpho::Error::at_line(
+                    ln as u64 + 1,
+                    format!("expected a segment `i,j` of two point indices, found `{l}`"),
+                )
+                .with_path(path))
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The 2D constrained Delaunay triangulation (see the module documentation).
+fn run_constrained(
+    args: &Args,
+    p2: &[morpho::geom::Point2],
+    segs: &[[u32; 2]],
+    fmt: Format,
+    report: &mut Report,
+) -> Result<u8, Failure> {
+    let c = report
+        .time("compute", || cdt::Cdt2::build(p2, segs))
+        .map_err(|e| e.with_path(args.constraints.as_deref().unwrap_or(&args.input)))?;
+    let unique = c.points().len();
+    if unique < 3 || c.collinear() {
+        return Err(Failure::usage(format!(
+            "{}: a constrained triangulation needs at least 3 distinct points not all on one line",
+            args.input.display()
+        )));
+    }
+    let inp = |v: u32| c.input_of_vertex()[v as usize];
+    let cons: Vec<[u32; 2]> = c
+        .constrained_edges()
+        .iter()
+        .map(|e| [inp(e[0]), inp(e[1])])
+        .collect();
+    report.set("unique_points", unique);
+    report.set("duplicates", c.duplicates());
+    report.set("triangles", c.triangles.len());
+    report.set("hull_size", c.hull().len());
+    report.set("segments", segs.len());
+    report.set("constrained_edges", cons.len());
+    report.set("splits", c.splits);
+    let tris = c.to_input_indices();
+    let path = &args.output;
+    let werr = |e: std::io::Error| morpho::Error::io(path, e);
+    report.time("write", || -> morpho::Result<()> {
+        match fmt {
+            Format::Json => io::write_atomic(path, |w| {
+                let v = json!({
+                    "points": p2.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
+                    "triangles": tris,
+                    "constrained": cons,
+                    "hull": c.hull().iter().map(|&v| inp(v)).collect::<Vec<_>>(),
+                });
+                serde_json::to_writer(&mut *w, &v)
+                    .map_err(|e| morpho::Error::invalid(e.to_string()))?;
+                writeln!(w).map_err(werr)
+            }),
+            Format::Svg => {
+                let svg = picture_constrained(&c);
+                io::write_atomic(path, |w| w.write_all(svg.as_bytes()).map_err(werr))
+            }
+            Format::Ply | Format::Obj | Format::Off | Format::Stl => {
+                let mesh = TriMesh::new(
+                    p2.iter().map(|p| Point3::new(p.x, p.y, 0.0)).collect(),
+                    tris.clone(),
+                );
+                io::write_mesh(path, &mesh, Encoding::BinaryLittleEndian)
+            }
+            _ => Err(morpho::Error::unsupported(
+                "triangulate writes .json, .svg, .ply, .obj, .off or .stl",
+            )
+            .with_path(path)),
+        }
+    })?;
+    Ok(0)
+}
+
+/// The constrained triangulation as SVG: edges thin, constrained edges bold.
+fn picture_constrained(c: &cdt::Cdt2) -> String {
+    use morpho::render::svg::{Stroke, Svg};
+    let pts = c.points();
+    let b = morpho::geom::bbox2(pts);
+    let mut svg = Svg::new(b, 900.0);
+    let (mut thin, mut bold) = (Vec::new(), Vec::new());
+    for (e, k) in c.edges() {
+        let seg = (pts[e[0] as usize], pts[e[1] as usize]);
+        if k {
+            bold.push(seg);
+        } else {
+            thin.push(seg);
+        }
+    }
+    svg.segments(&thin, &Stroke::solid([58, 110, 165], 0.8));
+    svg.segments(&bold, &Stroke::solid([20, 20, 20], 2.6));
+    svg.points(
+        pts,
+        morpho::render::svg::point_radius(pts.len()),
+        [30, 30, 30],
+    );
+    svg.finish()
 }
 
 /// Binary little-endian PLY with `vertex` (x, y, z as double) and `tetra` (4 indices).

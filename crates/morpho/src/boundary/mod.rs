@@ -110,8 +110,7 @@ pub struct Boundary2 {
     pub graph_edges: Vec<[u32; 2]>,
     /// The edges deleted during constriction, in order.
     pub deleted: Vec<[u32; 2]>,
-    /// A triangulation of the interior (empty when the general engine ran and the polygon has
-    /// more than 5000 vertices: it is then not computed).
+    /// A triangulation of the interior.
     pub interior: Vec<[u32; 3]>,
     /// Area enclosed by the polygon.
     pub area: f64,
@@ -355,49 +354,14 @@ fn check_keep(p: &[[f64; 2]], keep: &[[u32; 2]]) -> Result<()> {
     Ok(())
 }
 
-/// Ear-clipping triangulation of a simple counter-clockwise polygon (vertex indices), exact
-/// orientation tests; O(n²). Returns nothing for more than 5000 vertices.
+/// Triangulation of the interior of a simple polygon `cyc` (indices into `p`, either
+/// orientation): the constrained Delaunay triangulation of its vertices restricted to the
+/// inside ([`crate::delaunay::cdt::triangulate_polygon_interior`]), `cyc.len() − 2`
+/// counter-clockwise triangles, for any size (no vertex limit). Empty when `cyc` is not a
+/// simple polygon ([`check_polygon`] reports that case).
 pub fn triangulate_polygon(p: &[[f64; 2]], cyc: &[u32]) -> Vec<[u32; 3]> {
-    use crate::geom::predicates::raw::orient2d;
-    let mut out = Vec::new();
-    if cyc.len() > 5000 || cyc.len() < 3 {
-        return out;
-    }
-    let mut v: Vec<u32> = cyc.to_vec();
-    let mut guard = 0;
-    let mut i = 0;
-    while v.len() > 3 && guard < 4 * cyc.len() * cyc.len() {
-        guard += 1;
-        let m = v.len();
-        let (a, b, c) = (v[(i + m - 1) % m], v[i % m], v[(i + 1) % m]);
-        let (pa, pb, pc) = (p[a as usize], p[b as usize], p[c as usize]);
-        let mut ear = orient2d(pa, pb, pc) > 0.0;
-        if ear {
-            for &w in &v {
-                if w == a || w == b || w == c {
-                    continue;
-                }
-                let q = p[w as usize];
-                if orient2d(pa, pb, q) >= 0.0
-                    && orient2d(pb, pc, q) >= 0.0
-                    && orient2d(pc, pa, q) >= 0.0
-                {
-                    ear = false;
-                    break;
-                }
-            }
-        }
-        if ear {
-            out.push([a, b, c]);
-            v.remove(i % m);
-        } else {
-            i += 1;
-        }
-    }
-    if v.len() == 3 {
-        out.push([v[0], v[1], v[2]]);
-    }
-    out
+    let pts: Vec<Point2> = p.iter().map(|q| Point2::new(q[0], q[1])).collect();
+    crate::delaunay::cdt::triangulate_polygon_interior(&pts, cyc).unwrap_or_default()
 }
 
 #[allow(clippy::too_many_arguments)]
