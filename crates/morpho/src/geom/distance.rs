@@ -75,6 +75,9 @@ pub fn cmp_dist2<const D: usize>(
     c: &[f64; D],
     d: &[f64; D],
 ) -> Ordering {
+    if (a == c && b == d) || (a == d && b == c) {
+        return Ordering::Equal; // the same pair: common when comparing with a nearest neighbour
+    }
     let (x, y) = (dist2(a, b), dist2(c, d));
     match filtered(x - y, x + y) {
         Some(s) => s.cmp(&0),
