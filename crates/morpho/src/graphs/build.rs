@@ -9,8 +9,8 @@
 //! with a parameter −1 (nearly every triple) uses the brute force of V Thm 3.1 and is limited to
 //! [`BRUTE_LIMIT_3D`] points; 3D α with a > 0 works on the hull vertices only (a ball of radius
 //! 1/a containing every point through a triangle touches only hull vertices), O(h⁴) in the worst
-//! case, limited to [`BRUTE_LIMIT_3D`] hull vertices; degenerate (coplanar) 3D input uses the
-//! brute force with the same limit.
+//! case, limited to [`ALPHA_HULL_LIMIT_3D`] hull vertices; degenerate (coplanar) 3D input uses the
+//! brute force limited to [`BRUTE_LIMIT_3D`] points.
 
 use super::beyond3;
 use super::brute;
@@ -22,9 +22,13 @@ use crate::geom::{Point2, Point3};
 use crate::{Error, Result};
 use rayon::prelude::*;
 
-/// Largest input for the brute-force 3D constructions (degenerate input, γ with a parameter
-/// −1) and the largest number of hull vertices for 3D α-shapes with a > 0.
+/// Largest input for the brute-force 3D constructions (degenerate input, γ with a parameter −1).
 pub const BRUTE_LIMIT_3D: usize = 150;
+
+/// Largest number of hull vertices for 3D α-shapes with a > 0 (O(h³) triples, each checked
+/// against the hull vertices with early exit: O(h⁴) only when most triples pass, e.g. points on
+/// a sphere of radius 1/a).
+pub const ALPHA_HULL_LIMIT_3D: usize = 300;
 
 /// Which graph to build.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -667,9 +671,10 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
             let mut hv: Vec<u32> = d.hull.iter().flatten().copied().collect();
             hv.sort_unstable();
             hv.dedup();
-            if hv.len() > BRUTE_LIMIT_3D {
+            if hv.len() > ALPHA_HULL_LIMIT_3D {
                 return Err(Error::invalid(format!(
-                    "3D α-shapes with a > 0 are limited to {BRUTE_LIMIT_3D} hull vertices"
+                    "3D α-shapes with a > 0 are limited to {ALPHA_HULL_LIMIT_3D} hull vertices (got {})",
+                    hv.len()
                 )));
             }
             let hp: Vec<[f64; 3]> = hv.iter().map(|&v| p[v as usize]).collect();

@@ -529,6 +529,19 @@ mod beyond3_graphs {
         assert!(graph_3d(&pts(&p), Kind::Gamma(0.0, -1.0)).is_err());
     }
 
+    #[test]
+    fn alpha_3d_positive_uses_hull_vertices_only() {
+        // a ball of radius 1/a containing every point touches only hull vertices
+        for s in 0..2 {
+            let p = random_3d(40, 4500 + s);
+            for a in [0.8, 1.0, 1.4] {
+                let g = graph_3d(&pts(&p), Kind::Alpha(a)).unwrap();
+                let want = crate::graphs::brute::alpha_3d(&p, a);
+                assert_eq!(g.triangles, want, "a = {a}");
+            }
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(10))]
         #[test]
