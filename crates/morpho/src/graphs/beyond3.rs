@@ -51,9 +51,10 @@
 //! μ-cone out of the cloud and is *open*: its F_a spans the margin, K_a is O(N) and it costs
 //! O(N²) triple filters; step 4 is O(h³) over the h open vertices. Uniform points in a cube
 //! are "all boundary" in this sense up to several thousand points at c = −0.2, so the running
-//! time there is Θ(N³) cheap filters (measured: 500 points 7.5 s, 1000 points 43 s on 2 cores,
-//! against ≈ 1600 s and ≈ 22000 s extrapolated for the O(N⁴) brute force); samples of a
-//! surface are open everywhere. The worst case is the brute force's O(N³) triples, each
+//! time there is Θ(N³) cheap filters (measured for γ([-1,1],[-0.2,1]) on 2 shared cores:
+//! 500 points 7.5 s, 1000 points 30–43 s, 2000 points 221–254 s, against ≈ 1600 s, ≈ 2·10⁴ s
+//! and ≈ 2–4·10⁵ s extrapolated for the O(N⁴) brute force; 100k points are out of reach);
+//! samples of a surface are open everywhere. The worst case is the brute force's O(N³) triples, each
 //! decided in O(N). Qualifying triangles near the hull really can have unbounded
 //! circumradius (nearly collinear triples whose lens leaves the cloud), which is why no local
 //! bound exists there; an output-sensitive treatment of the open vertices is missing.
