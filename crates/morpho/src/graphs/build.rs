@@ -5,9 +5,14 @@
 //! hull, Delaunay, GG, α (a ≤ 0), β_c/γ with parameters ≥ 0: O(N); RNG, lune-based β, SIG:
 //! O(N·k) with k the points in the edge's neighbourhood (grid queries); ∞-SG: O(N) filter plus
 //! O(N) per surviving edge; α (a > 0): O(h³) over the h hull vertices; γ beyond the Delaunay
-//! triangulation: see [`super::fast::beyond_dt_2d`]. 3D γ with negative parameters and 3D α
-//! with a > 0 use the brute force of V Thm 3.1 and are limited to [`BRUTE_LIMIT_3D`] points.
+//! triangulation: see [`super::fast::beyond_dt_2d`] and [`super::beyond3::beyond_dt_3d`]. 3D γ
+//! with a parameter −1 (nearly every triple) uses the brute force of V Thm 3.1 and is limited to
+//! [`BRUTE_LIMIT_3D`] points; 3D α with a > 0 works on the hull vertices only (a ball of radius
+//! 1/a containing every point through a triangle touches only hull vertices), O(h⁴) in the worst
+//! case, limited to [`ALPHA_HULL_LIMIT_3D`] hull vertices; degenerate (coplanar) 3D input uses the
+//! brute force limited to [`BRUTE_LIMIT_3D`] points.
 
+use super::beyond3;
 use super::brute::{self, in_slab};
 use super::fast;
 use super::gamma::{in_gamma, in_gamma_range, CenterInterval};
@@ -19,8 +24,13 @@ use crate::{Error, Result};
 use rayon::prelude::*;
 use std::cmp::Ordering;
 
-/// Largest input for the brute-force 3D constructions.
+/// Largest input for the brute-force 3D constructions (degenerate input, γ with a parameter −1).
 pub const BRUTE_LIMIT_3D: usize = 150;
+
+/// Largest number of hull vertices for 3D α-shapes with a > 0 (O(h³) triples, each checked
+/// against the hull vertices with early exit: O(h⁴) only when most triples pass, e.g. points on
+/// a sphere of radius 1/a).
+pub const ALPHA_HULL_LIMIT_3D: usize = 300;
 
 /// Which graph to build.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -372,12 +382,19 @@ fn classic<const D: usize>(
         }
         Kind::Sig => {
             let nn = nearest_over(p, dt_edges);
-            let r: Vec<f64> = (0..n).map(|a| dist2(&p[a], &p[nn[a] as usize]).sqrt()).collect();
+            let r: Vec<f64> = (0..n)
+                .map(|a| dist2(&p[a], &p[nn[a] as usize]).sqrt())
+                .collect();
             let rmax = r.iter().cloned().fold(0.0, f64::max);
             let grid = Grid::new(p, 2.0);
             // the largest radius per cell prunes the cells that no ball can reach
             let cell_r: Vec<f64> = (0..grid.cell_count())
-                .map(|c| grid.cell_items(c).iter().map(|&i| r[i as usize]).fold(0.0, f64::max))
+                .map(|c| {
+                    grid.cell_items(c)
+                        .iter()
+                        .map(|&i| r[i as usize])
+                        .fold(0.0, f64::max)
+                })
                 .collect();
             // (the output order does not matter: the edges are sorted afterwards)
             (0..n)
@@ -676,12 +693,32 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
             }),
         ),
         Kind::Gamma(..) | Kind::GammaRange(_) => {
-            if p.len() > BRUTE_LIMIT_3D {
+            // c₁ < 0 (c₂ < 0): the candidates plus the triangles beyond the tetrahedralization
+            let (c, keep): (f64, &TriPredicate<'_>) = match kind {
+                Kind::Gamma(c0, c1) => (c1, &move |iv: &CenterInterval, _: &[u32; 3]| {
+                    let v = iv.gamma_values()?;
+                    (iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0))
+                        .then_some(Some([v.0, v.1]))
+                }),
+                Kind::GammaRange(r) => (r[2], &move |iv: &CenterInterval, _: &[u32; 3]| {
+                    let v = iv.gamma_values()?;
+                    in_gamma_range(v, r).then_some(Some([v.0, v.1]))
+                }),
+                _ => unreachable!("matched above"),
+            };
+            if c <= -1.0 && p.len() > BRUTE_LIMIT_3D {
                 return Err(Error::invalid(format!(
-                    "3D γ-graphs beyond the Delaunay triangulation (negative c) are limited to {BRUTE_LIMIT_3D} points"
+                    "3D γ-graphs with a parameter −1 contain nearly every triple of points (the brute force of V Thm 3.1); limited to {BRUTE_LIMIT_3D} points"
                 )));
             }
-            brute_3d(&d, &p, kind)?
+            let mut t = tri_filter(keep);
+            let (bt, bi) = beyond3::beyond_dt_3d(&d, &cand, c);
+            t.extend(
+                bt.iter()
+                    .zip(&bi)
+                    .filter_map(|(t, iv)| keep(iv, t).map(|g| (*t, g))),
+            );
+            finish3(&d, vec![], t)
         }
         Kind::Alpha(a) if a < 0.0 => {
             let rad = 1.0 / a.abs();
@@ -713,9 +750,10 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
             let mut hv: Vec<u32> = d.hull.iter().flatten().copied().collect();
             hv.sort_unstable();
             hv.dedup();
-            if hv.len() > BRUTE_LIMIT_3D {
+            if hv.len() > ALPHA_HULL_LIMIT_3D {
                 return Err(Error::invalid(format!(
-                    "3D α-shapes with a > 0 are limited to {BRUTE_LIMIT_3D} hull vertices"
+                    "3D α-shapes with a > 0 are limited to {ALPHA_HULL_LIMIT_3D} hull vertices (got {})",
+                    hv.len()
                 )));
             }
             let hp: Vec<[f64; 3]> = hv.iter().map(|&v| p[v as usize]).collect();

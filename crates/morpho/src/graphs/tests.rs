@@ -384,5 +384,173 @@ mod beyond3_oracle {
         for s in 0..2 {
             check(&random_3d(40, 4000 + s), &[-0.05, -0.2, -0.5, -0.9, -1.0]);
         }
+        // a flat, elongated cloud (many near-collinear triangles, circumcentres far away)
+        let mut flat = random_3d(30, 4100);
+        for q in flat.iter_mut() {
+            q[0] *= 6.0;
+            q[2] *= 0.05;
+        }
+        check(&flat, &[-0.05, -0.5]);
+    }
+
+    /// Integer points with x² + y² + z² = 25 (30 of them).
+    pub(super) fn sphere_lattice() -> Vec<[f64; 3]> {
+        let mut v = Vec::new();
+        for x in -5i32..=5 {
+            for y in -5i32..=5 {
+                for z in -5i32..=5 {
+                    if x * x + y * y + z * z == 25 {
+                        v.push([x as f64, y as f64, z as f64]);
+                    }
+                }
+            }
+        }
+        v
+    }
+
+    #[test]
+    fn beyond_3d_matches_brute_on_degenerate_sets() {
+        let cs = [-0.05, -0.5];
+        // integer grid (cospherical and coplanar everywhere)
+        let grid: Vec<[f64; 3]> = (0..36)
+            .map(|i| [(i % 4) as f64, ((i / 4) % 3) as f64, (i / 12) as f64])
+            .collect();
+        check(&grid, &cs);
+        // points on a sphere lattice, with and without the centre
+        let mut sph = sphere_lattice();
+        assert_eq!(sph.len(), 30);
+        check(&sph, &cs);
+        sph.push([0.0, 0.0, 0.0]);
+        sph.push([1.0, 1.0, 1.0]);
+        check(&sph, &cs);
+    }
+
+    #[test]
+    fn beyond_3d_matches_brute_with_duplicates_and_coplanar_points() {
+        let cs = [-0.05, -0.2, -0.5, -1.0];
+        // duplicates and coplanar points among random ones
+        let mut r = random_3d(30, 4200);
+        for i in 0..6 {
+            r.push(r[i]);
+        }
+        for i in 0..5 {
+            r.push([0.1 * i as f64, 0.5, 0.5]);
+        }
+        check(&r, &cs);
+    }
+}
+
+mod beyond3_graphs {
+    use super::random_3d;
+    use crate::geom::Point3;
+    use crate::graphs::brute::gamma_values_3d;
+    use crate::graphs::gamma::{in_gamma, in_gamma_range};
+    use crate::graphs::{graph_3d, Kind};
+    use proptest::prelude::*;
+    use std::collections::BTreeSet;
+
+    fn pts(p: &[[f64; 3]]) -> Vec<Point3> {
+        p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect()
+    }
+
+    /// graph_3d against the brute force on input indices (no duplicates in `p`).
+    fn check_graph(p: &[[f64; 3]], kinds: &[Kind]) {
+        let vals = gamma_values_3d(p);
+        for &kind in kinds {
+            let g = graph_3d(&pts(p), kind).unwrap();
+            let want: Vec<([u32; 3], (f64, f64))> = vals
+                .iter()
+                .copied()
+                .filter(|(_, v)| match kind {
+                    Kind::Gamma(c0, c1) => in_gamma(*v, c0, c1),
+                    Kind::GammaRange(r) => in_gamma_range(*v, r),
+                    _ => unreachable!(),
+                })
+                .collect();
+            let wt: Vec<[u32; 3]> = want.iter().map(|x| x.0).collect();
+            let gs: BTreeSet<[u32; 3]> = g.triangles.iter().copied().collect();
+            let ws: BTreeSet<[u32; 3]> = wt.iter().copied().collect();
+            let extra: Vec<_> = gs.difference(&ws).collect();
+            let missing: Vec<_> = ws.difference(&gs).collect();
+            let vals_of = |t: &[u32; 3]| vals.iter().find(|x| x.0 == *t).map(|x| x.1);
+            assert!(
+                extra.is_empty() && missing.is_empty(),
+                "{kind:?}: extra {:?} missing {:?}",
+                extra.iter().map(|t| (t, vals_of(t))).collect::<Vec<_>>(),
+                missing.iter().map(|t| (t, vals_of(t))).collect::<Vec<_>>()
+            );
+            assert_eq!(g.triangles, wt, "{kind:?}");
+            assert_eq!(g.gamma.len(), g.triangles.len());
+            for (gv, (_, v)) in g.gamma.iter().zip(&want) {
+                assert!((gv[0] - v.0).abs() < 1e-9 && (gv[1] - v.1).abs() < 1e-9);
+            }
+        }
+    }
+
+    const KINDS: [Kind; 7] = [
+        Kind::Gamma(0.0, -0.2),
+        Kind::Gamma(-0.1, -0.5),
+        Kind::Gamma(0.3, -0.9),
+        Kind::Gamma(-1.0, -1.0),
+        Kind::GammaRange([-1.0, 1.0, -0.2, 1.0]),
+        Kind::GammaRange([-1.0, 1.0, -0.05, -0.01]),
+        Kind::GammaRange([-0.5, 0.5, -1.0, 0.5]),
+    ];
+
+    #[test]
+    fn graph_3d_beyond_delaunay_matches_brute() {
+        // the sphere lattice has coplanar points on hull triangles' circumcircles: decided by
+        // the exact in-circle test of `TriFrame::add` (`in_circumcircle_3d`)
+        check_graph(&super::beyond3_oracle::sphere_lattice(), &KINDS);
+        check_graph(&random_3d(35, 4300), &KINDS);
+        let mut flat = random_3d(30, 4301);
+        for q in flat.iter_mut() {
+            q[1] *= 0.1;
+        }
+        check_graph(&flat, &KINDS);
+    }
+
+    #[test]
+    fn graph_3d_beyond_delaunay_is_monotone_and_unlimited() {
+        // more points than the old brute-force limit (150)
+        let p = random_3d(152, 4400);
+        let mut prev: BTreeSet<[u32; 3]> = BTreeSet::new();
+        for c in [-0.02, -0.1] {
+            let g = graph_3d(&pts(&p), Kind::GammaRange([-1.0, 1.0, c, 1.0])).unwrap();
+            let s: BTreeSet<[u32; 3]> = g.triangles.iter().copied().collect();
+            assert!(prev.is_subset(&s), "c = {c}");
+            for v in &g.gamma {
+                assert!(v[1] >= c);
+            }
+            prev = s;
+        }
+        // γ with a parameter −1 is cubic: refused beyond the limit
+        assert!(graph_3d(&pts(&p), Kind::Gamma(0.0, -1.0)).is_err());
+    }
+
+    #[test]
+    fn alpha_3d_positive_uses_hull_vertices_only() {
+        // a ball of radius 1/a containing every point touches only hull vertices
+        for s in 0..2 {
+            let p = random_3d(40, 4500 + s);
+            for a in [0.8, 1.0, 1.4] {
+                let g = graph_3d(&pts(&p), Kind::Alpha(a)).unwrap();
+                let want = crate::graphs::brute::alpha_3d(&p, a);
+                assert_eq!(g.triangles, want, "a = {a}");
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(10))]
+        #[test]
+        fn beyond_3d_matches_brute_on_small_integer_sets(
+            raw in proptest::collection::vec((0i32..5, 0i32..5, 0i32..4), 8..18),
+            ci in 0usize..4,
+        ) {
+            let p: Vec<[f64; 3]> = raw.iter().map(|&(x, y, z)| [x as f64, y as f64, z as f64]).collect();
+            let c = [-0.05, -0.2, -0.5, -0.9][ci];
+            super::beyond3_oracle::check(&p, &[c]);
+        }
     }
 }
