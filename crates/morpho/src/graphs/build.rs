@@ -344,7 +344,7 @@ fn classic<const D: usize>(
             }
             e
         }
-        Kind::Emst => emst_kruskal(p, input, gabriel),
+        Kind::Emst => emst_kruskal(p, input, dt_edges),
         Kind::Rng | Kind::BetaLune(_) => {
             let b = match kind {
                 Kind::BetaLune(b) => b,
@@ -544,20 +544,13 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             (r[2] < 0.0).then_some(r[2]),
         ),
         _ => {
-            let needs_gabriel = matches!(
-                kind,
-                Kind::Rng | Kind::BetaLune(_) | Kind::Strip | Kind::Emst
-            );
+            let needs_gabriel = matches!(kind, Kind::Rng | Kind::BetaLune(_) | Kind::Strip);
             let g = if needs_gabriel {
                 fast::gabriel_2d(&d)
             } else {
                 vec![]
             };
-            let dt = if needs_gabriel && kind != Kind::Sig {
-                vec![]
-            } else {
-                dt_edges()
-            };
+            let dt = if needs_gabriel { vec![] } else { dt_edges() };
             finish2(&d, classic(&p, &d.input_of_vertex, &dt, &g, kind)?, vec![])
         }
     })
