@@ -10,8 +10,11 @@
 //!   projection);
 //! - pairs with one common vertex v: the edge opposite v of each must not meet the other
 //!   triangle, and for coplanar pairs the projected triangles must not overlap beyond v;
-//! - pairs with a common edge are not tested (a fold along a shared edge; the constriction,
-//!   whose faces are faces of one tetrahedralization, cannot create it).
+//! - pairs with a common edge ab (triangles abc, abd): they meet beyond the edge iff they are
+//!   coplanar (`orient3d(a, b, c, d) == 0`) and c, d lie on the same side of line ab in that
+//!   plane (exact `orient2d` in a non-degenerate axis projection) — a fold onto itself — or one
+//!   of them is degenerate (c or d on line ab);
+//! - the same triangle twice (three common vertices) always counts as an intersection.
 //!
 //! Expected O(n) for meshes of evenly sized triangles, O(n²) worst case.
 
@@ -131,6 +134,23 @@ fn meet_beyond_vertex(t: [P; 3], it: usize, u: [P; 3], iu: usize) -> bool {
     inside(c, a, b) || inside(d, a, b) || inside(a, c, d) || inside(b, c, d)
 }
 
+/// Triangles abc and abd (common edge ab, positions given) meet beyond the edge (exact; see
+/// the module documentation).
+pub fn meet_beyond_edge(a: P, b: P, c: P, d: P) -> bool {
+    if orient3d(a, b, c, d) != 0.0 {
+        return false;
+    }
+    // coplanar: project along an axis that keeps one of the two triangles non-degenerate
+    let Some(ax) = good_axis(a, b, c).or_else(|| good_axis(a, b, d)) else {
+        return true; // both degenerate (a, b, c, d collinear)
+    };
+    let (a2, b2) = (proj(a, ax), proj(b, ax));
+    let sc = orient2d(a2, b2, proj(c, ax));
+    let sd = orient2d(a2, b2, proj(d, ax));
+    // in the plane, the projection preserves sidedness of ab (the plane is not parallel to ax)
+    sc == 0.0 || sd == 0.0 || (sc > 0.0) == (sd > 0.0)
+}
+
 /// Pairs of triangles (indices into `tris`) that intersect although they must not (see the
 /// module documentation); at most `limit` are returned.
 pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u32, u32)> {
@@ -234,7 +254,13 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
         let bad = match shared.len() {
             0 => triangles_intersect(pa, pb),
             1 => meet_beyond_vertex(pa, shared[0].0, pb, shared[0].1),
-            _ => false,
+            2 => {
+                let (i0, i1) = (shared[0].0, shared[1].0);
+                let (j0, j1) = (shared[0].1, shared[1].1);
+                let (c, d) = (3 - i0 - i1, 3 - j0 - j1);
+                meet_beyond_edge(pa[i0], pa[i1], pa[c], pb[d])
+            }
+            _ => true,
         };
         if bad {
             out.push((a, b));
@@ -292,5 +318,102 @@ mod tests {
             [1.0, 2.0, 0.0],
         ];
         assert!(!self_intersections(&pos3, &[[0, 1, 2], [0, 3, 4]], 10).is_empty());
+    }
+
+    /// Brute-force oracle for triangles abc, abd with a common edge on integer points: they
+    /// meet beyond ab iff abd is degenerate or the point m + (c − m)/K (m the midpoint of ab,
+    /// K large) lies in the closed triangle abd — near m, abc and abd are half-discs (i128
+    /// arithmetic, no predicates).
+    fn fold_oracle(a: [i64; 3], b: [i64; 3], c: [i64; 3], d: [i64; 3]) -> bool {
+        let k: i128 = 1_000_000;
+        let s = |x: [i64; 3]| x.map(|v| 2 * k * v as i128);
+        let (aa, bb, dd) = (s(a), s(b), s(d));
+        let p: [i128; 3] =
+            std::array::from_fn(|i| (k - 1) * (a[i] as i128 + b[i] as i128) + 2 * c[i] as i128);
+        let sub = |x: [i128; 3], y: [i128; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+        let cr = |x: [i128; 3], y: [i128; 3]| {
+            [
+                x[1] * y[2] - x[2] * y[1],
+                x[2] * y[0] - x[0] * y[2],
+                x[0] * y[1] - x[1] * y[0],
+            ]
+        };
+        let dt = |x: [i128; 3], y: [i128; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+        let deg = |x: [i64; 3], y: [i64; 3], z: [i64; 3]| {
+            let w = |v: [i64; 3]| v.map(|q| q as i128);
+            cr(sub(w(y), w(x)), sub(w(z), w(x))) == [0, 0, 0]
+        };
+        if deg(a, b, c) || deg(a, b, d) {
+            return true;
+        }
+        let n = cr(sub(bb, aa), sub(dd, aa));
+        if dt(n, sub(p, aa)) != 0 {
+            return false;
+        }
+        [(aa, bb), (bb, dd), (dd, aa)]
+            .iter()
+            .all(|&(u, v)| dt(cr(sub(v, u), sub(p, u)), n) >= 0)
+    }
+
+    #[test]
+    fn folds_along_a_common_edge() {
+        let f = |v: [f64; 3]| v;
+        let (a, b) = (f([0.0, 0.0, 0.0]), f([2.0, 0.0, 0.0]));
+        // coplanar, same side: a fold onto itself
+        assert!(meet_beyond_edge(a, b, [1.0, 1.0, 0.0], [0.5, 3.0, 0.0]));
+        // coplanar, opposite sides: a flat pair of neighbours
+        assert!(!meet_beyond_edge(a, b, [1.0, 1.0, 0.0], [0.5, -3.0, 0.0]));
+        // different planes
+        assert!(!meet_beyond_edge(a, b, [1.0, 1.0, 0.0], [1.0, 1.0, 1e-300]));
+        // degenerate second triangle
+        assert!(meet_beyond_edge(a, b, [1.0, 1.0, 0.0], [5.0, 0.0, 0.0]));
+        // through self_intersections: a closed tetrahedron surface plus a folded flap
+        let pos = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.3, 0.3, 0.0],
+        ];
+        let tris = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        assert!(self_intersections(&pos, &tris, 10).is_empty());
+        let mut t2 = tris.to_vec();
+        t2.push([0, 1, 4]); // lies inside face 0 2 1, common edge 0 1
+        assert_eq!(self_intersections(&pos, &t2, 10), vec![(0, 4)]);
+        // the same triangle twice
+        let mut t3 = tris.to_vec();
+        t3.push([1, 2, 3]);
+        assert_eq!(self_intersections(&pos, &t3, 10), vec![(2, 4)]);
+    }
+
+    #[test]
+    fn common_edge_test_matches_the_oracle() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(21);
+        let (mut hits, mut coplanar) = (0, 0);
+        for it in 0..4000 {
+            // points of a small integer plane mapped into 3D by an integer matrix, or free
+            let m: [[i64; 3]; 3] =
+                std::array::from_fn(|_| std::array::from_fn(|_| rng.gen_range(-3..=3)));
+            let plane = it % 4 != 0;
+            let pt = |rng: &mut rand_chacha::ChaCha8Rng| -> [i64; 3] {
+                let (u, v, w) = (
+                    rng.gen_range(-4..=4),
+                    rng.gen_range(-4..=4),
+                    if plane { 0 } else { rng.gen_range(-4..=4) },
+                );
+                std::array::from_fn(|i| m[i][0] * u + m[i][1] * v + m[i][2] * w)
+            };
+            let (a, b, c, d) = (pt(&mut rng), pt(&mut rng), pt(&mut rng), pt(&mut rng));
+            if a == b {
+                continue;
+            }
+            let fl = |x: [i64; 3]| x.map(|q| q as f64);
+            let got = meet_beyond_edge(fl(a), fl(b), fl(c), fl(d));
+            assert_eq!(got, fold_oracle(a, b, c, d), "{a:?} {b:?} {c:?} {d:?}");
+            hits += got as usize;
+            coplanar += (orient3d(fl(a), fl(b), fl(c), fl(d)) == 0.0) as usize;
+        }
+        assert!(hits > 200 && coplanar > 1000, "{hits} {coplanar}");
     }
 }
