@@ -23,6 +23,7 @@
 
 pub mod constrict2;
 pub mod constrict3;
+pub mod fallback3;
 pub mod indicator;
 pub mod validity;
 pub mod validity3;
@@ -454,6 +455,31 @@ fn finish(
     }
 }
 
+/// Options of [`boundary_3d_with`].
+#[derive(Debug, Clone)]
+pub struct Options3 {
+    /// When the Delaunay constriction stops.
+    pub until: constrict3::Until,
+    /// The γ-graph parameter: [`CParam::Auto`] constricts the Delaunay tetrahedralization and,
+    /// when it locks with points off the boundary, continues in the general engine
+    /// ([`fallback3`]) adding the triangles of γ([-1,1],[c,1]) for c = −0.1, −0.2, …, −1 inside
+    /// the current object (V §5.4 adaptive augmentation); [`CParam::Fixed`]`(c)` constricts
+    /// γ([-1,1],[c,1]) from the convex hull (c = 0: the Delaunay constriction alone).
+    pub c: CParam,
+    /// Triangles (input indices) that must be on the boundary (V §5.7).
+    pub keep: Vec<[u32; 3]>,
+}
+
+impl Default for Options3 {
+    fn default() -> Self {
+        Options3 {
+            until: constrict3::Until::All,
+            c: CParam::Auto,
+            keep: Vec::new(),
+        }
+    }
+}
+
 /// A 3D boundary (all indices are input indices).
 #[derive(Debug, Clone)]
 pub struct Boundary3 {
@@ -463,8 +489,12 @@ pub struct Boundary3 {
     pub all_on_boundary: bool,
     /// Input points not on the boundary.
     pub left_out: Vec<u32>,
-    /// Deleted tetrahedra.
+    /// Deleted tetrahedra (Delaunay and general engine together).
     pub iterations: usize,
+    /// The c of the last graph γ([-1,1],[c,1]) used (0 = Delaunay).
+    pub c_used: f64,
+    /// Triangles of γ([-1,1],[c,1]), c < 0, added by the general engine.
+    pub added_triangles: usize,
     /// The boundary is a closed 2-manifold (checked by `mesh::topology::analyze`).
     pub closed_manifold: bool,
     /// Its genus (`None` when not an orientable manifold).
@@ -472,28 +502,97 @@ pub struct Boundary3 {
     /// Pairs of boundary triangles that intersect although they must not (exact test,
     /// [`validity3::self_intersections`]; at most 10 listed). Empty for a valid boundary.
     pub intersections: Vec<(u32, u32)>,
-    /// The interior tetrahedralization.
+    /// The interior tetrahedralization (empty when the general engine ran: its implicit
+    /// tetrahedra overlap).
     pub interior: Vec<[u32; 4]>,
     /// Keep triangles (input indices) that are not boundary triangles.
     pub keep_missing: Vec<[u32; 3]>,
-    /// Enclosed volume (sum of the interior tetrahedra).
+    /// Enclosed volume.
     pub volume: f64,
 }
 
-/// Constructs a closed boundary mesh through 3D points by γ-constriction of the Delaunay
-/// tetrahedralization (V §5.3). Errors when the points are coplanar or fewer than four.
+/// Constructs a closed boundary mesh through 3D points by γ-constriction (V §5.3, with the
+/// §5.4 fallback: [`CParam::Auto`]). Errors when the points are coplanar or fewer than four.
 pub fn boundary_3d(points: &[crate::geom::Point3], until: constrict3::Until) -> Result<Boundary3> {
-    boundary_3d_keep(points, until, &[])
+    boundary_3d_with(
+        points,
+        &Options3 {
+            until,
+            ..Options3::default()
+        },
+    )
 }
 
-/// [`boundary_3d`] with keep triangles (input indices) that are never deleted (V §5.7; only
-/// Delaunay triangles can be kept — see [`constrict3::constrict_3d_keep`]). Keep triangles not
-/// on the result are listed in [`Boundary3::keep_missing`].
+/// [`boundary_3d`] with keep triangles (input indices) that are never deleted (V §5.7). Keep
+/// triangles not on the result are listed in [`Boundary3::keep_missing`].
 pub fn boundary_3d_keep(
     points: &[crate::geom::Point3],
     until: constrict3::Until,
     keep: &[[u32; 3]],
 ) -> Result<Boundary3> {
+    boundary_3d_with(
+        points,
+        &Options3 {
+            until,
+            c: CParam::Auto,
+            keep: keep.to_vec(),
+        },
+    )
+}
+
+/// The triangles of γ([-1,1],[c,1]), c < 0, that are not Delaunay triangles.
+fn beyond_3d(
+    d: &crate::delaunay::d3::Delaunay3,
+    cand: &crate::graphs::fast::Candidates3,
+    c: f64,
+) -> Vec<[u32; 3]> {
+    // stand-in until graphs::beyond3 lands: the brute-force definition for small sets
+    let _ = cand;
+    if d.points.len() > 40 {
+        return Vec::new();
+    }
+    let p = crate::graphs::fast::coords3(d);
+    crate::graphs::brute::gamma_3d_def(&p, c, 1.0)
+}
+
+/// Runs `g` and, while locked, augments it with γ([-1,1],[c,1]) for c = from − 0.1, … −1
+/// (first the non-Delaunay triangles of cospherical groups). Returns the last c used.
+fn augment_until_done_3d(
+    d: &crate::delaunay::d3::Delaunay3,
+    g: &mut fallback3::General3<'_>,
+    from: f64,
+) -> f64 {
+    let nv = d.points.len();
+    g.run();
+    if g.boundary_vertices >= nv {
+        return from;
+    }
+    let cand = crate::graphs::fast::candidates_3d(d);
+    let chords: Vec<[u32; 3]> = cand
+        .triangles
+        .iter()
+        .zip(&cand.in_dt)
+        .filter(|(_, &dt)| !dt)
+        .map(|(t, _)| *t)
+        .collect();
+    if !chords.is_empty() {
+        g.augment(&chords);
+        g.run();
+    }
+    let mut c = from;
+    let mut step = 1;
+    while g.boundary_vertices < nv && step <= 10 {
+        c = (from - 0.1 * step as f64).max(-1.0);
+        let extra = beyond_3d(d, &cand, c);
+        g.augment(&extra);
+        g.run();
+        step += 1;
+    }
+    c
+}
+
+/// [`boundary_3d`] with all options (see [`Options3`]).
+pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Result<Boundary3> {
     let d = crate::delaunay::d3::triangulate(points)?;
     if d.tets.is_empty() {
         return Err(Error::invalid(format!(
@@ -501,6 +600,18 @@ pub fn boundary_3d_keep(
             d.degenerate.as_deref().unwrap_or("degenerate input")
         )));
     }
+    let fixed_c = match opts.c {
+        CParam::Auto => None,
+        CParam::Fixed(c) => {
+            if !(-1.0..=0.0).contains(&c) {
+                return Err(Error::invalid(format!(
+                    "boundary: c = {c} is not in [-1, 0]"
+                )));
+            }
+            Some(c)
+        }
+    };
+    let keep = &opts.keep;
     let mut keep_v = Vec::with_capacity(keep.len());
     for k in keep {
         if k.iter().any(|&i| i as usize >= points.len()) {
@@ -508,16 +619,63 @@ pub fn boundary_3d_keep(
                 "boundary: keep triangle {k:?} refers to a point that does not exist"
             )));
         }
-        keep_v.push(k.map(|i| d.vertex_of_input[i as usize]));
+        let v = k.map(|i| d.vertex_of_input[i as usize]);
+        if v[0] == v[1] || v[1] == v[2] || v[0] == v[2] {
+            return Err(Error::invalid(format!(
+                "boundary: keep triangle {k:?} has two copies of one point"
+            )));
+        }
+        keep_v.push(v);
     }
-    let c = constrict3::constrict_3d_keep(&d, until, &keep_v);
-    let mesh = crate::mesh::TriMesh::new(d.points.clone(), c.triangles.clone());
-    let topo = crate::mesh::topology::analyze(&mesh);
-    let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
-    let intersections = validity3::self_intersections(&pos, &c.triangles, 10);
     let nv = d.points.len();
+    let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+    let faces_of = |alive: &[bool]| -> Vec<[u32; 3]> {
+        let mut out = Vec::new();
+        for (t, tet) in d.tets.iter().enumerate() {
+            if alive[t] {
+                for (fi, f) in crate::delaunay::d3::FACE_OF.iter().enumerate() {
+                    let n = d.neighbors[t][fi];
+                    let mut s = [tet[f[0]], tet[f[1]], tet[f[2]]];
+                    s.sort_unstable();
+                    // each interior face once (from the smaller tetrahedron), hull faces always
+                    if n == crate::delaunay::d3::NONE || !alive[n as usize] || (t as u32) < n {
+                        out.push(s);
+                    }
+                }
+            }
+        }
+        out
+    };
+    // (triangles, interior tets or None, c used, iterations, added)
+    let (tris, alive, c_used, iterations, added) = match fixed_c {
+        Some(c) if c < 0.0 => {
+            let cand = crate::graphs::fast::candidates_3d(&d);
+            let mut all = cand.triangles.clone();
+            all.extend(beyond_3d(&d, &cand, c));
+            let mut g = fallback3::General3::new(&pos, &d.hull, &all, &keep_v);
+            g.run();
+            (g.boundary(), None, c, g.iterations, 0)
+        }
+        _ => {
+            let st = constrict3::constrict_3d_keep(&d, opts.until, &keep_v);
+            if st.boundary_vertices >= nv && keep_missing_v(&st.triangles, &keep_v).is_empty()
+                || fixed_c.is_some()
+            {
+                (st.triangles, Some(st.alive), 0.0, st.iterations, 0)
+            } else {
+                let live = faces_of(&st.alive);
+                let mut g = fallback3::General3::new(&pos, &st.triangles, &live, &keep_v);
+                let c = augment_until_done_3d(&d, &mut g, 0.0);
+                let added = g.added;
+                (g.boundary(), None, c, st.iterations + g.iterations, added)
+            }
+        }
+    };
+    let mesh = crate::mesh::TriMesh::new(d.points.clone(), tris.clone());
+    let topo = crate::mesh::topology::analyze(&mesh);
+    let intersections = validity3::self_intersections(&pos, &tris, 10);
     let mut on = vec![false; nv];
-    for t in &c.triangles {
+    for t in &tris {
         for &v in t {
             on[v as usize] = true;
         }
@@ -527,49 +685,55 @@ pub fn boundary_3d_keep(
         .filter(|&i| !on[d.vertex_of_input[i] as usize])
         .map(|i| i as u32)
         .collect();
-    let mut volume = 0.0;
     let mut interior = Vec::new();
-    for (t, tet) in d.tets.iter().enumerate() {
-        if c.alive[t] {
-            let q = |k: usize| d.points[tet[k] as usize];
-            let (a, b, cc, dd) = (q(0), q(1), q(2), q(3));
-            volume += ((b - a).cross(&(cc - a)).dot(&(dd - a))).abs() / 6.0;
-            interior.push([inp(tet[0]), inp(tet[1]), inp(tet[2]), inp(tet[3])]);
+    if let Some(alive) = &alive {
+        for (t, tet) in d.tets.iter().enumerate() {
+            if alive[t] {
+                interior.push(tet.map(inp));
+            }
         }
     }
+    let missing = keep_missing_v(&tris, &keep_v);
     Ok(Boundary3 {
-        triangles: c
-            .triangles
-            .iter()
-            .map(|t| [inp(t[0]), inp(t[1]), inp(t[2])])
-            .collect(),
+        triangles: tris.iter().map(|t| t.map(inp)).collect(),
         all_on_boundary: left_out.is_empty(),
         left_out,
-        iterations: c.iterations,
+        iterations,
+        c_used,
+        added_triangles: added,
         closed_manifold: topo.is_closed() && topo.manifold && topo.parts.len() == 1,
         genus: topo.genus(),
         intersections,
-        keep_missing: {
-            let on: std::collections::HashSet<[u32; 3]> = c
-                .triangles
-                .iter()
-                .map(|t| {
-                    let mut s = *t;
-                    s.sort_unstable();
-                    s
-                })
-                .collect();
-            keep.iter()
-                .zip(&keep_v)
-                .filter(|(_, v)| {
-                    let mut s = **v;
-                    s.sort_unstable();
-                    !on.contains(&s)
-                })
-                .map(|(k, _)| *k)
-                .collect()
-        },
+        keep_missing: keep
+            .iter()
+            .zip(&keep_v)
+            .filter(|(_, v)| missing.contains(v))
+            .map(|(k, _)| *k)
+            .collect(),
         interior,
-        volume,
+        volume: mesh.signed_volume(),
     })
+}
+
+/// The keep triangles (vertex indices) that are not among `tris`.
+fn keep_missing_v(tris: &[[u32; 3]], keep: &[[u32; 3]]) -> Vec<[u32; 3]> {
+    if keep.is_empty() {
+        return Vec::new();
+    }
+    let on: std::collections::HashSet<[u32; 3]> = tris
+        .iter()
+        .map(|t| {
+            let mut s = *t;
+            s.sort_unstable();
+            s
+        })
+        .collect();
+    keep.iter()
+        .filter(|v| {
+            let mut s = **v;
+            s.sort_unstable();
+            !on.contains(&s)
+        })
+        .copied()
+        .collect()
 }

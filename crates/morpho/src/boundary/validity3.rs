@@ -37,6 +37,11 @@ fn good_axis(a: P, b: P, c: P) -> Option<usize> {
     (0..3).find(|&ax| orient2d(proj(a, ax), proj(b, ax), proj(c, ax)) != 0.0)
 }
 
+/// Triangle abc is degenerate (its corners are collinear; exact).
+pub fn degenerate(a: P, b: P, c: P) -> bool {
+    good_axis(a, b, c).is_none()
+}
+
 fn point_in_tri2(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
     let o = orient2d(a, b, c);
     let s = |u, v| orient2d(u, v, p) * o;
@@ -99,7 +104,7 @@ pub fn triangles_intersect(t: [P; 3], u: [P; 3]) -> bool {
 }
 
 /// Triangles t, u sharing exactly the vertex at positions (it, iu) meet elsewhere (exact).
-fn meet_beyond_vertex(t: [P; 3], it: usize, u: [P; 3], iu: usize) -> bool {
+pub fn meet_beyond_vertex(t: [P; 3], it: usize, u: [P; 3], iu: usize) -> bool {
     let (t1, t2) = (t[(it + 1) % 3], t[(it + 2) % 3]);
     let (u1, u2) = (u[(iu + 1) % 3], u[(iu + 2) % 3]);
     if segment_meets_triangle(t1, t2, u[0], u[1], u[2])
