@@ -161,3 +161,64 @@ fn find_locking_sets() {
     }
     eprintln!("{found} locking sets");
 }
+
+fn key(t: &[u32; 3]) -> [u32; 3] {
+    let mut k = *t;
+    k.sort_unstable();
+    k
+}
+
+#[test]
+fn non_delaunay_keep_triangle_is_brought_to_the_boundary() {
+    // sphere points: the hull is the surface. Keep the flipped diagonal triangle a b d of two
+    // adjacent hull triangles a b c, c b d — not a Delaunay face (V §5.7, Fig. 5.12 right)
+    let pts = morpho::samples::sphere_points(60, 1.0);
+    let d = morpho::delaunay::d3::triangulate(&pts).unwrap();
+    let faces: std::collections::HashSet<[u32; 3]> =
+        d.triangles().iter().map(|f| key(&f.v)).collect();
+    let mut tested = 0;
+    for (i, h) in d.hull.iter().enumerate().step_by(23).take(3) {
+        // neighbour across edge h[0] h[1]
+        let Some(g) = d
+            .hull
+            .iter()
+            .find(|g| (0..3).any(|k| g[k] == h[1] && g[(k + 1) % 3] == h[0]))
+        else {
+            continue;
+        };
+        let Some(&dv) = g.iter().find(|v| !h.contains(v)) else {
+            continue;
+        };
+        let kt = [h[0], dv, h[2]];
+        if faces.contains(&key(&kt)) {
+            continue;
+        }
+        let keep = [kt.map(|v| d.input_of_vertex[v as usize])];
+        let b = morpho::boundary::boundary_3d_keep(&pts, Until::All, &keep).unwrap();
+        assert_valid(&pts, &b);
+        assert!(b.all_on_boundary);
+        let on: std::collections::HashSet<[u32; 3]> = b.triangles.iter().map(key).collect();
+        assert!(on.contains(&key(&keep[0])), "hull face {i}: keep missing");
+        assert!(b.keep_missing.is_empty());
+        tested += 1;
+    }
+    assert!(tested >= 2, "{tested}");
+}
+
+#[test]
+fn keep_triangles_are_on_the_result_or_reported_missing() {
+    let mut rng = ChaCha8Rng::seed_from_u64(12);
+    for _ in 0..4 {
+        let pts = cube_points(&mut rng, 16);
+        // an arbitrary (usually non-Delaunay, interior) triangle
+        let keep = [[0u32, 1, 2]];
+        let b = morpho::boundary::boundary_3d_keep(&pts, Until::All, &keep).unwrap();
+        assert_valid(&pts, &b);
+        let on: std::collections::HashSet<[u32; 3]> = b.triangles.iter().map(key).collect();
+        assert_eq!(on.contains(&key(&keep[0])), b.keep_missing.is_empty());
+    }
+    // invalid constraints
+    let pts = morpho::samples::sphere_points(30, 1.0);
+    let crossing = [[0u32, 1, 2], [0, 1, 2]];
+    assert!(morpho::boundary::boundary_3d_keep(&pts, Until::All, &crossing).is_err());
+}

@@ -35,11 +35,21 @@
 //! are examined again, so "locked" means nothing is removable.
 //!
 //! # Adaptive augmentation (V §5.4)
-//! [`General3::augment`] adds triangles (of γ([-1,1],[c,1]), c < 0) that have a vertex not on
-//! the boundary (only such triangles can free a locked vertex: the three side faces of a
-//! one-face removal contain it) and meet no boundary triangle except in common vertices/edges
-//! (exact): such a triangle lies in the region (it is connected, has a vertex strictly inside,
-//! and does not cross the surface).
+//! [`General3::augment`] adds triangles (of γ([-1,1],[c,1]), c < 0) that are certified to lie in
+//! the region: they meet no boundary triangle except in common vertices/edges (exact), and have
+//! a vertex not on the boundary, or a boundary edge from which they go inward (m strictly inside
+//! the interior dihedral wedge of the two boundary faces there; exact `orient3d`). Such a
+//! triangle is connected, starts inside and never crosses the surface, so it lies in the closed
+//! region.
+//!
+//! # Constraints (V §5.7)
+//! Keep triangles are live from the start (added to the graph like V's F) and never deleted: a
+//! keep boundary face is never removable, and a tetrahedron whose interior a keep triangle
+//! meets is not removed. V's 3D rewiring: when keep triangle x y m blocks a tetrahedron on
+//! boundary face x y z, the triangles z x m and z y m are inserted (where they can be certified
+//! inside, as for augmentation), so that x y z m becomes a boundary tetrahedron whose removal
+//! brings x y m to the boundary. The constriction may still lock with a keep triangle off the
+//! boundary (V: "a constrained constriction may get locked"); the caller reports it.
 //!
 //! # Complexity
 //! Removal: O(k log n) with k the live triangles and vertices near Q (uniform hash grids over
@@ -365,6 +375,7 @@ pub struct General3<'a> {
     vgrid: Grid,
     heap: BinaryHeap<Entry>,
     buf: Vec<u32>,
+    blocked_by: Option<[u32; 3]>,
     /// Number of boundary vertices.
     pub boundary_vertices: usize,
     /// Number of removed tetrahedra.
@@ -398,6 +409,7 @@ impl<'a> General3<'a> {
             vgrid: Grid::new(lo, cell),
             heap: BinaryHeap::new(),
             buf: Vec::new(),
+            blocked_by: None,
             boundary_vertices: 0,
             iterations: 0,
             added: 0,
@@ -698,10 +710,11 @@ impl<'a> General3<'a> {
         }
         if !self.keep.is_empty() {
             let cr = self.crossing(qv);
-            if cr
+            if let Some(&i) = cr
                 .iter()
-                .any(|&i| self.keep.contains(&self.tris[i as usize]))
+                .find(|&&i| self.keep.contains(&self.tris[i as usize]))
             {
+                self.blocked_by = Some(self.tris[i as usize]);
                 return None;
             }
         }
@@ -713,20 +726,107 @@ impl<'a> General3<'a> {
         if !self.is_bface(f) || (!self.keep.is_empty() && self.keep.contains(&sorted3(f))) {
             return None;
         }
-        let cands: Vec<u32> = self.eadj.get(&ek(f[0], f[1])).cloned().unwrap_or_default();
-        let mut keyed: Vec<(f64, u32)> = cands
-            .into_iter()
-            .filter(|&l| l != f[2])
-            .filter_map(|l| self.combinatorial(f, l).map(|(k, _, _)| (k, l)))
-            .collect();
-        keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        keyed.dedup_by_key(|x| x.1);
-        for (k, l) in keyed {
-            if self.check(f, l).is_some() {
-                return Some((k, l));
+        if !self.keep.is_empty() {
+            // keep triangles x y m on an edge of f: make f + m a tetrahedron (V §5.7 rewiring)
+            for k in 0..3 {
+                let (x, y) = (f[k], f[(k + 1) % 3]);
+                let ms: Vec<u32> = self.eadj.get(&ek(x, y)).cloned().unwrap_or_default();
+                for m in ms {
+                    if m != f[(k + 2) % 3] && self.keep.contains(&sorted3([x, y, m])) {
+                        self.rewire(f, [x, y, m]);
+                    }
+                }
+            }
+        }
+        for _round in 0..4 {
+            let cands: Vec<u32> = self.eadj.get(&ek(f[0], f[1])).cloned().unwrap_or_default();
+            let mut keyed: Vec<(f64, u32)> = cands
+                .into_iter()
+                .filter(|&l| l != f[2])
+                .filter_map(|l| self.combinatorial(f, l).map(|(k, _, _)| (k, l)))
+                .collect();
+            keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            let mut rewired = false;
+            for (k, l) in keyed {
+                self.blocked_by = None;
+                if self.check(f, l).is_some() {
+                    return Some((k, l));
+                }
+                if let Some(kt) = self.blocked_by.take() {
+                    rewired |= self.rewire(f, kt);
+                    if rewired {
+                        break;
+                    }
+                }
+            }
+            if !rewired {
+                return None;
             }
         }
         None
+    }
+
+    /// V §5.7 (3D, Fig. 5.12 right): keep triangle `kt` = x y m crosses a tetrahedron on
+    /// boundary face f = x y z: insert z x m and z y m (where they lie inside, see
+    /// [`General3::augment`]) so that f + m becomes a tetrahedron whose removal brings `kt` to
+    /// the boundary. Returns whether a triangle was inserted.
+    fn rewire(&mut self, f: [u32; 3], kt: [u32; 3]) -> bool {
+        let common: Vec<u32> = f.iter().copied().filter(|v| kt.contains(v)).collect();
+        if common.len() != 2 {
+            return false;
+        }
+        let (Some(&z), Some(&m)) = (
+            f.iter().find(|v| !common.contains(v)),
+            kt.iter().find(|v| !common.contains(v)),
+        ) else {
+            return false;
+        };
+        let mut any = false;
+        for &x in &common {
+            any |= self.try_insert([z, x, m]);
+        }
+        any
+    }
+
+    /// Does the triangle a b m leave the boundary edge ab into the region? (exact: m strictly
+    /// inside the interior dihedral wedge of the two boundary faces at ab)
+    fn inward_at_edge(&self, a: u32, b: u32, m: u32) -> bool {
+        let (Some(&y), Some(&w)) = (self.bnext.get(&dk(a, b)), self.bnext.get(&dk(b, a))) else {
+            return false;
+        };
+        let (pa, pb, py, pw, pm) = (self.pt(a), self.pt(b), self.pt(y), self.pt(w), self.pt(m));
+        let convex = orient3d(pa, pb, py, pw);
+        let o1 = orient3d(pa, pb, py, pm) > 0.0;
+        let o2 = orient3d(pb, pa, pw, pm) > 0.0;
+        if convex > 0.0 {
+            o1 && o2
+        } else if convex < 0.0 {
+            o1 || o2
+        } else {
+            o1 && o2
+        }
+    }
+
+    /// Inserts triangle t when it is new, non-degenerate, certified to start inside the region
+    /// (a vertex off the boundary, or a boundary edge it leaves inward) and meets no boundary
+    /// triangle beyond common vertices/edges.
+    fn try_insert(&mut self, t: [u32; 3]) -> bool {
+        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || self.has(t[0], t[1], t[2]) {
+            return false;
+        }
+        if t.iter().all(|&v| self.on_boundary(v))
+            && !(0..3).any(|k| {
+                let (a, b, m) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                self.bedge(a, b) && self.inward_at_edge(a, b, m)
+            })
+        {
+            return false;
+        }
+        let pt = t.map(|v| self.pt(v));
+        if super::validity3::degenerate(pt[0], pt[1], pt[2]) || self.hits_boundary(t, &[]) {
+            return false;
+        }
+        self.add_tri(t)
     }
 
     fn push(&mut self, f: [u32; 3]) -> bool {
@@ -773,11 +873,24 @@ impl<'a> General3<'a> {
         // popped, and by the final sweep of `run`
     }
 
-    /// Runs the constriction until every vertex is on the boundary or nothing is removable.
+    /// Keep triangles not (yet) on the boundary.
+    pub fn keep_missing(&self) -> usize {
+        self.keep
+            .iter()
+            .filter(|k| !self.is_bface(**k) && !self.is_bface([k[0], k[2], k[1]]))
+            .count()
+    }
+
+    /// Every vertex and every keep triangle is on the boundary.
+    pub fn done(&self) -> bool {
+        self.boundary_vertices >= self.p.len() && (self.keep.is_empty() || self.keep_missing() == 0)
+    }
+
+    /// Runs the constriction until every vertex and keep triangle is on the boundary or nothing
+    /// is removable.
     pub fn run(&mut self) {
-        let n = self.p.len();
         loop {
-            while self.boundary_vertices < n {
+            while !self.done() {
                 let Some(en) = self.heap.pop() else { break };
                 if !self.is_bface(en.face) {
                     continue;
@@ -789,7 +902,7 @@ impl<'a> General3<'a> {
                     }
                 }
             }
-            if self.boundary_vertices >= n || !self.push_all() {
+            if self.done() || !self.push_all() {
                 break;
             }
         }
@@ -801,22 +914,7 @@ impl<'a> General3<'a> {
     pub fn augment(&mut self, tris: &[[u32; 3]]) -> usize {
         let mut added = 0;
         for &t in tris {
-            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
-                continue;
-            }
-            if t.iter().all(|&v| self.on_boundary(v)) || self.has(t[0], t[1], t[2]) {
-                continue;
-            }
-            let pt = t.map(|v| self.pt(v));
-            if super::validity3::degenerate(pt[0], pt[1], pt[2]) {
-                continue;
-            }
-            if self.hits_boundary(t, &[]) {
-                continue;
-            }
-            if self.add_tri(t) {
-                added += 1;
-            }
+            added += self.try_insert(t) as usize;
         }
         self.added += added;
         if added > 0 {

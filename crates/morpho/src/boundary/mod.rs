@@ -524,7 +524,11 @@ pub fn boundary_3d(points: &[crate::geom::Point3], until: constrict3::Until) -> 
 }
 
 /// [`boundary_3d`] with keep triangles (input indices) that are never deleted (V §5.7). Keep
-/// triangles not on the result are listed in [`Boundary3::keep_missing`].
+/// triangles not on the result are listed in [`Boundary3::keep_missing`]. When every keep
+/// triangle is a Delaunay face the Delaunay constriction keeps them
+/// ([`constrict3::constrict_3d_keep`]); otherwise the general engine ([`fallback3`]) constricts
+/// the Delaunay triangles plus the keep triangles from the convex hull, with V's rewiring.
+/// Errors when keep triangles are degenerate or intersect each other.
 pub fn boundary_3d_keep(
     points: &[crate::geom::Point3],
     until: constrict3::Until,
@@ -562,9 +566,8 @@ fn augment_until_done_3d(
     g: &mut fallback3::General3<'_>,
     from: f64,
 ) -> f64 {
-    let nv = d.points.len();
     g.run();
-    if g.boundary_vertices >= nv {
+    if g.done() {
         return from;
     }
     let cand = crate::graphs::fast::candidates_3d(d);
@@ -581,7 +584,7 @@ fn augment_until_done_3d(
     }
     let mut c = from;
     let mut step = 1;
-    while g.boundary_vertices < nv && step <= 10 {
+    while !g.done() && step <= 10 {
         c = (from - 0.1 * step as f64).max(-1.0);
         let extra = beyond_3d(d, &cand, c);
         g.augment(&extra);
@@ -629,6 +632,36 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
     }
     let nv = d.points.len();
     let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+    for k in &keep_v {
+        let q = k.map(|v| pos[v as usize]);
+        if validity3::degenerate(q[0], q[1], q[2]) {
+            return Err(Error::invalid(format!(
+                "boundary: keep triangle {k:?} is degenerate"
+            )));
+        }
+    }
+    if !validity3::self_intersections(&pos, &keep_v, 1).is_empty() {
+        return Err(Error::invalid(
+            "boundary: keep triangles intersect each other",
+        ));
+    }
+    // keep triangles that are not Delaunay faces need the general engine from the hull
+    let non_delaunay_keep = !keep_v.is_empty() && {
+        let faces: std::collections::HashSet<[u32; 3]> = d
+            .triangles()
+            .iter()
+            .map(|f| {
+                let mut s = f.v;
+                s.sort_unstable();
+                s
+            })
+            .collect();
+        keep_v.iter().any(|k| {
+            let mut s = *k;
+            s.sort_unstable();
+            !faces.contains(&s)
+        })
+    };
     let faces_of = |alive: &[bool]| -> Vec<[u32; 3]> {
         let mut out = Vec::new();
         for (t, tet) in d.tets.iter().enumerate() {
@@ -655,6 +688,19 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
             let mut g = fallback3::General3::new(&pos, &d.hull, &all, &keep_v);
             g.run();
             (g.boundary(), None, c, g.iterations, 0)
+        }
+        _ if non_delaunay_keep => {
+            // V §5.7: the keep triangles are added to the graph, constriction from the hull
+            let all = crate::graphs::fast::candidates_3d(&d).triangles;
+            let mut g = fallback3::General3::new(&pos, &d.hull, &all, &keep_v);
+            let c = match fixed_c {
+                Some(c) => {
+                    g.run();
+                    c
+                }
+                None => augment_until_done_3d(&d, &mut g, 0.0),
+            };
+            (g.boundary(), None, c, g.iterations, g.added)
         }
         _ => {
             let st = constrict3::constrict_3d_keep(&d, opts.until, &keep_v);
