@@ -60,10 +60,11 @@
 //! every given triangle (as produced by [`super::constrict3`] or the convex hull).
 
 use super::constrict3::gamma_indicator_3d;
+use super::constrict3::{IdMap, IdSet};
 use super::validity3::{meet_beyond_edge, meet_beyond_vertex, triangles_intersect};
 use crate::geom::predicates::raw::orient3d;
 use std::cmp::Ordering;
-use std::collections::{BinaryHeap, HashMap, HashSet};
+use std::collections::BinaryHeap;
 
 type P = [f64; 3];
 
@@ -117,7 +118,7 @@ fn circumradius(a: P, b: P, c: P, d: P) -> f64 {
 struct Grid {
     lo: P,
     cell: f64,
-    cells: HashMap<(i64, i64, i64), Vec<u32>>,
+    cells: IdMap<(i64, i64, i64), Vec<u32>>,
     big: Vec<u32>,
 }
 
@@ -130,7 +131,7 @@ impl Grid {
             } else {
                 1.0
             },
-            cells: HashMap::new(),
+            cells: IdMap::default(),
             big: Vec::new(),
         }
     }
@@ -365,12 +366,12 @@ pub struct General3<'a> {
     p: &'a [P],
     tris: Vec<[u32; 3]>,
     live: Vec<bool>,
-    id: HashMap<[u32; 3], u32>,
-    eadj: HashMap<u64, Vec<u32>>,
+    id: IdMap<[u32; 3], u32>,
+    eadj: IdMap<u64, Vec<u32>>,
     /// directed boundary edge a→b → third vertex of the outward boundary face containing it
-    bnext: HashMap<u64, u32>,
+    bnext: IdMap<u64, u32>,
     vcount: Vec<u32>,
-    keep: HashSet<[u32; 3]>,
+    keep: IdSet<[u32; 3]>,
     tgrid: Grid,
     vgrid: Grid,
     heap: BinaryHeap<Entry>,
@@ -400,9 +401,9 @@ impl<'a> General3<'a> {
             p,
             tris: Vec::new(),
             live: Vec::new(),
-            id: HashMap::new(),
-            eadj: HashMap::new(),
-            bnext: HashMap::new(),
+            id: IdMap::default(),
+            eadj: IdMap::default(),
+            bnext: IdMap::default(),
             vcount: vec![0; p.len()],
             keep: keep.iter().map(|&f| sorted3(f)).collect(),
             tgrid: Grid::new(lo, cell),
@@ -869,8 +870,16 @@ impl<'a> General3<'a> {
         for &n in nf {
             self.push(n);
         }
-        // faces next to the new ones may have gained or lost options: recomputed lazily when
-        // popped, and by the final sweep of `run`
+        // the faces next to the new ones may have gained options (two-face removals); others
+        // are recomputed lazily when popped, and by the final sweep of `run`
+        for &n in nf {
+            for k in 0..3 {
+                let (a, b) = (n[k], n[(k + 1) % 3]);
+                if let Some(&c) = self.bnext.get(&dk(b, a)) {
+                    self.push([b, a, c]);
+                }
+            }
+        }
     }
 
     /// Keep triangles not (yet) on the boundary.

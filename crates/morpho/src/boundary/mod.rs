@@ -578,8 +578,7 @@ fn augment_until_done_3d(
         .filter(|(_, &dt)| !dt)
         .map(|(t, _)| *t)
         .collect();
-    if !chords.is_empty() {
-        g.augment(&chords);
+    if !chords.is_empty() && g.augment(&chords) > 0 {
         g.run();
     }
     let mut c = from;
@@ -587,8 +586,9 @@ fn augment_until_done_3d(
     while !g.done() && step <= 10 {
         c = (from - 0.1 * step as f64).max(-1.0);
         let extra = beyond_3d(d, &cand, c);
-        g.augment(&extra);
-        g.run();
+        if g.augment(&extra) > 0 {
+            g.run();
+        }
         step += 1;
     }
     c

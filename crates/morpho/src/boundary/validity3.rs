@@ -20,7 +20,6 @@
 
 use super::validity::segments_intersect;
 use crate::geom::predicates::raw::{orient2d, orient3d};
-use std::collections::HashMap;
 
 type P = [f64; 3];
 
@@ -194,7 +193,7 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
         cell = 1.0;
     }
     let cidx = |x: f64, k: usize| ((x - lo[k]) / cell).floor().max(0.0) as u64;
-    let mut grid: HashMap<(u64, u64, u64), Vec<u32>> = HashMap::new();
+    let mut grid: super::constrict3::IdMap<(u64, u64, u64), Vec<u32>> = Default::default();
     let bbox = |t: &[u32; 3]| -> ([f64; 3], [f64; 3]) {
         let q = t.map(|v| pos[v as usize]);
         (
@@ -226,12 +225,24 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
         let ((al, ah), (bl, bh)) = (boxes[a as usize], boxes[b as usize]);
         (0..3).all(|k| al[k] <= bh[k] && bl[k] <= ah[k])
     };
+    let bad = |a: u32, b: u32| pair_meets(pos, tris[a as usize], tris[b as usize]);
     let mut pairs: Vec<(u32, u32)> = Vec::new();
-    for ids in grid.values() {
+    let mut bad_pairs: Vec<(u32, u32)> = Vec::new();
+    for (&cell, ids) in &grid {
         for (a_i, &a) in ids.iter().enumerate() {
             for &b in &ids[a_i + 1..] {
-                if overlap(a, b) {
-                    pairs.push((a.min(b), a.max(b)));
+                if !overlap(a, b) {
+                    continue;
+                }
+                // each pair once: in the cell of the low corner of the boxes' intersection
+                let ((al, _), (bl, _)) = (boxes[a as usize], boxes[b as usize]);
+                let own = (
+                    cidx(al[0].max(bl[0]), 0),
+                    cidx(al[1].max(bl[1]), 1),
+                    cidx(al[2].max(bl[2]), 2),
+                );
+                if own == cell && bad(a, b) {
+                    bad_pairs.push((a.min(b), a.max(b)));
                 }
             }
         }
@@ -250,32 +261,35 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
     pairs.sort_unstable();
     pairs.dedup();
     for (a, b) in pairs {
-        let (ta, tb) = (tris[a as usize], tris[b as usize]);
-        let shared: Vec<(usize, usize)> = (0..3)
-            .flat_map(|i| (0..3).map(move |j| (i, j)))
-            .filter(|&(i, j)| ta[i] == tb[j])
-            .collect();
-        let (pa, pb) = (ta.map(|v| pos[v as usize]), tb.map(|v| pos[v as usize]));
-        let bad = match shared.len() {
-            0 => triangles_intersect(pa, pb),
-            1 => meet_beyond_vertex(pa, shared[0].0, pb, shared[0].1),
-            2 => {
-                let (i0, i1) = (shared[0].0, shared[1].0);
-                let (j0, j1) = (shared[0].1, shared[1].1);
-                let (c, d) = (3 - i0 - i1, 3 - j0 - j1);
-                meet_beyond_edge(pa[i0], pa[i1], pa[c], pb[d])
-            }
-            _ => true,
-        };
-        if bad {
-            out.push((a, b));
-            if out.len() >= limit {
-                return out;
-            }
+        if bad(a, b) {
+            bad_pairs.push((a, b));
         }
     }
-    out.sort_unstable();
+    bad_pairs.sort_unstable();
+    bad_pairs.dedup();
+    bad_pairs.truncate(limit);
+    out.extend(bad_pairs);
     out
+}
+
+/// The exact test of one pair by its number of common vertices (see the module documentation).
+fn pair_meets(pos: &[P], ta: [u32; 3], tb: [u32; 3]) -> bool {
+    let shared: Vec<(usize, usize)> = (0..3)
+        .flat_map(|i| (0..3).map(move |j| (i, j)))
+        .filter(|&(i, j)| ta[i] == tb[j])
+        .collect();
+    let (pa, pb) = (ta.map(|v| pos[v as usize]), tb.map(|v| pos[v as usize]));
+    match shared.len() {
+        0 => triangles_intersect(pa, pb),
+        1 => meet_beyond_vertex(pa, shared[0].0, pb, shared[0].1),
+        2 => {
+            let (i0, i1) = (shared[0].0, shared[1].0);
+            let (j0, j1) = (shared[0].1, shared[1].1);
+            let (c, d) = (3 - i0 - i1, 3 - j0 - j1);
+            meet_beyond_edge(pa[i0], pa[i1], pa[c], pb[d])
+        }
+        _ => true,
+    }
 }
 
 #[cfg(test)]
