@@ -3,7 +3,7 @@
 //!
 //! `cargo run --release -p morpho --example bench_graphs -- [N] [N_GAMMA] [N_BRUTE]`
 //! (defaults 1000000, 100000, 2000). Prints one line per kind: seconds and the ratio to the
-//! Delaunay time.
+//! Delaunay time. `KIND=Emst` (a prefix of the kind's debug name) times only that kind.
 
 use morpho::delaunay::d2;
 use morpho::geom::Point2;
@@ -62,6 +62,11 @@ fn main() {
         Kind::GammaRange([-1.0, 1.0, 0.0, 1.0]),
         Kind::Sig,
     ] {
+        if let Ok(only) = std::env::var("KIND") {
+            if !format!("{kind:?}").starts_with(&only) {
+                continue;
+            }
+        }
         let (t, g) = best_of(2, || graph_2d(&p, kind).expect("graph"));
         println!(
             "{:<40} {:>9.3} {:>9.2} {:>10}",

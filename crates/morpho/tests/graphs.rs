@@ -68,6 +68,26 @@ fn sets_2d() -> Vec<(String, Vec<[f64; 2]>)> {
             .map(|_| [r.gen_range(0..9) as f64, r.gen_range(0..9) as f64])
             .collect::<Vec<_>>(),
     ));
+    // near-ties: a grid scaled by 0.1 and shifted (its coordinates are not exact, so distances
+    // that are equal on paper differ in the last bits), and a grid jittered by a few ulps;
+    // float evaluation of the distance predicates gets these wrong, exact evaluation does not
+    v.push((
+        "grid-tenths".into(),
+        (0..49)
+            .map(|i| [(i % 7) as f64 * 0.1 + 0.3, (i / 7) as f64 * 0.1 + 0.7])
+            .collect(),
+    ));
+    let mut r = ChaCha8Rng::seed_from_u64(7);
+    v.push((
+        "grid-ulps".into(),
+        (0..49)
+            .map(|i| {
+                let mut jit =
+                    |x: f64| f64::from_bits((x.to_bits() as i64 + r.gen_range(-3i64..=3)) as u64);
+                [jit(1000.0 + (i % 7) as f64), jit(1000.0 + (i / 7) as f64)]
+            })
+            .collect(),
+    ));
     // remove duplicates (graphs are defined on distinct points)
     for (_, p) in v.iter_mut() {
         let mut seen = std::collections::HashSet::new();

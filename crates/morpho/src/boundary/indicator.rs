@@ -17,7 +17,7 @@
 //! # Minimal area change (Eq. 4.1)
 //! (|vᵢvₖ| + |vⱼvₖ| − |vᵢvⱼ|) / (|vᵢvₖ| + |vⱼvₖ| + |vᵢvⱼ|): "face area" is edge length in 2D.
 
-use crate::geom::expansion::{grow, two_prod, two_sum};
+use crate::geom::distance::dot_sign;
 
 /// Which selection key a constriction uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -28,45 +28,6 @@ pub enum Key {
     MinAreaChange,
 }
 
-/// The exact sign (−1, 0, 1) of (a − c)·(b − c). Exact unless an intermediate product
-/// under- or overflows (the same range as the predicates of `geom::predicates`).
-pub fn dot_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i32 {
-    let u = [a[0] - c[0], a[1] - c[1]];
-    let v = [b[0] - c[0], b[1] - c[1]];
-    let d = u[0] * v[0] + u[1] * v[1];
-    let mag = (u[0] * v[0]).abs() + (u[1] * v[1]).abs();
-    // each difference has relative error ≤ ε, each product ≤ (1+ε)³, the sum one more ε
-    let bound = 8.0 * f64::EPSILON * mag;
-    if d > bound {
-        return 1;
-    }
-    if d < -bound {
-        return -1;
-    }
-    // exact: a − c = s + e exactly, products split error-free
-    let mut terms = Vec::with_capacity(16);
-    for k in 0..2 {
-        let (s1, e1) = two_sum(a[k], -c[k]);
-        let (s2, e2) = two_sum(b[k], -c[k]);
-        for (x, y) in [(s1, s2), (s1, e2), (e1, s2), (e1, e2)] {
-            let (p, q) = two_prod(x, y);
-            terms.push(p);
-            terms.push(q);
-        }
-    }
-    let mut e: Vec<f64> = Vec::new();
-    for t in terms {
-        if t != 0.0 {
-            grow(&mut e, t);
-        }
-    }
-    match e.last() {
-        Some(&x) if x > 0.0 => 1,
-        Some(&x) if x < 0.0 => -1,
-        _ => 0,
-    }
-}
-
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
@@ -74,7 +35,7 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
 /// The γ-indicator of edge (pi, pj) with respect to pk (Def. 5.1 with the exact sign of
 /// Eq. 5.1; see the module documentation).
 pub fn gamma_indicator(pi: [f64; 2], pj: [f64; 2], pk: [f64; 2]) -> f64 {
-    let s = dot_sign(pi, pj, pk);
+    let s = dot_sign(&pi, &pj, &pk);
     if s == 0 {
         return 0.0;
     }
@@ -165,7 +126,7 @@ mod tests {
 
     #[test]
     fn right_angle_is_zero_acute_positive() {
-        assert_eq!(dot_sign([1.0, 0.0], [0.0, 1.0], [0.0, 0.0]), 0);
+        assert_eq!(dot_sign(&[1.0, 0.0], &[0.0, 1.0], &[0.0, 0.0]), 0);
         assert_eq!(gamma_indicator([0.0, 0.0], [2.0, 0.0], [1.0, 1.0]), 0.0);
         assert!(gamma_indicator([0.0, 0.0], [2.0, 0.0], [1.0, 3.0]) > 0.0);
         assert!(gamma_indicator([0.0, 0.0], [2.0, 0.0], [1.0, 0.1]) < -0.8);
@@ -218,13 +179,13 @@ mod tests {
             let k: i64 = rng.gen_range(-3..=3);
             c[0] = f64::from_bits((c[0].to_bits() as i64 + k) as u64);
             assert_eq!(
-                dot_sign(a, b, c),
+                dot_sign(&a, &b, &c),
                 dot_sign_big(a, b, c),
                 "{a:?} {b:?} {c:?}"
             );
         }
         // exactly representable right angles with offsets
         let o = [1e15, -3.0];
-        assert_eq!(dot_sign([o[0] + 3.0, o[1]], [o[0], o[1] + 5.0], o), 0);
+        assert_eq!(dot_sign(&[o[0] + 3.0, o[1]], &[o[0], o[1] + 5.0], &o), 0);
     }
 }

@@ -40,7 +40,7 @@
 //! # Errors
 //! Empty input and non-finite coordinates.
 
-use super::expansion::{two_prod, two_sum};
+use super::expansion::Expansion;
 use super::predicates::raw;
 use super::{Point2, Point3};
 use crate::{Error, Result};
@@ -302,66 +302,6 @@ fn xcross(x: &[Expansion; 3], y: &[Expansion; 3]) -> [Expansion; 3] {
 
 fn xdot(x: &[Expansion; 3], y: &[Expansion; 3]) -> Expansion {
     x[0].mul(&y[0]).add(&x[1].mul(&y[1])).add(&x[2].mul(&y[2]))
-}
-
-/// A nonoverlapping floating-point expansion (Shewchuk 1997): the exact value is the sum of the
-/// components, stored in increasing magnitude, zeros removed.
-#[derive(Debug, Clone)]
-struct Expansion(Vec<f64>);
-
-impl Expansion {
-    fn zero() -> Self {
-        Expansion(Vec::new())
-    }
-    /// a − b, exactly.
-    fn diff(a: f64, b: f64) -> Self {
-        let (x, y) = two_sum(a, -b);
-        Expansion([y, x].into_iter().filter(|&c| c != 0.0).collect())
-    }
-    /// Grow-Expansion: self + b.
-    fn grow(&self, b: f64) -> Self {
-        let mut out = Vec::with_capacity(self.0.len() + 1);
-        let mut q = b;
-        for &e in &self.0 {
-            let (s, h) = two_sum(q, e);
-            if h != 0.0 {
-                out.push(h);
-            }
-            q = s;
-        }
-        if q != 0.0 {
-            out.push(q);
-        }
-        Expansion(out)
-    }
-    fn add(&self, o: &Expansion) -> Self {
-        o.0.iter().fold(self.clone(), |acc, &c| acc.grow(c))
-    }
-    fn neg(&self) -> Self {
-        Expansion(self.0.iter().map(|c| -c).collect())
-    }
-    fn sub(&self, o: &Expansion) -> Self {
-        self.add(&o.neg())
-    }
-    /// Sum of all pairwise exact products.
-    fn mul(&self, o: &Expansion) -> Self {
-        let mut acc = Expansion::zero();
-        for &x in &self.0 {
-            for &y in &o.0 {
-                let (p, e) = two_prod(x, y);
-                acc = acc.grow(e).grow(p);
-            }
-        }
-        acc
-    }
-    /// Sign of the exact value: that of the largest component.
-    fn sign(&self) -> i32 {
-        match self.0.last() {
-            Some(&c) if c > 0.0 => 1,
-            Some(&c) if c < 0.0 => -1,
-            _ => 0,
-        }
-    }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -41,6 +41,79 @@ pub fn grow(e: &mut Vec<f64>, b: f64) {
     }
 }
 
+/// A nonoverlapping floating-point expansion (Shewchuk 1997): the exact value is the sum of the
+/// components, stored in increasing magnitude, zeros removed.
+#[derive(Debug, Clone, Default)]
+pub struct Expansion(pub Vec<f64>);
+
+impl Expansion {
+    pub fn zero() -> Self {
+        Expansion(Vec::new())
+    }
+    /// a − b, exactly.
+    pub fn diff(a: f64, b: f64) -> Self {
+        let (x, y) = two_sum(a, -b);
+        Expansion([y, x].into_iter().filter(|&c| c != 0.0).collect())
+    }
+    /// Grow-Expansion: self + b.
+    pub fn grow(&self, b: f64) -> Self {
+        let mut out = Vec::with_capacity(self.0.len() + 1);
+        let mut q = b;
+        for &e in &self.0 {
+            let (s, h) = two_sum(q, e);
+            if h != 0.0 {
+                out.push(h);
+            }
+            q = s;
+        }
+        if q != 0.0 {
+            out.push(q);
+        }
+        Expansion(out)
+    }
+    pub fn add(&self, o: &Expansion) -> Self {
+        o.0.iter().fold(self.clone(), |acc, &c| acc.grow(c))
+    }
+    pub fn neg(&self) -> Self {
+        Expansion(self.0.iter().map(|c| -c).collect())
+    }
+    pub fn sub(&self, o: &Expansion) -> Self {
+        self.add(&o.neg())
+    }
+    /// Sum of all pairwise exact products.
+    pub fn mul(&self, o: &Expansion) -> Self {
+        let mut acc = Expansion::zero();
+        for &x in &self.0 {
+            for &y in &o.0 {
+                let (p, e) = two_prod(x, y);
+                acc = acc.grow(e).grow(p);
+            }
+        }
+        acc
+    }
+    /// The exact value `x` (one component, or none for zero).
+    pub fn from(x: f64) -> Self {
+        Expansion(if x == 0.0 { vec![] } else { vec![x] })
+    }
+    /// self · b, exactly (SCALE-EXPANSION through exact products).
+    pub fn scale(&self, b: f64) -> Self {
+        let mut acc = Expansion::zero();
+        for &x in &self.0 {
+            let (p, e) = two_prod(x, b);
+            acc = acc.grow(e).grow(p);
+        }
+        acc
+    }
+    /// Sign of the exact value: that of the largest component.
+    pub fn sign(&self) -> i32 {
+        match self.0.last() {
+            Some(&c) if c > 0.0 => 1,
+            Some(&c) if c < 0.0 => -1,
+            _ => 0,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

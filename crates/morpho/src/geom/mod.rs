@@ -4,6 +4,7 @@
 //! exact adaptive predicates of [`predicates`]; *constructions* (circumcentres, interpolated
 //! points) are ordinary `f64` arithmetic.
 
+pub mod distance;
 pub mod enclosing;
 pub mod expansion;
 pub mod predicates;

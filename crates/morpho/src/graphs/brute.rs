@@ -12,7 +12,9 @@
 use super::gamma::{
     center_interval_2d, center_interval_3d, def_contains_2d, def_contains_3d, dot3, sub3,
 };
+use crate::geom::distance::{cmp_dist2, dot_sign, in_lune_ball, sum_of_roots_exceeds};
 use crate::geom::predicates::raw;
+use std::cmp::Ordering;
 
 fn d2(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
@@ -22,25 +24,34 @@ fn pairs(n: usize) -> impl Iterator<Item = (usize, usize)> {
     (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j)))
 }
 
-/// Closest pairs (Def. 2.3): all pairs at the minimum distance.
+/// Closest pairs (Def. 2.3): all pairs at the minimum distance (exact comparisons).
 pub fn closest_pairs<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
-    let min = pairs(p.len())
-        .map(|(i, j)| d2(&p[i], &p[j]))
-        .fold(f64::INFINITY, f64::min);
+    let mut best: Option<(usize, usize)> = None;
+    for (i, j) in pairs(p.len()) {
+        match best {
+            Some((a, b)) if cmp_dist2(&p[i], &p[j], &p[a], &p[b]) != Ordering::Less => {}
+            _ => best = Some((i, j)),
+        }
+    }
+    let Some((a, b)) = best else { return vec![] };
     pairs(p.len())
-        .filter(|&(i, j)| d2(&p[i], &p[j]) == min)
+        .filter(|&(i, j)| cmp_dist2(&p[i], &p[j], &p[a], &p[b]) == Ordering::Equal)
         .map(|(i, j)| [i as u32, j as u32])
         .collect()
 }
 
-/// Nearest-neighbour distances (squared) of every point.
-pub fn nn_dist2<const D: usize>(p: &[[f64; D]]) -> Vec<f64> {
+/// A nearest neighbour of every point (the first one in index order; exact comparisons).
+pub fn nearest<const D: usize>(p: &[[f64; D]]) -> Vec<usize> {
     (0..p.len())
         .map(|i| {
-            (0..p.len())
-                .filter(|&j| j != i)
-                .map(|j| d2(&p[i], &p[j]))
-                .fold(f64::INFINITY, f64::min)
+            let mut best = usize::MAX;
+            for j in (0..p.len()).filter(|&j| j != i) {
+                if best == usize::MAX || cmp_dist2(&p[i], &p[j], &p[i], &p[best]) == Ordering::Less
+                {
+                    best = j;
+                }
+            }
+            best
         })
         .collect()
 }
@@ -48,49 +59,42 @@ pub fn nn_dist2<const D: usize>(p: &[[f64; D]]) -> Vec<f64> {
 /// Nearest neighbours graph (Def. 2.4), with every tie: (i, j) whenever j is a nearest
 /// neighbour of i or i of j.
 pub fn nng<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
-    let nn = nn_dist2(p);
+    let nn = nearest(p);
+    let is_nn = |i: usize, j: usize| cmp_dist2(&p[i], &p[j], &p[i], &p[nn[i]]) == Ordering::Equal;
     pairs(p.len())
-        .filter(|&(i, j)| {
-            let d = d2(&p[i], &p[j]);
-            d == nn[i] || d == nn[j]
-        })
+        .filter(|&(i, j)| is_nn(i, j) || is_nn(j, i))
         .map(|(i, j)| [i as u32, j as u32])
         .collect()
 }
 
-/// A Euclidean minimum spanning tree (Def. 2.5) by Prim's O(N²) algorithm.
+/// Euclidean minimum spanning tree (Def. 2.5) by Prim's algorithm with exact comparisons: one
+/// tree (under ties several exist; compare lengths).
 pub fn emst<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
     let n = p.len();
     if n < 2 {
         return vec![];
     }
-    let mut best = vec![(f64::INFINITY, 0usize); n];
+    // best[j]: the tree vertex closest to j
+    let mut best = vec![0usize; n];
     let mut done = vec![false; n];
     done[0] = true;
-    for j in 1..n {
-        best[j] = (d2(&p[0], &p[j]), 0);
-    }
     let mut out = Vec::with_capacity(n - 1);
     for _ in 1..n {
-        let (mut k, mut bd) = (usize::MAX, f64::INFINITY);
+        let mut k = usize::MAX;
         for j in 0..n {
-            if !done[j] && best[j].0 < bd {
-                bd = best[j].0;
+            if !done[j]
+                && (k == usize::MAX
+                    || cmp_dist2(&p[j], &p[best[j]], &p[k], &p[best[k]]) == Ordering::Less)
+            {
                 k = j;
             }
         }
-        if k == usize::MAX {
-            break;
-        }
         done[k] = true;
-        let (a, b) = (best[k].1.min(k), best[k].1.max(k));
+        let (a, b) = (best[k].min(k), best[k].max(k));
         out.push([a as u32, b as u32]);
         for j in 0..n {
-            if !done[j] {
-                let d = d2(&p[k], &p[j]);
-                if d < best[j].0 {
-                    best[j] = (d, k);
-                }
+            if !done[j] && cmp_dist2(&p[k], &p[j], &p[best[j]], &p[j]) == Ordering::Less {
+                best[j] = k;
             }
         }
     }
@@ -107,30 +111,26 @@ pub fn length<const D: usize>(p: &[[f64; D]], edges: &[[u32; 2]]) -> f64 {
 }
 
 /// Infinite strip graph (Def. 2.6): no point strictly between the two planes through i and j
-/// perpendicular to ij.
+/// perpendicular to ij, i.e. with (x − i)·(j − i) > 0 and (x − j)·(i − j) > 0 (exact signs).
 pub fn strip<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
     pairs(p.len())
-        .filter(|&(i, j)| {
-            let dd: Vec<f64> = (0..D).map(|k| p[j][k] - p[i][k]).collect();
-            let len2: f64 = dd.iter().map(|x| x * x).sum();
-            !(0..p.len()).any(|x| {
-                if x == i || x == j {
-                    return false;
-                }
-                let t: f64 = (0..D).map(|k| (p[x][k] - p[i][k]) * dd[k]).sum();
-                t > 0.0 && t < len2
-            })
-        })
+        .filter(|&(i, j)| !(0..p.len()).any(|x| x != i && x != j && in_slab(&p[i], &p[j], &p[x])))
         .map(|(i, j)| [i as u32, j as u32])
         .collect()
 }
 
+/// x strictly between the planes through a and b perpendicular to ab.
+pub fn in_slab<const D: usize>(a: &[f64; D], b: &[f64; D], x: &[f64; D]) -> bool {
+    // signs of (x − a)·(b − a) and (x − b)·(a − b)
+    dot_sign(x, b, a) > 0 && dot_sign(x, a, b) > 0
+}
+
 /// Sphere of influence graph (Def. 2.7): the balls of nearest-neighbour radius around i and j
-/// overlap in more than one point, d(i, j) < r_i + r_j.
+/// overlap in more than one point, d(i, j) < r_i + r_j (decided exactly).
 pub fn sig<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
-    let nn: Vec<f64> = nn_dist2(p).into_iter().map(f64::sqrt).collect();
+    let nn = nearest(p);
     pairs(p.len())
-        .filter(|&(i, j)| d2(&p[i], &p[j]).sqrt() < nn[i] + nn[j])
+        .filter(|&(i, j)| sum_of_roots_exceeds(&p[i], &p[j], &p[nn[i]], &p[nn[j]]))
         .map(|(i, j)| [i as u32, j as u32])
         .collect()
 }
@@ -139,26 +139,23 @@ pub fn sig<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
 pub fn rng<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
     pairs(p.len())
         .filter(|&(i, j)| {
-            let dij = d2(&p[i], &p[j]);
-            !(0..p.len()).any(|x| x != i && x != j && d2(&p[x], &p[i]).max(d2(&p[x], &p[j])) < dij)
+            !(0..p.len()).any(|x| {
+                x != i
+                    && x != j
+                    && cmp_dist2(&p[x], &p[i], &p[i], &p[j]) == Ordering::Less
+                    && cmp_dist2(&p[x], &p[j], &p[i], &p[j]) == Ordering::Less
+            })
         })
         .map(|(i, j)| [i as u32, j as u32])
         .collect()
 }
 
 /// Gabriel graph (Def. 2.9): no x strictly inside the ball with diameter ij,
-/// i.e. (x − i)·(x − j) < 0.
+/// i.e. (i − x)·(j − x) < 0 (exact sign).
 pub fn gabriel<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
     pairs(p.len())
         .filter(|&(i, j)| {
-            !(0..p.len()).any(|x| {
-                x != i
-                    && x != j
-                    && (0..D)
-                        .map(|k| (p[x][k] - p[i][k]) * (p[x][k] - p[j][k]))
-                        .sum::<f64>()
-                        < 0.0
-            })
+            !(0..p.len()).any(|x| x != i && x != j && dot_sign(&p[i], &p[j], &p[x]) < 0)
         })
         .map(|(i, j)| [i as u32, j as u32])
         .collect()
@@ -181,10 +178,8 @@ pub fn hull_2d(p: &[[f64; 2]]) -> Vec<[u32; 2]> {
                 } else if o < 0.0 {
                     right = true;
                 } else {
-                    let t = (p[x][0] - p[i][0]) * (p[j][0] - p[i][0])
-                        + (p[x][1] - p[i][1]) * (p[j][1] - p[i][1]);
-                    let l2 = d2(&p[i], &p[j]);
-                    if t >= 0.0 && t <= l2 {
+                    // on the closed segment: (x − i)·(j − i) ≥ 0 and (x − j)·(i − j) ≥ 0
+                    if dot_sign(&p[x], &p[j], &p[i]) >= 0 && dot_sign(&p[x], &p[i], &p[j]) >= 0 {
                         return false;
                     }
                 }
@@ -286,18 +281,12 @@ pub fn beta_lune<const D: usize>(p: &[[f64; D]], b: f64) -> Vec<[u32; 2]> {
     }
     pairs(p.len())
         .filter(|&(i, j)| {
-            let k = 1.0 / (2.0 * (1.0 - b));
-            // squared radius without a square root, so that ties stay exact on grids
-            let rad2 = d2(&p[i], &p[j]) * k * k;
-            let c1: Vec<f64> = (0..D).map(|t| p[i][t] + (p[j][t] - p[i][t]) * k).collect();
-            let c2: Vec<f64> = (0..D).map(|t| p[j][t] + (p[i][t] - p[j][t]) * k).collect();
             !(0..p.len()).any(|x| {
-                if x == i || x == j {
-                    return false;
-                }
-                let in1 = d2(&p[x], &c1) < rad2;
-                let in2 = d2(&p[x], &c2) < rad2;
-                in1 && in2 || on_open_segment(&p[i], &p[j], &p[x])
+                x != i
+                    && x != j
+                    && (in_lune_ball(&p[x], &p[i], &p[j], b)
+                        && in_lune_ball(&p[x], &p[j], &p[i], b)
+                        || on_open_segment(&p[i], &p[j], &p[x]))
             })
         })
         .map(|(i, j)| [i as u32, j as u32])
@@ -315,8 +304,7 @@ fn on_open_segment<const D: usize>(a: &[f64; D], b: &[f64; D], x: &[f64; D]) -> 
             }
         }
     }
-    let t: f64 = (0..D).map(|k| (x[k] - a[k]) * (b[k] - a[k])).sum();
-    t > 0.0 && t < d2(a, b)
+    in_slab(a, b, x)
 }
 
 /// γ(c₀, c₁) in 2D straight from Defs. 3.1–3.2: an edge is in the graph when one of its two

@@ -8,14 +8,16 @@
 //! triangulation: see [`super::fast::beyond_dt_2d`]. 3D γ with negative parameters and 3D α
 //! with a > 0 use the brute force of V Thm 3.1 and are limited to [`BRUTE_LIMIT_3D`] points.
 
-use super::brute;
-use super::fast::{self, Candidates2};
+use super::brute::{self, in_slab};
+use super::fast;
 use super::gamma::{in_gamma, in_gamma_range, CenterInterval};
 use super::grid::Grid;
 use crate::delaunay::{d2, d3};
+use crate::geom::distance::{cmp_dist2, dist2, dot_sign, in_lune_ball, sum_of_roots_exceeds};
 use crate::geom::{Point2, Point3};
 use crate::{Error, Result};
 use rayon::prelude::*;
+use std::cmp::Ordering;
 
 /// Largest input for the brute-force 3D constructions.
 pub const BRUTE_LIMIT_3D: usize = 150;
@@ -127,148 +129,231 @@ pub struct Graph {
     pub gamma: Vec<[f64; 2]>,
 }
 
-fn finish2(d: &d2::Delaunay2, e: Vec<([u32; 2], Option<[f64; 2]>)>) -> Graph {
-    let with_gamma = !e.is_empty() && e.iter().all(|x| x.1.is_some());
-    // sort by the packed input-index pair (an unstable sort of 12-byte records)
-    let mut keyed: Vec<(u64, u32)> = e
-        .iter()
-        .enumerate()
-        .map(|(i, (k, _))| {
+/// Maps edges (vertex indices) to input indices and sorts them by (smaller, larger) input
+/// index with a counting sort on the smaller one, dropping repeats; returns the sorted edges
+/// and, for each, its position in `e`. O(N + E) (plus tiny per-vertex sorts).
+fn sort_edges(
+    input_of_vertex: &[u32],
+    n_input: usize,
+    e: &[[u32; 2]],
+) -> (Vec<[u32; 2]>, Vec<u32>) {
+    let mapped: Vec<[u32; 2]> = e
+        .par_iter()
+        .map(|k| {
             let (a, b) = (
-                d.input_of_vertex[k[0] as usize],
-                d.input_of_vertex[k[1] as usize],
+                input_of_vertex[k[0] as usize],
+                input_of_vertex[k[1] as usize],
             );
-            (((a.min(b) as u64) << 32) | a.max(b) as u64, i as u32)
+            [a.min(b), a.max(b)]
         })
         .collect();
-    keyed.sort_unstable();
-    keyed.dedup_by_key(|x| x.0);
-    let gamma = if with_gamma {
-        keyed
-            .iter()
-            .map(|&(_, i)| e[i as usize].1.unwrap_or_default())
-            .collect()
+    let mut start = vec![0u32; n_input + 1];
+    for m in &mapped {
+        start[m[0] as usize + 1] += 1;
+    }
+    for i in 0..n_input {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut slot = vec![(0u32, 0u32); mapped.len()];
+    for (i, m) in mapped.iter().enumerate() {
+        let f = &mut fill[m[0] as usize];
+        slot[*f as usize] = (m[1], i as u32);
+        *f += 1;
+    }
+    let mut edges = Vec::with_capacity(mapped.len());
+    let mut from = Vec::with_capacity(mapped.len());
+    for a in 0..n_input {
+        let bucket = &mut slot[start[a] as usize..start[a + 1] as usize];
+        bucket.sort_unstable();
+        let mut last = None;
+        for &(b, i) in bucket.iter() {
+            if last != Some(b) {
+                edges.push([a as u32, b]);
+                from.push(i);
+                last = Some(b);
+            }
+        }
+    }
+    (edges, from)
+}
+
+/// The 2D graph from edges in vertex indices (with their γ-values for the γ kinds: `gamma`
+/// empty or aligned with `e`).
+fn finish2(d: &d2::Delaunay2, e: Vec<[u32; 2]>, gamma: Vec<[f64; 2]>) -> Graph {
+    let (edges, from) = sort_edges(&d.input_of_vertex, d.vertex_of_input.len(), &e);
+    let gamma = if gamma.len() == e.len() && !e.is_empty() {
+        from.iter().map(|&i| gamma[i as usize]).collect()
     } else {
         vec![]
     };
     Graph {
         dim: 2,
-        edges: keyed
-            .iter()
-            .map(|&(k, _)| [(k >> 32) as u32, k as u32])
-            .collect(),
+        edges,
         triangles: vec![],
         gamma,
     }
 }
 
-fn d2len(a: [f64; 2], b: [f64; 2]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
-}
-
-fn dist<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
-    (0..D).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
-}
-
-/// Nearest-neighbour distance of every vertex over the given (Delaunay) edges.
-fn nn_over<const D: usize>(p: &[[f64; D]], edges: &[[u32; 2]]) -> Vec<f64> {
-    let mut nn = vec![f64::INFINITY; p.len()];
+/// A nearest neighbour of every vertex over the given (Delaunay) edges, by exact distance
+/// comparisons (ties: the first found). `u32::MAX` for a vertex without edges.
+fn nearest_over<const D: usize>(p: &[[f64; D]], edges: &[[u32; 2]]) -> Vec<u32> {
+    let mut nn = vec![u32::MAX; p.len()];
     for e in edges {
-        let l = dist(&p[e[0] as usize], &p[e[1] as usize]);
-        for &v in e {
-            nn[v as usize] = nn[v as usize].min(l);
+        for (v, w) in [(e[0], e[1]), (e[1], e[0])] {
+            let cur = nn[v as usize];
+            let (pv, pw) = (&p[v as usize], &p[w as usize]);
+            if cur == u32::MAX || cmp_dist2(pv, pw, pv, &p[cur as usize]) == Ordering::Less {
+                nn[v as usize] = w;
+            }
         }
     }
     nn
 }
 
-/// The classic graphs that depend only on distances, in D dimensions, from the Delaunay edges.
+/// Euclidean minimum spanning tree by Kruskal's algorithm over `edges` (a superset of one EMST:
+/// the Gabriel or Delaunay edges), in the exact order of (length, smaller input index, larger
+/// input index): a strict total order, so the tree is the unique minimum for it.
+fn emst_kruskal<const D: usize>(
+    p: &[[f64; D]],
+    input: &[u32],
+    edges: &[[u32; 2]],
+) -> Vec<[u32; 2]> {
+    let key = |e: &[u32; 2]| {
+        let (a, b) = (input[e[0] as usize], input[e[1] as usize]);
+        ((a.min(b) as u64) << 32) | a.max(b) as u64
+    };
+    // a non-negative f64's bits sort like its value: radix sort by the float squared length,
+    // then re-sort every run of float near-ties with the exact comparison
+    let mut order: Vec<(u64, u32)> = edges
+        .par_iter()
+        .enumerate()
+        .map(|(i, e)| {
+            (
+                dist2(&p[e[0] as usize], &p[e[1] as usize]).to_bits(),
+                i as u32,
+            )
+        })
+        .collect();
+    radsort::sort_by_key(&mut order, |x| x.0);
+    let exact = |x: &(u64, u32), y: &(u64, u32)| {
+        let (e, f) = (&edges[x.1 as usize], &edges[y.1 as usize]);
+        cmp_dist2(
+            &p[e[0] as usize],
+            &p[e[1] as usize],
+            &p[f[0] as usize],
+            &p[f[1] as usize],
+        )
+        .then(key(e).cmp(&key(f)))
+    };
+    let mut i = 0;
+    while i < order.len() {
+        // the float squared lengths carry a relative error below (3 + D)ε: neighbours within
+        // 16ε may be in the wrong order, so runs of such neighbours are re-sorted
+        let mut j = i + 1;
+        while j < order.len()
+            && f64::from_bits(order[j].0)
+                <= f64::from_bits(order[j - 1].0) * (1.0 + 16.0 * f64::EPSILON)
+        {
+            j += 1;
+        }
+        if j - i > 1 {
+            order[i..j].sort_unstable_by(exact);
+        }
+        i = j;
+    }
+    let mut parent: Vec<u32> = (0..p.len() as u32).collect();
+    fn root(p: &mut [u32], mut x: u32) -> u32 {
+        while p[x as usize] != x {
+            let g = p[p[x as usize] as usize];
+            p[x as usize] = g;
+            x = g;
+        }
+        x
+    }
+    let mut out = Vec::with_capacity(p.len().saturating_sub(1));
+    for &(_, i) in &order {
+        let [a, b] = edges[i as usize];
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        if ra != rb {
+            parent[ra as usize] = rb;
+            out.push([a, b]);
+            if out.len() + 1 == p.len() {
+                break;
+            }
+        }
+    }
+    out
+}
+
+/// The classic graphs that depend only on distances, in D dimensions, from the Delaunay edges
+/// and the Gabriel edges (EMST ⊆ RNG ⊆ lune-β ⊆ GG and ∞-SG ⊆ GG, V Fig. 3.2). Every decision
+/// is exact ([`crate::geom::distance`]); `input` maps vertices to input indices (tie order).
 fn classic<const D: usize>(
     p: &[[f64; D]],
+    input: &[u32],
     dt_edges: &[[u32; 2]],
     gabriel: &[[u32; 2]],
     kind: Kind,
 ) -> Result<Vec<[u32; 2]>> {
     let n = p.len();
+    if n < 2 {
+        return Ok(vec![]);
+    }
     Ok(match kind {
         Kind::Nng | Kind::ClosestPairs => {
-            let nn = nn_over(p, dt_edges);
+            let nn = nearest_over(p, dt_edges);
+            let is_nn = |v: u32, w: u32| {
+                let (pv, pw) = (&p[v as usize], &p[w as usize]);
+                cmp_dist2(pv, pw, pv, &p[nn[v as usize] as usize]) == Ordering::Equal
+            };
             let mut e: Vec<[u32; 2]> = dt_edges
-                .iter()
+                .par_iter()
                 .copied()
-                .filter(|e| {
-                    let l = dist(&p[e[0] as usize], &p[e[1] as usize]);
-                    l == nn[e[0] as usize] || l == nn[e[1] as usize]
-                })
+                .filter(|e| is_nn(e[0], e[1]) || is_nn(e[1], e[0]))
                 .collect();
             if kind == Kind::ClosestPairs {
-                let min = e
-                    .iter()
-                    .map(|e| dist(&p[e[0] as usize], &p[e[1] as usize]))
-                    .fold(f64::INFINITY, f64::min);
-                e.retain(|e| dist(&p[e[0] as usize], &p[e[1] as usize]) == min);
+                let len = |e: &[u32; 2]| (&p[e[0] as usize], &p[e[1] as usize]);
+                let mut min: Option<[u32; 2]> = None;
+                for x in &e {
+                    let (a, b) = len(x);
+                    if min.map_or(true, |m| {
+                        let (c, d) = len(&m);
+                        cmp_dist2(a, b, c, d) == Ordering::Less
+                    }) {
+                        min = Some(*x);
+                    }
+                }
+                if let Some(m) = min {
+                    let (c, d) = len(&m);
+                    e.retain(|x| {
+                        let (a, b) = len(x);
+                        cmp_dist2(a, b, c, d) == Ordering::Equal
+                    });
+                }
             }
             e
         }
-        Kind::Emst => {
-            // Kruskal over the Delaunay edges; a non-negative f64's bits sort like the value,
-            // so (length bits, edge index) is an exact and deterministic u64 sort key
-            let mut keyed: Vec<(u64, u32)> = dt_edges
-                .iter()
-                .enumerate()
-                .map(|(i, e)| {
-                    (
-                        dist(&p[e[0] as usize], &p[e[1] as usize]).to_bits(),
-                        i as u32,
-                    )
-                })
-                .collect();
-            keyed.sort_unstable();
-            let mut parent: Vec<u32> = (0..n as u32).collect();
-            fn root(p: &mut [u32], mut x: u32) -> u32 {
-                while p[x as usize] != x {
-                    let g = p[p[x as usize] as usize];
-                    p[x as usize] = g;
-                    x = g;
-                }
-                x
-            }
-            let mut out = Vec::with_capacity(n.saturating_sub(1));
-            for &(_, i) in &keyed {
-                let [a, b] = dt_edges[i as usize];
-                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-                if ra != rb {
-                    parent[ra as usize] = rb;
-                    out.push([a, b]);
-                }
-            }
-            out
-        }
+        Kind::Emst => emst_kruskal(p, input, gabriel),
         Kind::Rng | Kind::BetaLune(_) => {
             let b = match kind {
                 Kind::BetaLune(b) => b,
                 _ => 0.5,
             };
-            let grid = Grid::new(p, 2.0);
             if b >= 1.0 {
                 return Ok(strip(p, gabriel));
             }
+            let grid = Grid::new(p, 2.0);
             let k = 1.0 / (2.0 * (1.0 - b));
             gabriel
                 .par_iter()
                 .copied()
                 .filter(|e| {
-                    let (u, v) = (p[e[0] as usize], p[e[1] as usize]);
-                    let len2: f64 = (0..D).map(|t| (u[t] - v[t]).powi(2)).sum();
-                    let len = len2.sqrt();
+                    let (u, v) = (&p[e[0] as usize], &p[e[1] as usize]);
+                    let len = dist2(u, v).sqrt();
                     let rad = len * k;
-                    let rad2 = len2 * k * k;
-                    let mut c1 = [0.0; D];
-                    let mut c2 = [0.0; D];
                     let mut m = [0.0; D];
                     for t in 0..D {
-                        c1[t] = u[t] + (v[t] - u[t]) * k;
-                        c2[t] = v[t] + (u[t] - v[t]) * k;
                         m[t] = 0.5 * (u[t] + v[t]);
                     }
                     // the lune lies within max(len/2, √(R² − (R − len/2)²)) of the midpoint
@@ -280,24 +365,24 @@ fn classic<const D: usize>(
                             return true;
                         }
                         let q = &p[x as usize];
-                        let in1: f64 = (0..D).map(|t| (q[t] - c1[t]).powi(2)).sum();
-                        let in2: f64 = (0..D).map(|t| (q[t] - c2[t]).powi(2)).sum();
-                        !(in1 < rad2 && in2 < rad2)
+                        !(in_lune_ball(q, u, v, b) && in_lune_ball(q, v, u, b))
                     })
                 })
                 .collect()
         }
         Kind::Sig => {
-            let nn = nn_over(p, dt_edges);
-            let rmax = nn.iter().cloned().fold(0.0, f64::max);
+            let nn = nearest_over(p, dt_edges);
+            let r = |a: usize| dist2(&p[a], &p[nn[a] as usize]).sqrt();
+            let rmax = (0..n).map(r).fold(0.0, f64::max);
             let grid = Grid::new(p, 2.0);
             let per: Vec<Vec<[u32; 2]>> = (0..n)
                 .into_par_iter()
                 .map(|a| {
                     let mut out = Vec::new();
-                    grid.for_each_within(p[a], nn[a] + rmax, |b| {
-                        if (b as usize) > a && dist(&p[a], &p[b as usize]) < nn[a] + nn[b as usize]
-                        {
+                    let pn = &p[nn[a] as usize];
+                    grid.for_each_within(p[a], (r(a) + rmax) * (1.0 + 1e-9), |b| {
+                        let bu = b as usize;
+                        if bu > a && sum_of_roots_exceeds(&p[a], &p[bu], pn, &p[nn[bu] as usize]) {
                             out.push([a as u32, b]);
                         }
                         true
@@ -318,22 +403,14 @@ fn classic<const D: usize>(
 }
 
 /// ∞-SG ⊆ GG (the open slab contains the Gabriel ball): test each Gabriel edge's slab, with
-/// early exit at the first point inside.
+/// early exit at the first point inside (exact signs).
 fn strip<const D: usize>(p: &[[f64; D]], gabriel: &[[u32; 2]]) -> Vec<[u32; 2]> {
     gabriel
         .par_iter()
         .copied()
         .filter(|e| {
-            let (u, v) = (p[e[0] as usize], p[e[1] as usize]);
-            let mut dd = [0.0; D];
-            for t in 0..D {
-                dd[t] = v[t] - u[t];
-            }
-            let len2: f64 = dd.iter().map(|x| x * x).sum();
-            !p.iter().any(|x| {
-                let t: f64 = (0..D).map(|k| (x[k] - u[k]) * dd[k]).sum();
-                t > 0.0 && t < len2
-            })
+            let (u, v) = (&p[e[0] as usize], &p[e[1] as usize]);
+            !p.iter().any(|x| in_slab(u, v, x))
         })
         .collect()
 }
@@ -351,25 +428,38 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
     }
     let d = d2::triangulate(points)?;
     let p = fast::coords2(&d);
-    // the candidates (Delaunay edges with their empty-ball intervals, cocircular chords) are
-    // built only for the kinds that need them
-    let needs_cand = matches!(kind, Kind::Gamma(..) | Kind::GammaRange(_))
-        || matches!(kind, Kind::Alpha(a) if a < 0.0);
-    let cand = if needs_cand {
-        fast::candidates_2d(&d)
-    } else {
-        Candidates2::default()
+    let dt_edges = || -> Vec<[u32; 2]> {
+        if d.collinear {
+            d.hull
+                .windows(2)
+                .map(|w| [w[0].min(w[1]), w[0].max(w[1])])
+                .collect()
+        } else {
+            fast::dt_edges(&d).map(|e| [e.a, e.b]).collect()
+        }
     };
-    let no_gamma = |e: Vec<[u32; 2]>| -> Vec<([u32; 2], Option<[f64; 2]>)> {
-        e.into_iter().map(|e| (e, None)).collect()
+    // γ kinds: decide every candidate edge in parallel, keeping its γ-values
+    let gamma_kind = |decide: &(dyn Fn(&CenterInterval) -> bool + Sync), beyond: Option<f64>| {
+        let mut kept: Vec<([u32; 2], [f64; 2])> = fast::filter_candidates_2d(&d, |e, iv, _| {
+            let v = iv.gamma_values()?;
+            decide(iv).then_some((e, [v.0, v.1]))
+        });
+        if let Some(c) = beyond {
+            let cand = fast::candidates_2d(&d);
+            let (be, bi) = fast::beyond_dt_2d(&d, &cand, c);
+            for (e, iv) in be.into_iter().zip(&bi) {
+                if let Some(v) = iv.gamma_values() {
+                    if decide(iv) {
+                        kept.push((e, [v.0, v.1]));
+                    }
+                }
+            }
+        }
+        let (e, g): (Vec<[u32; 2]>, Vec<[f64; 2]>) = kept.into_iter().unzip();
+        finish2(&d, e, g)
     };
-    let dt_edges: Vec<[u32; 2]> = d
-        .edges()
-        .into_iter()
-        .map(|e| [e[0].min(e[1]), e[0].max(e[1])])
-        .collect();
-    let g = match kind {
-        Kind::Delaunay => no_gamma(dt_edges),
+    Ok(match kind {
+        Kind::Delaunay => finish2(&d, dt_edges(), vec![]),
         Kind::Hull => {
             let h = &d.hull;
             let mut e = Vec::new();
@@ -380,27 +470,21 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
                     e.push([h[i], h[(i + 1) % h.len()]]);
                 }
             }
-            no_gamma(e)
+            finish2(&d, e, vec![])
         }
-        Kind::Gabriel => no_gamma(fast::gabriel_2d(&d)),
+        Kind::Gabriel => finish2(&d, fast::gabriel_2d(&d), vec![]),
         Kind::Alpha(a) if a < 0.0 => {
             let rad = 1.0 / a.abs();
-            no_gamma(
-                cand.edges
-                    .iter()
-                    .zip(&cand.intervals)
-                    .filter(|(e, iv)| {
-                        let len = d2len(p[e[0] as usize], p[e[1] as usize]);
-                        let h2 = rad * rad - 0.25 * len * len;
-                        if h2 < 0.0 {
-                            return false;
-                        }
-                        let s = h2.sqrt() / len;
-                        iv.ball_empty(s) || iv.ball_empty(-s)
-                    })
-                    .map(|(e, _)| *e)
-                    .collect(),
-            )
+            let e = fast::filter_candidates_2d(&d, |e, iv, _| {
+                let len = dist2(&p[e[0] as usize], &p[e[1] as usize]).sqrt();
+                let h2 = rad * rad - 0.25 * len * len;
+                if h2 < 0.0 {
+                    return None;
+                }
+                let s = h2.sqrt() / len;
+                (iv.ball_empty(s) || iv.ball_empty(-s)).then_some(e)
+            });
+            finish2(&d, e, vec![])
         }
         Kind::Alpha(a) => {
             // a = 0: hull; a > 0: discs containing everything, through two hull vertices
@@ -411,63 +495,42 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             } else {
                 brute::alpha_2d(&hp, a)
             };
-            no_gamma(
-                e.into_iter()
-                    .map(|[i, j]| [hv[i as usize], hv[j as usize]])
-                    .collect(),
-            )
+            let e = e
+                .into_iter()
+                .map(|[i, j]| [hv[i as usize], hv[j as usize]])
+                .collect();
+            finish2(&d, e, vec![])
         }
         Kind::BetaCircle(_) => unreachable!("dispatched to Gamma(b, b) above"),
         Kind::BetaLune(b) if b < 0.0 => unreachable!("dispatched to Gamma({b}, {b}) above"),
-        Kind::Gamma(c0, c1) => {
-            let mut e: Vec<([u32; 2], Option<[f64; 2]>)> = Vec::new();
-            let mut take = |edges: &[[u32; 2]], ivs: &[CenterInterval]| {
-                for (k, iv) in edges.iter().zip(ivs) {
-                    // decided on the interval itself (not through the rounded γ-values), so
-                    // that a parameter equal to a γ-value is decided exactly
-                    if iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0) {
-                        if let Some(v) = iv.gamma_values() {
-                            e.push((*k, Some([v.0, v.1])));
-                        }
-                    }
-                }
-            };
-            take(&cand.edges, &cand.intervals);
-            if c1 < 0.0 {
-                let (be, bi) = fast::beyond_dt_2d(&d, &cand, c1);
-                take(&be, &bi);
-            }
-            e
-        }
-        Kind::GammaRange(r) => {
-            let mut e: Vec<([u32; 2], Option<[f64; 2]>)> = Vec::new();
-            let mut take = |edges: &[[u32; 2]], ivs: &[CenterInterval]| {
-                for (k, iv) in edges.iter().zip(ivs) {
-                    if let Some(v) = iv.gamma_values() {
-                        if in_gamma_range(v, r) {
-                            e.push((*k, Some([v.0, v.1])));
-                        }
-                    }
-                }
-            };
-            take(&cand.edges, &cand.intervals);
-            if r[2] < 0.0 {
-                let (be, bi) = fast::beyond_dt_2d(&d, &cand, r[2]);
-                take(&be, &bi);
-            }
-            e
-        }
+        // decided on the interval itself (not through the rounded γ-values), so that a
+        // parameter equal to a γ-value is decided exactly
+        Kind::Gamma(c0, c1) => gamma_kind(
+            &|iv| iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0),
+            (c1 < 0.0).then_some(c1),
+        ),
+        Kind::GammaRange(r) => gamma_kind(
+            &|iv| iv.gamma_values().is_some_and(|v| in_gamma_range(v, r)),
+            (r[2] < 0.0).then_some(r[2]),
+        ),
         _ => {
-            let needs_gabriel = matches!(kind, Kind::Rng | Kind::BetaLune(_) | Kind::Strip);
+            let needs_gabriel = matches!(
+                kind,
+                Kind::Rng | Kind::BetaLune(_) | Kind::Strip | Kind::Emst
+            );
             let g = if needs_gabriel {
                 fast::gabriel_2d(&d)
             } else {
                 vec![]
             };
-            no_gamma(classic(&p, &dt_edges, &g, kind)?)
+            let dt = if needs_gabriel && kind != Kind::Sig {
+                vec![]
+            } else {
+                dt_edges()
+            };
+            finish2(&d, classic(&p, &d.input_of_vertex, &dt, &g, kind)?, vec![])
         }
-    };
-    Ok(finish2(&d, g))
+    })
 }
 
 /// A triangle with its γ-values when the graph kind has them.
@@ -560,12 +623,8 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
                     0.5 * (u[1] + v[1]),
                     0.5 * (u[2] + v[2]),
                 ];
-                grid.for_each_within(m, 0.5 * dist(&u, &v) * (1.0 + 1e-9), |x| {
-                    if x == e[0] || x == e[1] {
-                        return true;
-                    }
-                    let q = p[x as usize];
-                    (0..3).map(|k| (q[k] - u[k]) * (q[k] - v[k])).sum::<f64>() >= 0.0
+                grid.for_each_within(m, 0.5 * dist2(&u, &v).sqrt() * (1.0 + 1e-9), |x| {
+                    x == e[0] || x == e[1] || dot_sign(&u, &v, &p[x as usize]) >= 0
                 })
             })
             .collect()
@@ -669,7 +728,11 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
         Kind::Gabriel => finish3(&d, gabriel(), vec![]),
         _ => {
             let g = gabriel();
-            finish3(&d, classic(&p, &dt_edges, &g, kind)?, vec![])
+            finish3(
+                &d,
+                classic(&p, &d.input_of_vertex, &dt_edges, &g, kind)?,
+                vec![],
+            )
         }
     })
 }

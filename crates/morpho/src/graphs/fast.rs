@@ -29,9 +29,11 @@ use super::gamma::{CenterInterval, EdgeFrame, TriFrame};
 use super::grid::Grid;
 use crate::delaunay::d2::{Delaunay2, NONE};
 use crate::delaunay::d3::Delaunay3;
+use crate::geom::distance::dot_sign;
 use crate::geom::predicates::raw;
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
+use std::sync::Mutex;
 
 /// Every edge of γ([-1,1],[0,1]) of a 2D point set with its interval of empty-ball offsets.
 /// Edges are `[a, b]` with a < b in vertex indices of the triangulation; the interval's normal
@@ -87,118 +89,185 @@ pub fn coords2(d: &Delaunay2) -> Vec<[f64; 2]> {
     d.points.iter().map(|p| [p.x, p.y]).collect()
 }
 
-/// Builds the candidates from a 2D Delaunay triangulation. O(N + Σ g²).
-pub fn candidates_2d(d: &Delaunay2) -> Candidates2 {
-    let p = coords2(d);
-    let mut out = Candidates2::default();
-    if d.collinear {
-        // consecutive points on the line: nothing off the line, nothing between them
-        for w in d.hull.windows(2) {
-            let (a, b) = (w[0].min(w[1]), w[0].max(w[1]));
-            out.edges.push([a, b]);
-            out.intervals
-                .push(EdgeFrame::new(p[a as usize], p[b as usize]).start());
-            out.in_dt.push(true);
-        }
-        return out;
-    }
-    let nt = d.triangles.len();
-    let mut parent: Vec<u32> = (0..nt as u32).collect();
-    // every edge once (from the triangle with the smaller index), in parallel; the result order
-    // is the sequential one
-    // (edge, interval, neighbour across it when the two triangles are cocircular)
-    type EdgeJob = ([u32; 2], CenterInterval, Option<u32>);
-    let per_tri: Vec<Vec<EdgeJob>> = d
-        .triangles
+/// A Delaunay edge a < b (vertex indices) with the apexes of the triangles on its two sides:
+/// `left` lies left of a→b, `right` right of it ([`NONE`] on the hull side); `t_left`,
+/// `t_right` are those triangles.
+#[derive(Debug, Clone, Copy)]
+pub struct DtEdge {
+    pub a: u32,
+    pub b: u32,
+    pub left: u32,
+    pub right: u32,
+    pub t_left: u32,
+    pub t_right: u32,
+}
+
+/// Every edge of a (non-collinear) 2D Delaunay triangulation once, as a parallel iterator in
+/// triangle order (an edge is reported by the smaller of its two triangles).
+pub fn dt_edges(d: &Delaunay2) -> impl ParallelIterator<Item = DtEdge> + '_ {
+    d.triangles
         .par_iter()
         .enumerate()
-        .map(|(t, tri)| {
-            let mut v3 = Vec::with_capacity(3);
-            for i in 0..3 {
+        .flat_map_iter(move |(t, tri)| {
+            (0..3).filter_map(move |i| {
                 let nb = d.neighbors[t][i];
                 if nb != NONE && (nb as usize) < t {
-                    continue; // handled from the other side
+                    return None; // reported from the other side
                 }
                 let (u, v) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-                let (a, b) = (u.min(v), u.max(v));
-                let f = EdgeFrame::new(p[a as usize], p[b as usize]);
-                let mut iv = f.start();
-                f.add(&mut iv, p[tri[i] as usize]);
-                let mut tie = None;
-                if nb != NONE {
-                    let ntri = d.triangles[nb as usize];
-                    let apex = ntri
-                        .iter()
-                        .copied()
-                        .find(|&x| x != u && x != v)
-                        .unwrap_or(tri[i]);
-                    f.add(&mut iv, p[apex as usize]);
-                    let c = tri.map(|x| p[x as usize]);
-                    if raw::incircle(c[0], c[1], c[2], p[apex as usize]) == 0.0 {
-                        tie = Some(nb);
+                let apex = if nb == NONE {
+                    NONE
+                } else {
+                    let n = d.triangles[nb as usize];
+                    n.into_iter().find(|&x| x != u && x != v).unwrap_or(NONE)
+                };
+                let (t, nbt) = (t as u32, nb);
+                // the triangle is counter-clockwise: its own corner is left of u→v
+                Some(if u < v {
+                    DtEdge {
+                        a: u,
+                        b: v,
+                        left: tri[i],
+                        right: apex,
+                        t_left: t,
+                        t_right: nbt,
                     }
-                }
-                v3.push(([a, b], iv, tie));
-            }
-            v3
+                } else {
+                    DtEdge {
+                        a: v,
+                        b: u,
+                        left: apex,
+                        right: tri[i],
+                        t_left: nbt,
+                        t_right: t,
+                    }
+                })
+            })
         })
-        .collect();
-    let ne: usize = per_tri.iter().map(Vec::len).sum();
-    out.edges.reserve(ne);
-    out.intervals.reserve(ne);
-    out.in_dt.reserve(ne);
-    for (t, edges) in per_tri.into_iter().enumerate() {
-        for (e, iv, tie) in edges {
-            if let Some(nb) = tie {
-                let (r1, r2) = (find(&mut parent, t as u32), find(&mut parent, nb));
-                parent[r1 as usize] = r2;
+}
+
+/// The exact incircle sign of a Delaunay edge's two apexes (0: the four points are cocircular;
+/// −1 on the hull, where there is no second apex).
+fn apex_rel(p: &[[f64; 2]], e: &DtEdge) -> f64 {
+    if e.left == NONE || e.right == NONE {
+        return -1.0;
+    }
+    let g = |v: u32| p[v as usize];
+    raw::incircle(g(e.a), g(e.b), g(e.left), g(e.right))
+}
+
+/// The empty-ball interval of a Delaunay edge, and whether its two triangles are cocircular.
+pub fn dt_interval(p: &[[f64; 2]], e: &DtEdge) -> (CenterInterval, bool) {
+    let g = |v: u32| (v != NONE).then(|| p[v as usize]);
+    let rel = apex_rel(p, e);
+    let f = EdgeFrame::new(p[e.a as usize], p[e.b as usize]);
+    (f.two_apexes(g(e.left), g(e.right), rel), rel == 0.0)
+}
+
+/// The triangle groups formed by cocircular neighbour pairs `ties`: each group's sorted vertex
+/// set and the set of the group triangles' edges (the Delaunay edges among its vertices).
+fn cocircular_groups(d: &Delaunay2, ties: &mut [[u32; 2]]) -> (Vec<Vec<u32>>, HashSet<[u32; 2]>) {
+    if ties.is_empty() {
+        return (vec![], HashSet::new());
+    }
+    ties.sort_unstable();
+    let mut parent: Vec<u32> = (0..d.triangles.len() as u32).collect();
+    let mut edges = HashSet::new();
+    for &[t, nb] in ties.iter() {
+        let (r1, r2) = (find(&mut parent, t), find(&mut parent, nb));
+        parent[r1 as usize] = r2;
+        for x in [t, nb] {
+            let tri = d.triangles[x as usize];
+            for i in 0..3 {
+                let (u, v) = (tri[i], tri[(i + 1) % 3]);
+                edges.insert([u.min(v), u.max(v)]);
             }
-            out.edges.push(e);
-            out.intervals.push(iv);
-            out.in_dt.push(true);
         }
     }
-    // cocircular groups: all chords
-    let groups = union_groups(&mut parent, &d.triangles);
-    if !groups.is_empty() {
-        let existing: HashSet<[u32; 2]> = out.edges.iter().copied().collect();
-        for vs in groups {
-            for i in 0..vs.len() {
-                for j in i + 1..vs.len() {
-                    let (a, b) = (vs[i], vs[j]);
-                    if existing.contains(&[a, b]) {
-                        continue;
-                    }
-                    let f = EdgeFrame::new(p[a as usize], p[b as usize]);
-                    let mut iv = f.start();
-                    for &x in &vs {
-                        if x != a && x != b {
-                            f.add(&mut iv, p[x as usize]);
-                        }
-                    }
-                    // all group points lie on one circle: the exact tie-breaking of
-                    // `EdgeFrame::add` makes both ends its offset
-                    out.edges.push([a, b]);
-                    out.intervals.push(iv);
-                    out.in_dt.push(false);
+    (union_groups(&mut parent, &d.triangles), edges)
+}
+
+/// Decides every edge of γ([-1,1],[0,1]) in parallel: `keep(edge, interval, in_dt)` for each
+/// Delaunay edge (in triangle order) and then for each extra chord of a cocircular group
+/// (V §3.3); returns the kept results in that order. O(N + Σ g²) after the triangulation, with
+/// one exact in-circle test per edge.
+pub fn filter_candidates_2d<T: Send>(
+    d: &Delaunay2,
+    keep: impl Fn([u32; 2], &CenterInterval, bool) -> Option<T> + Sync + Send,
+) -> Vec<T> {
+    let p = coords2(d);
+    if d.collinear {
+        // consecutive points on the line: nothing off the line, nothing between them
+        return d
+            .hull
+            .windows(2)
+            .filter_map(|w| {
+                let (a, b) = (w[0].min(w[1]), w[0].max(w[1]));
+                let iv = EdgeFrame::new(p[a as usize], p[b as usize]).start();
+                keep([a, b], &iv, true)
+            })
+            .collect();
+    }
+    let ties = Mutex::new(Vec::new());
+    let mut out: Vec<T> = dt_edges(d)
+        .filter_map(|e| {
+            let (iv, tie) = dt_interval(&p, &e);
+            if tie {
+                ties.lock()
+                    .unwrap_or_else(|x| x.into_inner())
+                    .push([e.t_left, e.t_right]);
+            }
+            keep([e.a, e.b], &iv, true)
+        })
+        .collect();
+    let mut ties = ties.into_inner().unwrap_or_else(|x| x.into_inner());
+    let (groups, existing) = cocircular_groups(d, &mut ties);
+    for vs in groups {
+        for i in 0..vs.len() {
+            for j in i + 1..vs.len() {
+                let (a, b) = (vs[i], vs[j]);
+                if existing.contains(&[a, b]) {
+                    continue;
                 }
+                let f = EdgeFrame::new(p[a as usize], p[b as usize]);
+                let mut iv = f.start();
+                for &x in &vs {
+                    if x != a && x != b {
+                        f.add(&mut iv, p[x as usize]);
+                    }
+                }
+                // all group points lie on one circle: the exact tie-breaking of
+                // `EdgeFrame::add` makes both ends its offset
+                out.extend(keep([a, b], &iv, false));
             }
         }
     }
     out
 }
 
+/// Builds the candidates from a 2D Delaunay triangulation ([`filter_candidates_2d`] keeping
+/// everything). O(N + Σ g²).
+pub fn candidates_2d(d: &Delaunay2) -> Candidates2 {
+    let all = filter_candidates_2d(d, |e, iv, in_dt| Some((e, *iv, in_dt)));
+    let mut out = Candidates2::default();
+    out.edges.reserve(all.len());
+    out.intervals.reserve(all.len());
+    out.in_dt.reserve(all.len());
+    for (e, iv, in_dt) in all {
+        out.edges.push(e);
+        out.intervals.push(iv);
+        out.in_dt.push(in_dt);
+    }
+    out
+}
+
 /// The Gabriel graph (V Def. 2.9) from the triangulation without intervals: a Delaunay edge
 /// (a, b) is a Gabriel edge iff neither adjacent apex x lies strictly inside the disc with
-/// diameter ab, i.e. (x − a)·(x − b) ≥ 0 (the largest empty balls on its two sides are the two
+/// diameter ab, i.e. (a − x)·(b − x) ≥ 0 (the largest empty balls on its two sides are the two
 /// circumcircles); a chord of a cocircular group is one iff no other group point has
-/// (x − a)·(x − b) < 0 (it is then a diameter of the group's circle). O(N).
+/// (a − x)·(b − x) < 0 (it is then a diameter of the group's circle). Exact signs; O(N).
 pub fn gabriel_2d(d: &Delaunay2) -> Vec<[u32; 2]> {
     let p = coords2(d);
-    let q = |a: u32, b: u32, x: u32| -> f64 {
-        let (a, b, x) = (p[a as usize], p[b as usize], p[x as usize]);
-        (x[0] - a[0]) * (x[0] - b[0]) + (x[1] - a[1]) * (x[1] - b[1])
-    };
     if d.collinear {
         return d
             .hull
@@ -206,49 +275,30 @@ pub fn gabriel_2d(d: &Delaunay2) -> Vec<[u32; 2]> {
             .map(|w| [w[0].min(w[1]), w[0].max(w[1])])
             .collect();
     }
-    let nt = d.triangles.len();
-    let mut parent: Vec<u32> = (0..nt as u32).collect();
-    let mut out = Vec::with_capacity(2 * p.len());
-    let mut any_group = false;
-    for (t, tri) in d.triangles.iter().enumerate() {
-        for i in 0..3 {
-            let nb = d.neighbors[t][i];
-            if nb != NONE && (nb as usize) < t {
-                continue;
+    let outside = |a: u32, b: u32, x: u32| {
+        x == NONE || dot_sign(&p[a as usize], &p[b as usize], &p[x as usize]) >= 0
+    };
+    let ties = Mutex::new(Vec::new());
+    let mut out: Vec<[u32; 2]> = dt_edges(d)
+        .filter_map(|e| {
+            if apex_rel(&p, &e) == 0.0 {
+                ties.lock()
+                    .unwrap_or_else(|x| x.into_inner())
+                    .push([e.t_left, e.t_right]);
             }
-            let (u, v) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-            let mut ok = q(u, v, tri[i]) >= 0.0;
-            if nb != NONE {
-                let ntri = d.triangles[nb as usize];
-                let apex = ntri
-                    .iter()
-                    .copied()
-                    .find(|&x| x != u && x != v)
-                    .unwrap_or(tri[i]);
-                ok = ok && q(u, v, apex) >= 0.0;
-                let c = tri.map(|x| p[x as usize]);
-                if raw::incircle(c[0], c[1], c[2], p[apex as usize]) == 0.0 {
-                    let (r1, r2) = (find(&mut parent, t as u32), find(&mut parent, nb));
-                    parent[r1 as usize] = r2;
-                    any_group = true;
-                }
-            }
-            if ok {
-                out.push([u.min(v), u.max(v)]);
-            }
-        }
-    }
-    if any_group {
-        let existing: HashSet<[u32; 2]> = out.iter().copied().collect();
-        for vs in union_groups(&mut parent, &d.triangles) {
-            for i in 0..vs.len() {
-                for j in i + 1..vs.len() {
-                    let (a, b) = (vs[i], vs[j]);
-                    if !existing.contains(&[a, b])
-                        && vs.iter().all(|&x| x == a || x == b || q(a, b, x) >= 0.0)
-                    {
-                        out.push([a, b]);
-                    }
+            (outside(e.a, e.b, e.left) && outside(e.a, e.b, e.right)).then_some([e.a, e.b])
+        })
+        .collect();
+    let mut ties = ties.into_inner().unwrap_or_else(|x| x.into_inner());
+    let (groups, existing) = cocircular_groups(d, &mut ties);
+    for vs in groups {
+        for i in 0..vs.len() {
+            for j in i + 1..vs.len() {
+                let (a, b) = (vs[i], vs[j]);
+                if !existing.contains(&[a, b])
+                    && vs.iter().all(|&x| x == a || x == b || outside(a, b, x))
+                {
+                    out.push([a, b]);
                 }
             }
         }

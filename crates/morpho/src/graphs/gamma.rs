@@ -32,6 +32,7 @@
 //! Complexity: one simplex against N points costs O(N) ([`center_interval_2d`],
 //! [`center_interval_3d`]); the brute-force graphs of Thm 3.1 cost O(N^{k+1}).
 
+use crate::geom::distance::dot_sign;
 use crate::geom::predicates::raw;
 
 /// The offsets (in units of the simplex's unnormalised normal) of the empty balls touching a
@@ -232,7 +233,6 @@ pub struct EdgeFrame {
     pa: [f64; 2],
     pb: [f64; 2],
     m: [f64; 2],
-    d: [f64; 2],
     nrm: [f64; 2],
     r2: f64,
 }
@@ -246,7 +246,6 @@ impl EdgeFrame {
             pa,
             pb,
             m,
-            d,
             nrm: [-d[1], d[0]],
             r2: 0.25 * (d[0] * d[0] + d[1] * d[1]),
         }
@@ -266,6 +265,35 @@ impl EdgeFrame {
         }
         let h = dx[0] * self.nrm[0] + dx[1] * self.nrm[1];
         (side, tau_of(side, q, h))
+    }
+    /// The interval of a Delaunay edge from the apexes of the triangles on its two sides
+    /// (`left` strictly left of a→b, `right` strictly right; `None` on the hull side), with
+    /// `rel` the exact sign of incircle(a, b, left, right). Equal to [`EdgeFrame::add`]ing
+    /// the two apexes, without re-deciding their sides.
+    pub fn two_apexes(
+        &self,
+        left: Option<[f64; 2]>,
+        right: Option<[f64; 2]>,
+        rel: f64,
+    ) -> CenterInterval {
+        let mut iv = self.start();
+        let tau = |x: [f64; 2], side: f64| {
+            let dx = [x[0] - self.m[0], x[1] - self.m[1]];
+            let q = dx[0] * dx[0] + dx[1] * dx[1] - self.r2;
+            tau_of(side, q, dx[0] * self.nrm[0] + dx[1] * self.nrm[1])
+        };
+        if let Some(x) = left {
+            iv.hi = tau(x, 1.0);
+            iv.hi_at = Some([x[0], x[1], 0.0]);
+        }
+        if let Some(y) = right {
+            iv.lo = tau(y, -1.0);
+            iv.lo_at = Some([y[0], y[1], 0.0]);
+            if left.is_some() {
+                iv.settle(rel);
+            }
+        }
+        iv
     }
     /// Narrows `iv` by point x (not a or b). Which point binds each end, and whether the ends
     /// are equal or in which order, is decided by exact in-circle tests: τ(x) < τ(y) for points
@@ -300,9 +328,9 @@ impl EdgeFrame {
                 }
             }
         } else {
-            // on the line: blocks everything when between a and b: |(x − m)·d| ≤ |d|²/2 = 2r²
-            let t = (x[0] - self.m[0]) * self.d[0] + (x[1] - self.m[1]) * self.d[1];
-            if t.abs() <= 2.0 * self.r2 {
+            // on the line: blocks everything when on the closed segment ab, i.e. when
+            // (x − a)·(b − a) ≥ 0 and (x − b)·(a − b) ≥ 0 (exact signs)
+            if dot_sign(&x, &self.pb, &self.pa) >= 0 && dot_sign(&x, &self.pa, &self.pb) >= 0 {
                 iv.all_blocked = true;
             }
         }
@@ -419,7 +447,7 @@ impl TriFrame {
             let [a, b, c] = self.t;
             if in_closed_triangle_3d(a, b, c, x, self.n) {
                 iv.all_blocked = true;
-            } else if tau < 0.0 {
+            } else if in_circumcircle_3d(a, b, c, x, self.n) {
                 iv.finite_blocked = true;
             }
         }
@@ -474,6 +502,28 @@ pub fn in_closed_triangle_3d(
     o1 >= 0.0 && o2 >= 0.0 && o3 >= 0.0
 }
 
+/// True when x, coplanar with the triangle (a, b, c) (normal ≈ `n`), lies strictly inside its
+/// circumcircle — exactly: the circle is the trace of every sphere through a, b, c, so with a
+/// point d off the plane, x is inside the circle iff it is inside the sphere through a, b, c, d
+/// (`insphere` times the orientation of (a, b, c, d) is positive).
+pub fn in_circumcircle_3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], x: [f64; 3], n: [f64; 3]) -> bool {
+    let k = if n[0].abs() >= n[1].abs() && n[0].abs() >= n[2].abs() {
+        0
+    } else if n[1].abs() >= n[2].abs() {
+        1
+    } else {
+        2
+    };
+    // d = a moved along the axis the plane is most transverse to; d ≠ a in that coordinate
+    let mut d = a;
+    d[k] = a[k] + (1.0 + a[k].abs());
+    let o = raw::orient3d(a, b, c, d);
+    if o == 0.0 {
+        return false; // collinear corners: no circle
+    }
+    raw::insphere(a, b, c, d, x) * o > 0.0
+}
+
 #[inline]
 pub(crate) fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
@@ -499,11 +549,8 @@ pub fn def_contains_2d(a: [f64; 2], b: [f64; 2], c0: f64, c1: f64, side: f64, x:
     let o = raw::orient2d(a, b, x);
     let d = [b[0] - a[0], b[1] - a[1]];
     let dd = d[0] * d[0] + d[1] * d[1];
-    if o == 0.0 {
-        let t = (x[0] - a[0]) * d[0] + (x[1] - a[1]) * d[1];
-        if t > 0.0 && t < dd {
-            return true; // open segment
-        }
+    if o == 0.0 && dot_sign(&x, &b, &a) > 0 && dot_sign(&x, &a, &b) > 0 {
+        return true; // open segment
     }
     // Ball with centre m + t·N (N = unnormalised left normal, |N| = |d|) and radius² r² + t²|N|²:
     // x is strictly inside iff |x − m|² − 2t (x − m)·N < r², evaluated without square roots so

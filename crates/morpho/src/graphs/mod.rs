@@ -4,6 +4,7 @@
 //! - [`gamma`]: the γ-neighbourhood as an interval of empty-ball centres, γ-values, Lemmas
 //!   3.1–3.2.
 
+pub mod beyond3;
 pub mod brute;
 pub mod build;
 pub mod fast;

@@ -330,3 +330,59 @@ fn gamma_values_are_the_largest_empty_parameters() {
         }
     }
 }
+
+// ---- 3D γ beyond the Delaunay tetrahedralization (graphs::beyond3) ----
+
+mod beyond3_oracle {
+    use super::super::beyond3::beyond_dt_3d;
+    use super::super::brute::gamma_values_3d;
+    use super::super::fast::{candidates_3d, coords3};
+    use super::random_3d;
+    use crate::delaunay::d3;
+    use crate::geom::Point3;
+    use std::collections::{BTreeMap, HashSet};
+
+    /// beyond_dt_3d(c) against the brute force of Thm 3.1 over all triples: same triangles, same
+    /// γ-values (up to rounding), for every c.
+    pub(super) fn check(pts: &[[f64; 3]], cs: &[f64]) {
+        let input: Vec<Point3> = pts.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
+        let d = d3::triangulate(&input).unwrap();
+        if d.degenerate.is_some() {
+            return;
+        }
+        let p = coords3(&d);
+        let cand = candidates_3d(&d);
+        let known: HashSet<[u32; 3]> = cand.triangles.iter().copied().collect();
+        let all = gamma_values_3d(&p);
+        for &c in cs {
+            let want: BTreeMap<[u32; 3], (f64, f64)> = all
+                .iter()
+                .filter(|(t, v)| v.1 >= c && !known.contains(t))
+                .map(|(t, v)| (*t, *v))
+                .collect();
+            let (tris, ivs) = beyond_dt_3d(&d, &cand, c);
+            let mut got = BTreeMap::new();
+            for (t, iv) in tris.iter().zip(&ivs) {
+                let v = iv.gamma_values().expect("output triangle has γ-values");
+                assert!(got.insert(*t, v).is_none(), "duplicate {t:?}");
+            }
+            let wk: Vec<_> = want.keys().collect();
+            let gk: Vec<_> = got.keys().collect();
+            assert_eq!(wk, gk, "c = {c}, {} points", p.len());
+            for (t, v) in &want {
+                let g = got[t];
+                assert!(
+                    (g.0 - v.0).abs() < 1e-9 && (g.1 - v.1).abs() < 1e-9,
+                    "{t:?}: {g:?} vs {v:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn beyond_3d_matches_brute_on_random_points() {
+        for s in 0..2 {
+            check(&random_3d(40, 4000 + s), &[-0.05, -0.2, -0.5, -0.9, -1.0]);
+        }
+    }
+}
