@@ -222,3 +222,42 @@ fn keep_triangles_are_on_the_result_or_reported_missing() {
     let crossing = [[0u32, 1, 2], [0, 1, 2]];
     assert!(morpho::boundary::boundary_3d_keep(&pts, Until::All, &crossing).is_err());
 }
+
+mod props {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn pts3() -> impl Strategy<Value = Vec<Point3>> {
+        prop_oneof![
+            proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), 5..12),
+            // degenerate: a small integer grid (coplanar and cospherical groups, duplicates)
+            proptest::collection::vec((0i32..3, 0i32..3, 0i32..3), 5..12).prop_map(|v| v
+                .into_iter()
+                .map(|(x, y, z)| (x as f64, y as f64, z as f64))
+                .collect()),
+        ]
+        .prop_map(|v| {
+            v.into_iter()
+                .map(|(x, y, z)| Point3::new(x, y, z))
+                .collect()
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(32))]
+
+        #[test]
+        fn general_engine_gives_a_valid_closed_genus0_mesh(pts in pts3(), ci in 1usize..=10) {
+            let c = -0.1 * ci as f64;
+            let opts = Options3 { c: CParam::Fixed(c), ..Options3::default() };
+            match boundary_3d_with(&pts, &opts) {
+                Ok(b) => assert_valid(&pts, &b),
+                Err(_) => {
+                    // only for coplanar or too few distinct points
+                    let d = morpho::delaunay::d3::triangulate(&pts);
+                    prop_assert!(d.map_or(true, |d| d.tets.is_empty()));
+                }
+            }
+        }
+    }
+}

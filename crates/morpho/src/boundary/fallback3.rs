@@ -917,6 +917,100 @@ impl<'a> General3<'a> {
         }
     }
 
+    /// The triangles of γ([-1,1],[c,1]) (Def. 3.1 by the exact centre intervals of
+    /// [`crate::graphs::gamma::TriFrame`]) on the vertices not on the boundary and pairs of
+    /// their `k` nearest vertices — the part of the γ-graph needed to free a locked vertex (V
+    /// §5.4 "adaptive augmentation": only where needed). Each triangle's interval is computed
+    /// against every point that can touch its balls (within r·(k′ + √(k′² − 1)) of the
+    /// circumcentre, k′ = 1/(1 − |c|); all points for c = −1). O(L·k²·m) for L locked vertices
+    /// and m points within reach.
+    pub fn local_gamma(&mut self, c: f64, k: usize) -> Vec<[u32; 3]> {
+        use crate::graphs::gamma::{triangle_circle, TriFrame};
+        let locked: Vec<u32> = (0..self.p.len() as u32)
+            .filter(|&v| !self.on_boundary(v))
+            .collect();
+        let cabs = c.abs().min(1.0);
+        let kk = if cabs >= 1.0 {
+            f64::INFINITY
+        } else {
+            1.0 / (1.0 - cabs)
+        };
+        let reach_over_r = kk + (kk * kk - 1.0).max(0.0).sqrt();
+        let mut out = Vec::new();
+        let mut buf = Vec::new();
+        let n = self.p.len();
+        for &l in &locked {
+            let pl = self.pt(l);
+            // k nearest by growing boxes
+            let mut rad = self.vgrid.cell;
+            let near: Vec<u32> = loop {
+                self.vgrid.query(
+                    std::array::from_fn(|i| pl[i] - rad),
+                    std::array::from_fn(|i| pl[i] + rad),
+                    &mut buf,
+                );
+                if buf.len() > k || buf.len() >= n {
+                    let mut v: Vec<(f64, u32)> = buf
+                        .iter()
+                        .filter(|&&x| x != l)
+                        .map(|&x| {
+                            let q = self.pt(x);
+                            let d2 = (0..3).map(|i| (q[i] - pl[i]).powi(2)).sum::<f64>();
+                            (d2, x)
+                        })
+                        .collect();
+                    v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                    // only points within rad are certainly among the nearest
+                    v.retain(|e| e.0 <= rad * rad);
+                    if v.len() >= k || buf.len() >= n {
+                        break v.into_iter().take(k).map(|e| e.1).collect();
+                    }
+                }
+                rad *= 2.0;
+            };
+            for (i, &x) in near.iter().enumerate() {
+                for &y in &near[i + 1..] {
+                    let t = sorted3([l, x, y]);
+                    if self.has(t[0], t[1], t[2]) {
+                        continue;
+                    }
+                    let [pa, pb, pc] = t.map(|v| self.pt(v));
+                    let (Some(f), Some((m, r2, _))) =
+                        (TriFrame::new(pa, pb, pc), triangle_circle(pa, pb, pc))
+                    else {
+                        continue;
+                    };
+                    let mut iv = f.start();
+                    let reach = r2.sqrt() * reach_over_r * (1.0 + 1e-9);
+                    if reach.is_finite() {
+                        self.vgrid.query(
+                            std::array::from_fn(|i| m[i] - reach),
+                            std::array::from_fn(|i| m[i] + reach),
+                            &mut buf,
+                        );
+                        for &z in &buf {
+                            if !t.contains(&z) {
+                                f.add(&mut iv, self.p[z as usize]);
+                            }
+                        }
+                    } else {
+                        for (z, &q) in self.p.iter().enumerate() {
+                            if !t.contains(&(z as u32)) {
+                                f.add(&mut iv, q);
+                            }
+                        }
+                    }
+                    if iv.gamma_values().is_some_and(|g| g.1 >= c) {
+                        out.push(t);
+                    }
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
     /// Adds the given triangles where they have a vertex off the boundary and meet no boundary
     /// triangle beyond common vertices/edges (then they lie inside; see the module
     /// documentation), and do not cross a keep triangle; returns how many were added.

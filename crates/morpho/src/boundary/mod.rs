@@ -462,9 +462,11 @@ pub struct Options3 {
     pub until: constrict3::Until,
     /// The γ-graph parameter: [`CParam::Auto`] constricts the Delaunay tetrahedralization and,
     /// when it locks with points off the boundary, continues in the general engine
-    /// ([`fallback3`]) adding the triangles of γ([-1,1],[c,1]) for c = −0.1, −0.2, …, −1 inside
-    /// the current object (V §5.4 adaptive augmentation); [`CParam::Fixed`]`(c)` constricts
-    /// γ([-1,1],[c,1]) from the convex hull (c = 0: the Delaunay constriction alone).
+    /// ([`fallback3`]) adding the triangles of γ([-1,1],[c,1]) for c = −0.1, −0.2, …, −1 at the
+    /// vertices off the boundary, inside the current object (V §5.4 adaptive augmentation;
+    /// [`fallback3::General3::local_gamma`]); [`CParam::Fixed`]`(c)` constricts
+    /// γ([-1,1],[c,1]) from the convex hull (c = 0: the Delaunay constriction alone; c < 0: the
+    /// whole graph up to 400 points, a pruned one above, see [`BEYOND_ALL_MAX`]).
     pub c: CParam,
     /// Triangles (input indices) that must be on the boundary (V §5.7).
     pub keep: Vec<[u32; 3]>,
@@ -544,48 +546,22 @@ pub fn boundary_3d_keep(
     )
 }
 
-/// The triangles of γ([-1,1],[c,1]), c < 0, that are not Delaunay triangles.
-fn beyond_3d(
-    d: &crate::delaunay::d3::Delaunay3,
-    cand: &crate::graphs::fast::Candidates3,
-    c: f64,
-) -> Vec<[u32; 3]> {
-    // stand-in until graphs::beyond3 lands: the brute-force definition for small sets
-    let _ = cand;
-    if d.points.len() > 40 {
-        return Vec::new();
-    }
-    let p = crate::graphs::fast::coords3(d);
-    crate::graphs::brute::gamma_3d_def(&p, c, 1.0)
-}
+/// Up to this many vertices [`CParam::Fixed`]`(c < 0)` constricts all of γ([-1,1],[c,1])
+/// ([`crate::graphs::beyond3::beyond_dt_3d`], which tries every triple: O(N³)); above, the
+/// Delaunay triangles plus the γ-triangles at every interior vertex and pairs of its 24 nearest
+/// vertices ([`fallback3::General3::local_gamma`]).
+const BEYOND_ALL_MAX: usize = 400;
 
-/// Runs `g` and, while locked, augments it with γ([-1,1],[c,1]) for c = from − 0.1, … −1
-/// (first the non-Delaunay triangles of cospherical groups). Returns the last c used.
-fn augment_until_done_3d(
-    d: &crate::delaunay::d3::Delaunay3,
-    g: &mut fallback3::General3<'_>,
-    from: f64,
-) -> f64 {
+/// Runs `g` and, while locked, augments it with the γ([-1,1],[c,1]) triangles at the vertices
+/// off the boundary ([`fallback3::General3::local_gamma`], their 24 nearest vertices) for
+/// c = from − 0.1, … −1. Returns the last c used.
+fn augment_until_done_3d(g: &mut fallback3::General3<'_>, from: f64) -> f64 {
     g.run();
-    if g.done() {
-        return from;
-    }
-    let cand = crate::graphs::fast::candidates_3d(d);
-    let chords: Vec<[u32; 3]> = cand
-        .triangles
-        .iter()
-        .zip(&cand.in_dt)
-        .filter(|(_, &dt)| !dt)
-        .map(|(t, _)| *t)
-        .collect();
-    if !chords.is_empty() && g.augment(&chords) > 0 {
-        g.run();
-    }
     let mut c = from;
     let mut step = 1;
     while !g.done() && step <= 10 {
-        c = (from - 0.1 * step as f64).max(-1.0);
-        let extra = beyond_3d(d, &cand, c);
+        c = (from - step as f64 / 10.0).max(-1.0);
+        let extra = g.local_gamma(c, 24);
         if g.augment(&extra) > 0 {
             g.run();
         }
@@ -684,10 +660,17 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
         Some(c) if c < 0.0 => {
             let cand = crate::graphs::fast::candidates_3d(&d);
             let mut all = cand.triangles.clone();
-            all.extend(beyond_3d(&d, &cand, c));
+            let small = nv <= BEYOND_ALL_MAX;
+            if small {
+                all.extend(crate::graphs::beyond3::beyond_dt_3d(&d, &cand, c).0);
+            }
             let mut g = fallback3::General3::new(&pos, &d.hull, &all, &keep_v);
+            if !small {
+                let extra = g.local_gamma(c, 24);
+                g.augment(&extra);
+            }
             g.run();
-            (g.boundary(), None, c, g.iterations, 0)
+            (g.boundary(), None, c, g.iterations, g.added)
         }
         _ if non_delaunay_keep => {
             // V §5.7: the keep triangles are added to the graph, constriction from the hull
@@ -698,7 +681,7 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
                     g.run();
                     c
                 }
-                None => augment_until_done_3d(&d, &mut g, 0.0),
+                None => augment_until_done_3d(&mut g, 0.0),
             };
             (g.boundary(), None, c, g.iterations, g.added)
         }
@@ -711,7 +694,7 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
             } else {
                 let live = faces_of(&st.alive);
                 let mut g = fallback3::General3::new(&pos, &st.triangles, &live, &keep_v);
-                let c = augment_until_done_3d(&d, &mut g, 0.0);
+                let c = augment_until_done_3d(&mut g, 0.0);
                 let added = g.added;
                 (g.boundary(), None, c, st.iterations + g.iterations, added)
             }
