@@ -982,7 +982,21 @@ impl<'a> General3<'a> {
                     };
                     let mut iv = f.start();
                     let reach = r2.sqrt() * reach_over_r * (1.0 + 1e-9);
-                    if reach.is_finite() {
+                    if !reach.is_finite() {
+                        // c = −1: every triangle is in γ([-1,1],[-1,1]) unless a point lies in
+                        // the closed triangle (then no neighbourhood is empty); such points lie
+                        // in its bounding box
+                        let (lo, hi) = bbox(&[pa, pb, pc]);
+                        self.vgrid.query(lo, hi, &mut buf);
+                        for &z in &buf {
+                            if !t.contains(&z) {
+                                f.add(&mut iv, self.p[z as usize]);
+                            }
+                        }
+                        if !iv.all_blocked {
+                            out.push(t);
+                        }
+                    } else {
                         self.vgrid.query(
                             std::array::from_fn(|i| m[i] - reach),
                             std::array::from_fn(|i| m[i] + reach),
@@ -993,15 +1007,9 @@ impl<'a> General3<'a> {
                                 f.add(&mut iv, self.p[z as usize]);
                             }
                         }
-                    } else {
-                        for (z, &q) in self.p.iter().enumerate() {
-                            if !t.contains(&(z as u32)) {
-                                f.add(&mut iv, q);
-                            }
+                        if iv.gamma_values().is_some_and(|g| g.1 >= c) {
+                            out.push(t);
                         }
-                    }
-                    if iv.gamma_values().is_some_and(|g| g.1 >= c) {
-                        out.push(t);
                     }
                 }
             }
@@ -1011,17 +1019,29 @@ impl<'a> General3<'a> {
         out
     }
 
-    /// Adds the given triangles where they have a vertex off the boundary and meet no boundary
-    /// triangle beyond common vertices/edges (then they lie inside; see the module
-    /// documentation), and do not cross a keep triangle; returns how many were added.
+    /// Adds the given triangles where they are certified inside (as for the rewiring; see
+    /// the module documentation) and pushes the boundary faces on their edges; returns how
+    /// many were added.
     pub fn augment(&mut self, tris: &[[u32; 3]]) -> usize {
         let mut added = 0;
+        let mut faces = Vec::new();
         for &t in tris {
-            added += self.try_insert(t) as usize;
+            if self.try_insert(t) {
+                added += 1;
+                // the boundary faces on its edges may have gained a tetrahedron
+                for k in 0..3 {
+                    let (a, b) = (t[k], t[(k + 1) % 3]);
+                    for (x, y) in [(a, b), (b, a)] {
+                        if let Some(&z) = self.bnext.get(&dk(x, y)) {
+                            faces.push([x, y, z]);
+                        }
+                    }
+                }
+            }
         }
         self.added += added;
-        if added > 0 {
-            self.push_all();
+        for f in faces {
+            self.push(f);
         }
         added
     }

@@ -84,11 +84,11 @@ pub fn segment_meets_triangle(p: P, q: P, a: P, b: P, c: P) -> bool {
 
 /// Closed triangles t and u (no common vertex) intersect (exact).
 pub fn triangles_intersect(t: [P; 3], u: [P; 3]) -> bool {
-    let su: Vec<f64> = u.iter().map(|&x| orient3d(t[0], t[1], t[2], x)).collect();
+    let su: [f64; 3] = u.map(|x| orient3d(t[0], t[1], t[2], x));
     if su.iter().all(|&s| s > 0.0) || su.iter().all(|&s| s < 0.0) {
         return false;
     }
-    let st: Vec<f64> = t.iter().map(|&x| orient3d(u[0], u[1], u[2], x)).collect();
+    let st: [f64; 3] = t.map(|x| orient3d(u[0], u[1], u[2], x));
     if st.iter().all(|&s| s > 0.0) || st.iter().all(|&s| s < 0.0) {
         return false;
     }
@@ -274,12 +274,18 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
 
 /// The exact test of one pair by its number of common vertices (see the module documentation).
 fn pair_meets(pos: &[P], ta: [u32; 3], tb: [u32; 3]) -> bool {
-    let shared: Vec<(usize, usize)> = (0..3)
-        .flat_map(|i| (0..3).map(move |j| (i, j)))
-        .filter(|&(i, j)| ta[i] == tb[j])
-        .collect();
+    let mut shared = [(0usize, 0usize); 3];
+    let mut ns = 0;
+    for i in 0..3 {
+        for j in 0..3 {
+            if ta[i] == tb[j] && ns < 3 {
+                shared[ns] = (i, j);
+                ns += 1;
+            }
+        }
+    }
     let (pa, pb) = (ta.map(|v| pos[v as usize]), tb.map(|v| pos[v as usize]));
-    match shared.len() {
+    match ns {
         0 => triangles_intersect(pa, pb),
         1 => meet_beyond_vertex(pa, shared[0].0, pb, shared[0].1),
         2 => {
