@@ -120,10 +120,12 @@ struct Grid {
     cell: f64,
     cells: IdMap<(i64, i64, i64), Vec<u32>>,
     big: Vec<u32>,
+    /// Ids may sit in several cells (boxes, not points): queries deduplicate.
+    multi: bool,
 }
 
 impl Grid {
-    fn new(lo: P, cell: f64) -> Self {
+    fn new(lo: P, cell: f64, multi: bool) -> Self {
         Grid {
             lo,
             cell: if cell > 0.0 && cell.is_finite() {
@@ -133,6 +135,7 @@ impl Grid {
             },
             cells: IdMap::default(),
             big: Vec::new(),
+            multi,
         }
     }
     fn range(&self, lo: P, hi: P) -> ([i64; 3], [i64; 3]) {
@@ -183,8 +186,10 @@ impl Grid {
                 }
             }
         }
-        out.sort_unstable();
-        out.dedup();
+        if self.multi {
+            out.sort_unstable();
+            out.dedup();
+        }
     }
 }
 
@@ -377,6 +382,8 @@ pub struct General3<'a> {
     heap: BinaryHeap<Entry>,
     buf: Vec<u32>,
     blocked_by: Option<[u32; 3]>,
+    /// Triangles found in a γ-graph by [`General3::local_gamma`] (not tested again).
+    in_gamma: IdSet<[u32; 3]>,
     /// Number of boundary vertices.
     pub boundary_vertices: usize,
     /// Number of removed tetrahedra.
@@ -406,11 +413,12 @@ impl<'a> General3<'a> {
             bnext: IdMap::default(),
             vcount: vec![0; p.len()],
             keep: keep.iter().map(|&f| sorted3(f)).collect(),
-            tgrid: Grid::new(lo, cell),
-            vgrid: Grid::new(lo, cell),
+            tgrid: Grid::new(lo, cell, true),
+            vgrid: Grid::new(lo, cell, false),
             heap: BinaryHeap::new(),
             buf: Vec::new(),
             blocked_by: None,
+            in_gamma: IdSet::default(),
             boundary_vertices: 0,
             iterations: 0,
             added: 0,
@@ -924,6 +932,7 @@ impl<'a> General3<'a> {
     /// against every point that can touch its balls (within r·(k′ + √(k′² − 1)) of the
     /// circumcentre, k′ = 1/(1 − |c|); all points for c = −1). O(L·k²·m) for L locked vertices
     /// and m points within reach.
+    /// Triangles found at an earlier (larger) c are not returned again.
     pub fn local_gamma(&mut self, c: f64, k: usize) -> Vec<[u32; 3]> {
         use crate::graphs::gamma::{triangle_circle, TriFrame};
         let locked: Vec<u32> = (0..self.p.len() as u32)
@@ -971,7 +980,7 @@ impl<'a> General3<'a> {
             for (i, &x) in near.iter().enumerate() {
                 for &y in &near[i + 1..] {
                     let t = sorted3([l, x, y]);
-                    if self.has(t[0], t[1], t[2]) {
+                    if self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t) {
                         continue;
                     }
                     let [pa, pb, pc] = t.map(|v| self.pt(v));
@@ -994,6 +1003,7 @@ impl<'a> General3<'a> {
                             }
                         }
                         if !iv.all_blocked {
+                            self.in_gamma.insert(t);
                             out.push(t);
                         }
                     } else {
@@ -1008,6 +1018,7 @@ impl<'a> General3<'a> {
                             }
                         }
                         if iv.gamma_values().is_some_and(|g| g.1 >= c) {
+                            self.in_gamma.insert(t);
                             out.push(t);
                         }
                     }

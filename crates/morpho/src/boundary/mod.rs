@@ -548,12 +548,12 @@ pub fn boundary_3d_keep(
 
 /// Up to this many vertices [`CParam::Fixed`]`(c < 0)` constricts all of γ([-1,1],[c,1])
 /// ([`crate::graphs::beyond3::beyond_dt_3d`], which tries every triple: O(N³)); above, the
-/// Delaunay triangles plus the γ-triangles at every interior vertex and pairs of its 24 nearest
+/// Delaunay triangles plus the γ-triangles at every interior vertex and pairs of its 16 nearest
 /// vertices ([`fallback3::General3::local_gamma`]).
 const BEYOND_ALL_MAX: usize = 400;
 
 /// Runs `g` and, while locked, augments it with the γ([-1,1],[c,1]) triangles at the vertices
-/// off the boundary ([`fallback3::General3::local_gamma`], their 24 nearest vertices) for
+/// off the boundary ([`fallback3::General3::local_gamma`], their 16 nearest vertices) for
 /// c = from − 0.1, … −1. Returns the last c used.
 fn augment_until_done_3d(g: &mut fallback3::General3<'_>, from: f64) -> f64 {
     g.run();
@@ -561,7 +561,7 @@ fn augment_until_done_3d(g: &mut fallback3::General3<'_>, from: f64) -> f64 {
     let mut step = 1;
     while !g.done() && step <= 10 {
         c = (from - step as f64 / 10.0).max(-1.0);
-        let extra = g.local_gamma(c, 24);
+        let extra = g.local_gamma(c, 16);
         if g.augment(&extra) > 0 {
             g.run();
         }
@@ -666,7 +666,7 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
             }
             let mut g = fallback3::General3::new(&pos, &d.hull, &all, &keep_v);
             if !small {
-                let extra = g.local_gamma(c, 24);
+                let extra = g.local_gamma(c, 16);
                 g.augment(&extra);
             }
             g.run();
