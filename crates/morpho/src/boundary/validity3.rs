@@ -247,16 +247,69 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
             }
         }
     }
-    let is_big: std::collections::HashSet<u32> = big.iter().copied().collect();
-    for &a in &big {
-        for b in 0..tris.len() as u32 {
-            if b == a || (is_big.contains(&b) && b < a) {
-                continue;
-            }
+    // big triangles: against each other by boxes, against the grid through the cells their
+    // plane passes (floating-point culling with a generous margin; the exact test decides)
+    for (i, &a) in big.iter().enumerate() {
+        for &b in &big[i + 1..] {
             if overlap(a, b) {
                 pairs.push((a.min(b), a.max(b)));
             }
         }
+    }
+    for &a in &big {
+        let q = tris[a as usize].map(|v| pos[v as usize]);
+        let e1 = [q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2]];
+        let e2 = [q[2][0] - q[0][0], q[2][1] - q[0][1], q[2][2] - q[0][2]];
+        let n = [
+            e1[1] * e2[2] - e1[2] * e2[1],
+            e1[2] * e2[0] - e1[0] * e2[2],
+            e1[0] * e2[1] - e1[1] * e2[0],
+        ];
+        // dominant axis w: the plane is a function of the two other coordinates
+        let w = (0..3)
+            .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+            .unwrap_or(2);
+        let (u, v) = ((w + 1) % 3, (w + 2) % 3);
+        let (bl, bh) = boxes[a as usize];
+        let mn: [u64; 3] = std::array::from_fn(|k| cidx(bl[k], k));
+        let mx: [u64; 3] = std::array::from_fn(|k| cidx(bh[k], k));
+        let nw = n[w];
+        let slope = if nw != 0.0 {
+            (n[u].abs() + n[v].abs()) / nw.abs()
+        } else {
+            f64::INFINITY
+        };
+        let margin = 1e-9 * (0..3).map(|k| ext[k].abs()).sum::<f64>() + cell * 1e-6;
+        let mut cand: Vec<u32> = Vec::new();
+        for cu in mn[u]..=mx[u] {
+            for cv in mn[v]..=mx[v] {
+                // w-range of the plane over this column (cell centre ± half extent · slope)
+                let (wlo, whi) = if slope.is_finite() {
+                    let xu = lo[u] + (cu as f64 + 0.5) * cell;
+                    let xv = lo[v] + (cv as f64 + 0.5) * cell;
+                    let wc = q[0][w] - (n[u] * (xu - q[0][u]) + n[v] * (xv - q[0][v])) / nw;
+                    let half = 0.5 * cell * slope + margin;
+                    (
+                        cidx((wc - half).max(bl[w]), w).max(mn[w]),
+                        cidx((wc + half).min(bh[w]), w).min(mx[w]),
+                    )
+                } else {
+                    (mn[w], mx[w])
+                };
+                for cw in wlo..=whi {
+                    let mut key = [0u64; 3];
+                    key[u] = cu;
+                    key[v] = cv;
+                    key[w] = cw;
+                    if let Some(ids) = grid.get(&(key[0], key[1], key[2])) {
+                        cand.extend(ids.iter().copied().filter(|&b| overlap(a, b)));
+                    }
+                }
+            }
+        }
+        cand.sort_unstable();
+        cand.dedup();
+        pairs.extend(cand.into_iter().map(|b| (a.min(b), a.max(b))));
     }
     pairs.sort_unstable();
     pairs.dedup();
@@ -440,5 +493,52 @@ mod tests {
             coplanar += (orient3d(fl(a), fl(b), fl(c), fl(d)) == 0.0) as usize;
         }
         assert!(hits > 200 && coplanar > 1000, "{hits} {coplanar}");
+    }
+
+    #[test]
+    fn big_triangles_are_tested_through_the_cells_of_their_plane() {
+        // a fine flat grid mesh on z = 0 and big triangles spanning it
+        let m = 60;
+        let mut pos: Vec<P> = Vec::new();
+        for j in 0..=m {
+            for i in 0..=m {
+                pos.push([i as f64 / m as f64, j as f64 / m as f64, 0.0]);
+            }
+        }
+        let id = |i: usize, j: usize| (j * (m + 1) + i) as u32;
+        let mut tris = Vec::new();
+        for j in 0..m {
+            for i in 0..m {
+                tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        let n0 = pos.len() as u32;
+        // vertical, slanted big triangle piercing the sheet along a segment
+        pos.extend([[0.013, 0.021, -1.0], [0.977, 0.963, -1.0], [0.5, 0.4, 1.0]]);
+        // a big one parallel above it, and a big one crossing the first
+        pos.extend([[0.0, 0.0, 0.5], [1.0, 0.0, 0.5], [0.0, 1.0, 0.5]]);
+        let nt = tris.len() as u32;
+        tris.push([n0, n0 + 1, n0 + 2]);
+        tris.push([n0 + 3, n0 + 4, n0 + 5]);
+        let found = self_intersections(&pos, &tris, usize::MAX);
+        // brute force over every pair involving the two big triangles
+        let mut expect = Vec::new();
+        for big in [nt, nt + 1] {
+            let pb = tris[big as usize].map(|v| pos[v as usize]);
+            for (k, t) in tris.iter().enumerate() {
+                let k = k as u32;
+                if k == big || (k > nt + 1) || (k == nt && big == nt + 1) {
+                    continue;
+                }
+                if triangles_intersect(t.map(|v| pos[v as usize]), pb) {
+                    expect.push((k.min(big), k.max(big)));
+                }
+            }
+        }
+        expect.sort_unstable();
+        expect.dedup();
+        assert!(expect.len() >= 40, "{}", expect.len());
+        assert_eq!(found, expect);
     }
 }
