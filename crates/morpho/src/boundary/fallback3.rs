@@ -927,7 +927,7 @@ impl<'a> General3<'a> {
 
     /// The triangles of γ([-1,1],[c,1]) (Def. 3.1 by the exact centre intervals of
     /// [`crate::graphs::gamma::TriFrame`]) on the vertices not on the boundary and pairs of
-    /// their `k` nearest vertices — the part of the γ-graph needed to free a locked vertex (V
+    /// their `k` nearest vertices or edges of the boundary faces near them — the part of the γ-graph needed to free a locked vertex (V
     /// §5.4 "adaptive augmentation": only where needed). Each triangle's interval is computed
     /// against every point that can touch its balls (within r·(k′ + √(k′² − 1)) of the
     /// circumcentre, k′ = 1/(1 − |c|); all points for c = −1). O(L·k²·m) for L locked vertices
@@ -977,10 +977,35 @@ impl<'a> General3<'a> {
                 }
                 rad *= 2.0;
             };
+            // pairs of near vertices, and the edges of the boundary faces around l (the faces a
+            // removal w.r.t. l starts from)
+            let mut pairs: Vec<(u32, u32)> = Vec::new();
             for (i, &x) in near.iter().enumerate() {
                 for &y in &near[i + 1..] {
+                    pairs.push((x, y));
+                }
+            }
+            let reach_l = 2.0 * rad;
+            let mut tb = Vec::new();
+            self.tgrid.query(
+                std::array::from_fn(|i| pl[i] - reach_l),
+                std::array::from_fn(|i| pl[i] + reach_l),
+                &mut tb,
+            );
+            for &i in &tb {
+                let u = self.tris[i as usize];
+                if self.live[i as usize] && (self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]))
+                {
+                    for k in 0..3 {
+                        pairs.push((u[k], u[(k + 1) % 3]));
+                    }
+                }
+            }
+            for (x, y) in pairs {
+                {
                     let t = sorted3([l, x, y]);
-                    if self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t) {
+                    if x == l || y == l || self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t)
+                    {
                         continue;
                     }
                     let [pa, pb, pc] = t.map(|v| self.pt(v));
