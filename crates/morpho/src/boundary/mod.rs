@@ -11,8 +11,11 @@
 //! - [`Method::VoronoiSkeleton`] — O'Rourke et al.'s shortest Voronoi skeleton (V §4.3.4).
 //!
 //! [`boundary_3d`] constricts the 3D Delaunay tetrahedralization (V §5.3, [`constrict3`]) to a
-//! closed genus-0 triangle mesh through (ideally) every point, checked with
-//! [`crate::mesh::topology::analyze`].
+//! closed genus-0 triangle mesh through (ideally) every point; when that constriction locks with
+//! points inside, the general engine ([`fallback3`]) continues with γ([-1,1],[c,1]) triangles,
+//! c = −0.1 … −1, added where needed (V §5.4); keep triangles (V §5.7) that are not Delaunay
+//! faces are constricted by the general engine from the hull. The result is checked with
+//! [`crate::mesh::topology::analyze`] and the exact [`validity3::self_intersections`].
 //!
 //! The result is checked, never assumed: [`validity::check_polygon`] decides simplicity and
 //! coverage with exact predicates. Duplicate input points map to one vertex (the first input
