@@ -1032,14 +1032,32 @@ impl<'a> General3<'a> {
                             out.push(t);
                         }
                     } else {
+                        // points only narrow the interval (c₁′ never grows): reject on the
+                        // near points first, then scan the whole reach
+                        let near_r = reach.min(2.0 * r2.sqrt());
                         self.vgrid.query(
-                            std::array::from_fn(|i| m[i] - reach),
-                            std::array::from_fn(|i| m[i] + reach),
+                            std::array::from_fn(|i| m[i] - near_r),
+                            std::array::from_fn(|i| m[i] + near_r),
                             &mut buf,
                         );
                         for &z in &buf {
                             if !t.contains(&z) {
                                 f.add(&mut iv, self.p[z as usize]);
+                            }
+                        }
+                        if !iv.gamma_values().is_some_and(|g| g.1 >= c) {
+                            continue;
+                        }
+                        if reach > near_r {
+                            self.vgrid.query(
+                                std::array::from_fn(|i| m[i] - reach),
+                                std::array::from_fn(|i| m[i] + reach),
+                                &mut buf,
+                            );
+                            for &z in &buf {
+                                if !t.contains(&z) {
+                                    f.add(&mut iv, self.p[z as usize]);
+                                }
                             }
                         }
                         if iv.gamma_values().is_some_and(|g| g.1 >= c) {
