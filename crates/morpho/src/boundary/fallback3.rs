@@ -992,13 +992,24 @@ impl<'a> General3<'a> {
                 std::array::from_fn(|i| pl[i] + reach_l),
                 &mut tb,
             );
-            for &i in &tb {
-                let u = self.tris[i as usize];
-                if self.live[i as usize] && (self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]))
-                {
-                    for k in 0..3 {
-                        pairs.push((u[k], u[(k + 1) % 3]));
-                    }
+            // the k boundary faces nearest to l (by centroid)
+            let mut faces: Vec<(f64, [u32; 3])> = tb
+                .iter()
+                .filter(|&&i| self.live[i as usize])
+                .map(|&i| self.tris[i as usize])
+                .filter(|&u| self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]))
+                .map(|u| {
+                    let q = u.map(|v| self.pt(v));
+                    let d2 = (0..3)
+                        .map(|i| ((q[0][i] + q[1][i] + q[2][i]) / 3.0 - pl[i]).powi(2))
+                        .sum::<f64>();
+                    (d2, u)
+                })
+                .collect();
+            faces.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            for (_, u) in faces.into_iter().take(k) {
+                for e in 0..3 {
+                    pairs.push((u[e], u[(e + 1) % 3]));
                 }
             }
             for (x, y) in pairs {
