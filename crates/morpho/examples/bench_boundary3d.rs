@@ -16,6 +16,7 @@
 //!   no intersections; VmHWM 63 MB.
 //! - horse 48 485: Delaunay 0.36 s; constriction 0.34 s (34 locked), check 1.21 s; total
 //!   10.8 s = 30× (fallback ≈ 9 s, 785 triangles added); 0 left out, valid; VmHWM 103 MB.
+//!
 //! Without a fallback the ratio is ≈ 4.5× (Delaunay + constriction + check + topology).
 
 use morpho::boundary::constrict3::{constrict_3d, Until};
