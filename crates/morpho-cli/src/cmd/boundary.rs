@@ -4,7 +4,10 @@
 //!
 //! 3D: `-o` `.ply/.obj/.off` (every input point is a vertex, in input order) or `.json`
 //! (`{"triangles":[[i,j,k],…]}`); `--until all|locked`; `--keep` triangles; report keys `closed_manifold`, `genus`,
-//! `volume`; `--interior FILE.json` writes `{"tetrahedra":[…]}`. Only the γ method, c = 0.
+//! `volume`, `c_used`, `added_triangles`; `--c auto|C` as in 2D (auto: Delaunay constriction, then
+//! the general engine with γ([-1,1],[c,1]) triangles, c = −0.1 … −1, when it locks);
+//! `--interior FILE.json` writes `{"tetrahedra":[…]}` (empty when the general engine ran). Only
+//! the γ method.
 //!
 //! 2D outputs by extension: `.csv` (`index,x,y` in boundary order), `.geojson` (one Polygon
 //! feature), `.json` (`{"polygon":[input indices]}`), `.svg` (points, Delaunay graph faint,
@@ -17,7 +20,7 @@ use crate::report::Report;
 use crate::Failure;
 use morpho::boundary::constrict3::Until;
 use morpho::boundary::{
-    boundary_2d, boundary_3d_keep, check_polygon, Boundary2, CParam, Method, Options2,
+    boundary_2d, boundary_3d_with, check_polygon, Boundary2, CParam, Method, Options2, Options3,
 };
 use morpho::geom::Point2;
 use morpho::io::{read_points, write_atomic};
@@ -95,16 +98,17 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     }
     let ps = report.time("read", || read_points(&args.input))?;
     if ps.dim == 3 {
-        if method != Method::Gamma || c != CParam::Auto {
+        if method != Method::Gamma {
             return Err(Failure::usage(
-                "3D boundary: only --method gamma with c = 0 (Delaunay) is implemented",
+                "3D boundary: only --method gamma is implemented",
             ));
         }
         let keep = match &args.keep {
             Some(k) => report.time("read", || read_rows::<3>(k))?,
             None => Vec::new(),
         };
-        return run_3d(&args, ps.to_points3(), until, &keep, &ext, report);
+        let opts = Options3 { until, c, keep };
+        return run_3d(&args, ps.to_points3(), &opts, &ext, report);
     }
     if !matches!(ext.as_str(), "csv" | "geojson" | "json" | "svg") {
         return Err(Failure::usage(format!(
@@ -359,8 +363,7 @@ fn werr(e: std::io::Error) -> Error {
 fn run_3d(
     args: &Args,
     pts: Vec<morpho::geom::Point3>,
-    until: Until,
-    keep: &[[u32; 3]],
+    opts: &Options3,
     ext: &str,
     report: &mut Report,
 ) -> Result<u8, Failure> {
@@ -370,13 +373,14 @@ fn run_3d(
             args.output.display()
         )));
     }
-    let b = report.time("compute", || boundary_3d_keep(&pts, until, keep))?;
+    let b = report.time("compute", || boundary_3d_with(&pts, opts))?;
     let vertices: std::collections::HashSet<u32> = b.triangles.iter().flatten().copied().collect();
     report.set("method", "gamma");
     report.set("points", pts.len());
     report.set("boundary_vertices", vertices.len());
     report.set("all_on_boundary", b.all_on_boundary);
-    report.set("c_used", 0.0);
+    report.set("c_used", b.c_used);
+    report.set("added_triangles", b.added_triangles);
     report.set("iterations", b.iterations);
     report.set("closed_manifold", b.closed_manifold);
     report.set("genus", json!(b.genus));
@@ -384,7 +388,7 @@ fn run_3d(
     report.set("triangles", b.triangles.len());
     report.set("volume", b.volume);
     report.set("left_out", json!(b.left_out));
-    if !keep.is_empty() {
+    if !opts.keep.is_empty() {
         report.set("keep_missing", json!(b.keep_missing));
     }
     report.time("write", || -> morpho::Result<()> {

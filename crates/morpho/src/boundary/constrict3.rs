@@ -40,6 +40,41 @@ use crate::delaunay::d3::{Delaunay3, FACE_OF, NONE};
 use num_bigint::BigInt;
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
+use std::hash::{BuildHasherDefault, Hasher};
+
+/// A fast multiplicative hasher for integer keys (vertex and edge ids; not for adversarial
+/// keys from the network — ids here come from our own tetrahedralization).
+#[derive(Default, Clone, Copy)]
+pub struct IdHasher(u64);
+
+impl Hasher for IdHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+    #[inline]
+    fn write_u32(&mut self, x: u32) {
+        self.write_u64(x as u64);
+    }
+    #[inline]
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(26) ^ x).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    }
+    #[inline]
+    fn write_usize(&mut self, x: usize) {
+        self.write_u64(x as u64);
+    }
+    #[inline]
+    fn finish(&self) -> u64 {
+        self.0 ^ (self.0 >> 29)
+    }
+}
+
+/// A `HashMap` with [`IdHasher`].
+pub type IdMap<K, V> = HashMap<K, V, BuildHasherDefault<IdHasher>>;
+/// A `HashSet` with [`IdHasher`].
+pub type IdSet<K> = std::collections::HashSet<K, BuildHasherDefault<IdHasher>>;
 
 /// When to stop the 3D constriction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -233,9 +268,9 @@ struct State<'a> {
     p: Vec<[f64; 3]>,
     alive: Vec<bool>,
     vcount: Vec<u32>,
-    ecount: HashMap<u64, u32>,
+    ecount: IdMap<u64, u32>,
     nbv: usize,
-    keep: std::collections::HashSet<[u32; 3]>,
+    keep: IdSet<[u32; 3]>,
 }
 
 fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
@@ -264,7 +299,15 @@ impl State<'_> {
     /// The key of removing tetrahedron t with boundary mask m, or `None` when not removable.
     fn key(&self, t: usize, m: u8) -> Option<f64> {
         let v = self.d.tets[t];
-        let faces: Vec<usize> = (0..4).filter(|&f| m >> f & 1 == 1).collect();
+        let mut faces = [0usize; 4];
+        let mut nf = 0;
+        for f in 0..4 {
+            if m >> f & 1 == 1 {
+                faces[nf] = f;
+                nf += 1;
+            }
+        }
+        let faces = &faces[..nf];
         if !self.keep.is_empty()
             && faces
                 .iter()
@@ -272,9 +315,11 @@ impl State<'_> {
         {
             return None; // a keep triangle is never deleted (V §5.7)
         }
-        let ind = |f: usize| -> f64 {
+        if nf > 2 {
+            return None;
+        }
+        let ind = |f: usize, r: f64| -> f64 {
             let fc = self.face(t, f);
-            let r = self.d.circumsphere(t as u32).1;
             gamma_indicator_3d(
                 self.p[fc[0] as usize],
                 self.p[fc[1] as usize],
@@ -289,7 +334,7 @@ impl State<'_> {
                 if self.vcount[v[f] as usize] > 0 {
                     None
                 } else {
-                    Some(ind(f))
+                    Some(ind(f, self.d.circumsphere(t as u32).1))
                 }
             }
             2 => {
@@ -298,7 +343,8 @@ impl State<'_> {
                 if self.ecount.get(&ek(a, b)).copied().unwrap_or(0) > 0 {
                     None
                 } else {
-                    Some(ind(faces[0]) + ind(faces[1]))
+                    let r = self.d.circumsphere(t as u32).1;
+                    Some(ind(faces[0], r) + ind(faces[1], r))
                 }
             }
             _ => None,
@@ -325,6 +371,47 @@ impl State<'_> {
     }
 }
 
+/// The tetrahedra around edge ab of tetrahedron t (t included), by rotation through the
+/// neighbours (no vertex star needed).
+fn around_edge_from(d: &Delaunay3, t: u32, a: u32, b: u32) -> Vec<u32> {
+    let others = |t: u32| -> [usize; 2] {
+        let v = d.tets[t as usize];
+        let mut o = [0; 2];
+        let mut k = 0;
+        for (i, &x) in v.iter().enumerate() {
+            if x != a && x != b && k < 2 {
+                o[k] = i;
+                k += 1;
+            }
+        }
+        o
+    };
+    let mut out = vec![t];
+    for start in others(t) {
+        let mut prev = t;
+        let mut cur = d.neighbors[t as usize][start];
+        while cur != NONE && cur != t && out.len() <= d.tets.len() {
+            if out.contains(&cur) {
+                break;
+            }
+            out.push(cur);
+            let o = others(cur);
+            let n0 = d.neighbors[cur as usize][o[0]];
+            let next = if n0 != prev {
+                n0
+            } else {
+                d.neighbors[cur as usize][o[1]]
+            };
+            prev = cur;
+            cur = next;
+        }
+        if cur == t {
+            break; // closed ring: the other direction gives the same tetrahedra
+        }
+    }
+    out
+}
+
 /// Constricts the Delaunay tetrahedralization (see the module documentation).
 pub fn constrict_3d(d: &Delaunay3, until: Until) -> Constriction3 {
     constrict_3d_keep(d, until, &[])
@@ -342,7 +429,7 @@ pub fn constrict_3d_keep(d: &Delaunay3, until: Until, keep: &[[u32; 3]]) -> Cons
         p: d.points.iter().map(|q| [q.x, q.y, q.z]).collect(),
         alive: vec![true; nt],
         vcount: vec![0; nv],
-        ecount: HashMap::new(),
+        ecount: IdMap::default(),
         nbv: 0,
         keep: keep.iter().map(|&f| sorted3(f)).collect(),
     };
@@ -405,7 +492,7 @@ pub fn constrict_3d_keep(d: &Delaunay3, until: Until, keep: &[[u32; 3]]) -> Cons
             let v = d.tets[t];
             let shared: Vec<u32> = (0..4).filter(|&f| m >> f & 1 == 0).map(|f| v[f]).collect();
             if shared.len() == 2 {
-                for n in d.tets_around_edge(shared[0], shared[1]) {
+                for n in around_edge_from(d, t as u32, shared[0], shared[1]) {
                     push(&st, &mut heap, n as usize);
                 }
             }

@@ -11,8 +11,11 @@
 //! - [`Method::VoronoiSkeleton`] — O'Rourke et al.'s shortest Voronoi skeleton (V §4.3.4).
 //!
 //! [`boundary_3d`] constricts the 3D Delaunay tetrahedralization (V §5.3, [`constrict3`]) to a
-//! closed genus-0 triangle mesh through (ideally) every point, checked with
-//! [`crate::mesh::topology::analyze`].
+//! closed genus-0 triangle mesh through (ideally) every point; when that constriction locks with
+//! points inside, the general engine ([`fallback3`]) continues with γ([-1,1],[c,1]) triangles,
+//! c = −0.1 … −1, added where needed (V §5.4); keep triangles (V §5.7) that are not Delaunay
+//! faces are constricted by the general engine from the hull. The result is checked with
+//! [`crate::mesh::topology::analyze`] and the exact [`validity3::self_intersections`].
 //!
 //! The result is checked, never assumed: [`validity::check_polygon`] decides simplicity and
 //! coverage with exact predicates. Duplicate input points map to one vertex (the first input
@@ -23,6 +26,7 @@
 
 pub mod constrict2;
 pub mod constrict3;
+pub mod fallback3;
 pub mod indicator;
 pub mod validity;
 pub mod validity3;
@@ -418,6 +422,33 @@ fn finish(
     }
 }
 
+/// Options of [`boundary_3d_with`].
+#[derive(Debug, Clone)]
+pub struct Options3 {
+    /// When the Delaunay constriction stops.
+    pub until: constrict3::Until,
+    /// The γ-graph parameter: [`CParam::Auto`] constricts the Delaunay tetrahedralization and,
+    /// when it locks with points off the boundary, continues in the general engine
+    /// ([`fallback3`]) adding the triangles of γ([-1,1],[c,1]) for c = −0.1, −0.2, …, −1 at the
+    /// vertices off the boundary, inside the current object (V §5.4 adaptive augmentation;
+    /// [`fallback3::General3::local_gamma`]); [`CParam::Fixed`]`(c)` constricts
+    /// γ([-1,1],[c,1]) from the convex hull (c = 0: the Delaunay constriction alone; c < 0: the
+    /// whole graph up to 400 points, a pruned one above, see [`BEYOND_ALL_MAX`]).
+    pub c: CParam,
+    /// Triangles (input indices) that must be on the boundary (V §5.7).
+    pub keep: Vec<[u32; 3]>,
+}
+
+impl Default for Options3 {
+    fn default() -> Self {
+        Options3 {
+            until: constrict3::Until::All,
+            c: CParam::Auto,
+            keep: Vec::new(),
+        }
+    }
+}
+
 /// A 3D boundary (all indices are input indices).
 #[derive(Debug, Clone)]
 pub struct Boundary3 {
@@ -427,8 +458,12 @@ pub struct Boundary3 {
     pub all_on_boundary: bool,
     /// Input points not on the boundary.
     pub left_out: Vec<u32>,
-    /// Deleted tetrahedra.
+    /// Deleted tetrahedra (Delaunay and general engine together).
     pub iterations: usize,
+    /// The c of the last graph γ([-1,1],[c,1]) used (0 = Delaunay).
+    pub c_used: f64,
+    /// Triangles of γ([-1,1],[c,1]), c < 0, added by the general engine.
+    pub added_triangles: usize,
     /// The boundary is a closed 2-manifold (checked by `mesh::topology::analyze`).
     pub closed_manifold: bool,
     /// Its genus (`None` when not an orientable manifold).
@@ -436,28 +471,74 @@ pub struct Boundary3 {
     /// Pairs of boundary triangles that intersect although they must not (exact test,
     /// [`validity3::self_intersections`]; at most 10 listed). Empty for a valid boundary.
     pub intersections: Vec<(u32, u32)>,
-    /// The interior tetrahedralization.
+    /// The interior tetrahedralization (empty when the general engine ran: its implicit
+    /// tetrahedra overlap).
     pub interior: Vec<[u32; 4]>,
     /// Keep triangles (input indices) that are not boundary triangles.
     pub keep_missing: Vec<[u32; 3]>,
-    /// Enclosed volume (sum of the interior tetrahedra).
+    /// Enclosed volume.
     pub volume: f64,
 }
 
-/// Constructs a closed boundary mesh through 3D points by γ-constriction of the Delaunay
-/// tetrahedralization (V §5.3). Errors when the points are coplanar or fewer than four.
+/// Constructs a closed boundary mesh through 3D points by γ-constriction (V §5.3, with the
+/// §5.4 fallback: [`CParam::Auto`]). Errors when the points are coplanar or fewer than four.
 pub fn boundary_3d(points: &[crate::geom::Point3], until: constrict3::Until) -> Result<Boundary3> {
-    boundary_3d_keep(points, until, &[])
+    boundary_3d_with(
+        points,
+        &Options3 {
+            until,
+            ..Options3::default()
+        },
+    )
 }
 
-/// [`boundary_3d`] with keep triangles (input indices) that are never deleted (V §5.7; only
-/// Delaunay triangles can be kept — see [`constrict3::constrict_3d_keep`]). Keep triangles not
-/// on the result are listed in [`Boundary3::keep_missing`].
+/// [`boundary_3d`] with keep triangles (input indices) that are never deleted (V §5.7). Keep
+/// triangles not on the result are listed in [`Boundary3::keep_missing`]. When every keep
+/// triangle is a Delaunay face the Delaunay constriction keeps them
+/// ([`constrict3::constrict_3d_keep`]); otherwise the general engine ([`fallback3`]) constricts
+/// the Delaunay triangles plus the keep triangles from the convex hull, with V's rewiring.
+/// Errors when keep triangles are degenerate or intersect each other.
 pub fn boundary_3d_keep(
     points: &[crate::geom::Point3],
     until: constrict3::Until,
     keep: &[[u32; 3]],
 ) -> Result<Boundary3> {
+    boundary_3d_with(
+        points,
+        &Options3 {
+            until,
+            c: CParam::Auto,
+            keep: keep.to_vec(),
+        },
+    )
+}
+
+/// Up to this many vertices [`CParam::Fixed`]`(c < 0)` constricts all of γ([-1,1],[c,1])
+/// ([`crate::graphs::beyond3::beyond_dt_3d`], which tries every triple: O(N³)); above, the
+/// Delaunay triangles plus the γ-triangles at every interior vertex and pairs of its 16 nearest
+/// vertices ([`fallback3::General3::local_gamma`]).
+const BEYOND_ALL_MAX: usize = 400;
+
+/// Runs `g` and, while locked, augments it with the γ([-1,1],[c,1]) triangles at the vertices
+/// off the boundary ([`fallback3::General3::local_gamma`], their 16 nearest vertices) for
+/// c = from − 0.1, … −1. Returns the last c used.
+fn augment_until_done_3d(g: &mut fallback3::General3<'_>, from: f64) -> f64 {
+    g.run();
+    let mut c = from;
+    let mut step = 1;
+    while !g.done() && step <= 10 {
+        c = (from - step as f64 / 10.0).max(-1.0);
+        let extra = g.local_gamma(c, 16);
+        if g.augment(&extra) > 0 {
+            g.run();
+        }
+        step += 1;
+    }
+    c
+}
+
+/// [`boundary_3d`] with all options (see [`Options3`]).
+pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Result<Boundary3> {
     let d = crate::delaunay::d3::triangulate(points)?;
     if d.tets.is_empty() {
         return Err(Error::invalid(format!(
@@ -465,6 +546,18 @@ pub fn boundary_3d_keep(
             d.degenerate.as_deref().unwrap_or("degenerate input")
         )));
     }
+    let fixed_c = match opts.c {
+        CParam::Auto => None,
+        CParam::Fixed(c) => {
+            if !(-1.0..=0.0).contains(&c) {
+                return Err(Error::invalid(format!(
+                    "boundary: c = {c} is not in [-1, 0]"
+                )));
+            }
+            Some(c)
+        }
+    };
+    let keep = &opts.keep;
     let mut keep_v = Vec::with_capacity(keep.len());
     for k in keep {
         if k.iter().any(|&i| i as usize >= points.len()) {
@@ -472,16 +565,113 @@ pub fn boundary_3d_keep(
                 "boundary: keep triangle {k:?} refers to a point that does not exist"
             )));
         }
-        keep_v.push(k.map(|i| d.vertex_of_input[i as usize]));
+        let v = k.map(|i| d.vertex_of_input[i as usize]);
+        if v[0] == v[1] || v[1] == v[2] || v[0] == v[2] {
+            return Err(Error::invalid(format!(
+                "boundary: keep triangle {k:?} has two copies of one point"
+            )));
+        }
+        keep_v.push(v);
     }
-    let c = constrict3::constrict_3d_keep(&d, until, &keep_v);
-    let mesh = crate::mesh::TriMesh::new(d.points.clone(), c.triangles.clone());
-    let topo = crate::mesh::topology::analyze(&mesh);
-    let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
-    let intersections = validity3::self_intersections(&pos, &c.triangles, 10);
     let nv = d.points.len();
+    let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+    for k in &keep_v {
+        let q = k.map(|v| pos[v as usize]);
+        if validity3::degenerate(q[0], q[1], q[2]) {
+            return Err(Error::invalid(format!(
+                "boundary: keep triangle {k:?} is degenerate"
+            )));
+        }
+    }
+    if !validity3::self_intersections(&pos, &keep_v, 1).is_empty() {
+        return Err(Error::invalid(
+            "boundary: keep triangles intersect each other",
+        ));
+    }
+    // keep triangles that are not Delaunay faces need the general engine from the hull
+    let non_delaunay_keep = !keep_v.is_empty() && {
+        let faces: std::collections::HashSet<[u32; 3]> = d
+            .triangles()
+            .iter()
+            .map(|f| {
+                let mut s = f.v;
+                s.sort_unstable();
+                s
+            })
+            .collect();
+        keep_v.iter().any(|k| {
+            let mut s = *k;
+            s.sort_unstable();
+            !faces.contains(&s)
+        })
+    };
+    let faces_of = |alive: &[bool]| -> Vec<[u32; 3]> {
+        let mut out = Vec::new();
+        for (t, tet) in d.tets.iter().enumerate() {
+            if alive[t] {
+                for (fi, f) in crate::delaunay::d3::FACE_OF.iter().enumerate() {
+                    let n = d.neighbors[t][fi];
+                    let mut s = [tet[f[0]], tet[f[1]], tet[f[2]]];
+                    s.sort_unstable();
+                    // each interior face once (from the smaller tetrahedron), hull faces always
+                    if n == crate::delaunay::d3::NONE || !alive[n as usize] || (t as u32) < n {
+                        out.push(s);
+                    }
+                }
+            }
+        }
+        out
+    };
+    // (triangles, interior tets or None, c used, iterations, added)
+    let (tris, alive, c_used, iterations, added) = match fixed_c {
+        Some(c) if c < 0.0 => {
+            let cand = crate::graphs::fast::candidates_3d(&d);
+            let mut all = cand.triangles.clone();
+            let small = nv <= BEYOND_ALL_MAX;
+            if small {
+                all.extend(crate::graphs::beyond3::beyond_dt_3d(&d, &cand, c).0);
+            }
+            let mut g = fallback3::General3::new(&pos, &d.hull, &all, &keep_v);
+            if !small {
+                let extra = g.local_gamma(c, 16);
+                g.augment(&extra);
+            }
+            g.run();
+            (g.boundary(), None, c, g.iterations, g.added)
+        }
+        _ if non_delaunay_keep => {
+            // V §5.7: the keep triangles are added to the graph, constriction from the hull
+            let all = crate::graphs::fast::candidates_3d(&d).triangles;
+            let mut g = fallback3::General3::new(&pos, &d.hull, &all, &keep_v);
+            let c = match fixed_c {
+                Some(c) => {
+                    g.run();
+                    c
+                }
+                None => augment_until_done_3d(&mut g, 0.0),
+            };
+            (g.boundary(), None, c, g.iterations, g.added)
+        }
+        _ => {
+            let st = constrict3::constrict_3d_keep(&d, opts.until, &keep_v);
+            if st.boundary_vertices >= nv && keep_missing_v(&st.triangles, &keep_v).is_empty()
+                || fixed_c.is_some()
+            {
+                (st.triangles, Some(st.alive), 0.0, st.iterations, 0)
+            } else {
+                let live = faces_of(&st.alive);
+                let mut g = fallback3::General3::new(&pos, &st.triangles, &live, &keep_v);
+                let c = augment_until_done_3d(&mut g, 0.0);
+                let added = g.added;
+                (g.boundary(), None, c, st.iterations + g.iterations, added)
+            }
+        }
+    };
+    let mesh = crate::mesh::TriMesh::new(d.points.clone(), tris.clone());
+    let topo = crate::mesh::topology::analyze(&mesh);
+    let intersections = validity3::self_intersections(&pos, &tris, 10);
     let mut on = vec![false; nv];
-    for t in &c.triangles {
+    for t in &tris {
         for &v in t {
             on[v as usize] = true;
         }
@@ -491,49 +681,55 @@ pub fn boundary_3d_keep(
         .filter(|&i| !on[d.vertex_of_input[i] as usize])
         .map(|i| i as u32)
         .collect();
-    let mut volume = 0.0;
     let mut interior = Vec::new();
-    for (t, tet) in d.tets.iter().enumerate() {
-        if c.alive[t] {
-            let q = |k: usize| d.points[tet[k] as usize];
-            let (a, b, cc, dd) = (q(0), q(1), q(2), q(3));
-            volume += ((b - a).cross(&(cc - a)).dot(&(dd - a))).abs() / 6.0;
-            interior.push([inp(tet[0]), inp(tet[1]), inp(tet[2]), inp(tet[3])]);
+    if let Some(alive) = &alive {
+        for (t, tet) in d.tets.iter().enumerate() {
+            if alive[t] {
+                interior.push(tet.map(inp));
+            }
         }
     }
+    let missing = keep_missing_v(&tris, &keep_v);
     Ok(Boundary3 {
-        triangles: c
-            .triangles
-            .iter()
-            .map(|t| [inp(t[0]), inp(t[1]), inp(t[2])])
-            .collect(),
+        triangles: tris.iter().map(|t| t.map(inp)).collect(),
         all_on_boundary: left_out.is_empty(),
         left_out,
-        iterations: c.iterations,
+        iterations,
+        c_used,
+        added_triangles: added,
         closed_manifold: topo.is_closed() && topo.manifold && topo.parts.len() == 1,
         genus: topo.genus(),
         intersections,
-        keep_missing: {
-            let on: std::collections::HashSet<[u32; 3]> = c
-                .triangles
-                .iter()
-                .map(|t| {
-                    let mut s = *t;
-                    s.sort_unstable();
-                    s
-                })
-                .collect();
-            keep.iter()
-                .zip(&keep_v)
-                .filter(|(_, v)| {
-                    let mut s = **v;
-                    s.sort_unstable();
-                    !on.contains(&s)
-                })
-                .map(|(k, _)| *k)
-                .collect()
-        },
+        keep_missing: keep
+            .iter()
+            .zip(&keep_v)
+            .filter(|(_, v)| missing.contains(v))
+            .map(|(k, _)| *k)
+            .collect(),
         interior,
-        volume,
+        volume: mesh.signed_volume(),
     })
+}
+
+/// The keep triangles (vertex indices) that are not among `tris`.
+fn keep_missing_v(tris: &[[u32; 3]], keep: &[[u32; 3]]) -> Vec<[u32; 3]> {
+    if keep.is_empty() {
+        return Vec::new();
+    }
+    let on: std::collections::HashSet<[u32; 3]> = tris
+        .iter()
+        .map(|t| {
+            let mut s = *t;
+            s.sort_unstable();
+            s
+        })
+        .collect();
+    keep.iter()
+        .filter(|v| {
+            let mut s = **v;
+            s.sort_unstable();
+            !on.contains(&s)
+        })
+        .copied()
+        .collect()
 }

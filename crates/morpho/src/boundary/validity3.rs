@@ -10,14 +10,16 @@
 //!   projection);
 //! - pairs with one common vertex v: the edge opposite v of each must not meet the other
 //!   triangle, and for coplanar pairs the projected triangles must not overlap beyond v;
-//! - pairs with a common edge are not tested (a fold along a shared edge; the constriction,
-//!   whose faces are faces of one tetrahedralization, cannot create it).
+//! - pairs with a common edge ab (triangles abc, abd): they meet beyond the edge iff they are
+//!   coplanar (`orient3d(a, b, c, d) == 0`) and c, d lie on the same side of line ab in that
+//!   plane (exact `orient2d` in a non-degenerate axis projection) — a fold onto itself — or one
+//!   of them is degenerate (c or d on line ab);
+//! - the same triangle twice (three common vertices) always counts as an intersection.
 //!
 //! Expected O(n) for meshes of evenly sized triangles, O(n²) worst case.
 
 use super::validity::segments_intersect;
 use crate::geom::predicates::raw::{orient2d, orient3d};
-use std::collections::HashMap;
 
 type P = [f64; 3];
 
@@ -32,6 +34,11 @@ fn proj(p: P, axis: usize) -> [f64; 2] {
 /// An axis whose projection keeps triangle abc non-degenerate (exact), if any.
 fn good_axis(a: P, b: P, c: P) -> Option<usize> {
     (0..3).find(|&ax| orient2d(proj(a, ax), proj(b, ax), proj(c, ax)) != 0.0)
+}
+
+/// Triangle abc is degenerate (its corners are collinear; exact).
+pub fn degenerate(a: P, b: P, c: P) -> bool {
+    good_axis(a, b, c).is_none()
 }
 
 fn point_in_tri2(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
@@ -77,11 +84,11 @@ pub fn segment_meets_triangle(p: P, q: P, a: P, b: P, c: P) -> bool {
 
 /// Closed triangles t and u (no common vertex) intersect (exact).
 pub fn triangles_intersect(t: [P; 3], u: [P; 3]) -> bool {
-    let su: Vec<f64> = u.iter().map(|&x| orient3d(t[0], t[1], t[2], x)).collect();
+    let su: [f64; 3] = u.map(|x| orient3d(t[0], t[1], t[2], x));
     if su.iter().all(|&s| s > 0.0) || su.iter().all(|&s| s < 0.0) {
         return false;
     }
-    let st: Vec<f64> = t.iter().map(|&x| orient3d(u[0], u[1], u[2], x)).collect();
+    let st: [f64; 3] = t.map(|x| orient3d(u[0], u[1], u[2], x));
     if st.iter().all(|&s| s > 0.0) || st.iter().all(|&s| s < 0.0) {
         return false;
     }
@@ -96,7 +103,7 @@ pub fn triangles_intersect(t: [P; 3], u: [P; 3]) -> bool {
 }
 
 /// Triangles t, u sharing exactly the vertex at positions (it, iu) meet elsewhere (exact).
-fn meet_beyond_vertex(t: [P; 3], it: usize, u: [P; 3], iu: usize) -> bool {
+pub fn meet_beyond_vertex(t: [P; 3], it: usize, u: [P; 3], iu: usize) -> bool {
     let (t1, t2) = (t[(it + 1) % 3], t[(it + 2) % 3]);
     let (u1, u2) = (u[(iu + 1) % 3], u[(iu + 2) % 3]);
     if segment_meets_triangle(t1, t2, u[0], u[1], u[2])
@@ -129,6 +136,23 @@ fn meet_beyond_vertex(t: [P; 3], it: usize, u: [P; 3], iu: usize) -> bool {
     };
     // (a wedge containing the other has the other's edges inside it)
     inside(c, a, b) || inside(d, a, b) || inside(a, c, d) || inside(b, c, d)
+}
+
+/// Triangles abc and abd (common edge ab, positions given) meet beyond the edge (exact; see
+/// the module documentation).
+pub fn meet_beyond_edge(a: P, b: P, c: P, d: P) -> bool {
+    if orient3d(a, b, c, d) != 0.0 {
+        return false;
+    }
+    // coplanar: project along an axis that keeps one of the two triangles non-degenerate
+    let Some(ax) = good_axis(a, b, c).or_else(|| good_axis(a, b, d)) else {
+        return true; // both degenerate (a, b, c, d collinear)
+    };
+    let (a2, b2) = (proj(a, ax), proj(b, ax));
+    let sc = orient2d(a2, b2, proj(c, ax));
+    let sd = orient2d(a2, b2, proj(d, ax));
+    // in the plane, the projection preserves sidedness of ab (the plane is not parallel to ax)
+    sc == 0.0 || sd == 0.0 || (sc > 0.0) == (sd > 0.0)
 }
 
 /// Pairs of triangles (indices into `tris`) that intersect although they must not (see the
@@ -169,7 +193,7 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
         cell = 1.0;
     }
     let cidx = |x: f64, k: usize| ((x - lo[k]) / cell).floor().max(0.0) as u64;
-    let mut grid: HashMap<(u64, u64, u64), Vec<u32>> = HashMap::new();
+    let mut grid: super::constrict3::IdMap<(u64, u64, u64), Vec<u32>> = Default::default();
     let bbox = |t: &[u32; 3]| -> ([f64; 3], [f64; 3]) {
         let q = t.map(|v| pos[v as usize]);
         (
@@ -201,50 +225,130 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
         let ((al, ah), (bl, bh)) = (boxes[a as usize], boxes[b as usize]);
         (0..3).all(|k| al[k] <= bh[k] && bl[k] <= ah[k])
     };
+    let bad = |a: u32, b: u32| pair_meets(pos, tris[a as usize], tris[b as usize]);
     let mut pairs: Vec<(u32, u32)> = Vec::new();
-    for ids in grid.values() {
+    let mut bad_pairs: Vec<(u32, u32)> = Vec::new();
+    for (&cell, ids) in &grid {
         for (a_i, &a) in ids.iter().enumerate() {
             for &b in &ids[a_i + 1..] {
-                if overlap(a, b) {
-                    pairs.push((a.min(b), a.max(b)));
+                if !overlap(a, b) {
+                    continue;
+                }
+                // each pair once: in the cell of the low corner of the boxes' intersection
+                let ((al, _), (bl, _)) = (boxes[a as usize], boxes[b as usize]);
+                let own = (
+                    cidx(al[0].max(bl[0]), 0),
+                    cidx(al[1].max(bl[1]), 1),
+                    cidx(al[2].max(bl[2]), 2),
+                );
+                if own == cell && bad(a, b) {
+                    bad_pairs.push((a.min(b), a.max(b)));
                 }
             }
         }
     }
-    let is_big: std::collections::HashSet<u32> = big.iter().copied().collect();
-    for &a in &big {
-        for b in 0..tris.len() as u32 {
-            if b == a || (is_big.contains(&b) && b < a) {
-                continue;
-            }
+    // big triangles: against each other by boxes, against the grid through the cells their
+    // plane passes (floating-point culling with a generous margin; the exact test decides)
+    for (i, &a) in big.iter().enumerate() {
+        for &b in &big[i + 1..] {
             if overlap(a, b) {
                 pairs.push((a.min(b), a.max(b)));
             }
         }
     }
+    for &a in &big {
+        let q = tris[a as usize].map(|v| pos[v as usize]);
+        let e1 = [q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2]];
+        let e2 = [q[2][0] - q[0][0], q[2][1] - q[0][1], q[2][2] - q[0][2]];
+        let n = [
+            e1[1] * e2[2] - e1[2] * e2[1],
+            e1[2] * e2[0] - e1[0] * e2[2],
+            e1[0] * e2[1] - e1[1] * e2[0],
+        ];
+        // dominant axis w: the plane is a function of the two other coordinates
+        let w = (0..3)
+            .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+            .unwrap_or(2);
+        let (u, v) = ((w + 1) % 3, (w + 2) % 3);
+        let (bl, bh) = boxes[a as usize];
+        let mn: [u64; 3] = std::array::from_fn(|k| cidx(bl[k], k));
+        let mx: [u64; 3] = std::array::from_fn(|k| cidx(bh[k], k));
+        let nw = n[w];
+        let slope = if nw != 0.0 {
+            (n[u].abs() + n[v].abs()) / nw.abs()
+        } else {
+            f64::INFINITY
+        };
+        let margin = 1e-9 * (0..3).map(|k| ext[k].abs()).sum::<f64>() + cell * 1e-6;
+        let mut cand: Vec<u32> = Vec::new();
+        for cu in mn[u]..=mx[u] {
+            for cv in mn[v]..=mx[v] {
+                // w-range of the plane over this column (cell centre ± half extent · slope)
+                let (wlo, whi) = if slope.is_finite() {
+                    let xu = lo[u] + (cu as f64 + 0.5) * cell;
+                    let xv = lo[v] + (cv as f64 + 0.5) * cell;
+                    let wc = q[0][w] - (n[u] * (xu - q[0][u]) + n[v] * (xv - q[0][v])) / nw;
+                    let half = 0.5 * cell * slope + margin;
+                    (
+                        cidx((wc - half).max(bl[w]), w).max(mn[w]),
+                        cidx((wc + half).min(bh[w]), w).min(mx[w]),
+                    )
+                } else {
+                    (mn[w], mx[w])
+                };
+                for cw in wlo..=whi {
+                    let mut key = [0u64; 3];
+                    key[u] = cu;
+                    key[v] = cv;
+                    key[w] = cw;
+                    if let Some(ids) = grid.get(&(key[0], key[1], key[2])) {
+                        cand.extend(ids.iter().copied().filter(|&b| overlap(a, b)));
+                    }
+                }
+            }
+        }
+        cand.sort_unstable();
+        cand.dedup();
+        pairs.extend(cand.into_iter().map(|b| (a.min(b), a.max(b))));
+    }
     pairs.sort_unstable();
     pairs.dedup();
     for (a, b) in pairs {
-        let (ta, tb) = (tris[a as usize], tris[b as usize]);
-        let shared: Vec<(usize, usize)> = (0..3)
-            .flat_map(|i| (0..3).map(move |j| (i, j)))
-            .filter(|&(i, j)| ta[i] == tb[j])
-            .collect();
-        let (pa, pb) = (ta.map(|v| pos[v as usize]), tb.map(|v| pos[v as usize]));
-        let bad = match shared.len() {
-            0 => triangles_intersect(pa, pb),
-            1 => meet_beyond_vertex(pa, shared[0].0, pb, shared[0].1),
-            _ => false,
-        };
-        if bad {
-            out.push((a, b));
-            if out.len() >= limit {
-                return out;
+        if bad(a, b) {
+            bad_pairs.push((a, b));
+        }
+    }
+    bad_pairs.sort_unstable();
+    bad_pairs.dedup();
+    bad_pairs.truncate(limit);
+    out.extend(bad_pairs);
+    out
+}
+
+/// The exact test of one pair by its number of common vertices (see the module documentation).
+fn pair_meets(pos: &[P], ta: [u32; 3], tb: [u32; 3]) -> bool {
+    let mut shared = [(0usize, 0usize); 3];
+    let mut ns = 0;
+    for i in 0..3 {
+        for j in 0..3 {
+            if ta[i] == tb[j] && ns < 3 {
+                shared[ns] = (i, j);
+                ns += 1;
             }
         }
     }
-    out.sort_unstable();
-    out
+    let (pa, pb) = (ta.map(|v| pos[v as usize]), tb.map(|v| pos[v as usize]));
+    match ns {
+        0 => triangles_intersect(pa, pb),
+        1 => meet_beyond_vertex(pa, shared[0].0, pb, shared[0].1),
+        2 => {
+            let (i0, i1) = (shared[0].0, shared[1].0);
+            let (j0, j1) = (shared[0].1, shared[1].1);
+            let (c, d) = (3 - i0 - i1, 3 - j0 - j1);
+            meet_beyond_edge(pa[i0], pa[i1], pa[c], pb[d])
+        }
+        _ => true,
+    }
 }
 
 #[cfg(test)]
@@ -292,5 +396,149 @@ mod tests {
             [1.0, 2.0, 0.0],
         ];
         assert!(!self_intersections(&pos3, &[[0, 1, 2], [0, 3, 4]], 10).is_empty());
+    }
+
+    /// Brute-force oracle for triangles abc, abd with a common edge on integer points: they
+    /// meet beyond ab iff abd is degenerate or the point m + (c − m)/K (m the midpoint of ab,
+    /// K large) lies in the closed triangle abd — near m, abc and abd are half-discs (i128
+    /// arithmetic, no predicates).
+    fn fold_oracle(a: [i64; 3], b: [i64; 3], c: [i64; 3], d: [i64; 3]) -> bool {
+        let k: i128 = 1_000_000;
+        let s = |x: [i64; 3]| x.map(|v| 2 * k * v as i128);
+        let (aa, bb, dd) = (s(a), s(b), s(d));
+        let p: [i128; 3] =
+            std::array::from_fn(|i| (k - 1) * (a[i] as i128 + b[i] as i128) + 2 * c[i] as i128);
+        let sub = |x: [i128; 3], y: [i128; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+        let cr = |x: [i128; 3], y: [i128; 3]| {
+            [
+                x[1] * y[2] - x[2] * y[1],
+                x[2] * y[0] - x[0] * y[2],
+                x[0] * y[1] - x[1] * y[0],
+            ]
+        };
+        let dt = |x: [i128; 3], y: [i128; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+        let deg = |x: [i64; 3], y: [i64; 3], z: [i64; 3]| {
+            let w = |v: [i64; 3]| v.map(|q| q as i128);
+            cr(sub(w(y), w(x)), sub(w(z), w(x))) == [0, 0, 0]
+        };
+        if deg(a, b, c) || deg(a, b, d) {
+            return true;
+        }
+        let n = cr(sub(bb, aa), sub(dd, aa));
+        if dt(n, sub(p, aa)) != 0 {
+            return false;
+        }
+        [(aa, bb), (bb, dd), (dd, aa)]
+            .iter()
+            .all(|&(u, v)| dt(cr(sub(v, u), sub(p, u)), n) >= 0)
+    }
+
+    #[test]
+    fn folds_along_a_common_edge() {
+        let f = |v: [f64; 3]| v;
+        let (a, b) = (f([0.0, 0.0, 0.0]), f([2.0, 0.0, 0.0]));
+        // coplanar, same side: a fold onto itself
+        assert!(meet_beyond_edge(a, b, [1.0, 1.0, 0.0], [0.5, 3.0, 0.0]));
+        // coplanar, opposite sides: a flat pair of neighbours
+        assert!(!meet_beyond_edge(a, b, [1.0, 1.0, 0.0], [0.5, -3.0, 0.0]));
+        // different planes
+        assert!(!meet_beyond_edge(a, b, [1.0, 1.0, 0.0], [1.0, 1.0, 1e-300]));
+        // degenerate second triangle
+        assert!(meet_beyond_edge(a, b, [1.0, 1.0, 0.0], [5.0, 0.0, 0.0]));
+        // through self_intersections: a closed tetrahedron surface plus a folded flap
+        let pos = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.3, 0.3, 0.0],
+        ];
+        let tris = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        assert!(self_intersections(&pos, &tris, 10).is_empty());
+        let mut t2 = tris.to_vec();
+        t2.push([0, 1, 4]); // lies inside face 0 2 1, common edge 0 1
+        assert_eq!(self_intersections(&pos, &t2, 10), vec![(0, 4)]);
+        // the same triangle twice
+        let mut t3 = tris.to_vec();
+        t3.push([1, 2, 3]);
+        assert_eq!(self_intersections(&pos, &t3, 10), vec![(2, 4)]);
+    }
+
+    #[test]
+    fn common_edge_test_matches_the_oracle() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(21);
+        let (mut hits, mut coplanar) = (0, 0);
+        for it in 0..4000 {
+            // points of a small integer plane mapped into 3D by an integer matrix, or free
+            let m: [[i64; 3]; 3] =
+                std::array::from_fn(|_| std::array::from_fn(|_| rng.gen_range(-3..=3)));
+            let plane = it % 4 != 0;
+            let pt = |rng: &mut rand_chacha::ChaCha8Rng| -> [i64; 3] {
+                let (u, v, w) = (
+                    rng.gen_range(-4..=4),
+                    rng.gen_range(-4..=4),
+                    if plane { 0 } else { rng.gen_range(-4..=4) },
+                );
+                std::array::from_fn(|i| m[i][0] * u + m[i][1] * v + m[i][2] * w)
+            };
+            let (a, b, c, d) = (pt(&mut rng), pt(&mut rng), pt(&mut rng), pt(&mut rng));
+            if a == b {
+                continue;
+            }
+            let fl = |x: [i64; 3]| x.map(|q| q as f64);
+            let got = meet_beyond_edge(fl(a), fl(b), fl(c), fl(d));
+            assert_eq!(got, fold_oracle(a, b, c, d), "{a:?} {b:?} {c:?} {d:?}");
+            hits += got as usize;
+            coplanar += (orient3d(fl(a), fl(b), fl(c), fl(d)) == 0.0) as usize;
+        }
+        assert!(hits > 200 && coplanar > 1000, "{hits} {coplanar}");
+    }
+
+    #[test]
+    fn big_triangles_are_tested_through_the_cells_of_their_plane() {
+        // a fine flat grid mesh on z = 0 and big triangles spanning it
+        let m = 60;
+        let mut pos: Vec<P> = Vec::new();
+        for j in 0..=m {
+            for i in 0..=m {
+                pos.push([i as f64 / m as f64, j as f64 / m as f64, 0.0]);
+            }
+        }
+        let id = |i: usize, j: usize| (j * (m + 1) + i) as u32;
+        let mut tris = Vec::new();
+        for j in 0..m {
+            for i in 0..m {
+                tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        let n0 = pos.len() as u32;
+        // vertical, slanted big triangle piercing the sheet along a segment
+        pos.extend([[0.013, 0.021, -1.0], [0.977, 0.963, -1.0], [0.5, 0.4, 1.0]]);
+        // a big one parallel above it, and a big one crossing the first
+        pos.extend([[0.0, 0.0, 0.5], [1.0, 0.0, 0.5], [0.0, 1.0, 0.5]]);
+        let nt = tris.len() as u32;
+        tris.push([n0, n0 + 1, n0 + 2]);
+        tris.push([n0 + 3, n0 + 4, n0 + 5]);
+        let found = self_intersections(&pos, &tris, usize::MAX);
+        // brute force over every pair involving the two big triangles
+        let mut expect = Vec::new();
+        for big in [nt, nt + 1] {
+            let pb = tris[big as usize].map(|v| pos[v as usize]);
+            for (k, t) in tris.iter().enumerate() {
+                let k = k as u32;
+                if k == big || (k > nt + 1) || (k == nt && big == nt + 1) {
+                    continue;
+                }
+                if triangles_intersect(t.map(|v| pos[v as usize]), pb) {
+                    expect.push((k.min(big), k.max(big)));
+                }
+            }
+        }
+        expect.sort_unstable();
+        expect.dedup();
+        assert!(expect.len() >= 40, "{}", expect.len());
+        assert_eq!(found, expect);
     }
 }

@@ -1,0 +1,145 @@
+//! 3D boundary timing against the 3D Delaunay tetrahedralization (issue 5: "3D, 100k points of
+//! a scan: total time within 5× of the 3D Delaunay time; report memory").
+//!
+//! Sets: the horse's 48 485 vertices, 100 000 points sampled uniformly on the horse's surface
+//! (area-weighted triangles, uniform barycentric coordinates, seed 1), and the Stanford bunny's
+//! 34 834 used vertices. For each: Delaunay time, the boundary_3d phases (Delaunay inside it,
+//! constriction, fallback, checks), the ratio boundary/Delaunay, the result's validity and the
+//! peak resident memory (VmHWM, process-wide, so printed after each set in order).
+//!
+//! `cargo run --release -p morpho --example bench_boundary3d [horse|horse100k|bunny ...]`
+//!
+//! Measured 2026-11-23 (release, 2 cores shared with other jobs, so ±50 %):
+//! - bunny 34 834: Delaunay 0.21 s; constriction 0.21 s (10 points locked), exact
+//!   self-intersection check 0.52 s; boundary_3d total 5.40 s = 26× Delaunay, of which ≈ 4.5 s
+//!   is the fallback (285 γ-triangles added, c down to −1); 0 points left out, closed, genus 0,
+//!   no intersections; VmHWM 63 MB.
+//! - horse 48 485: Delaunay 0.36 s; constriction 0.34 s (34 locked), check 1.21 s; total
+//!   10.8 s = 30× (fallback ≈ 9 s, 785 triangles added); 0 left out, valid; VmHWM 103 MB.
+//! - horse, 100 000 surface samples: Delaunay 0.73 s; constriction 0.76 s (220 locked), check
+//!   4.84 s; total 59.7 s = 82× (fallback ≈ 52 s, 6206 triangles added, c down to −1); 0 left
+//!   out, closed, genus 0, no intersections; VmHWM 214 MB (50 MB after the Delaunay alone).
+//!
+//! Without a fallback the ratio is ≈ 4.5× (Delaunay + constriction + check + topology).
+
+use morpho::boundary::constrict3::{constrict_3d, Until};
+use morpho::boundary::{boundary_3d, validity3};
+use morpho::geom::Point3;
+use rand::{Rng, SeedableRng};
+use std::time::Instant;
+
+fn data_dir() -> Option<std::path::PathBuf> {
+    for d in [
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"),
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data"),
+    ] {
+        let p = std::path::PathBuf::from(d);
+        if p.is_dir() {
+            return Some(p);
+        }
+    }
+    None
+}
+
+fn vm_hwm_mb() -> f64 {
+    let s = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    s.lines()
+        .find(|l| l.starts_with("VmHWM:"))
+        .and_then(|l| l.split_whitespace().nth(1))
+        .and_then(|k| k.parse::<f64>().ok())
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}
+
+fn used_vertices(m: &morpho::mesh::TriMesh) -> Vec<Point3> {
+    let mut used = vec![false; m.positions.len()];
+    for t in &m.triangles {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    m.positions
+        .iter()
+        .zip(&used)
+        .filter(|(_, &u)| u)
+        .map(|(p, _)| *p)
+        .collect()
+}
+
+/// `n` points uniformly distributed on the mesh surface (deterministic).
+fn sample_surface(m: &morpho::mesh::TriMesh, n: usize, seed: u64) -> Vec<Point3> {
+    let mut cum = Vec::with_capacity(m.triangles.len());
+    let mut total = 0.0;
+    for t in &m.triangles {
+        let [a, b, c] = t.map(|v| m.positions[v as usize]);
+        total += 0.5 * (b - a).cross(&(c - a)).norm();
+        cum.push(total);
+    }
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    (0..n)
+        .map(|_| {
+            let x = rng.gen_range(0.0..total);
+            let k = cum.partition_point(|&c| c < x).min(cum.len() - 1);
+            let [a, b, c] = m.triangles[k].map(|v| m.positions[v as usize]);
+            let (mut u, mut v): (f64, f64) = (rng.gen_range(0.0..1.0), rng.gen_range(0.0..1.0));
+            if u + v > 1.0 {
+                (u, v) = (1.0 - u, 1.0 - v);
+            }
+            a + (b - a) * u + (c - a) * v
+        })
+        .collect()
+}
+
+fn run(name: &str, pts: &[Point3]) {
+    let t = Instant::now();
+    let d = morpho::delaunay::d3::triangulate(pts).expect("triangulate");
+    let t_dt = t.elapsed().as_secs_f64();
+    let mem_dt = vm_hwm_mb();
+    let t = Instant::now();
+    let c = constrict_3d(&d, Until::All);
+    let t_con = t.elapsed().as_secs_f64();
+    let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+    let t = Instant::now();
+    let _ = validity3::self_intersections(&pos, &c.triangles, 10);
+    let t_si = t.elapsed().as_secs_f64();
+    drop(d);
+    let t = Instant::now();
+    let b = boundary_3d(pts, Until::All).expect("boundary");
+    let t_all = t.elapsed().as_secs_f64();
+    println!(
+        "{name}: {} points | delaunay {t_dt:.2} s | phases: constriction {t_con:.2} s ({} removals, {} left by Delaunay constriction), self-intersection check {t_si:.2} s | boundary_3d total {t_all:.2} s = {:.2}× delaunay | left out {}, c_used {}, added {}, closed {}, genus {:?}, intersections {} | VmHWM after delaunay {mem_dt:.0} MB, after boundary {:.0} MB",
+        pts.len(),
+        c.iterations,
+        pts.len() - c.boundary_vertices.min(pts.len()),
+        t_all / t_dt,
+        b.left_out.len(),
+        b.c_used,
+        b.added_triangles,
+        b.closed_manifold,
+        b.genus,
+        b.intersections.len(),
+        vm_hwm_mb()
+    );
+}
+
+fn main() {
+    let Some(dir) = data_dir() else {
+        eprintln!("shared data not found");
+        return;
+    };
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let want = |s: &str| args.is_empty() || args.iter().any(|a| a == s);
+    let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
+    if want("horse") {
+        run("horse vertices", &used_vertices(&horse));
+    }
+    if want("horse100k") {
+        run(
+            "horse 100k surface samples",
+            &sample_surface(&horse, 100_000, 1),
+        );
+    }
+    if want("bunny") {
+        let m = morpho::io::read_mesh(&dir.join("meshes/stanford-bunny.obj.gz")).expect("bunny");
+        run("stanford bunny vertices", &used_vertices(&m));
+    }
+}

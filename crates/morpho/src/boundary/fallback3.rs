@@ -1,0 +1,1221 @@
+//! 3D constriction of a general pruned γ-graph (Veltkamp 1992, §5.4 last paragraphs: 3D
+//! γ([-1,1],[c,1]) with c < 0 by adaptive augmentation; §5.3 removability; §5.5 heap; §5.7
+//! constraints), the fallback of [`super::constrict3`] when the Delaunay constriction locks.
+//!
+//! # State
+//! A set of live triangles (the pruned graph; tetrahedra are implicit: four live triangles on
+//! four vertices) and a closed boundary surface made of live triangles, oriented outward
+//! (`bface`, with a directed-edge map). Invariant: every live triangle lies in the closed region
+//! bounded by the surface, and every vertex lies in it (no vertex is ever cut off).
+//!
+//! # Removal (V §5.3 conditions, §5.4 deletion of crossing triangles)
+//! A tetrahedron Q = abcl with boundary face abc (l strictly on its inner side, all four faces
+//! live, Q not flat) is removable iff
+//! - it has **one** boundary face and l is not a boundary vertex, or **two** boundary faces and
+//!   the edge joining the two vertices opposite them is not a boundary edge (never three or
+//!   four) — exactly V's conditions, which keep the surface a closed 2-manifold of genus 0;
+//! - the closed Q contains no other vertex (exact `orient3d`);
+//! - its new boundary faces meet no other boundary triangle except in common vertices/edges
+//!   (exact tests of [`super::validity3`]; a safety net — the invariant already implies it);
+//! - no keep triangle is a boundary face of Q or crosses its interior (V §5.7).
+//!
+//! Its key is the sum of the γ-indicators of its boundary faces w.r.t. the opposite vertices
+//! ([`super::constrict3::gamma_indicator_3d`], Def. 5.2). Removing Q deletes its boundary faces
+//! and **every live triangle meeting the open Q** (V §5.4). That test is conservative and exact:
+//! a triangle is kept only when a separating plane is proven — for a triangle sharing a vertex
+//! a with Q, the planes through a spanned by two other corners (complete for two cones with a
+//! common apex; only `orient3d`); otherwise the face planes of Q, the triangle's plane, and the
+//! edge–edge planes of the separating-axis theorem evaluated in floating point with an error
+//! filter (a doubtful sign counts as "meets"). Deleting too much only removes choices; it never
+//! breaks the invariant.
+//!
+//! # Heap (V §5.5)
+//! One entry per boundary face with its best (smallest-key) removable tetrahedron; a popped
+//! entry is re-checked and, when stale, recomputed. When the heap runs empty all boundary faces
+//! are examined again, so "locked" means nothing is removable.
+//!
+//! # Adaptive augmentation (V §5.4)
+//! [`General3::augment`] adds triangles (of γ([-1,1],[c,1]), c < 0) that are certified to lie in
+//! the region: they meet no boundary triangle except in common vertices/edges (exact), and have
+//! a vertex not on the boundary, or a boundary edge from which they go inward (m strictly inside
+//! the interior dihedral wedge of the two boundary faces there; exact `orient3d`). Such a
+//! triangle is connected, starts inside and never crosses the surface, so it lies in the closed
+//! region.
+//!
+//! # Constraints (V §5.7)
+//! Keep triangles are live from the start (added to the graph like V's F) and never deleted: a
+//! keep boundary face is never removable, and a tetrahedron whose interior a keep triangle
+//! meets is not removed. V's 3D rewiring: when keep triangle x y m blocks a tetrahedron on
+//! boundary face x y z, the triangles z x m and z y m are inserted (where they can be certified
+//! inside, as for augmentation), so that x y z m becomes a boundary tetrahedron whose removal
+//! brings x y m to the boundary. The constriction may still lock with a keep triangle off the
+//! boundary (V: "a constrained constriction may get locked"); the caller reports it.
+//!
+//! # Complexity
+//! Removal: O(k log n) with k the live triangles and vertices near Q (uniform hash grids over
+//! bounding boxes; triangles spanning more than 512 cells are kept in a list tested always).
+//! Worst case O(T²) for T triangles.
+//!
+//! Preconditions: the initial surface is a closed genus-0 2-manifold enclosing every vertex and
+//! every given triangle (as produced by [`super::constrict3`] or the convex hull).
+
+use super::constrict3::gamma_indicator_3d;
+use super::constrict3::{IdMap, IdSet};
+use super::validity3::{meet_beyond_edge, meet_beyond_vertex, triangles_intersect};
+use crate::geom::predicates::raw::orient3d;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+type P = [f64; 3];
+
+fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
+    f.sort_unstable();
+    f
+}
+
+fn ek(a: u32, b: u32) -> u64 {
+    let (a, b) = if a < b { (a, b) } else { (b, a) };
+    ((a as u64) << 32) | b as u64
+}
+
+fn dk(a: u32, b: u32) -> u64 {
+    ((a as u64) << 32) | b as u64
+}
+
+/// The four outward faces of tetrahedron (a, b, c, d) when (a, b, c) is outward (d on the inner
+/// side), each with its opposite vertex.
+fn tet_faces(a: u32, b: u32, c: u32, d: u32) -> [([u32; 3], u32); 4] {
+    [
+        ([a, b, c], d),
+        ([b, a, d], c),
+        ([c, b, d], a),
+        ([a, c, d], b),
+    ]
+}
+
+fn circumradius(a: P, b: P, c: P, d: P) -> f64 {
+    let s = |x: P| [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
+    let (u, v, w) = (s(b), s(c), s(d));
+    let cr = |x: P, y: P| {
+        [
+            x[1] * y[2] - x[2] * y[1],
+            x[2] * y[0] - x[0] * y[2],
+            x[0] * y[1] - x[1] * y[0],
+        ]
+    };
+    let dt = |x: P, y: P| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    let det = dt(u, cr(v, w));
+    if det == 0.0 {
+        return f64::INFINITY;
+    }
+    let (vw, wu, uv) = (cr(v, w), cr(w, u), cr(u, v));
+    let (uu, vv, ww) = (dt(u, u), dt(v, v), dt(w, w));
+    let x: P = std::array::from_fn(|k| (uu * vw[k] + vv * wu[k] + ww * uv[k]) / (2.0 * det));
+    dt(x, x).sqrt()
+}
+
+/// Uniform hash grid of ids by bounding box.
+struct Grid {
+    lo: P,
+    cell: f64,
+    cells: IdMap<(i64, i64, i64), Vec<u32>>,
+    big: Vec<u32>,
+    /// Ids may sit in several cells (boxes, not points): queries deduplicate.
+    multi: bool,
+}
+
+impl Grid {
+    fn new(lo: P, cell: f64, multi: bool) -> Self {
+        Grid {
+            lo,
+            cell: if cell > 0.0 && cell.is_finite() {
+                cell
+            } else {
+                1.0
+            },
+            cells: IdMap::default(),
+            big: Vec::new(),
+            multi,
+        }
+    }
+    fn range(&self, lo: P, hi: P) -> ([i64; 3], [i64; 3]) {
+        let c = |x: f64, k: usize| ((x - self.lo[k]) / self.cell).floor() as i64;
+        (
+            std::array::from_fn(|k| c(lo[k], k)),
+            std::array::from_fn(|k| c(hi[k], k)),
+        )
+    }
+    fn insert(&mut self, id: u32, lo: P, hi: P) {
+        let (a, b) = self.range(lo, hi);
+        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
+        if span > 512 {
+            self.big.push(id);
+            return;
+        }
+        for x in a[0]..=b[0] {
+            for y in a[1]..=b[1] {
+                for z in a[2]..=b[2] {
+                    self.cells.entry((x, y, z)).or_default().push(id);
+                }
+            }
+        }
+    }
+    /// Ids whose cells meet the box (with repetitions; big ones always).
+    fn query(&self, lo: P, hi: P, out: &mut Vec<u32>) {
+        out.clear();
+        out.extend_from_slice(&self.big);
+        let (a, b) = self.range(lo, hi);
+        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
+        if span as usize > self.cells.len() {
+            for (key, ids) in &self.cells {
+                if (a[0]..=b[0]).contains(&key.0)
+                    && (a[1]..=b[1]).contains(&key.1)
+                    && (a[2]..=b[2]).contains(&key.2)
+                {
+                    out.extend_from_slice(ids);
+                }
+            }
+        } else {
+            for x in a[0]..=b[0] {
+                for y in a[1]..=b[1] {
+                    for z in a[2]..=b[2] {
+                        if let Some(ids) = self.cells.get(&(x, y, z)) {
+                            out.extend_from_slice(ids);
+                        }
+                    }
+                }
+            }
+        }
+        if self.multi {
+            out.sort_unstable();
+            out.dedup();
+        }
+    }
+}
+
+fn bbox(ps: &[P]) -> (P, P) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for q in ps {
+        for k in 0..3 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+    }
+    (lo, hi)
+}
+
+fn boxes_meet(a: (P, P), b: (P, P)) -> bool {
+    (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
+}
+
+/// Sign of det[x − y, e, f] (e, f edge vectors as differences of doubles), or `None` when the
+/// floating-point value is not certified.
+fn sat_sign(x: P, y: P, e: (P, P), f: (P, P)) -> Option<i32> {
+    let d = |p: P, q: P| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+    let (u, v, w) = (d(x, y), d(e.1, e.0), d(f.1, f.0));
+    let t = [
+        u[0] * (v[1] * w[2] - v[2] * w[1]),
+        u[1] * (v[2] * w[0] - v[0] * w[2]),
+        u[2] * (v[0] * w[1] - v[1] * w[0]),
+    ];
+    let val = t[0] + t[1] + t[2];
+    let mag = (0..3)
+        .map(|k| {
+            let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
+            u[k].abs() * ((v[k1] * w[k2]).abs() + (v[k2] * w[k1]).abs())
+        })
+        .sum::<f64>();
+    let bound = 16.0 * f64::EPSILON * mag;
+    if !val.is_finite() || !mag.is_finite() {
+        None
+    } else if val > bound {
+        Some(1)
+    } else if val < -bound {
+        Some(-1)
+    } else if mag == 0.0 {
+        Some(0)
+    } else {
+        None
+    }
+}
+
+/// Conservative exact test: may closed triangle `t` meet the open tetrahedron `q`? `false` only
+/// when a separating plane is proven (see the module documentation).
+pub fn may_meet_open_tet(t: [P; 3], tv: [u32; 3], q: [P; 4], qv: [u32; 4]) -> bool {
+    // shared vertex: cones with a common apex, planes through it spanned by two corners
+    if let Some((it, iq)) = (0..3)
+        .flat_map(|i| (0..4).map(move |j| (i, j)))
+        .find(|&(i, j)| tv[i] == qv[j])
+    {
+        let a = t[it];
+        let ts: Vec<P> = (0..3).filter(|&i| i != it).map(|i| t[i]).collect();
+        let qs: Vec<P> = (0..4)
+            .filter(|&j| j != iq && !tv.contains(&qv[j]))
+            .map(|j| q[j])
+            .collect();
+        // Q's corners shared with t other than a lie on t: they are on both sides; keep them
+        let qsh: Vec<P> = (0..4)
+            .filter(|&j| j != iq && tv.contains(&qv[j]))
+            .map(|j| q[j])
+            .collect();
+        let all: Vec<P> = ts.iter().chain(&qs).copied().collect();
+        for i in 0..all.len() {
+            for j in i + 1..all.len() {
+                let (u, v) = (all[i], all[j]);
+                let st: Vec<f64> = ts.iter().map(|&x| orient3d(a, u, v, x)).collect();
+                let sq: Vec<f64> = qs
+                    .iter()
+                    .chain(&qsh)
+                    .map(|&x| orient3d(a, u, v, x))
+                    .collect();
+                if st.iter().chain(&sq).all(|&s| s == 0.0) {
+                    continue; // degenerate plane
+                }
+                if (st.iter().all(|&s| s <= 0.0) && sq.iter().all(|&s| s >= 0.0))
+                    || (st.iter().all(|&s| s >= 0.0) && sq.iter().all(|&s| s <= 0.0))
+                {
+                    return false;
+                }
+            }
+        }
+        return true;
+    }
+    // face planes of q
+    let o = orient3d(q[0], q[1], q[2], q[3]);
+    if o == 0.0 {
+        return false; // flat: no interior
+    }
+    let faces = [[1, 2, 3, 0], [0, 2, 3, 1], [0, 1, 3, 2], [0, 1, 2, 3]];
+    for f in faces {
+        let s = orient3d(q[f[0]], q[f[1]], q[f[2]], q[f[3]]);
+        if t.iter()
+            .all(|&x| orient3d(q[f[0]], q[f[1]], q[f[2]], x) * s <= 0.0)
+        {
+            return false;
+        }
+    }
+    // the triangle's plane
+    let sq: Vec<f64> = q.iter().map(|&x| orient3d(t[0], t[1], t[2], x)).collect();
+    if sq.iter().all(|&s| s >= 0.0) || sq.iter().all(|&s| s <= 0.0) {
+        return false;
+    }
+    // edge–edge planes
+    let qe = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+    for i in 0..3 {
+        let e = (t[i], t[(i + 1) % 3]);
+        for &(j, k) in &qe {
+            let f = (q[j], q[k]);
+            // signs of (x − e.0)·(e × f) for every corner x
+            let mut st = [0i32; 3];
+            let mut sqs = [0i32; 4];
+            let mut ok = true;
+            // the corners of e are exactly on the plane; only the third one is evaluated
+            match sat_sign(t[(i + 2) % 3], e.0, e, f) {
+                Some(s) => st[2] = s,
+                None => ok = false,
+            }
+            for (m, &x) in q.iter().enumerate() {
+                match sat_sign(x, e.0, e, f) {
+                    Some(s) => sqs[m] = s,
+                    None => ok = false,
+                }
+            }
+            if !ok || (st.iter().all(|&s| s == 0) && sqs.iter().all(|&s| s == 0)) {
+                continue;
+            }
+            // t lies in a closed half-space through e; q's vertices of edge f share one value,
+            // the separating plane through e works when q is on the other closed side
+            if (st.iter().all(|&s| s <= 0) && sqs.iter().all(|&s| s >= 0))
+                || (st.iter().all(|&s| s >= 0) && sqs.iter().all(|&s| s <= 0))
+            {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// A removal: key, boundary faces of the tetrahedron, its new boundary faces.
+type Removal = (f64, Vec<[u32; 3]>, Vec<[u32; 3]>);
+
+#[derive(Clone, Copy)]
+struct Entry {
+    key: f64,
+    face: [u32; 3],
+    l: u32,
+}
+impl PartialEq for Entry {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Entry {}
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Entry {
+    fn cmp(&self, o: &Self) -> Ordering {
+        o.key
+            .total_cmp(&self.key)
+            .then(o.face.cmp(&self.face))
+            .then(o.l.cmp(&self.l))
+    }
+}
+
+/// The general 3D constriction (see the module documentation). Vertex indices are indices into
+/// the point array given to [`General3::new`].
+pub struct General3<'a> {
+    p: &'a [P],
+    tris: Vec<[u32; 3]>,
+    live: Vec<bool>,
+    id: IdMap<[u32; 3], u32>,
+    eadj: IdMap<u64, Vec<u32>>,
+    /// directed boundary edge a→b → third vertex of the outward boundary face containing it
+    bnext: IdMap<u64, u32>,
+    vcount: Vec<u32>,
+    keep: IdSet<[u32; 3]>,
+    tgrid: Grid,
+    vgrid: Grid,
+    heap: BinaryHeap<Entry>,
+    buf: Vec<u32>,
+    blocked_by: Option<[u32; 3]>,
+    /// Triangles found in a γ-graph by [`General3::local_gamma`] (not tested again).
+    in_gamma: IdSet<[u32; 3]>,
+    /// Number of boundary vertices.
+    pub boundary_vertices: usize,
+    /// Number of removed tetrahedra.
+    pub iterations: usize,
+    /// Number of triangles added by [`General3::augment`].
+    pub added: usize,
+}
+
+impl<'a> General3<'a> {
+    /// A graph on points `p` with the closed outward-oriented boundary surface `boundary` and
+    /// the live triangles `tris` (all inside the closed region; the boundary triangles are
+    /// added to them). `keep` triangles are never deleted.
+    pub fn new(p: &'a [P], boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) -> Self {
+        let (lo, hi) = bbox(p);
+        let n = p.len().max(1);
+        let vol = (0..3).map(|k| (hi[k] - lo[k]).max(0.0)).product::<f64>();
+        let mut cell = 2.0 * (vol / n as f64).cbrt();
+        if cell <= 0.0 || !cell.is_finite() {
+            cell = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max).max(1.0) / (n as f64).sqrt();
+        }
+        let mut g = General3 {
+            p,
+            tris: Vec::new(),
+            live: Vec::new(),
+            id: IdMap::default(),
+            eadj: IdMap::default(),
+            bnext: IdMap::default(),
+            vcount: vec![0; p.len()],
+            keep: keep.iter().map(|&f| sorted3(f)).collect(),
+            tgrid: Grid::new(lo, cell, true),
+            vgrid: Grid::new(lo, cell, false),
+            heap: BinaryHeap::new(),
+            buf: Vec::new(),
+            blocked_by: None,
+            in_gamma: IdSet::default(),
+            boundary_vertices: 0,
+            iterations: 0,
+            added: 0,
+        };
+        for (v, &q) in p.iter().enumerate() {
+            g.vgrid.insert(v as u32, q, q);
+        }
+        for &t in tris.iter().chain(boundary).chain(keep) {
+            g.add_tri(t);
+        }
+        for &f in boundary {
+            g.set_boundary(f, true);
+        }
+        g.push_all();
+        g
+    }
+
+    fn pt(&self, v: u32) -> P {
+        self.p[v as usize]
+    }
+
+    fn add_tri(&mut self, t: [u32; 3]) -> bool {
+        let s = sorted3(t);
+        if s[0] == s[1] || s[1] == s[2] {
+            return false;
+        }
+        if let Some(&i) = self.id.get(&s) {
+            if self.live[i as usize] {
+                return false;
+            }
+            self.live[i as usize] = true;
+        } else {
+            let i = self.tris.len() as u32;
+            self.tris.push(s);
+            self.live.push(true);
+            self.id.insert(s, i);
+            let (lo, hi) = bbox(&s.map(|v| self.pt(v)));
+            self.tgrid.insert(i, lo, hi);
+        }
+        for k in 0..3 {
+            let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
+            self.eadj.entry(ek(a, b)).or_default().push(c);
+        }
+        true
+    }
+
+    fn kill(&mut self, i: u32) {
+        if !self.live[i as usize] {
+            return;
+        }
+        self.live[i as usize] = false;
+        let s = self.tris[i as usize];
+        for k in 0..3 {
+            let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
+            if let Some(v) = self.eadj.get_mut(&ek(a, b)) {
+                v.retain(|&x| x != c);
+            }
+        }
+    }
+
+    /// True when triangle abc is live.
+    pub fn has(&self, a: u32, b: u32, c: u32) -> bool {
+        self.id
+            .get(&sorted3([a, b, c]))
+            .is_some_and(|&i| self.live[i as usize])
+    }
+
+    fn set_boundary(&mut self, f: [u32; 3], on: bool) {
+        for k in 0..3 {
+            let (a, b, c) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+            if on {
+                self.bnext.insert(dk(a, b), c);
+            } else {
+                self.bnext.remove(&dk(a, b));
+            }
+            let v = a as usize;
+            if on {
+                if self.vcount[v] == 0 {
+                    self.boundary_vertices += 1;
+                }
+                self.vcount[v] += 1;
+            } else {
+                self.vcount[v] = self.vcount[v].saturating_sub(1);
+                if self.vcount[v] == 0 {
+                    self.boundary_vertices -= 1;
+                }
+            }
+        }
+    }
+
+    /// Is the oriented face a boundary face (with this orientation)?
+    fn is_bface(&self, f: [u32; 3]) -> bool {
+        self.bnext.get(&dk(f[0], f[1])) == Some(&f[2])
+    }
+
+    fn on_boundary(&self, v: u32) -> bool {
+        self.vcount[v as usize] > 0
+    }
+
+    fn bedge(&self, a: u32, b: u32) -> bool {
+        self.bnext.contains_key(&dk(a, b)) || self.bnext.contains_key(&dk(b, a))
+    }
+
+    /// The boundary surface (outward faces).
+    pub fn boundary(&self) -> Vec<[u32; 3]> {
+        let mut out: Vec<[u32; 3]> = self
+            .bnext
+            .iter()
+            .filter_map(|(&k, &c)| {
+                let (a, b) = ((k >> 32) as u32, k as u32);
+                (a < b && a < c).then_some([a, b, c])
+            })
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    /// Combinatorial removability of tetrahedron (face, l) and its key; cheap checks only.
+    /// Returns (key, boundary faces of Q, new faces).
+    fn combinatorial(&self, f: [u32; 3], l: u32) -> Option<Removal> {
+        let [a, b, c] = f;
+        if l == a || l == b || l == c || !self.is_bface(f) {
+            return None;
+        }
+        if !self.has(a, b, l) || !self.has(b, c, l) || !self.has(a, c, l) {
+            return None;
+        }
+        let (pa, pb, pc, pl) = (self.pt(a), self.pt(b), self.pt(c), self.pt(l));
+        if orient3d(pa, pb, pc, pl) <= 0.0 {
+            return None;
+        }
+        let faces = tet_faces(a, b, c, l);
+        let mut bf = Vec::new();
+        let mut nf = Vec::new();
+        let mut opp = Vec::new();
+        for (face, o) in faces {
+            if self.is_bface(face) {
+                bf.push(face);
+                opp.push(o);
+            } else {
+                if self.is_bface([face[1], face[0], face[2]]) {
+                    return None; // the reversed face is on the boundary: Q lies outside
+                }
+                nf.push([face[0], face[2], face[1]]);
+            }
+        }
+        match bf.len() {
+            1 => {
+                if self.on_boundary(l) {
+                    return None;
+                }
+            }
+            2 => {
+                if self.bedge(opp[0], opp[1]) {
+                    return None;
+                }
+            }
+            _ => return None,
+        }
+        if !self.keep.is_empty() && bf.iter().any(|&x| self.keep.contains(&sorted3(x))) {
+            return None;
+        }
+        let r = circumradius(pa, pb, pc, pl);
+        let mut key = 0.0;
+        for (face, &o) in bf.iter().zip(&opp) {
+            key += gamma_indicator_3d(
+                self.pt(face[0]),
+                self.pt(face[1]),
+                self.pt(face[2]),
+                self.pt(o),
+                r,
+            );
+        }
+        Some((key, bf, nf))
+    }
+
+    /// The closed tetrahedron contains no vertex but its corners.
+    fn empty(&mut self, qv: [u32; 4]) -> bool {
+        let q = qv.map(|v| self.pt(v));
+        let (lo, hi) = bbox(&q);
+        let mut buf = std::mem::take(&mut self.buf);
+        self.vgrid.query(lo, hi, &mut buf);
+        let o = orient3d(q[0], q[1], q[2], q[3]);
+        let faces = [[1, 2, 3, 0], [0, 2, 3, 1], [0, 1, 3, 2], [0, 1, 2, 3]];
+        let signs: Vec<f64> = faces
+            .iter()
+            .map(|f| orient3d(q[f[0]], q[f[1]], q[f[2]], q[f[3]]))
+            .collect();
+        let mut ok = o != 0.0;
+        for &v in &buf {
+            if !ok {
+                break;
+            }
+            if qv.contains(&v) {
+                continue;
+            }
+            let x = self.pt(v);
+            if faces
+                .iter()
+                .zip(&signs)
+                .all(|(f, &s)| orient3d(q[f[0]], q[f[1]], q[f[2]], x) * s >= 0.0)
+            {
+                ok = false;
+            }
+        }
+        self.buf = buf;
+        ok
+    }
+
+    /// Triangle `t` (vertex ids) meets a boundary triangle other than those in `skip` beyond
+    /// their common vertices/edges.
+    fn hits_boundary(&mut self, t: [u32; 3], skip: &[[u32; 3]]) -> bool {
+        let pt = t.map(|v| self.pt(v));
+        let bb = bbox(&pt);
+        let mut buf = std::mem::take(&mut self.buf);
+        self.tgrid.query(bb.0, bb.1, &mut buf);
+        let skip: Vec<[u32; 3]> = skip.iter().map(|&s| sorted3(s)).collect();
+        let st = sorted3(t);
+        let mut hit = false;
+        for &i in &buf {
+            if !self.live[i as usize] {
+                continue;
+            }
+            let u = self.tris[i as usize];
+            if u == st || skip.contains(&u) {
+                continue;
+            }
+            // boundary triangle? (either orientation of the sorted triple)
+            let isb = self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]);
+            if !isb {
+                continue;
+            }
+            let pu = u.map(|v| self.pt(v));
+            if !boxes_meet(bb, bbox(&pu)) {
+                continue;
+            }
+            let shared: Vec<(usize, usize)> = (0..3)
+                .flat_map(|x| (0..3).map(move |y| (x, y)))
+                .filter(|&(x, y)| t[x] == u[y])
+                .collect();
+            let bad = match shared.len() {
+                0 => triangles_intersect(pt, pu),
+                1 => meet_beyond_vertex(pt, shared[0].0, pu, shared[0].1),
+                2 => {
+                    let (i0, i1) = (shared[0].0, shared[1].0);
+                    let (j0, j1) = (shared[0].1, shared[1].1);
+                    meet_beyond_edge(pt[i0], pt[i1], pt[3 - i0 - i1], pu[3 - j0 - j1])
+                }
+                _ => true,
+            };
+            if bad {
+                hit = true;
+                break;
+            }
+        }
+        self.buf = buf;
+        hit
+    }
+
+    /// Live triangles meeting the open tetrahedron (conservative), other than its faces.
+    fn crossing(&mut self, qv: [u32; 4]) -> Vec<u32> {
+        let q = qv.map(|v| self.pt(v));
+        let bb = bbox(&q);
+        let mut buf = std::mem::take(&mut self.buf);
+        self.tgrid.query(bb.0, bb.1, &mut buf);
+        let mut out = Vec::new();
+        for &i in &buf {
+            if !self.live[i as usize] {
+                continue;
+            }
+            let u = self.tris[i as usize];
+            if u.iter().all(|v| qv.contains(v)) {
+                continue;
+            }
+            let pu = u.map(|v| self.pt(v));
+            if !boxes_meet(bb, bbox(&pu)) {
+                continue;
+            }
+            if may_meet_open_tet(pu, u, q, qv) {
+                out.push(i);
+            }
+        }
+        self.buf = buf;
+        out
+    }
+
+    /// Full removability check of tetrahedron (boundary face f, apex l).
+    fn check(&mut self, f: [u32; 3], l: u32) -> Option<Removal> {
+        let (key, bf, nf) = self.combinatorial(f, l)?;
+        let qv = [f[0], f[1], f[2], l];
+        if !self.empty(qv) {
+            return None;
+        }
+        for &t in &nf {
+            if self.hits_boundary(t, &bf) {
+                return None;
+            }
+        }
+        if !self.keep.is_empty() {
+            let cr = self.crossing(qv);
+            if let Some(&i) = cr
+                .iter()
+                .find(|&&i| self.keep.contains(&self.tris[i as usize]))
+            {
+                self.blocked_by = Some(self.tris[i as usize]);
+                return None;
+            }
+        }
+        Some((key, bf, nf))
+    }
+
+    /// The smallest-key removable tetrahedron on boundary face f.
+    fn best(&mut self, f: [u32; 3]) -> Option<(f64, u32)> {
+        if !self.is_bface(f) || (!self.keep.is_empty() && self.keep.contains(&sorted3(f))) {
+            return None;
+        }
+        if !self.keep.is_empty() {
+            // keep triangles x y m on an edge of f: make f + m a tetrahedron (V §5.7 rewiring)
+            for k in 0..3 {
+                let (x, y) = (f[k], f[(k + 1) % 3]);
+                let ms: Vec<u32> = self.eadj.get(&ek(x, y)).cloned().unwrap_or_default();
+                for m in ms {
+                    if m != f[(k + 2) % 3] && self.keep.contains(&sorted3([x, y, m])) {
+                        self.rewire(f, [x, y, m]);
+                    }
+                }
+            }
+        }
+        for _round in 0..4 {
+            let cands: Vec<u32> = self.eadj.get(&ek(f[0], f[1])).cloned().unwrap_or_default();
+            let mut keyed: Vec<(f64, u32)> = cands
+                .into_iter()
+                .filter(|&l| l != f[2])
+                .filter_map(|l| self.combinatorial(f, l).map(|(k, _, _)| (k, l)))
+                .collect();
+            keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            let mut rewired = false;
+            for (k, l) in keyed {
+                self.blocked_by = None;
+                if self.check(f, l).is_some() {
+                    return Some((k, l));
+                }
+                if let Some(kt) = self.blocked_by.take() {
+                    rewired |= self.rewire(f, kt);
+                    if rewired {
+                        break;
+                    }
+                }
+            }
+            if !rewired {
+                return None;
+            }
+        }
+        None
+    }
+
+    /// V §5.7 (3D, Fig. 5.12 right): keep triangle `kt` = x y m crosses a tetrahedron on
+    /// boundary face f = x y z: insert z x m and z y m (where they lie inside, see
+    /// [`General3::augment`]) so that f + m becomes a tetrahedron whose removal brings `kt` to
+    /// the boundary. Returns whether a triangle was inserted.
+    fn rewire(&mut self, f: [u32; 3], kt: [u32; 3]) -> bool {
+        let common: Vec<u32> = f.iter().copied().filter(|v| kt.contains(v)).collect();
+        if common.len() != 2 {
+            return false;
+        }
+        let (Some(&z), Some(&m)) = (
+            f.iter().find(|v| !common.contains(v)),
+            kt.iter().find(|v| !common.contains(v)),
+        ) else {
+            return false;
+        };
+        let mut any = false;
+        for &x in &common {
+            any |= self.try_insert([z, x, m]);
+        }
+        any
+    }
+
+    /// Does the triangle a b m leave the boundary edge ab into the region? (exact: m strictly
+    /// inside the interior dihedral wedge of the two boundary faces at ab)
+    fn inward_at_edge(&self, a: u32, b: u32, m: u32) -> bool {
+        let (Some(&y), Some(&w)) = (self.bnext.get(&dk(a, b)), self.bnext.get(&dk(b, a))) else {
+            return false;
+        };
+        let (pa, pb, py, pw, pm) = (self.pt(a), self.pt(b), self.pt(y), self.pt(w), self.pt(m));
+        let convex = orient3d(pa, pb, py, pw);
+        let o1 = orient3d(pa, pb, py, pm) > 0.0;
+        let o2 = orient3d(pb, pa, pw, pm) > 0.0;
+        if convex > 0.0 {
+            o1 && o2
+        } else if convex < 0.0 {
+            o1 || o2
+        } else {
+            o1 && o2
+        }
+    }
+
+    /// Inserts triangle t when it is new, non-degenerate, certified to start inside the region
+    /// (a vertex off the boundary, or a boundary edge it leaves inward) and meets no boundary
+    /// triangle beyond common vertices/edges.
+    fn try_insert(&mut self, t: [u32; 3]) -> bool {
+        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || self.has(t[0], t[1], t[2]) {
+            return false;
+        }
+        if t.iter().all(|&v| self.on_boundary(v))
+            && !(0..3).any(|k| {
+                let (a, b, m) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                self.bedge(a, b) && self.inward_at_edge(a, b, m)
+            })
+        {
+            return false;
+        }
+        let pt = t.map(|v| self.pt(v));
+        if super::validity3::degenerate(pt[0], pt[1], pt[2]) || self.hits_boundary(t, &[]) {
+            return false;
+        }
+        self.add_tri(t)
+    }
+
+    fn push(&mut self, f: [u32; 3]) -> bool {
+        if let Some((key, l)) = self.best(f) {
+            self.heap.push(Entry { key, face: f, l });
+            true
+        } else {
+            false
+        }
+    }
+
+    fn push_all(&mut self) -> bool {
+        let mut any = false;
+        for f in self.boundary() {
+            any |= self.push(f);
+        }
+        any
+    }
+
+    fn remove(&mut self, f: [u32; 3], l: u32, bf: &[[u32; 3]], nf: &[[u32; 3]]) {
+        let qv = [f[0], f[1], f[2], l];
+        let cross = self.crossing(qv);
+        for i in cross {
+            let u = self.tris[i as usize];
+            if self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]) {
+                continue; // (cannot meet the open Q; never delete the surface)
+            }
+            self.kill(i);
+        }
+        for &b in bf {
+            self.set_boundary(b, false);
+            if let Some(&i) = self.id.get(&sorted3(b)) {
+                self.kill(i);
+            }
+        }
+        for &n in nf {
+            self.set_boundary(n, true);
+        }
+        self.iterations += 1;
+        for &n in nf {
+            self.push(n);
+        }
+        // the faces next to the new ones may have gained options (two-face removals); others
+        // are recomputed lazily when popped, and by the final sweep of `run`
+        for &n in nf {
+            for k in 0..3 {
+                let (a, b) = (n[k], n[(k + 1) % 3]);
+                if let Some(&c) = self.bnext.get(&dk(b, a)) {
+                    self.push([b, a, c]);
+                }
+            }
+        }
+    }
+
+    /// Keep triangles not (yet) on the boundary.
+    pub fn keep_missing(&self) -> usize {
+        self.keep
+            .iter()
+            .filter(|k| !self.is_bface(**k) && !self.is_bface([k[0], k[2], k[1]]))
+            .count()
+    }
+
+    /// Every vertex and every keep triangle is on the boundary.
+    pub fn done(&self) -> bool {
+        self.boundary_vertices >= self.p.len() && (self.keep.is_empty() || self.keep_missing() == 0)
+    }
+
+    /// Runs the constriction until every vertex and keep triangle is on the boundary or nothing
+    /// is removable.
+    pub fn run(&mut self) {
+        loop {
+            while !self.done() {
+                let Some(en) = self.heap.pop() else { break };
+                if !self.is_bface(en.face) {
+                    continue;
+                }
+                match self.check(en.face, en.l) {
+                    Some((_, bf, nf)) => self.remove(en.face, en.l, &bf, &nf),
+                    None => {
+                        self.push(en.face);
+                    }
+                }
+            }
+            if self.done() || !self.push_all() {
+                break;
+            }
+        }
+    }
+
+    /// The triangles of γ([-1,1],[c,1]) (Def. 3.1 by the exact centre intervals of
+    /// [`crate::graphs::gamma::TriFrame`]) on the vertices not on the boundary and pairs of
+    /// their `k` nearest vertices or edges of the boundary faces near them — the part of the γ-graph needed to free a locked vertex (V
+    /// §5.4 "adaptive augmentation": only where needed). Each triangle's interval is computed
+    /// against every point that can touch its balls (within r·(k′ + √(k′² − 1)) of the
+    /// circumcentre, k′ = 1/(1 − |c|); all points for c = −1). O(L·k²·m) for L locked vertices
+    /// and m points within reach.
+    /// Triangles found at an earlier (larger) c are not returned again.
+    pub fn local_gamma(&mut self, c: f64, k: usize) -> Vec<[u32; 3]> {
+        use crate::graphs::gamma::{triangle_circle, TriFrame};
+        let locked: Vec<u32> = (0..self.p.len() as u32)
+            .filter(|&v| !self.on_boundary(v))
+            .collect();
+        let cabs = c.abs().min(1.0);
+        let kk = if cabs >= 1.0 {
+            f64::INFINITY
+        } else {
+            1.0 / (1.0 - cabs)
+        };
+        let reach_over_r = kk + (kk * kk - 1.0).max(0.0).sqrt();
+        let mut out = Vec::new();
+        let mut buf = Vec::new();
+        let n = self.p.len();
+        for &l in &locked {
+            let pl = self.pt(l);
+            // k nearest by growing boxes
+            let mut rad = self.vgrid.cell;
+            let near: Vec<u32> = loop {
+                self.vgrid.query(
+                    std::array::from_fn(|i| pl[i] - rad),
+                    std::array::from_fn(|i| pl[i] + rad),
+                    &mut buf,
+                );
+                if buf.len() > k || buf.len() >= n {
+                    let mut v: Vec<(f64, u32)> = buf
+                        .iter()
+                        .filter(|&&x| x != l)
+                        .map(|&x| {
+                            let q = self.pt(x);
+                            let d2 = (0..3).map(|i| (q[i] - pl[i]).powi(2)).sum::<f64>();
+                            (d2, x)
+                        })
+                        .collect();
+                    v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                    // only points within rad are certainly among the nearest
+                    v.retain(|e| e.0 <= rad * rad);
+                    if v.len() >= k || buf.len() >= n {
+                        break v.into_iter().take(k).map(|e| e.1).collect();
+                    }
+                }
+                rad *= 2.0;
+            };
+            // pairs of near vertices, and the edges of the boundary faces around l (the faces a
+            // removal w.r.t. l starts from)
+            let mut pairs: Vec<(u32, u32)> = Vec::new();
+            for (i, &x) in near.iter().enumerate() {
+                for &y in &near[i + 1..] {
+                    pairs.push((x, y));
+                }
+            }
+            let reach_l = 2.0 * rad;
+            let mut tb = Vec::new();
+            self.tgrid.query(
+                std::array::from_fn(|i| pl[i] - reach_l),
+                std::array::from_fn(|i| pl[i] + reach_l),
+                &mut tb,
+            );
+            // the k boundary faces nearest to l (by centroid)
+            let mut faces: Vec<(f64, [u32; 3])> = tb
+                .iter()
+                .filter(|&&i| self.live[i as usize])
+                .map(|&i| self.tris[i as usize])
+                .filter(|&u| self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]))
+                .map(|u| {
+                    let q = u.map(|v| self.pt(v));
+                    let d2 = (0..3)
+                        .map(|i| ((q[0][i] + q[1][i] + q[2][i]) / 3.0 - pl[i]).powi(2))
+                        .sum::<f64>();
+                    (d2, u)
+                })
+                .collect();
+            faces.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            for (_, u) in faces.into_iter().take(k) {
+                for e in 0..3 {
+                    pairs.push((u[e], u[(e + 1) % 3]));
+                }
+            }
+            for (x, y) in pairs {
+                {
+                    let t = sorted3([l, x, y]);
+                    if x == l || y == l || self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t)
+                    {
+                        continue;
+                    }
+                    let [pa, pb, pc] = t.map(|v| self.pt(v));
+                    let (Some(f), Some((m, r2, _))) =
+                        (TriFrame::new(pa, pb, pc), triangle_circle(pa, pb, pc))
+                    else {
+                        continue;
+                    };
+                    let mut iv = f.start();
+                    let reach = r2.sqrt() * reach_over_r * (1.0 + 1e-9);
+                    if !reach.is_finite() {
+                        // c = −1: every triangle is in γ([-1,1],[-1,1]) unless a point lies in
+                        // the closed triangle (then no neighbourhood is empty); such points lie
+                        // in its bounding box
+                        let (lo, hi) = bbox(&[pa, pb, pc]);
+                        self.vgrid.query(lo, hi, &mut buf);
+                        for &z in &buf {
+                            if !t.contains(&z) {
+                                f.add(&mut iv, self.p[z as usize]);
+                            }
+                        }
+                        if !iv.all_blocked {
+                            self.in_gamma.insert(t);
+                            out.push(t);
+                        }
+                    } else {
+                        // points only narrow the interval (c₁′ never grows): reject on the
+                        // near points first, then scan the whole reach
+                        let near_r = reach.min(2.0 * r2.sqrt());
+                        self.vgrid.query(
+                            std::array::from_fn(|i| m[i] - near_r),
+                            std::array::from_fn(|i| m[i] + near_r),
+                            &mut buf,
+                        );
+                        for &z in &buf {
+                            if !t.contains(&z) {
+                                f.add(&mut iv, self.p[z as usize]);
+                            }
+                        }
+                        if !iv.gamma_values().is_some_and(|g| g.1 >= c) {
+                            continue;
+                        }
+                        if reach > near_r {
+                            self.vgrid.query(
+                                std::array::from_fn(|i| m[i] - reach),
+                                std::array::from_fn(|i| m[i] + reach),
+                                &mut buf,
+                            );
+                            for &z in &buf {
+                                if !t.contains(&z) {
+                                    f.add(&mut iv, self.p[z as usize]);
+                                }
+                            }
+                        }
+                        if iv.gamma_values().is_some_and(|g| g.1 >= c) {
+                            self.in_gamma.insert(t);
+                            out.push(t);
+                        }
+                    }
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// Adds the given triangles where they are certified inside (as for the rewiring; see
+    /// the module documentation) and pushes the boundary faces on their edges; returns how
+    /// many were added.
+    pub fn augment(&mut self, tris: &[[u32; 3]]) -> usize {
+        let mut added = 0;
+        let mut faces = Vec::new();
+        for &t in tris {
+            if self.try_insert(t) {
+                added += 1;
+                // the boundary faces on its edges may have gained a tetrahedron
+                for k in 0..3 {
+                    let (a, b) = (t[k], t[(k + 1) % 3]);
+                    for (x, y) in [(a, b), (b, a)] {
+                        if let Some(&z) = self.bnext.get(&dk(x, y)) {
+                            faces.push([x, y, z]);
+                        }
+                    }
+                }
+            }
+        }
+        self.added += added;
+        for f in faces {
+            self.push(f);
+        }
+        added
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    /// Brute force: does closed triangle t meet the open tetrahedron q? Dense sampling of t in
+    /// barycentric coordinates with an exact in-open-tetrahedron test (a sampled point is a
+    /// rounded float, so this is an oracle for the "meets" direction only, in general position).
+    fn sampled_meet(t: [P; 3], q: [P; 4]) -> bool {
+        let faces = [[1, 2, 3, 0], [0, 2, 3, 1], [0, 1, 3, 2], [0, 1, 2, 3]];
+        let m = 40;
+        // interior samples only: a rounded point of an edge shared with q could fall inside
+        for i in 1..m {
+            for j in 1..m - i {
+                let (u, v) = (i as f64 / m as f64, j as f64 / m as f64);
+                let w = 1.0 - u - v;
+                let x: P = std::array::from_fn(|k| u * t[0][k] + v * t[1][k] + w * t[2][k]);
+                if faces.iter().all(|f| {
+                    orient3d(q[f[0]], q[f[1]], q[f[2]], x)
+                        * orient3d(q[f[0]], q[f[1]], q[f[2]], q[f[3]])
+                        > 0.0
+                }) {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
+    #[test]
+    fn open_tet_test_never_misses_a_sampled_hit() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let (mut hits, mut sep) = (0, 0);
+        for it in 0..3000 {
+            let mut pts: Vec<P> = (0..7)
+                .map(|_| std::array::from_fn(|_| rng.gen_range(-1.0..1.0)))
+                .collect();
+            // share 0, 1 or 2 vertices
+            let share = it % 3;
+            let qv = [0u32, 1, 2, 3];
+            let tv: [u32; 3] = match share {
+                0 => [4, 5, 6],
+                1 => [0, 5, 6],
+                _ => [0, 1, 6],
+            };
+            if it % 7 == 0 {
+                pts[6] = [
+                    0.5 * (pts[2][0] + pts[3][0]),
+                    0.5 * (pts[2][1] + pts[3][1]),
+                    0.5 * (pts[2][2] + pts[3][2]),
+                ];
+            }
+            let q = qv.map(|v| pts[v as usize]);
+            let t = tv.map(|v| pts[v as usize]);
+            if orient3d(q[0], q[1], q[2], q[3]) == 0.0 {
+                continue;
+            }
+            let got = may_meet_open_tet(t, tv, q, qv);
+            if sampled_meet(t, q) {
+                assert!(got, "missed {t:?} {q:?}");
+                hits += 1;
+            } else if !got {
+                sep += 1;
+            }
+        }
+        assert!(hits > 300 && sep > 300, "{hits} {sep}");
+    }
+
+    #[test]
+    fn disjoint_and_touching_cases_are_separated() {
+        let q = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let qv = [0, 1, 2, 3];
+        // a triangle on the face z = 0 (outside), sharing edge 0 1
+        assert!(!may_meet_open_tet(
+            [q[0], q[1], [0.5, -1.0, 0.0]],
+            [0, 1, 9],
+            q,
+            qv
+        ));
+        // the same edge, pointing inside
+        assert!(may_meet_open_tet(
+            [q[0], q[1], [0.3, 0.3, 0.3]],
+            [0, 1, 9],
+            q,
+            qv
+        ));
+        // far away, no shared vertex
+        assert!(!may_meet_open_tet(
+            [[2.0, 2.0, 2.0], [3.0, 2.0, 2.0], [2.0, 3.0, 2.0]],
+            [7, 8, 9],
+            q,
+            qv
+        ));
+        // piercing through the middle
+        assert!(may_meet_open_tet(
+            [[0.2, 0.2, -1.0], [0.2, 0.2, 2.0], [-3.0, -3.0, 0.2]],
+            [7, 8, 9],
+            q,
+            qv
+        ));
+    }
+}
