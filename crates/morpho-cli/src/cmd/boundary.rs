@@ -104,7 +104,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             ));
         }
         let keep = match &args.keep {
-            Some(k) => report.time("read", || read_rows::<3>(k))?,
+            Some(k) => report.time("read", || super::read_index_rows::<3>(k, "keep"))?,
             None => Vec::new(),
         };
         let opts = Options3 { until, c, keep };
@@ -123,7 +123,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             );
         }
         let keep = match &args.keep {
-            Some(k) => read_keep(k)?,
+            Some(k) => super::read_index_rows::<2>(k, "keep")?,
             None => Vec::new(),
         };
         Ok((ps.to_points2(), keep))
@@ -180,50 +180,6 @@ fn ext_of(p: &Path) -> String {
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase()
-}
-
-/// Keep edges: one `i,j` (or `i j`, `i;j`, tab) per line; blank lines and `#` comments skipped;
-/// a first line that is not two integers is a header.
-fn read_keep(path: &Path) -> morpho::Result<Vec<[u32; 2]>> {
-    read_rows::<2>(path)
-}
-
-/// Rows of `K` point indices, in the format of [`read_keep`].
-fn read_rows<const K: usize>(path: &Path) -> morpho::Result<Vec<[u32; K]>> {
-    let bytes = morpho::io::read_bytes(path)?;
-    let text = std::str::from_utf8(&bytes)
-        .map_err(|_| Error::format("keep file is not UTF-8").with_path(path))?;
-    let mut out = Vec::new();
-    let mut first = true;
-    for (ln, line) in text.lines().enumerate() {
-        let l = line.trim();
-        if l.is_empty() || l.starts_with('#') {
-            continue;
-        }
-        let f: Vec<&str> = l
-            .split([',', ';', '\t', ' '])
-            .filter(|s| !s.is_empty())
-            .collect();
-        let parsed: Option<[u32; K]> = if f.len() == K {
-            let v: Vec<u32> = f.iter().filter_map(|x| x.parse::<u32>().ok()).collect();
-            v.try_into().ok()
-        } else {
-            None
-        };
-        match parsed {
-            Some(e) => out.push(e),
-            None if first => {}
-            None => {
-                return Err(Error::at_line(
-                    ln as u64 + 1,
-                    format!("expected {K} point indices per line"),
-                )
-                .with_path(path))
-            }
-        }
-        first = false;
-    }
-    Ok(out)
 }
 
 fn write_boundary(path: &Path, ext: &str, pts: &[Point2], b: &Boundary2) -> morpho::Result<()> {

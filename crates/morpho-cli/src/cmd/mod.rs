@@ -30,3 +30,47 @@ pub fn check_not_input(output: &Path, inputs: &[&Path]) -> Result<(), Failure> {
     }
     Ok(())
 }
+
+/// Rows of `K` point indices (keep edges/triangles, constraint segments): one row per line,
+/// fields separated by commas, semicolons, tabs or spaces; blank lines and `#` comments are
+/// skipped; a first line with letters (`i,j`) is a header. Anything else is an error naming
+/// the line. `what` names the file in messages.
+pub(crate) fn read_index_rows<const K: usize>(
+    path: &std::path::Path,
+    what: &str,
+) -> morpho::Result<Vec<[u32; K]>> {
+    let bytes = morpho::io::read_bytes(path)?;
+    let text = std::str::from_utf8(&bytes)
+        .map_err(|_| morpho::Error::format(format!("{what} file is not UTF-8")).with_path(path))?;
+    let mut out = Vec::new();
+    let mut first = true;
+    for (ln, line) in text.lines().enumerate() {
+        let l = line.trim();
+        if l.is_empty() || l.starts_with('#') {
+            continue;
+        }
+        let f: Vec<&str> = l
+            .split([',', ';', '\t', ' '])
+            .filter(|s| !s.is_empty())
+            .collect();
+        let parsed: Option<[u32; K]> = if f.len() == K {
+            let v: Vec<u32> = f.iter().filter_map(|x| x.parse::<u32>().ok()).collect();
+            v.try_into().ok()
+        } else {
+            None
+        };
+        match parsed {
+            Some(e) => out.push(e),
+            None if first && l.chars().any(char::is_alphabetic) => {}
+            None => {
+                return Err(morpho::Error::at_line(
+                    ln as u64 + 1,
+                    format!("expected {K} point indices per line, found `{l}`"),
+                )
+                .with_path(path))
+            }
+        }
+        first = false;
+    }
+    Ok(out)
+}

@@ -59,7 +59,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                      dual of the unconstrained triangulation)",
                 ));
             }
-            let segs = report.time("read", || read_segments(c))?;
+            let segs = report.time("read", || super::read_index_rows::<2>(c, "constraints"))?;
             return run_constrained(&args, &pts.to_points2(), &segs, fmt, report);
         }
     } else if args.constraints.is_some() {
@@ -173,39 +173,6 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         })?;
     }
     Ok(0)
-}
-
-/// Constraint segments: one `i,j` pair (comma, or whitespace) of input indices per line; blank
-/// lines and `#` comments are skipped, anything else is an error naming the line.
-fn read_segments(path: &Path) -> morpho::Result<Vec<[u32; 2]>> {
-    let bytes = io::read_bytes(path)?;
-    let text = std::str::from_utf8(&bytes)
-        .map_err(|_| morpho::Error::format("constraints file is not UTF-8").with_path(path))?;
-    let mut out = Vec::new();
-    for (ln, line) in text.lines().enumerate() {
-        let l = line.trim();
-        if l.is_empty() || l.starts_with('#') {
-            continue;
-        }
-        let mut f = l
-            .split(|c: char| c == ',' || c.is_whitespace())
-            .filter(|x| !x.is_empty());
-        let pair = match (f.next(), f.next(), f.next()) {
-            (Some(a), Some(b), None) => a.parse::<u32>().ok().zip(b.parse::<u32>().ok()),
-            _ => None,
-        };
-        match pair {
-            Some((a, b)) => out.push([a, b]),
-            None => {
-                return Err(morpho::Error::at_line(
-                    ln as u64 + 1,
-                    format!("expected a segment `i,j` of two point indices, found `{l}`"),
-                )
-                .with_path(path))
-            }
-        }
-    }
-    Ok(out)
 }
 
 /// The 2D constrained Delaunay triangulation (see the module documentation).
