@@ -39,7 +39,8 @@ pub struct Args {
     #[arg(short, long)]
     pub output: PathBuf,
     /// gamma (V §5.2), min-area-change (Boissonnat, V §4.3.3) or voronoi-skeleton (O'Rourke et
-    /// al., V §4.3.4).
+    /// al., V §4.3.4; 2D only). 3D min-area-change: the key of the Delaunay constriction; with
+    /// `--c auto` a lock continues in the γ general engine.
     #[arg(long, default_value = "gamma")]
     pub method: String,
     /// γ([-1,1],[c,1]) parameter: `auto` (Delaunay first, adaptive augmentation down to −1 when
