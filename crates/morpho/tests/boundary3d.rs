@@ -264,3 +264,172 @@ mod props {
         }
     }
 }
+
+// ---- Boissonnat's minimal area change in 3D (V §4.3.3, Eq. 4.1) ----
+
+mod min_area_change {
+    use super::*;
+    use morpho::boundary::constrict3::{constrict_3d_with, min_area_change_3d, removal_key, Key};
+
+    /// Circumradius of a tetrahedron (Cramer on 2(pₖ − p₀)·c = |pₖ|² − |p₀|²).
+    fn circumradius(p: [[f64; 3]; 4]) -> f64 {
+        let r: Vec<[f64; 3]> = (1..4)
+            .map(|k| [p[k][0] - p[0][0], p[k][1] - p[0][1], p[k][2] - p[0][2]])
+            .collect();
+        let b: Vec<f64> = r
+            .iter()
+            .map(|v| 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))
+            .collect();
+        let det = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| {
+            a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0])
+        };
+        let col = |k: usize| [r[0][k], r[1][k], r[2][k]];
+        let d = det(col(0), col(1), col(2));
+        let bb = [b[0], b[1], b[2]];
+        let x = det(bb, col(1), col(2)) / d;
+        let y = det(col(0), bb, col(2)) / d;
+        let z = det(col(0), col(1), bb) / d;
+        (x * x + y * y + z * z).sqrt()
+    }
+
+    #[test]
+    fn key_is_eq_4_1_by_hand() {
+        // corner tetrahedron: face 0 (opposite the origin) has area √3/2, faces 1–3 area 1/2
+        let p = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let s3 = 3f64.sqrt();
+        let all = 1.5 + s3 / 2.0;
+        // one boundary triangle (face 0): interior 3·½, boundary √3/2
+        let one = (1.5 - s3 / 2.0) / all;
+        assert!((min_area_change_3d(p, 0b0001) - one).abs() < 1e-15);
+        assert!((removal_key(Key::MinAreaChange, p, 0b0001, 0.0) - one).abs() < 1e-15);
+        // one boundary triangle (face 3, a right triangle): interior √3/2 + 1, boundary ½
+        let one3 = (s3 / 2.0 + 1.0 - 0.5) / all;
+        assert!((min_area_change_3d(p, 0b1000) - one3).abs() < 1e-15);
+        // two boundary triangles (faces 0 and 1): interior ½ + ½, boundary √3/2 + ½
+        let two = (1.0 - s3 / 2.0 - 0.5) / all;
+        assert!((min_area_change_3d(p, 0b0011) - two).abs() < 1e-15);
+        // two boundary triangles (faces 2 and 3): interior √3/2 + ½, boundary ½ + ½
+        let two23 = (s3 / 2.0 + 0.5 - 1.0) / all;
+        assert!((min_area_change_3d(p, 0b1100) - two23).abs() < 1e-15);
+        // scale invariant, and a flat tetrahedron with the apex over the base is ≈ 0
+        let q = p.map(|v| v.map(|x| 7.0 * x));
+        assert!((min_area_change_3d(q, 0b0011) - two).abs() < 1e-14);
+        let flat = [
+            [0.3, 0.3, 1e-9],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0],
+        ];
+        assert!(min_area_change_3d(flat, 0b0001).abs() < 1e-6);
+    }
+
+    #[test]
+    fn keys_order_two_removable_tetrahedra_differently() {
+        // same boundary base (face 0), apex at height 1 or 3 beside it: the γ-indicator
+        // removes the tall one first, the area change the low one (a γ key fails here)
+        let base = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]];
+        let low = [[-1.0, -1.0, 1.0], base[0], base[1], base[2]];
+        let tall = [[-1.0, -1.0, 3.0], base[0], base[1], base[2]];
+        let g = |p| removal_key(Key::Gamma, p, 1, circumradius(p));
+        let m = |p| removal_key(Key::MinAreaChange, p, 1, circumradius(p));
+        eprintln!(
+            "γ: low {} tall {}; MAC: low {} tall {}",
+            g(low),
+            g(tall),
+            m(low),
+            m(tall)
+        );
+        assert!(g(tall) < g(low) - 0.1);
+        assert!(m(low) < m(tall) - 0.1);
+    }
+
+    fn ellipsoid(n: usize, bump: f64) -> Vec<Point3> {
+        morpho::samples::sphere_points(n, 1.0)
+            .into_iter()
+            .map(|p| {
+                let r = 1.0 + bump * (4.0 * p.z).sin() * (3.0 * p.y.atan2(p.x)).cos();
+                Point3::new(2.0 * r * p.x, r * p.y, 0.6 * r * p.z)
+            })
+            .collect()
+    }
+
+    fn mac_opts() -> Options3 {
+        Options3 {
+            c: CParam::Fixed(0.0),
+            key: Key::MinAreaChange,
+            ..Options3::default()
+        }
+    }
+
+    #[test]
+    fn dense_sphere_and_ellipsoid_give_a_valid_mesh_through_all_points() {
+        // plain sphere and ellipsoid (hull = result) and bumpy ones (the constriction works)
+        let sphere = morpho::samples::sphere_points(600, 1.0);
+        for (name, pts) in [
+            ("sphere", sphere),
+            ("ellipsoid", ellipsoid(600, 0.0)),
+            ("bumpy ellipsoid", ellipsoid(800, 0.1)),
+        ] {
+            let b = boundary_3d_with(&pts, &mac_opts()).unwrap();
+            assert_valid(&pts, &b);
+            eprintln!(
+                "{name}: {} removals, {} left out",
+                b.iterations,
+                b.left_out.len()
+            );
+            assert!(b.all_on_boundary, "{name}: {} left out", b.left_out.len());
+            assert_eq!(b.c_used, 0.0);
+            assert_eq!(b.interior.len() + b.iterations, {
+                morpho::delaunay::d3::triangulate(&pts).unwrap().tets.len()
+            });
+        }
+    }
+
+    #[test]
+    fn the_key_changes_the_result() {
+        // the same points, the two keys: different removal sequences give different meshes
+        let pts = ellipsoid(800, 0.1);
+        let d = morpho::delaunay::d3::triangulate(&pts).unwrap();
+        let g = constrict_3d_with(&d, Until::All, &[], Key::Gamma);
+        let m = constrict_3d_with(&d, Until::All, &[], Key::MinAreaChange);
+        assert_eq!(
+            g.triangles.len(),
+            constrict_3d(&d, Until::All).triangles.len()
+        );
+        let set =
+            |t: &[[u32; 3]]| -> std::collections::HashSet<[u32; 3]> { t.iter().map(key).collect() };
+        assert_ne!(set(&g.triangles), set(&m.triangles));
+    }
+
+    #[test]
+    fn random_sets_are_valid_or_report_the_points_left_out() {
+        let mut rng = ChaCha8Rng::seed_from_u64(31);
+        let mut complete = 0;
+        for k in 0..16 {
+            let n = rng.gen_range(8..120);
+            let pts = if k % 2 == 0 {
+                cube_points(&mut rng, n)
+            } else {
+                clustered(rng.gen_range(0..10_000))
+                    .into_iter()
+                    .take(150)
+                    .collect()
+            };
+            for c in [CParam::Fixed(0.0), CParam::Auto] {
+                let opts = Options3 { c, ..mac_opts() };
+                let b = boundary_3d_with(&pts, &opts).unwrap();
+                assert_valid(&pts, &b); // includes: left_out = exactly the points off it
+                assert_eq!(b.all_on_boundary, b.left_out.is_empty());
+                complete += b.all_on_boundary as usize;
+            }
+        }
+        eprintln!("{complete} of 32 runs reached every point");
+        assert!(complete >= 16);
+    }
+}

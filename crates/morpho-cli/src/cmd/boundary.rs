@@ -6,8 +6,9 @@
 //! (`{"triangles":[[i,j,k],…]}`); `--until all|locked`; `--keep` triangles; report keys `closed_manifold`, `genus`,
 //! `volume`, `c_used`, `added_triangles`; `--c auto|C` as in 2D (auto: Delaunay constriction, then
 //! the general engine with γ([-1,1],[c,1]) triangles, c = −0.1 … −1, when it locks);
-//! `--interior FILE.json` writes `{"tetrahedra":[…]}` (empty when the general engine ran). Only
-//! the γ method.
+//! `--interior FILE.json` writes `{"tetrahedra":[…]}` (empty when the general engine ran).
+//! 3D methods: gamma and min-area-change (the key of the Delaunay constriction; the general
+//! engine after a lock always uses the γ-indicator); voronoi-skeleton is 2D only.
 //!
 //! 2D outputs by extension: `.csv` (`index,x,y` in boundary order), `.geojson` (one Polygon
 //! feature), `.json` (`{"polygon":[input indices]}`), `.svg` (points, Delaunay graph faint,
@@ -20,7 +21,8 @@ use crate::report::Report;
 use crate::Failure;
 use morpho::boundary::constrict3::Until;
 use morpho::boundary::{
-    boundary_2d, boundary_3d_with, check_polygon, Boundary2, CParam, Method, Options2, Options3,
+    boundary_2d, boundary_3d_with, check_polygon, Boundary2, CParam, Key, Method, Options2,
+    Options3,
 };
 use morpho::geom::Point2;
 use morpho::io::{read_points, write_atomic};
@@ -37,7 +39,8 @@ pub struct Args {
     #[arg(short, long)]
     pub output: PathBuf,
     /// gamma (V §5.2), min-area-change (Boissonnat, V §4.3.3) or voronoi-skeleton (O'Rourke et
-    /// al., V §4.3.4).
+    /// al., V §4.3.4; 2D only). 3D min-area-change: the key of the Delaunay constriction; with
+    /// `--c auto` a lock continues in the γ general engine.
     #[arg(long, default_value = "gamma")]
     pub method: String,
     /// γ([-1,1],[c,1]) parameter: `auto` (Delaunay first, adaptive augmentation down to −1 when
@@ -98,17 +101,24 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     }
     let ps = report.time("read", || read_points(&args.input))?;
     if ps.dim == 3 {
-        if method != Method::Gamma {
-            return Err(Failure::usage(
-                "3D boundary: only --method gamma is implemented",
-            ));
-        }
+        let key = match method {
+            Method::Gamma => Key::Gamma,
+            Method::MinAreaChange => Key::MinAreaChange,
+            Method::VoronoiSkeleton => return Err(Failure::usage(
+                "3D boundary: --method voronoi-skeleton is 2D only (use gamma or min-area-change)",
+            )),
+        };
         let keep = match &args.keep {
             Some(k) => report.time("read", || super::read_index_rows::<3>(k, "keep"))?,
             None => Vec::new(),
         };
-        let opts = Options3 { until, c, keep };
-        return run_3d(&args, ps.to_points3(), &opts, &ext, report);
+        let opts = Options3 {
+            until,
+            c,
+            keep,
+            key,
+        };
+        return run_3d(&args, ps.to_points3(), &opts, &ext, method, report);
     }
     if !matches!(ext.as_str(), "csv" | "geojson" | "json" | "svg") {
         return Err(Failure::usage(format!(
@@ -321,6 +331,7 @@ fn run_3d(
     pts: Vec<morpho::geom::Point3>,
     opts: &Options3,
     ext: &str,
+    method: Method,
     report: &mut Report,
 ) -> Result<u8, Failure> {
     if !matches!(ext, "ply" | "obj" | "off" | "json") {
@@ -331,7 +342,7 @@ fn run_3d(
     }
     let b = report.time("compute", || boundary_3d_with(&pts, opts))?;
     let vertices: std::collections::HashSet<u32> = b.triangles.iter().flatten().copied().collect();
-    report.set("method", "gamma");
+    report.set("method", method.name());
     report.set("points", pts.len());
     report.set("boundary_vertices", vertices.len());
     report.set("all_on_boundary", b.all_on_boundary);

@@ -12,6 +12,13 @@
 //!   boundary; its key is the sum of the two γ-indicators;
 //! - three or four boundary triangles is never removable.
 //!
+//! The key is the γ-indicator ([`Key::Gamma`], below) or Boissonnat's minimal area change
+//! ([`Key::MinAreaChange`], V §4.3.3, Eq. 4.1, [`min_area_change_3d`]): (Σ area of the
+//! tetrahedron's interior faces − Σ area of its boundary faces) / (Σ area of all four faces).
+//! Smallest key first in both cases; the removability rules are the same for both keys (V
+//! §4.3.3 removes exactly the one- and two-boundary-triangle tetrahedra with these
+//! conditions).
+//!
 //! These are exactly V's conditions; they keep the boundary a closed 2-manifold of genus 0
 //! (removing a one-triangle tetrahedron pushes a new vertex into a face; removing a
 //! two-triangle tetrahedron flips the shared edge vⱼvₖ to vᵢvₗ, which is allowed only when vᵢvₗ is
@@ -36,6 +43,7 @@
 //!
 //! Preconditions: a non-degenerate tetrahedralization (at least one tetrahedron).
 
+pub use super::indicator::Key;
 use crate::delaunay::d3::{Delaunay3, FACE_OF, NONE};
 use num_bigint::BigInt;
 use std::cmp::Ordering;
@@ -258,6 +266,51 @@ pub fn gamma_indicator_3d(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3], bi
     }
 }
 
+/// Twice the area of triangle abc (floating point; it only orders the heap).
+fn area2(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
+    let n = cross(sub(b, a), sub(c, a));
+    dot(n, n).sqrt()
+}
+
+/// Boissonnat's minimal area change (V §4.3.3, Eq. 4.1) of removing the tetrahedron with
+/// corners `p` whose boundary faces are the bits of `boundary` (bit f = the face opposite
+/// corner f): (Σ area of the interior faces − Σ area of the boundary faces) / (Σ area of all
+/// four faces). 0 for a tetrahedron without area.
+pub fn min_area_change_3d(p: [[f64; 3]; 4], boundary: u8) -> f64 {
+    let (mut inner, mut outer) = (0.0, 0.0);
+    for (f, o) in FACE_OF.iter().enumerate() {
+        let a = area2(p[o[0]], p[o[1]], p[o[2]]);
+        if boundary >> f & 1 == 1 {
+            outer += a;
+        } else {
+            inner += a;
+        }
+    }
+    let all = inner + outer;
+    if all > 0.0 {
+        (inner - outer) / all
+    } else {
+        0.0
+    }
+}
+
+/// The key of removing the tetrahedron with corners `p` (in [`Delaunay3`] face order: face f
+/// is opposite corner f, [`FACE_OF`]) whose boundary faces are the bits of `boundary`:
+/// [`Key::Gamma`] sums the γ-indicators of the boundary faces w.r.t. their opposite corners
+/// (`big_r` = the tetrahedron's circumradius); [`Key::MinAreaChange`] is
+/// [`min_area_change_3d`] (`big_r` unused). Smaller keys are removed first.
+pub fn removal_key(key: Key, p: [[f64; 3]; 4], boundary: u8, big_r: f64) -> f64 {
+    match key {
+        Key::Gamma => FACE_OF
+            .iter()
+            .enumerate()
+            .filter(|(f, _)| boundary >> f & 1 == 1)
+            .map(|(f, o)| gamma_indicator_3d(p[o[0]], p[o[1]], p[o[2]], p[f], big_r))
+            .sum(),
+        Key::MinAreaChange => min_area_change_3d(p, boundary),
+    }
+}
+
 fn ek(a: u32, b: u32) -> u64 {
     let (a, b) = if a < b { (a, b) } else { (b, a) };
     ((a as u64) << 32) | b as u64
@@ -271,6 +324,7 @@ struct State<'a> {
     ecount: IdMap<u64, u32>,
     nbv: usize,
     keep: IdSet<[u32; 3]>,
+    key: Key,
 }
 
 fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
@@ -318,15 +372,14 @@ impl State<'_> {
         if nf > 2 {
             return None;
         }
-        let ind = |f: usize, r: f64| -> f64 {
-            let fc = self.face(t, f);
-            gamma_indicator_3d(
-                self.p[fc[0] as usize],
-                self.p[fc[1] as usize],
-                self.p[fc[2] as usize],
-                self.p[v[f] as usize],
-                r,
-            )
+        // the circumradius is computed only for the γ-indicator
+        let value = || -> f64 {
+            let p = v.map(|x| self.p[x as usize]);
+            let r = match self.key {
+                Key::Gamma => self.d.circumsphere(t as u32).1,
+                Key::MinAreaChange => 0.0,
+            };
+            removal_key(self.key, p, m, r)
         };
         match faces.len() {
             1 => {
@@ -334,7 +387,7 @@ impl State<'_> {
                 if self.vcount[v[f] as usize] > 0 {
                     None
                 } else {
-                    Some(ind(f, self.d.circumsphere(t as u32).1))
+                    Some(value())
                 }
             }
             2 => {
@@ -343,8 +396,7 @@ impl State<'_> {
                 if self.ecount.get(&ek(a, b)).copied().unwrap_or(0) > 0 {
                     None
                 } else {
-                    let r = self.d.circumsphere(t as u32).1;
-                    Some(ind(faces[0], r) + ind(faces[1], r))
+                    Some(value())
                 }
             }
             _ => None,
@@ -422,6 +474,17 @@ pub fn constrict_3d(d: &Delaunay3, until: Until) -> Constriction3 {
 /// crossing case of V Fig. 5.12 right needs γ-graphs beyond Delaunay, not implemented); others
 /// are ignored by the constriction and reported missing by the caller.
 pub fn constrict_3d_keep(d: &Delaunay3, until: Until, keep: &[[u32; 3]]) -> Constriction3 {
+    constrict_3d_with(d, until, keep, Key::Gamma)
+}
+
+/// [`constrict_3d_keep`] with the selection key `key` ([`Key::Gamma`]: V §5.3;
+/// [`Key::MinAreaChange`]: Boissonnat, V §4.3.3, Eq. 4.1).
+pub fn constrict_3d_with(
+    d: &Delaunay3,
+    until: Until,
+    keep: &[[u32; 3]],
+    key: Key,
+) -> Constriction3 {
     let nt = d.tets.len();
     let nv = d.points.len();
     let mut st = State {
@@ -432,6 +495,7 @@ pub fn constrict_3d_keep(d: &Delaunay3, until: Until, keep: &[[u32; 3]]) -> Cons
         ecount: IdMap::default(),
         nbv: 0,
         keep: keep.iter().map(|&f| sorted3(f)).collect(),
+        key,
     };
     for t in 0..nt {
         for f in 0..4 {

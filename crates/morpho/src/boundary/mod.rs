@@ -437,6 +437,12 @@ pub struct Options3 {
     pub c: CParam,
     /// Triangles (input indices) that must be on the boundary (V §5.7).
     pub keep: Vec<[u32; 3]>,
+    /// The selection key of the Delaunay constriction: [`Key::Gamma`] (default, V §5.3) or
+    /// Boissonnat's [`Key::MinAreaChange`] (V §4.3.3, Eq. 4.1,
+    /// [`constrict3::min_area_change_3d`]). The general engine ([`fallback3`]: the
+    /// [`CParam::Auto`] continuation after a lock, [`CParam::Fixed`]`(c < 0)`, keep triangles
+    /// that are not Delaunay faces) always uses the γ-indicator.
+    pub key: Key,
 }
 
 impl Default for Options3 {
@@ -445,6 +451,7 @@ impl Default for Options3 {
             until: constrict3::Until::All,
             c: CParam::Auto,
             keep: Vec::new(),
+            key: Key::Gamma,
         }
     }
 }
@@ -509,6 +516,7 @@ pub fn boundary_3d_keep(
             until,
             c: CParam::Auto,
             keep: keep.to_vec(),
+            key: Key::Gamma,
         },
     )
 }
@@ -653,7 +661,7 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
             (g.boundary(), None, c, g.iterations, g.added)
         }
         _ => {
-            let st = constrict3::constrict_3d_keep(&d, opts.until, &keep_v);
+            let st = constrict3::constrict_3d_with(&d, opts.until, &keep_v, opts.key);
             if st.boundary_vertices >= nv && keep_missing_v(&st.triangles, &keep_v).is_empty()
                 || fixed_c.is_some()
             {
