@@ -42,41 +42,14 @@
 //! Every sidedness, crossing and containment decision uses the exact `orient2d`.
 
 use super::indicator::Key;
+use super::indicator::MinKey;
 use super::validity::{segments_cross_properly, SegGrid};
 use crate::delaunay::d2::{Delaunay2, NONE};
 use crate::geom::predicates::raw::orient2d;
-use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap, HashSet};
 
-#[derive(Debug, Clone, Copy)]
-struct Entry {
-    key: f64,
-    a: u32,
-    b: u32,
-    c: u32,
-}
-
-impl PartialEq for Entry {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
-    }
-}
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Entry {
-    // reversed: BinaryHeap is a max-heap, we want the smallest key (ties: smallest ids)
-    fn cmp(&self, o: &Self) -> Ordering {
-        o.key
-            .total_cmp(&self.key)
-            .then(o.a.cmp(&self.a))
-            .then(o.b.cmp(&self.b))
-            .then(o.c.cmp(&self.c))
-    }
-}
+/// Heap entries: smallest key first, ties by the smallest item.
+type Entry = MinKey<[u32; 3]>;
 
 /// The state of a Delaunay constriction.
 #[derive(Debug, Clone)]
@@ -125,9 +98,7 @@ pub fn constrict_dt(d: &Delaunay2, p: &[[f64; 2]], key: Key) -> DtState {
         let (i, j) = (tri[(e + 1) % 3], tri[(e + 2) % 3]);
         heap.push(Entry {
             key: key.value(p[i as usize], p[j as usize], p[k as usize]),
-            a: t as u32,
-            b: e as u32,
-            c: 0,
+            item: [t as u32, e as u32, 0],
         });
     };
     for t in 0..nt {
@@ -139,7 +110,7 @@ pub fn constrict_dt(d: &Delaunay2, p: &[[f64; 2]], key: Key) -> DtState {
     }
     while st.boundary_vertices < nv {
         let Some(en) = heap.pop() else { break };
-        let (t, e) = (en.a as usize, en.b as usize);
+        let (t, e) = (en.item[0] as usize, en.item[1] as usize);
         if !st.alive[t] {
             continue;
         }
@@ -479,9 +450,7 @@ impl<'a> General<'a> {
         if let Some((key, k)) = self.best(i, j) {
             self.heap.push(Entry {
                 key,
-                a: i,
-                b: j,
-                c: k,
+                item: [i, j, k],
             });
             true
         } else {
@@ -594,7 +563,7 @@ impl<'a> General<'a> {
         loop {
             while self.boundary_vertices < n {
                 let Some(en) = self.heap.pop() else { break };
-                let (i, j, k) = (en.a, en.b, en.c);
+                let [i, j, k] = en.item;
                 if self.next[i as usize] != j {
                     continue; // no longer a boundary edge
                 }

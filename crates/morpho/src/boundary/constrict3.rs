@@ -44,11 +44,14 @@
 //! Preconditions: a non-degenerate tetrahedralization (at least one tetrahedron).
 
 pub use super::indicator::Key;
+use super::indicator::MinKey;
 use crate::delaunay::d3::{Delaunay3, FACE_OF, NONE};
 use num_bigint::BigInt;
-use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
 use std::hash::{BuildHasherDefault, Hasher};
+
+/// Heap entries: smallest key first, ties by the smallest item.
+type Entry = MinKey<(u32, u8)>;
 
 /// A fast multiplicative hasher for integer keys (vertex and edge ids; not for adversarial
 /// keys from the network — ids here come from our own tetrahedralization).
@@ -92,29 +95,6 @@ pub enum Until {
     /// Continue while removable tetrahedra remain (V §5.3: artificial objects may need more
     /// removals); the boundary stays a closed genus-0 2-manifold throughout.
     Locked,
-}
-
-#[derive(Clone, Copy)]
-struct Entry {
-    key: f64,
-    t: u32,
-    mask: u8,
-}
-impl PartialEq for Entry {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
-    }
-}
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Entry {
-    fn cmp(&self, o: &Self) -> Ordering {
-        o.key.total_cmp(&self.key).then(o.t.cmp(&self.t))
-    }
 }
 
 /// The result of [`constrict_3d`].
@@ -517,8 +497,7 @@ pub fn constrict_3d_with(
         if let Some(key) = st.key(t, m) {
             heap.push(Entry {
                 key,
-                t: t as u32,
-                mask: m,
+                item: (t as u32, m),
             });
         }
     };
@@ -528,11 +507,11 @@ pub fn constrict_3d_with(
     let mut iterations = 0;
     while until == Until::Locked || st.nbv < nv {
         let Some(en) = heap.pop() else { break };
-        let t = en.t as usize;
-        if !st.alive[t] || st.mask(t) != en.mask || st.key(t, en.mask).is_none() {
+        let (t, mask) = (en.item.0 as usize, en.item.1);
+        if !st.alive[t] || st.mask(t) != mask || st.key(t, mask).is_none() {
             continue;
         }
-        let m = en.mask;
+        let m = mask;
         for f in 0..4 {
             let fc = st.face(t, f);
             if m >> f & 1 == 1 {

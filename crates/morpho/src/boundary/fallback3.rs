@@ -61,10 +61,13 @@
 
 use super::constrict3::gamma_indicator_3d;
 use super::constrict3::{IdMap, IdSet};
+use super::indicator::MinKey;
 use super::validity3::{meet_beyond_edge, meet_beyond_vertex, triangles_intersect};
 use crate::geom::predicates::raw::orient3d;
-use std::cmp::Ordering;
 use std::collections::BinaryHeap;
+
+/// Heap entries: smallest key first, ties by the smallest item.
+type Entry = MinKey<([u32; 3], u32)>;
 
 type P = [f64; 3];
 
@@ -338,32 +341,6 @@ pub fn may_meet_open_tet(t: [P; 3], tv: [u32; 3], q: [P; 4], qv: [u32; 4]) -> bo
 
 /// A removal: key, boundary faces of the tetrahedron, its new boundary faces.
 type Removal = (f64, Vec<[u32; 3]>, Vec<[u32; 3]>);
-
-#[derive(Clone, Copy)]
-struct Entry {
-    key: f64,
-    face: [u32; 3],
-    l: u32,
-}
-impl PartialEq for Entry {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
-    }
-}
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for Entry {
-    fn cmp(&self, o: &Self) -> Ordering {
-        o.key
-            .total_cmp(&self.key)
-            .then(o.face.cmp(&self.face))
-            .then(o.l.cmp(&self.l))
-    }
-}
 
 /// The general 3D constriction (see the module documentation). Vertex indices are indices into
 /// the point array given to [`General3::new`].
@@ -840,7 +817,7 @@ impl<'a> General3<'a> {
 
     fn push(&mut self, f: [u32; 3]) -> bool {
         if let Some((key, l)) = self.best(f) {
-            self.heap.push(Entry { key, face: f, l });
+            self.heap.push(Entry { key, item: (f, l) });
             true
         } else {
             false
@@ -909,13 +886,13 @@ impl<'a> General3<'a> {
         loop {
             while !self.done() {
                 let Some(en) = self.heap.pop() else { break };
-                if !self.is_bface(en.face) {
+                if !self.is_bface(en.item.0) {
                     continue;
                 }
-                match self.check(en.face, en.l) {
-                    Some((_, bf, nf)) => self.remove(en.face, en.l, &bf, &nf),
+                match self.check(en.item.0, en.item.1) {
+                    Some((_, bf, nf)) => self.remove(en.item.0, en.item.1, &bf, &nf),
                     None => {
-                        self.push(en.face);
+                        self.push(en.item.0);
                     }
                 }
             }

@@ -80,6 +80,31 @@ impl Key {
     }
 }
 
+/// A heap entry that makes `BinaryHeap` (a max-heap) pop the smallest key first, ties broken
+/// by the smallest `item` — the selection order of every constriction here (deterministic).
+#[derive(Debug, Clone, Copy)]
+pub struct MinKey<T> {
+    pub key: f64,
+    pub item: T,
+}
+
+impl<T: Ord> PartialEq for MinKey<T> {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == std::cmp::Ordering::Equal
+    }
+}
+impl<T: Ord> Eq for MinKey<T> {}
+impl<T: Ord> PartialOrd for MinKey<T> {
+    fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl<T: Ord> Ord for MinKey<T> {
+    fn cmp(&self, o: &Self) -> std::cmp::Ordering {
+        o.key.total_cmp(&self.key).then(o.item.cmp(&self.item))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
