@@ -233,7 +233,7 @@ fn emst_kruskal<const D: usize>(
         let (a, b) = (input[e[0] as usize], input[e[1] as usize]);
         ((a.min(b) as u64) << 32) | a.max(b) as u64
     };
-    // a non-negative f64's bits sort like its value: radix sort by the float squared length,
+    // a non-negative f64's bits sort like its value: sort by the float squared length,
     // then re-sort every run of float near-ties with the exact comparison
     let mut order: Vec<(u64, u32)> = edges
         .par_iter()
@@ -245,7 +245,7 @@ fn emst_kruskal<const D: usize>(
             )
         })
         .collect();
-    radsort::sort_by_key(&mut order, |x| x.0);
+    order.par_sort_unstable();
     let exact = |x: &(u64, u32), y: &(u64, u32)| {
         let (e, f) = (&edges[x.1 as usize], &edges[y.1 as usize]);
         cmp_dist2(
@@ -272,7 +272,9 @@ fn emst_kruskal<const D: usize>(
         }
         i = j;
     }
+    // union by size with path halving
     let mut parent: Vec<u32> = (0..p.len() as u32).collect();
+    let mut size = vec![1u32; p.len()];
     fn root(p: &mut [u32], mut x: u32) -> u32 {
         while p[x as usize] != x {
             let g = p[p[x as usize] as usize];
@@ -286,7 +288,13 @@ fn emst_kruskal<const D: usize>(
         let [a, b] = edges[i as usize];
         let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
         if ra != rb {
-            parent[ra as usize] = rb;
+            let (small, big) = if size[ra as usize] < size[rb as usize] {
+                (ra, rb)
+            } else {
+                (rb, ra)
+            };
+            parent[small as usize] = big;
+            size[big as usize] += size[small as usize];
             out.push([a, b]);
             if out.len() + 1 == p.len() {
                 break;
