@@ -187,6 +187,34 @@ fn cocircular_groups(d: &Delaunay2, ties: &mut [[u32; 2]]) -> (Vec<Vec<u32>>, Ha
     (union_groups(&mut parent, &d.triangles), edges)
 }
 
+/// Notes that the two triangles of `e` are cocircular (from parallel workers).
+fn record_tie(ties: &Mutex<Vec<[u32; 2]>>, e: &DtEdge) {
+    ties.lock()
+        .unwrap_or_else(|x| x.into_inner())
+        .push([e.t_left, e.t_right]);
+}
+
+/// Calls `f(a, b, group)` for every chord a < b of a cocircular group that is not a Delaunay
+/// edge (V §3.3), groups in a deterministic order.
+fn for_each_group_chord(
+    d: &Delaunay2,
+    ties: Mutex<Vec<[u32; 2]>>,
+    mut f: impl FnMut(u32, u32, &[u32]),
+) {
+    let mut ties = ties.into_inner().unwrap_or_else(|x| x.into_inner());
+    let (groups, existing) = cocircular_groups(d, &mut ties);
+    for vs in groups {
+        for i in 0..vs.len() {
+            for j in i + 1..vs.len() {
+                let (a, b) = (vs[i], vs[j]);
+                if !existing.contains(&[a, b]) {
+                    f(a, b, &vs);
+                }
+            }
+        }
+    }
+}
+
 /// Decides every edge of γ([-1,1],[0,1]) in parallel: `keep(edge, interval, in_dt)` for each
 /// Delaunay edge (in triangle order) and then for each extra chord of a cocircular group
 /// (V §3.3); returns the kept results in that order. O(N + Σ g²) after the triangulation, with
@@ -213,35 +241,23 @@ pub fn filter_candidates_2d<T: Send>(
         .filter_map(|e| {
             let (iv, tie) = dt_interval(&p, &e);
             if tie {
-                ties.lock()
-                    .unwrap_or_else(|x| x.into_inner())
-                    .push([e.t_left, e.t_right]);
+                record_tie(&ties, &e);
             }
             keep([e.a, e.b], &iv, true)
         })
         .collect();
-    let mut ties = ties.into_inner().unwrap_or_else(|x| x.into_inner());
-    let (groups, existing) = cocircular_groups(d, &mut ties);
-    for vs in groups {
-        for i in 0..vs.len() {
-            for j in i + 1..vs.len() {
-                let (a, b) = (vs[i], vs[j]);
-                if existing.contains(&[a, b]) {
-                    continue;
-                }
-                let f = EdgeFrame::new(p[a as usize], p[b as usize]);
-                let mut iv = f.start();
-                for &x in &vs {
-                    if x != a && x != b {
-                        f.add(&mut iv, p[x as usize]);
-                    }
-                }
-                // all group points lie on one circle: the exact tie-breaking of
-                // `EdgeFrame::add` makes both ends its offset
-                out.extend(keep([a, b], &iv, false));
+    for_each_group_chord(d, ties, |a, b, vs| {
+        let f = EdgeFrame::new(p[a as usize], p[b as usize]);
+        let mut iv = f.start();
+        for &x in vs {
+            if x != a && x != b {
+                f.add(&mut iv, p[x as usize]);
             }
         }
-    }
+        // all group points lie on one circle: the exact tie-breaking of `EdgeFrame::add`
+        // makes both ends its offset
+        out.extend(keep([a, b], &iv, false));
+    });
     out
 }
 
@@ -282,27 +298,16 @@ pub fn gabriel_2d(d: &Delaunay2) -> Vec<[u32; 2]> {
     let mut out: Vec<[u32; 2]> = dt_edges(d)
         .filter_map(|e| {
             if apex_rel(&p, &e) == 0.0 {
-                ties.lock()
-                    .unwrap_or_else(|x| x.into_inner())
-                    .push([e.t_left, e.t_right]);
+                record_tie(&ties, &e);
             }
             (outside(e.a, e.b, e.left) && outside(e.a, e.b, e.right)).then_some([e.a, e.b])
         })
         .collect();
-    let mut ties = ties.into_inner().unwrap_or_else(|x| x.into_inner());
-    let (groups, existing) = cocircular_groups(d, &mut ties);
-    for vs in groups {
-        for i in 0..vs.len() {
-            for j in i + 1..vs.len() {
-                let (a, b) = (vs[i], vs[j]);
-                if !existing.contains(&[a, b])
-                    && vs.iter().all(|&x| x == a || x == b || outside(a, b, x))
-                {
-                    out.push([a, b]);
-                }
-            }
+    for_each_group_chord(d, ties, |a, b, vs| {
+        if vs.iter().all(|&x| x == a || x == b || outside(a, b, x)) {
+            out.push([a, b]);
         }
-    }
+    });
     out
 }
 
