@@ -46,6 +46,7 @@
 pub use super::indicator::Key;
 use super::indicator::MinKey;
 use crate::delaunay::d3::{Delaunay3, FACE_OF, NONE};
+use crate::graphs::gamma::{cross3, dot3, sub3};
 use num_bigint::BigInt;
 use std::collections::{BinaryHeap, HashMap};
 use std::hash::{BuildHasherDefault, Hasher};
@@ -110,20 +111,6 @@ pub struct Constriction3 {
     pub iterations: usize,
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 /// Exact big-integer image of doubles scaled by a common power of two.
 fn to_big(xs: &[f64]) -> Vec<BigInt> {
     let parts: Vec<(i64, i32)> = xs
@@ -160,15 +147,15 @@ fn to_big(xs: &[f64]) -> Vec<BigInt> {
 /// inside, 0 on it. Exact.
 pub fn center_side(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3]) -> i32 {
     // float evaluation with a generous filter
-    let (b, c, d) = (sub(j, i), sub(k, i), sub(l, i));
-    let n = cross(b, c);
-    let (bb, cc, dd, nn) = (dot(b, b), dot(c, c), dot(d, d), dot(n, n));
+    let (b, c, d) = (sub3(j, i), sub3(k, i), sub3(l, i));
+    let n = cross3(b, c);
+    let (bb, cc, dd, nn) = (dot3(b, b), dot3(c, c), dot3(d, d), dot3(n, n));
     let w = [
-        cc * cross(n, b)[0] + bb * cross(c, n)[0],
-        cc * cross(n, b)[1] + bb * cross(c, n)[1],
-        cc * cross(n, b)[2] + bb * cross(c, n)[2],
+        cc * cross3(n, b)[0] + bb * cross3(c, n)[0],
+        cc * cross3(n, b)[1] + bb * cross3(c, n)[1],
+        cc * cross3(n, b)[2] + bb * cross3(c, n)[2],
     ];
-    let val = dd * nn - dot(d, w);
+    let val = dd * nn - dot3(d, w);
     let mag = dd * nn + dd.sqrt() * (cc * nn.sqrt() * bb.sqrt() + bb * cc.sqrt() * nn.sqrt()) * 2.0;
     if val.is_finite() && mag.is_finite() && val.abs() > 1e-9 * mag {
         return if val > 0.0 { 1 } else { -1 };
@@ -214,13 +201,13 @@ pub fn center_side(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3]) -> i32 {
 
 /// Circumradius of a 3D triangle (floating point).
 fn tri_circumradius(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
-    let (x, y, z) = (sub(a, b), sub(b, c), sub(c, a));
+    let (x, y, z) = (sub3(a, b), sub3(b, c), sub3(c, a));
     let area2 = {
-        let n = cross(sub(b, a), sub(c, a));
-        dot(n, n).sqrt()
+        let n = cross3(sub3(b, a), sub3(c, a));
+        dot3(n, n).sqrt()
     };
     if area2 > 0.0 {
-        (dot(x, x) * dot(y, y) * dot(z, z)).sqrt() / (2.0 * area2)
+        (dot3(x, x) * dot3(y, y) * dot3(z, z)).sqrt() / (2.0 * area2)
     } else {
         f64::INFINITY
     }
@@ -248,8 +235,8 @@ pub fn gamma_indicator_3d(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3], bi
 
 /// Twice the area of triangle abc (floating point; it only orders the heap).
 fn area2(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
-    let n = cross(sub(b, a), sub(c, a));
-    dot(n, n).sqrt()
+    let n = cross3(sub3(b, a), sub3(c, a));
+    dot3(n, n).sqrt()
 }
 
 /// Boissonnat's minimal area change (V §4.3.3, Eq. 4.1) of removing the tetrahedron with
@@ -570,14 +557,14 @@ mod tests {
 
     fn circumcentre(p: [[f64; 3]; 4]) -> [f64; 3] {
         // solve 2(pk − p0)·x = |pk|² − |p0|², k = 1..3 (Cramer)
-        let r = |k: usize| sub(p[k], p[0]);
+        let r = |k: usize| sub3(p[k], p[0]);
         let (a, b, c) = (r(1), r(2), r(3));
-        let rhs = [dot(a, a) / 2.0, dot(b, b) / 2.0, dot(c, c) / 2.0];
-        let det = dot(a, cross(b, c));
+        let rhs = [dot3(a, a) / 2.0, dot3(b, b) / 2.0, dot3(c, c) / 2.0];
+        let det = dot3(a, cross3(b, c));
         let x = [
-            (rhs[0] * cross(b, c)[0] + rhs[1] * cross(c, a)[0] + rhs[2] * cross(a, b)[0]) / det,
-            (rhs[0] * cross(b, c)[1] + rhs[1] * cross(c, a)[1] + rhs[2] * cross(a, b)[1]) / det,
-            (rhs[0] * cross(b, c)[2] + rhs[1] * cross(c, a)[2] + rhs[2] * cross(a, b)[2]) / det,
+            (rhs[0] * cross3(b, c)[0] + rhs[1] * cross3(c, a)[0] + rhs[2] * cross3(a, b)[0]) / det,
+            (rhs[0] * cross3(b, c)[1] + rhs[1] * cross3(c, a)[1] + rhs[2] * cross3(a, b)[1]) / det,
+            (rhs[0] * cross3(b, c)[2] + rhs[1] * cross3(c, a)[2] + rhs[2] * cross3(a, b)[2]) / det,
         ];
         [x[0] + p[0][0], x[1] + p[0][1], x[2] + p[0][2]]
     }
