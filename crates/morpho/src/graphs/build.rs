@@ -478,21 +478,23 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
     };
     // γ kinds: decide every candidate edge in parallel, keeping its γ-values
     let gamma_kind = |decide: &(dyn Fn(&CenterInterval) -> bool + Sync), beyond: Option<f64>| {
-        let mut kept: Vec<([u32; 2], [f64; 2])> = fast::filter_candidates_2d(&d, |e, iv, _| {
+        let keep = |e: [u32; 2], iv: &CenterInterval| {
             let v = iv.gamma_values()?;
             decide(iv).then_some((e, [v.0, v.1]))
-        });
-        if let Some(c) = beyond {
-            let cand = fast::candidates_2d(&d);
-            let (be, bi) = fast::beyond_dt_2d(&d, &cand, c);
-            for (e, iv) in be.into_iter().zip(&bi) {
-                if let Some(v) = iv.gamma_values() {
-                    if decide(iv) {
-                        kept.push((e, [v.0, v.1]));
-                    }
-                }
+        };
+        let kept: Vec<([u32; 2], [f64; 2])> = match beyond {
+            // the Delaunay-subgraph part streams; beyond the triangulation the candidates are
+            // needed anyway (as the edges that exist), so they are built once and filtered
+            None => fast::filter_candidates_2d(&d, |e, iv, _| keep(e, iv)),
+            Some(c) => {
+                let cand = fast::candidates_2d(&d);
+                let (be, bi) = fast::beyond_dt_2d(&d, &cand, c);
+                let dt = cand.edges.iter().zip(&cand.intervals);
+                dt.chain(be.iter().zip(&bi))
+                    .filter_map(|(e, iv)| keep(*e, iv))
+                    .collect()
             }
-        }
+        };
         let (e, g): (Vec<[u32; 2]>, Vec<[f64; 2]>) = kept.into_iter().unzip();
         finish2(&d, e, g)
     };
