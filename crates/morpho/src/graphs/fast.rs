@@ -434,6 +434,37 @@ pub fn beyond_dt_2d(
     cand: &Candidates2,
     c: f64,
 ) -> (Vec<[u32; 2]>, Vec<CenterInterval>) {
+    beyond_dt_2d_impl(d, cand, c, None)
+}
+
+/// [`beyond_dt_2d`] restricted to the edges with at least one end in `at` (triangulation
+/// vertex ids; duplicates and out-of-range ids are ignored), in increasing order of their sorted
+/// vertex pair. The same edges and intervals as filtering the full result, at the cost of the
+/// partner searches of the listed vertices only: the boundary constriction's adaptive
+/// augmentation (V §5.4) only ever uses edges at vertices not yet on the boundary.
+pub fn beyond_dt_2d_at(
+    d: &Delaunay2,
+    cand: &Candidates2,
+    c: f64,
+    at: &[u32],
+) -> (Vec<[u32; 2]>, Vec<CenterInterval>) {
+    let mut mark = vec![false; d.points.len()];
+    for &v in at {
+        if let Some(m) = mark.get_mut(v as usize) {
+            *m = true;
+        }
+    }
+    beyond_dt_2d_impl(d, cand, c, Some(&mark))
+}
+
+/// The search of [`beyond_dt_2d`]: from every vertex a (or every marked one), the partners b
+/// with b > a (or any b, b > a when b is marked too, so that each edge is found once).
+fn beyond_dt_2d_impl(
+    d: &Delaunay2,
+    cand: &Candidates2,
+    c: f64,
+    mark: Option<&[bool]>,
+) -> (Vec<[u32; 2]>, Vec<CenterInterval>) {
     let p = coords2(d);
     let n = p.len();
     let mut edges = Vec::new();
@@ -441,100 +472,118 @@ pub fn beyond_dt_2d(
     if n < 3 || c >= 0.0 {
         return (edges, ivs);
     }
+    let sources: Vec<usize> = match mark {
+        None => (0..n).collect(),
+        Some(m) => (0..n).filter(|&v| m[v]).collect(),
+    };
+    // partner b of source a is searched from a: always when b > a, and when b < a only if b is
+    // not itself a source
+    let takes = |a: usize, b: usize| b > a || (b != a && mark.is_some_and(|m| !m[b]));
+    let key_of = |a: usize, b: usize| [a.min(b) as u32, a.max(b) as u32];
     let existing: HashSet<[u32; 2]> = cand.edges.iter().copied().collect();
     let grid = Grid::new(&p, 2.0);
     let cabs = c.abs().min(1.0);
+    let mut found: Vec<([u32; 2], CenterInterval)> = Vec::new();
     if cabs >= 1.0 {
         // every pair not blocked by a point on its segment
-        for a in 0..n as u32 {
-            for b in a + 1..n as u32 {
-                if existing.contains(&[a, b]) {
+        for &a in &sources {
+            for b in 0..n {
+                if !takes(a, b) {
                     continue;
                 }
-                let f = EdgeFrame::new(p[a as usize], p[b as usize]);
+                let key = key_of(a, b);
+                if existing.contains(&key) {
+                    continue;
+                }
+                let f = EdgeFrame::new(p[key[0] as usize], p[key[1] as usize]);
                 let mut iv = f.start();
                 for x in 0..n {
-                    if x != a as usize && x != b as usize {
+                    if x != a && x != b {
                         f.add(&mut iv, p[x]);
                     }
                 }
                 if iv.gamma_values().is_some() {
-                    edges.push([a, b]);
-                    ivs.push(iv);
+                    found.push((key, iv));
                 }
             }
         }
-        return (edges, ivs);
-    }
-    let k = 1.0 / (1.0 - cabs);
-    let lam = 0.5 * (k - (k * k - 1.0).sqrt()); // midpoint disc radius / edge length
-    let f_over_r = (k * k - 1.0).sqrt();
-    let bound = MidpointBound::new(d, &p);
-    // one vertex's partners at a time, vertices in parallel (results in vertex order)
-    let per_vertex: Vec<Vec<([u32; 2], CenterInterval)>> = (0..n)
-        .into_par_iter()
-        .map(|a| {
-            let mut found = Vec::new();
-            let mut near: Vec<u32> = Vec::new();
-            let pa = p[a];
-            // candidate partners: v = 2m − u for midpoints m in cells whose bound allows
-            // λ·|uv| = 2λ·|m − u| ≤ B(m)
-            bound.for_each_cell(pa, 2.0 * lam, |lo, hi, cell| {
-                let vlo = [2.0 * lo[0] - pa[0], 2.0 * lo[1] - pa[1]];
-                let vhi = [2.0 * hi[0] - pa[0], 2.0 * hi[1] - pa[1]];
-                grid.for_each_in_box(vlo, vhi, |b| {
-                    if b as usize > a {
-                        let pb = p[b as usize];
-                        let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
-                        if bound.cell_of(m) == cell {
-                            near.push(b);
+    } else {
+        let k = 1.0 / (1.0 - cabs);
+        let lam = 0.5 * (k - (k * k - 1.0).sqrt()); // midpoint disc radius / edge length
+        let f_over_r = (k * k - 1.0).sqrt();
+        let bound = MidpointBound::new(d, &p);
+        // one vertex's partners at a time, vertices in parallel (results in vertex order)
+        let per_vertex: Vec<Vec<([u32; 2], CenterInterval)>> = sources
+            .par_iter()
+            .map(|&a| {
+                let mut found = Vec::new();
+                let mut near: Vec<u32> = Vec::new();
+                let pa = p[a];
+                // candidate partners: v = 2m − u for midpoints m in cells whose bound allows
+                // λ·|uv| = 2λ·|m − u| ≤ B(m)
+                bound.for_each_cell(pa, 2.0 * lam, |lo, hi, cell| {
+                    let vlo = [2.0 * lo[0] - pa[0], 2.0 * lo[1] - pa[1]];
+                    let vhi = [2.0 * hi[0] - pa[0], 2.0 * hi[1] - pa[1]];
+                    grid.for_each_in_box(vlo, vhi, |b| {
+                        if takes(a, b as usize) {
+                            let pb = p[b as usize];
+                            let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+                            if bound.cell_of(m) == cell {
+                                near.push(b);
+                            }
+                        }
+                        true
+                    });
+                });
+                near.sort_unstable();
+                near.dedup();
+                for &b in &near {
+                    let key = key_of(a, b as usize);
+                    if existing.contains(&key) {
+                        continue;
+                    }
+                    // the frame in sorted order, so that the interval is that of the full search
+                    let (pu, pv) = (p[key[0] as usize], p[key[1] as usize]);
+                    let len = ((pv[0] - pu[0]).powi(2) + (pv[1] - pu[1]).powi(2)).sqrt();
+                    let m = [0.5 * (pu[0] + pv[0]), 0.5 * (pu[1] + pv[1])];
+                    let w = lam * len;
+                    // midpoint disc must be empty
+                    let empty = grid.for_each_within(m, w, |x| x == key[0] || x == key[1]);
+                    if !empty {
+                        continue;
+                    }
+                    let r = 0.5 * len;
+                    let reach = r * (k + f_over_r) * (1.0 + 1e-9);
+                    let f = EdgeFrame::new(pu, pv);
+                    let mut iv = f.start();
+                    grid.for_each_within(m, reach, |x| {
+                        if x != key[0] && x != key[1] {
+                            f.add(&mut iv, p[x as usize]);
+                        }
+                        true
+                    });
+                    // Only a gap can be trusted: a non-Delaunay edge always has one, and when
+                    // its true c₁′ ≥ c every binding point is within reach, so the local
+                    // interval is exact. A local interval without a gap means a binding point
+                    // beyond reach, i.e. c₁′ < c.
+                    if iv.lo <= iv.hi {
+                        continue;
+                    }
+                    if let Some((_, c1)) = iv.gamma_values() {
+                        if c1 >= c {
+                            found.push((key, iv));
                         }
                     }
-                    true
-                });
-            });
-            near.sort_unstable();
-            near.dedup();
-            for &b in &near {
-                let key = [a as u32, b];
-                if existing.contains(&key) {
-                    continue;
                 }
-                let pb = p[b as usize];
-                let len = ((pb[0] - pa[0]).powi(2) + (pb[1] - pa[1]).powi(2)).sqrt();
-                let m = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
-                let w = lam * len;
-                // midpoint disc must be empty
-                let empty = grid.for_each_within(m, w, |x| x == a as u32 || x == b);
-                if !empty {
-                    continue;
-                }
-                let r = 0.5 * len;
-                let reach = r * (k + f_over_r) * (1.0 + 1e-9);
-                let f = EdgeFrame::new(pa, pb);
-                let mut iv = f.start();
-                grid.for_each_within(m, reach, |x| {
-                    if x != a as u32 && x != b {
-                        f.add(&mut iv, p[x as usize]);
-                    }
-                    true
-                });
-                // Only a gap can be trusted: a non-Delaunay edge always has one, and when its true
-                // c₁′ ≥ c every binding point is within reach, so the local interval is exact. A
-                // local interval without a gap means a binding point beyond reach, i.e. c₁′ < c.
-                if iv.lo <= iv.hi {
-                    continue;
-                }
-                if let Some((_, c1)) = iv.gamma_values() {
-                    if c1 >= c {
-                        found.push((key, iv));
-                    }
-                }
-            }
-            found
-        })
-        .collect();
-    for (e, iv) in per_vertex.into_iter().flatten() {
+                found
+            })
+            .collect();
+        found = per_vertex.into_iter().flatten().collect();
+    }
+    if mark.is_some() {
+        found.sort_unstable_by_key(|e| e.0);
+    }
+    for (e, iv) in found {
         edges.push(e);
         ivs.push(iv);
     }
