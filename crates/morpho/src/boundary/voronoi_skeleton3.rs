@@ -61,7 +61,7 @@
 //! # Results
 //! Every result is valid (above), but in 3D the growth often gets stuck before every point is
 //! reached — V §5.6 expects the method to suit few 3D objects: on the vertex sets of real meshes
-//! 3–7 % of the points stay off the boundary and the enclosed volume is a fraction of the
+//! 4–8 % of the points stay off the boundary and the enclosed volume is a fraction of the
 //! object's (the "body is not filled properly").
 
 use crate::delaunay::d3::{Delaunay3, FACE_OF, NONE};
