@@ -64,34 +64,12 @@
 //! 4–8 % of the points stay off the boundary and the enclosed volume is a fraction of the
 //! object's (the "body is not filled properly").
 
+use super::voronoi_skeleton::E;
 use crate::delaunay::d3::{Delaunay3, FACE_OF, NONE};
 use crate::geom::Point3;
 use rayon::prelude::*;
-use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
-
-/// A heap entry: (edge length, tetrahedron to add, its apex); the smallest length pops first.
-#[derive(Clone, Copy)]
-struct E(f64, u32, u32);
-impl PartialEq for E {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
-    }
-}
-impl Eq for E {}
-impl PartialOrd for E {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for E {
-    fn cmp(&self, o: &Self) -> Ordering {
-        o.0.total_cmp(&self.0)
-            .then(o.1.cmp(&self.1))
-            .then(o.2.cmp(&self.2))
-    }
-}
 
 /// The length of the Voronoi edge between two Voronoi vertices: their distance, or `+∞` when
 /// either is not finite (the circumcentre of a floating-point-flat tetrahedron) or the
@@ -178,6 +156,7 @@ struct Grower<'a> {
     dual: &'a Dual,
     stamp_t: Vec<u32>,
     stamp_v: Vec<u32>,
+    /// (Voronoi edge length, tetrahedron to add, its apex), shortest first.
     heap: BinaryHeap<E>,
     /// The stamp of the next growth.
     epoch: u32,
@@ -351,6 +330,7 @@ mod tests {
     use crate::delaunay::d3::triangulate;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
+    use std::cmp::Ordering;
     use std::collections::HashSet;
 
     fn cube(seed: u64, n: usize) -> Vec<Point3> {
