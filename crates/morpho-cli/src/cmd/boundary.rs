@@ -8,7 +8,9 @@
 //! the general engine with γ([-1,1],[c,1]) triangles, c = −0.1 … −1, when it locks);
 //! `--interior FILE.json` writes `{"tetrahedra":[…]}` (empty when the general engine ran).
 //! 3D methods: gamma and min-area-change (the key of the Delaunay constriction; the general
-//! engine after a lock always uses the γ-indicator); voronoi-skeleton is 2D only.
+//! engine after a lock always uses the γ-indicator) and voronoi-skeleton (the shortest tree of
+//! Delaunay tetrahedra grown from up to `--seeds` seeds, `--interior` = its tetrahedra, report
+//! key `skeleton_length`; `--until`, `--c` and `--keep` do not apply).
 //!
 //! 2D outputs by extension: `.csv` (`index,x,y` in boundary order), `.geojson` (one Polygon
 //! feature), `.json` (`{"polygon":[input indices]}`), `.svg` (points, Delaunay graph faint,
@@ -39,7 +41,7 @@ pub struct Args {
     #[arg(short, long)]
     pub output: PathBuf,
     /// gamma (V §5.2), min-area-change (Boissonnat, V §4.3.3) or voronoi-skeleton (O'Rourke et
-    /// al., V §4.3.4; 2D only). 3D min-area-change: the key of the Delaunay constriction; with
+    /// al., V §4.3.4). 3D min-area-change: the key of the Delaunay constriction; with
     /// `--c auto` a lock continues in the γ general engine.
     #[arg(long, default_value = "gamma")]
     pub method: String,
@@ -102,11 +104,8 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let ps = report.time("read", || read_points(&args.input))?;
     if ps.dim == 3 {
         let key = match method {
-            Method::Gamma => Key::Gamma,
             Method::MinAreaChange => Key::MinAreaChange,
-            Method::VoronoiSkeleton => return Err(Failure::usage(
-                "3D boundary: --method voronoi-skeleton is 2D only (use gamma or min-area-change)",
-            )),
+            Method::Gamma | Method::VoronoiSkeleton => Key::Gamma,
         };
         let keep = match &args.keep {
             Some(k) => report.time("read", || super::read_index_rows::<3>(k, "keep"))?,
@@ -117,6 +116,8 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             c,
             keep,
             key,
+            method,
+            max_seeds: args.seeds.max(1),
         };
         return run_3d(&args, ps.to_points3(), &opts, &ext, method, report);
     }
@@ -357,6 +358,9 @@ fn run_3d(
     report.set("left_out", json!(b.left_out));
     if !opts.keep.is_empty() {
         report.set("keep_missing", json!(b.keep_missing));
+    }
+    if let Some(l) = b.skeleton_length {
+        report.set("skeleton_length", l);
     }
     report.time("write", || -> morpho::Result<()> {
         if ext == "json" {

@@ -16,6 +16,8 @@
 //! c = −0.1 … −1, added where needed (V §5.4); keep triangles (V §5.7) that are not Delaunay
 //! faces are constricted by the general engine from the hull. The result is checked with
 //! [`crate::mesh::topology::analyze`] and the exact [`validity3::self_intersections`].
+//! [`Method::VoronoiSkeleton`] in 3D grows the shortest Voronoi skeleton of Delaunay tetrahedra
+//! instead ([`voronoi_skeleton3`], V §4.3.4, §5.6).
 //!
 //! The result is checked, never assumed: [`validity::check_polygon`] decides simplicity and
 //! coverage with exact predicates. Duplicate input points map to one vertex (the first input
@@ -31,6 +33,7 @@ pub mod indicator;
 pub mod validity;
 pub mod validity3;
 pub mod voronoi_skeleton;
+pub mod voronoi_skeleton3;
 
 pub use indicator::Key;
 pub use validity::{check_polygon, PolygonCheck};
@@ -453,6 +456,12 @@ pub struct Options3 {
     /// [`CParam::Auto`] continuation after a lock, [`CParam::Fixed`]`(c < 0)`, keep triangles
     /// that are not Delaunay faces) always uses the γ-indicator.
     pub key: Key,
+    /// [`Method::VoronoiSkeleton`]: the shortest Voronoi skeleton ([`voronoi_skeleton3`];
+    /// `until`, `c` and `key` are not used, keep triangles are unsupported); otherwise the
+    /// constriction selected by `key`.
+    pub method: Method,
+    /// Seeds tried by the Voronoi skeleton method (all tetrahedra when there are fewer).
+    pub max_seeds: usize,
 }
 
 impl Default for Options3 {
@@ -462,6 +471,8 @@ impl Default for Options3 {
             c: CParam::Auto,
             keep: Vec::new(),
             key: Key::Gamma,
+            method: Method::Gamma,
+            max_seeds: 200,
         }
     }
 }
@@ -475,7 +486,7 @@ pub struct Boundary3 {
     pub all_on_boundary: bool,
     /// Input points not on the boundary.
     pub left_out: Vec<u32>,
-    /// Deleted tetrahedra (Delaunay and general engine together).
+    /// Deleted tetrahedra (Delaunay and general engine together; skeleton: tetrahedra added).
     pub iterations: usize,
     /// The c of the last graph γ([-1,1],[c,1]) used (0 = Delaunay).
     pub c_used: f64,
@@ -495,6 +506,8 @@ pub struct Boundary3 {
     pub keep_missing: Vec<[u32; 3]>,
     /// Enclosed volume.
     pub volume: f64,
+    /// Length of the Voronoi skeleton (skeleton method only).
+    pub skeleton_length: Option<f64>,
 }
 
 /// Constructs a closed boundary mesh through 3D points by γ-constriction (V §5.3, with the
@@ -527,6 +540,7 @@ pub fn boundary_3d_keep(
             c: CParam::Auto,
             keep: keep.to_vec(),
             key: Key::Gamma,
+            ..Options3::default()
         },
     )
 }
@@ -641,7 +655,18 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
         out
     };
     // (triangles, interior tets or None, c used, iterations, added)
+    let mut skeleton_length = None;
     let (tris, alive, c_used, iterations, added) = match fixed_c {
+        _ if opts.method == Method::VoronoiSkeleton => {
+            if !keep_v.is_empty() {
+                return Err(Error::unsupported(
+                    "boundary: keep triangles are supported by the gamma and min-area-change methods",
+                ));
+            }
+            let sk = voronoi_skeleton3::shortest_skeleton_3d(&d, opts.max_seeds);
+            skeleton_length = Some(sk.length);
+            (sk.triangles, Some(sk.alive), 0.0, sk.iterations, 0)
+        }
         Some(c) if c < 0.0 => {
             let cand = crate::graphs::fast::candidates_3d(&d);
             let mut all = cand.triangles.clone();
@@ -726,6 +751,7 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
             .collect(),
         interior,
         volume: mesh.signed_volume(),
+        skeleton_length,
     })
 }
 

@@ -18,8 +18,10 @@ use crate::delaunay::d2::{Delaunay2, NONE};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
+/// A heap entry (length, a, b) that pops the smallest length first, ties by `a`, then `b`
+/// (also used by [`super::voronoi_skeleton3`]).
 #[derive(Clone, Copy)]
-struct E(f64, u32, u32);
+pub(super) struct E(pub(super) f64, pub(super) u32, pub(super) u32);
 impl PartialEq for E {
     fn eq(&self, o: &Self) -> bool {
         self.cmp(o) == Ordering::Equal
