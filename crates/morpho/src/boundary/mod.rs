@@ -300,7 +300,7 @@ fn augment_until_done(d: &Delaunay2, g: &mut General<'_>, from: f64, local: bool
     let mut step = 1;
     let mut c = from;
     while g.boundary_vertices < nv && step <= 10 {
-        c = (from - 0.1 * step as f64).max(-1.0);
+        c = (from - step as f64 / 10.0).max(-1.0);
         // Only edges at a vertex off the boundary can ever be used: every removal triangle
         // vᵢvⱼvₖ has its apex vₖ off the boundary and its two new edges at vₖ, and a vertex never
         // leaves the boundary. Searching from those vertices gives the same constriction as

@@ -25,7 +25,7 @@
 //! hull is long and thin — instead of the O(N³) of V Thm 3.1. 3D beyond-Delaunay graphs use the
 //! brute force (limited to small inputs).
 
-use super::gamma::{CenterInterval, EdgeFrame, TriFrame};
+use super::gamma::{offset_of, CenterInterval, EdgeFrame, TriFrame};
 use super::grid::Grid;
 use crate::delaunay::d2::{Delaunay2, NONE};
 use crate::delaunay::d3::Delaunay3;
@@ -556,12 +556,27 @@ fn beyond_dt_2d_impl(
                     let reach = r * (k + f_over_r) * (1.0 + 1e-9);
                     let f = EdgeFrame::new(pu, pv);
                     let mut iv = f.start();
-                    grid.for_each_within(m, reach, |x| {
-                        if x != key[0] && x != key[1] {
-                            f.add(&mut iv, p[x as usize]);
+                    // The ends only move inwards as points are added, so once one passes ±F
+                    // (with a margin far above rounding) c₁′ < c is certain and the search ends.
+                    // Growing shells around m find the binding points early.
+                    let f_off = offset_of(cabs, iv.r_over_n) * (1.0 + 1e-9);
+                    let mut inner2 = -1.0;
+                    for sh in (0..4).rev() {
+                        let rad = reach / (1u32 << sh) as f64;
+                        let more = grid.for_each_within(m, rad, |x| {
+                            let q = p[x as usize];
+                            let d2 = (q[0] - m[0]).powi(2) + (q[1] - m[1]).powi(2);
+                            if d2 < inner2 || x == key[0] || x == key[1] {
+                                return true;
+                            }
+                            f.add(&mut iv, q);
+                            !(iv.all_blocked || iv.lo > f_off || iv.hi < -f_off)
+                        });
+                        if !more {
+                            break;
                         }
-                        true
-                    });
+                        inner2 = rad * rad;
+                    }
                     // Only a gap can be trusted: a non-Delaunay edge always has one, and when
                     // its true c₁′ ≥ c every binding point is within reach, so the local
                     // interval is exact. A local interval without a gap means a binding point
