@@ -722,7 +722,10 @@ fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
             "A closed boundary through the vertices of a scan (Veltkamp §5.3)",
             "The 1839 vertices of meshes/bunny_npm.obj, without their triangles: the Delaunay tetrahedralization is \
              constricted (tetrahedra with one or two boundary triangles, the γ-indicator of Def. 5.2 and the sum rule) \
-             until every point lies on the boundary.",
+             until every point lies on the boundary. Below, the two comparison methods on the same points (V §5.6): \
+             Boissonnat's minimal area change fills the body but bridges concavities with long thin triangles; \
+             the shortest Voronoi skeleton twists through the body (V Figs 5.10–5.11) and gets stuck before \
+             every point is reached.",
         );
         let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), b.triangles.clone());
         let opts = RenderOptions {
@@ -769,6 +772,58 @@ fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
             format!("{:.1}", b.volume),
         );
         s.fig("time", format!("{:.0} ms", dt * 1e3));
+        // the comparison methods of V §4.3.3 and §4.3.4 on the same points (V §5.6)
+        use morpho::boundary::{boundary_3d_with, Options3};
+        let sorted = |t: &[u32; 3]| {
+            let mut t = *t;
+            t.sort_unstable();
+            t
+        };
+        let truth: std::collections::HashSet<[u32; 3]> = m.triangles.iter().map(sorted).collect();
+        let recovered = |tris: &[[u32; 3]]| {
+            let hit = tris.iter().filter(|t| truth.contains(&sorted(t))).count();
+            100.0 * hit as f64 / truth.len().max(1) as f64
+        };
+        s.fig(
+            "γ-indicator: original triangles recovered",
+            format!("{:.1} %", recovered(&b.triangles)),
+        );
+        for (method, key, file, what) in [
+            (
+                Method::MinAreaChange,
+                Key::MinAreaChange,
+                "bunny_min_area.png",
+                "minimal area change (Boissonnat, V §4.3.3)",
+            ),
+            (
+                Method::VoronoiSkeleton,
+                Key::Gamma,
+                "bunny_skeleton.png",
+                "shortest Voronoi skeleton (O'Rourke et al., V §4.3.4)",
+            ),
+        ] {
+            let o = Options3 {
+                method,
+                key,
+                ..Options3::default()
+            };
+            let t = Instant::now();
+            let bm = boundary_3d_with(&m.positions, &o)?;
+            let dt = t.elapsed().as_secs_f64();
+            let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), bm.triangles.clone());
+            render_mesh(&mesh, &opts).save_png(&ctx.path(file))?;
+            s.img(file, what);
+            s.fig(
+                &format!("{what}: left out / recovered / volume / time"),
+                format!(
+                    "{} / {:.1} % / {:.1} / {:.0} ms",
+                    bm.left_out.len(),
+                    recovered(&bm.triangles),
+                    bm.volume,
+                    dt * 1e3
+                ),
+            );
+        }
         out.push(s);
     }
     Ok(out)
