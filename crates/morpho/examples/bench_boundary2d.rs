@@ -160,12 +160,13 @@ fn main() {
                         "—".to_string()
                     };
                     println!(
-                        "| {} | {n} | {} | {} | {} | {rec} | {} | {el:.3} s |",
+                        "| {} | {n} | {} | {} | {} | {rec} | {} | {:.1} ms |",
                         set.name,
                         m.name(),
                         if valid { "yes" } else { "no" },
                         b.left_out.len(),
-                        b.c_used
+                        b.c_used,
+                        el * 1e3
                     );
                 }
             }
