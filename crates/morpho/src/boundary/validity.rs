@@ -178,14 +178,21 @@ pub fn check_polygon(points: &[Point2], cycle: &[u32]) -> PolygonCheck {
             out.missing.push(i as u32);
         }
     }
+    // exact power-of-two scaling so that no predicate over- or underflows at extreme scales
+    let m = cycle.iter().fold(0.0f64, |m, &i| {
+        let p = points[i as usize];
+        m.max(p.x.abs()).max(p.y.abs())
+    });
+    let s = crate::geom::power_of_two_scale(m);
     let pt = |k: usize| {
         let p = points[cycle[k % n] as usize];
-        [p.x, p.y]
+        [p.x * s, p.y * s]
     };
     for k in 0..n {
         let (a, b) = (pt(k), pt(k + 1));
         out.area2 += a[0] * b[1] - a[1] * b[0];
     }
+    out.area2 = out.area2 / s / s;
     if n < 3 {
         return out;
     }
@@ -325,6 +332,37 @@ mod tests {
         // collinear but straight: fine
         let c = check_polygon(&pts, &[0, 4, 1, 2, 5]);
         assert!(c.simple && is_simple_brute(&pts, &[0, 4, 1, 2, 5]));
+    }
+
+    #[test]
+    fn verdicts_do_not_depend_on_the_absolute_scale() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        for _ in 0..200 {
+            let n = rng.gen_range(3..8);
+            let pts: Vec<Point2> = (0..n)
+                .map(|_| Point2::new(rng.gen_range(0..4) as f64, rng.gen_range(0..4) as f64))
+                .collect();
+            let cycle: Vec<u32> = (0..n as u32).collect();
+            let want = check_polygon(&pts, &cycle);
+            // powers of two keep the configuration exactly; the products of the predicates
+            // under- or overflow at these scales unless the check rescales
+            for scale in [
+                2f64.powi(-1000),
+                2f64.powi(-520),
+                2f64.powi(520),
+                2f64.powi(1000),
+            ] {
+                let q: Vec<Point2> = pts.iter().map(|p| p * scale).collect();
+                let got = check_polygon(&q, &cycle);
+                assert_eq!(got.simple, want.simple, "{pts:?} at scale {scale:e}");
+                assert_eq!(got.conflict, want.conflict);
+                // (the area itself, in input units, underflows to 0 at 2^-1000)
+                if got.area2 != 0.0 {
+                    assert_eq!(got.area2 > 0.0, want.area2 > 0.0);
+                }
+            }
+        }
     }
 
     #[test]

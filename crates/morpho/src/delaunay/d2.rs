@@ -195,17 +195,6 @@ fn hilbert_index(mut x: u32, mut y: u32) -> u32 {
     d
 }
 
-/// The power of two that brings the largest coordinate magnitude `m` near 1.
-fn power_of_two_scale(m: f64) -> f64 {
-    if m == 0.0 || !m.is_finite() {
-        return 1.0;
-    }
-    let e = m.log2().round() as i32;
-    // 2^-e computed in two steps so that neither factor over- or underflows.
-    let half = -e / 2;
-    2f64.powi(half) * 2f64.powi(-e - half)
-}
-
 /// Exact predicates on the construction's vertex coordinates.
 trait Kernel {
     type P: Copy;
@@ -553,7 +542,7 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
         .max(lo[1].abs())
         .max(hi[0].abs())
         .max(hi[1].abs());
-    let scale = power_of_two_scale(m);
+    let scale = crate::geom::power_of_two_scale(m);
     let n_in = points.len();
 
     // Hilbert keys on the bounding box (computed on halves to avoid overflow of hi - lo).
