@@ -182,6 +182,81 @@ fn compare_keys(name: &str, m: &morpho::mesh::TriMesh) {
     }
 }
 
+/// Phase timing of the fallback path (`phases` argument): constriction, engine construction,
+/// each run / local_gamma / augment step, final checks.
+fn phases(name: &str, pts: &[Point3]) {
+    use morpho::boundary::fallback3::General3;
+    let t = Instant::now();
+    let d = morpho::delaunay::d3::triangulate(pts).expect("triangulate");
+    let t_dt = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let st = constrict_3d(&d, Until::All);
+    println!(
+        "{name}: delaunay {t_dt:.3} s, constriction {:.3} s",
+        t.elapsed().as_secs_f64()
+    );
+    let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+    let t = Instant::now();
+    let mut live = Vec::new();
+    for (ti, tet) in d.tets.iter().enumerate() {
+        if st.alive[ti] {
+            for (fi, f) in morpho::delaunay::d3::FACE_OF.iter().enumerate() {
+                let n = d.neighbors[ti][fi];
+                let mut s = [tet[f[0]], tet[f[1]], tet[f[2]]];
+                s.sort_unstable();
+                if n == morpho::delaunay::d3::NONE || !st.alive[n as usize] || (ti as u32) < n {
+                    live.push(s);
+                }
+            }
+        }
+    }
+    let mut g = General3::new(&pos, &st.triangles, &live, &[]);
+    println!(
+        "  new: {:.3} s ({} live)",
+        t.elapsed().as_secs_f64(),
+        live.len()
+    );
+    let t = Instant::now();
+    g.run();
+    println!(
+        "  run0: {:.3} s, bv {}/{}",
+        t.elapsed().as_secs_f64(),
+        g.boundary_vertices,
+        pos.len()
+    );
+    let mut step = 1;
+    while !g.done() && step <= 10 {
+        let c = -(step as f64) / 10.0;
+        let t = Instant::now();
+        let extra = g.local_gamma(c, 16);
+        let t_lg = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let a = g.augment(&extra);
+        let t_au = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        if a > 0 {
+            g.run();
+        }
+        println!(
+            "  c {c}: local_gamma {t_lg:.3} s ({} tris), augment {t_au:.3} s ({a} added), run {:.3} s, bv {}/{}",
+            extra.len(),
+            t.elapsed().as_secs_f64(),
+            g.boundary_vertices,
+            pos.len()
+        );
+        step += 1;
+    }
+    let t = Instant::now();
+    let b = g.boundary();
+    let si = validity3::self_intersections(&pos, &b, 10);
+    println!(
+        "  final check {:.3} s ({} intersections), iterations {}",
+        t.elapsed().as_secs_f64(),
+        si.len(),
+        g.iterations
+    );
+}
+
 fn main() {
     let Some(dir) = data_dir() else {
         eprintln!("shared data not found");
@@ -197,6 +272,42 @@ fn main() {
         if args.len() == 1 {
             return;
         }
+    }
+    if args.iter().any(|a| a == "check") {
+        let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
+        let pts = if want("horse100k") {
+            sample_surface(&horse, 100_000, 1)
+        } else {
+            used_vertices(&horse)
+        };
+        let d = morpho::delaunay::d3::triangulate(&pts).expect("triangulate");
+        let c = constrict_3d(&d, Until::All);
+        let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        for _ in 0..3 {
+            let t = Instant::now();
+            let n = validity3::self_intersections(&pos, &c.triangles, 10).len();
+            println!(
+                "check {} triangles: {:.3} s ({n})",
+                c.triangles.len(),
+                t.elapsed().as_secs_f64()
+            );
+        }
+        return;
+    }
+    if args.iter().any(|a| a == "phases") {
+        let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
+        let bunny =
+            morpho::io::read_mesh(&dir.join("meshes/stanford-bunny.obj.gz")).expect("bunny");
+        if want("bunny") {
+            phases("bunny", &used_vertices(&bunny));
+        }
+        if want("horse") {
+            phases("horse", &used_vertices(&horse));
+        }
+        if want("horse100k") {
+            phases("horse100k", &sample_surface(&horse, 100_000, 1));
+        }
+        return;
     }
     let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
     if want("horse") {

@@ -76,6 +76,17 @@ fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
     f
 }
 
+/// The rotation of an oriented face that starts at its smallest vertex.
+fn sorted_rot(f: [u32; 3]) -> [u32; 3] {
+    if f[0] < f[1] && f[0] < f[2] {
+        f
+    } else if f[1] < f[2] {
+        [f[1], f[2], f[0]]
+    } else {
+        [f[2], f[0], f[1]]
+    }
+}
+
 fn ek(a: u32, b: u32) -> u64 {
     let (a, b) = if a < b { (a, b) } else { (b, a) };
     ((a as u64) << 32) | b as u64
@@ -348,6 +359,8 @@ pub struct General3<'a> {
     p: &'a [P],
     tris: Vec<[u32; 3]>,
     live: Vec<bool>,
+    /// The triangle is a boundary face (in either orientation).
+    bflag: Vec<bool>,
     id: IdMap<[u32; 3], u32>,
     eadj: IdMap<u64, Vec<u32>>,
     /// directed boundary edge a→b → third vertex of the outward boundary face containing it
@@ -361,6 +374,10 @@ pub struct General3<'a> {
     blocked_by: Option<[u32; 3]>,
     /// Triangles found in a γ-graph by [`General3::local_gamma`] (not tested again).
     in_gamma: IdSet<[u32; 3]>,
+    /// Upper bounds of c₁′ of triangles rejected by [`General3::local_gamma`] (from a subset
+    /// of the points: more points only lower it), so that a smaller c skips them when the
+    /// bound is already below it.
+    gamma_ub: IdMap<[u32; 3], f64>,
     /// Number of boundary vertices.
     pub boundary_vertices: usize,
     /// Number of removed tetrahedra.
@@ -376,8 +393,30 @@ impl<'a> General3<'a> {
     pub fn new(p: &'a [P], boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) -> Self {
         let (lo, hi) = bbox(p);
         let n = p.len().max(1);
-        let vol = (0..3).map(|k| (hi[k] - lo[k]).max(0.0)).product::<f64>();
-        let mut cell = 2.0 * (vol / n as f64).cbrt();
+        // cell: twice the median edge length of the triangles (points of a scanned surface
+        // fill the bounding box far from evenly, so its volume per point is a poor scale)
+        let mut lens: Vec<f64> = boundary
+            .iter()
+            .chain(tris)
+            .step_by((boundary.len() + tris.len()) / 20_000 + 1)
+            .flat_map(|t| {
+                (0..3).map(move |k| {
+                    let (a, b) = (p[t[k] as usize], p[t[(k + 1) % 3] as usize]);
+                    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+                })
+            })
+            .filter(|x| x.is_finite())
+            .collect();
+        let mut cell = if lens.is_empty() {
+            0.0
+        } else {
+            let mid = lens.len() / 2;
+            2.0 * *lens.select_nth_unstable_by(mid, f64::total_cmp).1
+        };
+        if cell <= 0.0 || !cell.is_finite() {
+            let vol = (0..3).map(|k| (hi[k] - lo[k]).max(0.0)).product::<f64>();
+            cell = 2.0 * (vol / n as f64).cbrt();
+        }
         if cell <= 0.0 || !cell.is_finite() {
             cell = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max).max(1.0) / (n as f64).sqrt();
         }
@@ -385,6 +424,7 @@ impl<'a> General3<'a> {
             p,
             tris: Vec::new(),
             live: Vec::new(),
+            bflag: Vec::new(),
             id: IdMap::default(),
             eadj: IdMap::default(),
             bnext: IdMap::default(),
@@ -396,6 +436,7 @@ impl<'a> General3<'a> {
             buf: Vec::new(),
             blocked_by: None,
             in_gamma: IdSet::default(),
+            gamma_ub: IdMap::default(),
             boundary_vertices: 0,
             iterations: 0,
             added: 0,
@@ -431,6 +472,7 @@ impl<'a> General3<'a> {
             let i = self.tris.len() as u32;
             self.tris.push(s);
             self.live.push(true);
+            self.bflag.push(false);
             self.id.insert(s, i);
             let (lo, hi) = bbox(&s.map(|v| self.pt(v)));
             self.tgrid.insert(i, lo, hi);
@@ -464,6 +506,9 @@ impl<'a> General3<'a> {
     }
 
     fn set_boundary(&mut self, f: [u32; 3], on: bool) {
+        if let Some(&i) = self.id.get(&sorted3(f)) {
+            self.bflag[i as usize] = on;
+        }
         for k in 0..3 {
             let (a, b, c) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
             if on {
@@ -624,8 +669,7 @@ impl<'a> General3<'a> {
                 continue;
             }
             // boundary triangle? (either orientation of the sorted triple)
-            let isb = self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]);
-            if !isb {
+            if !self.bflag[i as usize] {
                 continue;
             }
             let pu = u.map(|v| self.pt(v));
@@ -824,9 +868,29 @@ impl<'a> General3<'a> {
         }
     }
 
+    /// Pushes every boundary face that can have a removable tetrahedron: one sharing an edge
+    /// with a live triangle that is not a boundary face (a tetrahedron with at most two
+    /// boundary faces has two other live faces, each on an edge of every boundary face of it;
+    /// the other boundary faces never have one).
     fn push_all(&mut self) -> bool {
+        let mut faces: Vec<[u32; 3]> = Vec::new();
+        for (i, t) in self.tris.iter().enumerate() {
+            if !self.live[i] || self.bflag[i] {
+                continue;
+            }
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                for (x, y) in [(a, b), (b, a)] {
+                    if let Some(&z) = self.bnext.get(&dk(x, y)) {
+                        faces.push(sorted_rot([x, y, z]));
+                    }
+                }
+            }
+        }
+        faces.sort_unstable();
+        faces.dedup();
         let mut any = false;
-        for f in self.boundary() {
+        for f in faces {
             any |= self.push(f);
         }
         any
@@ -836,8 +900,7 @@ impl<'a> General3<'a> {
         let qv = [f[0], f[1], f[2], l];
         let cross = self.crossing(qv);
         for i in cross {
-            let u = self.tris[i as usize];
-            if self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]) {
+            if self.bflag[i as usize] {
                 continue; // (cannot meet the open Q; never delete the surface)
             }
             self.kill(i);
@@ -972,9 +1035,8 @@ impl<'a> General3<'a> {
             // the k boundary faces nearest to l (by centroid)
             let mut faces: Vec<(f64, [u32; 3])> = tb
                 .iter()
-                .filter(|&&i| self.live[i as usize])
+                .filter(|&&i| self.live[i as usize] && self.bflag[i as usize])
                 .map(|&i| self.tris[i as usize])
-                .filter(|&u| self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]))
                 .map(|u| {
                     let q = u.map(|v| self.pt(v));
                     let d2 = (0..3)
@@ -994,6 +1056,9 @@ impl<'a> General3<'a> {
                     let t = sorted3([l, x, y]);
                     if x == l || y == l || self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t)
                     {
+                        continue;
+                    }
+                    if self.gamma_ub.get(&t).is_some_and(|&ub| ub < c) {
                         continue;
                     }
                     let [pa, pb, pc] = t.map(|v| self.pt(v));
@@ -1018,6 +1083,8 @@ impl<'a> General3<'a> {
                         if !iv.all_blocked {
                             self.in_gamma.insert(t);
                             out.push(t);
+                        } else {
+                            self.gamma_ub.insert(t, f64::NEG_INFINITY);
                         }
                     } else {
                         // points only narrow the interval (c₁′ never grows): reject on the
@@ -1033,7 +1100,9 @@ impl<'a> General3<'a> {
                                 f.add(&mut iv, self.p[z as usize]);
                             }
                         }
-                        if !iv.gamma_values().is_some_and(|g| g.1 >= c) {
+                        let ub = iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
+                        if ub < c {
+                            self.gamma_ub.insert(t, ub);
                             continue;
                         }
                         if reach > near_r {
@@ -1048,9 +1117,12 @@ impl<'a> General3<'a> {
                                 }
                             }
                         }
-                        if iv.gamma_values().is_some_and(|g| g.1 >= c) {
+                        let ub = iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
+                        if ub >= c {
                             self.in_gamma.insert(t);
                             out.push(t);
+                        } else {
+                            self.gamma_ub.insert(t, ub);
                         }
                     }
                 }

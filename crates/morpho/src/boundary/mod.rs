@@ -545,6 +545,46 @@ fn augment_until_done_3d(g: &mut fallback3::General3<'_>, from: f64) -> f64 {
     c
 }
 
+/// Tetrahedron steps from the vertices off the boundary that the local general engine sees.
+const LOCAL_DEPTH: usize = 4;
+
+/// The live tetrahedra within `depth` neighbour steps of a tetrahedron at a vertex that is
+/// not on the boundary `tris` (O(T) for T tetrahedra).
+fn near_locked(
+    d: &crate::delaunay::d3::Delaunay3,
+    alive: &[bool],
+    tris: &[[u32; 3]],
+    depth: usize,
+) -> Vec<bool> {
+    let mut on = vec![false; d.points.len()];
+    for t in tris {
+        for &v in t {
+            on[v as usize] = true;
+        }
+    }
+    let mut region = vec![false; d.tets.len()];
+    let mut front: Vec<u32> = Vec::new();
+    for (t, tet) in d.tets.iter().enumerate() {
+        if alive[t] && tet.iter().any(|&v| !on[v as usize]) {
+            region[t] = true;
+            front.push(t as u32);
+        }
+    }
+    for _ in 0..depth {
+        let mut next = Vec::new();
+        for &t in &front {
+            for &n in &d.neighbors[t as usize] {
+                if n != crate::delaunay::d3::NONE && alive[n as usize] && !region[n as usize] {
+                    region[n as usize] = true;
+                    next.push(n);
+                }
+            }
+        }
+        front = next;
+    }
+    region
+}
+
 /// [`boundary_3d`] with all options (see [`Options3`]).
 pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Result<Boundary3> {
     let d = crate::delaunay::d3::triangulate(points)?;
@@ -667,11 +707,31 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
             {
                 (st.triangles, Some(st.alive), 0.0, st.iterations, 0)
             } else {
-                let live = faces_of(&st.alive);
-                let mut g = fallback3::General3::new(&pos, &st.triangles, &live, &keep_v);
-                let c = augment_until_done_3d(&mut g, 0.0);
-                let added = g.added;
-                (g.boundary(), None, c, st.iterations + g.iterations, added)
+                // V §5.4: augment only where needed. First the live tetrahedra near the
+                // vertices off the boundary (the rest of the object is locked for the Delaunay
+                // constriction and far from the added triangles); the whole object when that
+                // does not free every vertex.
+                let mut result = None;
+                if keep_v.is_empty() {
+                    let region = near_locked(&d, &st.alive, &st.triangles, LOCAL_DEPTH);
+                    let live = faces_of(&region);
+                    let mut g = fallback3::General3::new(&pos, &st.triangles, &live, &keep_v);
+                    let c = augment_until_done_3d(&mut g, 0.0);
+                    if g.done() {
+                        let added = g.added;
+                        result = Some((g.boundary(), None, c, st.iterations + g.iterations, added));
+                    }
+                }
+                match result {
+                    Some(r) => r,
+                    None => {
+                        let live = faces_of(&st.alive);
+                        let mut g = fallback3::General3::new(&pos, &st.triangles, &live, &keep_v);
+                        let c = augment_until_done_3d(&mut g, 0.0);
+                        let added = g.added;
+                        (g.boundary(), None, c, st.iterations + g.iterations, added)
+                    }
+                }
             }
         }
     };
