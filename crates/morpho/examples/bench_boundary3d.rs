@@ -197,14 +197,41 @@ fn phases(name: &str, pts: &[Point3]) {
     );
     let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
     let t = Instant::now();
+    // the region of boundary_3d_with (near_locked, depth 4)
+    let mut on = vec![false; d.points.len()];
+    for t in &st.triangles {
+        for &v in t {
+            on[v as usize] = true;
+        }
+    }
+    let mut region = vec![false; d.tets.len()];
+    let mut front: Vec<u32> = Vec::new();
+    for (t, tet) in d.tets.iter().enumerate() {
+        if st.alive[t] && tet.iter().any(|&v| !on[v as usize]) {
+            region[t] = true;
+            front.push(t as u32);
+        }
+    }
+    for _ in 0..4 {
+        let mut next = Vec::new();
+        for &t in &front {
+            for &n in &d.neighbors[t as usize] {
+                if n != morpho::delaunay::d3::NONE && st.alive[n as usize] && !region[n as usize] {
+                    region[n as usize] = true;
+                    next.push(n);
+                }
+            }
+        }
+        front = next;
+    }
     let mut live = Vec::new();
     for (ti, tet) in d.tets.iter().enumerate() {
-        if st.alive[ti] {
+        if region[ti] {
             for (fi, f) in morpho::delaunay::d3::FACE_OF.iter().enumerate() {
                 let n = d.neighbors[ti][fi];
                 let mut s = [tet[f[0]], tet[f[1]], tet[f[2]]];
                 s.sort_unstable();
-                if n == morpho::delaunay::d3::NONE || !st.alive[n as usize] || (ti as u32) < n {
+                if n == morpho::delaunay::d3::NONE || !region[n as usize] || (ti as u32) < n {
                     live.push(s);
                 }
             }

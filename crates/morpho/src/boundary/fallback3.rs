@@ -367,7 +367,12 @@ pub struct General3<'a> {
     bnext: IdMap<u64, u32>,
     vcount: Vec<u32>,
     keep: IdSet<[u32; 3]>,
+    /// Live triangles that were not boundary faces when added (for [`Self::crossing`]).
     tgrid: Grid,
+    /// Triangles that have been boundary faces (for [`Self::hits_boundary`]; `bflag` tells
+    /// which still are).
+    bgrid: Grid,
+    in_bgrid: Vec<bool>,
     vgrid: Grid,
     heap: BinaryHeap<Entry>,
     buf: Vec<u32>,
@@ -431,6 +436,8 @@ impl<'a> General3<'a> {
             vcount: vec![0; p.len()],
             keep: keep.iter().map(|&f| sorted3(f)).collect(),
             tgrid: Grid::new(lo, cell, true),
+            bgrid: Grid::new(lo, cell, true),
+            in_bgrid: Vec::new(),
             vgrid: Grid::new(lo, cell, false),
             heap: BinaryHeap::new(),
             buf: Vec::new(),
@@ -444,7 +451,11 @@ impl<'a> General3<'a> {
         for (v, &q) in p.iter().enumerate() {
             g.vgrid.insert(v as u32, q, q);
         }
-        for &t in tris.iter().chain(boundary).chain(keep) {
+        // boundary faces first: they go to the boundary grid only
+        for &t in boundary {
+            g.add_tri_grid(t, false);
+        }
+        for &t in tris.iter().chain(keep) {
             g.add_tri(t);
         }
         for &f in boundary {
@@ -459,6 +470,10 @@ impl<'a> General3<'a> {
     }
 
     fn add_tri(&mut self, t: [u32; 3]) -> bool {
+        self.add_tri_grid(t, true)
+    }
+
+    fn add_tri_grid(&mut self, t: [u32; 3], grid: bool) -> bool {
         let s = sorted3(t);
         if s[0] == s[1] || s[1] == s[2] {
             return false;
@@ -473,9 +488,12 @@ impl<'a> General3<'a> {
             self.tris.push(s);
             self.live.push(true);
             self.bflag.push(false);
+            self.in_bgrid.push(false);
             self.id.insert(s, i);
-            let (lo, hi) = bbox(&s.map(|v| self.pt(v)));
-            self.tgrid.insert(i, lo, hi);
+            if grid {
+                let (lo, hi) = bbox(&s.map(|v| self.pt(v)));
+                self.tgrid.insert(i, lo, hi);
+            }
         }
         for k in 0..3 {
             let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
@@ -508,6 +526,11 @@ impl<'a> General3<'a> {
     fn set_boundary(&mut self, f: [u32; 3], on: bool) {
         if let Some(&i) = self.id.get(&sorted3(f)) {
             self.bflag[i as usize] = on;
+            if on && !self.in_bgrid[i as usize] {
+                self.in_bgrid[i as usize] = true;
+                let (lo, hi) = bbox(&f.map(|v| self.pt(v)));
+                self.bgrid.insert(i, lo, hi);
+            }
         }
         for k in 0..3 {
             let (a, b, c) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
@@ -656,7 +679,7 @@ impl<'a> General3<'a> {
         let pt = t.map(|v| self.pt(v));
         let bb = bbox(&pt);
         let mut buf = std::mem::take(&mut self.buf);
-        self.tgrid.query(bb.0, bb.1, &mut buf);
+        self.bgrid.query(bb.0, bb.1, &mut buf);
         let skip: Vec<[u32; 3]> = skip.iter().map(|&s| sorted3(s)).collect();
         let st = sorted3(t);
         let mut hit = false;
@@ -1009,8 +1032,11 @@ impl<'a> General3<'a> {
                         })
                         .collect();
                     v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                    // only points within rad are certainly among the nearest
-                    v.retain(|e| e.0 <= rad * rad);
+                    // only points within rad are certainly among the nearest (unless the
+                    // box holds every point)
+                    if buf.len() < n {
+                        v.retain(|e| e.0 <= rad * rad);
+                    }
                     if v.len() >= k || buf.len() >= n {
                         break v.into_iter().take(k).map(|e| e.1).collect();
                     }
@@ -1027,7 +1053,7 @@ impl<'a> General3<'a> {
             }
             let reach_l = 2.0 * rad;
             let mut tb = Vec::new();
-            self.tgrid.query(
+            self.bgrid.query(
                 std::array::from_fn(|i| pl[i] - reach_l),
                 std::array::from_fn(|i| pl[i] + reach_l),
                 &mut tb,
@@ -1088,21 +1114,46 @@ impl<'a> General3<'a> {
                         }
                     } else {
                         // points only narrow the interval (c₁′ never grows): reject on the
-                        // near points first, then scan the whole reach
+                        // nearest vertices of l first, then on the points near the circle,
+                        // then scan the whole reach, stopping as soon as c₁′ < c
+                        let ub_of = |iv: &crate::graphs::gamma::CenterInterval| {
+                            iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1)
+                        };
+                        let pts = self.p;
+                        let scan =
+                            |iv: &mut crate::graphs::gamma::CenterInterval, ids: &[u32]| -> bool {
+                                for (j, &z) in ids.iter().enumerate() {
+                                    if !t.contains(&z) {
+                                        f.add(iv, pts[z as usize]);
+                                    }
+                                    if j % 32 == 31 && ub_of(iv) < c {
+                                        return true;
+                                    }
+                                }
+                                ub_of(iv) < c
+                            };
+                        if scan(&mut iv, &near) {
+                            self.gamma_ub.insert(t, ub_of(&iv));
+                            continue;
+                        }
                         let near_r = reach.min(2.0 * r2.sqrt());
                         self.vgrid.query(
                             std::array::from_fn(|i| m[i] - near_r),
                             std::array::from_fn(|i| m[i] + near_r),
                             &mut buf,
                         );
-                        for &z in &buf {
-                            if !t.contains(&z) {
-                                f.add(&mut iv, self.p[z as usize]);
-                            }
+                        if scan(&mut iv, &buf) {
+                            self.gamma_ub.insert(t, ub_of(&iv));
+                            continue;
                         }
-                        let ub = iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
-                        if ub < c {
-                            self.gamma_ub.insert(t, ub);
+                        // No ball through the circle empty so far (c₁′ < 0: the gap regime of
+                        // `gamma_values`): c₁′ = −|c| of the gap's larger end. A point outside the
+                        // closed diametral ball B(m, r) has τ of the sign of its side (q > 0), so
+                        // it never widens the gap: c₁′ is final once every point of B(m, r) —
+                        // inside the box just scanned (half-width 2r ≥ r) — has been added.
+                        if ub_of(&iv) < 0.0 && near_r >= 2.0 * r2.sqrt() {
+                            self.in_gamma.insert(t);
+                            out.push(t);
                             continue;
                         }
                         if reach > near_r {
@@ -1111,10 +1162,19 @@ impl<'a> General3<'a> {
                                 std::array::from_fn(|i| m[i] + reach),
                                 &mut buf,
                             );
-                            for &z in &buf {
-                                if !t.contains(&z) {
-                                    f.add(&mut iv, self.p[z as usize]);
-                                }
+                            // nearest to the circumcentre first: blocking points come early
+                            let d2 = |z: u32| {
+                                let q = pts[z as usize];
+                                (0..3).map(|i| (q[i] - m[i]).powi(2)).sum::<f64>()
+                            };
+                            let mut keyed: Vec<(f64, u32)> =
+                                buf.iter().map(|&z| (d2(z), z)).collect();
+                            keyed.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                            buf.clear();
+                            buf.extend(keyed.iter().map(|e| e.1));
+                            if scan(&mut iv, &buf) {
+                                self.gamma_ub.insert(t, ub_of(&iv));
+                                continue;
                             }
                         }
                         let ub = iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
@@ -1266,5 +1326,77 @@ mod tests {
             q,
             qv
         ));
+    }
+
+    /// local_gamma with k ≥ n tries every triangle at a vertex off the boundary: its results
+    /// over decreasing c must be exactly the triangles of γ([-1,1],[c,1]) there (Def. 3.1 by
+    /// the full center interval over all points), without the live ones.
+    #[test]
+    fn local_gamma_matches_the_full_definition() {
+        use crate::graphs::gamma::center_interval_3d;
+        for seed in 0..4u64 {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let n = 24;
+            let pts: Vec<crate::geom::Point3> = (0..n)
+                .map(|i| {
+                    if seed == 3 && i % 4 == 0 {
+                        // far points: they decide for balls far beyond the diametral ones
+                        let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                        let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                        crate::geom::Point3::new(4.0 * v[0] / r, 4.0 * v[1] / r, 4.0 * v[2] / r)
+                    } else if i % 2 == 0 || seed == 2 {
+                        // on a sphere (rounded), and inside
+                        let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                        let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                        let s = if i % 4 == 0 { 1.0 } else { 0.6 };
+                        crate::geom::Point3::new(v[0] / r * s, v[1] / r * s, v[2] / r * s)
+                    } else {
+                        let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-0.5..0.5));
+                        crate::geom::Point3::new(v[0], v[1], v[2])
+                    }
+                })
+                .collect();
+            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let nv = pos.len();
+            let mut g = General3::new(&pos, &d.hull, &[], &[]);
+            let locked: Vec<u32> = (0..nv as u32).filter(|&v| !g.on_boundary(v)).collect();
+            assert!(locked.len() >= 5, "{}", locked.len());
+            let mut found: std::collections::BTreeSet<[u32; 3]> = Default::default();
+            for c in [-0.1, -0.3, -0.5, -0.7, -0.9, -1.0] {
+                for t in g.local_gamma(c, nv) {
+                    assert!(found.insert(t), "returned twice: {t:?}");
+                }
+                let mut expect: std::collections::BTreeSet<[u32; 3]> = Default::default();
+                for a in 0..nv as u32 {
+                    for b in a + 1..nv as u32 {
+                        for e in b + 1..nv as u32 {
+                            let t = [a, b, e];
+                            if !t.iter().any(|v| locked.contains(v)) || g.has(a, b, e) {
+                                continue;
+                            }
+                            let Some(iv) =
+                                center_interval_3d(&pos, a as usize, b as usize, e as usize)
+                            else {
+                                continue;
+                            };
+                            if iv.gamma_values().is_some_and(|v| v.1 >= c) {
+                                expect.insert(t);
+                            }
+                        }
+                    }
+                }
+                let missing: Vec<_> = expect.difference(&found).collect();
+                let extra: Vec<_> = found.difference(&expect).collect();
+                for t in missing.iter().chain(&extra) {
+                    let iv = center_interval_3d(&pos, t[0] as usize, t[1] as usize, t[2] as usize);
+                    eprintln!("{t:?}: {:?}", iv.and_then(|iv| iv.gamma_values()));
+                }
+                assert!(
+                    missing.is_empty() && extra.is_empty(),
+                    "seed {seed}, c {c}: missing {missing:?}, extra {extra:?}"
+                );
+            }
+        }
     }
 }
