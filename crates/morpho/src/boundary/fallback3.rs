@@ -174,6 +174,40 @@ impl Grid {
             }
         }
     }
+    /// Calls `f` on the ids whose cells meet the box (big ones first; an id may come more
+    /// than once) until it returns true; returns whether it did.
+    fn any_in_box(&self, lo: P, hi: P, mut f: impl FnMut(u32) -> bool) -> bool {
+        if self.big.iter().any(|&i| f(i)) {
+            return true;
+        }
+        let (a, b) = self.range(lo, hi);
+        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
+        if span as usize > self.cells.len() {
+            for (key, ids) in &self.cells {
+                if (a[0]..=b[0]).contains(&key.0)
+                    && (a[1]..=b[1]).contains(&key.1)
+                    && (a[2]..=b[2]).contains(&key.2)
+                    && ids.iter().any(|&i| f(i))
+                {
+                    return true;
+                }
+            }
+        } else {
+            for x in a[0]..=b[0] {
+                for y in a[1]..=b[1] {
+                    for z in a[2]..=b[2] {
+                        if let Some(ids) = self.cells.get(&(x, y, z)) {
+                            if ids.iter().any(|&i| f(i)) {
+                                return true;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        false
+    }
+
     /// Ids whose cells meet the box (with repetitions; big ones always).
     fn query(&self, lo: P, hi: P, out: &mut Vec<u32>) {
         out.clear();
@@ -361,6 +395,8 @@ pub struct General3<'a> {
     live: Vec<bool>,
     /// The triangle is a boundary face (in either orientation).
     bflag: Vec<bool>,
+    /// Bounding box of every triangle.
+    tbox: Vec<(P, P)>,
     id: IdMap<[u32; 3], u32>,
     eadj: IdMap<u64, Vec<u32>>,
     /// directed boundary edge a→b → third vertex of the outward boundary face containing it
@@ -430,6 +466,7 @@ impl<'a> General3<'a> {
             tris: Vec::new(),
             live: Vec::new(),
             bflag: Vec::new(),
+            tbox: Vec::new(),
             id: IdMap::default(),
             eadj: IdMap::default(),
             bnext: IdMap::default(),
@@ -448,6 +485,17 @@ impl<'a> General3<'a> {
             iterations: 0,
             added: 0,
         };
+        let nt = boundary.len() + tris.len() + keep.len();
+        g.tris.reserve(nt);
+        g.live.reserve(nt);
+        g.bflag.reserve(nt);
+        g.tbox.reserve(nt);
+        g.in_bgrid.reserve(nt);
+        g.id.reserve(nt);
+        g.eadj.reserve(3 * nt / 2);
+        g.bnext.reserve(3 * boundary.len());
+        g.vgrid.cells.reserve(p.len());
+        g.bgrid.cells.reserve(boundary.len());
         for (v, &q) in p.iter().enumerate() {
             g.vgrid.insert(v as u32, q, q);
         }
@@ -490,8 +538,9 @@ impl<'a> General3<'a> {
             self.bflag.push(false);
             self.in_bgrid.push(false);
             self.id.insert(s, i);
+            let (lo, hi) = bbox(&s.map(|v| self.pt(v)));
+            self.tbox.push((lo, hi));
             if grid {
-                let (lo, hi) = bbox(&s.map(|v| self.pt(v)));
                 self.tgrid.insert(i, lo, hi);
             }
         }
@@ -528,7 +577,7 @@ impl<'a> General3<'a> {
             self.bflag[i as usize] = on;
             if on && !self.in_bgrid[i as usize] {
                 self.in_bgrid[i as usize] = true;
-                let (lo, hi) = bbox(&f.map(|v| self.pt(v)));
+                let (lo, hi) = self.tbox[i as usize];
                 self.bgrid.insert(i, lo, hi);
             }
         }
@@ -674,36 +723,64 @@ impl<'a> General3<'a> {
     }
 
     /// Triangle `t` (vertex ids) meets a boundary triangle other than those in `skip` beyond
-    /// their common vertices/edges.
-    fn hits_boundary(&mut self, t: [u32; 3], skip: &[[u32; 3]]) -> bool {
+    /// their common vertices/edges. Stops at the first such triangle.
+    fn hits_boundary(&self, t: [u32; 3], skip: &[[u32; 3]]) -> bool {
         let pt = t.map(|v| self.pt(v));
         let bb = bbox(&pt);
-        let mut buf = std::mem::take(&mut self.buf);
-        self.bgrid.query(bb.0, bb.1, &mut buf);
-        let skip: Vec<[u32; 3]> = skip.iter().map(|&s| sorted3(s)).collect();
+        let mut skip_s = [[u32::MAX; 3]; 4];
+        for (k, &x) in skip.iter().take(4).enumerate() {
+            skip_s[k] = sorted3(x);
+        }
         let st = sorted3(t);
-        let mut hit = false;
-        for &i in &buf {
-            if !self.live[i as usize] {
-                continue;
+        // floating-point plane of t: a box farther from it than a generous bound of the
+        // rounding error (relative 1e-8) holds no point of t's plane, so no triangle in it can
+        // meet t (a triangle sharing a vertex with t touches the plane and is never culled)
+        let d = |x: P, y: P| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+        let (e1, e2) = (d(pt[1], pt[0]), d(pt[2], pt[0]));
+        let nrm = [
+            e1[1] * e2[2] - e1[2] * e2[1],
+            e1[2] * e2[0] - e1[0] * e2[2],
+            e1[0] * e2[1] - e1[1] * e2[0],
+        ];
+        let n1: f64 = nrm.iter().map(|x| x.abs()).sum();
+        let scale = |x: P| x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let st_scale = scale(bb.0).max(scale(bb.1));
+        let plane_ok = n1.is_finite() && n1 > 0.0;
+        self.bgrid.any_in_box(bb.0, bb.1, |i| {
+            // live boundary triangle (either orientation of the sorted triple)
+            if !self.live[i as usize] || !self.bflag[i as usize] {
+                return false;
+            }
+            let ub = self.tbox[i as usize];
+            if !boxes_meet(bb, ub) {
+                return false;
+            }
+            if plane_ok {
+                let c: P = std::array::from_fn(|k| 0.5 * (ub.0[k] + ub.1[k]));
+                let h: P = std::array::from_fn(|k| 0.5 * (ub.1[k] - ub.0[k]));
+                let dist = (0..3).map(|k| nrm[k] * (c[k] - pt[0][k])).sum::<f64>();
+                let rad = (0..3).map(|k| nrm[k].abs() * h[k]).sum::<f64>();
+                let margin = 1e-8 * n1 * (st_scale + scale(ub.0).max(scale(ub.1)));
+                if dist.abs() > rad + margin {
+                    return false;
+                }
             }
             let u = self.tris[i as usize];
-            if u == st || skip.contains(&u) {
-                continue;
-            }
-            // boundary triangle? (either orientation of the sorted triple)
-            if !self.bflag[i as usize] {
-                continue;
+            if u == st || skip_s.contains(&u) || skip.iter().skip(4).any(|&x| sorted3(x) == u) {
+                return false;
             }
             let pu = u.map(|v| self.pt(v));
-            if !boxes_meet(bb, bbox(&pu)) {
-                continue;
+            let mut shared = [(0usize, 0usize); 3];
+            let mut ns = 0;
+            for x in 0..3 {
+                for y in 0..3 {
+                    if t[x] == u[y] && ns < 3 {
+                        shared[ns] = (x, y);
+                        ns += 1;
+                    }
+                }
             }
-            let shared: Vec<(usize, usize)> = (0..3)
-                .flat_map(|x| (0..3).map(move |y| (x, y)))
-                .filter(|&(x, y)| t[x] == u[y])
-                .collect();
-            let bad = match shared.len() {
+            match ns {
                 0 => triangles_intersect(pt, pu),
                 1 => meet_beyond_vertex(pt, shared[0].0, pu, shared[0].1),
                 2 => {
@@ -712,14 +789,8 @@ impl<'a> General3<'a> {
                     meet_beyond_edge(pt[i0], pt[i1], pt[3 - i0 - i1], pu[3 - j0 - j1])
                 }
                 _ => true,
-            };
-            if bad {
-                hit = true;
-                break;
             }
-        }
-        self.buf = buf;
-        hit
+        })
     }
 
     /// Live triangles meeting the open tetrahedron (conservative), other than its faces.
@@ -1398,5 +1469,58 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// hits_boundary (grid, plane culling, early exit) against all boundary faces tested
+    /// exactly one by one.
+    #[test]
+    fn hits_boundary_matches_all_faces() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let pts: Vec<crate::geom::Point3> = (0..200)
+            .map(|i| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                if i % 3 == 0 {
+                    crate::geom::Point3::new(v[0], v[1], (v[2] * 8.0).round() / 8.0)
+                } else {
+                    crate::geom::Point3::new(v[0], v[1], v[2])
+                }
+            })
+            .collect();
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        // the hull of the first 40 points: a closed surface the random triangles cross
+        let d2 = crate::delaunay::d3::triangulate(&pts[..40]).unwrap();
+        let inner: Vec<[u32; 3]> = d2
+            .hull
+            .iter()
+            .map(|f| f.map(|v| d.vertex_of_input[d2.input_of_vertex[v as usize] as usize]))
+            .collect();
+        let g = General3::new(&pos, &inner, &[], &[]);
+        let faces = g.boundary();
+        assert_eq!(faces.len(), inner.len());
+        let n = pos.len() as u32;
+        let (mut hits, mut clear) = (0, 0);
+        for _ in 0..1500 {
+            let t = [
+                rng.gen_range(0..n),
+                rng.gen_range(0..n),
+                rng.gen_range(0..n),
+            ];
+            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+                continue;
+            }
+            let st = sorted3(t);
+            let expect = faces.iter().any(|&u| {
+                sorted3(u) != st
+                    && !super::super::validity3::self_intersections_brute(&pos, &[t, u]).is_empty()
+            });
+            assert_eq!(g.hits_boundary(t, &[]), expect, "{t:?}");
+            if expect {
+                hits += 1;
+            } else {
+                clear += 1;
+            }
+        }
+        assert!(hits > 100 && clear > 100, "{hits} {clear}");
     }
 }
