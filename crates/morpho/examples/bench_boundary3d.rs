@@ -22,6 +22,23 @@
 //!
 //! Without a fallback the ratio is ≈ 4.5× (Delaunay + constriction + check + topology).
 //!
+//! After the fast3 changes (local general engine near the locked vertices, boundary-face grid,
+//! early-stopping boundary tests, γ bounds cached and decided on the diametral ball, parallel
+//! counting-sort self-intersection check), measured 2026-11-23 09:35 UTC, release, machine
+//! loaded (`uptime` load 4.3–4.7 on 2 cores, so every number here is inflated and noisy; two
+//! runs each, `/usr/bin/time -v` maximum RSS):
+//! - bunny: Delaunay 0.33 / 0.41 s, boundary_3d 1.88 / 2.62 s = 5.7× / 6.4×, 272 triangles
+//!   added, 0 left out, closed, genus 0, no intersections; max RSS 58 MB.
+//! - horse: Delaunay 0.72 / 0.77 s, boundary_3d 3.06 / 4.96 s = 4.3× / 6.4×, 792 added, 0 left
+//!   out, valid; max RSS 80 MB.
+//! - horse 100k: Delaunay 0.74 / 1.60 s, boundary_3d 15.4 / 14.6 s (= 21× / 9× of the noisy
+//!   Delaunay time; ≈ 11 s of it is the engine and ≈ 3 s the final exact check), 6063 added,
+//!   0 left out, valid; max RSS 178 MB.
+//!
+//! `... --example bench_boundary3d phases [bunny|horse|horse100k]` prints the time of every
+//! step of the general engine (as `boundary_3d_with` runs it); `... check [horse100k]` times
+//! the exact self-intersection check alone (three runs).
+//!
 //! `... --example bench_boundary3d keys` (only when asked): the γ-indicator against Boissonnat's
 //! minimal area change (V §4.3.3, Eq. 4.1) on bunny_npm.obj and spot.obj (every mesh vertex is
 //! a point, same index), each with the Delaunay constriction alone (`CParam::Fixed(0.0)`) and

@@ -53,8 +53,14 @@
 //!
 //! # Complexity
 //! Removal: O(k log n) with k the live triangles and vertices near Q (uniform hash grids over
-//! bounding boxes; triangles spanning more than 512 cells are kept in a list tested always).
-//! Worst case O(T²) for T triangles.
+//! bounding boxes, cell twice the median edge length; boundary faces and the other live
+//! triangles in separate grids; triangles spanning more than 512 cells are kept in a list
+//! tested always). Boundary tests stop at the first hit and skip boxes that a conservative
+//! floating-point bound puts off the triangle's plane. The sweep of `run` visits only the
+//! boundary faces next to a live non-boundary triangle (the only ones that can carry a
+//! removable tetrahedron), so a caller may pass only the live triangles near the locked
+//! vertices (as [`super::boundary_3d_with`] does) and pay for the boundary only once, in
+//! [`General3::new`]. Worst case O(T²) for T triangles.
 //!
 //! Preconditions: the initial surface is a closed genus-0 2-manifold enclosing every vertex and
 //! every given triangle (as produced by [`super::constrict3`] or the convex hull).

@@ -13,7 +13,10 @@
 //! [`boundary_3d`] constricts the 3D Delaunay tetrahedralization (V §5.3, [`constrict3`]) to a
 //! closed genus-0 triangle mesh through (ideally) every point; when that constriction locks with
 //! points inside, the general engine ([`fallback3`]) continues with γ([-1,1],[c,1]) triangles,
-//! c = −0.1 … −1, added where needed (V §5.4); keep triangles (V §5.7) that are not Delaunay
+//! c = −0.1 … −1, added where needed (V §5.4) — first on the live tetrahedra within
+//! four neighbour steps of the vertices off the boundary (the rest of the object is locked
+//! for the Delaunay constriction), on the whole object when that does not free every vertex;
+//! keep triangles (V §5.7) that are not Delaunay
 //! faces are constricted by the general engine from the hull. The result is checked with
 //! [`crate::mesh::topology::analyze`] and the exact [`validity3::self_intersections`].
 //!
@@ -479,7 +482,9 @@ pub struct Boundary3 {
     /// [`validity3::self_intersections`]; at most 10 listed). Empty for a valid boundary.
     pub intersections: Vec<(u32, u32)>,
     /// The interior tetrahedralization (empty when the general engine ran: its implicit
-    /// tetrahedra overlap).
+    /// tetrahedra are not kept as a tiling — the engine deletes conservatively, so its
+    /// remaining triangles need not bound a set of interior-disjoint tetrahedra; the volume is
+    /// then taken from the surface).
     pub interior: Vec<[u32; 4]>,
     /// Keep triangles (input indices) that are not boundary triangles.
     pub keep_missing: Vec<[u32; 3]>,
