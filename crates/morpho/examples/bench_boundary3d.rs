@@ -22,6 +22,23 @@
 //!
 //! Without a fallback the ratio is ≈ 4.5× (Delaunay + constriction + check + topology).
 //!
+//! After the fast3 changes (local general engine near the locked vertices, boundary-face grid,
+//! early-stopping boundary tests, γ bounds cached and decided on the diametral ball, parallel
+//! counting-sort self-intersection check), measured 2026-11-23 09:35 UTC, release, machine
+//! loaded (`uptime` load 4.3–4.7 on 2 cores, so every number here is inflated and noisy; two
+//! runs each, `/usr/bin/time -v` maximum RSS):
+//! - bunny: Delaunay 0.33 / 0.41 s, boundary_3d 1.88 / 2.62 s = 5.7× / 6.4×, 272 triangles
+//!   added, 0 left out, closed, genus 0, no intersections; max RSS 58 MB.
+//! - horse: Delaunay 0.72 / 0.77 s, boundary_3d 3.06 / 4.96 s = 4.3× / 6.4×, 792 added, 0 left
+//!   out, valid; max RSS 80 MB.
+//! - horse 100k: Delaunay 0.74 / 1.60 s, boundary_3d 15.4 / 14.6 s (= 21× / 9× of the noisy
+//!   Delaunay time; ≈ 11 s of it is the engine and ≈ 3 s the final exact check), 6063 added,
+//!   0 left out, valid; max RSS 178 MB.
+//!
+//! `... --example bench_boundary3d phases [bunny|horse|horse100k]` prints the time of every
+//! step of the general engine (as `boundary_3d_with` runs it); `... check [horse100k]` times
+//! the exact self-intersection check alone (three runs).
+//!
 //! `... --example bench_boundary3d keys` (only when asked): the γ-indicator against Boissonnat's
 //! minimal area change (V §4.3.3, Eq. 4.1) on bunny_npm.obj and spot.obj (every mesh vertex is
 //! a point, same index), each with the Delaunay constriction alone (`CParam::Fixed(0.0)`) and
@@ -182,6 +199,108 @@ fn compare_keys(name: &str, m: &morpho::mesh::TriMesh) {
     }
 }
 
+/// Phase timing of the fallback path (`phases` argument): constriction, engine construction,
+/// each run / local_gamma / augment step, final checks.
+fn phases(name: &str, pts: &[Point3]) {
+    use morpho::boundary::fallback3::General3;
+    let t = Instant::now();
+    let d = morpho::delaunay::d3::triangulate(pts).expect("triangulate");
+    let t_dt = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let st = constrict_3d(&d, Until::All);
+    println!(
+        "{name}: delaunay {t_dt:.3} s, constriction {:.3} s",
+        t.elapsed().as_secs_f64()
+    );
+    let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+    let t = Instant::now();
+    // the region of boundary_3d_with (near_locked, depth 4)
+    let mut on = vec![false; d.points.len()];
+    for t in &st.triangles {
+        for &v in t {
+            on[v as usize] = true;
+        }
+    }
+    let mut region = vec![false; d.tets.len()];
+    let mut front: Vec<u32> = Vec::new();
+    for (t, tet) in d.tets.iter().enumerate() {
+        if st.alive[t] && tet.iter().any(|&v| !on[v as usize]) {
+            region[t] = true;
+            front.push(t as u32);
+        }
+    }
+    for _ in 0..4 {
+        let mut next = Vec::new();
+        for &t in &front {
+            for &n in &d.neighbors[t as usize] {
+                if n != morpho::delaunay::d3::NONE && st.alive[n as usize] && !region[n as usize] {
+                    region[n as usize] = true;
+                    next.push(n);
+                }
+            }
+        }
+        front = next;
+    }
+    let mut live = Vec::new();
+    for (ti, tet) in d.tets.iter().enumerate() {
+        if region[ti] {
+            for (fi, f) in morpho::delaunay::d3::FACE_OF.iter().enumerate() {
+                let n = d.neighbors[ti][fi];
+                let mut s = [tet[f[0]], tet[f[1]], tet[f[2]]];
+                s.sort_unstable();
+                if n == morpho::delaunay::d3::NONE || !region[n as usize] || (ti as u32) < n {
+                    live.push(s);
+                }
+            }
+        }
+    }
+    let mut g = General3::new(&pos, &st.triangles, &live, &[]);
+    println!(
+        "  new: {:.3} s ({} live)",
+        t.elapsed().as_secs_f64(),
+        live.len()
+    );
+    let t = Instant::now();
+    g.run();
+    println!(
+        "  run0: {:.3} s, bv {}/{}",
+        t.elapsed().as_secs_f64(),
+        g.boundary_vertices,
+        pos.len()
+    );
+    let mut step = 1;
+    while !g.done() && step <= 10 {
+        let c = -(step as f64) / 10.0;
+        let t = Instant::now();
+        let extra = g.local_gamma(c, 16);
+        let t_lg = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let a = g.augment(&extra);
+        let t_au = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        if a > 0 {
+            g.run();
+        }
+        println!(
+            "  c {c}: local_gamma {t_lg:.3} s ({} tris), augment {t_au:.3} s ({a} added), run {:.3} s, bv {}/{}",
+            extra.len(),
+            t.elapsed().as_secs_f64(),
+            g.boundary_vertices,
+            pos.len()
+        );
+        step += 1;
+    }
+    let t = Instant::now();
+    let b = g.boundary();
+    let si = validity3::self_intersections(&pos, &b, 10);
+    println!(
+        "  final check {:.3} s ({} intersections), iterations {}",
+        t.elapsed().as_secs_f64(),
+        si.len(),
+        g.iterations
+    );
+}
+
 fn main() {
     let Some(dir) = data_dir() else {
         eprintln!("shared data not found");
@@ -197,6 +316,42 @@ fn main() {
         if args.len() == 1 {
             return;
         }
+    }
+    if args.iter().any(|a| a == "check") {
+        let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
+        let pts = if want("horse100k") {
+            sample_surface(&horse, 100_000, 1)
+        } else {
+            used_vertices(&horse)
+        };
+        let d = morpho::delaunay::d3::triangulate(&pts).expect("triangulate");
+        let c = constrict_3d(&d, Until::All);
+        let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        for _ in 0..3 {
+            let t = Instant::now();
+            let n = validity3::self_intersections(&pos, &c.triangles, 10).len();
+            println!(
+                "check {} triangles: {:.3} s ({n})",
+                c.triangles.len(),
+                t.elapsed().as_secs_f64()
+            );
+        }
+        return;
+    }
+    if args.iter().any(|a| a == "phases") {
+        let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
+        let bunny =
+            morpho::io::read_mesh(&dir.join("meshes/stanford-bunny.obj.gz")).expect("bunny");
+        if want("bunny") {
+            phases("bunny", &used_vertices(&bunny));
+        }
+        if want("horse") {
+            phases("horse", &used_vertices(&horse));
+        }
+        if want("horse100k") {
+            phases("horse100k", &sample_surface(&horse, 100_000, 1));
+        }
+        return;
     }
     let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
     if want("horse") {

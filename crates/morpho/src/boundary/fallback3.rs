@@ -53,8 +53,14 @@
 //!
 //! # Complexity
 //! Removal: O(k log n) with k the live triangles and vertices near Q (uniform hash grids over
-//! bounding boxes; triangles spanning more than 512 cells are kept in a list tested always).
-//! Worst case O(T²) for T triangles.
+//! bounding boxes, cell twice the median edge length; boundary faces and the other live
+//! triangles in separate grids; triangles spanning more than 512 cells are kept in a list
+//! tested always). Boundary tests stop at the first hit and skip boxes that a conservative
+//! floating-point bound puts off the triangle's plane. The sweep of `run` visits only the
+//! boundary faces next to a live non-boundary triangle (the only ones that can carry a
+//! removable tetrahedron), so a caller may pass only the live triangles near the locked
+//! vertices (as [`super::boundary_3d_with`] does) and pay for the boundary only once, in
+//! [`General3::new`]. Worst case O(T²) for T triangles.
 //!
 //! Preconditions: the initial surface is a closed genus-0 2-manifold enclosing every vertex and
 //! every given triangle (as produced by [`super::constrict3`] or the convex hull).
@@ -74,6 +80,17 @@ type P = [f64; 3];
 fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
     f.sort_unstable();
     f
+}
+
+/// The rotation of an oriented face that starts at its smallest vertex.
+fn sorted_rot(f: [u32; 3]) -> [u32; 3] {
+    if f[0] < f[1] && f[0] < f[2] {
+        f
+    } else if f[1] < f[2] {
+        [f[1], f[2], f[0]]
+    } else {
+        [f[2], f[0], f[1]]
+    }
 }
 
 fn ek(a: u32, b: u32) -> u64 {
@@ -163,6 +180,40 @@ impl Grid {
             }
         }
     }
+    /// Calls `f` on the ids whose cells meet the box (big ones first; an id may come more
+    /// than once) until it returns true; returns whether it did.
+    fn any_in_box(&self, lo: P, hi: P, mut f: impl FnMut(u32) -> bool) -> bool {
+        if self.big.iter().any(|&i| f(i)) {
+            return true;
+        }
+        let (a, b) = self.range(lo, hi);
+        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
+        if span as usize > self.cells.len() {
+            for (key, ids) in &self.cells {
+                if (a[0]..=b[0]).contains(&key.0)
+                    && (a[1]..=b[1]).contains(&key.1)
+                    && (a[2]..=b[2]).contains(&key.2)
+                    && ids.iter().any(|&i| f(i))
+                {
+                    return true;
+                }
+            }
+        } else {
+            for x in a[0]..=b[0] {
+                for y in a[1]..=b[1] {
+                    for z in a[2]..=b[2] {
+                        if let Some(ids) = self.cells.get(&(x, y, z)) {
+                            if ids.iter().any(|&i| f(i)) {
+                                return true;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        false
+    }
+
     /// Ids whose cells meet the box (with repetitions; big ones always).
     fn query(&self, lo: P, hi: P, out: &mut Vec<u32>) {
         out.clear();
@@ -348,19 +399,32 @@ pub struct General3<'a> {
     p: &'a [P],
     tris: Vec<[u32; 3]>,
     live: Vec<bool>,
+    /// The triangle is a boundary face (in either orientation).
+    bflag: Vec<bool>,
+    /// Bounding box of every triangle.
+    tbox: Vec<(P, P)>,
     id: IdMap<[u32; 3], u32>,
     eadj: IdMap<u64, Vec<u32>>,
     /// directed boundary edge a→b → third vertex of the outward boundary face containing it
     bnext: IdMap<u64, u32>,
     vcount: Vec<u32>,
     keep: IdSet<[u32; 3]>,
+    /// Live triangles that were not boundary faces when added (for [`Self::crossing`]).
     tgrid: Grid,
+    /// Triangles that have been boundary faces (for [`Self::hits_boundary`]; `bflag` tells
+    /// which still are).
+    bgrid: Grid,
+    in_bgrid: Vec<bool>,
     vgrid: Grid,
     heap: BinaryHeap<Entry>,
     buf: Vec<u32>,
     blocked_by: Option<[u32; 3]>,
     /// Triangles found in a γ-graph by [`General3::local_gamma`] (not tested again).
     in_gamma: IdSet<[u32; 3]>,
+    /// Upper bounds of c₁′ of triangles rejected by [`General3::local_gamma`] (from a subset
+    /// of the points: more points only lower it), so that a smaller c skips them when the
+    /// bound is already below it.
+    gamma_ub: IdMap<[u32; 3], f64>,
     /// Number of boundary vertices.
     pub boundary_vertices: usize,
     /// Number of removed tetrahedra.
@@ -376,8 +440,30 @@ impl<'a> General3<'a> {
     pub fn new(p: &'a [P], boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) -> Self {
         let (lo, hi) = bbox(p);
         let n = p.len().max(1);
-        let vol = (0..3).map(|k| (hi[k] - lo[k]).max(0.0)).product::<f64>();
-        let mut cell = 2.0 * (vol / n as f64).cbrt();
+        // cell: twice the median edge length of the triangles (points of a scanned surface
+        // fill the bounding box far from evenly, so its volume per point is a poor scale)
+        let mut lens: Vec<f64> = boundary
+            .iter()
+            .chain(tris)
+            .step_by((boundary.len() + tris.len()) / 20_000 + 1)
+            .flat_map(|t| {
+                (0..3).map(move |k| {
+                    let (a, b) = (p[t[k] as usize], p[t[(k + 1) % 3] as usize]);
+                    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+                })
+            })
+            .filter(|x| x.is_finite())
+            .collect();
+        let mut cell = if lens.is_empty() {
+            0.0
+        } else {
+            let mid = lens.len() / 2;
+            2.0 * *lens.select_nth_unstable_by(mid, f64::total_cmp).1
+        };
+        if cell <= 0.0 || !cell.is_finite() {
+            let vol = (0..3).map(|k| (hi[k] - lo[k]).max(0.0)).product::<f64>();
+            cell = 2.0 * (vol / n as f64).cbrt();
+        }
         if cell <= 0.0 || !cell.is_finite() {
             cell = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max).max(1.0) / (n as f64).sqrt();
         }
@@ -385,25 +471,45 @@ impl<'a> General3<'a> {
             p,
             tris: Vec::new(),
             live: Vec::new(),
+            bflag: Vec::new(),
+            tbox: Vec::new(),
             id: IdMap::default(),
             eadj: IdMap::default(),
             bnext: IdMap::default(),
             vcount: vec![0; p.len()],
             keep: keep.iter().map(|&f| sorted3(f)).collect(),
             tgrid: Grid::new(lo, cell, true),
+            bgrid: Grid::new(lo, cell, true),
+            in_bgrid: Vec::new(),
             vgrid: Grid::new(lo, cell, false),
             heap: BinaryHeap::new(),
             buf: Vec::new(),
             blocked_by: None,
             in_gamma: IdSet::default(),
+            gamma_ub: IdMap::default(),
             boundary_vertices: 0,
             iterations: 0,
             added: 0,
         };
+        let nt = boundary.len() + tris.len() + keep.len();
+        g.tris.reserve(nt);
+        g.live.reserve(nt);
+        g.bflag.reserve(nt);
+        g.tbox.reserve(nt);
+        g.in_bgrid.reserve(nt);
+        g.id.reserve(nt);
+        g.eadj.reserve(3 * nt / 2);
+        g.bnext.reserve(3 * boundary.len());
+        g.vgrid.cells.reserve(p.len());
+        g.bgrid.cells.reserve(boundary.len());
         for (v, &q) in p.iter().enumerate() {
             g.vgrid.insert(v as u32, q, q);
         }
-        for &t in tris.iter().chain(boundary).chain(keep) {
+        // boundary faces first: they go to the boundary grid only
+        for &t in boundary {
+            g.add_tri_grid(t, false);
+        }
+        for &t in tris.iter().chain(keep) {
             g.add_tri(t);
         }
         for &f in boundary {
@@ -418,6 +524,10 @@ impl<'a> General3<'a> {
     }
 
     fn add_tri(&mut self, t: [u32; 3]) -> bool {
+        self.add_tri_grid(t, true)
+    }
+
+    fn add_tri_grid(&mut self, t: [u32; 3], grid: bool) -> bool {
         let s = sorted3(t);
         if s[0] == s[1] || s[1] == s[2] {
             return false;
@@ -431,9 +541,14 @@ impl<'a> General3<'a> {
             let i = self.tris.len() as u32;
             self.tris.push(s);
             self.live.push(true);
+            self.bflag.push(false);
+            self.in_bgrid.push(false);
             self.id.insert(s, i);
             let (lo, hi) = bbox(&s.map(|v| self.pt(v)));
-            self.tgrid.insert(i, lo, hi);
+            self.tbox.push((lo, hi));
+            if grid {
+                self.tgrid.insert(i, lo, hi);
+            }
         }
         for k in 0..3 {
             let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
@@ -464,6 +579,14 @@ impl<'a> General3<'a> {
     }
 
     fn set_boundary(&mut self, f: [u32; 3], on: bool) {
+        if let Some(&i) = self.id.get(&sorted3(f)) {
+            self.bflag[i as usize] = on;
+            if on && !self.in_bgrid[i as usize] {
+                self.in_bgrid[i as usize] = true;
+                let (lo, hi) = self.tbox[i as usize];
+                self.bgrid.insert(i, lo, hi);
+            }
+        }
         for k in 0..3 {
             let (a, b, c) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
             if on {
@@ -606,37 +729,64 @@ impl<'a> General3<'a> {
     }
 
     /// Triangle `t` (vertex ids) meets a boundary triangle other than those in `skip` beyond
-    /// their common vertices/edges.
-    fn hits_boundary(&mut self, t: [u32; 3], skip: &[[u32; 3]]) -> bool {
+    /// their common vertices/edges. Stops at the first such triangle.
+    fn hits_boundary(&self, t: [u32; 3], skip: &[[u32; 3]]) -> bool {
         let pt = t.map(|v| self.pt(v));
         let bb = bbox(&pt);
-        let mut buf = std::mem::take(&mut self.buf);
-        self.tgrid.query(bb.0, bb.1, &mut buf);
-        let skip: Vec<[u32; 3]> = skip.iter().map(|&s| sorted3(s)).collect();
+        let mut skip_s = [[u32::MAX; 3]; 4];
+        for (k, &x) in skip.iter().take(4).enumerate() {
+            skip_s[k] = sorted3(x);
+        }
         let st = sorted3(t);
-        let mut hit = false;
-        for &i in &buf {
-            if !self.live[i as usize] {
-                continue;
+        // floating-point plane of t: a box farther from it than a generous bound of the
+        // rounding error (relative 1e-8) holds no point of t's plane, so no triangle in it can
+        // meet t (a triangle sharing a vertex with t touches the plane and is never culled)
+        let d = |x: P, y: P| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
+        let (e1, e2) = (d(pt[1], pt[0]), d(pt[2], pt[0]));
+        let nrm = [
+            e1[1] * e2[2] - e1[2] * e2[1],
+            e1[2] * e2[0] - e1[0] * e2[2],
+            e1[0] * e2[1] - e1[1] * e2[0],
+        ];
+        let n1: f64 = nrm.iter().map(|x| x.abs()).sum();
+        let scale = |x: P| x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let st_scale = scale(bb.0).max(scale(bb.1));
+        let plane_ok = n1.is_finite() && n1 > 0.0;
+        self.bgrid.any_in_box(bb.0, bb.1, |i| {
+            // live boundary triangle (either orientation of the sorted triple)
+            if !self.live[i as usize] || !self.bflag[i as usize] {
+                return false;
+            }
+            let ub = self.tbox[i as usize];
+            if !boxes_meet(bb, ub) {
+                return false;
+            }
+            if plane_ok {
+                let c: P = std::array::from_fn(|k| 0.5 * (ub.0[k] + ub.1[k]));
+                let h: P = std::array::from_fn(|k| 0.5 * (ub.1[k] - ub.0[k]));
+                let dist = (0..3).map(|k| nrm[k] * (c[k] - pt[0][k])).sum::<f64>();
+                let rad = (0..3).map(|k| nrm[k].abs() * h[k]).sum::<f64>();
+                let margin = 1e-8 * n1 * (st_scale + scale(ub.0).max(scale(ub.1)));
+                if dist.abs() > rad + margin {
+                    return false;
+                }
             }
             let u = self.tris[i as usize];
-            if u == st || skip.contains(&u) {
-                continue;
-            }
-            // boundary triangle? (either orientation of the sorted triple)
-            let isb = self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]);
-            if !isb {
-                continue;
+            if u == st || skip_s.contains(&u) || skip.iter().skip(4).any(|&x| sorted3(x) == u) {
+                return false;
             }
             let pu = u.map(|v| self.pt(v));
-            if !boxes_meet(bb, bbox(&pu)) {
-                continue;
+            let mut shared = [(0usize, 0usize); 3];
+            let mut ns = 0;
+            for x in 0..3 {
+                for y in 0..3 {
+                    if t[x] == u[y] && ns < 3 {
+                        shared[ns] = (x, y);
+                        ns += 1;
+                    }
+                }
             }
-            let shared: Vec<(usize, usize)> = (0..3)
-                .flat_map(|x| (0..3).map(move |y| (x, y)))
-                .filter(|&(x, y)| t[x] == u[y])
-                .collect();
-            let bad = match shared.len() {
+            match ns {
                 0 => triangles_intersect(pt, pu),
                 1 => meet_beyond_vertex(pt, shared[0].0, pu, shared[0].1),
                 2 => {
@@ -645,14 +795,8 @@ impl<'a> General3<'a> {
                     meet_beyond_edge(pt[i0], pt[i1], pt[3 - i0 - i1], pu[3 - j0 - j1])
                 }
                 _ => true,
-            };
-            if bad {
-                hit = true;
-                break;
             }
-        }
-        self.buf = buf;
-        hit
+        })
     }
 
     /// Live triangles meeting the open tetrahedron (conservative), other than its faces.
@@ -824,9 +968,29 @@ impl<'a> General3<'a> {
         }
     }
 
+    /// Pushes every boundary face that can have a removable tetrahedron: one sharing an edge
+    /// with a live triangle that is not a boundary face (a tetrahedron with at most two
+    /// boundary faces has two other live faces, each on an edge of every boundary face of it;
+    /// the other boundary faces never have one).
     fn push_all(&mut self) -> bool {
+        let mut faces: Vec<[u32; 3]> = Vec::new();
+        for (i, t) in self.tris.iter().enumerate() {
+            if !self.live[i] || self.bflag[i] {
+                continue;
+            }
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                for (x, y) in [(a, b), (b, a)] {
+                    if let Some(&z) = self.bnext.get(&dk(x, y)) {
+                        faces.push(sorted_rot([x, y, z]));
+                    }
+                }
+            }
+        }
+        faces.sort_unstable();
+        faces.dedup();
         let mut any = false;
-        for f in self.boundary() {
+        for f in faces {
             any |= self.push(f);
         }
         any
@@ -836,8 +1000,7 @@ impl<'a> General3<'a> {
         let qv = [f[0], f[1], f[2], l];
         let cross = self.crossing(qv);
         for i in cross {
-            let u = self.tris[i as usize];
-            if self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]) {
+            if self.bflag[i as usize] {
                 continue; // (cannot meet the open Q; never delete the surface)
             }
             self.kill(i);
@@ -946,8 +1109,11 @@ impl<'a> General3<'a> {
                         })
                         .collect();
                     v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                    // only points within rad are certainly among the nearest
-                    v.retain(|e| e.0 <= rad * rad);
+                    // only points within rad are certainly among the nearest (unless the
+                    // box holds every point)
+                    if buf.len() < n {
+                        v.retain(|e| e.0 <= rad * rad);
+                    }
                     if v.len() >= k || buf.len() >= n {
                         break v.into_iter().take(k).map(|e| e.1).collect();
                     }
@@ -964,7 +1130,7 @@ impl<'a> General3<'a> {
             }
             let reach_l = 2.0 * rad;
             let mut tb = Vec::new();
-            self.tgrid.query(
+            self.bgrid.query(
                 std::array::from_fn(|i| pl[i] - reach_l),
                 std::array::from_fn(|i| pl[i] + reach_l),
                 &mut tb,
@@ -972,9 +1138,8 @@ impl<'a> General3<'a> {
             // the k boundary faces nearest to l (by centroid)
             let mut faces: Vec<(f64, [u32; 3])> = tb
                 .iter()
-                .filter(|&&i| self.live[i as usize])
+                .filter(|&&i| self.live[i as usize] && self.bflag[i as usize])
                 .map(|&i| self.tris[i as usize])
-                .filter(|&u| self.is_bface(u) || self.is_bface([u[0], u[2], u[1]]))
                 .map(|u| {
                     let q = u.map(|v| self.pt(v));
                     let d2 = (0..3)
@@ -994,6 +1159,9 @@ impl<'a> General3<'a> {
                     let t = sorted3([l, x, y]);
                     if x == l || y == l || self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t)
                     {
+                        continue;
+                    }
+                    if self.gamma_ub.get(&t).is_some_and(|&ub| ub < c) {
                         continue;
                     }
                     let [pa, pb, pc] = t.map(|v| self.pt(v));
@@ -1018,22 +1186,51 @@ impl<'a> General3<'a> {
                         if !iv.all_blocked {
                             self.in_gamma.insert(t);
                             out.push(t);
+                        } else {
+                            self.gamma_ub.insert(t, f64::NEG_INFINITY);
                         }
                     } else {
                         // points only narrow the interval (c₁′ never grows): reject on the
-                        // near points first, then scan the whole reach
+                        // nearest vertices of l first, then on the points near the circle,
+                        // then scan the whole reach, stopping as soon as c₁′ < c
+                        let ub_of = |iv: &crate::graphs::gamma::CenterInterval| {
+                            iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1)
+                        };
+                        let pts = self.p;
+                        let scan =
+                            |iv: &mut crate::graphs::gamma::CenterInterval, ids: &[u32]| -> bool {
+                                for (j, &z) in ids.iter().enumerate() {
+                                    if !t.contains(&z) {
+                                        f.add(iv, pts[z as usize]);
+                                    }
+                                    if j % 32 == 31 && ub_of(iv) < c {
+                                        return true;
+                                    }
+                                }
+                                ub_of(iv) < c
+                            };
+                        if scan(&mut iv, &near) {
+                            self.gamma_ub.insert(t, ub_of(&iv));
+                            continue;
+                        }
                         let near_r = reach.min(2.0 * r2.sqrt());
                         self.vgrid.query(
                             std::array::from_fn(|i| m[i] - near_r),
                             std::array::from_fn(|i| m[i] + near_r),
                             &mut buf,
                         );
-                        for &z in &buf {
-                            if !t.contains(&z) {
-                                f.add(&mut iv, self.p[z as usize]);
-                            }
+                        if scan(&mut iv, &buf) {
+                            self.gamma_ub.insert(t, ub_of(&iv));
+                            continue;
                         }
-                        if !iv.gamma_values().is_some_and(|g| g.1 >= c) {
+                        // No ball through the circle empty so far (c₁′ < 0: the gap regime of
+                        // `gamma_values`): c₁′ = −|c| of the gap's larger end. A point outside the
+                        // closed diametral ball B(m, r) has τ of the sign of its side (q > 0), so
+                        // it never widens the gap: c₁′ is final once every point of B(m, r) —
+                        // inside the box just scanned (half-width 2r ≥ r) — has been added.
+                        if ub_of(&iv) < 0.0 && near_r >= 2.0 * r2.sqrt() {
+                            self.in_gamma.insert(t);
+                            out.push(t);
                             continue;
                         }
                         if reach > near_r {
@@ -1042,15 +1239,27 @@ impl<'a> General3<'a> {
                                 std::array::from_fn(|i| m[i] + reach),
                                 &mut buf,
                             );
-                            for &z in &buf {
-                                if !t.contains(&z) {
-                                    f.add(&mut iv, self.p[z as usize]);
-                                }
+                            // nearest to the circumcentre first: blocking points come early
+                            let d2 = |z: u32| {
+                                let q = pts[z as usize];
+                                (0..3).map(|i| (q[i] - m[i]).powi(2)).sum::<f64>()
+                            };
+                            let mut keyed: Vec<(f64, u32)> =
+                                buf.iter().map(|&z| (d2(z), z)).collect();
+                            keyed.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                            buf.clear();
+                            buf.extend(keyed.iter().map(|e| e.1));
+                            if scan(&mut iv, &buf) {
+                                self.gamma_ub.insert(t, ub_of(&iv));
+                                continue;
                             }
                         }
-                        if iv.gamma_values().is_some_and(|g| g.1 >= c) {
+                        let ub = iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
+                        if ub >= c {
                             self.in_gamma.insert(t);
                             out.push(t);
+                        } else {
+                            self.gamma_ub.insert(t, ub);
                         }
                     }
                 }
@@ -1194,5 +1403,130 @@ mod tests {
             q,
             qv
         ));
+    }
+
+    /// local_gamma with k ≥ n tries every triangle at a vertex off the boundary: its results
+    /// over decreasing c must be exactly the triangles of γ([-1,1],[c,1]) there (Def. 3.1 by
+    /// the full center interval over all points), without the live ones.
+    #[test]
+    fn local_gamma_matches_the_full_definition() {
+        use crate::graphs::gamma::center_interval_3d;
+        for seed in 0..4u64 {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let n = 24;
+            let pts: Vec<crate::geom::Point3> = (0..n)
+                .map(|i| {
+                    if seed == 3 && i % 4 == 0 {
+                        // far points: they decide for balls far beyond the diametral ones
+                        let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                        let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                        crate::geom::Point3::new(4.0 * v[0] / r, 4.0 * v[1] / r, 4.0 * v[2] / r)
+                    } else if i % 2 == 0 || seed == 2 {
+                        // on a sphere (rounded), and inside
+                        let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                        let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                        let s = if i % 4 == 0 { 1.0 } else { 0.6 };
+                        crate::geom::Point3::new(v[0] / r * s, v[1] / r * s, v[2] / r * s)
+                    } else {
+                        let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-0.5..0.5));
+                        crate::geom::Point3::new(v[0], v[1], v[2])
+                    }
+                })
+                .collect();
+            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let nv = pos.len();
+            let mut g = General3::new(&pos, &d.hull, &[], &[]);
+            let locked: Vec<u32> = (0..nv as u32).filter(|&v| !g.on_boundary(v)).collect();
+            assert!(locked.len() >= 5, "{}", locked.len());
+            let mut found: std::collections::BTreeSet<[u32; 3]> = Default::default();
+            for c in [-0.1, -0.3, -0.5, -0.7, -0.9, -1.0] {
+                for t in g.local_gamma(c, nv) {
+                    assert!(found.insert(t), "returned twice: {t:?}");
+                }
+                let mut expect: std::collections::BTreeSet<[u32; 3]> = Default::default();
+                for a in 0..nv as u32 {
+                    for b in a + 1..nv as u32 {
+                        for e in b + 1..nv as u32 {
+                            let t = [a, b, e];
+                            if !t.iter().any(|v| locked.contains(v)) || g.has(a, b, e) {
+                                continue;
+                            }
+                            let Some(iv) =
+                                center_interval_3d(&pos, a as usize, b as usize, e as usize)
+                            else {
+                                continue;
+                            };
+                            if iv.gamma_values().is_some_and(|v| v.1 >= c) {
+                                expect.insert(t);
+                            }
+                        }
+                    }
+                }
+                let missing: Vec<_> = expect.difference(&found).collect();
+                let extra: Vec<_> = found.difference(&expect).collect();
+                for t in missing.iter().chain(&extra) {
+                    let iv = center_interval_3d(&pos, t[0] as usize, t[1] as usize, t[2] as usize);
+                    eprintln!("{t:?}: {:?}", iv.and_then(|iv| iv.gamma_values()));
+                }
+                assert!(
+                    missing.is_empty() && extra.is_empty(),
+                    "seed {seed}, c {c}: missing {missing:?}, extra {extra:?}"
+                );
+            }
+        }
+    }
+
+    /// hits_boundary (grid, plane culling, early exit) against all boundary faces tested
+    /// exactly one by one.
+    #[test]
+    fn hits_boundary_matches_all_faces() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let pts: Vec<crate::geom::Point3> = (0..200)
+            .map(|i| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                if i % 3 == 0 {
+                    crate::geom::Point3::new(v[0], v[1], (v[2] * 8.0).round() / 8.0)
+                } else {
+                    crate::geom::Point3::new(v[0], v[1], v[2])
+                }
+            })
+            .collect();
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        // the hull of the first 40 points: a closed surface the random triangles cross
+        let d2 = crate::delaunay::d3::triangulate(&pts[..40]).unwrap();
+        let inner: Vec<[u32; 3]> = d2
+            .hull
+            .iter()
+            .map(|f| f.map(|v| d.vertex_of_input[d2.input_of_vertex[v as usize] as usize]))
+            .collect();
+        let g = General3::new(&pos, &inner, &[], &[]);
+        let faces = g.boundary();
+        assert_eq!(faces.len(), inner.len());
+        let n = pos.len() as u32;
+        let (mut hits, mut clear) = (0, 0);
+        for _ in 0..1500 {
+            let t = [
+                rng.gen_range(0..n),
+                rng.gen_range(0..n),
+                rng.gen_range(0..n),
+            ];
+            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+                continue;
+            }
+            let st = sorted3(t);
+            let expect = faces.iter().any(|&u| {
+                sorted3(u) != st
+                    && !super::super::validity3::self_intersections_brute(&pos, &[t, u]).is_empty()
+            });
+            assert_eq!(g.hits_boundary(t, &[]), expect, "{t:?}");
+            if expect {
+                hits += 1;
+            } else {
+                clear += 1;
+            }
+        }
+        assert!(hits > 100 && clear > 100, "{hits} {clear}");
     }
 }

@@ -13,7 +13,10 @@
 //! [`boundary_3d`] constricts the 3D Delaunay tetrahedralization (V §5.3, [`constrict3`]) to a
 //! closed genus-0 triangle mesh through (ideally) every point; when that constriction locks with
 //! points inside, the general engine ([`fallback3`]) continues with γ([-1,1],[c,1]) triangles,
-//! c = −0.1 … −1, added where needed (V §5.4); keep triangles (V §5.7) that are not Delaunay
+//! c = −0.1 … −1, added where needed (V §5.4) — first on the live tetrahedra within
+//! four neighbour steps of the vertices off the boundary (the rest of the object is locked
+//! for the Delaunay constriction), on the whole object when that does not free every vertex;
+//! keep triangles (V §5.7) that are not Delaunay
 //! faces are constricted by the general engine from the hull. The result is checked with
 //! [`crate::mesh::topology::analyze`] and the exact [`validity3::self_intersections`].
 //! [`Method::VoronoiSkeleton`] in 3D grows the shortest Voronoi skeleton of Delaunay tetrahedra
@@ -500,7 +503,9 @@ pub struct Boundary3 {
     /// [`validity3::self_intersections`]; at most 10 listed). Empty for a valid boundary.
     pub intersections: Vec<(u32, u32)>,
     /// The interior tetrahedralization (empty when the general engine ran: its implicit
-    /// tetrahedra overlap).
+    /// tetrahedra are not kept as a tiling — the engine deletes conservatively, so its
+    /// remaining triangles need not bound a set of interior-disjoint tetrahedra; the volume is
+    /// then taken from the surface).
     pub interior: Vec<[u32; 4]>,
     /// Keep triangles (input indices) that are not boundary triangles.
     pub keep_missing: Vec<[u32; 3]>,
@@ -567,6 +572,46 @@ fn augment_until_done_3d(g: &mut fallback3::General3<'_>, from: f64) -> f64 {
         step += 1;
     }
     c
+}
+
+/// Tetrahedron steps from the vertices off the boundary that the local general engine sees.
+const LOCAL_DEPTH: usize = 4;
+
+/// The live tetrahedra within `depth` neighbour steps of a tetrahedron at a vertex that is
+/// not on the boundary `tris` (O(T) for T tetrahedra).
+fn near_locked(
+    d: &crate::delaunay::d3::Delaunay3,
+    alive: &[bool],
+    tris: &[[u32; 3]],
+    depth: usize,
+) -> Vec<bool> {
+    let mut on = vec![false; d.points.len()];
+    for t in tris {
+        for &v in t {
+            on[v as usize] = true;
+        }
+    }
+    let mut region = vec![false; d.tets.len()];
+    let mut front: Vec<u32> = Vec::new();
+    for (t, tet) in d.tets.iter().enumerate() {
+        if alive[t] && tet.iter().any(|&v| !on[v as usize]) {
+            region[t] = true;
+            front.push(t as u32);
+        }
+    }
+    for _ in 0..depth {
+        let mut next = Vec::new();
+        for &t in &front {
+            for &n in &d.neighbors[t as usize] {
+                if n != crate::delaunay::d3::NONE && alive[n as usize] && !region[n as usize] {
+                    region[n as usize] = true;
+                    next.push(n);
+                }
+            }
+        }
+        front = next;
+    }
+    region
 }
 
 /// [`boundary_3d`] with all options (see [`Options3`]).
@@ -702,11 +747,31 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
             {
                 (st.triangles, Some(st.alive), 0.0, st.iterations, 0)
             } else {
-                let live = faces_of(&st.alive);
-                let mut g = fallback3::General3::new(&pos, &st.triangles, &live, &keep_v);
-                let c = augment_until_done_3d(&mut g, 0.0);
-                let added = g.added;
-                (g.boundary(), None, c, st.iterations + g.iterations, added)
+                // V §5.4: augment only where needed. First the live tetrahedra near the
+                // vertices off the boundary (the rest of the object is locked for the Delaunay
+                // constriction and far from the added triangles); the whole object when that
+                // does not free every vertex.
+                let mut result = None;
+                if keep_v.is_empty() {
+                    let region = near_locked(&d, &st.alive, &st.triangles, LOCAL_DEPTH);
+                    let live = faces_of(&region);
+                    let mut g = fallback3::General3::new(&pos, &st.triangles, &live, &keep_v);
+                    let c = augment_until_done_3d(&mut g, 0.0);
+                    if g.done() {
+                        let added = g.added;
+                        result = Some((g.boundary(), None, c, st.iterations + g.iterations, added));
+                    }
+                }
+                match result {
+                    Some(r) => r,
+                    None => {
+                        let live = faces_of(&st.alive);
+                        let mut g = fallback3::General3::new(&pos, &st.triangles, &live, &keep_v);
+                        let c = augment_until_done_3d(&mut g, 0.0);
+                        let added = g.added;
+                        (g.boundary(), None, c, st.iterations + g.iterations, added)
+                    }
+                }
             }
         }
     };

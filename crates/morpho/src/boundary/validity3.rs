@@ -43,6 +43,12 @@ pub fn degenerate(a: P, b: P, c: P) -> bool {
 
 fn point_in_tri2(p: [f64; 2], a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> bool {
     let o = orient2d(a, b, c);
+    if o == 0.0 {
+        // a degenerate triangle is the union of its edges
+        return segments_intersect(a, b, p, p)
+            || segments_intersect(b, c, p, p)
+            || segments_intersect(c, a, p, p);
+    }
     let s = |u, v| orient2d(u, v, p) * o;
     s(a, b) >= 0.0 && s(b, c) >= 0.0 && s(c, a) >= 0.0
 }
@@ -82,11 +88,17 @@ pub fn segment_meets_triangle(p: P, q: P, a: P, b: P, c: P) -> bool {
     (s1 >= 0.0 && s2 >= 0.0 && s3 >= 0.0) || (s1 <= 0.0 && s2 <= 0.0 && s3 <= 0.0)
 }
 
-/// Closed triangles t and u (no common vertex) intersect (exact).
+/// Closed triangles t and u (no common vertex) intersect (exact). A degenerate triangle
+/// (collinear corners) counts as the segment it covers when the other one is not degenerate;
+/// two degenerate triangles are reported as not intersecting.
 pub fn triangles_intersect(t: [P; 3], u: [P; 3]) -> bool {
     let su: [f64; 3] = u.map(|x| orient3d(t[0], t[1], t[2], x));
     if su.iter().all(|&s| s > 0.0) || su.iter().all(|&s| s < 0.0) {
         return false;
+    }
+    // (a degenerate t has no plane: every su is 0)
+    if su.iter().all(|&s| s == 0.0) && degenerate(t[0], t[1], t[2]) {
+        return !degenerate(u[0], u[1], u[2]) && triangles_intersect(u, t);
     }
     let st: [f64; 3] = t.map(|x| orient3d(u[0], u[1], u[2], x));
     if st.iter().all(|&s| s > 0.0) || st.iter().all(|&s| s < 0.0) {
@@ -156,172 +168,260 @@ pub fn meet_beyond_edge(a: P, b: P, c: P, d: P) -> bool {
 }
 
 /// Pairs of triangles (indices into `tris`) that intersect although they must not (see the
-/// module documentation); at most `limit` are returned.
+/// module documentation); at most `limit` are returned (the smallest pairs).
+///
+/// Broad phase: a uniform grid (cell: twice the median edge length, coarsened until it has at
+/// most 8 cells per triangle), as a counting-sorted list of (cell, triangle) entries; each pair whose
+/// bounding boxes overlap is tested exactly once, in the cell of the low corner of the boxes'
+/// intersection. Triangles spanning more than 512 cells are tested against each other by boxes
+/// and against the triangles of the cells their plane passes. Cells and big triangles are
+/// processed in parallel (rayon); the result does not depend on the thread count.
 pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u32, u32)> {
-    let mut out = Vec::new();
+    use rayon::prelude::*;
     if tris.is_empty() {
-        return out;
+        return Vec::new();
     }
+    let boxes: Vec<(P, P)> = tris
+        .par_iter()
+        .map(|t| {
+            let q = t.map(|v| pos[v as usize]);
+            (
+                std::array::from_fn(|k| q[0][k].min(q[1][k]).min(q[2][k])),
+                std::array::from_fn(|k| q[0][k].max(q[1][k]).max(q[2][k])),
+            )
+        })
+        .collect();
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
-    let mut lens = Vec::with_capacity(3 * tris.len());
-    for t in tris {
-        let q = t.map(|v| pos[v as usize]);
+    for (bl, bh) in &boxes {
         for k in 0..3 {
-            for x in &q {
-                lo[k] = lo[k].min(x[k]);
-                hi[k] = hi[k].max(x[k]);
-            }
-        }
-        for k in 0..3 {
-            let (a, b) = (q[k], q[(k + 1) % 3]);
-            lens.push(
-                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt(),
-            );
+            lo[k] = lo[k].min(bl[k]);
+            hi[k] = hi[k].max(bh[k]);
         }
     }
     // cell: twice the median edge length (the mean is dominated by a few long edges)
+    let mut lens: Vec<f64> = tris
+        .par_iter()
+        .flat_map_iter(|t| {
+            let q = t.map(|v| pos[v as usize]);
+            (0..3).map(move |k| {
+                let (a, b) = (q[k], q[(k + 1) % 3]);
+                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+            })
+        })
+        .collect();
     let mid = lens.len() / 2;
     let mut cell = 2.0 * *lens.select_nth_unstable_by(mid, f64::total_cmp).1;
+    drop(lens);
     let ext = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
-    while cell > 0.0
-        && ext.iter().map(|e| (e / cell) as u64 + 1).product::<u64>() > 8 * tris.len() as u64 + 64
-    {
+    if !(cell > 0.0 && cell.is_finite()) {
+        // all edges of length 0 (or overflowing): any positive cell will do
+        cell = ext
+            .iter()
+            .copied()
+            .filter(|e| e.is_finite())
+            .fold(0.0, f64::max);
+        if !(cell > 0.0 && cell.is_finite()) {
+            cell = 1.0;
+        }
+    }
+    let cells_of = |cell: f64| {
+        ext.iter()
+            .map(|e| (e / cell).floor() + 1.0)
+            .product::<f64>()
+    };
+    while cells_of(cell) > 8.0 * tris.len() as f64 + 64.0 && (2.0 * cell).is_finite() {
         cell *= 1.5;
     }
-    if !(cell > 0.0 && cell.is_finite()) {
-        cell = 1.0;
-    }
-    let cidx = |x: f64, k: usize| ((x - lo[k]) / cell).floor().max(0.0) as u64;
-    let mut grid: super::constrict3::IdMap<(u64, u64, u64), Vec<u32>> = Default::default();
-    let bbox = |t: &[u32; 3]| -> ([f64; 3], [f64; 3]) {
-        let q = t.map(|v| pos[v as usize]);
-        (
-            std::array::from_fn(|k| q[0][k].min(q[1][k]).min(q[2][k])),
-            std::array::from_fn(|k| q[0][k].max(q[1][k]).max(q[2][k])),
-        )
-    };
-    // triangles spanning many cells are tested against everything by bounding boxes instead
-    let mut big: Vec<u32> = Vec::new();
-    for (i, t) in tris.iter().enumerate() {
-        let (bl, bh) = bbox(t);
-        let mn: [u64; 3] = std::array::from_fn(|k| cidx(bl[k], k));
-        let mx: [u64; 3] = std::array::from_fn(|k| cidx(bh[k], k));
-        let span: u64 = (0..3).map(|k| mx[k] - mn[k] + 1).product();
-        if span > 512 {
-            big.push(i as u32);
-            continue;
+    let dims: [u64; 3] = std::array::from_fn(|k| {
+        let n = (ext[k] / cell).floor();
+        if (0.0..1e15).contains(&n) {
+            n as u64 + 1
+        } else {
+            1
         }
-        for x in mn[0]..=mx[0] {
-            for y in mn[1]..=mx[1] {
+    });
+    let cidx = |x: f64, k: usize| -> u64 {
+        let c = ((x - lo[k]) / cell).floor();
+        if c.is_finite() && c > 0.0 {
+            (c as u64).min(dims[k] - 1)
+        } else {
+            0
+        }
+    };
+    let key = |c: [u64; 3]| c[0] + dims[0] * (c[1] + dims[1] * c[2]);
+    // counting sort of (cell, triangle) entries (at most 8n + 64 cells); big triangles apart
+    let ncells = (dims[0] * dims[1] * dims[2]) as usize;
+    let ranges: Vec<Option<([u64; 3], [u64; 3])>> = boxes
+        .par_iter()
+        .map(|(bl, bh)| {
+            let mn: [u64; 3] = std::array::from_fn(|k| cidx(bl[k], k));
+            let mx: [u64; 3] = std::array::from_fn(|k| cidx(bh[k], k));
+            let span: u64 = (0..3).map(|k| mx[k] - mn[k] + 1).product();
+            (span <= 512).then_some((mn, mx))
+        })
+        .collect();
+    let mut start = vec![0usize; ncells + 1];
+    let mut big: Vec<u32> = Vec::new();
+    for (i, r) in ranges.iter().enumerate() {
+        match r {
+            None => big.push(i as u32),
+            Some((mn, mx)) => {
                 for z in mn[2]..=mx[2] {
-                    grid.entry((x, y, z)).or_default().push(i as u32);
+                    for y in mn[1]..=mx[1] {
+                        for x in mn[0]..=mx[0] {
+                            start[key([x, y, z]) as usize + 1] += 1;
+                        }
+                    }
                 }
             }
         }
     }
-    let boxes: Vec<([f64; 3], [f64; 3])> = tris.iter().map(bbox).collect();
+    for c in 0..ncells {
+        start[c + 1] += start[c];
+    }
+    let mut ids = vec![0u32; start[ncells]];
+    {
+        let mut fill = start.clone();
+        for (i, r) in ranges.iter().enumerate() {
+            if let Some((mn, mx)) = r {
+                for z in mn[2]..=mx[2] {
+                    for y in mn[1]..=mx[1] {
+                        for x in mn[0]..=mx[0] {
+                            let c = key([x, y, z]) as usize;
+                            ids[fill[c]] = i as u32;
+                            fill[c] += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // the low cell of every (non-big) triangle
+    let low: Vec<[u32; 3]> = ranges
+        .iter()
+        .map(|r| r.map_or([0; 3], |(mn, _)| mn.map(|x| x as u32)))
+        .collect();
+    drop(ranges);
+    let cell_ids = |k: u64| -> &[u32] {
+        let k = k as usize;
+        &ids[start[k]..start[k + 1]]
+    };
     let overlap = |a: u32, b: u32| {
         let ((al, ah), (bl, bh)) = (boxes[a as usize], boxes[b as usize]);
         (0..3).all(|k| al[k] <= bh[k] && bl[k] <= ah[k])
     };
     let bad = |a: u32, b: u32| pair_meets(pos, tris[a as usize], tris[b as usize]);
-    let mut pairs: Vec<(u32, u32)> = Vec::new();
-    let mut bad_pairs: Vec<(u32, u32)> = Vec::new();
-    for (&cell, ids) in &grid {
-        for (a_i, &a) in ids.iter().enumerate() {
-            for &b in &ids[a_i + 1..] {
-                if !overlap(a, b) {
-                    continue;
-                }
-                // each pair once: in the cell of the low corner of the boxes' intersection
-                let ((al, _), (bl, _)) = (boxes[a as usize], boxes[b as usize]);
-                let own = (
-                    cidx(al[0].max(bl[0]), 0),
-                    cidx(al[1].max(bl[1]), 1),
-                    cidx(al[2].max(bl[2]), 2),
-                );
-                if own == cell && bad(a, b) {
-                    bad_pairs.push((a.min(b), a.max(b)));
-                }
-            }
-        }
-    }
-    // big triangles: against each other by boxes, against the grid through the cells their
-    // plane passes (floating-point culling with a generous margin; the exact test decides)
-    for (i, &a) in big.iter().enumerate() {
-        for &b in &big[i + 1..] {
-            if overlap(a, b) {
-                pairs.push((a.min(b), a.max(b)));
-            }
-        }
-    }
-    for &a in &big {
-        let q = tris[a as usize].map(|v| pos[v as usize]);
-        let e1 = [q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2]];
-        let e2 = [q[2][0] - q[0][0], q[2][1] - q[0][1], q[2][2] - q[0][2]];
-        let n = [
-            e1[1] * e2[2] - e1[2] * e2[1],
-            e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0],
-        ];
-        // dominant axis w: the plane is a function of the two other coordinates
-        let w = (0..3)
-            .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
-            .unwrap_or(2);
-        let (u, v) = ((w + 1) % 3, (w + 2) % 3);
-        let (bl, bh) = boxes[a as usize];
-        let mn: [u64; 3] = std::array::from_fn(|k| cidx(bl[k], k));
-        let mx: [u64; 3] = std::array::from_fn(|k| cidx(bh[k], k));
-        let nw = n[w];
-        let slope = if nw != 0.0 {
-            (n[u].abs() + n[v].abs()) / nw.abs()
-        } else {
-            f64::INFINITY
-        };
-        let margin = 1e-9 * (0..3).map(|k| ext[k].abs()).sum::<f64>() + cell * 1e-6;
-        let mut cand: Vec<u32> = Vec::new();
-        for cu in mn[u]..=mx[u] {
-            for cv in mn[v]..=mx[v] {
-                // w-range of the plane over this column (cell centre ± half extent · slope)
-                let (wlo, whi) = if slope.is_finite() {
-                    let xu = lo[u] + (cu as f64 + 0.5) * cell;
-                    let xv = lo[v] + (cv as f64 + 0.5) * cell;
-                    let wc = q[0][w] - (n[u] * (xu - q[0][u]) + n[v] * (xv - q[0][v])) / nw;
-                    let half = 0.5 * cell * slope + margin;
-                    (
-                        cidx((wc - half).max(bl[w]), w).max(mn[w]),
-                        cidx((wc + half).min(bh[w]), w).min(mx[w]),
-                    )
-                } else {
-                    (mn[w], mx[w])
-                };
-                for cw in wlo..=whi {
-                    let mut key = [0u64; 3];
-                    key[u] = cu;
-                    key[v] = cv;
-                    key[w] = cw;
-                    if let Some(ids) = grid.get(&(key[0], key[1], key[2])) {
-                        cand.extend(ids.iter().copied().filter(|&b| overlap(a, b)));
+    let busy: Vec<u64> = (0..ncells as u64)
+        .filter(|&c| start[c as usize + 1] - start[c as usize] >= 2)
+        .collect();
+    let mut bad_pairs: Vec<(u32, u32)> = busy
+        .par_iter()
+        .with_min_len(64)
+        .flat_map_iter(|&cell_key| {
+            let run = cell_ids(cell_key);
+            let mut found = Vec::new();
+            for (a_i, &a) in run.iter().enumerate() {
+                let ma = low[a as usize];
+                for &b in &run[a_i + 1..] {
+                    // each pair once: in the cell of the low corner of the boxes' intersection
+                    // (cidx is monotone: the larger of the two low cells, axis by axis)
+                    let mb = low[b as usize];
+                    let own = key(std::array::from_fn(|k| ma[k].max(mb[k]) as u64));
+                    if own == cell_key && overlap(a, b) && bad(a, b) {
+                        found.push((a.min(b), a.max(b)));
                     }
                 }
             }
-        }
-        cand.sort_unstable();
-        cand.dedup();
-        pairs.extend(cand.into_iter().map(|b| (a.min(b), a.max(b))));
-    }
-    pairs.sort_unstable();
-    pairs.dedup();
-    for (a, b) in pairs {
-        if bad(a, b) {
-            bad_pairs.push((a, b));
-        }
-    }
+            found
+        })
+        .collect();
+    // big triangles: against each other by boxes, against the grid through the cells their
+    // plane passes (floating-point culling with a generous margin; the exact test decides)
+    let big_bad: Vec<(u32, u32)> = big
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(i, &a)| {
+            let mut cand: Vec<u32> = big[i + 1..]
+                .iter()
+                .copied()
+                .filter(|&b| overlap(a, b))
+                .collect();
+            let q = tris[a as usize].map(|v| pos[v as usize]);
+            let e1 = [q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2]];
+            let e2 = [q[2][0] - q[0][0], q[2][1] - q[0][1], q[2][2] - q[0][2]];
+            let n = [
+                e1[1] * e2[2] - e1[2] * e2[1],
+                e1[2] * e2[0] - e1[0] * e2[2],
+                e1[0] * e2[1] - e1[1] * e2[0],
+            ];
+            // dominant axis w: the plane is a function of the two other coordinates
+            let w = (0..3)
+                .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+                .unwrap_or(2);
+            let (u, v) = ((w + 1) % 3, (w + 2) % 3);
+            let (bl, bh) = boxes[a as usize];
+            let mn: [u64; 3] = std::array::from_fn(|k| cidx(bl[k], k));
+            let mx: [u64; 3] = std::array::from_fn(|k| cidx(bh[k], k));
+            let nw = n[w];
+            let slope = if nw != 0.0 {
+                (n[u].abs() + n[v].abs()) / nw.abs()
+            } else {
+                f64::INFINITY
+            };
+            let margin = 1e-9 * (0..3).map(|k| ext[k].abs()).sum::<f64>() + cell * 1e-6;
+            let mut grid_cand: Vec<u32> = Vec::new();
+            for cu in mn[u]..=mx[u] {
+                for cv in mn[v]..=mx[v] {
+                    // w-range of the plane over this column (cell centre ± half extent · slope)
+                    let (wlo, whi) = if slope.is_finite() {
+                        let xu = lo[u] + (cu as f64 + 0.5) * cell;
+                        let xv = lo[v] + (cv as f64 + 0.5) * cell;
+                        let wc = q[0][w] - (n[u] * (xu - q[0][u]) + n[v] * (xv - q[0][v])) / nw;
+                        let half = 0.5 * cell * slope + margin;
+                        (
+                            cidx((wc - half).max(bl[w]), w).max(mn[w]),
+                            cidx((wc + half).min(bh[w]), w).min(mx[w]),
+                        )
+                    } else {
+                        (mn[w], mx[w])
+                    };
+                    for cw in wlo..=whi {
+                        let mut c = [0u64; 3];
+                        c[u] = cu;
+                        c[v] = cv;
+                        c[w] = cw;
+                        grid_cand
+                            .extend(cell_ids(key(c)).iter().copied().filter(|&b| overlap(a, b)));
+                    }
+                }
+            }
+            grid_cand.sort_unstable();
+            grid_cand.dedup();
+            cand.extend(grid_cand);
+            cand.into_iter()
+                .filter(move |&b| bad(a, b))
+                .map(move |b| (a.min(b), a.max(b)))
+        })
+        .collect();
+    bad_pairs.extend(big_bad);
     bad_pairs.sort_unstable();
     bad_pairs.dedup();
     bad_pairs.truncate(limit);
-    out.extend(bad_pairs);
+    bad_pairs
+}
+
+/// Every pair of triangles that intersect although they must not, by testing all pairs
+/// (O(n²); the oracle of [`self_intersections`] in tests).
+pub fn self_intersections_brute(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    for a in 0..tris.len() {
+        for b in a + 1..tris.len() {
+            if pair_meets(pos, tris[a], tris[b]) {
+                out.push((a as u32, b as u32));
+            }
+        }
+    }
     out
 }
 
@@ -540,5 +640,143 @@ mod tests {
         expect.dedup();
         assert!(expect.len() >= 40, "{}", expect.len());
         assert_eq!(found, expect);
+    }
+
+    /// A closed UV sphere (`m` × `m` quads, poles fanned), every vertex perturbed by up to
+    /// `noise` (deterministic).
+    fn sphere(m: usize, noise: f64, seed: u64) -> (Vec<P>, Vec<[u32; 3]>) {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let mut pos: Vec<P> = vec![[0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+        for i in 1..m {
+            let th = std::f64::consts::PI * i as f64 / m as f64;
+            for j in 0..m {
+                let ph = 2.0 * std::f64::consts::PI * j as f64 / m as f64;
+                let mut q = [th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()];
+                for x in &mut q {
+                    *x += rng.gen_range(-noise..=noise);
+                }
+                pos.push(q);
+            }
+        }
+        let id = |i: usize, j: usize| (2 + (i - 1) * m + j % m) as u32;
+        let mut tris = Vec::new();
+        for j in 0..m {
+            tris.push([0, id(1, j), id(1, j + 1)]);
+            tris.push([1, id(m - 1, j + 1), id(m - 1, j)]);
+            for i in 1..m - 1 {
+                tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        (pos, tris)
+    }
+
+    #[test]
+    fn grid_check_agrees_with_all_pairs_on_random_triangle_soups() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        for round in 0..6 {
+            // small triangles, a few big ones; integer coordinates in some rounds (coplanar
+            // and touching cases), shared vertices by drawing corners from a pool
+            let n_pts = 200;
+            let integer = round % 2 == 0;
+            let pos: Vec<P> = (0..n_pts)
+                .map(|_| {
+                    std::array::from_fn(|_| {
+                        if integer {
+                            rng.gen_range(0..12) as f64
+                        } else {
+                            rng.gen_range(0.0..10.0)
+                        }
+                    })
+                })
+                .collect();
+            let mut tris = Vec::new();
+            for k in 0..250 {
+                let a = rng.gen_range(0..n_pts);
+                let near = |rng: &mut rand_chacha::ChaCha8Rng| -> usize {
+                    if k % 40 == 0 {
+                        rng.gen_range(0..n_pts) // big
+                    } else {
+                        // a close point: the nearest of a few random ones
+                        (0..8)
+                            .map(|_| rng.gen_range(0..n_pts))
+                            .min_by(|&x, &y| {
+                                let d = |v: usize| {
+                                    (0..3).map(|i| (pos[v][i] - pos[a][i]).powi(2)).sum::<f64>()
+                                };
+                                d(x).total_cmp(&d(y))
+                            })
+                            .unwrap_or(0)
+                    }
+                };
+                let (b, c) = (near(&mut rng), near(&mut rng));
+                if a != b && b != c && a != c {
+                    tris.push([a as u32, b as u32, c as u32]);
+                }
+            }
+            // a repeated triangle
+            tris.push(tris[3]);
+            let found = self_intersections(&pos, &tris, usize::MAX);
+            let expect = self_intersections_brute(&pos, &tris);
+            assert!(expect.len() > 5, "round {round}: {}", expect.len());
+            let missing: Vec<_> = expect.iter().filter(|x| !found.contains(x)).collect();
+            let extra: Vec<_> = found.iter().filter(|x| !expect.contains(x)).collect();
+            for &&(a, b) in &missing {
+                eprintln!(
+                    "{:?} {:?}",
+                    tris[a as usize].map(|v| pos[v as usize]),
+                    tris[b as usize].map(|v| pos[v as usize])
+                );
+            }
+            assert!(
+                missing.is_empty() && extra.is_empty(),
+                "round {round}: missing {missing:?} extra {extra:?}"
+            );
+            // the limit keeps the smallest pairs
+            assert_eq!(self_intersections(&pos, &tris, 3), expect[..3].to_vec());
+        }
+    }
+
+    #[test]
+    fn grid_check_agrees_with_all_pairs_on_perturbed_closed_meshes() {
+        for (seed, noise) in [(1u64, 0.0), (2, 0.01), (3, 0.2)] {
+            let (mut pos, mut tris) = sphere(14, noise, seed);
+            let clean = self_intersections_brute(&pos, &tris);
+            assert_eq!(self_intersections(&pos, &tris, usize::MAX), clean);
+            if noise == 0.0 {
+                assert!(clean.is_empty());
+            }
+            // injected: a spike through the surface, a flap folded onto a face, a triangle
+            // through a vertex, a big triangle cutting the sphere
+            let n0 = pos.len() as u32;
+            pos.extend([
+                [0.05, 0.02, -2.0],
+                [0.03, 0.06, 2.0],
+                [0.5, 0.5, 0.1],
+                [0.0, 0.0, 0.0],
+                [-3.0, -3.0, 0.05],
+                [3.0, -3.0, 0.05],
+                [0.0, 3.0, 0.05],
+            ]);
+            tris.push([n0, n0 + 1, n0 + 2]);
+            let f = tris[40];
+            let (a, b, c) = (pos[f[0] as usize], pos[f[1] as usize], pos[f[2] as usize]);
+            pos.push(std::array::from_fn(|k| (a[k] + b[k] + 2.0 * c[k]) / 4.0));
+            let flap = pos.len() as u32 - 1;
+            tris.push([f[0], f[1], flap]);
+            tris.push([n0 + 3, f[0], n0 + 2]);
+            tris.push([n0 + 4, n0 + 5, n0 + 6]);
+            let found = self_intersections(&pos, &tris, usize::MAX);
+            let expect = self_intersections_brute(&pos, &tris);
+            assert!(
+                expect.len() >= clean.len() + 20,
+                "{} {}",
+                expect.len(),
+                clean.len()
+            );
+            assert_eq!(found, expect, "seed {seed}");
+        }
     }
 }
