@@ -56,7 +56,7 @@
 //! | spot | min area change | 0 | 1557 = 26.6 % | 0.05 s |
 
 use morpho::boundary::constrict3::{constrict_3d, Until};
-use morpho::boundary::{boundary_3d, boundary_3d_with, validity3, CParam, Key, Options3};
+use morpho::boundary::{boundary_3d, boundary_3d_with, validity3, CParam, Method, Options3};
 use morpho::geom::Point3;
 use rand::{Rng, SeedableRng};
 use std::time::Instant;
@@ -168,11 +168,11 @@ fn compare_keys(name: &str, m: &morpho::mesh::TriMesh) {
         used_vertices(m).len(),
         m.triangles.len()
     );
-    for key in [Key::Gamma, Key::MinAreaChange] {
+    for method in [Method::Gamma, Method::MinAreaChange] {
         for (cname, c) in [("Fixed(0)", CParam::Fixed(0.0)), ("Auto", CParam::Auto)] {
             let opts = Options3 {
                 c,
-                key,
+                method,
                 ..Options3::default()
             };
             let t = Instant::now();
@@ -184,7 +184,7 @@ fn compare_keys(name: &str, m: &morpho::mesh::TriMesh) {
                 .filter(|t| orig.contains(&sorted(t)))
                 .count();
             println!(
-                "  {key:?} {cname}: left out {}, closed {}, genus {:?}, intersections {}, c_used {}, added {}, triangles {}, recovered {hit}/{} = {:.1} %, {secs:.2} s",
+                "  {method:?} {cname}: left out {}, closed {}, genus {:?}, intersections {}, c_used {}, added {}, triangles {}, recovered {hit}/{} = {:.1} %, {secs:.2} s",
                 b.left_out.len(),
                 b.closed_manifold,
                 b.genus,

@@ -42,7 +42,7 @@
 //! The skeleton's enclosed volume is about 10–25 % of the γ result's (bunny_npm 44.9 vs 223.9,
 //! spot 0.15 vs 0.82): V §5.6's "the body of the object is not filled properly".
 
-use morpho::boundary::{boundary_3d_with, CParam, Key, Method, Options3};
+use morpho::boundary::{boundary_3d_with, CParam, Method, Options3};
 use std::collections::HashSet;
 use std::time::Instant;
 
@@ -91,7 +91,7 @@ fn compare(name: &str, m: &morpho::mesh::TriMesh) {
             "min-area-change (Fixed(0))".into(),
             Options3 {
                 c: CParam::Fixed(0.0),
-                key: Key::MinAreaChange,
+                method: Method::MinAreaChange,
                 ..Options3::default()
             },
         ),

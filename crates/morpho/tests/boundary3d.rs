@@ -2,7 +2,7 @@
 //! and keep triangles (V §5.7). The Delaunay-constriction tests are in `boundary.rs`.
 
 use morpho::boundary::constrict3::{constrict_3d, Until};
-use morpho::boundary::{boundary_3d, boundary_3d_with, Boundary3, CParam, Options3};
+use morpho::boundary::{boundary_3d, boundary_3d_with, Boundary3, CParam, Method, Options3};
 use morpho::geom::Point3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -362,7 +362,7 @@ mod min_area_change {
     fn mac_opts() -> Options3 {
         Options3 {
             c: CParam::Fixed(0.0),
-            key: Key::MinAreaChange,
+            method: Method::MinAreaChange,
             ..Options3::default()
         }
     }

@@ -23,8 +23,7 @@ use crate::report::Report;
 use crate::Failure;
 use morpho::boundary::constrict3::Until;
 use morpho::boundary::{
-    boundary_2d, boundary_3d_with, check_polygon, Boundary2, CParam, Key, Method, Options2,
-    Options3,
+    boundary_2d, boundary_3d_with, check_polygon, Boundary2, CParam, Method, Options2, Options3,
 };
 use morpho::geom::Point2;
 use morpho::io::{read_points, write_atomic};
@@ -103,10 +102,6 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     }
     let ps = report.time("read", || read_points(&args.input))?;
     if ps.dim == 3 {
-        let key = match method {
-            Method::MinAreaChange => Key::MinAreaChange,
-            Method::Gamma | Method::VoronoiSkeleton => Key::Gamma,
-        };
         let keep = match &args.keep {
             Some(k) => report.time("read", || super::read_index_rows::<3>(k, "keep"))?,
             None => Vec::new(),
@@ -115,7 +110,6 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             until,
             c,
             keep,
-            key,
             method,
             max_seeds: args.seeds.max(1),
         };

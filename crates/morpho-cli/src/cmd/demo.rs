@@ -788,23 +788,20 @@ fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
             "γ-indicator: original triangles recovered",
             format!("{:.1} %", recovered(&b.triangles)),
         );
-        for (method, key, file, what) in [
+        for (method, file, what) in [
             (
                 Method::MinAreaChange,
-                Key::MinAreaChange,
                 "bunny_min_area.png",
                 "minimal area change (Boissonnat, V §4.3.3)",
             ),
             (
                 Method::VoronoiSkeleton,
-                Key::Gamma,
                 "bunny_skeleton.png",
                 "shortest Voronoi skeleton (O'Rourke et al., V §4.3.4)",
             ),
         ] {
             let o = Options3 {
                 method,
-                key,
                 ..Options3::default()
             };
             let t = Instant::now();

@@ -453,15 +453,12 @@ pub struct Options3 {
     pub c: CParam,
     /// Triangles (input indices) that must be on the boundary (V §5.7).
     pub keep: Vec<[u32; 3]>,
-    /// The selection key of the Delaunay constriction: [`Key::Gamma`] (default, V §5.3) or
-    /// Boissonnat's [`Key::MinAreaChange`] (V §4.3.3, Eq. 4.1,
-    /// [`constrict3::min_area_change_3d`]). The general engine ([`fallback3`]: the
-    /// [`CParam::Auto`] continuation after a lock, [`CParam::Fixed`]`(c < 0)`, keep triangles
-    /// that are not Delaunay faces) always uses the γ-indicator.
-    pub key: Key,
-    /// [`Method::VoronoiSkeleton`]: the shortest Voronoi skeleton ([`voronoi_skeleton3`];
-    /// `until`, `c` and `key` are not used, keep triangles are unsupported); otherwise the
-    /// constriction selected by `key`.
+    /// [`Method::Gamma`] (default, V §5.3) or [`Method::MinAreaChange`] (Boissonnat, V §4.3.3,
+    /// Eq. 4.1, [`constrict3::min_area_change_3d`]): the selection key of the Delaunay
+    /// constriction; the general engine ([`fallback3`]: the [`CParam::Auto`] continuation after
+    /// a lock, [`CParam::Fixed`]`(c < 0)`, keep triangles that are not Delaunay faces) always
+    /// uses the γ-indicator. [`Method::VoronoiSkeleton`]: the shortest Voronoi skeleton
+    /// ([`voronoi_skeleton3`]; `until` and `c` are not used, keep triangles are unsupported).
     pub method: Method,
     /// Seeds tried by the Voronoi skeleton method (all tetrahedra when there are fewer).
     pub max_seeds: usize,
@@ -473,7 +470,6 @@ impl Default for Options3 {
             until: constrict3::Until::All,
             c: CParam::Auto,
             keep: Vec::new(),
-            key: Key::Gamma,
             method: Method::Gamma,
             max_seeds: 200,
         }
@@ -544,7 +540,6 @@ pub fn boundary_3d_keep(
             until,
             c: CParam::Auto,
             keep: keep.to_vec(),
-            key: Key::Gamma,
             ..Options3::default()
         },
     )
@@ -741,7 +736,11 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
             (g.boundary(), None, c, g.iterations, g.added)
         }
         _ => {
-            let st = constrict3::constrict_3d_with(&d, opts.until, &keep_v, opts.key);
+            let key = match opts.method {
+                Method::MinAreaChange => Key::MinAreaChange,
+                Method::Gamma | Method::VoronoiSkeleton => Key::Gamma,
+            };
+            let st = constrict3::constrict_3d_with(&d, opts.until, &keep_v, key);
             if st.boundary_vertices >= nv && keep_missing_v(&st.triangles, &keep_v).is_empty()
                 || fixed_c.is_some()
             {
