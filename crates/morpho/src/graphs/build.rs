@@ -306,42 +306,60 @@ impl BEdge {
     }
 }
 
-/// The least edge of a component so far: the component at its other end, its float squared
-/// length and its vertices (one record, so that an update touches one cache line).
+/// The least edge of a component so far: its float squared length, the component at its other
+/// end and its position in the edge list (16 bytes, so that an update touches one cache line).
 #[derive(Clone, Copy)]
 struct Least {
     w: f64,
     t: u32,
-    e: [u32; 2],
+    j: u32,
 }
 
 /// The Delaunay edges of a non-collinear 2D triangulation for [`emst_boruvka`], in triangle
-/// order (spatially coherent: the triangles are created along the insertion order), built in
-/// parallel over blocks of triangles.
+/// order (spatially coherent: the triangles are created along the insertion order), written in
+/// parallel over blocks of triangles straight into their final places (an edge is reported by
+/// the smaller of its two triangles).
 fn tri_edges(d: &d2::Delaunay2, p: &[[f64; 2]]) -> Vec<BEdge> {
-    const BLOCK: usize = 1 << 15;
-    let blocks: Vec<Vec<BEdge>> = d
-        .triangles
-        .par_chunks(BLOCK)
-        .enumerate()
-        .map(|(k, tris)| {
-            let mut out = Vec::with_capacity(tris.len() * 3 / 2 + 16);
-            for (i, tri) in tris.iter().enumerate() {
-                let t = k * BLOCK + i;
-                let nb = &d.neighbors[t];
-                for j in 0..3 {
-                    if nb[j] == d2::NONE || nb[j] as usize > t {
-                        out.push(BEdge::new(p, tri[(j + 1) % 3], tri[(j + 2) % 3]));
+    const BLOCK: usize = 1 << 14;
+    let reports = |t: usize, j: usize| {
+        let nb = d.neighbors[t][j];
+        nb == d2::NONE || nb as usize > t
+    };
+    let counts: Vec<usize> = (0..d.triangles.len().div_ceil(BLOCK))
+        .into_par_iter()
+        .map(|k| {
+            (k * BLOCK..((k + 1) * BLOCK).min(d.triangles.len()))
+                .map(|t| (0..3).filter(|&j| reports(t, j)).count())
+                .sum()
+        })
+        .collect();
+    let blank = BEdge {
+        w: 0.0,
+        a: 0,
+        b: 0,
+        e: [0; 2],
+    };
+    let mut es = vec![blank; counts.iter().sum()];
+    let mut rest: &mut [BEdge] = &mut es;
+    let mut parts = Vec::with_capacity(counts.len());
+    for &c in &counts {
+        let (head, tail) = rest.split_at_mut(c);
+        parts.push(head);
+        rest = tail;
+    }
+    parts.into_par_iter().enumerate().for_each(|(k, out)| {
+        let mut slot = out.iter_mut();
+        for t in k * BLOCK..((k + 1) * BLOCK).min(d.triangles.len()) {
+            let tri = d.triangles[t];
+            for j in 0..3 {
+                if reports(t, j) {
+                    if let Some(x) = slot.next() {
+                        *x = BEdge::new(p, tri[(j + 1) % 3], tri[(j + 2) % 3]);
                     }
                 }
             }
-            out
-        })
-        .collect();
-    let mut es = Vec::with_capacity(blocks.iter().map(Vec::len).sum());
-    for b in blocks {
-        es.extend_from_slice(&b);
-    }
+        }
+    });
     es
 }
 
@@ -383,25 +401,33 @@ fn emst_boruvka<const D: usize>(
         let [a, b, c, d] = [e[0], e[1], f[0], f[1]].map(|x| &p[x as usize]);
         cmp_dist2(a, b, c, d).then(key(e).cmp(&key(f))) == Ordering::Less
     };
-    es.retain(|e| e.a != e.b);
     let mut ncomp = n;
     let none = Least {
         w: 0.0,
         t: NO,
-        e: [0; 2],
+        j: NO,
     };
     let mut least = vec![none; n];
     let mut parent = vec![0u32; n];
+    let mut first = true;
     while ncomp > 1 && !es.is_empty() {
         least[..ncomp].fill(none);
-        for x in &es {
+        for (j, x) in es.iter().enumerate() {
+            if x.a == x.b {
+                continue; // (a loop in the input; dropped below)
+            }
             for (c, t) in [(x.a as usize, x.b), (x.b as usize, x.a)] {
                 let l = &mut least[c];
                 let take = l.t == NO
                     || x.w < l.w * (1.0 - 2.0 * NEAR_TIE)
-                    || (x.w <= l.w * (1.0 + 2.0 * NEAR_TIE) && before(x.w, &x.e, l.w, &l.e));
+                    || (x.w <= l.w * (1.0 + 2.0 * NEAR_TIE)
+                        && before(x.w, &x.e, l.w, &es[l.j as usize].e));
                 if take {
-                    *l = Least { w: x.w, t, e: x.e };
+                    *l = Least {
+                        w: x.w,
+                        t,
+                        j: j as u32,
+                    };
                 }
             }
         }
@@ -413,7 +439,12 @@ fn emst_boruvka<const D: usize>(
                 parent[c] = c as u32;
             } else {
                 parent[c] = t;
-                out.push(least[c].e);
+                // (in the first round the components are the vertices themselves)
+                out.push(if first {
+                    [c as u32, t]
+                } else {
+                    es[least[c].j as usize].e
+                });
             }
         }
         // roots (with path compression), dense labels in root order (in the roots' `least.t`),
@@ -439,6 +470,7 @@ fn emst_boruvka<const D: usize>(
             parent[c] = least[parent[c] as usize].t;
         }
         ncomp = next as usize;
+        first = false;
         let label = &parent;
         es.retain_mut(|e| {
             e.a = label[e.a as usize];
@@ -452,7 +484,7 @@ fn emst_boruvka<const D: usize>(
 /// The sphere-of-influence graph (V Def. 2.7) given a nearest neighbour `nn[v]` of every vertex
 /// and its float squared distance `r2[v]`: the pairs with |ab| < r_a + r_b.
 ///
-/// A pair is found from the end with the larger radius (ties: the larger vertex), which sees the
+/// A pair is found from the end with the larger float radius (ties: the larger vertex), which sees the
 /// other within r_a + r_b ≤ 2·r_a: a grid query of half-width 2·r_a around it. The points,
 /// radii and vertices are laid out in the grid's cell order, so a query reads a few contiguous
 /// runs; the queries run in parallel in that order. Each pair is decided by floats with a wide
@@ -464,14 +496,11 @@ fn sig_edges<const D: usize>(p: &[[f64; D]], nn: &[u32], r2: &[f64]) -> Vec<[u32
         return vec![];
     }
     let grid = Grid::new(p, 1.0);
-    // per slot (cell order): point, squared radius, radius, vertex
-    let slots: Vec<([f64; D], f64, f64, u32)> = grid
+    // per slot (cell order): point, radius, vertex
+    let slots: Vec<([f64; D], f64, u32)> = grid
         .items()
         .par_iter()
-        .map(|&v| {
-            let s = r2[v as usize];
-            (p[v as usize], s, s.sqrt(), v)
-        })
+        .map(|&v| (p[v as usize], r2[v as usize].sqrt(), v))
         .collect();
     // the relative error of the float test below is a few ε; 1e-9 is a wide margin (and values
     // near the bottom of the float range always go to the exact test)
@@ -479,7 +508,7 @@ fn sig_edges<const D: usize>(p: &[[f64; D]], nn: &[u32], r2: &[f64]) -> Vec<[u32
     const TINY: f64 = 1e-250;
     slots
         .par_iter()
-        .fold(Vec::new, |mut out, &(pa, sa, ra, a)| {
+        .fold(Vec::new, |mut out, &(pa, ra, a)| {
             let reach = 2.0 * ra * (1.0 + MARGIN);
             let (mut lo, mut hi) = (pa, pa);
             for k in 0..D {
@@ -487,17 +516,16 @@ fn sig_edges<const D: usize>(p: &[[f64; D]], nn: &[u32], r2: &[f64]) -> Vec<[u32
                 hi[k] += reach;
             }
             grid.for_each_run(lo, hi, |run| {
-                for &(pb, sb, rb, b) in &slots[run] {
-                    // found from the end with the larger (squared radius, vertex)
-                    if sb > sa || (sb == sa && b >= a) {
-                        continue;
-                    }
+                for &(pb, rb, b) in &slots[run] {
                     let d2 = dist2(&pa, &pb);
                     let s = ra + rb;
                     let s2 = s * s;
-                    let inside = if d2 > s2 * (1.0 + MARGIN) {
-                        false
-                    } else if d2 < s2 * (1.0 - MARGIN) && s2 > TINY {
+                    // (most candidates are rejected here) found from the end with the larger
+                    // (radius, vertex): sqrt is monotone, so r_b ≤ r_a up to rounding
+                    if d2 > s2 * (1.0 + MARGIN) || rb > ra || (rb == ra && b >= a) {
+                        continue;
+                    }
+                    let inside = if d2 < s2 * (1.0 - MARGIN) && s2 > TINY {
                         true
                     } else {
                         let (na, nb) = (&p[nn[a as usize] as usize], &p[nn[b as usize] as usize]);
