@@ -1,8 +1,9 @@
 //! The graph family as one entry point: [`graph_2d`] and [`graph_3d`] build any [`Kind`] from
 //! the Delaunay triangulation (Veltkamp 1992 §2.2 and ch. 3; construction per [`super::fast`]).
 //!
-//! Complexities after the O(N log N) triangulation: CP, NNG, EMST (Borůvka on Delaunay edges),
-//! hull, Delaunay, GG, α (a ≤ 0), β_c/γ with parameters ≥ 0: O(N); RNG, lune-based β, SIG:
+//! Complexities after the O(N log N) triangulation: CP, NNG, hull, Delaunay, GG, α (a ≤ 0), β_c/γ
+//! with parameters ≥ 0: O(N); EMST (Borůvka on the Delaunay edges): O(N log N) worst case, about
+//! 2.5 passes over the edges on evenly spread points; RNG, lune-based β, SIG:
 //! O(N·k) with k the points in the edge's neighbourhood (grid queries); ∞-SG: O(N) filter plus
 //! O(N) per surviving edge; α (a > 0): O(h³) over the h hull vertices; γ beyond the Delaunay
 //! triangulation: see [`super::fast::beyond_dt_2d`] and [`super::beyond3::beyond_dt_3d`]. 3D γ
