@@ -1,8 +1,9 @@
 //! The graph family as one entry point: [`graph_2d`] and [`graph_3d`] build any [`Kind`] from
 //! the Delaunay triangulation (Veltkamp 1992 §2.2 and ch. 3; construction per [`super::fast`]).
 //!
-//! Complexities after the O(N log N) triangulation: CP, NNG, EMST (Kruskal on Delaunay edges),
-//! hull, Delaunay, GG, α (a ≤ 0), β_c/γ with parameters ≥ 0: O(N); RNG, lune-based β, SIG:
+//! Complexities after the O(N log N) triangulation: CP, NNG, hull, Delaunay, GG, α (a ≤ 0), β_c/γ
+//! with parameters ≥ 0: O(N); EMST (Borůvka on the Delaunay edges): O(N log N) worst case, about
+//! 2.5 passes over the edges on evenly spread points; RNG, lune-based β, SIG:
 //! O(N·k) with k the points in the edge's neighbourhood (grid queries); ∞-SG: O(N) filter plus
 //! O(N) per surviving edge; α (a > 0): O(h³) over the h hull vertices; γ beyond the Delaunay
 //! triangulation: see [`super::fast::beyond_dt_2d`] and [`super::beyond3::beyond_dt_3d`]. 3D γ
@@ -221,87 +222,328 @@ fn nearest_over<const D: usize>(p: &[[f64; D]], edges: &[[u32; 2]]) -> Vec<u32> 
     nn
 }
 
-/// Euclidean minimum spanning tree by Kruskal's algorithm over `edges` (a superset of one EMST:
-/// the Gabriel or Delaunay edges), in the exact order of (length, smaller input index, larger
-/// input index): a strict total order, so the tree is the unique minimum for it.
-fn emst_kruskal<const D: usize>(
+/// Relative band within which two float squared lengths may be in the wrong order: each carries
+/// a relative error below (D + 2)ε (rounded differences, squares and sums), so floats further
+/// apart than this are ordered correctly; closer ones are compared exactly.
+const NEAR_TIE: f64 = 32.0 * f64::EPSILON;
+
+/// An exact nearest neighbour of every vertex of a non-collinear 2D triangulation (among its
+/// Delaunay neighbours, which contain one) with its float squared distance. The triangles are
+/// split into one block per thread; each block offers its edges to both ends in triangle order
+/// (spatially coherent), then the blocks' answers are merged per vertex. Float comparisons
+/// decide unless two candidates are within [`NEAR_TIE`]; then [`cmp_dist2`] does (ties: the
+/// first offered).
+fn nearest_tri(d: &d2::Delaunay2, p: &[[f64; 2]]) -> (Vec<u32>, Vec<f64>) {
+    let n = p.len();
+    let offer = |near: &mut (f64, u32), v: u32, w: u32, x: f64| {
+        let pv = &p[v as usize];
+        let take = near.1 == u32::MAX
+            || x < near.0 * (1.0 - 2.0 * NEAR_TIE)
+            || (x <= near.0 * (1.0 + 2.0 * NEAR_TIE)
+                && cmp_dist2(pv, &p[w as usize], pv, &p[near.1 as usize]) == Ordering::Less);
+        if take {
+            *near = (x, w);
+        }
+    };
+    let size = d
+        .triangles
+        .len()
+        .div_ceil(rayon::current_num_threads().max(1))
+        .max(1);
+    let parts: Vec<Vec<(f64, u32)>> = d
+        .triangles
+        .par_chunks(size)
+        .enumerate()
+        .map(|(k, tris)| {
+            let mut near = vec![(f64::INFINITY, u32::MAX); n];
+            for (i, tri) in tris.iter().enumerate() {
+                let t = k * size + i;
+                let nb = &d.neighbors[t];
+                for j in 0..3 {
+                    if nb[j] == d2::NONE || nb[j] as usize > t {
+                        let (a, b) = (tri[(j + 1) % 3], tri[(j + 2) % 3]);
+                        let x = dist2(&p[a as usize], &p[b as usize]);
+                        offer(&mut near[a as usize], a, b, x);
+                        offer(&mut near[b as usize], b, a, x);
+                    }
+                }
+            }
+            near
+        })
+        .collect();
+    (0..n)
+        .into_par_iter()
+        .map(|v| {
+            let mut near = parts[0][v];
+            for part in &parts[1..] {
+                let (x, w) = part[v];
+                if w != u32::MAX {
+                    offer(&mut near, v as u32, w, x);
+                }
+            }
+            (near.1, near.0)
+        })
+        .unzip()
+}
+
+/// An edge during Borůvka's algorithm: float squared length, the current components of its
+/// ends, and its two vertices.
+#[derive(Clone, Copy)]
+struct BEdge {
+    w: f64,
+    a: u32,
+    b: u32,
+    e: [u32; 2],
+}
+
+impl BEdge {
+    fn new<const D: usize>(p: &[[f64; D]], a: u32, b: u32) -> Self {
+        BEdge {
+            w: dist2(&p[a as usize], &p[b as usize]),
+            a,
+            b,
+            e: [a, b],
+        }
+    }
+}
+
+/// The least edge of a component so far: its float squared length, the component at its other
+/// end and its position in the edge list (16 bytes, so that an update touches one cache line).
+#[derive(Clone, Copy)]
+struct Least {
+    w: f64,
+    t: u32,
+    j: u32,
+}
+
+/// The Delaunay edges of a non-collinear 2D triangulation for [`emst_boruvka`], in triangle
+/// order (spatially coherent: the triangles are created along the insertion order), written in
+/// parallel over blocks of triangles straight into their final places (an edge is reported by
+/// the smaller of its two triangles).
+fn tri_edges(d: &d2::Delaunay2, p: &[[f64; 2]]) -> Vec<BEdge> {
+    const BLOCK: usize = 1 << 14;
+    let reports = |t: usize, j: usize| {
+        let nb = d.neighbors[t][j];
+        nb == d2::NONE || nb as usize > t
+    };
+    let counts: Vec<usize> = (0..d.triangles.len().div_ceil(BLOCK))
+        .into_par_iter()
+        .map(|k| {
+            (k * BLOCK..((k + 1) * BLOCK).min(d.triangles.len()))
+                .map(|t| (0..3).filter(|&j| reports(t, j)).count())
+                .sum()
+        })
+        .collect();
+    let blank = BEdge {
+        w: 0.0,
+        a: 0,
+        b: 0,
+        e: [0; 2],
+    };
+    let mut es = vec![blank; counts.iter().sum()];
+    let mut rest: &mut [BEdge] = &mut es;
+    let mut parts = Vec::with_capacity(counts.len());
+    for &c in &counts {
+        let (head, tail) = rest.split_at_mut(c);
+        parts.push(head);
+        rest = tail;
+    }
+    parts.into_par_iter().enumerate().for_each(|(k, out)| {
+        let mut slot = out.iter_mut();
+        for t in k * BLOCK..((k + 1) * BLOCK).min(d.triangles.len()) {
+            let tri = d.triangles[t];
+            for j in 0..3 {
+                if reports(t, j) {
+                    if let Some(x) = slot.next() {
+                        *x = BEdge::new(p, tri[(j + 1) % 3], tri[(j + 2) % 3]);
+                    }
+                }
+            }
+        }
+    });
+    es
+}
+
+/// Euclidean minimum spanning tree over the edges `es` (a superset of one EMST: the Gabriel or
+/// Delaunay edges, in vertex indices) in the exact order of (length, smaller input index, larger
+/// input index): a strict total order, so the tree is the unique minimum for it whatever the
+/// algorithm (the one Kruskal's algorithm finds when the ties are sorted by input indices).
+///
+/// Borůvka's algorithm with contraction: every round each component picks its least outgoing
+/// edge (all of them are tree edges; under a strict total order they form a forest whose only
+/// cycles are the 2-cycles of an edge chosen from both sides), the components are merged along
+/// them, renumbered densely in the order of their smallest member (spatially coherent, as the
+/// vertices are in Hilbert order) and the edges inside a component are dropped. The first round
+/// links every vertex to its nearest neighbour. Comparisons use the float squared lengths and
+/// fall back to [`cmp_dist2`] (then the input indices) only within [`NEAR_TIE`] of a tie. Every
+/// round at least halves the components; the edge list shrinks with them (it keeps parallel
+/// edges between two components: O(E log N) in the worst case; on uniform points about 2.5E
+/// edge visits in all, by sequential passes).
+fn emst_boruvka<const D: usize>(
     p: &[[f64; D]],
     input: &[u32],
-    edges: &[[u32; 2]],
+    mut es: Vec<BEdge>,
 ) -> Vec<[u32; 2]> {
+    const NO: u32 = u32::MAX;
+    let n = p.len();
+    let mut out = Vec::with_capacity(n.saturating_sub(1));
+    if n < 2 {
+        return out;
+    }
     let key = |e: &[u32; 2]| {
         let (a, b) = (input[e[0] as usize], input[e[1] as usize]);
         ((a.min(b) as u64) << 32) | a.max(b) as u64
     };
-    // a non-negative f64's bits sort like its value: sort by the float squared length,
-    // then re-sort every run of float near-ties with the exact comparison
-    let mut order: Vec<(u64, u32)> = edges
-        .par_iter()
-        .enumerate()
-        .map(|(i, e)| {
-            (
-                dist2(&p[e[0] as usize], &p[e[1] as usize]).to_bits(),
-                i as u32,
-            )
-        })
-        .collect();
-    order.par_sort_unstable();
-    let exact = |x: &(u64, u32), y: &(u64, u32)| {
-        let (e, f) = (&edges[x.1 as usize], &edges[y.1 as usize]);
-        cmp_dist2(
-            &p[e[0] as usize],
-            &p[e[1] as usize],
-            &p[f[0] as usize],
-            &p[f[1] as usize],
-        )
-        .then(key(e).cmp(&key(f)))
+    // (w, e) strictly before (v, f) in the total order, for distinct edges e, f
+    let before = |w: f64, e: &[u32; 2], v: f64, f: &[u32; 2]| -> bool {
+        if (w - v).abs() > NEAR_TIE * (w + v) {
+            return w < v;
+        }
+        let [a, b, c, d] = [e[0], e[1], f[0], f[1]].map(|x| &p[x as usize]);
+        cmp_dist2(a, b, c, d).then(key(e).cmp(&key(f))) == Ordering::Less
     };
-    let mut i = 0;
-    while i < order.len() {
-        // the float squared lengths carry a relative error below (3 + D)ε: neighbours within
-        // 16ε may be in the wrong order, so runs of such neighbours are re-sorted
-        let mut j = i + 1;
-        while j < order.len()
-            && f64::from_bits(order[j].0)
-                <= f64::from_bits(order[j - 1].0) * (1.0 + 16.0 * f64::EPSILON)
-        {
-            j += 1;
-        }
-        if j - i > 1 {
-            order[i..j].sort_unstable_by(exact);
-        }
-        i = j;
-    }
-    // union by size with path halving
-    let mut parent: Vec<u32> = (0..p.len() as u32).collect();
-    let mut size = vec![1u32; p.len()];
-    fn root(p: &mut [u32], mut x: u32) -> u32 {
-        while p[x as usize] != x {
-            let g = p[p[x as usize] as usize];
-            p[x as usize] = g;
-            x = g;
-        }
-        x
-    }
-    let mut out = Vec::with_capacity(p.len().saturating_sub(1));
-    for &(_, i) in &order {
-        let [a, b] = edges[i as usize];
-        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-        if ra != rb {
-            let (small, big) = if size[ra as usize] < size[rb as usize] {
-                (ra, rb)
-            } else {
-                (rb, ra)
-            };
-            parent[small as usize] = big;
-            size[big as usize] += size[small as usize];
-            out.push([a, b]);
-            if out.len() + 1 == p.len() {
-                break;
+    let mut ncomp = n;
+    let none = Least {
+        w: 0.0,
+        t: NO,
+        j: NO,
+    };
+    let mut least = vec![none; n];
+    let mut parent = vec![0u32; n];
+    let mut first = true;
+    while ncomp > 1 && !es.is_empty() {
+        least[..ncomp].fill(none);
+        for (j, x) in es.iter().enumerate() {
+            if x.a == x.b {
+                continue; // (a loop in the input; dropped below)
+            }
+            for (c, t) in [(x.a as usize, x.b), (x.b as usize, x.a)] {
+                let l = &mut least[c];
+                let take = l.t == NO
+                    || x.w < l.w * (1.0 - 2.0 * NEAR_TIE)
+                    || (x.w <= l.w * (1.0 + 2.0 * NEAR_TIE)
+                        && before(x.w, &x.e, l.w, &es[l.j as usize].e));
+                if take {
+                    *l = Least {
+                        w: x.w,
+                        t,
+                        j: j as u32,
+                    };
+                }
             }
         }
+        // link every component to the other end of its least edge; of an edge chosen from both
+        // ends, the smaller component becomes the root
+        for c in 0..ncomp {
+            let t = least[c].t;
+            if t == NO || (least[t as usize].t == c as u32 && (c as u32) < t) {
+                parent[c] = c as u32;
+            } else {
+                parent[c] = t;
+                // (in the first round the components are the vertices themselves)
+                out.push(if first {
+                    [c as u32, t]
+                } else {
+                    es[least[c].j as usize].e
+                });
+            }
+        }
+        // roots (with path compression), dense labels in root order (in the roots' `least.t`),
+        // then every component's label (in `parent`)
+        let mut next = 0u32;
+        for c in 0..ncomp {
+            let mut r = c as u32;
+            while parent[r as usize] != r {
+                r = parent[r as usize];
+            }
+            let mut x = c as u32;
+            while parent[x as usize] != r {
+                let up = parent[x as usize];
+                parent[x as usize] = r;
+                x = up;
+            }
+            if r as usize == c {
+                least[c].t = next;
+                next += 1;
+            }
+        }
+        for c in 0..ncomp {
+            parent[c] = least[parent[c] as usize].t;
+        }
+        ncomp = next as usize;
+        first = false;
+        let label = &parent;
+        es.retain_mut(|e| {
+            e.a = label[e.a as usize];
+            e.b = label[e.b as usize];
+            e.a != e.b
+        });
     }
     out
+}
+
+/// The sphere-of-influence graph (V Def. 2.7) given a nearest neighbour `nn[v]` of every vertex
+/// and its float squared distance `r2[v]`: the pairs with |ab| < r_a + r_b.
+///
+/// A pair is found from the end with the larger float radius (ties: the larger vertex), which sees the
+/// other within r_a + r_b ≤ 2·r_a: a grid query of half-width 2·r_a around it. The points,
+/// radii and vertices are laid out in the grid's cell order, so a query reads a few contiguous
+/// runs; the queries run in parallel in that order. Each pair is decided by floats with a wide
+/// margin, and exactly ([`sum_of_roots_exceeds`]) within it. O(N·k) with k the points in a
+/// query box (a handful for evenly spread points).
+fn sig_edges<const D: usize>(p: &[[f64; D]], nn: &[u32], r2: &[f64]) -> Vec<[u32; 2]> {
+    let n = p.len();
+    if n < 2 {
+        return vec![];
+    }
+    let grid = Grid::new(p, 1.0);
+    // per slot (cell order): point, radius, vertex
+    let slots: Vec<([f64; D], f64, u32)> = grid
+        .items()
+        .par_iter()
+        .map(|&v| (p[v as usize], r2[v as usize].sqrt(), v))
+        .collect();
+    // the relative error of the float test below is a few ε; 1e-9 is a wide margin (and values
+    // near the bottom of the float range always go to the exact test)
+    const MARGIN: f64 = 1e-9;
+    const TINY: f64 = 1e-250;
+    slots
+        .par_iter()
+        .fold(Vec::new, |mut out, &(pa, ra, a)| {
+            let reach = 2.0 * ra * (1.0 + MARGIN);
+            let (mut lo, mut hi) = (pa, pa);
+            for k in 0..D {
+                lo[k] -= reach;
+                hi[k] += reach;
+            }
+            grid.for_each_run(lo, hi, |run| {
+                for &(pb, rb, b) in &slots[run] {
+                    let d2 = dist2(&pa, &pb);
+                    let s = ra + rb;
+                    let s2 = s * s;
+                    // (most candidates are rejected here) found from the end with the larger
+                    // (radius, vertex): sqrt is monotone, so r_b ≤ r_a up to rounding
+                    if d2 > s2 * (1.0 + MARGIN) || rb > ra || (rb == ra && b >= a) {
+                        continue;
+                    }
+                    let inside = if d2 < s2 * (1.0 - MARGIN) && s2 > TINY {
+                        true
+                    } else {
+                        let (na, nb) = (&p[nn[a as usize] as usize], &p[nn[b as usize] as usize]);
+                        sum_of_roots_exceeds(&pa, &pb, na, nb)
+                    };
+                    if inside {
+                        out.push([a, b]);
+                    }
+                }
+                true
+            });
+            out
+        })
+        .reduce(Vec::new, |mut x, y| {
+            x.extend(y);
+            x
+        })
 }
 
 /// The classic graphs that depend only on distances, in D dimensions, from the Delaunay edges
@@ -352,7 +594,14 @@ fn classic<const D: usize>(
             }
             e
         }
-        Kind::Emst => emst_kruskal(p, input, dt_edges),
+        Kind::Emst => emst_boruvka(
+            p,
+            input,
+            dt_edges
+                .par_iter()
+                .map(|e| BEdge::new(p, e[0], e[1]))
+                .collect(),
+        ),
         Kind::Rng | Kind::BetaLune(_) => {
             let b = match kind {
                 Kind::BetaLune(b) => b,
@@ -390,45 +639,8 @@ fn classic<const D: usize>(
         }
         Kind::Sig => {
             let nn = nearest_over(p, dt_edges);
-            let r: Vec<f64> = (0..n)
-                .map(|a| dist2(&p[a], &p[nn[a] as usize]).sqrt())
-                .collect();
-            let rmax = r.iter().cloned().fold(0.0, f64::max);
-            let grid = Grid::new(p, 2.0);
-            // the largest radius per cell prunes the cells that no ball can reach
-            let cell_r: Vec<f64> = (0..grid.cell_count())
-                .map(|c| {
-                    grid.cell_items(c)
-                        .iter()
-                        .map(|&i| r[i as usize])
-                        .fold(0.0, f64::max)
-                })
-                .collect();
-            // (the output order does not matter: the edges are sorted afterwards)
-            (0..n)
-                .into_par_iter()
-                .fold(Vec::new, |mut out, a| {
-                    let pn = &p[nn[a] as usize];
-                    grid.for_each_cell_near(p[a], (r[a] + rmax) * (1.0 + 1e-9), |cell, d2| {
-                        let reach = (r[a] + cell_r[cell]) * (1.0 + 1e-9);
-                        if d2 < reach * reach {
-                            for &b in grid.cell_items(cell) {
-                                let bu = b as usize;
-                                if bu > a
-                                    && sum_of_roots_exceeds(&p[a], &p[bu], pn, &p[nn[bu] as usize])
-                                {
-                                    out.push([a as u32, b]);
-                                }
-                            }
-                        }
-                        true
-                    });
-                    out
-                })
-                .reduce(Vec::new, |mut x, y| {
-                    x.extend(y);
-                    x
-                })
+            let r2: Vec<f64> = (0..n).map(|a| dist2(&p[a], &p[nn[a] as usize])).collect();
+            sig_edges(p, &nn, &r2)
         }
         Kind::Strip => strip(p, gabriel),
         _ => {
@@ -513,6 +725,16 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             finish2(&d, e, vec![])
         }
         Kind::Gabriel => finish2(&d, fast::gabriel_2d(&d), vec![]),
+        // the vertex fans give the Delaunay neighbours in parallel and in vertex order
+        Kind::Emst if !d.collinear => finish2(
+            &d,
+            emst_boruvka(&p, &d.input_of_vertex, tri_edges(&d, &p)),
+            vec![],
+        ),
+        Kind::Sig if !d.collinear => {
+            let (nn, r2) = nearest_tri(&d, &p);
+            finish2(&d, sig_edges(&p, &nn, &r2), vec![])
+        }
         Kind::Alpha(a) if a < 0.0 => {
             let rad = 1.0 / a.abs();
             let e = fast::filter_candidates_2d(&d, |e, iv, _| {

@@ -151,6 +151,58 @@ impl<'a, const D: usize> Grid<'a, D> {
         }
     }
 
+    /// The points in cell order (cells in index order, the first axis fastest): slot `s` holds
+    /// point `items()[s]`. Data laid out in this order is read contiguously by
+    /// [`Grid::for_each_run`].
+    pub fn items(&self) -> &[u32] {
+        &self.items
+    }
+
+    /// Calls `f(slots)` for every run of slots (positions in [`Grid::items`]) whose cells meet the
+    /// box `[lo, hi]`: one run per row of cells along the first axis (a superset of the points in
+    /// the box). `f` returns false to stop early; the function then returns false.
+    pub fn for_each_run(
+        &self,
+        lo: [f64; D],
+        hi: [f64; D],
+        mut f: impl FnMut(std::ops::Range<usize>) -> bool,
+    ) -> bool {
+        let mut a = [0usize; D];
+        let mut b = [0usize; D];
+        for k in 0..D {
+            if hi[k] < self.min[k] {
+                return true;
+            }
+            a[k] = self.coord(lo[k], k);
+            b[k] = self.coord(hi[k], k);
+        }
+        let mut cur = a;
+        loop {
+            let mut idx = 0;
+            for k in (1..D).rev() {
+                idx = idx * self.dims[k] + cur[k];
+            }
+            let row = idx * self.dims[0];
+            let run = self.start[row + a[0]] as usize..self.start[row + b[0] + 1] as usize;
+            if !run.is_empty() && !f(run) {
+                return false;
+            }
+            // next row
+            let mut k = 1;
+            loop {
+                if k >= D {
+                    return true;
+                }
+                if cur[k] < b[k] {
+                    cur[k] += 1;
+                    break;
+                }
+                cur[k] = a[k];
+                k += 1;
+            }
+        }
+    }
+
     /// Calls `f(i)` for every point whose cell meets the box `[lo, hi]` (a superset of the
     /// points in the box). `f` returns false to stop early; the function then returns false.
     pub fn for_each_in_box(

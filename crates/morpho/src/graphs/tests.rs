@@ -554,3 +554,232 @@ mod beyond3_graphs {
         }
     }
 }
+
+/// EMST and SIG against their definitions on sets full of exact ties and near-ties, with
+/// duplicates (the fast paths compare floats first and fall back to exact predicates only near
+/// a tie, and SIG looks for each pair from one end only).
+mod emst_sig_oracle {
+    use crate::geom::distance::{cmp_dist2, sum_of_roots_exceeds};
+    use crate::geom::{Point2, Point3};
+    use crate::graphs::{graph_2d, graph_3d, Kind};
+    use proptest::prelude::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use std::cmp::Ordering;
+
+    /// The first occurrence of every distinct point, as (input index, point).
+    fn distinct<const D: usize>(p: &[[f64; D]]) -> Vec<(u32, [f64; D])> {
+        let mut seen = std::collections::HashSet::new();
+        p.iter()
+            .enumerate()
+            .filter(|(_, q)| seen.insert(q.map(|x| (x + 0.0).to_bits())))
+            .map(|(i, q)| (i as u32, *q))
+            .collect()
+    }
+
+    /// Kruskal over all pairs in the exact order (length, smaller input index, larger input
+    /// index): the unique minimum spanning tree for that strict total order.
+    fn emst_total_order<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
+        let q = distinct(p);
+        let mut pairs: Vec<(usize, usize)> = (0..q.len())
+            .flat_map(|i| (i + 1..q.len()).map(move |j| (i, j)))
+            .collect();
+        pairs.sort_by(|&(a, b), &(c, d)| {
+            cmp_dist2(&q[a].1, &q[b].1, &q[c].1, &q[d].1)
+                .then((q[a].0, q[b].0).cmp(&(q[c].0, q[d].0)))
+        });
+        let mut parent: Vec<usize> = (0..q.len()).collect();
+        fn find(p: &mut [usize], mut x: usize) -> usize {
+            while p[x] != x {
+                p[x] = p[p[x]];
+                x = p[x];
+            }
+            x
+        }
+        let mut out = Vec::new();
+        for (a, b) in pairs {
+            let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+            if ra != rb {
+                parent[ra] = rb;
+                out.push([q[a].0, q[b].0]);
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+
+    /// Def. 2.7 over the distinct points, in input indices.
+    fn sig_def<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
+        let q = distinct(p);
+        if q.len() < 2 {
+            return vec![];
+        }
+        let nn: Vec<usize> = (0..q.len())
+            .map(|i| {
+                (0..q.len())
+                    .filter(|&j| j != i)
+                    .min_by(|&j, &k| cmp_dist2(&q[i].1, &q[j].1, &q[i].1, &q[k].1))
+                    .unwrap_or(i)
+            })
+            .collect();
+        let mut out = Vec::new();
+        for i in 0..q.len() {
+            for j in i + 1..q.len() {
+                if sum_of_roots_exceeds(&q[i].1, &q[j].1, &q[nn[i]].1, &q[nn[j]].1) {
+                    out.push([q[i].0, q[j].0]);
+                }
+            }
+        }
+        out.sort_unstable();
+        out
+    }
+
+    fn tie_sets() -> Vec<(&'static str, Vec<[f64; 2]>)> {
+        let mut v: Vec<(&'static str, Vec<[f64; 2]>)> = Vec::new();
+        v.push((
+            "grid9",
+            (0..81).map(|i| [(i % 9) as f64, (i / 9) as f64]).collect(),
+        ));
+        v.push((
+            "grid-tenths",
+            (0..64)
+                .map(|i| [(i % 8) as f64 * 0.1 + 0.3, (i / 8) as f64 * 0.1 + 0.7])
+                .collect(),
+        ));
+        let mut r = ChaCha8Rng::seed_from_u64(17);
+        v.push((
+            "grid-ulps",
+            (0..64)
+                .map(|i| {
+                    let mut jit = |x: f64| {
+                        f64::from_bits((x.to_bits() as i64 + r.gen_range(-2i64..=2)) as u64)
+                    };
+                    [jit(1000.0 + (i % 8) as f64), jit(1000.0 + (i / 8) as f64)]
+                })
+                .collect(),
+        ));
+        let mut r = ChaCha8Rng::seed_from_u64(18);
+        // many duplicates and equal lengths
+        v.push((
+            "snapped-duplicates",
+            (0..150)
+                .map(|_| [r.gen_range(0..7) as f64, r.gen_range(0..7) as f64])
+                .collect(),
+        ));
+        // triangular lattice (every vertex has six equal nearest neighbours), shuffled input order
+        let mut tri: Vec<[f64; 2]> = (0..70)
+            .map(|i| {
+                let (x, y) = ((i % 10) as f64, (i / 10) as f64);
+                [x + 0.5 * (y % 2.0), y * 0.75f64.sqrt()]
+            })
+            .collect();
+        for i in (1..tri.len()).rev() {
+            tri.swap(i, r.gen_range(0..=i));
+        }
+        v.push(("triangular-lattice", tri));
+        // |ab| = r_a + r_b exactly: pairs of points at distance 1, pairs 2 apart (not SIG edges)
+        let mut touch: Vec<[f64; 2]> = (0..20).map(|i| [(i / 2 * 3 + i % 2) as f64, 0.0]).collect();
+        touch.push([5.0, 40.0]);
+        v.push(("touching-spheres", touch));
+        // radii of very different sizes: a dense cluster and sparse far points
+        let mut r = ChaCha8Rng::seed_from_u64(19);
+        let mut cl: Vec<[f64; 2]> = (0..120)
+            .map(|_| [r.gen::<f64>() * 0.01, r.gen::<f64>() * 0.01])
+            .collect();
+        cl.extend((0..25).map(|_| [r.gen::<f64>() * 10.0 - 5.0, r.gen::<f64>() * 10.0 - 5.0]));
+        v.push(("cluster-and-outliers", cl));
+        v.push((
+            "line",
+            (0..12).map(|i| [i as f64 * 0.5, 1.0 + i as f64]).collect(),
+        ));
+        v.push(("two", vec![[0.0, 0.0], [1.0, 1.0], [0.0, 0.0]]));
+        v
+    }
+
+    fn pts(p: &[[f64; 2]]) -> Vec<Point2> {
+        p.iter().map(|q| Point2::new(q[0], q[1])).collect()
+    }
+
+    #[test]
+    fn emst_is_the_total_order_tree_on_tie_sets_2d() {
+        for (name, p) in tie_sets() {
+            let g = graph_2d(&pts(&p), Kind::Emst).unwrap();
+            assert_eq!(g.edges, emst_total_order(&p), "{name}");
+        }
+    }
+
+    #[test]
+    fn sig_matches_the_definition_on_tie_sets_2d() {
+        for (name, p) in tie_sets() {
+            let g = graph_2d(&pts(&p), Kind::Sig).unwrap();
+            assert_eq!(g.edges, sig_def(&p), "{name}");
+        }
+    }
+
+    #[test]
+    fn emst_and_sig_match_on_larger_random_sets() {
+        for s in 0..2 {
+            let mut r = ChaCha8Rng::seed_from_u64(700 + s);
+            let p: Vec<[f64; 2]> = (0..500).map(|_| [r.gen(), r.gen()]).collect();
+            assert_eq!(
+                graph_2d(&pts(&p), Kind::Emst).unwrap().edges,
+                emst_total_order(&p)
+            );
+            assert_eq!(graph_2d(&pts(&p), Kind::Sig).unwrap().edges, sig_def(&p));
+        }
+    }
+
+    #[test]
+    fn emst_and_sig_3d_on_tie_sets() {
+        let grid: Vec<[f64; 3]> = (0..64)
+            .map(|i| [(i % 4) as f64, ((i / 4) % 4) as f64, (i / 16) as f64 * 0.1])
+            .collect();
+        let mut r = ChaCha8Rng::seed_from_u64(23);
+        let snapped: Vec<[f64; 3]> = (0..60)
+            .map(|_| {
+                [
+                    r.gen_range(0..4) as f64,
+                    r.gen_range(0..4) as f64,
+                    r.gen_range(0..3) as f64,
+                ]
+            })
+            .collect();
+        for (name, p) in [("grid", grid), ("snapped", snapped)] {
+            let q: Vec<Point3> = p.iter().map(|x| Point3::new(x[0], x[1], x[2])).collect();
+            assert_eq!(
+                graph_3d(&q, Kind::Emst).unwrap().edges,
+                emst_total_order(&p),
+                "{name}"
+            );
+            assert_eq!(
+                graph_3d(&q, Kind::Sig).unwrap().edges,
+                sig_def(&p),
+                "{name}"
+            );
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        #[test]
+        fn emst_and_sig_on_small_integer_sets(
+            raw in proptest::collection::vec((0i32..6, 0i32..6), 2..40),
+            scale in prop_oneof![Just(1.0), Just(0.1), Just(1e-3)],
+        ) {
+            let p: Vec<[f64; 2]> = raw.iter().map(|&(x, y)| [x as f64 * scale, y as f64 * scale]).collect();
+            prop_assert_eq!(graph_2d(&pts(&p), Kind::Emst).unwrap().edges, emst_total_order(&p));
+            prop_assert_eq!(graph_2d(&pts(&p), Kind::Sig).unwrap().edges, sig_def(&p));
+        }
+    }
+
+    #[test]
+    fn total_order_breaks_ties_by_input_index() {
+        // a unit square: four equal sides; the tree takes the three with the smallest index pairs
+        let p = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let t = emst_total_order(&p);
+        assert_eq!(t, vec![[0, 1], [0, 3], [1, 2]]);
+        assert_eq!(graph_2d(&pts(&p), Kind::Emst).unwrap().edges, t);
+        let ord = |a: [f64; 2], b: [f64; 2]| cmp_dist2(&a, &b, &p[0], &p[1]);
+        assert_eq!(ord(p[2], p[3]), Ordering::Equal);
+    }
+}
