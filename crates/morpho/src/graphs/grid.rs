@@ -211,40 +211,8 @@ impl<'a, const D: usize> Grid<'a, D> {
         hi: [f64; D],
         mut f: impl FnMut(u32) -> bool,
     ) -> bool {
-        let mut a = [0usize; D];
-        let mut b = [0usize; D];
-        for k in 0..D {
-            if hi[k] < self.min[k] {
-                return true;
-            }
-            a[k] = self.coord(lo[k], k);
-            b[k] = self.coord(hi[k], k);
-        }
-        let mut cur = a;
-        loop {
-            let mut idx = 0;
-            for k in (0..D).rev() {
-                idx = idx * self.dims[k] + cur[k];
-            }
-            for &i in &self.items[self.start[idx] as usize..self.start[idx + 1] as usize] {
-                if !f(i) {
-                    return false;
-                }
-            }
-            // next cell
-            let mut k = 0;
-            loop {
-                if k == D {
-                    return true;
-                }
-                if cur[k] < b[k] {
-                    cur[k] += 1;
-                    break;
-                }
-                cur[k] = a[k];
-                k += 1;
-            }
-        }
+        // the cells of one row along the first axis are contiguous in `items`
+        self.for_each_run(lo, hi, |run| self.items[run].iter().all(|&i| f(i)))
     }
 
     /// Calls `f(i)` for every point strictly within distance `r` of `c`; stops early (returning
