@@ -72,6 +72,11 @@ use super::validity3::{meet_beyond_edge, meet_beyond_vertex, triangles_intersect
 use crate::geom::predicates::raw::orient3d;
 use std::collections::BinaryHeap;
 
+/// How far below c a rejected triangle's γ-scan goes on ([`General3::gamma_decide`]): the
+/// cached upper bound of c₁′ then also rejects it for c − 0.1, … (the steps of the caller's
+/// schedule), instead of rescanning it at every step.
+const UB_LOOKAHEAD: f64 = 0.25;
+
 /// Heap entries: smallest key first, ties by the smallest item.
 type Entry = MinKey<([u32; 3], u32)>;
 
@@ -134,17 +139,25 @@ fn circumradius(a: P, b: P, c: P, d: P) -> f64 {
     dt(x, x).sqrt()
 }
 
-/// Uniform hash grid of ids by bounding box.
+/// Uniform hash grid of ids by bounding box. An id whose box spans more than
+/// [`Grid::MAX_SPAN`] cells goes to a coarser grid (cell × [`Grid::COARSEN`]), up to
+/// [`Grid::LEVELS`] levels; beyond that to a list returned by every query.
 struct Grid {
     lo: P,
     cell: f64,
     cells: IdMap<(i64, i64, i64), Vec<u32>>,
     big: Vec<u32>,
+    coarse: Option<Box<Grid>>,
+    level: usize,
     /// Ids may sit in several cells (boxes, not points): queries deduplicate.
     multi: bool,
 }
 
 impl Grid {
+    const MAX_SPAN: i64 = 512;
+    const COARSEN: f64 = 8.0;
+    const LEVELS: usize = 3;
+
     fn new(lo: P, cell: f64, multi: bool) -> Self {
         Grid {
             lo,
@@ -155,6 +168,8 @@ impl Grid {
             },
             cells: IdMap::default(),
             big: Vec::new(),
+            coarse: None,
+            level: 0,
             multi,
         }
     }
@@ -168,8 +183,24 @@ impl Grid {
     fn insert(&mut self, id: u32, lo: P, hi: P) {
         let (a, b) = self.range(lo, hi);
         let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
-        if span > 512 {
-            self.big.push(id);
+        if span > Self::MAX_SPAN {
+            if self.level + 1 < Self::LEVELS && (self.cell * Self::COARSEN).is_finite() {
+                let (origin, cell, multi, level) = (
+                    self.lo,
+                    self.cell * Self::COARSEN,
+                    self.multi,
+                    self.level + 1,
+                );
+                self.coarse
+                    .get_or_insert_with(|| {
+                        let mut g = Grid::new(origin, cell, multi);
+                        g.level = level;
+                        Box::new(g)
+                    })
+                    .insert(id, lo, hi);
+            } else {
+                self.big.push(id);
+            }
             return;
         }
         for x in a[0]..=b[0] {
@@ -180,11 +211,19 @@ impl Grid {
             }
         }
     }
-    /// Calls `f` on the ids whose cells meet the box (big ones first; an id may come more
-    /// than once) until it returns true; returns whether it did.
+    /// Calls `f` on the ids whose cells meet the box (an id may come more than once) until it
+    /// returns true; returns whether it did.
     fn any_in_box(&self, lo: P, hi: P, mut f: impl FnMut(u32) -> bool) -> bool {
+        self.any_in_box_dyn(lo, hi, &mut f)
+    }
+    fn any_in_box_dyn(&self, lo: P, hi: P, f: &mut dyn FnMut(u32) -> bool) -> bool {
         if self.big.iter().any(|&i| f(i)) {
             return true;
+        }
+        if let Some(g) = &self.coarse {
+            if g.any_in_box_dyn(lo, hi, f) {
+                return true;
+            }
         }
         let (a, b) = self.range(lo, hi);
         let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
@@ -214,10 +253,22 @@ impl Grid {
         false
     }
 
-    /// Ids whose cells meet the box (with repetitions; big ones always).
+    /// Ids whose cells meet the box (sorted without repetitions for a `multi` grid).
     fn query(&self, lo: P, hi: P, out: &mut Vec<u32>) {
         out.clear();
+        self.collect(lo, hi, out);
+        if self.multi {
+            out.sort_unstable();
+            out.dedup();
+        }
+    }
+
+    /// Appends the ids whose cells (on every level) meet the box, with repetitions.
+    fn collect(&self, lo: P, hi: P, out: &mut Vec<u32>) {
         out.extend_from_slice(&self.big);
+        if let Some(g) = &self.coarse {
+            g.collect(lo, hi, out);
+        }
         let (a, b) = self.range(lo, hi);
         let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
         if span as usize > self.cells.len() {
@@ -239,10 +290,6 @@ impl Grid {
                     }
                 }
             }
-        }
-        if self.multi {
-            out.sort_unstable();
-            out.dedup();
         }
     }
 }
@@ -425,6 +472,9 @@ pub struct General3<'a> {
     /// of the points: more points only lower it), so that a smaller c skips them when the
     /// bound is already below it.
     gamma_ub: IdMap<[u32; 3], f64>,
+    /// The nearest vertices of a vertex and the box half-width that certified them
+    /// ([`General3::local_gamma`]).
+    near_cache: IdMap<u32, (Vec<u32>, f64)>,
     /// Number of boundary vertices.
     pub boundary_vertices: usize,
     /// Number of removed tetrahedra.
@@ -487,6 +537,7 @@ impl<'a> General3<'a> {
             blocked_by: None,
             in_gamma: IdSet::default(),
             gamma_ub: IdMap::default(),
+            near_cache: IdMap::default(),
             boundary_vertices: 0,
             iterations: 0,
             added: 0,
@@ -1067,17 +1118,149 @@ impl<'a> General3<'a> {
 
     /// The triangles of γ([-1,1],[c,1]) (Def. 3.1 by the exact centre intervals of
     /// [`crate::graphs::gamma::TriFrame`]) on the vertices not on the boundary and pairs of
-    /// their `k` nearest vertices or edges of the boundary faces near them — the part of the γ-graph needed to free a locked vertex (V
-    /// §5.4 "adaptive augmentation": only where needed). Each triangle's interval is computed
-    /// against every point that can touch its balls (within r·(k′ + √(k′² − 1)) of the
-    /// circumcentre, k′ = 1/(1 − |c|); all points for c = −1). O(L·k²·m) for L locked vertices
+    /// their `k` nearest vertices or edges of the `k` boundary faces nearest to them — the part
+    /// of the γ-graph needed to free a locked vertex (V §5.4 "adaptive augmentation": only where
+    /// needed). Each triangle's interval is computed against every point that can touch its
+    /// balls (within r·(k′ + √(k′² − 1)) of the circumcentre, k′ = 1/(1 − |c|); all points for
+    /// c = −1); see [`Self::gamma_decide`]. Triangles found at an earlier (larger) c are not
+    /// returned again, and triangles rejected earlier with an upper bound of c₁′ below c are
+    /// not tested again. The nearest vertices of a vertex are computed once (positions do not
+    /// change); the candidates are decided in parallel (rayon). O(L·k²·m) for L locked vertices
     /// and m points within reach.
-    /// Triangles found at an earlier (larger) c are not returned again.
     pub fn local_gamma(&mut self, c: f64, k: usize) -> Vec<[u32; 3]> {
-        use crate::graphs::gamma::{triangle_circle, TriFrame};
+        use rayon::prelude::*;
         let locked: Vec<u32> = (0..self.p.len() as u32)
             .filter(|&v| !self.on_boundary(v))
             .collect();
+        let mut cand: Vec<([u32; 3], u32)> = Vec::new();
+        let mut tb = Vec::new();
+        for &l in &locked {
+            if !self.near_cache.contains_key(&l) {
+                let nr = self.nearest(l, k);
+                self.near_cache.insert(l, nr);
+            }
+            let (near, rad) = &self.near_cache[&l];
+            let pl = self.pt(l);
+            // pairs of near vertices, and the edges of the k boundary faces nearest to l (by
+            // centroid; the faces a removal w.r.t. l starts from)
+            let mut pairs: Vec<(u32, u32)> = Vec::new();
+            for (i, &x) in near.iter().enumerate() {
+                for &y in &near[i + 1..] {
+                    pairs.push((x, y));
+                }
+            }
+            // the k faces nearest by centroid among those meeting the box of half-width 2·rad:
+            // a face missing from the box of half-width rad has its centroid farther than rad,
+            // so when that smaller box already holds k faces with centroids within rad, they
+            // are the same k (and the same order)
+            let mut faces: Vec<(f64, [u32; 3])> = Vec::new();
+            for reach_l in [*rad, 2.0 * rad] {
+                self.bgrid.query(
+                    std::array::from_fn(|i| pl[i] - reach_l),
+                    std::array::from_fn(|i| pl[i] + reach_l),
+                    &mut tb,
+                );
+                faces = tb
+                    .iter()
+                    .filter(|&&i| self.live[i as usize] && self.bflag[i as usize])
+                    .map(|&i| self.tris[i as usize])
+                    .map(|u| {
+                        let q = u.map(|v| self.pt(v));
+                        let d2 = (0..3)
+                            .map(|i| ((q[0][i] + q[1][i] + q[2][i]) / 3.0 - pl[i]).powi(2))
+                            .sum::<f64>();
+                        (d2, u)
+                    })
+                    .collect();
+                faces.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                if faces.iter().filter(|f| f.0 <= rad * rad).count() >= k {
+                    break;
+                }
+            }
+            for (_, u) in faces.into_iter().take(k) {
+                for e in 0..3 {
+                    pairs.push((u[e], u[(e + 1) % 3]));
+                }
+            }
+            for (x, y) in pairs {
+                let t = sorted3([l, x, y]);
+                if x == l || y == l || self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t) {
+                    continue;
+                }
+                if self.gamma_ub.get(&t).is_some_and(|&ub| ub < c) {
+                    continue;
+                }
+                cand.push((t, l));
+            }
+        }
+        // each triangle once (with the first locked vertex that proposed it)
+        cand.sort_unstable();
+        cand.dedup_by_key(|e| e.0);
+        let this = &*self;
+        let verdicts: Vec<Option<f64>> = cand
+            .par_iter()
+            .map(|&(t, l)| this.gamma_decide(t, c, &this.near_cache[&l].0))
+            .collect();
+        let mut out = Vec::new();
+        for (&(t, _), v) in cand.iter().zip(verdicts) {
+            match v {
+                None => {
+                    self.in_gamma.insert(t);
+                    out.push(t);
+                }
+                Some(ub) => {
+                    self.gamma_ub.insert(t, ub);
+                }
+            }
+        }
+        out
+    }
+
+    /// The `k` nearest vertices of `l` (by growing boxes of the vertex grid; ties by index) and
+    /// the box half-width that certified them.
+    fn nearest(&self, l: u32, k: usize) -> (Vec<u32>, f64) {
+        let pl = self.pt(l);
+        let n = self.p.len();
+        let mut buf = Vec::new();
+        let mut rad = self.vgrid.cell;
+        loop {
+            self.vgrid.query(
+                std::array::from_fn(|i| pl[i] - rad),
+                std::array::from_fn(|i| pl[i] + rad),
+                &mut buf,
+            );
+            if buf.len() > k || buf.len() >= n {
+                let mut v: Vec<(f64, u32)> = buf
+                    .iter()
+                    .filter(|&&x| x != l)
+                    .map(|&x| {
+                        let q = self.pt(x);
+                        let d2 = (0..3).map(|i| (q[i] - pl[i]).powi(2)).sum::<f64>();
+                        (d2, x)
+                    })
+                    .collect();
+                v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                // only points within rad are certainly among the nearest (unless the box holds
+                // every point)
+                if buf.len() < n {
+                    v.retain(|e| e.0 <= rad * rad);
+                }
+                if v.len() >= k || buf.len() >= n {
+                    return (v.into_iter().take(k).map(|e| e.1).collect(), rad);
+                }
+            }
+            rad *= 2.0;
+        }
+    }
+
+    /// Decides whether triangle `t` is in γ([-1,1],[c,1]): `None` when it is, `Some(ub)` with an
+    /// upper bound ub < c of its c₁′ when it is not. Points only narrow the centre interval
+    /// (c₁′ never grows), so the points `first` (near the triangle) are tried first, then the
+    /// points near the circle, then every point within reach, nearest to the circumcentre first;
+    /// a rejection scans on until ub < c − [`UB_LOOKAHEAD`] (or the points run out) so that the
+    /// cached bound also settles the next smaller c.
+    fn gamma_decide(&self, t: [u32; 3], c: f64, first: &[u32]) -> Option<f64> {
+        use crate::graphs::gamma::{triangle_circle, CenterInterval, TriFrame};
         let cabs = c.abs().min(1.0);
         let kk = if cabs >= 1.0 {
             f64::INFINITY
@@ -1085,189 +1268,90 @@ impl<'a> General3<'a> {
             1.0 / (1.0 - cabs)
         };
         let reach_over_r = kk + (kk * kk - 1.0).max(0.0).sqrt();
-        let mut out = Vec::new();
+        let [pa, pb, pc] = t.map(|v| self.pt(v));
+        let (Some(f), Some((m, r2, _))) = (TriFrame::new(pa, pb, pc), triangle_circle(pa, pb, pc))
+        else {
+            // degenerate (collinear corners): never a γ-triangle
+            return Some(f64::NEG_INFINITY);
+        };
+        let mut iv = f.start();
         let mut buf = Vec::new();
-        let n = self.p.len();
-        for &l in &locked {
-            let pl = self.pt(l);
-            // k nearest by growing boxes
-            let mut rad = self.vgrid.cell;
-            let near: Vec<u32> = loop {
-                self.vgrid.query(
-                    std::array::from_fn(|i| pl[i] - rad),
-                    std::array::from_fn(|i| pl[i] + rad),
-                    &mut buf,
-                );
-                if buf.len() > k || buf.len() >= n {
-                    let mut v: Vec<(f64, u32)> = buf
-                        .iter()
-                        .filter(|&&x| x != l)
-                        .map(|&x| {
-                            let q = self.pt(x);
-                            let d2 = (0..3).map(|i| (q[i] - pl[i]).powi(2)).sum::<f64>();
-                            (d2, x)
-                        })
-                        .collect();
-                    v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                    // only points within rad are certainly among the nearest (unless the
-                    // box holds every point)
-                    if buf.len() < n {
-                        v.retain(|e| e.0 <= rad * rad);
-                    }
-                    if v.len() >= k || buf.len() >= n {
-                        break v.into_iter().take(k).map(|e| e.1).collect();
-                    }
+        let reach = r2.sqrt() * reach_over_r * (1.0 + 1e-9);
+        let pts = self.p;
+        if !reach.is_finite() {
+            // c = −1: every triangle is in γ([-1,1],[-1,1]) unless a point lies in the closed
+            // triangle (then no neighbourhood is empty); such points lie in its bounding box
+            let (lo, hi) = bbox(&[pa, pb, pc]);
+            self.vgrid.query(lo, hi, &mut buf);
+            for &z in &buf {
+                if !t.contains(&z) {
+                    f.add(&mut iv, pts[z as usize]);
                 }
-                rad *= 2.0;
+            }
+            return if iv.all_blocked {
+                Some(f64::NEG_INFINITY)
+            } else {
+                None
             };
-            // pairs of near vertices, and the edges of the boundary faces around l (the faces a
-            // removal w.r.t. l starts from)
-            let mut pairs: Vec<(u32, u32)> = Vec::new();
-            for (i, &x) in near.iter().enumerate() {
-                for &y in &near[i + 1..] {
-                    pairs.push((x, y));
+        }
+        let ub_of = |iv: &CenterInterval| iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
+        let stop = c - UB_LOOKAHEAD;
+        let scan = |iv: &mut CenterInterval, ids: &[u32]| -> bool {
+            for (j, &z) in ids.iter().enumerate() {
+                if !t.contains(&z) {
+                    f.add(iv, pts[z as usize]);
+                }
+                if j % 32 == 31 && ub_of(iv) < stop {
+                    return true;
                 }
             }
-            let reach_l = 2.0 * rad;
-            let mut tb = Vec::new();
-            self.bgrid.query(
-                std::array::from_fn(|i| pl[i] - reach_l),
-                std::array::from_fn(|i| pl[i] + reach_l),
-                &mut tb,
+            ub_of(iv) < c
+        };
+        if scan(&mut iv, first) {
+            return Some(ub_of(&iv));
+        }
+        let near_r = reach.min(2.0 * r2.sqrt());
+        self.vgrid.query(
+            std::array::from_fn(|i| m[i] - near_r),
+            std::array::from_fn(|i| m[i] + near_r),
+            &mut buf,
+        );
+        if scan(&mut iv, &buf) {
+            return Some(ub_of(&iv));
+        }
+        // No ball through the circle empty so far (c₁′ < 0: the gap regime of
+        // `gamma_values`): c₁′ = −|c| of the gap's larger end. A point outside the closed
+        // diametral ball B(m, r) has τ of the sign of its side (q > 0), so it never widens the
+        // gap: c₁′ is final once every point of B(m, r) — inside the box just scanned
+        // (half-width 2r ≥ r) — has been added.
+        if ub_of(&iv) < 0.0 && near_r >= 2.0 * r2.sqrt() {
+            return None;
+        }
+        if reach > near_r {
+            self.vgrid.query(
+                std::array::from_fn(|i| m[i] - reach),
+                std::array::from_fn(|i| m[i] + reach),
+                &mut buf,
             );
-            // the k boundary faces nearest to l (by centroid)
-            let mut faces: Vec<(f64, [u32; 3])> = tb
-                .iter()
-                .filter(|&&i| self.live[i as usize] && self.bflag[i as usize])
-                .map(|&i| self.tris[i as usize])
-                .map(|u| {
-                    let q = u.map(|v| self.pt(v));
-                    let d2 = (0..3)
-                        .map(|i| ((q[0][i] + q[1][i] + q[2][i]) / 3.0 - pl[i]).powi(2))
-                        .sum::<f64>();
-                    (d2, u)
-                })
-                .collect();
-            faces.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            for (_, u) in faces.into_iter().take(k) {
-                for e in 0..3 {
-                    pairs.push((u[e], u[(e + 1) % 3]));
-                }
-            }
-            for (x, y) in pairs {
-                {
-                    let t = sorted3([l, x, y]);
-                    if x == l || y == l || self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t)
-                    {
-                        continue;
-                    }
-                    if self.gamma_ub.get(&t).is_some_and(|&ub| ub < c) {
-                        continue;
-                    }
-                    let [pa, pb, pc] = t.map(|v| self.pt(v));
-                    let (Some(f), Some((m, r2, _))) =
-                        (TriFrame::new(pa, pb, pc), triangle_circle(pa, pb, pc))
-                    else {
-                        continue;
-                    };
-                    let mut iv = f.start();
-                    let reach = r2.sqrt() * reach_over_r * (1.0 + 1e-9);
-                    if !reach.is_finite() {
-                        // c = −1: every triangle is in γ([-1,1],[-1,1]) unless a point lies in
-                        // the closed triangle (then no neighbourhood is empty); such points lie
-                        // in its bounding box
-                        let (lo, hi) = bbox(&[pa, pb, pc]);
-                        self.vgrid.query(lo, hi, &mut buf);
-                        for &z in &buf {
-                            if !t.contains(&z) {
-                                f.add(&mut iv, self.p[z as usize]);
-                            }
-                        }
-                        if !iv.all_blocked {
-                            self.in_gamma.insert(t);
-                            out.push(t);
-                        } else {
-                            self.gamma_ub.insert(t, f64::NEG_INFINITY);
-                        }
-                    } else {
-                        // points only narrow the interval (c₁′ never grows): reject on the
-                        // nearest vertices of l first, then on the points near the circle,
-                        // then scan the whole reach, stopping as soon as c₁′ < c
-                        let ub_of = |iv: &crate::graphs::gamma::CenterInterval| {
-                            iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1)
-                        };
-                        let pts = self.p;
-                        let scan =
-                            |iv: &mut crate::graphs::gamma::CenterInterval, ids: &[u32]| -> bool {
-                                for (j, &z) in ids.iter().enumerate() {
-                                    if !t.contains(&z) {
-                                        f.add(iv, pts[z as usize]);
-                                    }
-                                    if j % 32 == 31 && ub_of(iv) < c {
-                                        return true;
-                                    }
-                                }
-                                ub_of(iv) < c
-                            };
-                        if scan(&mut iv, &near) {
-                            self.gamma_ub.insert(t, ub_of(&iv));
-                            continue;
-                        }
-                        let near_r = reach.min(2.0 * r2.sqrt());
-                        self.vgrid.query(
-                            std::array::from_fn(|i| m[i] - near_r),
-                            std::array::from_fn(|i| m[i] + near_r),
-                            &mut buf,
-                        );
-                        if scan(&mut iv, &buf) {
-                            self.gamma_ub.insert(t, ub_of(&iv));
-                            continue;
-                        }
-                        // No ball through the circle empty so far (c₁′ < 0: the gap regime of
-                        // `gamma_values`): c₁′ = −|c| of the gap's larger end. A point outside the
-                        // closed diametral ball B(m, r) has τ of the sign of its side (q > 0), so
-                        // it never widens the gap: c₁′ is final once every point of B(m, r) —
-                        // inside the box just scanned (half-width 2r ≥ r) — has been added.
-                        if ub_of(&iv) < 0.0 && near_r >= 2.0 * r2.sqrt() {
-                            self.in_gamma.insert(t);
-                            out.push(t);
-                            continue;
-                        }
-                        if reach > near_r {
-                            self.vgrid.query(
-                                std::array::from_fn(|i| m[i] - reach),
-                                std::array::from_fn(|i| m[i] + reach),
-                                &mut buf,
-                            );
-                            // nearest to the circumcentre first: blocking points come early
-                            let d2 = |z: u32| {
-                                let q = pts[z as usize];
-                                (0..3).map(|i| (q[i] - m[i]).powi(2)).sum::<f64>()
-                            };
-                            let mut keyed: Vec<(f64, u32)> =
-                                buf.iter().map(|&z| (d2(z), z)).collect();
-                            keyed.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                            buf.clear();
-                            buf.extend(keyed.iter().map(|e| e.1));
-                            if scan(&mut iv, &buf) {
-                                self.gamma_ub.insert(t, ub_of(&iv));
-                                continue;
-                            }
-                        }
-                        let ub = iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
-                        if ub >= c {
-                            self.in_gamma.insert(t);
-                            out.push(t);
-                        } else {
-                            self.gamma_ub.insert(t, ub);
-                        }
-                    }
-                }
+            // nearest to the circumcentre first: blocking points come early
+            let d2 = |z: u32| {
+                let q = pts[z as usize];
+                (0..3).map(|i| (q[i] - m[i]).powi(2)).sum::<f64>()
+            };
+            let mut keyed: Vec<(f64, u32)> = buf.iter().map(|&z| (d2(z), z)).collect();
+            keyed.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            buf.clear();
+            buf.extend(keyed.iter().map(|e| e.1));
+            if scan(&mut iv, &buf) {
+                return Some(ub_of(&iv));
             }
         }
-        out.sort_unstable();
-        out.dedup();
-        out
+        let ub = ub_of(&iv);
+        if ub >= c {
+            None
+        } else {
+            Some(ub)
+        }
     }
 
     /// Adds the given triangles where they are certified inside (as for the rewiring; see
@@ -1479,6 +1563,37 @@ mod tests {
 
     /// hits_boundary (grid, plane culling, early exit) against all boundary faces tested
     /// exactly one by one.
+    /// Every id whose box meets the query box is reported by `query` and seen by
+    /// `any_in_box`, on all levels (boxes from a tenth of a cell to thousands of cells wide).
+    #[test]
+    fn grid_reports_every_meeting_box_on_every_level() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let mut g = Grid::new([0.0; 3], 1.0, true);
+        let mut boxes = Vec::new();
+        for id in 0..600u32 {
+            let size = [0.1, 3.0, 30.0, 300.0, 3000.0][id as usize % 5];
+            let lo: P = std::array::from_fn(|_| rng.gen_range(-100.0..100.0));
+            let hi: P = std::array::from_fn(|k| lo[k] + rng.gen_range(0.0..size));
+            g.insert(id, lo, hi);
+            boxes.push((lo, hi));
+        }
+        let top = g.coarse.as_ref().and_then(|c| c.coarse.as_ref());
+        assert!(top.is_some_and(|t| !t.big.is_empty() && !t.cells.is_empty()));
+        let mut out = Vec::new();
+        for _ in 0..300 {
+            let lo: P = std::array::from_fn(|_| rng.gen_range(-120.0..120.0));
+            let hi: P = std::array::from_fn(|k| lo[k] + rng.gen_range(0.0..20.0));
+            g.query(lo, hi, &mut out);
+            assert!(out.windows(2).all(|w| w[0] < w[1]));
+            for (id, b) in boxes.iter().enumerate() {
+                if boxes_meet(*b, (lo, hi)) {
+                    assert!(out.binary_search(&(id as u32)).is_ok(), "{id}");
+                    assert!(g.any_in_box(lo, hi, |i| i == id as u32), "{id}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn hits_boundary_matches_all_faces() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);

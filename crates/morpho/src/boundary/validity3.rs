@@ -114,8 +114,19 @@ pub fn triangles_intersect(t: [P; 3], u: [P; 3]) -> bool {
         || (0..3).any(|i| segment_meets_triangle(u[i], u[(i + 1) % 3], t[0], t[1], t[2]))
 }
 
-/// Triangles t, u sharing exactly the vertex at positions (it, iu) meet elsewhere (exact).
+/// Triangles t, u sharing exactly the vertex at positions (it, iu) meet elsewhere (exact;
+/// symmetric in t and u). A degenerate triangle counts as the segment it covers when the
+/// other one is not degenerate; two degenerate triangles are reported as not meeting.
 pub fn meet_beyond_vertex(t: [P; 3], it: usize, u: [P; 3], iu: usize) -> bool {
+    if degenerate(t[0], t[1], t[2]) {
+        // the coplanarity test below needs t's plane
+        return !degenerate(u[0], u[1], u[2]) && meet_beyond_vertex_planar(u, iu, t, it);
+    }
+    meet_beyond_vertex_planar(t, it, u, iu)
+}
+
+/// [`meet_beyond_vertex`] for a non-degenerate t.
+fn meet_beyond_vertex_planar(t: [P; 3], it: usize, u: [P; 3], iu: usize) -> bool {
     let (t1, t2) = (t[(it + 1) % 3], t[(it + 2) % 3]);
     let (u1, u2) = (u[(iu + 1) % 3], u[(iu + 2) % 3]);
     if segment_meets_triangle(t1, t2, u[0], u[1], u[2])
@@ -176,11 +187,63 @@ pub fn meet_beyond_edge(a: P, b: P, c: P, d: P) -> bool {
 /// intersection. Triangles spanning more than 512 cells are tested against each other by boxes
 /// and against the triangles of the cells their plane passes. Cells and big triangles are
 /// processed in parallel (rayon); the result does not depend on the thread count.
+///
+/// The triangles are first put in a spatially coherent order (by the cell of their centroid in
+/// a grid of about one cell per triangle, rows in z, y, x order), so that the triangles of one
+/// cell sit close together in memory; the pairs are mapped back to the input indices.
 pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u32, u32)> {
     use rayon::prelude::*;
     if tris.is_empty() {
         return Vec::new();
     }
+    let cen: Vec<P> = tris
+        .par_iter()
+        .map(|t| std::array::from_fn(|k| t.iter().map(|&v| pos[v as usize][k] / 3.0).sum()))
+        .collect();
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for c in cen.iter().filter(|c| c.iter().all(|x| x.is_finite())) {
+        for k in 0..3 {
+            lo[k] = lo[k].min(c[k]);
+            hi[k] = hi[k].max(c[k]);
+        }
+    }
+    let side = (tris.len() as f64).cbrt().ceil().max(1.0);
+    let cell_of = |x: f64, k: usize| -> u64 {
+        let c = ((x - lo[k]) / (hi[k] - lo[k]) * side).floor();
+        if c.is_finite() && c > 0.0 {
+            (c as u64).min(side as u64 - 1)
+        } else {
+            0
+        }
+    };
+    let s = side as u64;
+    let mut order: Vec<(u64, u32)> = cen
+        .par_iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let g: [u64; 3] = std::array::from_fn(|k| cell_of(c[k], k));
+            (g[0] + s * (g[1] + s * g[2]), i as u32)
+        })
+        .collect();
+    drop(cen);
+    order.par_sort_unstable();
+    let sorted: Vec<[u32; 3]> = order.par_iter().map(|&(_, i)| tris[i as usize]).collect();
+    let mut pairs: Vec<(u32, u32)> = self_intersections_ordered(pos, &sorted)
+        .into_iter()
+        .map(|(a, b)| {
+            let (a, b) = (order[a as usize].1, order[b as usize].1);
+            (a.min(b), a.max(b))
+        })
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs.truncate(limit);
+    pairs
+}
+
+/// [`self_intersections`] on triangles in the given order, every pair (sorted, no repeats).
+fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
+    use rayon::prelude::*;
     let boxes: Vec<(P, P)> = tris
         .par_iter()
         .map(|t| {
@@ -311,7 +374,14 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
         let ((al, ah), (bl, bh)) = (boxes[a as usize], boxes[b as usize]);
         (0..3).all(|k| al[k] <= bh[k] && bl[k] <= ah[k])
     };
-    let bad = |a: u32, b: u32| pair_meets(pos, tris[a as usize], tris[b as usize]);
+    let planes: Vec<PlaneFilter> = tris
+        .par_iter()
+        .map(|t| PlaneFilter::new(t.map(|v| pos[v as usize])))
+        .collect();
+    let bad = |a: u32, b: u32| {
+        let (a, b) = (a as usize, b as usize);
+        pair_meets_filtered(pos, tris[a], tris[b], &planes[a], &planes[b])
+    };
     let busy: Vec<u64> = (0..ncells as u64)
         .filter(|&c| start[c as usize + 1] - start[c as usize] >= 2)
         .collect();
@@ -407,7 +477,6 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
     bad_pairs.extend(big_bad);
     bad_pairs.sort_unstable();
     bad_pairs.dedup();
-    bad_pairs.truncate(limit);
     bad_pairs
 }
 
@@ -423,6 +492,112 @@ pub fn self_intersections_brute(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)>
         }
     }
     out
+}
+
+/// A triangle's floating-point plane for the sign filter of [`pair_meets_filtered`]: a corner
+/// `a`, the rounded normal n = (b − a) × (c − a), and per axis the permanent
+/// |u_j v_k| + |u_k v_j| of that cross product (u = b − a, v = c − a).
+#[derive(Clone, Copy)]
+pub(crate) struct PlaneFilter {
+    a: P,
+    n: P,
+    perm: P,
+}
+
+impl PlaneFilter {
+    pub(crate) fn new(t: [P; 3]) -> Self {
+        let u: P = std::array::from_fn(|k| t[1][k] - t[0][k]);
+        let v: P = std::array::from_fn(|k| t[2][k] - t[0][k]);
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let perm = [
+            (u[1] * v[2]).abs() + (u[2] * v[1]).abs(),
+            (u[2] * v[0]).abs() + (u[0] * v[2]).abs(),
+            (u[0] * v[1]).abs() + (u[1] * v[0]).abs(),
+        ];
+        PlaneFilter { a: t[0], n, perm }
+    }
+
+    /// The sign of orient3d(a, b, c, x) when the float evaluation n·(x − a) certifies it, else
+    /// 0 (unknown). Error analysis: each difference, product and sum rounds once (relative ε);
+    /// the rounded n_i is within 4ε·perm_i of the exact cross product and the computed sum
+    /// within 8ε·Σ perm_i |x_i − a_i| (+ O(ε²)) of the exact determinant. The filter uses
+    /// 16ε times that bound, and gives up (0) below 2⁻⁹⁰⁰ (gradual underflow breaks the
+    /// relative-error model) and on non-finite values; the exact predicate decides then.
+    #[inline]
+    pub(crate) fn side(&self, x: P) -> i8 {
+        let w: P = std::array::from_fn(|k| x[k] - self.a[k]);
+        let s = self.n[0] * w[0] + self.n[1] * w[1] + self.n[2] * w[2];
+        let b = self.perm[0] * w[0].abs() + self.perm[1] * w[1].abs() + self.perm[2] * w[2].abs();
+        let bound = 16.0 * f64::EPSILON * b;
+        if !(bound.is_finite() && s.is_finite()) || b < 1e-270 {
+            return 0;
+        }
+        if s > bound {
+            1
+        } else if s < -bound {
+            -1
+        } else {
+            0
+        }
+    }
+
+    /// Every given point is certainly strictly on one side (the same for all) of the plane.
+    #[inline]
+    fn all_one_side(&self, xs: &[P]) -> bool {
+        let s0 = self.side(xs[0]);
+        s0 != 0 && xs[1..].iter().all(|&x| self.side(x) == s0)
+    }
+}
+
+/// [`pair_meets`] behind a floating-point filter: the pair is cleared without exact arithmetic
+/// when the other triangle's corners that are not shared lie certainly strictly on one side of
+/// one triangle's plane (then the two meet at most in their shared vertices or edge; for a
+/// common edge abc/abd, d strictly off plane abc rules out a fold). Undecided pairs go to the
+/// exact test, so the verdict always equals [`pair_meets`].
+fn pair_meets_filtered(
+    pos: &[P],
+    ta: [u32; 3],
+    tb: [u32; 3],
+    fa: &PlaneFilter,
+    fb: &PlaneFilter,
+) -> bool {
+    let mut pts_b = [[0.0; 3]; 3];
+    let mut nb = 0;
+    for &v in &tb {
+        if !ta.contains(&v) {
+            pts_b[nb] = pos[v as usize];
+            nb += 1;
+        }
+    }
+    if nb == 0 {
+        return true;
+    }
+    if fa.all_one_side(&pts_b[..nb]) {
+        return false;
+    }
+    if nb < 3 {
+        // a common vertex: the other direction; a common edge: d on the plane or undecided
+        if nb == 2 {
+            let mut pts_a = [[0.0; 3]; 2];
+            let mut na = 0;
+            for &v in &ta {
+                if !tb.contains(&v) && na < 2 {
+                    pts_a[na] = pos[v as usize];
+                    na += 1;
+                }
+            }
+            if na == 2 && fb.all_one_side(&pts_a) {
+                return false;
+            }
+        }
+    } else if fb.all_one_side(&ta.map(|v| pos[v as usize])) {
+        return false;
+    }
+    pair_meets(pos, ta, tb)
 }
 
 /// The exact test of one pair by its number of common vertices (see the module documentation).
@@ -736,6 +911,65 @@ mod tests {
             );
             // the limit keeps the smallest pairs
             assert_eq!(self_intersections(&pos, &tris, 3), expect[..3].to_vec());
+        }
+    }
+
+    /// The exact pair test is symmetric, and the floating-point plane filter never changes its
+    /// verdict: integer points (coplanar, collinear, duplicate positions), and the same points
+    /// nudged by a few ulps (near-coplanar: float signs of n·(x − a) go wrong without the bound).
+    #[test]
+    fn pair_test_is_symmetric_and_the_filter_agrees_with_it() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(21);
+        for nudge in [false, true] {
+            let mut pos: Vec<P> = (0..24)
+                .map(|_| std::array::from_fn(|_| rng.gen_range(0..4) as f64 * 1e3 + 0.5))
+                .collect();
+            // duplicate positions under other indices
+            for i in 0..6 {
+                pos.push(pos[i]);
+            }
+            if nudge {
+                for q in pos.iter_mut().skip(3) {
+                    for x in q.iter_mut() {
+                        let k = rng.gen_range(-3i64..=3);
+                        *x = f64::from_bits((x.to_bits() as i64 + k) as u64);
+                    }
+                }
+            }
+            let n = pos.len() as u32;
+            let (mut meets, mut clear) = (0, 0);
+            for _ in 0..20_000 {
+                let ta: [u32; 3] = std::array::from_fn(|_| rng.gen_range(0..n));
+                let mut tb: [u32; 3] = std::array::from_fn(|_| rng.gen_range(0..n));
+                // share 0, 1 or 2 vertices (by index) often
+                for k in 0..rng.gen_range(0..3) {
+                    tb[k] = ta[(k + 1) % 3];
+                }
+                if ta[0] == ta[1] || ta[1] == ta[2] || ta[0] == ta[2] {
+                    continue;
+                }
+                if tb[0] == tb[1] || tb[1] == tb[2] || tb[0] == tb[2] {
+                    continue;
+                }
+                let ab = pair_meets(&pos, ta, tb);
+                assert_eq!(ab, pair_meets(&pos, tb, ta), "{ta:?} {tb:?}");
+                let (fa, fb) = (
+                    PlaneFilter::new(ta.map(|v| pos[v as usize])),
+                    PlaneFilter::new(tb.map(|v| pos[v as usize])),
+                );
+                assert_eq!(
+                    ab,
+                    pair_meets_filtered(&pos, ta, tb, &fa, &fb),
+                    "{ta:?} {tb:?}"
+                );
+                if ab {
+                    meets += 1;
+                } else {
+                    clear += 1;
+                }
+            }
+            assert!(meets > 1000 && clear > 1000, "{meets} {clear}");
         }
     }
 
