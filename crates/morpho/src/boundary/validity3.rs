@@ -191,11 +191,32 @@ pub fn meet_beyond_edge(a: P, b: P, c: P, d: P) -> bool {
 /// The triangles are first put in a spatially coherent order (by the cell of their centroid in
 /// a grid of about one cell per triangle, rows in z, y, x order), so that the triangles of one
 /// cell sit close together in memory; the pairs are mapped back to the input indices.
+///
+/// Coordinates are first multiplied by the power of two that brings the largest magnitude
+/// near 1 ([`crate::geom::power_of_two_scale`]; exact), so that no predicate over- or
+/// underflows at extreme absolute scales (1e-300 … 1e300).
 pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u32, u32)> {
     use rayon::prelude::*;
     if tris.is_empty() {
         return Vec::new();
     }
+    let m = tris
+        .par_iter()
+        .map(|t| {
+            t.iter()
+                .flat_map(|&v| pos[v as usize])
+                .filter(|x| x.is_finite())
+                .fold(0.0f64, |m, x| m.max(x.abs()))
+        })
+        .reduce(|| 0.0, f64::max);
+    let s = crate::geom::power_of_two_scale(m);
+    let scaled: Vec<P>;
+    let pos = if s != 1.0 {
+        scaled = pos.par_iter().map(|q| q.map(|x| x * s)).collect();
+        &scaled[..]
+    } else {
+        pos
+    };
     let cen: Vec<P> = tris
         .par_iter()
         .map(|t| std::array::from_fn(|k| t.iter().map(|&v| pos[v as usize][k] / 3.0).sum()))
@@ -911,6 +932,45 @@ mod tests {
             );
             // the limit keeps the smallest pairs
             assert_eq!(self_intersections(&pos, &tris, 3), expect[..3].to_vec());
+        }
+    }
+
+    /// Verdicts do not depend on the absolute scale: a clean closed mesh and one with injected
+    /// crossings, multiplied by powers of two (exact) where the predicates' products would under-
+    /// or overflow without the rescaling.
+    #[test]
+    fn verdicts_do_not_depend_on_the_absolute_scale() {
+        let (mut pos, mut tris) = sphere(10, 0.05, 4);
+        assert!(self_intersections(&pos, &tris, usize::MAX).is_empty());
+        let scaled =
+            |pos: &[P], s: f64| -> Vec<P> { pos.iter().map(|q| q.map(|x| x * s)).collect() };
+        for s in [
+            2f64.powi(-1000),
+            2f64.powi(-520),
+            2f64.powi(480),
+            2f64.powi(1000),
+        ] {
+            assert!(
+                self_intersections(&scaled(&pos, s), &tris, usize::MAX).is_empty(),
+                "{s:e}"
+            );
+        }
+        let n0 = pos.len() as u32;
+        pos.extend([[0.05, 0.02, -2.0], [0.03, 0.06, 2.0], [0.5, 0.5, 0.1]]);
+        tris.push([n0, n0 + 1, n0 + 2]);
+        let want = self_intersections(&pos, &tris, usize::MAX);
+        assert!(want.len() >= 2, "{want:?}");
+        for s in [
+            2f64.powi(-1000),
+            2f64.powi(-520),
+            2f64.powi(480),
+            2f64.powi(1000),
+        ] {
+            assert_eq!(
+                self_intersections(&scaled(&pos, s), &tris, usize::MAX),
+                want,
+                "{s:e}"
+            );
         }
     }
 
