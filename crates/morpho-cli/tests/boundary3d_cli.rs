@@ -1,6 +1,7 @@
 //! End-to-end tests of `morpho boundary` on 3D points with `--method voronoi-skeleton`: the
 //! same outputs and report keys as the other 3D methods, the interior tetrahedra, exit code 1
-//! with the points left out when the growth is incomplete, and the refused keep triangles.
+//! with the points left out when the growth is incomplete, and the refused keep triangles; and
+//! the `--interior` note after the general engine.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -177,4 +178,41 @@ fn voronoi_skeleton_3d_refuses_keep_and_degenerate_input() {
         "{e}"
     );
     assert!(!d.join("f.ply").exists());
+}
+
+/// The γ method with a fixed c < 0 runs the general engine: `--interior` then says, in the file
+/// and on stderr, that no tetrahedralization is available, and still gives the volume of the
+/// closed surface (equal to the report's).
+#[test]
+fn interior_after_the_general_engine_carries_a_note_and_the_volume() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let input = fibonacci_csv(d, 60);
+    let (rep, interior, out) = (d.join("r.json"), d.join("i.json"), d.join("b.ply"));
+    let o = morpho(&[
+        "boundary",
+        input.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--c=-0.3",
+        "--interior",
+        interior.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("no interior tetrahedralization"),
+        "{}",
+        stderr(&o)
+    );
+    let r = report(&rep);
+    assert_eq!(r["all_on_boundary"], true);
+    assert_eq!(r["closed_manifold"], true);
+    let i = report(&interior);
+    assert!(i["tetrahedra"].as_array().unwrap().is_empty());
+    assert!(i["note"].as_str().unwrap().contains("closed surface"));
+    let vol = i["volume"].as_f64().unwrap();
+    assert_eq!(vol, r["volume"].as_f64().unwrap());
+    assert!(vol > 1.0 && vol < 4.19, "{vol}");
 }

@@ -6,7 +6,8 @@
 //! (`{"triangles":[[i,j,k],…]}`); `--until all|locked`; `--keep` triangles; report keys `closed_manifold`, `genus`,
 //! `volume`, `c_used`, `added_triangles`; `--c auto|C` as in 2D (auto: Delaunay constriction, then
 //! the general engine with γ([-1,1],[c,1]) triangles, c = −0.1 … −1, when it locks);
-//! `--interior FILE.json` writes `{"tetrahedra":[…]}` (empty when the general engine ran).
+//! `--interior FILE.json` writes `{"tetrahedra":[…],"volume":V}` (empty, with a `"note"` and a
+//! warning on stderr, when the general engine ran).
 //! 3D methods: gamma and min-area-change (the key of the Delaunay constriction; the general
 //! engine after a lock always uses the γ-indicator) and voronoi-skeleton (the shortest tree of
 //! Delaunay tetrahedra grown from up to `--seeds` seeds, `--interior` = its tetrahedra, report
@@ -366,7 +367,14 @@ fn run_3d(
             morpho::io::write_mesh(&args.output, &mesh, morpho::io::Encoding::default())?;
         }
         if let Some(i) = &args.interior {
-            let v = json!({ "tetrahedra": b.interior, "volume": b.volume });
+            let mut v = json!({ "tetrahedra": b.interior, "volume": b.volume });
+            if b.interior.is_empty() && !b.triangles.is_empty() {
+                // the general engine's surface need not bound Delaunay tetrahedra (see
+                // morpho::boundary::Boundary3::interior): say so instead of an unexplained []
+                let note = "no interior tetrahedralization after the augmented (c < 0) constriction; volume from the closed surface";
+                eprintln!("boundary: warning: {note}");
+                v["note"] = json!(note);
+            }
             write_atomic(i, |w| writeln!(w, "{v}").map_err(werr)).map_err(|e| e.with_path(i))?;
         }
         Ok(())
