@@ -32,7 +32,9 @@
 //! # Heap (V §5.5)
 //! One entry per boundary face with its best (smallest-key) removable tetrahedron; a popped
 //! entry is re-checked and, when stale, recomputed. When the heap runs empty all boundary faces
-//! are examined again, so "locked" means nothing is removable.
+//! are examined again, so "locked" means nothing is removable; a face found locked by an earlier
+//! sweep is examined again only when a mutation (every one stamps the grid cells of its box)
+//! met the box of the face and its apexes since — its removability depends on nothing outside.
 //!
 //! # Adaptive augmentation (V §5.4)
 //! [`General3::augment`] adds triangles (of γ([-1,1],[c,1]), c < 0) that are certified to lie in
@@ -475,6 +477,22 @@ pub struct General3<'a> {
     /// The nearest vertices of a vertex and the box half-width that certified them
     /// ([`General3::local_gamma`]).
     near_cache: IdMap<u32, (Vec<u32>, f64)>,
+    /// Change tracking for [`General3::push_all`] (on after construction): every mutation of a
+    /// live triangle or of the boundary stamps the cells of its box (cells of `bgrid`) with a
+    /// new epoch; `changed_all` is the epoch of a change too wide to stamp.
+    track: bool,
+    epoch: u64,
+    changed: IdMap<(i64, i64, i64), u64>,
+    changed_all: u64,
+    /// Boundary faces found without a removable tetrahedron by a sweep, with the epoch and the
+    /// box of everything their removability depends on (see [`General3::push_all`]).
+    locked_at: IdMap<[u32; 3], (u64, P, P)>,
+    /// Sweeps skip unchanged locked faces (switchable for the equivalence test).
+    skip_unchanged: bool,
+    /// Faces skipped so (for the tests).
+    skipped: usize,
+    /// Tests: evaluate every skipped face anyway and panic if it has a removable tetrahedron.
+    verify_skips: bool,
     /// Number of boundary vertices.
     pub boundary_vertices: usize,
     /// Number of removed tetrahedra.
@@ -538,6 +556,14 @@ impl<'a> General3<'a> {
             in_gamma: IdSet::default(),
             gamma_ub: IdMap::default(),
             near_cache: IdMap::default(),
+            track: false,
+            epoch: 0,
+            changed: IdMap::default(),
+            changed_all: 0,
+            locked_at: IdMap::default(),
+            skip_unchanged: true,
+            skipped: 0,
+            verify_skips: false,
             boundary_vertices: 0,
             iterations: 0,
             added: 0,
@@ -566,8 +592,45 @@ impl<'a> General3<'a> {
         for &f in boundary {
             g.set_boundary(f, true);
         }
+        g.track = true;
         g.push_all();
         g
+    }
+
+    /// Records a mutation inside the box (see `track`).
+    fn touched(&mut self, lo: P, hi: P) {
+        if !self.track {
+            return;
+        }
+        self.epoch += 1;
+        let (a, b) = self.bgrid.range(lo, hi);
+        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
+        if span > Grid::MAX_SPAN {
+            self.changed_all = self.epoch;
+            return;
+        }
+        for x in a[0]..=b[0] {
+            for y in a[1]..=b[1] {
+                for z in a[2]..=b[2] {
+                    self.changed.insert((x, y, z), self.epoch);
+                }
+            }
+        }
+    }
+
+    /// Has anything meeting the box changed after `epoch`?
+    fn changed_since(&self, epoch: u64, lo: P, hi: P) -> bool {
+        if self.changed_all > epoch {
+            return true;
+        }
+        let (a, b) = self.bgrid.range(lo, hi);
+        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
+        span > Grid::MAX_SPAN
+            || (a[0]..=b[0]).any(|x| {
+                (a[1]..=b[1]).any(|y| {
+                    (a[2]..=b[2]).any(|z| self.changed.get(&(x, y, z)).is_some_and(|&e| e > epoch))
+                })
+            })
     }
 
     fn pt(&self, v: u32) -> P {
@@ -605,6 +668,10 @@ impl<'a> General3<'a> {
             let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
             self.eadj.entry(ek(a, b)).or_default().push(c);
         }
+        if self.track {
+            let (lo, hi) = self.tbox[self.id[&s] as usize];
+            self.touched(lo, hi);
+        }
         true
     }
 
@@ -613,6 +680,8 @@ impl<'a> General3<'a> {
             return;
         }
         self.live[i as usize] = false;
+        let (lo, hi) = self.tbox[i as usize];
+        self.touched(lo, hi);
         let s = self.tris[i as usize];
         for k in 0..3 {
             let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
@@ -630,6 +699,10 @@ impl<'a> General3<'a> {
     }
 
     fn set_boundary(&mut self, f: [u32; 3], on: bool) {
+        if self.track {
+            let (lo, hi) = bbox(&f.map(|v| self.pt(v)));
+            self.touched(lo, hi);
+        }
         if let Some(&i) = self.id.get(&sorted3(f)) {
             self.bflag[i as usize] = on;
             if on && !self.in_bgrid[i as usize] {
@@ -1042,7 +1115,37 @@ impl<'a> General3<'a> {
         faces.dedup();
         let mut any = false;
         for f in faces {
-            any |= self.push(f);
+            // A face found locked is skipped while nothing meeting the box of f and its
+            // apexes has changed: its removability depends only on the live triangles on its
+            // edges and the tetrahedra they span (boundary flags of their faces and edges,
+            // points inside, live triangles crossing them, boundary faces meeting their new
+            // faces) — all inside that box — and every mutation stamps the cells of its box.
+            if self.skip_unchanged {
+                if let Some(&(e, lo, hi)) = self.locked_at.get(&f) {
+                    if !self.changed_since(e, lo, hi) {
+                        self.skipped += 1;
+                        if self.verify_skips {
+                            assert!(self.best(f).is_none(), "skipped a removable face {f:?}");
+                        }
+                        continue;
+                    }
+                }
+            }
+            let e = self.epoch;
+            if self.push(f) {
+                any = true;
+                self.locked_at.remove(&f);
+            } else {
+                let mut q: Vec<P> = f.iter().map(|&v| self.pt(v)).collect();
+                for k in 0..3 {
+                    if let Some(ls) = self.eadj.get(&ek(f[k], f[(k + 1) % 3])) {
+                        q.extend(ls.iter().map(|&l| self.pt(l)));
+                    }
+                }
+                let (lo, hi) = bbox(&q);
+                // (a mutation during this face's own evaluation, e.g. a rewiring, is after e)
+                self.locked_at.insert(f, (e, lo, hi));
+            }
         }
         any
     }
@@ -1563,6 +1666,105 @@ mod tests {
 
     /// hits_boundary (grid, plane culling, early exit) against all boundary faces tested
     /// exactly one by one.
+    /// Skipping the locked faces whose surroundings did not change gives exactly the
+    /// constriction of the full sweep (same surface, same number of removals), through
+    /// several sweeps, augmentations and c steps; every skipped face, evaluated anyway, has no
+    /// removable tetrahedron; and it does skip.
+    #[test]
+    fn sweeps_that_skip_unchanged_faces_constrict_identically() {
+        let mut skipped = 0;
+        // clustered cube points on which the Delaunay constriction locks (seeds of the
+        // integration test `locked_delaunay_constriction_falls_back_and_stays_valid`), plus
+        // more clustered sets
+        for seed in [1647u64, 1755, 1, 2, 3, 4] {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let n = rng.gen_range(40..600);
+            let pts: Vec<crate::geom::Point3> = (0..n)
+                .map(|_| {
+                    let x: f64 = rng.gen_range(-1.0..1.0);
+                    let y: f64 = rng.gen_range(-1.0..1.0);
+                    let z: f64 = rng.gen_range(-1.0..1.0);
+                    crate::geom::Point3::new(x.powi(3), y.powi(3), z.powi(3))
+                })
+                .collect();
+            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let st =
+                super::super::constrict3::constrict_3d(&d, super::super::constrict3::Until::All);
+            let mut live: Vec<[u32; 3]> = Vec::new();
+            for (t, tet) in d.tets.iter().enumerate() {
+                if st.alive[t] {
+                    for (a, b, c) in [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)] {
+                        live.push(sorted3([tet[a], tet[b], tet[c]]));
+                    }
+                }
+            }
+            live.sort_unstable();
+            live.dedup();
+            let go = |skip: bool| {
+                let mut g = General3::new(&pos, &st.triangles, &live, &[]);
+                g.skip_unchanged = skip;
+                g.verify_skips = skip;
+                g.run();
+                let mut trace = vec![(g.iterations, g.boundary_vertices)];
+                for step in 1..=10 {
+                    if g.done() {
+                        break;
+                    }
+                    let x = g.local_gamma(-(step as f64) / 10.0, 16);
+                    g.augment(&x);
+                    g.run();
+                    trace.push((g.iterations, g.boundary_vertices));
+                }
+                (g.boundary(), trace, g.skipped)
+            };
+            let (b1, t1, _) = go(false);
+            let (b2, t2, sk) = go(true);
+            assert_eq!(t1, t2, "seed {seed}");
+            assert_eq!(b1, b2, "seed {seed}");
+            skipped += sk;
+        }
+        assert!(skipped > 500, "{skipped}");
+    }
+
+    /// Every mutation primitive (kill, add, boundary flag) stamps its box: a box meeting the
+    /// mutated triangle sees the change, a far box does not, and nothing is stamped during
+    /// construction.
+    #[test]
+    fn mutations_stamp_the_cells_they_touch() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let pts: Vec<crate::geom::Point3> = (0..300)
+            .map(|_| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                crate::geom::Point3::new(v[0], v[1], v[2])
+            })
+            .collect();
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let all = crate::graphs::fast::candidates_3d(&d).triangles;
+        let mut g = General3::new(&pos, &d.hull, &all, &[]);
+        assert!(g.changed.is_empty() && g.changed_all == 0);
+        let shift = 50.0 * g.bgrid.cell + 10.0;
+        let far = |b: (P, P)| -> (P, P) { (b.0.map(|x| x + shift), b.1.map(|x| x + shift)) };
+        for round in 0..60 {
+            let e = g.epoch;
+            let i = rng.gen_range(0..g.tris.len());
+            let t = g.tris[i];
+            let b = g.tbox[i];
+            match round % 3 {
+                0 if g.live[i] => g.kill(i as u32),
+                1 if !g.live[i] => assert!(g.add_tri(t)),
+                _ => g.set_boundary(t, !g.bflag[i]),
+            }
+            assert!(g.epoch > e, "round {round}: a mutation without a stamp");
+            assert!(g.changed_since(e, b.0, b.1), "round {round}");
+            let (flo, fhi) = far(b);
+            assert!(!g.changed_since(e, flo, fhi), "round {round}");
+            assert!(!g.changed_since(g.epoch, b.0, b.1));
+        }
+        assert!(g.epoch >= 30, "{}", g.epoch);
+    }
+
     /// Every id whose box meets the query box is reported by `query` and seen by
     /// `any_in_box`, on all levels (boxes from a tenth of a cell to thousands of cells wide).
     #[test]
