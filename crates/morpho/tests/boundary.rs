@@ -804,3 +804,77 @@ fn keep_triangles_stay_in_3d() {
     // the constraint matters: without it some of these hull triangles are carved away
     assert!(keep.iter().any(|k| !on.contains(&key(k))));
 }
+
+/// The result does not depend on the units: the same clustered points multiplied by powers of
+/// two (exact) give the same polygon with every method, the same points left out, and the
+/// area scaled by s². Without the rescaling the γ-indicators and skeleton lengths over- or
+/// underflow at 2^±500…1000 and the polygons differ (γ even leaves points out).
+#[test]
+fn results_do_not_depend_on_the_absolute_scale_2d() {
+    for seed in 0..6u64 {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let n = rng.gen_range(30..300);
+        let base: Vec<Point2> = (0..n)
+            .map(|_| {
+                let (x, y): (f64, f64) = (rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0));
+                Point2::new(x.powi(3), y.powi(3))
+            })
+            .collect();
+        for method in [
+            Method::Gamma,
+            Method::MinAreaChange,
+            Method::VoronoiSkeleton,
+        ] {
+            let o = Options2 {
+                method,
+                ..Options2::default()
+            };
+            let want = boundary_2d(&base, &o).unwrap();
+            for e in [-1000, -600, -100, 500, 1000] {
+                let s = 2f64.powi(e);
+                let pts: Vec<Point2> = base.iter().map(|p| p * s).collect();
+                let b = boundary_2d(&pts, &o).unwrap();
+                assert_eq!(b.polygon, want.polygon, "seed {seed} {method:?} 2^{e}");
+                assert_eq!(b.left_out, want.left_out);
+                if e.abs() <= 500 {
+                    let r = b.area / (want.area * s * s);
+                    assert!((r - 1.0).abs() < 1e-12, "{r}");
+                }
+            }
+        }
+    }
+}
+
+/// 3D: the clustered sets on which the Delaunay constriction locks (the general engine runs)
+/// give the same mesh, c and number of added triangles at every scale 2^±1000.
+#[test]
+fn results_do_not_depend_on_the_absolute_scale_3d() {
+    for seed in [1647u64, 1755] {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let n = rng.gen_range(40..600);
+        let base: Vec<Point3> = (0..n)
+            .map(|_| {
+                let x: f64 = rng.gen_range(-1.0..1.0);
+                let y: f64 = rng.gen_range(-1.0..1.0);
+                let z: f64 = rng.gen_range(-1.0..1.0);
+                Point3::new(x.powi(3), y.powi(3), z.powi(3))
+            })
+            .collect();
+        let want = boundary_3d(&base, Until::All).unwrap();
+        assert!(want.c_used < 0.0 && want.all_on_boundary, "seed {seed}");
+        for e in [-1000, -600, 100, 500, 1000] {
+            let s = 2f64.powi(e);
+            let pts: Vec<Point3> = base.iter().map(|p| p * s).collect();
+            let b = boundary_3d(&pts, Until::All).unwrap();
+            assert_eq!(b.triangles, want.triangles, "seed {seed} 2^{e}");
+            assert_eq!(
+                (b.c_used, b.added_triangles),
+                (want.c_used, want.added_triangles)
+            );
+            if e.abs() < 300 {
+                let r = b.volume / (want.volume * s * s * s);
+                assert!((r - 1.0).abs() < 1e-12, "{r}");
+            }
+        }
+    }
+}
