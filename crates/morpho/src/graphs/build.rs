@@ -192,7 +192,11 @@ fn sort_edges(
 /// The 2D graph from edges in vertex indices (with their γ-values for the γ kinds: `gamma`
 /// empty or aligned with `e`).
 fn finish2(d: &d2::Delaunay2, e: Vec<[u32; 2]>, gamma: Vec<[f64; 2]>) -> Graph {
+    let clock = std::time::Instant::now();
     let (edges, from) = sort_edges(&d.input_of_vertex, d.vertex_of_input.len(), &e);
+    if std::env::var("STARTIME").is_ok() {
+        eprintln!("sort_edges {:.3}", clock.elapsed().as_secs_f64());
+    }
     let gamma = if gamma.len() == e.len() && !e.is_empty() {
         from.iter().map(|&i| gamma[i as usize]).collect()
     } else {
@@ -611,30 +615,10 @@ fn classic<const D: usize>(
                 return Ok(strip(p, gabriel));
             }
             let grid = Grid::new(p, 2.0);
-            let k = 1.0 / (2.0 * (1.0 - b));
             gabriel
                 .par_iter()
                 .copied()
-                .filter(|e| {
-                    let (u, v) = (&p[e[0] as usize], &p[e[1] as usize]);
-                    let len = dist2(u, v).sqrt();
-                    let rad = len * k;
-                    let mut m = [0.0; D];
-                    for t in 0..D {
-                        m[t] = 0.5 * (u[t] + v[t]);
-                    }
-                    // the lune lies within max(len/2, √(R² − (R − len/2)²)) of the midpoint
-                    let reach = (0.5 * len)
-                        .max((rad * rad - (rad - 0.5 * len).powi(2)).max(0.0).sqrt())
-                        * (1.0 + 1e-9);
-                    grid.for_each_within(m, reach, |x| {
-                        if x == e[0] || x == e[1] {
-                            return true;
-                        }
-                        let q = &p[x as usize];
-                        !(in_lune_ball(q, u, v, b) && in_lune_ball(q, v, u, b))
-                    })
-                })
+                .filter(|e| lune_empty_grid(p, &grid, *e, b))
                 .collect()
         }
         Kind::Sig => {
@@ -649,6 +633,33 @@ fn classic<const D: usize>(
                 kind.name()
             )))
         }
+    })
+}
+
+/// True when the open lune of the pair e (V Def. 2.16, b ∈ [0, 1)) contains no point, by a
+/// grid query around its midpoint with exact [`in_lune_ball`] tests.
+fn lune_empty_grid<const D: usize>(
+    p: &[[f64; D]],
+    grid: &Grid<'_, D>,
+    e: [u32; 2],
+    b: f64,
+) -> bool {
+    let (u, v) = (&p[e[0] as usize], &p[e[1] as usize]);
+    let len = dist2(u, v).sqrt();
+    let rad = len / (2.0 * (1.0 - b));
+    let mut m = [0.0; D];
+    for t in 0..D {
+        m[t] = 0.5 * (u[t] + v[t]);
+    }
+    // the lune lies within max(len/2, √(R² − (R − len/2)²)) of the midpoint
+    let reach =
+        (0.5 * len).max((rad * rad - (rad - 0.5 * len).powi(2)).max(0.0).sqrt()) * (1.0 + 1e-9);
+    grid.for_each_within(m, reach, |x| {
+        if x == e[0] || x == e[1] {
+            return true;
+        }
+        let q = &p[x as usize];
+        !(in_lune_ball(q, u, v, b) && in_lune_ball(q, v, u, b))
     })
 }
 
@@ -678,6 +689,7 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
     }
     let d = d2::triangulate(points)?;
     let p = fast::coords2(&d);
+    let newp = !d.collinear && std::env::var("OLDPATH").is_err(); // TEMP
     let dt_edges = || -> Vec<[u32; 2]> {
         if d.collinear {
             d.hull
@@ -688,15 +700,30 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             fast::dt_edges(&d).map(|e| [e.a, e.b]).collect()
         }
     };
-    // γ kinds: decide every candidate edge in parallel, keeping its γ-values
-    let gamma_kind = |decide: &(dyn Fn(&CenterInterval) -> bool + Sync), beyond: Option<f64>| {
+    // the edges of a non-collinear triangulation as sorted input indices (no sort needed)
+    let sorted = |edges: Vec<[u32; 2]>, gamma: Vec<[f64; 2]>| Graph {
+        dim: 2,
+        edges,
+        triangles: vec![],
+        gamma,
+    };
+    // γ kinds: decide every candidate edge in parallel, keeping its γ-values (computed once and
+    // handed to `decide`)
+    type Decide<'a> = dyn Fn(&CenterInterval, (f64, f64)) -> bool + Sync + 'a;
+    let gamma_kind = |decide: &Decide<'_>, beyond: Option<f64>| {
         let keep = |e: [u32; 2], iv: &CenterInterval| {
             let v = iv.gamma_values()?;
-            decide(iv).then_some((e, [v.0, v.1]))
+            decide(iv, v).then_some((e, [v.0, v.1]))
         };
         let kept: Vec<([u32; 2], [f64; 2])> = match beyond {
-            // the Delaunay-subgraph part streams; beyond the triangulation the candidates are
-            // needed anyway (as the edges that exist), so they are built once and filtered
+            // the Delaunay-subgraph part streams, vertex star by vertex star in input order
+            None if newp => {
+                let (e, g) =
+                    fast::filter_candidates_sorted_2d(&d, &p, |e, iv| keep(e, iv).map(|x| x.1));
+                return sorted(e, g);
+            }
+            // beyond the triangulation the candidates are needed anyway (as the edges that
+            // exist), so they are built once and filtered
             None => fast::filter_candidates_2d(&d, |e, iv, _| keep(e, iv)),
             Some(c) => {
                 let cand = fast::candidates_2d(&d);
@@ -711,6 +738,7 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         finish2(&d, e, g)
     };
     Ok(match kind {
+        Kind::Delaunay if newp => sorted(fast::stars_sorted_2d(&d), vec![]),
         Kind::Delaunay => finish2(&d, dt_edges(), vec![]),
         Kind::Hull => {
             let h = &d.hull;
@@ -724,7 +752,19 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             }
             finish2(&d, e, vec![])
         }
+        Kind::Gabriel if newp => sorted(fast::gabriel_lune_sorted_2d(&d, &p, None), vec![]),
         Kind::Gabriel => finish2(&d, fast::gabriel_2d(&d), vec![]),
+        Kind::Rng | Kind::BetaLune(_) if newp => {
+            let b = match kind {
+                Kind::BetaLune(b) => b,
+                _ => 0.5,
+            };
+            if b >= 1.0 {
+                finish2(&d, strip(&p, &fast::gabriel_2d(&d)), vec![])
+            } else {
+                sorted(fast::gabriel_lune_sorted_2d(&d, &p, Some(b)), vec![])
+            }
+        }
         // the vertex fans give the Delaunay neighbours in parallel and in vertex order
         Kind::Emst if !d.collinear => finish2(
             &d,
@@ -737,7 +777,7 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         }
         Kind::Alpha(a) if a < 0.0 => {
             let rad = 1.0 / a.abs();
-            let e = fast::filter_candidates_2d(&d, |e, iv, _| {
+            let keep = |e: [u32; 2], iv: &CenterInterval| {
                 let len = dist2(&p[e[0] as usize], &p[e[1] as usize]).sqrt();
                 let h2 = rad * rad - 0.25 * len * len;
                 if h2 < 0.0 {
@@ -745,8 +785,19 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
                 }
                 let s = h2.sqrt() / len;
                 (iv.ball_empty(s) || iv.ball_empty(-s)).then_some(e)
-            });
-            finish2(&d, e, vec![])
+            };
+            if !newp {
+                finish2(
+                    &d,
+                    fast::filter_candidates_2d(&d, |e, iv, _| keep(e, iv)),
+                    vec![],
+                )
+            } else {
+                sorted(
+                    fast::filter_candidates_sorted_2d(&d, &p, |e, iv| keep(e, iv).map(|_| ())).0,
+                    vec![],
+                )
+            }
         }
         Kind::Alpha(a) => {
             // a = 0: hull; a > 0: discs containing everything, through two hull vertices
@@ -768,13 +819,12 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         // decided on the interval itself (not through the rounded γ-values), so that a
         // parameter equal to a γ-value is decided exactly
         Kind::Gamma(c0, c1) => gamma_kind(
-            &|iv| iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0),
+            &|iv, _| iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0),
             (c1 < 0.0).then_some(c1),
         ),
-        Kind::GammaRange(r) => gamma_kind(
-            &|iv| iv.gamma_values().is_some_and(|v| in_gamma_range(v, r)),
-            (r[2] < 0.0).then_some(r[2]),
-        ),
+        Kind::GammaRange(r) => {
+            gamma_kind(&|_, v| in_gamma_range(v, r), (r[2] < 0.0).then_some(r[2]))
+        }
         _ => {
             let needs_gabriel = matches!(kind, Kind::Rng | Kind::BetaLune(_) | Kind::Strip);
             let g = if needs_gabriel {
