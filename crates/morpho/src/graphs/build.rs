@@ -3,8 +3,10 @@
 //!
 //! Complexities after the O(N log N) triangulation: CP, NNG, hull, Delaunay, GG, α (a ≤ 0), β_c/γ
 //! with parameters ≥ 0: O(N); EMST (Borůvka on the Delaunay edges): O(N log N) worst case, about
-//! 2.5 passes over the edges on evenly spread points; RNG, lune-based β, SIG:
-//! O(N·k) with k the points in the edge's neighbourhood (grid queries); ∞-SG: O(N) filter plus
+//! 2.5 passes over the edges on evenly spread points; RNG, lune-based β (b > 0): O(N·k) with k
+//! the points in the box of a lune — queried only for the halves of the lune that the empty
+//! circumdiscs of the edge's two Delaunay triangles do not cover ([`super::lune`]); SIG: O(N·k)
+//! with k the points in the edge's neighbourhood (grid queries); ∞-SG: O(N) filter plus
 //! O(N) per surviving edge; α (a > 0): O(h³) over the h hull vertices; γ beyond the Delaunay
 //! triangulation: see [`super::fast::beyond_dt_2d`] and [`super::beyond3::beyond_dt_3d`]. 3D γ
 //! with a parameter −1 (nearly every triple) uses the brute force of V Thm 3.1 and is limited to
@@ -12,6 +14,11 @@
 //! 1/a containing every point through a triangle touches only hull vertices), O(h⁴) in the worst
 //! case, limited to [`ALPHA_HULL_LIMIT_3D`] hull vertices; degenerate (coplanar) 3D input uses the
 //! brute force limited to [`BRUTE_LIMIT_3D`] points.
+//!
+//! In 2D the kinds made of Delaunay edges (Delaunay, GG, RNG, lune-based β, α with a < 0, γ within
+//! the triangulation) decide each edge once in parallel and drop it straight into its bucket of
+//! smaller input index ([`super::fast::decide_sorted_2d`]): the output comes out sorted without
+//! a global sort of the edge list (nor a gather of the γ-values).
 
 use super::beyond3;
 use super::brute::{self, in_slab};
@@ -192,11 +199,7 @@ fn sort_edges(
 /// The 2D graph from edges in vertex indices (with their γ-values for the γ kinds: `gamma`
 /// empty or aligned with `e`).
 fn finish2(d: &d2::Delaunay2, e: Vec<[u32; 2]>, gamma: Vec<[f64; 2]>) -> Graph {
-    let clock = std::time::Instant::now();
     let (edges, from) = sort_edges(&d.input_of_vertex, d.vertex_of_input.len(), &e);
-    if std::env::var("STARTIME").is_ok() {
-        eprintln!("sort_edges {:.3}", clock.elapsed().as_secs_f64());
-    }
     let gamma = if gamma.len() == e.len() && !e.is_empty() {
         from.iter().map(|&i| gamma[i as usize]).collect()
     } else {
@@ -689,7 +692,6 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
     }
     let d = d2::triangulate(points)?;
     let p = fast::coords2(&d);
-    let newp = !d.collinear && std::env::var("OLDPATH").is_err(); // TEMP
     let dt_edges = || -> Vec<[u32; 2]> {
         if d.collinear {
             d.hull
@@ -717,7 +719,7 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         };
         let kept: Vec<([u32; 2], [f64; 2])> = match beyond {
             // the Delaunay-subgraph part streams, vertex star by vertex star in input order
-            None if newp => {
+            None if !d.collinear => {
                 let (e, g) =
                     fast::filter_candidates_sorted_2d(&d, &p, |e, iv| keep(e, iv).map(|x| x.1));
                 return sorted(e, g);
@@ -738,7 +740,7 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         finish2(&d, e, g)
     };
     Ok(match kind {
-        Kind::Delaunay if newp => sorted(fast::stars_sorted_2d(&d), vec![]),
+        Kind::Delaunay if !d.collinear => sorted(fast::dt_edges_sorted_2d(&d), vec![]),
         Kind::Delaunay => finish2(&d, dt_edges(), vec![]),
         Kind::Hull => {
             let h = &d.hull;
@@ -752,9 +754,9 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             }
             finish2(&d, e, vec![])
         }
-        Kind::Gabriel if newp => sorted(fast::gabriel_lune_sorted_2d(&d, &p, None), vec![]),
+        Kind::Gabriel if !d.collinear => sorted(fast::gabriel_lune_sorted_2d(&d, &p, None), vec![]),
         Kind::Gabriel => finish2(&d, fast::gabriel_2d(&d), vec![]),
-        Kind::Rng | Kind::BetaLune(_) if newp => {
+        Kind::Rng | Kind::BetaLune(_) if !d.collinear => {
             let b = match kind {
                 Kind::BetaLune(b) => b,
                 _ => 0.5,
@@ -786,7 +788,7 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
                 let s = h2.sqrt() / len;
                 (iv.ball_empty(s) || iv.ball_empty(-s)).then_some(e)
             };
-            if !newp {
+            if d.collinear {
                 finish2(
                     &d,
                     fast::filter_candidates_2d(&d, |e, iv, _| keep(e, iv)),

@@ -153,6 +153,8 @@ fn dt_edge_at(d: &Delaunay2, t: usize, i: usize) -> Option<DtEdge> {
 
 /// Triangles per parallel block of [`decide_sorted_2d`].
 const TRI_BLOCK: usize = 1 << 16;
+/// Triangles whose edges are listed before they are decided in [`decide_sorted_2d`].
+const SLICE: usize = 512;
 /// Consecutive smaller input indices per bucket of [`decide_sorted_2d`].
 const SPAN: usize = 8192;
 
@@ -177,12 +179,17 @@ pub fn decide_sorted_2d<T: Copy + Default + Send + Sync>(
         .enumerate()
         .map(|(k, tris)| {
             let mut out: Spread<T> = vec![Vec::new(); nbuckets];
-            for t in k * TRI_BLOCK..k * TRI_BLOCK + tris.len() {
-                for i in 0..3 {
-                    let Some(e) = dt_edge_at(d, t, i) else {
-                        continue;
-                    };
-                    if let Some(x) = decide(&e) {
+            // the edges of a slice of triangles first (independent loads of the neighbouring
+            // triangles, which lie anywhere in memory, overlap), then their decisions
+            let mut es = Vec::with_capacity(3 * SLICE);
+            let end = k * TRI_BLOCK + tris.len();
+            for s0 in (k * TRI_BLOCK..end).step_by(SLICE) {
+                es.clear();
+                for t in s0..(s0 + SLICE).min(end) {
+                    es.extend((0..3).filter_map(|i| dt_edge_at(d, t, i)));
+                }
+                for e in &es {
+                    if let Some(x) = decide(e) {
                         let (a, b) = (inp[e.a as usize], inp[e.b as usize]);
                         let (a, b) = (a.min(b), a.max(b));
                         out[a as usize / SPAN].push((a, b, x));
@@ -463,7 +470,7 @@ pub fn gabriel_lune_sorted_2d(d: &Delaunay2, p: &[[f64; 2]], lune: Option<f64>) 
 
 /// The edges of a non-collinear 2D Delaunay triangulation as sorted input indices `[i, j]`,
 /// i < j ([`decide_sorted_2d`]).
-pub fn stars_sorted_2d(d: &Delaunay2) -> Vec<[u32; 2]> {
+pub fn dt_edges_sorted_2d(d: &Delaunay2) -> Vec<[u32; 2]> {
     decide_sorted_2d(d, |_| Some(())).0
 }
 
