@@ -25,6 +25,7 @@ use super::brute::{self, in_slab};
 use super::fast;
 use super::gamma::{in_gamma, in_gamma_range, CenterInterval};
 use super::grid::Grid;
+use super::lune::LuneGrid;
 use crate::delaunay::{d2, d3};
 use crate::geom::distance::{cmp_dist2, dist2, dot_sign, in_lune_ball, sum_of_roots_exceeds};
 use crate::geom::{Point2, Point3};
@@ -690,7 +691,22 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             return Ok(g);
         }
     }
-    let d = d2::triangulate(points)?;
+    // the lune-based kinds (b ∈ (0, 1); RNG: b = ½) query a grid over the points, built from the
+    // input points on the other core while the (mostly sequential) triangulation runs
+    let lune_b = match kind {
+        Kind::Rng => Some(0.5),
+        Kind::BetaLune(b) if b > 0.0 && b < 1.0 => Some(b),
+        _ => None,
+    };
+    let ip: Vec<[f64; 2]> = match lune_b {
+        Some(_) => points.par_iter().map(|q| [q.x, q.y]).collect(),
+        None => vec![],
+    };
+    let (d, lune_grid) = rayon::join(
+        || d2::triangulate(points),
+        || lune_b.map(|_| LuneGrid::new(&ip)),
+    );
+    let d = d?;
     let p = fast::coords2(&d);
     let dt_edges = || -> Vec<[u32; 2]> {
         if d.collinear {
@@ -756,16 +772,13 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         }
         Kind::Gabriel if !d.collinear => sorted(fast::gabriel_lune_sorted_2d(&d, &p, None), vec![]),
         Kind::Gabriel => finish2(&d, fast::gabriel_2d(&d), vec![]),
-        Kind::Rng | Kind::BetaLune(_) if !d.collinear => {
-            let b = match kind {
-                Kind::BetaLune(b) => b,
-                _ => 0.5,
-            };
-            if b >= 1.0 {
-                finish2(&d, strip(&p, &fast::gabriel_2d(&d)), vec![])
-            } else {
-                sorted(fast::gabriel_lune_sorted_2d(&d, &p, Some(b)), vec![])
-            }
+        // RNG and lune-based β with b ∈ (0, 1) (b = 0 is the Gabriel graph, b = 1 the strip)
+        Kind::Rng | Kind::BetaLune(_) if !d.collinear && lune_grid.is_some() => {
+            let lune = lune_grid.as_ref().map(|g| (lune_b.unwrap_or(0.5), g));
+            sorted(fast::gabriel_lune_sorted_2d(&d, &p, lune), vec![])
+        }
+        Kind::BetaLune(b) if !d.collinear && b == 0.0 => {
+            sorted(fast::gabriel_lune_sorted_2d(&d, &p, None), vec![])
         }
         // the vertex fans give the Delaunay neighbours in parallel and in vertex order
         Kind::Emst if !d.collinear => finish2(

@@ -433,20 +433,24 @@ pub fn filter_candidates_sorted_2d<T: Send + Sync + Copy + Default>(
 }
 
 /// The Gabriel graph (V Def. 2.9; `lune` = None) or the lune-based β-skeleton (V Def. 2.16;
-/// `lune` = Some(b), b ∈ [0, 1)) of a non-collinear triangulation as sorted input indices
-/// ([`decide_sorted_2d`]): a Delaunay edge must pass the Gabriel test of [`gabriel_2d`] and
-/// then, for b > 0, have an empty lune ([`LuneGrid::lune_empty`], its apexes first); a chord of
-/// a cocircular group must pass the Gabriel test against its group and then have an empty lune
-/// (the lune β-skeleton ⊆ Gabriel graph, V Fig. 3.2). O(N·k) with k the points in a lune's box.
-pub fn gabriel_lune_sorted_2d(d: &Delaunay2, p: &[[f64; 2]], lune: Option<f64>) -> Vec<[u32; 2]> {
+/// `lune` = Some((b, grid)), b ∈ (0, 1), `grid` over the points) of a non-collinear
+/// triangulation as sorted input indices ([`decide_sorted_2d`]): a Delaunay edge must pass the
+/// Gabriel test of [`gabriel_2d`] and then have an empty lune ([`LuneGrid::lune_empty`], its
+/// apexes first); a chord of a cocircular group must pass the Gabriel test against its group and
+/// then have an empty lune (the lune β-skeleton ⊆ Gabriel graph, V Fig. 3.2). O(N·k) with k the
+/// points in a lune's box.
+pub fn gabriel_lune_sorted_2d(
+    d: &Delaunay2,
+    p: &[[f64; 2]],
+    lune: Option<(f64, &LuneGrid<'_>)>,
+) -> Vec<[u32; 2]> {
     let outside = |a: u32, b: u32, x: u32| {
         x == NONE || dot_sign(&p[a as usize], &p[b as usize], &p[x as usize]) >= 0
     };
-    let b = lune.filter(|&b| b > 0.0);
-    let grid = b.map(|_| LuneGrid::new(p));
-    let empty = |x: u32, y: u32, apexes: [u32; 2]| match (b, &grid) {
-        (Some(b), Some(g)) => g.lune_empty(x, y, apexes, b),
-        _ => true,
+    let at = |x: u32| (x != NONE).then(|| p[x as usize]);
+    let empty = |x: u32, y: u32, apexes: [u32; 2]| match lune {
+        Some((b, g)) => g.lune_empty(p[x as usize], p[y as usize], apexes.map(at), b),
+        None => true,
     };
     let ties = Mutex::new(Vec::new());
     let (mut edges, mut vals) = decide_sorted_2d(d, |e| {

@@ -16,7 +16,6 @@
 //! lune (the test `one_ring_is_not_enough` has a counterexample), hence step 2.
 
 use super::grid::Grid;
-use crate::delaunay::d2::NONE;
 use crate::geom::distance::in_lune_ball;
 use rayon::prelude::*;
 
@@ -147,9 +146,11 @@ impl Lune {
     }
 }
 
-/// A grid over 2D points with their coordinates in the grid's cell order, for lune queries.
+/// A grid over 2D points with their coordinates in the grid's cell order, for lune queries. It
+/// needs only the coordinates (any point set containing the graph's points; repeats are
+/// harmless: the ends of an edge are never strictly inside its lune), so it can be built from
+/// the input points while the triangulation is being built.
 pub struct LuneGrid<'a> {
-    p: &'a [[f64; 2]],
     grid: Grid<'a, 2>,
     slots: Vec<[f64; 2]>,
 }
@@ -159,27 +160,26 @@ impl<'a> LuneGrid<'a> {
     pub fn new(p: &'a [[f64; 2]]) -> Self {
         let grid = Grid::new(p, 2.0);
         let slots = grid.items().par_iter().map(|&v| p[v as usize]).collect();
-        LuneGrid { p, grid, slots }
+        LuneGrid { grid, slots }
     }
 
-    /// True when no point lies in the open lune of the pair (u, v) for b ∈ (0, 1)
-    /// (V Def. 2.16). `apexes` = [left, right]: for a Delaunay edge the apexes of its triangles
-    /// left and right of u → v, tried first and used to skip the halves of the lune that their
-    /// empty circumdiscs cover; [`NONE`] for none. Exact.
-    pub fn lune_empty(&self, u: u32, v: u32, apexes: [u32; 2], b: f64) -> bool {
-        let p = self.p;
-        let lune = Lune::new(p[u as usize], p[v as usize], b);
-        if apexes
-            .iter()
-            .any(|&x| x != NONE && x != u && x != v && lune.contains(&p[x as usize]))
-        {
+    /// True when no point of the grid lies in the open lune of the pair (pu, pv) for
+    /// b ∈ (0, 1) (V Def. 2.16). `apexes` = [left, right]: for a Delaunay edge the apexes of its
+    /// triangles left and right of u → v, tried first and used to skip the halves of the lune
+    /// that their empty circumdiscs cover. Exact.
+    pub fn lune_empty(
+        &self,
+        pu: [f64; 2],
+        pv: [f64; 2],
+        apexes: [Option<[f64; 2]>; 2],
+        b: f64,
+    ) -> bool {
+        let lune = Lune::new(pu, pv, b);
+        if apexes.iter().flatten().any(|w| lune.contains(w)) {
             return false;
         }
         // the halves covered by the empty circumdiscs of the edge's triangles need no query
-        let covered = |k: usize, side: f64| {
-            let w = apexes[k];
-            w != NONE && w != u && w != v && lune.half_covered(p[w as usize], side)
-        };
+        let covered = |k: usize, side: f64| apexes[k].is_some_and(|w| lune.half_covered(w, side));
         let side = match (covered(0, 1.0), covered(1, -1.0)) {
             (true, true) => return true,
             (true, false) => Some(-1.0),
@@ -187,18 +187,9 @@ impl<'a> LuneGrid<'a> {
             (false, false) => None,
         };
         let (lo, hi) = lune.bbox(side);
-        let items = self.grid.items();
         self.grid.for_each_run(lo, hi, |run| {
-            for s in run {
-                if !lune.may_contain(self.slots[s]) {
-                    continue;
-                }
-                let x = items[s];
-                if x != u && x != v && lune.contains(&p[x as usize]) {
-                    return false;
-                }
-            }
-            true
+            // (u and v themselves lie on the lune's boundary: `contains` rejects them)
+            !self.slots[run].iter().any(|q| lune.contains(q))
         })
     }
 }
