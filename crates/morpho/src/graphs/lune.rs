@@ -133,9 +133,11 @@ impl Lune {
     /// interior is the open half-lune, lies in the closed disc.
     fn half_covered(&self, w: [f64; 2], side: f64) -> bool {
         let a = [self.pv[0] - self.pu[0], self.pv[1] - self.pu[1]];
+        // w − m from differences of nearby points (their rounding error is relative to the
+        // edge's scale, not to the coordinates' magnitude)
         let x = [
-            w[0] - 0.5 * (self.pu[0] + self.pv[0]),
-            w[1] - 0.5 * (self.pu[1] + self.pv[1]),
+            (w[0] - self.pu[0]) - 0.5 * a[0],
+            (w[1] - self.pu[1]) - 0.5 * a[1],
         ];
         let aa = a[0] * a[0] + a[1] * a[1];
         let xx = x[0] * x[0] + x[1] * x[1];

@@ -945,6 +945,17 @@ mod lune_oracle {
     #[test]
     fn lune_graphs_match_the_definitions_on_boundary_sets() {
         check("lune boundaries", &boundary_set());
+        // the same, small and far from the origin (coordinates ≫ edge lengths)
+        let far: Vec<[f64; 2]> = boundary_set()
+            .iter()
+            .map(|q| [1e6 + q[0] * 1e-3, -3e6 + q[1] * 1e-3])
+            .collect();
+        check("lune boundaries far away", &far);
+        let mut r = ChaCha8Rng::seed_from_u64(41);
+        let far_random: Vec<[f64; 2]> = (0..150)
+            .map(|_| [1e9 + r.gen::<f64>() * 1e-4, 1e9 + r.gen::<f64>() * 1e-4])
+            .collect();
+        check("random far away", &far_random);
         check("edge ends", &ends_set());
         check("circles", &circles_set());
         check(
