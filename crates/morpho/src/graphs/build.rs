@@ -692,20 +692,23 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         }
     }
     // the lune-based kinds (b ∈ (0, 1); RNG: b = ½) query a grid over the points, built from the
-    // input points on the other core while the (mostly sequential) triangulation runs
+    // input points on another thread while the (mostly sequential) triangulation runs here
     let lune_b = match kind {
         Kind::Rng => Some(0.5),
         Kind::BetaLune(b) if b > 0.0 && b < 1.0 => Some(b),
         _ => None,
     };
     let ip: Vec<[f64; 2]> = match lune_b {
-        Some(_) => points.par_iter().map(|q| [q.x, q.y]).collect(),
+        Some(_) => points.iter().map(|q| [q.x, q.y]).collect(),
         None => vec![],
     };
-    let (d, lune_grid) = rayon::join(
-        || d2::triangulate(points),
-        || lune_b.map(|_| LuneGrid::new(&ip)),
-    );
+    let (d, lune_grid) = std::thread::scope(|s| {
+        let grid = lune_b.map(|_| s.spawn(|| LuneGrid::new(&ip)));
+        let d = d2::triangulate(points);
+        // (a grid thread that failed is replaced by one built here)
+        let grid = grid.map(|h| h.join().unwrap_or_else(|_| LuneGrid::new(&ip)));
+        (d, grid)
+    });
     let d = d?;
     let p = fast::coords2(&d);
     let dt_edges = || -> Vec<[u32; 2]> {
