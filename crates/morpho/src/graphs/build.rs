@@ -3,8 +3,10 @@
 //!
 //! Complexities after the O(N log N) triangulation: CP, NNG, hull, Delaunay, GG, α (a ≤ 0), β_c/γ
 //! with parameters ≥ 0: O(N); EMST (Borůvka on the Delaunay edges): O(N log N) worst case, about
-//! 2.5 passes over the edges on evenly spread points; RNG, lune-based β, SIG:
-//! O(N·k) with k the points in the edge's neighbourhood (grid queries); ∞-SG: O(N) filter plus
+//! 2.5 passes over the edges on evenly spread points; RNG, lune-based β (b > 0): O(N·k) with k
+//! the points in the box of a lune — queried only for the halves of the lune that the empty
+//! circumdiscs of the edge's two Delaunay triangles do not cover ([`super::lune`]); SIG: O(N·k)
+//! with k the points in the edge's neighbourhood (grid queries); ∞-SG: O(N) filter plus
 //! O(N) per surviving edge; α (a > 0): O(h³) over the h hull vertices; γ beyond the Delaunay
 //! triangulation: see [`super::fast::beyond_dt_2d`] and [`super::beyond3::beyond_dt_3d`]. 3D γ
 //! with a parameter −1 (nearly every triple) uses the brute force of V Thm 3.1 and is limited to
@@ -12,12 +14,18 @@
 //! 1/a containing every point through a triangle touches only hull vertices), O(h⁴) in the worst
 //! case, limited to [`ALPHA_HULL_LIMIT_3D`] hull vertices; degenerate (coplanar) 3D input uses the
 //! brute force limited to [`BRUTE_LIMIT_3D`] points.
+//!
+//! In 2D the kinds made of Delaunay edges (Delaunay, GG, RNG, lune-based β, α with a < 0, γ within
+//! the triangulation) decide each edge once in parallel and drop it straight into its bucket of
+//! smaller input index ([`super::fast::decide_sorted_2d`]): the output comes out sorted without
+//! a global sort of the edge list (nor a gather of the γ-values).
 
 use super::beyond3;
 use super::brute::{self, in_slab};
 use super::fast;
 use super::gamma::{in_gamma, in_gamma_range, CenterInterval};
 use super::grid::Grid;
+use super::lune::LuneGrid;
 use crate::delaunay::{d2, d3};
 use crate::geom::distance::{cmp_dist2, dist2, dot_sign, in_lune_ball, sum_of_roots_exceeds};
 use crate::geom::{Point2, Point3};
@@ -611,30 +619,10 @@ fn classic<const D: usize>(
                 return Ok(strip(p, gabriel));
             }
             let grid = Grid::new(p, 2.0);
-            let k = 1.0 / (2.0 * (1.0 - b));
             gabriel
                 .par_iter()
                 .copied()
-                .filter(|e| {
-                    let (u, v) = (&p[e[0] as usize], &p[e[1] as usize]);
-                    let len = dist2(u, v).sqrt();
-                    let rad = len * k;
-                    let mut m = [0.0; D];
-                    for t in 0..D {
-                        m[t] = 0.5 * (u[t] + v[t]);
-                    }
-                    // the lune lies within max(len/2, √(R² − (R − len/2)²)) of the midpoint
-                    let reach = (0.5 * len)
-                        .max((rad * rad - (rad - 0.5 * len).powi(2)).max(0.0).sqrt())
-                        * (1.0 + 1e-9);
-                    grid.for_each_within(m, reach, |x| {
-                        if x == e[0] || x == e[1] {
-                            return true;
-                        }
-                        let q = &p[x as usize];
-                        !(in_lune_ball(q, u, v, b) && in_lune_ball(q, v, u, b))
-                    })
-                })
+                .filter(|e| lune_empty_grid(p, &grid, *e, b))
                 .collect()
         }
         Kind::Sig => {
@@ -649,6 +637,33 @@ fn classic<const D: usize>(
                 kind.name()
             )))
         }
+    })
+}
+
+/// True when the open lune of the pair e (V Def. 2.16, b ∈ [0, 1)) contains no point, by a
+/// grid query around its midpoint with exact [`in_lune_ball`] tests.
+fn lune_empty_grid<const D: usize>(
+    p: &[[f64; D]],
+    grid: &Grid<'_, D>,
+    e: [u32; 2],
+    b: f64,
+) -> bool {
+    let (u, v) = (&p[e[0] as usize], &p[e[1] as usize]);
+    let len = dist2(u, v).sqrt();
+    let rad = len / (2.0 * (1.0 - b));
+    let mut m = [0.0; D];
+    for t in 0..D {
+        m[t] = 0.5 * (u[t] + v[t]);
+    }
+    // the lune lies within max(len/2, √(R² − (R − len/2)²)) of the midpoint
+    let reach =
+        (0.5 * len).max((rad * rad - (rad - 0.5 * len).powi(2)).max(0.0).sqrt()) * (1.0 + 1e-9);
+    grid.for_each_within(m, reach, |x| {
+        if x == e[0] || x == e[1] {
+            return true;
+        }
+        let q = &p[x as usize];
+        !(in_lune_ball(q, u, v, b) && in_lune_ball(q, v, u, b))
     })
 }
 
@@ -676,7 +691,25 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             return Ok(g);
         }
     }
-    let d = d2::triangulate(points)?;
+    // the lune-based kinds (b ∈ (0, 1); RNG: b = ½) query a grid over the points, built from the
+    // input points on another thread while the (mostly sequential) triangulation runs here
+    let lune_b = match kind {
+        Kind::Rng => Some(0.5),
+        Kind::BetaLune(b) if b > 0.0 && b < 1.0 => Some(b),
+        _ => None,
+    };
+    let ip: Vec<[f64; 2]> = match lune_b {
+        Some(_) => points.iter().map(|q| [q.x, q.y]).collect(),
+        None => vec![],
+    };
+    let (d, lune_grid) = std::thread::scope(|s| {
+        let grid = lune_b.map(|_| s.spawn(|| LuneGrid::new(&ip)));
+        let d = d2::triangulate(points);
+        // (a grid thread that failed is replaced by one built here)
+        let grid = grid.map(|h| h.join().unwrap_or_else(|_| LuneGrid::new(&ip)));
+        (d, grid)
+    });
+    let d = d?;
     let p = fast::coords2(&d);
     let dt_edges = || -> Vec<[u32; 2]> {
         if d.collinear {
@@ -688,15 +721,30 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             fast::dt_edges(&d).map(|e| [e.a, e.b]).collect()
         }
     };
-    // γ kinds: decide every candidate edge in parallel, keeping its γ-values
-    let gamma_kind = |decide: &(dyn Fn(&CenterInterval) -> bool + Sync), beyond: Option<f64>| {
+    // the edges of a non-collinear triangulation as sorted input indices (no sort needed)
+    let sorted = |edges: Vec<[u32; 2]>, gamma: Vec<[f64; 2]>| Graph {
+        dim: 2,
+        edges,
+        triangles: vec![],
+        gamma,
+    };
+    // γ kinds: decide every candidate edge in parallel, keeping its γ-values (computed once and
+    // handed to `decide`)
+    type Decide<'a> = dyn Fn(&CenterInterval, (f64, f64)) -> bool + Sync + 'a;
+    let gamma_kind = |decide: &Decide<'_>, beyond: Option<f64>| {
         let keep = |e: [u32; 2], iv: &CenterInterval| {
             let v = iv.gamma_values()?;
-            decide(iv).then_some((e, [v.0, v.1]))
+            decide(iv, v).then_some((e, [v.0, v.1]))
         };
         let kept: Vec<([u32; 2], [f64; 2])> = match beyond {
-            // the Delaunay-subgraph part streams; beyond the triangulation the candidates are
-            // needed anyway (as the edges that exist), so they are built once and filtered
+            // the Delaunay-subgraph part streams, vertex star by vertex star in input order
+            None if !d.collinear => {
+                let (e, g) =
+                    fast::filter_candidates_sorted_2d(&d, &p, |e, iv| keep(e, iv).map(|x| x.1));
+                return sorted(e, g);
+            }
+            // beyond the triangulation the candidates are needed anyway (as the edges that
+            // exist), so they are built once and filtered
             None => fast::filter_candidates_2d(&d, |e, iv, _| keep(e, iv)),
             Some(c) => {
                 let cand = fast::candidates_2d(&d);
@@ -711,6 +759,7 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         finish2(&d, e, g)
     };
     Ok(match kind {
+        Kind::Delaunay if !d.collinear => sorted(fast::dt_edges_sorted_2d(&d), vec![]),
         Kind::Delaunay => finish2(&d, dt_edges(), vec![]),
         Kind::Hull => {
             let h = &d.hull;
@@ -724,7 +773,16 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
             }
             finish2(&d, e, vec![])
         }
+        Kind::Gabriel if !d.collinear => sorted(fast::gabriel_lune_sorted_2d(&d, &p, None), vec![]),
         Kind::Gabriel => finish2(&d, fast::gabriel_2d(&d), vec![]),
+        // RNG and lune-based β with b ∈ (0, 1) (b = 0 is the Gabriel graph, b = 1 the strip)
+        Kind::Rng | Kind::BetaLune(_) if !d.collinear && lune_grid.is_some() => {
+            let lune = lune_grid.as_ref().map(|g| (lune_b.unwrap_or(0.5), g));
+            sorted(fast::gabriel_lune_sorted_2d(&d, &p, lune), vec![])
+        }
+        Kind::BetaLune(b) if !d.collinear && b == 0.0 => {
+            sorted(fast::gabriel_lune_sorted_2d(&d, &p, None), vec![])
+        }
         // the vertex fans give the Delaunay neighbours in parallel and in vertex order
         Kind::Emst if !d.collinear => finish2(
             &d,
@@ -737,7 +795,7 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         }
         Kind::Alpha(a) if a < 0.0 => {
             let rad = 1.0 / a.abs();
-            let e = fast::filter_candidates_2d(&d, |e, iv, _| {
+            let keep = |e: [u32; 2], iv: &CenterInterval| {
                 let len = dist2(&p[e[0] as usize], &p[e[1] as usize]).sqrt();
                 let h2 = rad * rad - 0.25 * len * len;
                 if h2 < 0.0 {
@@ -745,8 +803,19 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
                 }
                 let s = h2.sqrt() / len;
                 (iv.ball_empty(s) || iv.ball_empty(-s)).then_some(e)
-            });
-            finish2(&d, e, vec![])
+            };
+            if d.collinear {
+                finish2(
+                    &d,
+                    fast::filter_candidates_2d(&d, |e, iv, _| keep(e, iv)),
+                    vec![],
+                )
+            } else {
+                sorted(
+                    fast::filter_candidates_sorted_2d(&d, &p, |e, iv| keep(e, iv).map(|_| ())).0,
+                    vec![],
+                )
+            }
         }
         Kind::Alpha(a) => {
             // a = 0: hull; a > 0: discs containing everything, through two hull vertices
@@ -768,13 +837,12 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         // decided on the interval itself (not through the rounded γ-values), so that a
         // parameter equal to a γ-value is decided exactly
         Kind::Gamma(c0, c1) => gamma_kind(
-            &|iv| iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0),
+            &|iv, _| iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0),
             (c1 < 0.0).then_some(c1),
         ),
-        Kind::GammaRange(r) => gamma_kind(
-            &|iv| iv.gamma_values().is_some_and(|v| in_gamma_range(v, r)),
-            (r[2] < 0.0).then_some(r[2]),
-        ),
+        Kind::GammaRange(r) => {
+            gamma_kind(&|_, v| in_gamma_range(v, r), (r[2] < 0.0).then_some(r[2]))
+        }
         _ => {
             let needs_gabriel = matches!(kind, Kind::Rng | Kind::BetaLune(_) | Kind::Strip);
             let g = if needs_gabriel {

@@ -27,6 +27,7 @@
 
 use super::gamma::{offset_of, CenterInterval, EdgeFrame, TriFrame};
 use super::grid::Grid;
+use super::lune::LuneGrid;
 use crate::delaunay::d2::{Delaunay2, NONE};
 use crate::delaunay::d3::Delaunay3;
 use crate::geom::distance::dot_sign;
@@ -108,42 +109,182 @@ pub fn dt_edges(d: &Delaunay2) -> impl ParallelIterator<Item = DtEdge> + '_ {
     d.triangles
         .par_iter()
         .enumerate()
-        .flat_map_iter(move |(t, tri)| {
-            (0..3).filter_map(move |i| {
-                let nb = d.neighbors[t][i];
-                if nb != NONE && (nb as usize) < t {
-                    return None; // reported from the other side
+        .flat_map_iter(move |(t, _)| (0..3).filter_map(move |i| dt_edge_at(d, t, i)))
+}
+
+/// The edge of triangle `t` opposite its corner `i`, when `t` reports it (it is the smaller of
+/// the edge's triangles).
+#[inline]
+fn dt_edge_at(d: &Delaunay2, t: usize, i: usize) -> Option<DtEdge> {
+    let nb = d.neighbors[t][i];
+    if nb != NONE && (nb as usize) < t {
+        return None; // reported from the other side
+    }
+    let tri = d.triangles[t];
+    let (u, v) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+    let apex = if nb == NONE {
+        NONE
+    } else {
+        let n = d.triangles[nb as usize];
+        n.into_iter().find(|&x| x != u && x != v).unwrap_or(NONE)
+    };
+    let (t, nbt) = (t as u32, nb);
+    // the triangle is counter-clockwise: its own corner is left of u→v
+    Some(if u < v {
+        DtEdge {
+            a: u,
+            b: v,
+            left: tri[i],
+            right: apex,
+            t_left: t,
+            t_right: nbt,
+        }
+    } else {
+        DtEdge {
+            a: v,
+            b: u,
+            left: apex,
+            right: tri[i],
+            t_left: nbt,
+            t_right: t,
+        }
+    })
+}
+
+/// Triangles per parallel block of [`decide_sorted_2d`].
+const TRI_BLOCK: usize = 1 << 16;
+/// Triangles whose edges are listed before they are decided in [`decide_sorted_2d`].
+const SLICE: usize = 512;
+/// Consecutive smaller input indices per bucket of [`decide_sorted_2d`].
+const SPAN: usize = 8192;
+
+/// Decides every edge of a non-collinear 2D Delaunay triangulation once with `decide` (in
+/// parallel, in triangle order) and returns the kept edges as input indices `[i, j]`, i < j,
+/// sorted, with their values — without a separate sort of the whole edge list: each block of
+/// triangles drops its kept edges into buckets of [`SPAN`] consecutive smaller indices, and each
+/// bucket is then counting-sorted on its own straight into its place in the output (its counters
+/// stay in the cache; the runs of one smaller index are ordered by the larger). Every Delaunay
+/// edge is reported once and the input indices of distinct vertices differ, so there are no
+/// repeats. O(N + E) after the triangulation, plus the decisions.
+pub fn decide_sorted_2d<T: Copy + Default + Send + Sync>(
+    d: &Delaunay2,
+    decide: impl Fn(&DtEdge) -> Option<T> + Sync,
+) -> (Vec<[u32; 2]>, Vec<T>) {
+    let inp = &d.input_of_vertex;
+    let nbuckets = d.vertex_of_input.len().div_ceil(SPAN).max(1);
+    type Spread<T> = Vec<Vec<(u32, u32, T)>>;
+    let spread: Vec<Spread<T>> = d
+        .triangles
+        .par_chunks(TRI_BLOCK)
+        .enumerate()
+        .map(|(k, tris)| {
+            let mut out: Spread<T> = vec![Vec::new(); nbuckets];
+            // the edges of a slice of triangles first (independent loads of the neighbouring
+            // triangles, which lie anywhere in memory, overlap), then their decisions
+            let mut es = Vec::with_capacity(3 * SLICE);
+            let end = k * TRI_BLOCK + tris.len();
+            for s0 in (k * TRI_BLOCK..end).step_by(SLICE) {
+                es.clear();
+                for t in s0..(s0 + SLICE).min(end) {
+                    es.extend((0..3).filter_map(|i| dt_edge_at(d, t, i)));
                 }
-                let (u, v) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-                let apex = if nb == NONE {
-                    NONE
-                } else {
-                    let n = d.triangles[nb as usize];
-                    n.into_iter().find(|&x| x != u && x != v).unwrap_or(NONE)
-                };
-                let (t, nbt) = (t as u32, nb);
-                // the triangle is counter-clockwise: its own corner is left of u→v
-                Some(if u < v {
-                    DtEdge {
-                        a: u,
-                        b: v,
-                        left: tri[i],
-                        right: apex,
-                        t_left: t,
-                        t_right: nbt,
+                for e in &es {
+                    if let Some(x) = decide(e) {
+                        let (a, b) = (inp[e.a as usize], inp[e.b as usize]);
+                        let (a, b) = (a.min(b), a.max(b));
+                        out[a as usize / SPAN].push((a, b, x));
                     }
-                } else {
-                    DtEdge {
-                        a: v,
-                        b: u,
-                        left: apex,
-                        right: tri[i],
-                        t_left: nbt,
-                        t_right: t,
-                    }
-                })
-            })
+                }
+            }
+            out
         })
+        .collect();
+    let sizes: Vec<usize> = (0..nbuckets)
+        .map(|q| spread.iter().map(|s| s[q].len()).sum())
+        .collect();
+    let total: usize = sizes.iter().sum();
+    let mut edges = vec![[0u32; 2]; total];
+    let mut vals = vec![T::default(); total];
+    let mut parts = Vec::with_capacity(nbuckets);
+    let (mut re, mut rv) = (&mut edges[..], &mut vals[..]);
+    for &size in &sizes {
+        let (he, te) = re.split_at_mut(size);
+        let (hv, tv) = rv.split_at_mut(size);
+        parts.push((he, hv));
+        re = te;
+        rv = tv;
+    }
+    parts.into_par_iter().enumerate().for_each(|(q, (oe, ov))| {
+        let base = q * SPAN;
+        let mut start = vec![0u32; SPAN + 1];
+        for s in &spread {
+            for x in &s[q] {
+                start[x.0 as usize - base + 1] += 1;
+            }
+        }
+        for a in 0..SPAN {
+            start[a + 1] += start[a];
+        }
+        let mut fill = start.clone();
+        for s in &spread {
+            for &(a, b, x) in &s[q] {
+                let f = &mut fill[a as usize - base];
+                oe[*f as usize] = [a, b];
+                ov[*f as usize] = x;
+                *f += 1;
+            }
+        }
+        let mut long = Vec::new();
+        for a in 0..SPAN {
+            let (s0, s1) = (start[a] as usize, start[a + 1] as usize);
+            if s1 - s0 > 24 {
+                long.clear();
+                long.extend((s0..s1).map(|i| (oe[i], ov[i])));
+                long.sort_unstable_by_key(|x| x.0);
+                for (i, &(e, x)) in (s0..s1).zip(&long) {
+                    oe[i] = e;
+                    ov[i] = x;
+                }
+                continue;
+            }
+            for i in s0 + 1..s1 {
+                let mut j = i;
+                while j > s0 && oe[j - 1][1] > oe[j][1] {
+                    oe.swap(j - 1, j);
+                    ov.swap(j - 1, j);
+                    j -= 1;
+                }
+            }
+        }
+    });
+    (edges, vals)
+}
+
+/// Adds `extra` edges (vertex indices, none of them a Delaunay edge) to sorted input-index edges
+/// with their values, keeping the order (for the chords of cocircular groups; rare).
+pub fn merge_extra<T: Copy>(
+    d: &Delaunay2,
+    edges: &mut Vec<[u32; 2]>,
+    vals: &mut Vec<T>,
+    extra: Vec<([u32; 2], T)>,
+) {
+    if extra.is_empty() {
+        return;
+    }
+    let map = |v: u32| d.input_of_vertex[v as usize];
+    let mut all: Vec<([u32; 2], T)> = edges.iter().copied().zip(vals.iter().copied()).collect();
+    all.extend(extra.into_iter().map(|(e, x)| {
+        let (a, b) = (map(e[0]), map(e[1]));
+        ([a.min(b), a.max(b)], x)
+    }));
+    all.sort_unstable_by_key(|x| x.0);
+    all.dedup_by_key(|x| x.0);
+    edges.clear();
+    vals.clear();
+    for (e, x) in all {
+        edges.push(e);
+        vals.push(x);
+    }
 }
 
 /// The exact incircle sign of a Delaunay edge's two apexes (0: the four points are cocircular;
@@ -247,18 +388,94 @@ pub fn filter_candidates_2d<T: Send>(
         })
         .collect();
     for_each_group_chord(d, ties, |a, b, vs| {
-        let f = EdgeFrame::new(p[a as usize], p[b as usize]);
-        let mut iv = f.start();
-        for &x in vs {
-            if x != a && x != b {
-                f.add(&mut iv, p[x as usize]);
-            }
-        }
-        // all group points lie on one circle: the exact tie-breaking of `EdgeFrame::add`
-        // makes both ends its offset
-        out.extend(keep([a, b], &iv, false));
+        out.extend(keep([a, b], &chord_interval(&p, a, b, vs), false));
     });
     out
+}
+
+/// The interval of the chord a b of a cocircular group `vs` (V §3.3): all group points lie on
+/// one circle, so the exact tie-breaking of [`EdgeFrame::add`] makes both ends its offset.
+fn chord_interval(p: &[[f64; 2]], a: u32, b: u32, vs: &[u32]) -> CenterInterval {
+    let f = EdgeFrame::new(p[a as usize], p[b as usize]);
+    let mut iv = f.start();
+    for &x in vs {
+        if x != a && x != b {
+            f.add(&mut iv, p[x as usize]);
+        }
+    }
+    iv
+}
+
+/// [`filter_candidates_2d`] for a non-collinear triangulation with the kept edges as sorted
+/// input indices `[i, j]`, i < j, and their values, decided vertex star by vertex star
+/// ([`decide_sorted_2d`]; no sort of the whole edge list).
+pub fn filter_candidates_sorted_2d<T: Send + Sync + Copy + Default>(
+    d: &Delaunay2,
+    p: &[[f64; 2]],
+    keep: impl Fn([u32; 2], &CenterInterval) -> Option<T> + Sync + Send,
+) -> (Vec<[u32; 2]>, Vec<T>) {
+    let ties = Mutex::new(Vec::new());
+    let (mut edges, mut vals) = decide_sorted_2d(d, |e| {
+        let (iv, tie) = dt_interval(p, e);
+        if tie {
+            record_tie(&ties, e);
+        }
+        keep([e.a, e.b], &iv)
+    });
+    let mut extra = Vec::new();
+    for_each_group_chord(d, ties, |a, b, vs| {
+        if let Some(x) = keep([a, b], &chord_interval(p, a, b, vs)) {
+            extra.push(([a, b], x));
+        }
+    });
+    merge_extra(d, &mut edges, &mut vals, extra);
+    (edges, vals)
+}
+
+/// The Gabriel graph (V Def. 2.9; `lune` = None) or the lune-based β-skeleton (V Def. 2.16;
+/// `lune` = Some((b, grid)), b ∈ (0, 1), `grid` over the points) of a non-collinear
+/// triangulation as sorted input indices ([`decide_sorted_2d`]): a Delaunay edge must pass the
+/// Gabriel test of [`gabriel_2d`] and then have an empty lune ([`LuneGrid::lune_empty`], its
+/// apexes first); a chord of a cocircular group must pass the Gabriel test against its group and
+/// then have an empty lune (the lune β-skeleton ⊆ Gabriel graph, V Fig. 3.2). O(N·k) with k the
+/// points in a lune's box.
+pub fn gabriel_lune_sorted_2d(
+    d: &Delaunay2,
+    p: &[[f64; 2]],
+    lune: Option<(f64, &LuneGrid<'_>)>,
+) -> Vec<[u32; 2]> {
+    let outside = |a: u32, b: u32, x: u32| {
+        x == NONE || dot_sign(&p[a as usize], &p[b as usize], &p[x as usize]) >= 0
+    };
+    let at = |x: u32| (x != NONE).then(|| p[x as usize]);
+    let empty = |x: u32, y: u32, apexes: [u32; 2]| match lune {
+        Some((b, g)) => g.lune_empty(p[x as usize], p[y as usize], apexes.map(at), b),
+        None => true,
+    };
+    let ties = Mutex::new(Vec::new());
+    let (mut edges, mut vals) = decide_sorted_2d(d, |e| {
+        if apex_rel(p, e) == 0.0 {
+            record_tie(&ties, e);
+        }
+        let keep = outside(e.a, e.b, e.left)
+            && outside(e.a, e.b, e.right)
+            && empty(e.a, e.b, [e.left, e.right]);
+        keep.then_some(())
+    });
+    let mut extra = Vec::new();
+    for_each_group_chord(d, ties, |x, y, vs| {
+        if vs.iter().all(|&z| z == x || z == y || outside(x, y, z)) && empty(x, y, [NONE; 2]) {
+            extra.push(([x, y], ()));
+        }
+    });
+    merge_extra(d, &mut edges, &mut vals, extra);
+    edges
+}
+
+/// The edges of a non-collinear 2D Delaunay triangulation as sorted input indices `[i, j]`,
+/// i < j ([`decide_sorted_2d`]).
+pub fn dt_edges_sorted_2d(d: &Delaunay2) -> Vec<[u32; 2]> {
+    decide_sorted_2d(d, |_| Some(())).0
 }
 
 /// Builds the candidates from a 2D Delaunay triangulation ([`filter_candidates_2d`] keeping

@@ -783,3 +783,258 @@ mod emst_sig_oracle {
         assert_eq!(ord(p[2], p[3]), Ordering::Equal);
     }
 }
+
+/// RNG (V Def. 2.8), lune-based β-skeletons (V Def. 2.16) and the Gabriel graph (Def. 2.9)
+/// built from the Delaunay triangulation ([`super::lune`]) against the brute-force definitions,
+/// on sets that put points on, just inside and just outside lune boundaries, near the edges'
+/// ends, on integer grids and circles.
+mod lune_oracle {
+    use crate::delaunay::d2;
+    use crate::geom::distance::in_lune_ball;
+    use crate::geom::Point2;
+    use crate::graphs::{brute, graph_2d, Kind};
+    use proptest::prelude::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    const BS: [f64; 8] = [0.0, 0.05, 0.3, 0.5, 0.6, 0.8, 0.95, 0.999];
+
+    fn pts(p: &[[f64; 2]]) -> Vec<Point2> {
+        p.iter().map(|q| Point2::new(q[0], q[1])).collect()
+    }
+
+    /// The oracle on the first occurrences of the distinct points, in input indices.
+    fn oracle(p: &[[f64; 2]], f: impl Fn(&[[f64; 2]]) -> Vec<[u32; 2]>) -> Vec<[u32; 2]> {
+        let mut seen = std::collections::HashSet::new();
+        let first: Vec<(u32, [f64; 2])> = p
+            .iter()
+            .enumerate()
+            .filter(|(_, q)| seen.insert(q.map(|x| (x + 0.0).to_bits())))
+            .map(|(i, q)| (i as u32, *q))
+            .collect();
+        let q: Vec<[f64; 2]> = first.iter().map(|x| x.1).collect();
+        let mut out: Vec<[u32; 2]> = f(&q)
+            .into_iter()
+            .map(|[a, b]| {
+                let (a, b) = (first[a as usize].0, first[b as usize].0);
+                [a.min(b), a.max(b)]
+            })
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    fn check(name: &str, p: &[[f64; 2]]) {
+        let q = pts(p);
+        let got = |k: Kind| graph_2d(&q, k).expect("graph").edges;
+        assert_eq!(got(Kind::Rng), oracle(p, brute::rng), "{name}: RNG");
+        assert_eq!(got(Kind::Gabriel), oracle(p, brute::gabriel), "{name}: GG");
+        for b in BS {
+            assert_eq!(
+                got(Kind::BetaLune(b)),
+                oracle(p, |x| brute::beta_lune(x, b)),
+                "{name}: β-lune({b})"
+            );
+        }
+    }
+
+    fn random(n: usize, seed: u64) -> Vec<[f64; 2]> {
+        let mut r = ChaCha8Rng::seed_from_u64(seed);
+        (0..n).map(|_| [r.gen::<f64>(), r.gen::<f64>()]).collect()
+    }
+
+    fn up(x: f64) -> f64 {
+        f64::from_bits(x.to_bits() + 1)
+    }
+
+    fn down(x: f64) -> f64 {
+        f64::from_bits(x.to_bits() - 1)
+    }
+
+    /// Edges u v = (0,0)–(5,0) (copies shifted by 20) with points exactly on the RNG lune's
+    /// boundary (|xu| = 5 or |xv| = 5 with integer coordinates), one ulp inside and one outside,
+    /// and on the lunes' axis beyond the corners.
+    fn boundary_set() -> Vec<[f64; 2]> {
+        let on = [[3.0, 4.0], [4.0, 3.0], [2.0, 4.0], [1.0, 3.0]];
+        let mut p = Vec::new();
+        for (c, x) in on.iter().enumerate() {
+            let dx = 20.0 * c as f64;
+            for (k, y) in [x[1], down(x[1]), up(x[1])].into_iter().enumerate() {
+                let dy = 20.0 * k as f64;
+                p.push([dx, dy]);
+                p.push([dx + 5.0, dy]);
+                p.push([dx + x[0], dy + y]);
+                p.push([dx + x[0], dy - y - 0.5]);
+            }
+        }
+        // a lune corner region: (2.5, 5·√3/2) is irrational, so points a hair above and below
+        let h = 5.0 * 0.75f64.sqrt();
+        for (k, y) in [h, down(down(h)), up(up(h))].into_iter().enumerate() {
+            let dx = 100.0 + 20.0 * k as f64;
+            p.extend([[dx, 0.0], [dx + 5.0, 0.0], [dx + 2.5, y]]);
+        }
+        p
+    }
+
+    /// Points close to an edge's ends, on both sides of the lune's tangent at u (the normal
+    /// to uv) and of the ball boundary at v.
+    fn ends_set() -> Vec<[f64; 2]> {
+        let mut p = vec![[0.0, 0.0], [1.0, 0.0], [0.5, -3.0], [0.5, 3.0]];
+        for (i, e) in [1e-3, 1e-6, 1e-9].into_iter().enumerate() {
+            let y = 0.1 * (i + 1) as f64;
+            p.push([e * e, y * e]); // inside near u: (x − u)·(v − u) > 0
+            p.push([-e * e, -y * e]); // outside near u
+            p.push([1.0 + e * e, y * e]); // outside near v
+            p.push([1.0 - e * e, -y * e]); // inside near v
+        }
+        p
+    }
+
+    /// A regular polygon-like cocircular set (integer points on x² + y² = 25 and 65²) with the
+    /// centre, and some lattice points inside.
+    fn circles_set() -> Vec<[f64; 2]> {
+        let mut p: Vec<[f64; 2]> = Vec::new();
+        for (a, b) in [
+            (25.0, 60.0),
+            (39.0, 52.0),
+            (33.0, 56.0),
+            (16.0, 63.0),
+            (0.0, 65.0),
+        ] {
+            for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
+                p.push([sx * a, sy * b]);
+                p.push([sy * b, sx * a]);
+            }
+        }
+        p.push([0.0, 0.0]);
+        p.extend([
+            [3.0, 4.0],
+            [-4.0, 3.0],
+            [-3.0, -4.0],
+            [4.0, -3.0],
+            [5.0, 0.0],
+        ]);
+        p
+    }
+
+    #[test]
+    fn lune_graphs_match_the_definitions_on_random_sets() {
+        for (s, n) in [(1u64, 50usize), (2, 120), (3, 300), (4, 200), (5, 77)] {
+            check(&format!("random {n}"), &random(n, 100 + s));
+        }
+        // points snapped to a coarse lattice (ties, duplicates, cocircular quadruples)
+        let mut r = ChaCha8Rng::seed_from_u64(31);
+        let snapped: Vec<[f64; 2]> = (0..250)
+            .map(|_| [r.gen_range(0..13) as f64, r.gen_range(0..9) as f64])
+            .collect();
+        check("snapped", &snapped);
+        let grid: Vec<[f64; 2]> = (0..100)
+            .map(|i| [(i % 10) as f64, (i / 10) as f64])
+            .collect();
+        check("grid", &grid);
+        // a triangular lattice: every lune of a lattice edge has lattice points on its boundary
+        let tri: Vec<[f64; 2]> = (0..80)
+            .map(|i| {
+                let (x, y) = ((i % 10) as f64, (i / 10) as f64);
+                [2.0 * x + (y % 2.0), 2.0 * y]
+            })
+            .collect();
+        check("skewed lattice", &tri);
+    }
+
+    #[test]
+    fn lune_graphs_match_the_definitions_on_boundary_sets() {
+        check("lune boundaries", &boundary_set());
+        // the same, small and far from the origin (coordinates ≫ edge lengths)
+        let far: Vec<[f64; 2]> = boundary_set()
+            .iter()
+            .map(|q| [1e6 + q[0] * 1e-3, -3e6 + q[1] * 1e-3])
+            .collect();
+        check("lune boundaries far away", &far);
+        let mut r = ChaCha8Rng::seed_from_u64(41);
+        let far_random: Vec<[f64; 2]> = (0..150)
+            .map(|_| [1e9 + r.gen::<f64>() * 1e-4, 1e9 + r.gen::<f64>() * 1e-4])
+            .collect();
+        check("random far away", &far_random);
+        check("edge ends", &ends_set());
+        check("circles", &circles_set());
+        check(
+            "collinear",
+            &[[0.0, 0.0], [1.0, 1.0], [3.0, 3.0], [2.0, 2.0]],
+        );
+        check("two", &[[0.0, 0.0], [1.0, 0.0], [0.0, 0.0]]);
+    }
+
+    /// The Delaunay neighbours of an edge's two ends do not decide its lune: here u v is a
+    /// Delaunay (and Gabriel) edge, none of the neighbours of u or v lies in its RNG lune, but
+    /// x = (0.5, 0.86), hidden behind y1 and y2, does — so u v is no RNG edge.
+    #[test]
+    fn one_ring_is_not_enough() {
+        let p = [
+            [0.0, 0.0],   // u
+            [1.0, 0.0],   // v
+            [0.1, 0.6],   // y1
+            [0.9, 0.62],  // y2
+            [0.5, 0.86],  // x
+            [0.5, -0.95], // below
+        ];
+        let d = d2::triangulate(&pts(&p)).expect("triangulation");
+        let edges: Vec<[u32; 2]> = d
+            .edges()
+            .into_iter()
+            .map(|e| {
+                let (a, b) = (
+                    d.input_of_vertex[e[0] as usize],
+                    d.input_of_vertex[e[1] as usize],
+                );
+                [a.min(b), a.max(b)]
+            })
+            .collect();
+        assert!(edges.contains(&[0, 1]), "u v is a Delaunay edge");
+        let in_lune = |x: usize| {
+            in_lune_ball(&p[x], &p[0], &p[1], 0.5) && in_lune_ball(&p[x], &p[1], &p[0], 0.5)
+        };
+        for e in &edges {
+            for (end, other) in [(e[0], e[1]), (e[1], e[0])] {
+                if end <= 1 && other > 1 {
+                    assert!(
+                        !in_lune(other as usize),
+                        "neighbour {other} lies outside the lune"
+                    );
+                }
+            }
+        }
+        assert!(in_lune(4), "x lies in the lune");
+        let rng = graph_2d(&pts(&p), Kind::Rng).expect("graph").edges;
+        assert!(!rng.contains(&[0, 1]));
+        assert!(graph_2d(&pts(&p), Kind::Gabriel)
+            .expect("graph")
+            .edges
+            .contains(&[0, 1]));
+        check("one ring", &p);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(40))]
+        #[test]
+        fn lune_graphs_on_small_integer_sets(
+            raw in proptest::collection::vec((0i32..9, 0i32..7), 2..45),
+        ) {
+            let p: Vec<[f64; 2]> = raw.iter().map(|&(x, y)| [x as f64, y as f64]).collect();
+            check("proptest", &p);
+        }
+
+        #[test]
+        fn lune_graphs_on_jittered_sets(
+            raw in proptest::collection::vec((0i32..6, 0i32..6, -2i64..=2, -2i64..=2), 3..30),
+        ) {
+            // lattice points moved by a few ulps: near-ties on every lune boundary
+            let jit = |x: f64, k: i64| f64::from_bits((x.to_bits() as i64 + k) as u64);
+            let p: Vec<[f64; 2]> = raw
+                .iter()
+                .map(|&(x, y, a, b)| [jit(100.0 + x as f64, a), jit(100.0 + y as f64, b)])
+                .collect();
+            check("jittered", &p);
+        }
+    }
+}
