@@ -199,21 +199,52 @@ fn compare_keys(name: &str, m: &morpho::mesh::TriMesh) {
     }
 }
 
+/// CPU seconds of the whole process so far (user + system, /proc/self/stat; 10 ms ticks), so
+/// that phases can be compared on a machine shared with other jobs. 0 where unavailable.
+fn cpu_s() -> f64 {
+    let Ok(st) = std::fs::read_to_string("/proc/self/stat") else {
+        return 0.0;
+    };
+    // fields after the parenthesised command name; utime and stime are fields 14 and 15
+    let rest = st.rsplit_once(')').map_or("", |(_, r)| r);
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    // rest starts at field 3 (the state)
+    let field = |i: usize| f.get(i - 3).and_then(|x| x.parse::<f64>().ok());
+    match (field(14), field(15)) {
+        (Some(u), Some(s)) => (u + s) / 100.0,
+        _ => 0.0,
+    }
+}
+
+/// A wall-clock and CPU stopwatch for [`phases`].
+struct Watch(Instant, f64);
+
+impl Watch {
+    fn start() -> Self {
+        Watch(Instant::now(), cpu_s())
+    }
+    /// "wall s (cpu s)"
+    fn show(&self) -> String {
+        format!(
+            "{:.3} s (cpu {:.2})",
+            self.0.elapsed().as_secs_f64(),
+            cpu_s() - self.1
+        )
+    }
+}
+
 /// Phase timing of the fallback path (`phases` argument): constriction, engine construction,
 /// each run / local_gamma / augment step, final checks.
 fn phases(name: &str, pts: &[Point3]) {
     use morpho::boundary::fallback3::General3;
-    let t = Instant::now();
+    let t = Watch::start();
     let d = morpho::delaunay::d3::triangulate(pts).expect("triangulate");
-    let t_dt = t.elapsed().as_secs_f64();
-    let t = Instant::now();
+    let t_dt = t.show();
+    let t = Watch::start();
     let st = constrict_3d(&d, Until::All);
-    println!(
-        "{name}: delaunay {t_dt:.3} s, constriction {:.3} s",
-        t.elapsed().as_secs_f64()
-    );
+    println!("{name}: delaunay {t_dt}, constriction {}", t.show());
     let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
-    let t = Instant::now();
+    let t = Watch::start();
     // the region of boundary_3d_with (near_locked, depth 4)
     let mut on = vec![false; d.points.len()];
     for t in &st.triangles {
@@ -255,47 +286,43 @@ fn phases(name: &str, pts: &[Point3]) {
         }
     }
     let mut g = General3::new(&pos, &st.triangles, &live, &[]);
-    println!(
-        "  new: {:.3} s ({} live)",
-        t.elapsed().as_secs_f64(),
-        live.len()
-    );
-    let t = Instant::now();
+    println!("  new: {} ({} live)", t.show(), live.len());
+    let t = Watch::start();
     g.run();
     println!(
-        "  run0: {:.3} s, bv {}/{}",
-        t.elapsed().as_secs_f64(),
+        "  run0: {}, bv {}/{}",
+        t.show(),
         g.boundary_vertices,
         pos.len()
     );
     let mut step = 1;
     while !g.done() && step <= 10 {
         let c = -(step as f64) / 10.0;
-        let t = Instant::now();
+        let t = Watch::start();
         let extra = g.local_gamma(c, 16);
-        let t_lg = t.elapsed().as_secs_f64();
-        let t = Instant::now();
+        let t_lg = t.show();
+        let t = Watch::start();
         let a = g.augment(&extra);
-        let t_au = t.elapsed().as_secs_f64();
-        let t = Instant::now();
+        let t_au = t.show();
+        let t = Watch::start();
         if a > 0 {
             g.run();
         }
         println!(
-            "  c {c}: local_gamma {t_lg:.3} s ({} tris), augment {t_au:.3} s ({a} added), run {:.3} s, bv {}/{}",
+            "  c {c}: local_gamma {t_lg} ({} tris), augment {t_au} ({a} added), run {}, bv {}/{}",
             extra.len(),
-            t.elapsed().as_secs_f64(),
+            t.show(),
             g.boundary_vertices,
             pos.len()
         );
         step += 1;
     }
-    let t = Instant::now();
+    let t = Watch::start();
     let b = g.boundary();
     let si = validity3::self_intersections(&pos, &b, 10);
     println!(
-        "  final check {:.3} s ({} intersections), iterations {}",
-        t.elapsed().as_secs_f64(),
+        "  final check {} ({} intersections), iterations {}",
+        t.show(),
         si.len(),
         g.iterations
     );

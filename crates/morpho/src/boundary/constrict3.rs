@@ -289,17 +289,11 @@ pub fn removal_key(key: Key, p: [[f64; 3]; 4], boundary: u8, big_r: f64) -> f64 
     }
 }
 
-fn ek(a: u32, b: u32) -> u64 {
-    let (a, b) = if a < b { (a, b) } else { (b, a) };
-    ((a as u64) << 32) | b as u64
-}
-
 struct State<'a> {
     d: &'a Delaunay3,
     p: Vec<[f64; 3]>,
     alive: Vec<bool>,
     vcount: Vec<u32>,
-    ecount: IdMap<u64, u32>,
     nbv: usize,
     keep: IdSet<[u32; 3]>,
     key: Key,
@@ -330,6 +324,23 @@ impl State<'_> {
 
     /// The key of removing tetrahedron t with boundary mask m, or `None` when not removable.
     fn key(&self, t: usize, m: u8) -> Option<f64> {
+        if !self.removable(t, m) {
+            return None;
+        }
+        let p = self.d.tets[t].map(|x| self.p[x as usize]);
+        // the circumradius is computed only for the γ-indicator
+        let r = match self.key {
+            Key::Gamma => self.d.circumsphere(t as u32).1,
+            Key::MinAreaChange => 0.0,
+        };
+        Some(removal_key(self.key, p, m, r))
+    }
+
+    /// Tetrahedron t with boundary faces m (bit f: the face opposite corner f) may be removed
+    /// (V §5.3): one boundary face whose opposite vertex is not on the boundary, or two whose
+    /// opposite edge (joining the corners opposite them) is not on the boundary; never a keep
+    /// triangle (V §5.7), never three or four faces.
+    fn removable(&self, t: usize, m: u8) -> bool {
         let v = self.d.tets[t];
         let mut faces = [0usize; 4];
         let mut nf = 0;
@@ -345,45 +356,18 @@ impl State<'_> {
                 .iter()
                 .any(|&f| self.keep.contains(&sorted3(self.face(t, f))))
         {
-            return None; // a keep triangle is never deleted (V §5.7)
+            return false;
         }
-        if nf > 2 {
-            return None;
-        }
-        // the circumradius is computed only for the γ-indicator
-        let value = || -> f64 {
-            let p = v.map(|x| self.p[x as usize]);
-            let r = match self.key {
-                Key::Gamma => self.d.circumsphere(t as u32).1,
-                Key::MinAreaChange => 0.0,
-            };
-            removal_key(self.key, p, m, r)
-        };
-        match faces.len() {
-            1 => {
-                let f = faces[0];
-                if self.vcount[v[f] as usize] > 0 {
-                    None
-                } else {
-                    Some(value())
-                }
-            }
-            2 => {
-                // opposite edge joins the two corners opposite the boundary faces
-                let (a, b) = (v[faces[0]], v[faces[1]]);
-                if self.ecount.get(&ek(a, b)).copied().unwrap_or(0) > 0 {
-                    None
-                } else {
-                    Some(value())
-                }
-            }
-            _ => None,
+        match *faces {
+            [f] => self.vcount[v[f] as usize] == 0,
+            [f, g] => !self.edge_on_boundary(t as u32, v[f], v[g]),
+            _ => false,
         }
     }
 
     fn add_face(&mut self, f: [u32; 3], delta: i32) {
-        for k in 0..3 {
-            let v = f[k] as usize;
+        for &v in &f {
+            let v = v as usize;
             let before = self.vcount[v];
             self.vcount[v] = (before as i64 + delta as i64).max(0) as u32;
             if before == 0 && self.vcount[v] > 0 {
@@ -391,13 +375,51 @@ impl State<'_> {
             } else if before > 0 && self.vcount[v] == 0 {
                 self.nbv -= 1;
             }
-            let e = ek(f[k], f[(k + 1) % 3]);
-            let c = self.ecount.entry(e).or_insert(0);
-            *c = (*c as i64 + delta as i64).max(0) as u32;
-            if *c == 0 {
-                self.ecount.remove(&e);
-            }
         }
+    }
+
+    /// Edge ab of the live tetrahedron t lies on the boundary: some face containing ab
+    /// separates a live tetrahedron from a removed one or from the outside. Rotating around
+    /// ab from t through live tetrahedra either meets a removed one or the hull (on the
+    /// boundary) or comes back to t (every tetrahedron around ab is live: interior edge).
+    fn edge_on_boundary(&self, t: u32, a: u32, b: u32) -> bool {
+        let d = self.d;
+        // the two faces of a tetrahedron containing ab: opposite its two other corners
+        let ab_faces = |t: u32| -> [usize; 2] {
+            let v = d.tets[t as usize];
+            let mut o = [0; 2];
+            let mut k = 0;
+            for (i, &x) in v.iter().enumerate() {
+                if x != a && x != b && k < 2 {
+                    o[k] = i;
+                    k += 1;
+                }
+            }
+            o
+        };
+        let out = |n: u32| n == NONE || !self.alive[n as usize];
+        let [f0, f1] = ab_faces(t);
+        if out(d.neighbors[t as usize][f0]) || out(d.neighbors[t as usize][f1]) {
+            return true;
+        }
+        let (mut prev, mut cur) = (t, d.neighbors[t as usize][f0]);
+        for _ in 0..d.tets.len() {
+            let [g0, g1] = ab_faces(cur);
+            let n0 = d.neighbors[cur as usize][g0];
+            let next = if n0 != prev {
+                n0
+            } else {
+                d.neighbors[cur as usize][g1]
+            };
+            if next == t {
+                return false;
+            }
+            if out(next) {
+                return true;
+            }
+            (prev, cur) = (cur, next);
+        }
+        true
     }
 }
 
@@ -470,7 +492,6 @@ pub fn constrict_3d_with(
         p: d.points.iter().map(|q| [q.x, q.y, q.z]).collect(),
         alive: vec![true; nt],
         vcount: vec![0; nv],
-        ecount: IdMap::default(),
         nbv: 0,
         keep: keep.iter().map(|&f| sorted3(f)).collect(),
         key,
@@ -506,7 +527,7 @@ pub fn constrict_3d_with(
     while until == Until::Locked || st.nbv < nv {
         let Some(en) = heap.pop() else { break };
         let (t, mask) = (en.item.0 as usize, en.item.1);
-        if !st.alive[t] || st.mask(t) != mask || st.key(t, mask).is_none() {
+        if !st.alive[t] || st.mask(t) != mask || !st.removable(t, mask) {
             continue;
         }
         let m = mask;
@@ -578,6 +599,63 @@ mod tests {
             (rhs[0] * cross3(b, c)[2] + rhs[1] * cross3(c, a)[2] + rhs[2] * cross3(a, b)[2]) / det,
         ];
         [x[0] + p[0][0], x[1] + p[0][1], x[2] + p[0][2]]
+    }
+
+    /// `edge_on_boundary` (a rotation around the edge) against the definition: some face
+    /// containing ab of some live tetrahedron lies on the hull or next to a removed one. On
+    /// random and integer-grid point sets with random removal sets (in order of index, so the
+    /// live set is arbitrary, not only what constriction leaves).
+    #[test]
+    fn edge_on_boundary_matches_the_definition() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let mut seen = [0usize; 2];
+        for case in 0..12 {
+            let pts: Vec<crate::geom::Point3> = (0..80)
+                .map(|_| {
+                    if case % 2 == 0 {
+                        crate::geom::Point3::new(rng.gen(), rng.gen(), rng.gen())
+                    } else {
+                        let g = |r: &mut rand_chacha::ChaCha8Rng| r.gen_range(0..4) as f64;
+                        crate::geom::Point3::new(g(&mut rng), g(&mut rng), g(&mut rng))
+                    }
+                })
+                .collect();
+            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+            let nt = d.tets.len();
+            let kill = [0.0, 0.2, 0.5][case % 3];
+            let st = State {
+                d: &d,
+                p: d.points.iter().map(|q| [q.x, q.y, q.z]).collect(),
+                alive: (0..nt).map(|_| !rng.gen_bool(kill)).collect(),
+                vcount: vec![0; d.points.len()],
+                nbv: 0,
+                keep: IdSet::default(),
+                key: Key::Gamma,
+            };
+            let brute = |a: u32, b: u32| {
+                (0..nt).filter(|&t| st.alive[t]).any(|t| {
+                    (0..4).any(|f| {
+                        let fc = st.face(t, f);
+                        let n = d.neighbors[t][f];
+                        fc.contains(&a) && fc.contains(&b) && (n == NONE || !st.alive[n as usize])
+                    })
+                })
+            };
+            for t in 0..nt {
+                if !st.alive[t] {
+                    continue;
+                }
+                let v = d.tets[t];
+                for i in 0..4 {
+                    for j in i + 1..4 {
+                        let want = brute(v[i], v[j]);
+                        assert_eq!(st.edge_on_boundary(t as u32, v[i], v[j]), want);
+                        seen[want as usize] += 1;
+                    }
+                }
+            }
+        }
+        assert!(seen[0] > 100 && seen[1] > 100, "{seen:?}");
     }
 
     #[test]

@@ -144,6 +144,7 @@ fn circumradius(a: P, b: P, c: P, d: P) -> f64 {
 /// Uniform hash grid of ids by bounding box. An id whose box spans more than
 /// [`Grid::MAX_SPAN`] cells goes to a coarser grid (cell × [`Grid::COARSEN`]), up to
 /// [`Grid::LEVELS`] levels; beyond that to a list returned by every query.
+#[derive(PartialEq, Debug)]
 struct Grid {
     lo: P,
     cell: f64,
@@ -213,6 +214,66 @@ impl Grid {
             }
         }
     }
+    /// Inserts many boxes at once, in the given order; the same grid as [`Grid::insert`] one
+    /// by one (every cell lists its ids in insertion order, as long as the ids increase along
+    /// `items`), with each cell's list allocated once.
+    fn insert_many(&mut self, items: impl Iterator<Item = (u32, P, P)>) {
+        use rayon::prelude::*;
+        // entries: the cell's x, y, z (21 bits each, when they fit) above the id, so that one
+        // parallel integer sort orders them by cell and then by id
+        const BITS: u32 = 21;
+        let fits = |c: i64| (0..1 << BITS).contains(&c);
+        let mut boxes: Vec<(u32, [i64; 3], [i64; 3])> = Vec::new();
+        let mut all_fit = true;
+        for (id, lo, hi) in items {
+            let (a, b) = self.range(lo, hi);
+            let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
+            if span > Self::MAX_SPAN {
+                self.insert(id, lo, hi);
+                continue;
+            }
+            all_fit &= a.iter().chain(&b).all(|&c| fits(c));
+            boxes.push((id, a, b));
+        }
+        let cells_of = |&(id, a, b): &(u32, [i64; 3], [i64; 3])| {
+            (a[0]..=b[0]).flat_map(move |x| {
+                (a[1]..=b[1]).flat_map(move |y| (a[2]..=b[2]).map(move |z| ((x, y, z), id)))
+            })
+        };
+        let mut add_run = |cell: (i64, i64, i64), ids: &mut dyn Iterator<Item = u32>, n: usize| {
+            let v = self.cells.entry(cell).or_default();
+            v.reserve_exact(n);
+            v.extend(ids);
+        };
+        if all_fit {
+            let mut e: Vec<u128> = boxes
+                .iter()
+                .flat_map(cells_of)
+                .map(|((x, y, z), id)| {
+                    let cell = (x as u128) << (2 * BITS) | (y as u128) << BITS | z as u128;
+                    cell << 32 | id as u128
+                })
+                .collect();
+            e.par_sort_unstable();
+            let mask = (1u128 << BITS) - 1;
+            for run in e.chunk_by(|a, b| a >> 32 == b >> 32) {
+                let cell = run[0] >> 32;
+                let c = |k: u32| (cell >> (k * BITS) & mask) as i64;
+                add_run(
+                    (c(2), c(1), c(0)),
+                    &mut run.iter().map(|&x| x as u32),
+                    run.len(),
+                );
+            }
+        } else {
+            let mut e: Vec<((i64, i64, i64), u32)> = boxes.iter().flat_map(cells_of).collect();
+            e.par_sort_unstable();
+            for run in e.chunk_by(|a, b| a.0 == b.0) {
+                add_run(run[0].0, &mut run.iter().map(|x| x.1), run.len());
+            }
+        }
+    }
+
     /// Calls `f` on the ids whose cells meet the box (an id may come more than once) until it
     /// returns true; returns whether it did.
     fn any_in_box(&self, lo: P, hi: P, mut f: impl FnMut(u32) -> bool) -> bool {
@@ -506,6 +567,15 @@ impl<'a> General3<'a> {
     /// the live triangles `tris` (all inside the closed region; the boundary triangles are
     /// added to them). `keep` triangles are never deleted.
     pub fn new(p: &'a [P], boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) -> Self {
+        let mut g = Self::blank(p, boundary, tris, keep);
+        g.build(boundary, tris, keep);
+        g.track = true;
+        g.push_all();
+        g
+    }
+
+    /// The engine's tables before anything is added (cell size from the given triangles).
+    fn blank(p: &'a [P], boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) -> Self {
         let (lo, hi) = bbox(p);
         let n = p.len().max(1);
         // cell: twice the median edge length of the triangles (points of a scanned surface
@@ -535,7 +605,7 @@ impl<'a> General3<'a> {
         if cell <= 0.0 || !cell.is_finite() {
             cell = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max).max(1.0) / (n as f64).sqrt();
         }
-        let mut g = General3 {
+        General3 {
             p,
             tris: Vec::new(),
             live: Vec::new(),
@@ -567,34 +637,124 @@ impl<'a> General3<'a> {
             boundary_vertices: 0,
             iterations: 0,
             added: 0,
-        };
+        }
+    }
+
+    /// The initial state of [`General3::new`], in bulk: the same as adding every boundary
+    /// face (boundary grid only), then every live triangle, then marking the boundary faces —
+    /// ids, edge lists and grid cells in that order — but with every list allocated once and
+    /// the independent tables built in parallel.
+    fn build(&mut self, boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) {
+        use rayon::prelude::*;
         let nt = boundary.len() + tris.len() + keep.len();
-        g.tris.reserve(nt);
-        g.live.reserve(nt);
-        g.bflag.reserve(nt);
-        g.tbox.reserve(nt);
-        g.in_bgrid.reserve(nt);
-        g.id.reserve(nt);
-        g.eadj.reserve(3 * nt / 2);
-        g.bnext.reserve(3 * boundary.len());
-        g.vgrid.cells.reserve(p.len());
-        g.bgrid.cells.reserve(boundary.len());
-        for (v, &q) in p.iter().enumerate() {
-            g.vgrid.insert(v as u32, q, q);
+        self.id.reserve(nt);
+        self.tris.reserve(nt);
+        // ids: boundary faces first (not in the grid of live triangles), no repeats
+        let mut n_boundary_ids = 0;
+        for (k, &t) in boundary.iter().chain(tris).chain(keep).enumerate() {
+            if k == boundary.len() {
+                n_boundary_ids = self.tris.len();
+            }
+            let s = sorted3(t);
+            if s[0] == s[1] || s[1] == s[2] {
+                continue;
+            }
+            if let std::collections::hash_map::Entry::Vacant(e) = self.id.entry(s) {
+                e.insert(self.tris.len() as u32);
+                self.tris.push(s);
+            }
         }
-        // boundary faces first: they go to the boundary grid only
-        for &t in boundary {
-            g.add_tri_grid(t, false);
+        if tris.is_empty() && keep.is_empty() {
+            n_boundary_ids = self.tris.len();
         }
-        for &t in tris.iter().chain(keep) {
-            g.add_tri(t);
+        let n = self.tris.len();
+        self.live = vec![true; n];
+        self.bflag = vec![false; n];
+        self.in_bgrid = vec![false; n];
+        let p = self.p;
+        self.tbox = self
+            .tris
+            .par_iter()
+            .map(|s| bbox(&s.map(|v| p[v as usize])))
+            .collect();
+        // boundary faces in the boundary grid, in the order of the list
+        let mut bids = Vec::with_capacity(boundary.len());
+        for f in boundary {
+            if let Some(&i) = self.id.get(&sorted3(*f)) {
+                self.bflag[i as usize] = true;
+                if !self.in_bgrid[i as usize] {
+                    self.in_bgrid[i as usize] = true;
+                    bids.push(i);
+                }
+            }
         }
-        for &f in boundary {
-            g.set_boundary(f, true);
-        }
-        g.track = true;
-        g.push_all();
-        g
+        let (tl, tbox) = (&self.tris, &self.tbox);
+        let (eadj, bnext, vcount, bv, vgrid, tgrid, bgrid) = (
+            &mut self.eadj,
+            &mut self.bnext,
+            &mut self.vcount,
+            &mut self.boundary_vertices,
+            &mut self.vgrid,
+            &mut self.tgrid,
+            &mut self.bgrid,
+        );
+        rayon::join(
+            || {
+                // edge → third vertices, in id order
+                let mut e: Vec<(u64, u32, u32)> = tl
+                    .par_iter()
+                    .enumerate()
+                    .flat_map_iter(|(i, s)| {
+                        (0..3).map(move |k| {
+                            let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
+                            (ek(a, b), i as u32, c)
+                        })
+                    })
+                    .collect();
+                e.par_sort_unstable();
+                eadj.reserve(e.len() / 2);
+                for run in e.chunk_by(|a, b| a.0 == b.0) {
+                    eadj.insert(run[0].0, run.iter().map(|x| x.2).collect());
+                }
+            },
+            || {
+                rayon::join(
+                    || {
+                        rayon::join(
+                            || {
+                                tgrid.insert_many(
+                                    (n_boundary_ids..n).map(|i| (i as u32, tbox[i].0, tbox[i].1)),
+                                );
+                            },
+                            || {
+                                bgrid.insert_many(bids.iter().map(|&i| {
+                                    let (lo, hi) = tbox[i as usize];
+                                    (i, lo, hi)
+                                }));
+                            },
+                        )
+                    },
+                    || {
+                        vgrid.cells.reserve(p.len());
+                        for (v, &q) in p.iter().enumerate() {
+                            vgrid.insert(v as u32, q, q);
+                        }
+                        bnext.reserve(3 * boundary.len());
+                        for f in boundary {
+                            for k in 0..3 {
+                                let (a, b, c) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+                                bnext.insert(dk(a, b), c);
+                                let v = a as usize;
+                                if vcount[v] == 0 {
+                                    *bv += 1;
+                                }
+                                vcount[v] += 1;
+                            }
+                        }
+                    },
+                );
+            },
+        );
     }
 
     /// Records a mutation inside the box (see `track`).
@@ -1512,6 +1672,66 @@ mod tests {
             }
         }
         false
+    }
+
+    /// The bulk construction (`build`) gives exactly the tables of adding the triangles one
+    /// by one as the engine does later (`add_tri_grid`, `set_boundary`): same ids, edge lists
+    /// in the same order, same grid cells (coarse levels included) — on a dense sphere with a
+    /// few far points (big triangles on coarse levels), with repeated and degenerate triangles
+    /// among the live ones.
+    #[test]
+    fn bulk_construction_equals_one_by_one() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(31);
+        let mut pts: Vec<crate::geom::Point3> = (0..1500)
+            .map(|_| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-9);
+                let s = 1.0 + rng.gen_range(0.0..0.01);
+                crate::geom::Point3::new(v[0] / r * s, v[1] / r * s, v[2] / r * s)
+            })
+            .collect();
+        for k in 0..4 {
+            let f = 40.0 * (k as f64 + 1.0);
+            pts.push(crate::geom::Point3::new(f, -f / 2.0, f / 3.0));
+        }
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let st =
+            crate::boundary::constrict3::constrict_3d(&d, crate::boundary::constrict3::Until::All);
+        let mut live = crate::graphs::fast::candidates_3d(&d).triangles;
+        live.extend_from_slice(&st.triangles[..50]);
+        live.push([3, 3, 7]);
+        live.push(live[10]);
+        let keep = vec![live[20]];
+        let mut bulk = General3::blank(&pos, &st.triangles, &live, &keep);
+        bulk.build(&st.triangles, &live, &keep);
+        let mut one = General3::blank(&pos, &st.triangles, &live, &keep);
+        for (v, &q) in pos.iter().enumerate() {
+            one.vgrid.insert(v as u32, q, q);
+        }
+        for &t in &st.triangles {
+            one.add_tri_grid(t, false);
+        }
+        for &t in live.iter().chain(&keep) {
+            one.add_tri(t);
+        }
+        for &f in &st.triangles {
+            one.set_boundary(f, true);
+        }
+        assert!(bulk.tgrid.coarse.is_some(), "no big triangles in the test");
+        assert_eq!(bulk.tris, one.tris);
+        assert_eq!(bulk.live, one.live);
+        assert_eq!(bulk.bflag, one.bflag);
+        assert_eq!(bulk.in_bgrid, one.in_bgrid);
+        assert_eq!(bulk.tbox, one.tbox);
+        assert_eq!(bulk.id, one.id);
+        assert_eq!(bulk.eadj, one.eadj);
+        assert_eq!(bulk.bnext, one.bnext);
+        assert_eq!(bulk.vcount, one.vcount);
+        assert_eq!(bulk.boundary_vertices, one.boundary_vertices);
+        assert_eq!(bulk.tgrid, one.tgrid);
+        assert_eq!(bulk.bgrid, one.bgrid);
+        assert_eq!(bulk.vgrid, one.vgrid);
     }
 
     #[test]
