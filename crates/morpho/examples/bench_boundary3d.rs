@@ -83,6 +83,25 @@ fn vm_hwm_mb() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
+/// CPU time (user + system) of the whole process so far, all threads (`/proc/self/stat`,
+/// clock ticks of 1/100 s); NaN where unavailable.
+fn cpu_seconds() -> f64 {
+    let s = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // fields after the command name (which is in parentheses): state is field 3, utime 14
+    let rest = s.rsplit_once(')').map_or("", |(_, r)| r);
+    let f: Vec<f64> = rest
+        .split_whitespace()
+        .skip(11)
+        .take(2)
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    if f.len() == 2 {
+        (f[0] + f[1]) / 100.0
+    } else {
+        f64::NAN
+    }
+}
+
 fn used_vertices(m: &morpho::mesh::TriMesh) -> Vec<Point3> {
     let mut used = vec![false; m.positions.len()];
     for t in &m.triangles {
@@ -328,12 +347,13 @@ fn main() {
         let c = constrict_3d(&d, Until::All);
         let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
         for _ in 0..3 {
-            let t = Instant::now();
+            let (t, cpu) = (Instant::now(), cpu_seconds());
             let n = validity3::self_intersections(&pos, &c.triangles, 10).len();
             println!(
-                "check {} triangles: {:.3} s ({n})",
+                "check {} triangles: {:.3} s wall, {:.2} s CPU ({n})",
                 c.triangles.len(),
-                t.elapsed().as_secs_f64()
+                t.elapsed().as_secs_f64(),
+                cpu_seconds() - cpu
             );
         }
         return;

@@ -364,7 +364,10 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
     for c in 0..ncells {
         start[c + 1] += start[c];
     }
+    // per entry, which coordinates of the cell equal those of the triangle's low cell (bit k
+    // for axis k): a pair sharing the cell owns it iff the two masks cover all three axes
     let mut ids = vec![0u32; start[ncells]];
+    let mut masks = vec![0u8; start[ncells]];
     {
         let mut fill = start.clone();
         for (i, r) in ranges.iter().enumerate() {
@@ -374,6 +377,9 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
                         for x in mn[0]..=mx[0] {
                             let c = key([x, y, z]) as usize;
                             ids[fill[c]] = i as u32;
+                            masks[fill[c]] = (x == mn[0]) as u8
+                                | ((y == mn[1]) as u8) << 1
+                                | ((z == mn[2]) as u8) << 2;
                             fill[c] += 1;
                         }
                     }
@@ -381,11 +387,6 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
             }
         }
     }
-    // the low cell of every (non-big) triangle
-    let low: Vec<[u32; 3]> = ranges
-        .iter()
-        .map(|r| r.map_or([0; 3], |(mn, _)| mn.map(|x| x as u32)))
-        .collect();
     drop(ranges);
     let cell_ids = |k: u64| -> &[u32] {
         let k = k as usize;
@@ -395,44 +396,78 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
         let ((al, ah), (bl, bh)) = (boxes[a as usize], boxes[b as usize]);
         (0..3).all(|k| al[k] <= bh[k] && bl[k] <= ah[k])
     };
-    let planes: Vec<PlaneFilter> = tris
+    // corners, vertex ids and plane filter of every triangle side by side, in the spatially
+    // coherent order (the pair test then reads two records instead of five scattered ones)
+    let recs: Vec<TriRec> = tris
         .par_iter()
-        .map(|t| PlaneFilter::new(t.map(|v| pos[v as usize])))
+        .map(|&t| TriRec::new(t, t.map(|v| pos[v as usize])))
         .collect();
-    let bad = |a: u32, b: u32| {
-        let (a, b) = (a as usize, b as usize);
-        pair_meets_filtered(pos, tris[a], tris[b], &planes[a], &planes[b])
-    };
+    let bad = |a: u32, b: u32| pair_meets_filtered(&recs[a as usize], &recs[b as usize]);
     let busy: Vec<u64> = (0..ncells as u64)
         .filter(|&c| start[c as usize + 1] - start[c as usize] >= 2)
         .collect();
+    // Each pair of triangles sharing a cell is tested in the cell of the low corner of the
+    // boxes' intersection, i.e. (cidx is monotone) the larger of the two low cells axis by
+    // axis: the cell where, on every axis, one of the two starts. Grouping a cell's entries
+    // by their masks enumerates exactly those pairs (masks ma | mb == 0b111).
     let mut bad_pairs: Vec<(u32, u32)> = busy
         .par_iter()
         .with_min_len(64)
-        .flat_map_iter(|&cell_key| {
-            let run = cell_ids(cell_key);
+        .map_init(Vec::new, |buf: &mut Vec<u32>, &cell_key| {
+            let (s, e) = (start[cell_key as usize], start[cell_key as usize + 1]);
+            let mut at = [0usize; 9];
+            for &m in &masks[s..e] {
+                at[m as usize + 1] += 1;
+            }
+            for m in 0..8 {
+                at[m + 1] += at[m];
+            }
+            buf.clear();
+            buf.resize(e - s, 0);
+            let mut fill = at;
+            for (&id, &m) in ids[s..e].iter().zip(&masks[s..e]) {
+                buf[fill[m as usize]] = id;
+                fill[m as usize] += 1;
+            }
+            let group = |m: usize| &buf[at[m]..at[m + 1]];
             let mut found = Vec::new();
-            for (a_i, &a) in run.iter().enumerate() {
-                let ma = low[a as usize];
-                for &b in &run[a_i + 1..] {
-                    // each pair once: in the cell of the low corner of the boxes' intersection
-                    // (cidx is monotone: the larger of the two low cells, axis by axis)
-                    let mb = low[b as usize];
-                    let own = key(std::array::from_fn(|k| ma[k].max(mb[k]) as u64));
-                    if own == cell_key && overlap(a, b) && bad(a, b) {
-                        found.push((a.min(b), a.max(b)));
+            let mut test = |a: u32, b: u32| {
+                if overlap(a, b) && bad(a, b) {
+                    found.push((a.min(b), a.max(b)));
+                }
+            };
+            let full = group(7);
+            for (i, &a) in full.iter().enumerate() {
+                for &b in &full[i + 1..] {
+                    test(a, b);
+                }
+            }
+            for ma in 0..7 {
+                for mb in ma + 1..8 {
+                    if ma | mb == 7 {
+                        for &a in group(ma) {
+                            for &b in group(mb) {
+                                test(a, b);
+                            }
+                        }
                     }
                 }
             }
             found
         })
+        .flat_map_iter(|f| f)
         .collect();
     // big triangles: against each other by boxes, against the grid through the cells their
     // plane passes (floating-point culling with a generous margin; the exact test decides)
+    // (a triangle spanning several cells of the walk is taken once: `seen[b] == a + 1`)
     let big_bad: Vec<(u32, u32)> = big
         .par_iter()
         .enumerate()
-        .flat_map_iter(|(i, &a)| {
+        .with_min_len(64)
+        .map_init(Vec::new, |seen: &mut Vec<u32>, (i, &a)| {
+            if seen.is_empty() {
+                seen.resize(tris.len(), 0);
+            }
             let mut cand: Vec<u32> = big[i + 1..]
                 .iter()
                 .copied()
@@ -482,18 +517,24 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
                         c[u] = cu;
                         c[v] = cv;
                         c[w] = cw;
-                        grid_cand
-                            .extend(cell_ids(key(c)).iter().copied().filter(|&b| overlap(a, b)));
+                        for &b in cell_ids(key(c)) {
+                            if seen[b as usize] != a + 1 {
+                                seen[b as usize] = a + 1;
+                                if overlap(a, b) {
+                                    grid_cand.push(b);
+                                }
+                            }
+                        }
                     }
                 }
             }
-            grid_cand.sort_unstable();
-            grid_cand.dedup();
             cand.extend(grid_cand);
-            cand.into_iter()
-                .filter(move |&b| bad(a, b))
-                .map(move |b| (a.min(b), a.max(b)))
+            cand.retain(|&b| bad(a, b));
+            cand.iter()
+                .map(|&b| (a.min(b), a.max(b)))
+                .collect::<Vec<_>>()
         })
+        .flat_map_iter(|c| c)
         .collect();
     bad_pairs.extend(big_bad);
     bad_pairs.sort_unstable();
@@ -574,30 +615,57 @@ impl PlaneFilter {
     }
 }
 
+/// One triangle for [`pair_meets_filtered`]: its vertex ids, its other two corners and the
+/// plane filter (which holds the first corner).
+#[derive(Clone, Copy)]
+pub(crate) struct TriRec {
+    f: PlaneFilter,
+    bc: [P; 2],
+    v: [u32; 3],
+}
+
+impl TriRec {
+    pub(crate) fn new(v: [u32; 3], p: [P; 3]) -> Self {
+        TriRec {
+            f: PlaneFilter::new(p),
+            bc: [p[1], p[2]],
+            v,
+        }
+    }
+
+    #[inline]
+    fn corner(&self, k: usize) -> P {
+        if k == 0 {
+            self.f.a
+        } else {
+            self.bc[k - 1]
+        }
+    }
+
+    #[inline]
+    fn corners(&self) -> [P; 3] {
+        [self.f.a, self.bc[0], self.bc[1]]
+    }
+}
+
 /// [`pair_meets`] behind a floating-point filter: the pair is cleared without exact arithmetic
 /// when the other triangle's corners that are not shared lie certainly strictly on one side of
 /// one triangle's plane (then the two meet at most in their shared vertices or edge; for a
 /// common edge abc/abd, d strictly off plane abc rules out a fold). Undecided pairs go to the
 /// exact test, so the verdict always equals [`pair_meets`].
-fn pair_meets_filtered(
-    pos: &[P],
-    ta: [u32; 3],
-    tb: [u32; 3],
-    fa: &PlaneFilter,
-    fb: &PlaneFilter,
-) -> bool {
+fn pair_meets_filtered(ta: &TriRec, tb: &TriRec) -> bool {
     let mut pts_b = [[0.0; 3]; 3];
     let mut nb = 0;
-    for &v in &tb {
-        if !ta.contains(&v) {
-            pts_b[nb] = pos[v as usize];
+    for k in 0..3 {
+        if !ta.v.contains(&tb.v[k]) {
+            pts_b[nb] = tb.corner(k);
             nb += 1;
         }
     }
     if nb == 0 {
         return true;
     }
-    if fa.all_one_side(&pts_b[..nb]) {
+    if ta.f.all_one_side(&pts_b[..nb]) {
         return false;
     }
     if nb < 3 {
@@ -605,24 +673,34 @@ fn pair_meets_filtered(
         if nb == 2 {
             let mut pts_a = [[0.0; 3]; 2];
             let mut na = 0;
-            for &v in &ta {
-                if !tb.contains(&v) && na < 2 {
-                    pts_a[na] = pos[v as usize];
+            for k in 0..3 {
+                if !tb.v.contains(&ta.v[k]) && na < 2 {
+                    pts_a[na] = ta.corner(k);
                     na += 1;
                 }
             }
-            if na == 2 && fb.all_one_side(&pts_a) {
+            if na == 2 && tb.f.all_one_side(&pts_a) {
                 return false;
             }
         }
-    } else if fb.all_one_side(&ta.map(|v| pos[v as usize])) {
+    } else if tb.f.all_one_side(&ta.corners()) {
         return false;
     }
-    pair_meets(pos, ta, tb)
+    pair_meets_at(ta.v, tb.v, ta.corners(), tb.corners())
 }
 
 /// The exact test of one pair by its number of common vertices (see the module documentation).
 fn pair_meets(pos: &[P], ta: [u32; 3], tb: [u32; 3]) -> bool {
+    pair_meets_at(
+        ta,
+        tb,
+        ta.map(|v| pos[v as usize]),
+        tb.map(|v| pos[v as usize]),
+    )
+}
+
+/// [`pair_meets`] with the corners given (`pa`, `pb`: the positions of `ta`, `tb`).
+fn pair_meets_at(ta: [u32; 3], tb: [u32; 3], pa: [P; 3], pb: [P; 3]) -> bool {
     let mut shared = [(0usize, 0usize); 3];
     let mut ns = 0;
     for i in 0..3 {
@@ -633,7 +711,6 @@ fn pair_meets(pos: &[P], ta: [u32; 3], tb: [u32; 3]) -> bool {
             }
         }
     }
-    let (pa, pb) = (ta.map(|v| pos[v as usize]), tb.map(|v| pos[v as usize]));
     match ns {
         0 => triangles_intersect(pa, pb),
         1 => meet_beyond_vertex(pa, shared[0].0, pb, shared[0].1),
@@ -1015,14 +1092,10 @@ mod tests {
                 let ab = pair_meets(&pos, ta, tb);
                 assert_eq!(ab, pair_meets(&pos, tb, ta), "{ta:?} {tb:?}");
                 let (fa, fb) = (
-                    PlaneFilter::new(ta.map(|v| pos[v as usize])),
-                    PlaneFilter::new(tb.map(|v| pos[v as usize])),
+                    TriRec::new(ta, ta.map(|v| pos[v as usize])),
+                    TriRec::new(tb, tb.map(|v| pos[v as usize])),
                 );
-                assert_eq!(
-                    ab,
-                    pair_meets_filtered(&pos, ta, tb, &fa, &fb),
-                    "{ta:?} {tb:?}"
-                );
+                assert_eq!(ab, pair_meets_filtered(&fa, &fb), "{ta:?} {tb:?}");
                 if ab {
                     meets += 1;
                 } else {
