@@ -490,12 +490,22 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
             let mn: [u64; 3] = std::array::from_fn(|k| cidx(bl[k], k));
             let mx: [u64; 3] = std::array::from_fn(|k| cidx(bh[k], k));
             let nw = n[w];
-            let slope = if nw != 0.0 {
+            // Each rounded n_k is within 4ε·perm_k of the exact normal N_k (PlaneFilter). With
+            // |n_w| ≥ 2⁻¹⁰·Σ perm, the ratios n_u/n_w, n_v/n_w are within ≈ 2¹³ε ≈ 2e-12 of
+            // N_u/N_w, N_v/N_w, so the plane's w over the box is off by far less than the
+            // margin, which also covers the rounding of the cell coordinates (relative to the
+            // coordinates' magnitude, not just the extent: a mesh far from the origin). A
+            // thinner triangle (a needle: its rounded normal may be mostly noise) walks the
+            // whole w-range of its box.
+            let perm = recs[a as usize].f.perm;
+            let slope = if nw.abs() >= (perm[0] + perm[1] + perm[2]) * 2f64.powi(-10) {
                 (n[u].abs() + n[v].abs()) / nw.abs()
             } else {
                 f64::INFINITY
             };
-            let margin = 1e-9 * (0..3).map(|k| ext[k].abs()).sum::<f64>() + cell * 1e-6;
+            let mag: f64 = (0..3).map(|k| lo[k].abs().max(hi[k].abs())).sum();
+            let margin =
+                1e-9 * (0..3).map(|k| ext[k].abs()).sum::<f64>() + 1e-12 * mag + cell * 1e-6;
             let mut grid_cand: Vec<u32> = Vec::new();
             for cu in mn[u]..=mx[u] {
                 for cv in mn[v]..=mx[v] {
@@ -918,6 +928,53 @@ mod tests {
             coplanar += (orient3d(fl(a), fl(b), fl(c), fl(d)) == 0.0) as usize;
         }
         assert!(hits > 200 && coplanar > 1000, "{hits} {coplanar}");
+    }
+
+    /// Big needles (a corner within 1e-5 … 1e-15 of the opposite edge, so that the rounded
+    /// normal is mostly noise) and big triangles far from the origin relative to their size are
+    /// found through the grid walk like any other: compared with all pairs by brute force.
+    #[test]
+    fn big_needles_and_offset_meshes_are_walked_conservatively() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let m = 40;
+        for (round, off) in [0.0, 0.0, 0.0, 1e3, 1e6].into_iter().enumerate() {
+            let mut pos: Vec<P> = Vec::new();
+            // a wavy sheet (not planar: the needle's bad plane must not line up with it)
+            for j in 0..=m {
+                for i in 0..=m {
+                    let (x, y) = (i as f64 / m as f64, j as f64 / m as f64);
+                    pos.push([
+                        x + off,
+                        y + off,
+                        0.05 * (7.0 * x).sin() * (5.0 * y).cos() + off,
+                    ]);
+                }
+            }
+            let id = |i: usize, j: usize| (j * (m + 1) + i) as u32;
+            let mut tris = Vec::new();
+            for j in 0..m {
+                for i in 0..m {
+                    tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                    tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+                }
+            }
+            for _ in 0..6 {
+                let a: P = [rng.gen_range(0.0..0.3), rng.gen_range(0.0..1.0), -0.7];
+                let b: P = [rng.gen_range(0.7..1.0), rng.gen_range(0.0..1.0), 0.6];
+                let eps = 10f64.powi(-rng.gen_range(5..=15));
+                let dir: P = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                let t = rng.gen_range(0.2..0.8);
+                let c: P = std::array::from_fn(|k| a[k] + t * (b[k] - a[k]) + eps * dir[k]);
+                let n0 = pos.len() as u32;
+                pos.extend([a, b, c].map(|q| q.map(|x| x + off)));
+                tris.push([n0, n0 + 1, n0 + 2]);
+            }
+            let found = self_intersections(&pos, &tris, usize::MAX);
+            let expect = self_intersections_brute(&pos, &tris);
+            assert!(expect.len() >= 6, "round {round}: {}", expect.len());
+            assert_eq!(found, expect, "round {round}");
+        }
     }
 
     #[test]
