@@ -184,9 +184,14 @@ pub fn meet_beyond_edge(a: P, b: P, c: P, d: P) -> bool {
 /// Broad phase: a uniform grid (cell: twice the median edge length, coarsened until it has at
 /// most 8 cells per triangle), as a counting-sorted list of (cell, triangle) entries; each pair whose
 /// bounding boxes overlap is tested exactly once, in the cell of the low corner of the boxes'
-/// intersection. Triangles spanning more than 512 cells are tested against each other by boxes
-/// and against the triangles of the cells their plane passes. Cells and big triangles are
-/// processed in parallel (rayon); the result does not depend on the thread count.
+/// intersection (a cell's entries are grouped by which axes of the cell their low cell shares,
+/// so only those pairs are visited). Triangles spanning more than 512 cells are tested against
+/// each other by boxes and against the triangles of the cells their plane passes. Cells and
+/// big triangles are processed in parallel (rayon); the result does not depend on the thread
+/// count. Each pair goes through a floating-point plane filter with a proven bound first
+/// (`PlaneFilter`); pairs without a common vertex whose filtered signs all are certain and
+/// straddle are decided by two exact predicates (Guigue–Devillers), every other undecided pair
+/// by the exact test of its class.
 ///
 /// The triangles are first put in a spatially coherent order (by the cell of their centroid in
 /// a grid of about one cell per triangle, rows in z, y, x order), so that the triangles of one
