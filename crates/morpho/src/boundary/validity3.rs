@@ -184,9 +184,14 @@ pub fn meet_beyond_edge(a: P, b: P, c: P, d: P) -> bool {
 /// Broad phase: a uniform grid (cell: twice the median edge length, coarsened until it has at
 /// most 8 cells per triangle), as a counting-sorted list of (cell, triangle) entries; each pair whose
 /// bounding boxes overlap is tested exactly once, in the cell of the low corner of the boxes'
-/// intersection. Triangles spanning more than 512 cells are tested against each other by boxes
-/// and against the triangles of the cells their plane passes. Cells and big triangles are
-/// processed in parallel (rayon); the result does not depend on the thread count.
+/// intersection (a cell's entries are grouped by which axes of the cell their low cell shares,
+/// so only those pairs are visited). Triangles spanning more than 512 cells are tested against
+/// each other by boxes and against the triangles of the cells their plane passes. Cells and
+/// big triangles are processed in parallel (rayon); the result does not depend on the thread
+/// count. Each pair goes through a floating-point plane filter with a proven bound first
+/// (`PlaneFilter`); pairs without a common vertex whose filtered signs all are certain and
+/// straddle are decided by two exact predicates (Guigue–Devillers), every other undecided pair
+/// by the exact test of its class.
 ///
 /// The triangles are first put in a spatially coherent order (by the cell of their centroid in
 /// a grid of about one cell per triangle, rows in z, y, x order), so that the triangles of one
@@ -364,7 +369,10 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
     for c in 0..ncells {
         start[c + 1] += start[c];
     }
+    // per entry, which coordinates of the cell equal those of the triangle's low cell (bit k
+    // for axis k): a pair sharing the cell owns it iff the two masks cover all three axes
     let mut ids = vec![0u32; start[ncells]];
+    let mut masks = vec![0u8; start[ncells]];
     {
         let mut fill = start.clone();
         for (i, r) in ranges.iter().enumerate() {
@@ -374,6 +382,9 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
                         for x in mn[0]..=mx[0] {
                             let c = key([x, y, z]) as usize;
                             ids[fill[c]] = i as u32;
+                            masks[fill[c]] = (x == mn[0]) as u8
+                                | ((y == mn[1]) as u8) << 1
+                                | ((z == mn[2]) as u8) << 2;
                             fill[c] += 1;
                         }
                     }
@@ -381,11 +392,6 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
             }
         }
     }
-    // the low cell of every (non-big) triangle
-    let low: Vec<[u32; 3]> = ranges
-        .iter()
-        .map(|r| r.map_or([0; 3], |(mn, _)| mn.map(|x| x as u32)))
-        .collect();
     drop(ranges);
     let cell_ids = |k: u64| -> &[u32] {
         let k = k as usize;
@@ -395,44 +401,78 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
         let ((al, ah), (bl, bh)) = (boxes[a as usize], boxes[b as usize]);
         (0..3).all(|k| al[k] <= bh[k] && bl[k] <= ah[k])
     };
-    let planes: Vec<PlaneFilter> = tris
+    // corners, vertex ids and plane filter of every triangle side by side, in the spatially
+    // coherent order (the pair test then reads two records instead of five scattered ones)
+    let recs: Vec<TriRec> = tris
         .par_iter()
-        .map(|t| PlaneFilter::new(t.map(|v| pos[v as usize])))
+        .map(|&t| TriRec::new(t, t.map(|v| pos[v as usize])))
         .collect();
-    let bad = |a: u32, b: u32| {
-        let (a, b) = (a as usize, b as usize);
-        pair_meets_filtered(pos, tris[a], tris[b], &planes[a], &planes[b])
-    };
+    let bad = |a: u32, b: u32| pair_meets_filtered(&recs[a as usize], &recs[b as usize]);
     let busy: Vec<u64> = (0..ncells as u64)
         .filter(|&c| start[c as usize + 1] - start[c as usize] >= 2)
         .collect();
+    // Each pair of triangles sharing a cell is tested in the cell of the low corner of the
+    // boxes' intersection, i.e. (cidx is monotone) the larger of the two low cells axis by
+    // axis: the cell where, on every axis, one of the two starts. Grouping a cell's entries
+    // by their masks enumerates exactly those pairs (masks ma | mb == 0b111).
     let mut bad_pairs: Vec<(u32, u32)> = busy
         .par_iter()
         .with_min_len(64)
-        .flat_map_iter(|&cell_key| {
-            let run = cell_ids(cell_key);
+        .map_init(Vec::new, |buf: &mut Vec<u32>, &cell_key| {
+            let (s, e) = (start[cell_key as usize], start[cell_key as usize + 1]);
+            let mut at = [0usize; 9];
+            for &m in &masks[s..e] {
+                at[m as usize + 1] += 1;
+            }
+            for m in 0..8 {
+                at[m + 1] += at[m];
+            }
+            buf.clear();
+            buf.resize(e - s, 0);
+            let mut fill = at;
+            for (&id, &m) in ids[s..e].iter().zip(&masks[s..e]) {
+                buf[fill[m as usize]] = id;
+                fill[m as usize] += 1;
+            }
+            let group = |m: usize| &buf[at[m]..at[m + 1]];
             let mut found = Vec::new();
-            for (a_i, &a) in run.iter().enumerate() {
-                let ma = low[a as usize];
-                for &b in &run[a_i + 1..] {
-                    // each pair once: in the cell of the low corner of the boxes' intersection
-                    // (cidx is monotone: the larger of the two low cells, axis by axis)
-                    let mb = low[b as usize];
-                    let own = key(std::array::from_fn(|k| ma[k].max(mb[k]) as u64));
-                    if own == cell_key && overlap(a, b) && bad(a, b) {
-                        found.push((a.min(b), a.max(b)));
+            let mut test = |a: u32, b: u32| {
+                if overlap(a, b) && bad(a, b) {
+                    found.push((a.min(b), a.max(b)));
+                }
+            };
+            let full = group(7);
+            for (i, &a) in full.iter().enumerate() {
+                for &b in &full[i + 1..] {
+                    test(a, b);
+                }
+            }
+            for ma in 0..7 {
+                for mb in ma + 1..8 {
+                    if ma | mb == 7 {
+                        for &a in group(ma) {
+                            for &b in group(mb) {
+                                test(a, b);
+                            }
+                        }
                     }
                 }
             }
             found
         })
+        .flat_map_iter(|f| f)
         .collect();
     // big triangles: against each other by boxes, against the grid through the cells their
     // plane passes (floating-point culling with a generous margin; the exact test decides)
+    // (a triangle spanning several cells of the walk is taken once: `seen[b] == a + 1`)
     let big_bad: Vec<(u32, u32)> = big
         .par_iter()
         .enumerate()
-        .flat_map_iter(|(i, &a)| {
+        .with_min_len(64)
+        .map_init(Vec::new, |seen: &mut Vec<u32>, (i, &a)| {
+            if seen.is_empty() {
+                seen.resize(tris.len(), 0);
+            }
             let mut cand: Vec<u32> = big[i + 1..]
                 .iter()
                 .copied()
@@ -455,12 +495,22 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
             let mn: [u64; 3] = std::array::from_fn(|k| cidx(bl[k], k));
             let mx: [u64; 3] = std::array::from_fn(|k| cidx(bh[k], k));
             let nw = n[w];
-            let slope = if nw != 0.0 {
+            // Each rounded n_k is within 4ε·perm_k of the exact normal N_k (PlaneFilter). With
+            // |n_w| ≥ 2⁻¹⁰·Σ perm, the ratios n_u/n_w, n_v/n_w are within ≈ 2¹³ε ≈ 2e-12 of
+            // N_u/N_w, N_v/N_w, so the plane's w over the box is off by far less than the
+            // margin, which also covers the rounding of the cell coordinates (relative to the
+            // coordinates' magnitude, not just the extent: a mesh far from the origin). A
+            // thinner triangle (a needle: its rounded normal may be mostly noise) walks the
+            // whole w-range of its box.
+            let perm = recs[a as usize].f.perm;
+            let slope = if nw.abs() >= (perm[0] + perm[1] + perm[2]) * 2f64.powi(-10) {
                 (n[u].abs() + n[v].abs()) / nw.abs()
             } else {
                 f64::INFINITY
             };
-            let margin = 1e-9 * (0..3).map(|k| ext[k].abs()).sum::<f64>() + cell * 1e-6;
+            let mag: f64 = (0..3).map(|k| lo[k].abs().max(hi[k].abs())).sum();
+            let margin =
+                1e-9 * (0..3).map(|k| ext[k].abs()).sum::<f64>() + 1e-12 * mag + cell * 1e-6;
             let mut grid_cand: Vec<u32> = Vec::new();
             for cu in mn[u]..=mx[u] {
                 for cv in mn[v]..=mx[v] {
@@ -482,18 +532,24 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
                         c[u] = cu;
                         c[v] = cv;
                         c[w] = cw;
-                        grid_cand
-                            .extend(cell_ids(key(c)).iter().copied().filter(|&b| overlap(a, b)));
+                        for &b in cell_ids(key(c)) {
+                            if seen[b as usize] != a + 1 {
+                                seen[b as usize] = a + 1;
+                                if overlap(a, b) {
+                                    grid_cand.push(b);
+                                }
+                            }
+                        }
                     }
                 }
             }
-            grid_cand.sort_unstable();
-            grid_cand.dedup();
             cand.extend(grid_cand);
-            cand.into_iter()
-                .filter(move |&b| bad(a, b))
-                .map(move |b| (a.min(b), a.max(b)))
+            cand.retain(|&b| bad(a, b));
+            cand.iter()
+                .map(|&b| (a.min(b), a.max(b)))
+                .collect::<Vec<_>>()
         })
+        .flat_map_iter(|c| c)
         .collect();
     bad_pairs.extend(big_bad);
     bad_pairs.sort_unstable();
@@ -542,8 +598,8 @@ impl PlaneFilter {
         PlaneFilter { a: t[0], n, perm }
     }
 
-    /// The sign of orient3d(a, b, c, x) when the float evaluation n·(x − a) certifies it, else
-    /// 0 (unknown). Error analysis: each difference, product and sum rounds once (relative ε);
+    /// The sign of n · (x − a), i.e. of −orient3d(a, b, c, x) in robust's convention, when its
+    /// float evaluation certifies it, else 0 (unknown). Error analysis: each difference, product and sum rounds once (relative ε);
     /// the rounded n_i is within 4ε·perm_i of the exact cross product and the computed sum
     /// within 8ε·Σ perm_i |x_i − a_i| (+ O(ε²)) of the exact determinant. The filter uses
     /// 16ε times that bound, and gives up (0) below 2⁻⁹⁰⁰ (gradual underflow breaks the
@@ -574,30 +630,73 @@ impl PlaneFilter {
     }
 }
 
+/// One triangle for [`pair_meets_filtered`]: its vertex ids, its other two corners and the
+/// plane filter (which holds the first corner).
+#[derive(Clone, Copy)]
+pub(crate) struct TriRec {
+    f: PlaneFilter,
+    bc: [P; 2],
+    v: [u32; 3],
+}
+
+impl TriRec {
+    pub(crate) fn new(v: [u32; 3], p: [P; 3]) -> Self {
+        TriRec {
+            f: PlaneFilter::new(p),
+            bc: [p[1], p[2]],
+            v,
+        }
+    }
+
+    #[inline]
+    fn corner(&self, k: usize) -> P {
+        if k == 0 {
+            self.f.a
+        } else {
+            self.bc[k - 1]
+        }
+    }
+
+    #[inline]
+    fn corners(&self) -> [P; 3] {
+        [self.f.a, self.bc[0], self.bc[1]]
+    }
+}
+
 /// [`pair_meets`] behind a floating-point filter: the pair is cleared without exact arithmetic
 /// when the other triangle's corners that are not shared lie certainly strictly on one side of
 /// one triangle's plane (then the two meet at most in their shared vertices or edge; for a
 /// common edge abc/abd, d strictly off plane abc rules out a fold). Undecided pairs go to the
 /// exact test, so the verdict always equals [`pair_meets`].
-fn pair_meets_filtered(
-    pos: &[P],
-    ta: [u32; 3],
-    tb: [u32; 3],
-    fa: &PlaneFilter,
-    fb: &PlaneFilter,
-) -> bool {
+fn pair_meets_filtered(ta: &TriRec, tb: &TriRec) -> bool {
     let mut pts_b = [[0.0; 3]; 3];
     let mut nb = 0;
-    for &v in &tb {
-        if !ta.contains(&v) {
-            pts_b[nb] = pos[v as usize];
+    for k in 0..3 {
+        if !ta.v.contains(&tb.v[k]) {
+            pts_b[nb] = tb.corner(k);
             nb += 1;
         }
     }
     if nb == 0 {
         return true;
     }
-    if fa.all_one_side(&pts_b[..nb]) {
+    if nb == 3 {
+        // no common vertex: certified signs of each triangle's corners against the other's plane
+        let (pa, pb) = (ta.corners(), tb.corners());
+        let (u0, u1, u2) = (ta.f.side(pb[0]), ta.f.side(pb[1]), ta.f.side(pb[2]));
+        if u0 != 0 && u0 == u1 && u1 == u2 {
+            return false;
+        }
+        let (t0, t1, t2) = (tb.f.side(pa[0]), tb.f.side(pa[1]), tb.f.side(pa[2]));
+        if t0 != 0 && t0 == t1 && t1 == t2 {
+            return false;
+        }
+        if u0 != 0 && u1 != 0 && u2 != 0 && t0 != 0 && t1 != 0 && t2 != 0 {
+            return crossing_triangles_meet(pa, [t0, t1, t2], pb, [u0, u1, u2]);
+        }
+        return pair_meets_at(ta.v, tb.v, pa, pb);
+    }
+    if ta.f.all_one_side(&pts_b[..nb]) {
         return false;
     }
     if nb < 3 {
@@ -605,24 +704,70 @@ fn pair_meets_filtered(
         if nb == 2 {
             let mut pts_a = [[0.0; 3]; 2];
             let mut na = 0;
-            for &v in &ta {
-                if !tb.contains(&v) && na < 2 {
-                    pts_a[na] = pos[v as usize];
+            for k in 0..3 {
+                if !tb.v.contains(&ta.v[k]) && na < 2 {
+                    pts_a[na] = ta.corner(k);
                     na += 1;
                 }
             }
-            if na == 2 && fb.all_one_side(&pts_a) {
+            if na == 2 && tb.f.all_one_side(&pts_a) {
                 return false;
             }
         }
-    } else if fb.all_one_side(&ta.map(|v| pos[v as usize])) {
+    } else if tb.f.all_one_side(&ta.corners()) {
         return false;
     }
-    pair_meets(pos, ta, tb)
+    pair_meets_at(ta.v, tb.v, ta.corners(), tb.corners())
+}
+
+/// Triangles t and u, each with its corners strictly on both sides of the other's plane
+/// (`st`: the signs of t's corners against u's plane, `su`: of u's against t's, all nonzero
+/// and not all equal, as [`PlaneFilter::side`] certifies them), intersect (exact).
+///
+/// Guigue & Devillers 2003 ("Fast and robust triangle–triangle overlap test using orientation
+/// predicates", §3): both triangles meet the line L of the two planes in a segment; t's runs
+/// between its two edges from the corner p₁ alone on its side of u's plane, u's between the
+/// edges from p₂. With p₁ on the positive side of u and p₂ on the positive side of t in the
+/// sense of [`PlaneFilter::side`] (n · (x − a) > 0; swap the other two corners, i.e. reverse
+/// the orientation, when not), the two segments overlap iff orient3d(p₁, q₁, p₂, q₂) ≥ 0 and
+/// orient3d(p₁, r₁, r₂, p₂) ≥ 0 (the paper's ≤ 0 with its opposite orientation convention):
+/// two exact predicates in place of the up to thirty of [`triangles_intersect`] (= 0 is a
+/// touching, which counts).
+fn crossing_triangles_meet(t: [P; 3], st: [i8; 3], u: [P; 3], su: [i8; 3]) -> bool {
+    // the corner whose sign differs from the two others'
+    let alone = |s: [i8; 3]| {
+        if s[0] == s[1] {
+            2
+        } else if s[0] == s[2] {
+            1
+        } else {
+            0
+        }
+    };
+    let (i, j) = (alone(st), alone(su));
+    let (p1, mut q1, mut r1) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+    let (p2, mut q2, mut r2) = (u[j], u[(j + 1) % 3], u[(j + 2) % 3]);
+    if st[i] < 0 {
+        std::mem::swap(&mut q2, &mut r2);
+    }
+    if su[j] < 0 {
+        std::mem::swap(&mut q1, &mut r1);
+    }
+    orient3d(p1, q1, p2, q2) >= 0.0 && orient3d(p1, r1, r2, p2) >= 0.0
 }
 
 /// The exact test of one pair by its number of common vertices (see the module documentation).
 fn pair_meets(pos: &[P], ta: [u32; 3], tb: [u32; 3]) -> bool {
+    pair_meets_at(
+        ta,
+        tb,
+        ta.map(|v| pos[v as usize]),
+        tb.map(|v| pos[v as usize]),
+    )
+}
+
+/// [`pair_meets`] with the corners given (`pa`, `pb`: the positions of `ta`, `tb`).
+fn pair_meets_at(ta: [u32; 3], tb: [u32; 3], pa: [P; 3], pb: [P; 3]) -> bool {
     let mut shared = [(0usize, 0usize); 3];
     let mut ns = 0;
     for i in 0..3 {
@@ -633,7 +778,6 @@ fn pair_meets(pos: &[P], ta: [u32; 3], tb: [u32; 3]) -> bool {
             }
         }
     }
-    let (pa, pb) = (ta.map(|v| pos[v as usize]), tb.map(|v| pos[v as usize]));
     match ns {
         0 => triangles_intersect(pa, pb),
         1 => meet_beyond_vertex(pa, shared[0].0, pb, shared[0].1),
@@ -789,6 +933,53 @@ mod tests {
             coplanar += (orient3d(fl(a), fl(b), fl(c), fl(d)) == 0.0) as usize;
         }
         assert!(hits > 200 && coplanar > 1000, "{hits} {coplanar}");
+    }
+
+    /// Big needles (a corner within 1e-5 … 1e-15 of the opposite edge, so that the rounded
+    /// normal is mostly noise) and big triangles far from the origin relative to their size are
+    /// found through the grid walk like any other: compared with all pairs by brute force.
+    #[test]
+    fn big_needles_and_offset_meshes_are_walked_conservatively() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let m = 40;
+        for (round, off) in [0.0, 0.0, 0.0, 1e3, 1e6].into_iter().enumerate() {
+            let mut pos: Vec<P> = Vec::new();
+            // a wavy sheet (not planar: the needle's bad plane must not line up with it)
+            for j in 0..=m {
+                for i in 0..=m {
+                    let (x, y) = (i as f64 / m as f64, j as f64 / m as f64);
+                    pos.push([
+                        x + off,
+                        y + off,
+                        0.05 * (7.0 * x).sin() * (5.0 * y).cos() + off,
+                    ]);
+                }
+            }
+            let id = |i: usize, j: usize| (j * (m + 1) + i) as u32;
+            let mut tris = Vec::new();
+            for j in 0..m {
+                for i in 0..m {
+                    tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                    tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+                }
+            }
+            for _ in 0..6 {
+                let a: P = [rng.gen_range(0.0..0.3), rng.gen_range(0.0..1.0), -0.7];
+                let b: P = [rng.gen_range(0.7..1.0), rng.gen_range(0.0..1.0), 0.6];
+                let eps = 10f64.powi(-rng.gen_range(5..=15));
+                let dir: P = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                let t = rng.gen_range(0.2..0.8);
+                let c: P = std::array::from_fn(|k| a[k] + t * (b[k] - a[k]) + eps * dir[k]);
+                let n0 = pos.len() as u32;
+                pos.extend([a, b, c].map(|q| q.map(|x| x + off)));
+                tris.push([n0, n0 + 1, n0 + 2]);
+            }
+            let found = self_intersections(&pos, &tris, usize::MAX);
+            let expect = self_intersections_brute(&pos, &tris);
+            assert!(expect.len() >= 6, "round {round}: {}", expect.len());
+            assert_eq!(found, expect, "round {round}");
+        }
     }
 
     #[test]
@@ -974,6 +1165,74 @@ mod tests {
         }
     }
 
+    /// The two-predicate test of crossing triangles ([`crossing_triangles_meet`], reached from
+    /// [`pair_meets_filtered`] when no corner is shared and all six filtered signs are certain)
+    /// agrees with the exact [`triangles_intersect`]: random pairs of nearby triangles, integer
+    /// grids (touching configurations: the two final predicates are 0), the same nudged by a few
+    /// ulps, corners rounded onto the other's plane (near-coplanar: the filter's bound is what
+    /// keeps float signs from being trusted; with ε/4 instead of 16ε this test fails), at scales
+    /// 2^-400 … 2^400. Counts make sure the shortcut itself decided many pairs,
+    /// both ways.
+    #[test]
+    fn crossing_pair_shortcut_agrees_with_the_exact_test() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(77);
+        let (mut short_hit, mut short_miss) = (0, 0);
+        for round in 0..12 {
+            let scale = 2f64.powi([0, -400, 400, 7][round % 4]);
+            for _ in 0..20_000 {
+                let pt = |rng: &mut rand_chacha::ChaCha8Rng| -> P {
+                    std::array::from_fn(|_| match round / 4 {
+                        0 => rng.gen_range(0..4) as f64,
+                        _ => {
+                            let x = rng.gen_range(0..4) as f64 + 0.5;
+                            let k = rng.gen_range(-3i64..=3);
+                            if rng.gen_bool(0.5) {
+                                f64::from_bits((x.to_bits() as i64 + k) as u64)
+                            } else {
+                                rng.gen_range(0.0..4.0)
+                            }
+                        }
+                    })
+                };
+                let t: [P; 3] = std::array::from_fn(|_| pt(&mut rng).map(|x| x * scale));
+                let mut u: [P; 3] = std::array::from_fn(|_| pt(&mut rng).map(|x| x * scale));
+                if round / 4 == 2 {
+                    // near-coplanar: u's corners are rounded points of t's plane (the float
+                    // signs are noise of the order of the filter's bound)
+                    for q in u.iter_mut().take(rng.gen_range(1..=3)) {
+                        let (al, be): (f64, f64) =
+                            (rng.gen_range(-0.5..1.5), rng.gen_range(-0.5..1.5));
+                        *q = std::array::from_fn(|k| {
+                            t[0][k] + al * (t[1][k] - t[0][k]) + be * (t[2][k] - t[0][k])
+                        });
+                    }
+                }
+                let (ra, rb) = (TriRec::new([0, 1, 2], t), TriRec::new([3, 4, 5], u));
+                let exact = triangles_intersect(t, u);
+                assert_eq!(pair_meets_filtered(&ra, &rb), exact, "{t:?} {u:?}");
+                assert_eq!(pair_meets_filtered(&rb, &ra), exact, "{t:?} {u:?}");
+                let su = u.map(|x| ra.f.side(x));
+                let st = t.map(|x| rb.f.side(x));
+                let straddle =
+                    |s: [i8; 3]| s.iter().all(|&x| x != 0) && s.iter().any(|&x| x != s[0]);
+                if straddle(su) && straddle(st) {
+                    assert_eq!(crossing_triangles_meet(t, st, u, su), exact);
+                    assert_eq!(crossing_triangles_meet(u, su, t, st), exact);
+                    if exact {
+                        short_hit += 1;
+                    } else {
+                        short_miss += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            short_hit > 5000 && short_miss > 5000,
+            "{short_hit} {short_miss}"
+        );
+    }
+
     /// The exact pair test is symmetric, and the floating-point plane filter never changes its
     /// verdict: integer points (coplanar, collinear, duplicate positions), and the same points
     /// nudged by a few ulps (near-coplanar: float signs of n·(x − a) go wrong without the bound).
@@ -1015,14 +1274,10 @@ mod tests {
                 let ab = pair_meets(&pos, ta, tb);
                 assert_eq!(ab, pair_meets(&pos, tb, ta), "{ta:?} {tb:?}");
                 let (fa, fb) = (
-                    PlaneFilter::new(ta.map(|v| pos[v as usize])),
-                    PlaneFilter::new(tb.map(|v| pos[v as usize])),
+                    TriRec::new(ta, ta.map(|v| pos[v as usize])),
+                    TriRec::new(tb, tb.map(|v| pos[v as usize])),
                 );
-                assert_eq!(
-                    ab,
-                    pair_meets_filtered(&pos, ta, tb, &fa, &fb),
-                    "{ta:?} {tb:?}"
-                );
+                assert_eq!(ab, pair_meets_filtered(&fa, &fb), "{ta:?} {tb:?}");
                 if ab {
                     meets += 1;
                 } else {
