@@ -227,36 +227,19 @@ fn compare_keys(name: &str, m: &morpho::mesh::TriMesh) {
     }
 }
 
-/// CPU seconds of the whole process so far (user + system, /proc/self/stat; 10 ms ticks), so
-/// that phases can be compared on a machine shared with other jobs. 0 where unavailable.
-fn cpu_s() -> f64 {
-    let Ok(st) = std::fs::read_to_string("/proc/self/stat") else {
-        return 0.0;
-    };
-    // fields after the parenthesised command name; utime and stime are fields 14 and 15
-    let rest = st.rsplit_once(')').map_or("", |(_, r)| r);
-    let f: Vec<&str> = rest.split_whitespace().collect();
-    // rest starts at field 3 (the state)
-    let field = |i: usize| f.get(i - 3).and_then(|x| x.parse::<f64>().ok());
-    match (field(14), field(15)) {
-        (Some(u), Some(s)) => (u + s) / 100.0,
-        _ => 0.0,
-    }
-}
-
 /// A wall-clock and CPU stopwatch for [`phases`].
 struct Watch(Instant, f64);
 
 impl Watch {
     fn start() -> Self {
-        Watch(Instant::now(), cpu_s())
+        Watch(Instant::now(), cpu_seconds())
     }
     /// "wall s (cpu s)"
     fn show(&self) -> String {
         format!(
             "{:.3} s (cpu {:.2})",
             self.0.elapsed().as_secs_f64(),
-            cpu_s() - self.1
+            cpu_seconds() - self.1
         )
     }
 }
