@@ -526,6 +526,8 @@ pub struct General3<'a> {
     bgrid: Grid,
     in_bgrid: Vec<bool>,
     vgrid: Grid,
+    /// The points again in cells 8× wider, for queries of wide boxes ([`General3::points_near`]).
+    vcoarse: Grid,
     heap: BinaryHeap<Entry>,
     buf: Vec<u32>,
     blocked_by: Option<[u32; 3]>,
@@ -620,6 +622,7 @@ impl<'a> General3<'a> {
             bgrid: Grid::new(lo, cell, true),
             in_bgrid: Vec::new(),
             vgrid: Grid::new(lo, cell, false),
+            vcoarse: Grid::new(lo, cell * Grid::COARSEN, false),
             heap: BinaryHeap::new(),
             buf: Vec::new(),
             blocked_by: None,
@@ -689,12 +692,13 @@ impl<'a> General3<'a> {
             }
         }
         let (tl, tbox) = (&self.tris, &self.tbox);
-        let (eadj, bnext, vcount, bv, vgrid, tgrid, bgrid) = (
+        let (eadj, bnext, vcount, bv, vgrid, vcoarse, tgrid, bgrid) = (
             &mut self.eadj,
             &mut self.bnext,
             &mut self.vcount,
             &mut self.boundary_vertices,
             &mut self.vgrid,
+            &mut self.vcoarse,
             &mut self.tgrid,
             &mut self.bgrid,
         );
@@ -738,6 +742,7 @@ impl<'a> General3<'a> {
                         vgrid.cells.reserve(p.len());
                         for (v, &q) in p.iter().enumerate() {
                             vgrid.insert(v as u32, q, q);
+                            vcoarse.insert(v as u32, q, q);
                         }
                         bnext.reserve(3 * boundary.len());
                         for f in boundary {
@@ -791,6 +796,25 @@ impl<'a> General3<'a> {
                     (a[2]..=b[2]).any(|z| self.changed.get(&(x, y, z)).is_some_and(|&e| e > epoch))
                 })
             })
+    }
+
+    /// The points whose cells of `vgrid` meet the box — the same set as `vgrid.query` —
+    /// through the coarse point grid when the box spans many fine cells (a wide box over a
+    /// scanned surface has mostly empty cells). Order: by fine cell for narrow boxes, by
+    /// coarse cell otherwise.
+    fn points_near(&self, lo: P, hi: P, out: &mut Vec<u32>) {
+        let (a, b) = self.vgrid.range(lo, hi);
+        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
+        if span <= 4096 {
+            self.vgrid.query(lo, hi, out);
+            return;
+        }
+        self.vcoarse.query(lo, hi, out);
+        out.retain(|&z| {
+            let q = self.p[z as usize];
+            let (c, _) = self.vgrid.range(q, q);
+            (0..3).all(|k| a[k] <= c[k] && c[k] <= b[k])
+        });
     }
 
     fn pt(&self, v: u32) -> P {
@@ -1591,7 +1615,7 @@ impl<'a> General3<'a> {
             return None;
         }
         if reach > near_r {
-            self.vgrid.query(
+            self.points_near(
                 std::array::from_fn(|i| m[i] - reach),
                 std::array::from_fn(|i| m[i] + reach),
                 &mut buf,
@@ -1682,7 +1706,7 @@ mod tests {
     #[test]
     fn bulk_construction_equals_one_by_one() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(31);
-        let mut pts: Vec<crate::geom::Point3> = (0..1500)
+        let mut pts: Vec<crate::geom::Point3> = (0..12000)
             .map(|_| {
                 let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
                 let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-9);
@@ -1732,6 +1756,26 @@ mod tests {
         assert_eq!(bulk.tgrid, one.tgrid);
         assert_eq!(bulk.bgrid, one.bgrid);
         assert_eq!(bulk.vgrid, one.vgrid);
+        // wide-box point queries through the coarse grid: the same set as the fine grid
+        let mut wide = 0;
+        for k in 0..200 {
+            let c: P = pos[k * 7 % pos.len()];
+            let h = if k % 2 == 0 {
+                0.005 * k as f64
+            } else {
+                0.6 + 0.004 * k as f64
+            };
+            let (lo, hi) = (c.map(|x| x - h), c.map(|x| x + h));
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            bulk.vgrid.query(lo, hi, &mut a);
+            bulk.points_near(lo, hi, &mut b);
+            let (ra, rb) = bulk.vgrid.range(lo, hi);
+            wide += usize::from((0..3).map(|i| rb[i] - ra[i] + 1).product::<i64>() > 4096);
+            a.sort_unstable();
+            b.sort_unstable();
+            assert_eq!(a, b, "box {lo:?} {hi:?}");
+        }
+        assert!(wide > 50, "{wide}");
     }
 
     #[test]
