@@ -9,31 +9,11 @@
 //!
 //! `cargo run --release -p morpho --example bench_boundary3d [horse|horse100k|bunny ...]`
 //!
-//! Measured 2026-11-23 (release, 2 cores shared with other jobs, so ±50 %):
-//! - bunny 34 834: Delaunay 0.21 s; constriction 0.21 s (10 points locked), exact
-//!   self-intersection check 0.52 s; boundary_3d total 5.40 s = 26× Delaunay, of which ≈ 4.5 s
-//!   is the fallback (285 γ-triangles added, c down to −1); 0 points left out, closed, genus 0,
-//!   no intersections; VmHWM 63 MB.
-//! - horse 48 485: Delaunay 0.36 s; constriction 0.34 s (34 locked), check 1.21 s; total
-//!   10.8 s = 30× (fallback ≈ 9 s, 785 triangles added); 0 left out, valid; VmHWM 103 MB.
-//! - horse, 100 000 surface samples: Delaunay 0.73 s; constriction 0.76 s (220 locked), check
-//!   4.84 s; total 59.7 s = 82× (fallback ≈ 52 s, 6206 triangles added, c down to −1); 0 left
-//!   out, closed, genus 0, no intersections; VmHWM 214 MB (50 MB after the Delaunay alone).
-//!
-//! Without a fallback the ratio is ≈ 4.5× (Delaunay + constriction + check + topology).
-//!
-//! After the fast3 changes (local general engine near the locked vertices, boundary-face grid,
-//! early-stopping boundary tests, γ bounds cached and decided on the diametral ball, parallel
-//! counting-sort self-intersection check), measured 2026-11-23 09:35 UTC, release, machine
-//! loaded (`uptime` load 4.3–4.7 on 2 cores, so every number here is inflated and noisy; two
-//! runs each, `/usr/bin/time -v` maximum RSS):
-//! - bunny: Delaunay 0.33 / 0.41 s, boundary_3d 1.88 / 2.62 s = 5.7× / 6.4×, 272 triangles
-//!   added, 0 left out, closed, genus 0, no intersections; max RSS 58 MB.
-//! - horse: Delaunay 0.72 / 0.77 s, boundary_3d 3.06 / 4.96 s = 4.3× / 6.4×, 792 added, 0 left
-//!   out, valid; max RSS 80 MB.
-//! - horse 100k: Delaunay 0.74 / 1.60 s, boundary_3d 15.4 / 14.6 s (= 21× / 9× of the noisy
-//!   Delaunay time; ≈ 11 s of it is the engine and ≈ 3 s the final exact check), 6063 added,
-//!   0 left out, valid; max RSS 178 MB.
+//! Latest (2026-11-23 16:51 UTC, current main, shared machine, better of two runs): bunny
+//! 0.72 s = 3.25× its Delaunay time (272 triangles added), horse 1.38 s = 3.59× (792 added),
+//! horse 100k 4.10 s = 6.34× (6062 added); all 0 left out, closed, genus 0, no intersections.
+//! The history of these numbers (82× in the morning) and the phase breakdown are in
+//! `bench/README.md` ("3D (`bench_boundary3d`)").
 //!
 //! `... --example bench_boundary3d phases [bunny|horse|horse100k]` prints the time of every
 //! step of the general engine (as `boundary_3d_with` runs it); `... check [horse100k]` times
