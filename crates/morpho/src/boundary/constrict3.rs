@@ -385,18 +385,7 @@ impl State<'_> {
     fn edge_on_boundary(&self, t: u32, a: u32, b: u32) -> bool {
         let d = self.d;
         // the two faces of a tetrahedron containing ab: opposite its two other corners
-        let ab_faces = |t: u32| -> [usize; 2] {
-            let v = d.tets[t as usize];
-            let mut o = [0; 2];
-            let mut k = 0;
-            for (i, &x) in v.iter().enumerate() {
-                if x != a && x != b && k < 2 {
-                    o[k] = i;
-                    k += 1;
-                }
-            }
-            o
-        };
+        let ab_faces = |t: u32| faces_with_edge(d, t, a, b);
         let out = |n: u32| n == NONE || !self.alive[n as usize];
         let [f0, f1] = ab_faces(t);
         if out(d.neighbors[t as usize][f0]) || out(d.neighbors[t as usize][f1]) {
@@ -423,21 +412,25 @@ impl State<'_> {
     }
 }
 
+/// The two faces of tetrahedron t that contain its edge ab: those opposite its two other
+/// corners (face f is opposite corner f).
+fn faces_with_edge(d: &Delaunay3, t: u32, a: u32, b: u32) -> [usize; 2] {
+    let v = d.tets[t as usize];
+    let mut o = [0; 2];
+    let mut k = 0;
+    for (i, &x) in v.iter().enumerate() {
+        if x != a && x != b && k < 2 {
+            o[k] = i;
+            k += 1;
+        }
+    }
+    o
+}
+
 /// The tetrahedra around edge ab of tetrahedron t (t included), by rotation through the
 /// neighbours (no vertex star needed).
 fn around_edge_from(d: &Delaunay3, t: u32, a: u32, b: u32) -> Vec<u32> {
-    let others = |t: u32| -> [usize; 2] {
-        let v = d.tets[t as usize];
-        let mut o = [0; 2];
-        let mut k = 0;
-        for (i, &x) in v.iter().enumerate() {
-            if x != a && x != b && k < 2 {
-                o[k] = i;
-                k += 1;
-            }
-        }
-        o
-    };
+    let others = |t: u32| faces_with_edge(d, t, a, b);
     let mut out = vec![t];
     for start in others(t) {
         let mut prev = t;
