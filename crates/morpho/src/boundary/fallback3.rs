@@ -160,6 +160,8 @@ impl Grid {
     const MAX_SPAN: i64 = 512;
     const COARSEN: f64 = 8.0;
     const LEVELS: usize = 3;
+    /// [`Grid::insert_many`] sorts at most this many (cell, id) entries at once.
+    const BULK_MAX: usize = 1 << 23;
 
     fn new(lo: P, cell: f64, multi: bool) -> Self {
         Grid {
@@ -206,6 +208,11 @@ impl Grid {
             }
             return;
         }
+        self.push_cells(id, a, b);
+    }
+
+    /// Appends `id` to every cell from `a` to `b` (inclusive).
+    fn push_cells(&mut self, id: u32, a: [i64; 3], b: [i64; 3]) {
         for x in a[0]..=b[0] {
             for y in a[1]..=b[1] {
                 for z in a[2]..=b[2] {
@@ -218,6 +225,10 @@ impl Grid {
     /// by one (every cell lists its ids in insertion order, as long as the ids increase along
     /// `items`), with each cell's list allocated once.
     fn insert_many(&mut self, items: impl Iterator<Item = (u32, P, P)>) {
+        self.insert_many_capped(items, Self::BULK_MAX);
+    }
+    /// [`Grid::insert_many`] sorting at most `cap` entries (beyond: one box after the other).
+    fn insert_many_capped(&mut self, items: impl Iterator<Item = (u32, P, P)>, cap: usize) {
         use rayon::prelude::*;
         // entries: the cell's x, y, z (21 bits each, when they fit) above the id, so that one
         // parallel integer sort orders them by cell and then by id
@@ -225,6 +236,7 @@ impl Grid {
         let fits = |c: i64| (0..1 << BITS).contains(&c);
         let mut boxes: Vec<(u32, [i64; 3], [i64; 3])> = Vec::new();
         let mut all_fit = true;
+        let mut total = 0usize;
         for (id, lo, hi) in items {
             let (a, b) = self.range(lo, hi);
             let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
@@ -233,7 +245,15 @@ impl Grid {
                 continue;
             }
             all_fit &= a.iter().chain(&b).all(|&c| fits(c));
+            total += span as usize;
             boxes.push((id, a, b));
+        }
+        if total > cap {
+            // too many entries to hold at once (16–32 bytes each against 4 in the cells)
+            for (id, a, b) in boxes {
+                self.push_cells(id, a, b);
+            }
+            return;
         }
         let cells_of = |&(id, a, b): &(u32, [i64; 3], [i64; 3])| {
             (a[0]..=b[0]).flat_map(move |x| {
@@ -1696,6 +1716,39 @@ mod tests {
             }
         }
         false
+    }
+
+    /// `insert_many` equals `insert` one by one on each of its paths: cell coordinates packed
+    /// into integer keys, cell coordinates too far from the origin for the packing (tuple
+    /// keys), and more entries than the cap (one box after the other); boxes of every size,
+    /// wide ones going to the coarse levels and the big list.
+    #[test]
+    fn bulk_grid_insertion_equals_one_by_one_on_every_path() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        for (origin, cap) in [(0.0, usize::MAX), (-1e9, usize::MAX), (0.0, 100)] {
+            let items: Vec<(u32, P, P)> = (0..3000u32)
+                .map(|id| {
+                    let lo: P = std::array::from_fn(|_| rng.gen_range(0.0..100.0));
+                    let w = match id % 50 {
+                        _ if id % 500 == 0 => 1e5,
+                        0 => 90.0,
+                        1..=3 => 20.0,
+                        _ => rng.gen_range(0.0..3.0),
+                    };
+                    let hi: P = std::array::from_fn(|k| lo[k] + w * (0.5 + (k as f64) / 4.0));
+                    (id, lo, hi)
+                })
+                .collect();
+            let mut bulk = Grid::new([origin; 3], 1.0, true);
+            bulk.insert_many_capped(items.iter().copied(), cap);
+            let mut one = Grid::new([origin; 3], 1.0, true);
+            for &(id, lo, hi) in &items {
+                one.insert(id, lo, hi);
+            }
+            let coarse = bulk.coarse.as_ref().and_then(|g| g.coarse.as_ref());
+            assert!(coarse.is_some_and(|g| !g.big.is_empty()) && !bulk.cells.is_empty());
+            assert_eq!(bulk, one, "origin {origin}, cap {cap}");
+        }
     }
 
     /// The bulk construction (`build`) gives exactly the tables of adding the triangles one
