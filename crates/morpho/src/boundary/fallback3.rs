@@ -352,15 +352,21 @@ impl Grid {
         if let Some(g) = &self.coarse {
             g.collect(lo, hi, out);
         }
+        self.for_cells(lo, hi, |_, ids| out.extend_from_slice(ids));
+    }
+
+    /// Calls `f` on every non-empty cell of this level (not the coarser ones, not `big`)
+    /// that meets the box, with its key and ids.
+    fn for_cells<'a>(&'a self, lo: P, hi: P, mut f: impl FnMut((i64, i64, i64), &'a [u32])) {
         let (a, b) = self.range(lo, hi);
         let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
         if span as usize > self.cells.len() {
-            for (key, ids) in &self.cells {
+            for (&key, ids) in &self.cells {
                 if (a[0]..=b[0]).contains(&key.0)
                     && (a[1]..=b[1]).contains(&key.1)
                     && (a[2]..=b[2]).contains(&key.2)
                 {
-                    out.extend_from_slice(ids);
+                    f(key, ids);
                 }
             }
         } else {
@@ -368,7 +374,7 @@ impl Grid {
                 for y in a[1]..=b[1] {
                     for z in a[2]..=b[2] {
                         if let Some(ids) = self.cells.get(&(x, y, z)) {
-                            out.extend_from_slice(ids);
+                            f((x, y, z), ids);
                         }
                     }
                 }
@@ -546,7 +552,10 @@ pub struct General3<'a> {
     bgrid: Grid,
     in_bgrid: Vec<bool>,
     vgrid: Grid,
-    /// The points again in cells 8× wider, for queries of wide boxes ([`General3::points_near`]).
+    /// The bounding box of the points.
+    pbox: (P, P),
+    /// The points again in cells 8× wider, for walks over wide boxes
+    /// ([`General3::point_grid_for`]).
     vcoarse: Grid,
     heap: BinaryHeap<Entry>,
     buf: Vec<u32>,
@@ -642,6 +651,7 @@ impl<'a> General3<'a> {
             bgrid: Grid::new(lo, cell, true),
             in_bgrid: Vec::new(),
             vgrid: Grid::new(lo, cell, false),
+            pbox: (lo, hi),
             vcoarse: Grid::new(lo, cell * Grid::COARSEN, false),
             heap: BinaryHeap::new(),
             buf: Vec::new(),
@@ -818,23 +828,17 @@ impl<'a> General3<'a> {
             })
     }
 
-    /// The points whose cells of `vgrid` meet the box — the same set as `vgrid.query` —
-    /// through the coarse point grid when the box spans many fine cells (a wide box over a
-    /// scanned surface has mostly empty cells). Order: by fine cell for narrow boxes, by
-    /// coarse cell otherwise.
-    fn points_near(&self, lo: P, hi: P, out: &mut Vec<u32>) {
+    /// The point grid to walk for a box: `vgrid`, or `vcoarse` (cells 8× wider) when the box
+    /// spans many fine cells (a wide box over a scanned surface has mostly empty cells).
+    /// Either holds every point at its own level (points are never wide boxes).
+    fn point_grid_for(&self, lo: P, hi: P) -> &Grid {
         let (a, b) = self.vgrid.range(lo, hi);
         let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
         if span <= 4096 {
-            self.vgrid.query(lo, hi, out);
-            return;
+            &self.vgrid
+        } else {
+            &self.vcoarse
         }
-        self.vcoarse.query(lo, hi, out);
-        out.retain(|&z| {
-            let q = self.p[z as usize];
-            let (c, _) = self.vgrid.range(q, q);
-            (0..3).all(|k| a[k] <= c[k] && c[k] <= b[k])
-        });
     }
 
     fn pt(&self, v: u32) -> P {
@@ -1562,30 +1566,33 @@ impl<'a> General3<'a> {
 
     /// Decides whether triangle `t` is in γ([-1,1],[c,1]): `None` when it is, `Some(ub)` with an
     /// upper bound ub < c of its c₁′ when it is not. Points only narrow the centre interval
-    /// (c₁′ never grows), so the points `first` (near the triangle) are tried first, then the
-    /// points near the circle, then every point within reach, nearest to the circumcentre first;
-    /// a rejection scans on until ub < c − [`UB_LOOKAHEAD`] (or the points run out) so that the
-    /// cached bound also settles the next smaller c.
+    /// (c₁′ never grows), so a decision needs only the points that could still change it:
+    /// 1. the points `first` (near the triangle; blocking points are often among them);
+    /// 2. the points of the diametral ball B(m, r). If then no ball is empty (c₁′ < 0, the gap
+    ///    regime of `gamma_values`), c₁′ is final: a point outside B(m, r) has τ of the sign
+    ///    of its side (q > 0) and never moves the gap's farther end;
+    /// 3. otherwise the points of the witness ball B(s) of
+    ///    [`CenterInterval::witness_offset`], again and again while s moves: once every point
+    ///    of B(s) has been added and s stays, an empty neighbourhood of γ([-1,1],[c,1]) lies in
+    ///    a ball no further point enters. No fixed radius in terms of c suffices: while some
+    ///    ball is empty (c₁′ ≥ 0) a far point inside the largest empty balls can still open a
+    ///    gap whose far end passes c.
+    ///
+    /// A rejection scans on until ub < c − [`UB_LOOKAHEAD`] (or the ball's points run out) so
+    /// that the cached bound also settles the next smaller c. Each ball's points are added
+    /// nearest to its centre first.
     fn gamma_decide(&self, t: [u32; 3], c: f64, first: &[u32]) -> Option<f64> {
         use crate::graphs::gamma::{triangle_circle, CenterInterval, TriFrame};
-        let cabs = c.abs().min(1.0);
-        let kk = if cabs >= 1.0 {
-            f64::INFINITY
-        } else {
-            1.0 / (1.0 - cabs)
-        };
-        let reach_over_r = kk + (kk * kk - 1.0).max(0.0).sqrt();
         let [pa, pb, pc] = t.map(|v| self.pt(v));
-        let (Some(f), Some((m, r2, _))) = (TriFrame::new(pa, pb, pc), triangle_circle(pa, pb, pc))
+        let (Some(f), Some((m, r2, n))) = (TriFrame::new(pa, pb, pc), triangle_circle(pa, pb, pc))
         else {
             // degenerate (collinear corners): never a γ-triangle
             return Some(f64::NEG_INFINITY);
         };
         let mut iv = f.start();
         let mut buf = Vec::new();
-        let reach = r2.sqrt() * reach_over_r * (1.0 + 1e-9);
         let pts = self.p;
-        if !reach.is_finite() {
+        if c <= -1.0 {
             // c = −1: every triangle is in γ([-1,1],[-1,1]) unless a point lies in the closed
             // triangle (then no neighbourhood is empty); such points lie in its bounding box
             let (lo, hi) = bbox(&[pa, pb, pc]);
@@ -1603,8 +1610,9 @@ impl<'a> General3<'a> {
         }
         let ub_of = |iv: &CenterInterval| iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
         let stop = c - UB_LOOKAHEAD;
-        let scan = |iv: &mut CenterInterval, ids: &[u32]| -> bool {
-            for (j, &z) in ids.iter().enumerate() {
+        // adds the points; true when rejected (ub below stop on the way, or below c at the end)
+        let scan = |iv: &mut CenterInterval, ids: &mut dyn Iterator<Item = u32>| -> bool {
+            for (j, z) in ids.enumerate() {
                 if !t.contains(&z) {
                     f.add(iv, pts[z as usize]);
                 }
@@ -1614,50 +1622,93 @@ impl<'a> General3<'a> {
             }
             ub_of(iv) < c
         };
-        if scan(&mut iv, first) {
+        if scan(&mut iv, &mut first.iter().copied()) {
             return Some(ub_of(&iv));
         }
-        let near_r = reach.min(2.0 * r2.sqrt());
-        self.vgrid.query(
-            std::array::from_fn(|i| m[i] - near_r),
-            std::array::from_fn(|i| m[i] + near_r),
-            &mut buf,
-        );
-        if scan(&mut iv, &buf) {
-            return Some(ub_of(&iv));
-        }
-        // No ball through the circle empty so far (c₁′ < 0: the gap regime of
-        // `gamma_values`): c₁′ = −|c| of the gap's larger end. A point outside the closed
-        // diametral ball B(m, r) has τ of the sign of its side (q > 0), so it never widens the
-        // gap: c₁′ is final once every point of B(m, r) — inside the box just scanned
-        // (half-width 2r ≥ r) — has been added.
-        if ub_of(&iv) < 0.0 && near_r >= 2.0 * r2.sqrt() {
-            return None;
-        }
-        if reach > near_r {
-            self.points_near(
-                std::array::from_fn(|i| m[i] - reach),
-                std::array::from_fn(|i| m[i] + reach),
-                &mut buf,
-            );
-            // nearest to the circumcentre first: blocking points come early
-            let d2 = |z: u32| {
-                let q = pts[z as usize];
-                (0..3).map(|i| (q[i] - m[i]).powi(2)).sum::<f64>()
+        let nlen = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let (plo, phi) = self.pbox;
+        // every point of the ball (centre, radius) — all points when that is not finite or
+        // its box holds them all — nearest to the centre first
+        // every point of the ball B(s) (touching the triangle, offset s), by cells of the point
+        // grid (the coarse one for wide boxes) whose centres lie deepest in the ball first —
+        // by the power q − 2·s·h (< 0 inside; divided by |s| when |s| > 1: the same order
+        // without overflow). When the ball's box holds every point, or is not finite: all
+        // points in that order.
+        let mut cells: Vec<(f64, &[u32])> = Vec::new();
+        let mut scan_ball = |iv: &mut CenterInterval, s: f64| -> bool {
+            let depth = |x: P| {
+                let d: P = std::array::from_fn(|i| x[i] - m[i]);
+                let q = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - r2;
+                let h = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+                if s.abs() > 1.0 {
+                    q / s.abs() - 2.0 * s.signum() * h
+                } else {
+                    q - 2.0 * s * h
+                }
             };
-            let mut keyed: Vec<(f64, u32)> = buf.iter().map(|&z| (d2(z), z)).collect();
-            keyed.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            buf.clear();
-            buf.extend(keyed.iter().map(|e| e.1));
-            if scan(&mut iv, &buf) {
+            let centre: P = std::array::from_fn(|i| m[i] + s * n[i]);
+            let radius = nlen * (iv.r_over_n * iv.r_over_n + s * s).sqrt() * (1.0 + 1e-9);
+            let finite = radius.is_finite() && centre.iter().all(|x| x.is_finite());
+            let all = !finite
+                || (0..3).all(|i| centre[i] - radius <= plo[i] && centre[i] + radius >= phi[i]);
+            let (lo, hi): (P, P) = if all {
+                (plo, phi)
+            } else {
+                (
+                    std::array::from_fn(|i| centre[i] - radius),
+                    std::array::from_fn(|i| centre[i] + radius),
+                )
+            };
+            let g = self.point_grid_for(lo, hi);
+            if g.coarse.is_some() || !g.big.is_empty() {
+                // (points are never wide boxes; kept for safety) every point, in index order
+                return scan(iv, &mut (0..pts.len() as u32));
+            }
+            cells.clear();
+            g.for_cells(lo, hi, |k, ids| {
+                let k = [k.0, k.1, k.2];
+                let mid = std::array::from_fn(|i| g.lo[i] + (k[i] as f64 + 0.5) * g.cell);
+                cells.push((depth(mid), ids));
+            });
+            cells.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+            let r2s = radius * radius;
+            let inside = |z: &u32| {
+                all || {
+                    let x = pts[*z as usize];
+                    (0..3).map(|i| (x[i] - centre[i]).powi(2)).sum::<f64>() <= r2s
+                }
+            };
+            scan(
+                iv,
+                &mut cells
+                    .iter()
+                    .flat_map(|e| e.1.iter().copied())
+                    .filter(inside),
+            )
+        };
+        if scan_ball(&mut iv, 0.0) {
+            return Some(ub_of(&iv));
+        }
+        let mut scanned = 0.0; // B(0) = B(m, r)
+        loop {
+            if ub_of(&iv) < 0.0 {
+                return None; // the gap regime with B(m, r) added: c₁′ ≥ c is final
+            }
+            let Some(s) = iv.witness_offset(c) else {
+                // only half-spaces can be empty (`finite_blocked`): every point decides
+                return if scan(&mut iv, &mut (0..pts.len() as u32)) {
+                    Some(ub_of(&iv))
+                } else {
+                    None
+                };
+            };
+            if s == scanned {
+                return None;
+            }
+            if scan_ball(&mut iv, s) {
                 return Some(ub_of(&iv));
             }
-        }
-        let ub = ub_of(&iv);
-        if ub >= c {
-            None
-        } else {
-            Some(ub)
+            scanned = s;
         }
     }
 
@@ -1809,7 +1860,8 @@ mod tests {
         assert_eq!(bulk.tgrid, one.tgrid);
         assert_eq!(bulk.bgrid, one.bgrid);
         assert_eq!(bulk.vgrid, one.vgrid);
-        // wide-box point queries through the coarse grid: the same set as the fine grid
+        // the cells of the point grid chosen for a box (the coarse one for wide boxes) hold
+        // every point inside the box, each once
         let mut wide = 0;
         for k in 0..200 {
             let c: P = pos[k * 7 % pos.len()];
@@ -1819,13 +1871,16 @@ mod tests {
                 0.6 + 0.004 * k as f64
             };
             let (lo, hi) = (c.map(|x| x - h), c.map(|x| x + h));
-            let (mut a, mut b) = (Vec::new(), Vec::new());
-            bulk.vgrid.query(lo, hi, &mut a);
-            bulk.points_near(lo, hi, &mut b);
-            let (ra, rb) = bulk.vgrid.range(lo, hi);
-            wide += usize::from((0..3).map(|i| rb[i] - ra[i] + 1).product::<i64>() > 4096);
+            let inside = |z: &u32| (0..3).all(|i| (lo[i]..=hi[i]).contains(&pos[*z as usize][i]));
+            let g = bulk.point_grid_for(lo, hi);
+            wide += usize::from(std::ptr::eq(g, &bulk.vcoarse));
+            assert!(g.coarse.is_none() && g.big.is_empty());
+            let mut a = Vec::new();
+            g.for_cells(lo, hi, |_, ids| {
+                a.extend(ids.iter().copied().filter(inside))
+            });
+            let b: Vec<u32> = (0..pos.len() as u32).filter(inside).collect();
             a.sort_unstable();
-            b.sort_unstable();
             assert_eq!(a, b, "box {lo:?} {hi:?}");
         }
         assert!(wide > 50, "{wide}");
@@ -1979,6 +2034,65 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// gamma_decide on a dense bumpy sphere (3000 points, grid cells far smaller than the
+    /// set): for triangles among the 16 nearest vertices of many vertices, at several c, it
+    /// accepts exactly the triangles whose c₁′ over *all* points (the full center interval)
+    /// is ≥ c, and a rejection's bound is ≥ that c₁′. Includes triangles whose largest empty
+    /// balls reach far beyond the balls of parameter c (a far point inside them opens the gap
+    /// that rejects them), which a scan bounded by those balls gets wrong.
+    #[test]
+    fn gamma_decide_matches_the_full_center_interval() {
+        use crate::graphs::gamma::center_interval_3d;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let pts: Vec<crate::geom::Point3> = (0..3000)
+            .map(|_| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                let s = 1.0
+                    + 0.15 * (5.0 * v[0] / n).sin() * (4.0 * v[1] / n).cos()
+                    + rng.gen_range(-0.01..0.01);
+                crate::geom::Point3::new(v[0] / n * s, v[1] / n * s, 1.3 * v[2] / n * s)
+            })
+            .collect();
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let g = General3::new(&pos, &d.hull, &[], &[]);
+        let (mut accepted, mut rejected, mut far_gap) = (0, 0, 0);
+        for l in (0..pos.len() as u32).step_by(97) {
+            let near = g.nearest(l, 16).0;
+            for (i, &x) in near.iter().enumerate() {
+                for &y in &near[i + 1..] {
+                    let t = sorted3([l, x, y]);
+                    let Some(full) =
+                        center_interval_3d(&pos, t[0] as usize, t[1] as usize, t[2] as usize)
+                    else {
+                        continue;
+                    };
+                    let c1 = full.gamma_values().map_or(f64::NEG_INFINITY, |v| v.1);
+                    for c in [-0.1, -0.3, -0.6, -0.9] {
+                        match g.gamma_decide(t, c, &near) {
+                            None => {
+                                assert!(c1 >= c, "{t:?} c {c}: accepted, c1' = {c1}");
+                                accepted += 1;
+                            }
+                            Some(ub) => {
+                                assert!(c1 < c && ub >= c1, "{t:?} c {c}: {ub} vs c1' {c1}");
+                                rejected += 1;
+                                // a gap on one side beyond the balls of parameter c
+                                far_gap +=
+                                    usize::from(full.lo > full.hi && full.lo * full.hi > 0.0);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            accepted > 500 && rejected > 500 && far_gap > 100,
+            "{accepted} {rejected} {far_gap}"
+        );
     }
 
     /// hits_boundary (grid, plane culling, early exit) against all boundary faces tested

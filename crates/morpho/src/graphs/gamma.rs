@@ -64,9 +64,22 @@ pub fn abs_c(s: f64, r_over_n: f64) -> f64 {
     if s.is_infinite() {
         return 1.0;
     }
-    let rho = (r_over_n * r_over_n + s * s).sqrt();
-    // 1 − r/ρ without cancellation
-    (s * s) / (rho * (rho + r_over_n))
+    // 1 − r/ρ = s²/(ρ(ρ + r)) without cancellation, and without overflow for the huge
+    // offsets of points that are nearly in the hyperplane: in terms of the smaller ratio
+    // u = min(|s|, r)/max(|s|, r), with √(1 + u²) ≤ √2
+    let (s, r) = (s.abs(), r_over_n.abs());
+    if s == 0.0 {
+        return 0.0;
+    }
+    if s <= r {
+        let u = s / r;
+        let w = (1.0 + u * u).sqrt();
+        u * u / (w * (w + 1.0))
+    } else {
+        let u = r / s;
+        let w = (1.0 + u * u).sqrt();
+        1.0 / (w * (w + u))
+    }
 }
 
 /// Offset (in normal units, ≥ 0) of a ball with parameter |c|.
@@ -183,6 +196,43 @@ impl CenterInterval {
             };
             Some((c0, -c(far)))
         }
+    }
+}
+
+impl CenterInterval {
+    /// The offset s of a ball B(s) touching the simplex that holds an empty neighbourhood of
+    /// γ([-1,1],[c,1]) (c ≤ 0) among the points added so far: while no point lies strictly
+    /// inside B(s), the simplex is in γ([-1,1],[c,1]) — so once every point inside B(s) has
+    /// been added and s is still the offset named, the farther points cannot change that.
+    /// `None` when no such neighbourhood is empty so far (c₁′ < c), when c > 0, or when only
+    /// half-spaces are left (`finite_blocked`).
+    ///
+    /// With `a = min(lo, hi)`, `b = max(lo, hi)`, s = clamp(0, a, b):
+    /// - `lo ≤ hi`: B(s) itself is empty, so the final interval keeps s and c₁′ ≥ 0 ≥ c;
+    /// - `lo > hi`: B(hi) ∩ B(lo) is empty (a point above is in both iff hi > τ, below iff
+    ///   lo < τ), and it contains the intersection neighbourhood of the γ-values (c₀′, c₁′),
+    ///   so with c₁′ ≥ c the simplex stays in γ while it stays empty. It lies in B(s): for
+    ///   hi ≤ 0 ≤ lo in B(0) (q < 2·hi·h ≤ 0 above, q < 2·lo·h ≤ 0 below), otherwise in the
+    ///   ball of the end nearer to 0 (the smaller one on that side).
+    pub fn witness_offset(&self, c: f64) -> Option<f64> {
+        if c > 0.0 || self.all_blocked || self.finite_blocked {
+            return None;
+        }
+        if self.lo > self.hi && !self.gamma_values().is_some_and(|g| g.1 >= c) {
+            return None;
+        }
+        let s = 0f64.clamp(self.lo.min(self.hi), self.lo.max(self.hi));
+        s.is_finite().then_some(s)
+    }
+
+    /// A radius R about the simplex's centre m with B([`Self::witness_offset`]) ⊆ B(m, R):
+    /// once every point within R of m has been added, the simplex is certainly in
+    /// γ([-1,1],[c,1]). `r` is the radius of the smallest touching ball. A ball of offset s
+    /// (normal units, ρ₀ = `r_over_n`) lies in B(m, r·(|s|/ρ₀ + √(1 + (s/ρ₀)²))).
+    pub fn empty_witness_radius(&self, c: f64, r: f64) -> Option<f64> {
+        let t = self.witness_offset(c)? / self.r_over_n;
+        let radius = r * (t.abs() + (1.0 + t * t).sqrt());
+        radius.is_finite().then_some(radius)
     }
 }
 

@@ -331,6 +331,97 @@ fn gamma_values_are_the_largest_empty_parameters() {
     }
 }
 
+/// |c| of an offset (`abs_c`) is finite, in [0, 1], monotone in the offset and the inverse of
+/// `offset_of` at every scale — including the ~1e300 offsets that a point nearly in the plane
+/// of a triangle produces (they used to overflow to NaN and made γ decisions undecidable).
+#[test]
+fn abs_c_is_finite_monotone_and_inverts_offset_of_at_every_scale() {
+    for r in [1e-300, 1e-12, 1.0, 954.8, 4e5, 1e300] {
+        let mut prev = -1.0;
+        for e in -320..=320 {
+            let s = 10f64.powi(e);
+            let c = abs_c(s, r);
+            assert!((0.0..=1.0).contains(&c), "r {r} s {s}: {c}");
+            assert!(c >= prev, "r {r} s {s}: {c} < {prev}");
+            assert_eq!(abs_c(-s, r), c);
+            prev = c;
+        }
+        assert_eq!(abs_c(0.0, r), 0.0);
+        assert_eq!(abs_c(f64::INFINITY, r), 1.0);
+        for c in [1e-9, 0.1, 0.5, 0.9, 0.999] {
+            let back = abs_c(offset_of(c, r), r);
+            assert!((back - c).abs() <= 1e-12, "r {r} c {c}: {back}");
+        }
+    }
+    assert!(abs_c(4.15e300, 954.8) > 1.0 - 1e-12);
+}
+
+/// `CenterInterval::empty_witness_radius`, the early acceptance of the γ scans: adding the
+/// points in order of distance from the triangle's circumcentre, whenever the next point lies
+/// beyond the named radius, the triangle must be in γ([-1,1],[c,1]) with *all* points added.
+/// c is taken just below or just above the triangle's final c₁′ (a radius too small accepts
+/// the "just above" cases); random and integer-grid sets (ties), and the acceptances must
+/// happen early (before the last point) in many rounds.
+#[test]
+fn empty_witness_radius_certifies_gamma_membership() {
+    let mut rng = ChaCha8Rng::seed_from_u64(77);
+    let (mut early, mut above_rounds) = (0, 0);
+    for round in 0..600 {
+        let pts: Vec<[f64; 3]> = if round % 3 == 0 {
+            (0..40)
+                .map(|_| [0, 0, 0].map(|_: i32| rng.gen_range(-4..=4) as f64))
+                .collect()
+        } else {
+            let spread = if round % 3 == 1 { 1.0 } else { 0.2 };
+            let mut v: Vec<[f64; 3]> = (0..3)
+                .map(|_| [0, 0, 0].map(|_: i32| rng.gen_range(-0.5..0.5)))
+                .collect();
+            v.extend((0..40).map(|_| [0, 0, 0].map(|_: i32| rng.gen_range(-3.0..3.0) * spread)));
+            v
+        };
+        let Some(f) = TriFrame::new(pts[0], pts[1], pts[2]) else {
+            continue;
+        };
+        let (m, r2, _) = triangle_circle(pts[0], pts[1], pts[2]).unwrap();
+        let dist = |x: [f64; 3]| (0..3).map(|i| (x[i] - m[i]).powi(2)).sum::<f64>().sqrt();
+        let mut rest: Vec<(f64, [f64; 3])> = pts[3..]
+            .iter()
+            .filter(|x| !pts[..3].contains(x))
+            .map(|&x| (dist(x), x))
+            .collect();
+        rest.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut full = f.start();
+        for &(_, x) in &rest {
+            f.add(&mut full, x);
+        }
+        let Some((_, c1)) = full.gamma_values() else {
+            continue;
+        };
+        for c in [c1 - 0.01, c1 + 1e-6, c1 + 0.01, -0.3, -0.9] {
+            if !(-1.0..=0.0).contains(&c) {
+                continue;
+            }
+            let inside = c1 >= c;
+            above_rounds += usize::from(!inside);
+            let mut iv = f.start();
+            for j in 0..=rest.len() {
+                let next = rest.get(j).map_or(f64::INFINITY, |e| e.0);
+                if let Some(radius) = iv.empty_witness_radius(c, r2.sqrt()) {
+                    if radius * (1.0 + 1e-9) < next {
+                        assert!(inside, "round {round}: c = {c}, final c1' = {c1}, at {j}");
+                        early += usize::from(j < rest.len());
+                        break;
+                    }
+                }
+                if let Some(&(_, x)) = rest.get(j) {
+                    f.add(&mut iv, x);
+                }
+            }
+        }
+    }
+    assert!(early > 300 && above_rounds > 300, "{early} {above_rounds}");
+}
+
 // ---- 3D γ beyond the Delaunay tetrahedralization (graphs::beyond3) ----
 
 mod beyond3_oracle {
