@@ -1431,13 +1431,13 @@ impl<'a> General3<'a> {
     /// [`crate::graphs::gamma::TriFrame`]) on the vertices not on the boundary and pairs of
     /// their `k` nearest vertices or edges of the `k` boundary faces nearest to them — the part
     /// of the γ-graph needed to free a locked vertex (V §5.4 "adaptive augmentation": only where
-    /// needed). Each triangle's interval is computed against every point that can touch its
-    /// balls (within r·(k′ + √(k′² − 1)) of the circumcentre, k′ = 1/(1 − |c|); all points for
-    /// c = −1); see [`Self::gamma_decide`]. Triangles found at an earlier (larger) c are not
-    /// returned again, and triangles rejected earlier with an upper bound of c₁′ below c are
-    /// not tested again. The nearest vertices of a vertex are computed once (positions do not
-    /// change); the candidates are decided in parallel (rayon). O(L·k²·m) for L locked vertices
-    /// and m points within reach.
+    /// needed). Each triangle is decided against every point that can change the decision
+    /// (the diametral ball, then the balls that certify an empty neighbourhood; for c = −1 the
+    /// points in the closed triangle); see [`Self::gamma_decide`]. Triangles found at an
+    /// earlier (larger) c are not returned again, and triangles rejected earlier with an upper
+    /// bound of c₁′ below c are not tested again. The nearest vertices of a vertex are computed
+    /// once (positions do not change); the candidates are decided in parallel (rayon).
+    /// O(L·k²·m) for L locked vertices and m points in the balls scanned.
     pub fn local_gamma(&mut self, c: f64, k: usize) -> Vec<[u32; 3]> {
         use rayon::prelude::*;
         let locked: Vec<u32> = (0..self.p.len() as u32)
