@@ -1273,7 +1273,14 @@ impl<'a> General3<'a> {
     /// (a vertex off the boundary, or a boundary edge it leaves inward) and meets no boundary
     /// triangle beyond common vertices/edges.
     fn try_insert(&mut self, t: [u32; 3]) -> bool {
-        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || self.has(t[0], t[1], t[2]) {
+        !self.has(t[0], t[1], t[2]) && self.insertable_at_boundary(t) && self.add_tri(t)
+    }
+
+    /// The conditions of [`Self::try_insert`] that depend on the boundary only (not on the
+    /// live triangles, which adding changes): distinct corners, started inside, not
+    /// degenerate, meeting no boundary triangle.
+    fn insertable_at_boundary(&self, t: [u32; 3]) -> bool {
+        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
             return false;
         }
         if t.iter().all(|&v| self.on_boundary(v))
@@ -1285,10 +1292,7 @@ impl<'a> General3<'a> {
             return false;
         }
         let pt = t.map(|v| self.pt(v));
-        if super::validity3::degenerate(pt[0], pt[1], pt[2]) || self.hits_boundary(t, &[]) {
-            return false;
-        }
-        self.add_tri(t)
+        !(super::validity3::degenerate(pt[0], pt[1], pt[2]) || self.hits_boundary(t, &[]))
     }
 
     fn push(&mut self, f: [u32; 3]) -> bool {
@@ -1715,11 +1719,35 @@ impl<'a> General3<'a> {
     /// Adds the given triangles where they are certified inside (as for the rewiring; see
     /// the module documentation) and pushes the boundary faces on their edges; returns how
     /// many were added.
+    ///
+    /// The same as [`Self::try_insert`] one after the other, in order: adding a triangle
+    /// changes the live triangles but not the boundary, so the boundary conditions
+    /// ([`Self::insertable_at_boundary`]) are decided for all triangles first, in parallel —
+    /// unless a triangle comes back that was a boundary face (its flag would count again):
+    /// from then on one by one.
     pub fn augment(&mut self, tris: &[[u32; 3]]) -> usize {
+        use rayon::prelude::*;
+        let this = &*self;
+        let at_boundary: Vec<bool> = tris
+            .par_iter()
+            .map(|&t| this.insertable_at_boundary(t))
+            .collect();
+        let mut one_by_one = false;
         let mut added = 0;
         let mut faces = Vec::new();
-        for &t in tris {
-            if self.try_insert(t) {
+        for (&t, ok) in tris.iter().zip(at_boundary) {
+            let inserted = if one_by_one {
+                self.try_insert(t)
+            } else if ok && !self.has(t[0], t[1], t[2]) {
+                one_by_one = self
+                    .id
+                    .get(&sorted3(t))
+                    .is_some_and(|&i| self.bflag[i as usize]);
+                self.add_tri(t)
+            } else {
+                false
+            };
+            if inserted {
                 added += 1;
                 // the boundary faces on its edges may have gained a tetrahedron
                 for k in 0..3 {
@@ -2093,6 +2121,54 @@ mod tests {
             accepted > 500 && rejected > 500 && far_gap > 100,
             "{accepted} {rejected} {far_gap}"
         );
+    }
+
+    /// augment (boundary conditions decided in parallel first) adds exactly the triangles that
+    /// try_insert one after the other adds, in the same order: same ids, live flags and edge
+    /// lists — with repeated triangles, boundary faces and degenerate ones among them.
+    #[test]
+    fn augment_equals_inserting_one_by_one() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4);
+        let pts: Vec<crate::geom::Point3> = (0..1500)
+            .map(|_| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                let s = 1.0 + 0.2 * (4.0 * v[0] / n).sin() + rng.gen_range(-0.01..0.01);
+                crate::geom::Point3::new(v[0] / n * s, v[1] / n * s, v[2] / n * s)
+            })
+            .collect();
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let mut a = General3::new(&pos, &d.hull, &[], &[]);
+        let mut b = General3::new(&pos, &d.hull, &[], &[]);
+        let mut extra = a.local_gamma(-0.6, 16);
+        extra.extend(b.local_gamma(-0.6, 16).into_iter().take(40));
+        extra.extend(d.hull.iter().take(30).map(|&f| sorted3(f)));
+        extra.push([5, 5, 9]);
+        // triples of hull vertices: outside the region unless along an inward hull edge
+        let hv: Vec<u32> = d.hull.iter().flatten().copied().collect();
+        for _ in 0..200 {
+            let t = [0; 3].map(|_: u32| hv[rng.gen_range(0..hv.len())]);
+            extra.push(t);
+        }
+        let added = a.augment(&extra);
+        let mut one = 0;
+        for &t in &extra {
+            one += usize::from(b.try_insert(t));
+        }
+        assert_eq!(added, one);
+        let fails = extra
+            .iter()
+            .filter(|&&t| !b.insertable_at_boundary(t))
+            .count();
+        assert!(
+            added > 100 && fails > 100,
+            "{added} of {}, {fails}",
+            extra.len()
+        );
+        assert_eq!(a.tris, b.tris);
+        assert_eq!(a.live, b.live);
+        assert_eq!(a.eadj, b.eadj);
     }
 
     /// hits_boundary (grid, plane culling, early exit) against all boundary faces tested
