@@ -583,6 +583,8 @@ pub struct General3<'a> {
     skip_unchanged: bool,
     /// Faces skipped so (for the tests).
     skipped: usize,
+    /// Tests: evaluate the faces of a sweep one after the other even without keep triangles.
+    sequential_sweeps: bool,
     /// Tests: evaluate every skipped face anyway and panic if it has a removable tetrahedron.
     verify_skips: bool,
     /// Number of boundary vertices.
@@ -666,6 +668,7 @@ impl<'a> General3<'a> {
             locked_at: IdMap::default(),
             skip_unchanged: true,
             skipped: 0,
+            sequential_sweeps: false,
             verify_skips: false,
             boundary_vertices: 0,
             iterations: 0,
@@ -1029,10 +1032,17 @@ impl<'a> General3<'a> {
 
     /// The closed tetrahedron contains no vertex but its corners.
     fn empty(&mut self, qv: [u32; 4]) -> bool {
+        let mut buf = std::mem::take(&mut self.buf);
+        let ok = self.empty_with(qv, &mut buf);
+        self.buf = buf;
+        ok
+    }
+
+    /// [`Self::empty`] with a scratch buffer of the caller's.
+    fn empty_with(&self, qv: [u32; 4], buf: &mut Vec<u32>) -> bool {
         let q = qv.map(|v| self.pt(v));
         let (lo, hi) = bbox(&q);
-        let mut buf = std::mem::take(&mut self.buf);
-        self.vgrid.query(lo, hi, &mut buf);
+        self.vgrid.query(lo, hi, buf);
         let o = orient3d(q[0], q[1], q[2], q[3]);
         let faces = [[1, 2, 3, 0], [0, 2, 3, 1], [0, 1, 3, 2], [0, 1, 2, 3]];
         let signs: Vec<f64> = faces
@@ -1040,7 +1050,7 @@ impl<'a> General3<'a> {
             .map(|f| orient3d(q[f[0]], q[f[1]], q[f[2]], q[f[3]]))
             .collect();
         let mut ok = o != 0.0;
-        for &v in &buf {
+        for &v in buf.iter() {
             if !ok {
                 break;
             }
@@ -1056,7 +1066,6 @@ impl<'a> General3<'a> {
                 ok = false;
             }
         }
-        self.buf = buf;
         ok
     }
 
@@ -1185,7 +1194,13 @@ impl<'a> General3<'a> {
 
     /// The smallest-key removable tetrahedron on boundary face f.
     fn best(&mut self, f: [u32; 3]) -> Option<(f64, u32)> {
-        if !self.is_bface(f) || (!self.keep.is_empty() && self.keep.contains(&sorted3(f))) {
+        if self.keep.is_empty() {
+            let mut buf = std::mem::take(&mut self.buf);
+            let b = self.best_plain(f, &mut buf);
+            self.buf = buf;
+            return b;
+        }
+        if !self.is_bface(f) || self.keep.contains(&sorted3(f)) {
             return None;
         }
         if !self.keep.is_empty() {
@@ -1226,6 +1241,30 @@ impl<'a> General3<'a> {
             }
         }
         None
+    }
+
+    /// [`Self::best`] without keep triangles, where nothing is rewired: read-only (the
+    /// removability checks of [`Self::check`] without the keep crossings), so that
+    /// [`Self::push_all`] can evaluate faces in parallel.
+    fn best_plain(&self, f: [u32; 3], buf: &mut Vec<u32>) -> Option<(f64, u32)> {
+        debug_assert!(self.keep.is_empty());
+        if !self.is_bface(f) {
+            return None;
+        }
+        let mut keyed: Vec<(f64, u32, Removal)> = self
+            .eadj
+            .get(&ek(f[0], f[1]))
+            .into_iter()
+            .flatten()
+            .filter(|&&l| l != f[2])
+            .filter_map(|&l| self.combinatorial(f, l).map(|r| (r.0, l, r)))
+            .collect();
+        keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        keyed.into_iter().find_map(|(k, l, (_, bf, nf))| {
+            let removable = self.empty_with([f[0], f[1], f[2], l], buf)
+                && !nf.iter().any(|&t| self.hits_boundary(t, &bf));
+            removable.then_some((k, l))
+        })
     }
 
     /// V §5.7 (3D, Fig. 5.12 right): keep triangle `kt` = x y m crosses a tetrahedron on
@@ -1309,22 +1348,65 @@ impl<'a> General3<'a> {
     /// boundary faces has two other live faces, each on an edge of every boundary face of it;
     /// the other boundary faces never have one).
     fn push_all(&mut self) -> bool {
-        let mut faces: Vec<[u32; 3]> = Vec::new();
-        for (i, t) in self.tris.iter().enumerate() {
-            if !self.live[i] || self.bflag[i] {
-                continue;
+        use rayon::prelude::*;
+        let this = &*self;
+        let mut faces: Vec<[u32; 3]> = (0..this.tris.len())
+            .into_par_iter()
+            .filter(|&i| this.live[i] && !this.bflag[i])
+            .flat_map_iter(|i| {
+                let t = this.tris[i];
+                (0..6).filter_map(move |j| {
+                    let (a, b) = (t[j / 2], t[(j / 2 + 1) % 3]);
+                    let (x, y) = if j % 2 == 0 { (a, b) } else { (b, a) };
+                    this.bnext.get(&dk(x, y)).map(|&z| sorted_rot([x, y, z]))
+                })
+            })
+            .collect();
+        faces.par_sort_unstable();
+        faces.dedup();
+        // Without keep triangles evaluating a face changes nothing (no rewiring): the faces
+        // are tested and evaluated in parallel against the same state, then handled in order.
+        if self.keep.is_empty() && !self.sequential_sweeps {
+            enum Verdict {
+                Skipped,
+                Push(f64, u32),
+                Locked(P, P),
             }
-            for k in 0..3 {
-                let (a, b) = (t[k], t[(k + 1) % 3]);
-                for (x, y) in [(a, b), (b, a)] {
-                    if let Some(&z) = self.bnext.get(&dk(x, y)) {
-                        faces.push(sorted_rot([x, y, z]));
+            let this = &*self;
+            let verdicts: Vec<Verdict> = faces
+                .par_iter()
+                .map_init(Vec::new, |buf, &f| {
+                    if this.unchanged_lock(f) {
+                        Verdict::Skipped
+                    } else if let Some((key, l)) = this.best_plain(f, buf) {
+                        Verdict::Push(key, l)
+                    } else {
+                        let (lo, hi) = this.lock_box(f);
+                        Verdict::Locked(lo, hi)
+                    }
+                })
+                .collect();
+            let mut any = false;
+            for (f, v) in faces.into_iter().zip(verdicts) {
+                match v {
+                    Verdict::Skipped => {
+                        self.skipped += 1;
+                        if self.verify_skips {
+                            assert!(self.best(f).is_none(), "skipped a removable face {f:?}");
+                        }
+                    }
+                    Verdict::Push(key, l) => {
+                        self.heap.push(Entry { key, item: (f, l) });
+                        any = true;
+                        self.locked_at.remove(&f);
+                    }
+                    Verdict::Locked(lo, hi) => {
+                        self.locked_at.insert(f, (self.epoch, lo, hi));
                     }
                 }
             }
+            return any;
         }
-        faces.sort_unstable();
-        faces.dedup();
         let mut any = false;
         for f in faces {
             // A face found locked is skipped while nothing meeting the box of f and its
@@ -1332,34 +1414,53 @@ impl<'a> General3<'a> {
             // edges and the tetrahedra they span (boundary flags of their faces and edges,
             // points inside, live triangles crossing them, boundary faces meeting their new
             // faces) — all inside that box — and every mutation stamps the cells of its box.
-            if self.skip_unchanged {
-                if let Some(&(e, lo, hi)) = self.locked_at.get(&f) {
-                    if !self.changed_since(e, lo, hi) {
-                        self.skipped += 1;
-                        if self.verify_skips {
-                            assert!(self.best(f).is_none(), "skipped a removable face {f:?}");
-                        }
-                        continue;
-                    }
-                }
+            if self.skip_locked(f) {
+                continue;
             }
             let e = self.epoch;
             if self.push(f) {
                 any = true;
                 self.locked_at.remove(&f);
             } else {
-                let mut q: Vec<P> = f.iter().map(|&v| self.pt(v)).collect();
-                for k in 0..3 {
-                    if let Some(ls) = self.eadj.get(&ek(f[k], f[(k + 1) % 3])) {
-                        q.extend(ls.iter().map(|&l| self.pt(l)));
-                    }
-                }
-                let (lo, hi) = bbox(&q);
                 // (a mutation during this face's own evaluation, e.g. a rewiring, is after e)
+                let (lo, hi) = self.lock_box(f);
                 self.locked_at.insert(f, (e, lo, hi));
             }
         }
         any
+    }
+
+    /// Whether face f was found locked before and nothing meeting the box of f and its
+    /// apexes has changed since (then [`Self::push_all`] skips it).
+    fn unchanged_lock(&self, f: [u32; 3]) -> bool {
+        self.skip_unchanged
+            && self
+                .locked_at
+                .get(&f)
+                .is_some_and(|&(e, lo, hi)| !self.changed_since(e, lo, hi))
+    }
+
+    /// [`Self::unchanged_lock`], counted, and in the tests verified.
+    fn skip_locked(&mut self, f: [u32; 3]) -> bool {
+        if !self.unchanged_lock(f) {
+            return false;
+        }
+        self.skipped += 1;
+        if self.verify_skips {
+            assert!(self.best(f).is_none(), "skipped a removable face {f:?}");
+        }
+        true
+    }
+
+    /// The box of face f and the apexes on its edges: everything its removability depends on.
+    fn lock_box(&self, f: [u32; 3]) -> (P, P) {
+        let mut q: Vec<P> = f.iter().map(|&v| self.pt(v)).collect();
+        for k in 0..3 {
+            if let Some(ls) = self.eadj.get(&ek(f[k], f[(k + 1) % 3])) {
+                q.extend(ls.iter().map(|&l| self.pt(l)));
+            }
+        }
+        bbox(&q)
     }
 
     fn remove(&mut self, f: [u32; 3], l: u32, bf: &[[u32; 3]], nf: &[[u32; 3]]) {
@@ -2176,7 +2277,8 @@ mod tests {
     /// Skipping the locked faces whose surroundings did not change gives exactly the
     /// constriction of the full sweep (same surface, same number of removals), through
     /// several sweeps, augmentations and c steps; every skipped face, evaluated anyway, has no
-    /// removable tetrahedron; and it does skip.
+    /// removable tetrahedron; and it does skip. The sweeps' parallel evaluation (no keep
+    /// triangles) equals the evaluation one face after the other.
     #[test]
     fn sweeps_that_skip_unchanged_faces_constrict_identically() {
         let mut skipped = 0;
@@ -2208,10 +2310,16 @@ mod tests {
             }
             live.sort_unstable();
             live.dedup();
-            let go = |skip: bool| {
-                let mut g = General3::new(&pos, &st.triangles, &live, &[]);
-                g.skip_unchanged = skip;
-                g.verify_skips = skip;
+            // reference: no skipping, faces one after the other; against it: skipping (each
+            // skipped face verified), faces evaluated in parallel — from the first sweep on
+            let go = |fast: bool| {
+                let mut g = General3::blank(&pos, &st.triangles, &live, &[]);
+                g.build(&st.triangles, &live, &[]);
+                g.track = true;
+                g.skip_unchanged = fast;
+                g.verify_skips = fast;
+                g.sequential_sweeps = !fast;
+                g.push_all();
                 g.run();
                 let mut trace = vec![(g.iterations, g.boundary_vertices)];
                 for step in 1..=10 {
