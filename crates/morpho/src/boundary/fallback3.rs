@@ -2165,6 +2165,21 @@ mod tests {
         }
     }
 
+    /// n points on a bumpy ellipsoid (radius 1 ± 0.15 waves, ±0.01 noise, z stretched by 1.3).
+    fn bumpy_sphere(n: usize, seed: u64) -> Vec<crate::geom::Point3> {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        (0..n)
+            .map(|_| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                let s = 1.0
+                    + 0.15 * (5.0 * v[0] / n).sin() * (4.0 * v[1] / n).cos()
+                    + rng.gen_range(-0.01..0.01);
+                crate::geom::Point3::new(v[0] / n * s, v[1] / n * s, 1.3 * v[2] / n * s)
+            })
+            .collect()
+    }
+
     /// gamma_decide on a dense bumpy sphere (3000 points, grid cells far smaller than the
     /// set): for triangles among the 16 nearest vertices of many vertices, at several c, it
     /// accepts exactly the triangles whose c₁′ over *all* points (the full center interval)
@@ -2174,17 +2189,7 @@ mod tests {
     #[test]
     fn gamma_decide_matches_the_full_center_interval() {
         use crate::graphs::gamma::center_interval_3d;
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
-        let pts: Vec<crate::geom::Point3> = (0..3000)
-            .map(|_| {
-                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
-                let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
-                let s = 1.0
-                    + 0.15 * (5.0 * v[0] / n).sin() * (4.0 * v[1] / n).cos()
-                    + rng.gen_range(-0.01..0.01);
-                crate::geom::Point3::new(v[0] / n * s, v[1] / n * s, 1.3 * v[2] / n * s)
-            })
-            .collect();
+        let pts = bumpy_sphere(3000, 9);
         let d = crate::delaunay::d3::triangulate(&pts).unwrap();
         let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
         let g = General3::new(&pos, &d.hull, &[], &[]);
@@ -2229,15 +2234,8 @@ mod tests {
     /// lists — with repeated triangles, boundary faces and degenerate ones among them.
     #[test]
     fn augment_equals_inserting_one_by_one() {
+        let pts = bumpy_sphere(1500, 4);
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4);
-        let pts: Vec<crate::geom::Point3> = (0..1500)
-            .map(|_| {
-                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
-                let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
-                let s = 1.0 + 0.2 * (4.0 * v[0] / n).sin() + rng.gen_range(-0.01..0.01);
-                crate::geom::Point3::new(v[0] / n * s, v[1] / n * s, v[2] / n * s)
-            })
-            .collect();
         let d = crate::delaunay::d3::triangulate(&pts).unwrap();
         let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
         let mut a = General3::new(&pos, &d.hull, &[], &[]);
