@@ -9,9 +9,11 @@
 //!
 //! `cargo run --release -p morpho --example bench_boundary3d [horse|horse100k|bunny ...]`
 //!
-//! Latest (2026-11-23 16:51 UTC, current main, shared machine, better of two runs): bunny
-//! 0.72 s = 3.25× its Delaunay time (272 triangles added), horse 1.38 s = 3.59× (792 added),
-//! horse 100k 4.10 s = 6.34× (6062 added); all 0 left out, closed, genus 0, no intersections.
+//! Latest (2026-11-23 18:57 UTC, current main, shared machine at load 1.7–2.1, better of two
+//! runs): bunny 0.58 s = 2.43× its Delaunay time (282 triangles added), horse 1.25 s = 4.36×
+//! (888 added), horse 100k 3.58 s = 5.04× (5.41× in the other run; 8823 added); all 0 left out,
+//! closed, genus 0, no intersections. (The numbers before 18:00 came from γ decisions that
+//! stopped too early; see `bench/README.md`.)
 //! The history of these numbers (82× in the morning) and the phase breakdown are in
 //! `bench/README.md` ("3D (`bench_boundary3d`)").
 //!
