@@ -935,6 +935,25 @@ mod tests {
         assert!(hits > 200 && coplanar > 1000, "{hits} {coplanar}");
     }
 
+    /// An m × m grid of the unit square mapped by `f`, two triangles per square.
+    fn grid_sheet(m: usize, f: impl Fn(f64, f64) -> P) -> (Vec<P>, Vec<[u32; 3]>) {
+        let mut pos = Vec::new();
+        for j in 0..=m {
+            for i in 0..=m {
+                pos.push(f(i as f64 / m as f64, j as f64 / m as f64));
+            }
+        }
+        let id = |i: usize, j: usize| (j * (m + 1) + i) as u32;
+        let mut tris = Vec::new();
+        for j in 0..m {
+            for i in 0..m {
+                tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        (pos, tris)
+    }
+
     /// Big needles (a corner within 1e-5 … 1e-15 of the opposite edge, so that the rounded
     /// normal is mostly noise) and big triangles far from the origin relative to their size are
     /// found through the grid walk like any other: compared with all pairs by brute force.
@@ -944,26 +963,14 @@ mod tests {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
         let m = 40;
         for (round, off) in [0.0, 0.0, 0.0, 1e3, 1e6].into_iter().enumerate() {
-            let mut pos: Vec<P> = Vec::new();
             // a wavy sheet (not planar: the needle's bad plane must not line up with it)
-            for j in 0..=m {
-                for i in 0..=m {
-                    let (x, y) = (i as f64 / m as f64, j as f64 / m as f64);
-                    pos.push([
-                        x + off,
-                        y + off,
-                        0.05 * (7.0 * x).sin() * (5.0 * y).cos() + off,
-                    ]);
-                }
-            }
-            let id = |i: usize, j: usize| (j * (m + 1) + i) as u32;
-            let mut tris = Vec::new();
-            for j in 0..m {
-                for i in 0..m {
-                    tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-                    tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-                }
-            }
+            let (mut pos, mut tris) = grid_sheet(m, |x, y| {
+                [
+                    x + off,
+                    y + off,
+                    0.05 * (7.0 * x).sin() * (5.0 * y).cos() + off,
+                ]
+            });
             for _ in 0..6 {
                 let a: P = [rng.gen_range(0.0..0.3), rng.gen_range(0.0..1.0), -0.7];
                 let b: P = [rng.gen_range(0.7..1.0), rng.gen_range(0.0..1.0), 0.6];
@@ -986,20 +993,7 @@ mod tests {
     fn big_triangles_are_tested_through_the_cells_of_their_plane() {
         // a fine flat grid mesh on z = 0 and big triangles spanning it
         let m = 60;
-        let mut pos: Vec<P> = Vec::new();
-        for j in 0..=m {
-            for i in 0..=m {
-                pos.push([i as f64 / m as f64, j as f64 / m as f64, 0.0]);
-            }
-        }
-        let id = |i: usize, j: usize| (j * (m + 1) + i) as u32;
-        let mut tris = Vec::new();
-        for j in 0..m {
-            for i in 0..m {
-                tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-                tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
+        let (mut pos, mut tris) = grid_sheet(m, |x, y| [x, y, 0.0]);
         let n0 = pos.len() as u32;
         // vertical, slanted big triangle piercing the sheet along a segment
         pos.extend([[0.013, 0.021, -1.0], [0.977, 0.963, -1.0], [0.5, 0.4, 1.0]]);
