@@ -1732,8 +1732,6 @@ impl<'a> General3<'a> {
         }
         let nlen = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
         let (plo, phi) = self.pbox;
-        // every point of the ball (centre, radius) — all points when that is not finite or
-        // its box holds them all — nearest to the centre first
         // every point of the ball B(s) (touching the triangle, offset s), by cells of the point
         // grid (the coarse one for wide boxes) whose centres lie deepest in the ball first —
         // by the power q − 2·s·h (< 0 inside; divided by |s| when |s| > 1: the same order

@@ -197,9 +197,7 @@ impl CenterInterval {
             Some((c0, -c(far)))
         }
     }
-}
 
-impl CenterInterval {
     /// The offset s of a ball B(s) touching the simplex that holds an empty neighbourhood of
     /// γ([-1,1],[c,1]) (c ≤ 0) among the points added so far: while no point lies strictly
     /// inside B(s), the simplex is in γ([-1,1],[c,1]) — so once every point inside B(s) has
@@ -223,16 +221,6 @@ impl CenterInterval {
         }
         let s = 0f64.clamp(self.lo.min(self.hi), self.lo.max(self.hi));
         s.is_finite().then_some(s)
-    }
-
-    /// A radius R about the simplex's centre m with B([`Self::witness_offset`]) ⊆ B(m, R):
-    /// once every point within R of m has been added, the simplex is certainly in
-    /// γ([-1,1],[c,1]). `r` is the radius of the smallest touching ball. A ball of offset s
-    /// (normal units, ρ₀ = `r_over_n`) lies in B(m, r·(|s|/ρ₀ + √(1 + (s/ρ₀)²))).
-    pub fn empty_witness_radius(&self, c: f64, r: f64) -> Option<f64> {
-        let t = self.witness_offset(c)? / self.r_over_n;
-        let radius = r * (t.abs() + (1.0 + t * t).sqrt());
-        radius.is_finite().then_some(radius)
     }
 }
 

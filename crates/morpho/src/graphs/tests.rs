@@ -356,14 +356,14 @@ fn abs_c_is_finite_monotone_and_inverts_offset_of_at_every_scale() {
     assert!(abs_c(4.15e300, 954.8) > 1.0 - 1e-12);
 }
 
-/// `CenterInterval::empty_witness_radius`, the early acceptance of the γ scans: adding the
-/// points in order of distance from the triangle's circumcentre, whenever the next point lies
-/// beyond the named radius, the triangle must be in γ([-1,1],[c,1]) with *all* points added.
+/// `CenterInterval::witness_offset`, the acceptance of the γ scans: adding the points in order
+/// of distance from the triangle's circumcentre, whenever the next point lies beyond the witness
+/// ball, the triangle must be in γ([-1,1],[c,1]) with *all* points added.
 /// c is taken just below or just above the triangle's final c₁′ (a radius too small accepts
 /// the "just above" cases); random and integer-grid sets (ties), and the acceptances must
 /// happen early (before the last point) in many rounds.
 #[test]
-fn empty_witness_radius_certifies_gamma_membership() {
+fn witness_ball_certifies_gamma_membership() {
     let mut rng = ChaCha8Rng::seed_from_u64(77);
     let (mut early, mut above_rounds) = (0, 0);
     for round in 0..600 {
@@ -406,7 +406,10 @@ fn empty_witness_radius_certifies_gamma_membership() {
             let mut iv = f.start();
             for j in 0..=rest.len() {
                 let next = rest.get(j).map_or(f64::INFINITY, |e| e.0);
-                if let Some(radius) = iv.empty_witness_radius(c, r2.sqrt()) {
+                // the witness ball B(s) lies in B(m, r·(|s|/ρ₀ + √(1 + (s/ρ₀)²)))
+                if let Some(s) = iv.witness_offset(c) {
+                    let t = s / iv.r_over_n;
+                    let radius = r2.sqrt() * (t.abs() + (1.0 + t * t).sqrt());
                     if radius * (1.0 + 1e-9) < next {
                         assert!(inside, "round {round}: c = {c}, final c1' = {c1}, at {j}");
                         early += usize::from(j < rest.len());
