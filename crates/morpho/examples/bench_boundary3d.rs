@@ -149,7 +149,7 @@ fn run(name: &str, pts: &[Point3]) {
     let b = boundary_3d(pts, Until::All).expect("boundary");
     let t_all = t.elapsed().as_secs_f64();
     println!(
-        "{name}: {} points | delaunay {t_dt:.2} s | phases: constriction {t_con:.2} s ({} removals, {} left by Delaunay constriction), self-intersection check {t_si:.2} s | boundary_3d total {t_all:.2} s = {:.2}× delaunay | left out {}, c_used {}, added {}, closed {}, genus {:?}, intersections {} | VmHWM after delaunay {mem_dt:.0} MB, after boundary {:.0} MB",
+        "{name}: {} points | delaunay {t_dt:.2} s | phases: constriction {t_con:.2} s ({} removals, {} left by Delaunay constriction), full self-intersection check (every pair, as `morpho info --check`) {t_si:.2} s | boundary_3d total {t_all:.2} s = {:.2}× delaunay | left out {}, c_used {}, added {}, closed {}, genus {:?}, intersections {} | VmHWM after delaunay {mem_dt:.0} MB, after boundary {:.0} MB",
         pts.len(),
         c.iterations,
         pts.len() - c.boundary_vertices.min(pts.len()),
@@ -312,7 +312,8 @@ fn phases(name: &str, pts: &[Point3]) {
     }
     let t = Watch::start();
     let b = g.boundary();
-    let si = validity3::self_intersections(&pos, &b, 10);
+    let delaunay_face = validity3::faces_of_tetrahedra(&d.tets, &b);
+    let si = validity3::self_intersections_trusting(&pos, &b, &delaunay_face, 10);
     println!(
         "  final check {} ({} intersections), iterations {}",
         t.show(),

@@ -686,6 +686,12 @@ mod props {
                 prop_assert!(b.closed_manifold);
                 prop_assert_eq!(b.genus, Some(0));
                 prop_assert!(b.intersections.is_empty());
+                // (the report skips pairs of Delaunay faces; every pair, exactly:)
+                let pos: Vec<[f64; 3]> = pts.iter().map(|p| [p.x, p.y, p.z]).collect();
+                prop_assert!(
+                    morpho::boundary::validity3::self_intersections_brute(&pos, &b.triangles)
+                        .is_empty()
+                );
             }
         }
     }

@@ -18,7 +18,9 @@
 //! for the Delaunay constriction), on the whole object when that does not free every vertex;
 //! keep triangles (V §5.7) that are not Delaunay
 //! faces are constricted by the general engine from the hull. The result is checked with
-//! [`crate::mesh::topology::analyze`] and the exact [`validity3::self_intersections`].
+//! [`crate::mesh::topology::analyze`] and the exact self-intersection test
+//! ([`validity3::self_intersections_trusting`]: pairs of two Delaunay faces are skipped, they
+//! meet only in common faces; every other pair is tested).
 //! [`Method::VoronoiSkeleton`] in 3D grows the shortest Voronoi skeleton of Delaunay tetrahedra
 //! instead ([`voronoi_skeleton3`], V §4.3.4, §5.6).
 //!
@@ -520,7 +522,9 @@ pub struct Boundary3 {
     /// Its genus (`None` when not an orientable manifold).
     pub genus: Option<i64>,
     /// Pairs of boundary triangles that intersect although they must not (exact test,
-    /// [`validity3::self_intersections`]; at most 10 listed). Empty for a valid boundary.
+    /// [`validity3::self_intersections_trusting`], every pair except two faces of the
+    /// Delaunay tetrahedralization, which meet only in common faces; at most 10 listed).
+    /// Empty for a valid boundary.
     pub intersections: Vec<(u32, u32)>,
     /// The interior tetrahedralization (empty when the general engine ran: its implicit
     /// tetrahedra are not kept as a tiling — the engine deletes conservatively, so its
@@ -826,7 +830,10 @@ fn boundary_3d_unit(points: &[crate::geom::Point3], opts: &Options3) -> Result<B
     };
     let mesh = crate::mesh::TriMesh::new(d.points.clone(), tris.clone());
     let topo = crate::mesh::topology::analyze(&mesh);
-    let intersections = validity3::self_intersections(&pos, &tris, 10);
+    // Faces of the Delaunay tetrahedralization meet only in common faces (a simplicial
+    // complex), so only pairs with a triangle that is not one of its faces can intersect.
+    let delaunay_face = validity3::faces_of_tetrahedra(&d.tets, &tris);
+    let intersections = validity3::self_intersections_trusting(&pos, &tris, &delaunay_face, 10);
     let mut on = vec![false; nv];
     for t in &tris {
         for &v in t {

@@ -201,10 +201,209 @@ pub fn meet_beyond_edge(a: P, b: P, c: P, d: P) -> bool {
 /// near 1 ([`crate::geom::power_of_two_scale`]; exact), so that no predicate over- or
 /// underflows at extreme absolute scales (1e-300 … 1e300).
 pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u32, u32)> {
+    self_intersections_masked(pos, tris, None, limit)
+}
+
+/// [`self_intersections`] without testing the pairs of two *trusted* triangles
+/// (`trusted[i]` for `tris[i]`): faces of one tetrahedralization, for instance, meet only in
+/// common vertices and edges (a simplicial complex), so among them only pairs with at least
+/// one other triangle can intersect. The result is the pairs of [`self_intersections`] with
+/// an untrusted member. Only the grid cells that an untrusted triangle's box reaches are
+/// filled and visited, so the cost follows the untrusted triangles and their neighbours
+/// (nothing is tested when every triangle is trusted).
+///
+/// # Panics
+/// When `trusted` and `tris` differ in length.
+pub fn self_intersections_trusting(
+    pos: &[P],
+    tris: &[[u32; 3]],
+    trusted: &[bool],
+    limit: usize,
+) -> Vec<(u32, u32)> {
+    assert_eq!(trusted.len(), tris.len(), "one trust flag per triangle");
+    self_intersections_masked(pos, tris, Some(trusted), limit)
+}
+
+/// For every triangle of `tris`, whether it is a face of one of the tetrahedra `tets` (vertex
+/// indices in any order): the flags for [`self_intersections_trusting`] when the tetrahedra
+/// form a tetrahedralization.
+pub fn faces_of_tetrahedra(tets: &[[u32; 4]], tris: &[[u32; 3]]) -> Vec<bool> {
     use rayon::prelude::*;
-    if tris.is_empty() {
+    let sort3 = |t: [u32; 3]| {
+        let mut s = t;
+        s.sort_unstable();
+        s
+    };
+    let mut index: crate::boundary::constrict3::IdMap<[u32; 3], u32> = Default::default();
+    index.reserve(tris.len());
+    for (i, &t) in tris.iter().enumerate() {
+        index.entry(sort3(t)).or_insert(i as u32);
+    }
+    let found: Vec<u32> = tets
+        .par_iter()
+        .flat_map_iter(|t| {
+            let index = &index;
+            (0..4).filter_map(move |k| {
+                let f = [t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]];
+                index.get(&sort3(f)).copied()
+            })
+        })
+        .collect();
+    // (a triangle listed twice is trusted once, its first copy: the pair of copies is still
+    // tested)
+    let mut out = vec![false; tris.len()];
+    for i in found {
+        out[i as usize] = true;
+    }
+    out
+}
+
+/// The triangles that may meet an untrusted one: the untrusted triangles and every triangle
+/// whose bounding box reaches a grid cell that an untrusted triangle's box reaches (cells of
+/// twice the median edge length of the untrusted triangles; cell indices are monotone in the
+/// coordinates, so overlapping boxes share a cell). Indices in increasing order; `None` when
+/// the untrusted triangles are not finite or too spread out for a small grid (then the whole
+/// set is checked).
+fn near_untrusted(pos: &[P], tris: &[[u32; 3]], trusted: &[bool]) -> Option<Vec<u32>> {
+    use rayon::prelude::*;
+    let boxes: Vec<(P, P)> = tris
+        .par_iter()
+        .map(|t| {
+            let q = t.map(|v| pos[v as usize]);
+            (
+                std::array::from_fn(|k| q[0][k].min(q[1][k]).min(q[2][k])),
+                std::array::from_fn(|k| q[0][k].max(q[1][k]).max(q[2][k])),
+            )
+        })
+        .collect();
+    let untrusted: Vec<u32> = (0..tris.len() as u32)
+        .filter(|&i| !trusted[i as usize])
+        .collect();
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    let mut lens = Vec::with_capacity(3 * untrusted.len());
+    for &i in &untrusted {
+        let (bl, bh) = boxes[i as usize];
+        if !bl.iter().chain(&bh).all(|x| x.is_finite()) {
+            return None;
+        }
+        for k in 0..3 {
+            lo[k] = lo[k].min(bl[k]);
+            hi[k] = hi[k].max(bh[k]);
+        }
+        let q = tris[i as usize].map(|v| pos[v as usize]);
+        for k in 0..3 {
+            let (a, b) = (q[k], q[(k + 1) % 3]);
+            lens.push(
+                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt(),
+            );
+        }
+    }
+    let mid = lens.len() / 2;
+    let cell = 2.0 * *lens.select_nth_unstable_by(mid, f64::total_cmp).1;
+    let dims: Vec<f64> = (0..3)
+        .map(|k| ((hi[k] - lo[k]) / cell).floor() + 1.0)
+        .collect();
+    if !(cell > 0.0 && cell.is_finite())
+        || dims.iter().any(|&d| d.is_nan() || d >= (1u64 << 21) as f64)
+    {
+        return None;
+    }
+    let dims: [u64; 3] = std::array::from_fn(|k| dims[k] as u64);
+    // cell range of a box, clamped to the grid; None when outside it
+    let range = |(bl, bh): (P, P)| -> Option<([u64; 3], [u64; 3])> {
+        let mut mn = [0u64; 3];
+        let mut mx = [0u64; 3];
+        for k in 0..3 {
+            let (a, b) = (
+                ((bl[k] - lo[k]) / cell).floor(),
+                ((bh[k] - lo[k]) / cell).floor(),
+            );
+            if b < 0.0 || a > (dims[k] - 1) as f64 {
+                return None;
+            }
+            mn[k] = a.max(0.0) as u64;
+            mx[k] = b.min((dims[k] - 1) as f64) as u64;
+        }
+        Some((mn, mx))
+    };
+    let key = |x: u64, y: u64, z: u64| x | y << 21 | z << 42;
+    let mut hot: crate::boundary::constrict3::IdSet<u64> = Default::default();
+    for &i in &untrusted {
+        let (mn, mx) = range(boxes[i as usize])?;
+        if (0..3).map(|k| mx[k] - mn[k] + 1).product::<u64>() > 4096 {
+            return None;
+        }
+        for z in mn[2]..=mx[2] {
+            for y in mn[1]..=mx[1] {
+                for x in mn[0]..=mx[0] {
+                    hot.insert(key(x, y, z));
+                }
+            }
+        }
+    }
+    // a trusted box over more cells than this is kept without looking
+    const LOOK: u64 = 64;
+    Some(
+        (0..tris.len() as u32)
+            .into_par_iter()
+            .filter(|&i| {
+                let b = boxes[i as usize];
+                if !trusted[i as usize] || !b.0.iter().chain(&b.1).all(|x| x.is_finite()) {
+                    return true;
+                }
+                let Some((mn, mx)) = range(b) else {
+                    return false;
+                };
+                if (0..3).map(|k| mx[k] - mn[k] + 1).product::<u64>() > LOOK {
+                    return true;
+                }
+                (mn[2]..=mx[2]).any(|z| {
+                    (mn[1]..=mx[1]).any(|y| (mn[0]..=mx[0]).any(|x| hot.contains(&key(x, y, z))))
+                })
+            })
+            .collect(),
+    )
+}
+
+/// [`self_intersections`], skipping pairs of two trusted triangles when flags are given.
+fn self_intersections_masked(
+    pos: &[P],
+    tris: &[[u32; 3]],
+    trusted: Option<&[bool]>,
+    limit: usize,
+) -> Vec<(u32, u32)> {
+    if tris.is_empty() || trusted.is_some_and(|t| t.iter().all(|&x| x)) {
         return Vec::new();
     }
+    // few untrusted triangles: only they and the triangles near them
+    if let Some(t) = trusted {
+        let untrusted = t.iter().filter(|&&x| !x).count();
+        if untrusted * 8 < tris.len() {
+            if let Some(sub) = near_untrusted(pos, tris, t) {
+                let sub_tris: Vec<[u32; 3]> = sub.iter().map(|&i| tris[i as usize]).collect();
+                let sub_trust: Vec<bool> = sub.iter().map(|&i| t[i as usize]).collect();
+                let mut pairs: Vec<(u32, u32)> =
+                    self_intersections_grid(pos, &sub_tris, Some(&sub_trust), usize::MAX)
+                        .into_iter()
+                        .map(|(a, b)| (sub[a as usize], sub[b as usize]))
+                        .collect();
+                // (sub is increasing, so the pairs stay ordered)
+                pairs.truncate(limit);
+                return pairs;
+            }
+        }
+    }
+    self_intersections_grid(pos, tris, trusted, limit)
+}
+
+/// [`self_intersections_masked`] by the grid over all triangles (see [`self_intersections`]).
+fn self_intersections_grid(
+    pos: &[P],
+    tris: &[[u32; 3]],
+    trusted: Option<&[bool]>,
+    limit: usize,
+) -> Vec<(u32, u32)> {
+    use rayon::prelude::*;
     let m = tris
         .par_iter()
         .map(|t| {
@@ -254,21 +453,29 @@ pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u3
     drop(cen);
     order.par_sort_unstable();
     let sorted: Vec<[u32; 3]> = order.par_iter().map(|&(_, i)| tris[i as usize]).collect();
-    let mut pairs: Vec<(u32, u32)> = self_intersections_ordered(pos, &sorted)
-        .into_iter()
-        .map(|(a, b)| {
-            let (a, b) = (order[a as usize].1, order[b as usize].1);
-            (a.min(b), a.max(b))
-        })
-        .collect();
+    let sorted_trust: Option<Vec<bool>> =
+        trusted.map(|t| order.par_iter().map(|&(_, i)| t[i as usize]).collect());
+    let mut pairs: Vec<(u32, u32)> =
+        self_intersections_ordered(pos, &sorted, sorted_trust.as_deref())
+            .into_iter()
+            .map(|(a, b)| {
+                let (a, b) = (order[a as usize].1, order[b as usize].1);
+                (a.min(b), a.max(b))
+            })
+            .collect();
     pairs.sort_unstable();
     pairs.dedup();
     pairs.truncate(limit);
     pairs
 }
 
-/// [`self_intersections`] on triangles in the given order, every pair (sorted, no repeats).
-fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
+/// [`self_intersections`] on triangles in the given order, every pair (sorted, no repeats);
+/// pairs of two trusted triangles are skipped when flags are given.
+fn self_intersections_ordered(
+    pos: &[P],
+    tris: &[[u32; 3]],
+    trusted: Option<&[bool]>,
+) -> Vec<(u32, u32)> {
     use rayon::prelude::*;
     let boxes: Vec<(P, P)> = tris
         .par_iter()
@@ -350,6 +557,28 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
             (span <= 512).then_some((mn, mx))
         })
         .collect();
+    let trusted_at = |i: u32| trusted.is_some_and(|t| t[i as usize]);
+    // with trust flags, only the cells an untrusted triangle reaches hold entries: a pair with
+    // an untrusted member is tested in a cell of both boxes (below), so one of those cells;
+    // an untrusted big triangle walks the whole grid, so then every cell is kept
+    let hot: Option<Vec<bool>> = trusted
+        .filter(|_| !(0..tris.len() as u32).any(|i| !trusted_at(i) && ranges[i as usize].is_none()))
+        .map(|_| {
+            let mut hot = vec![false; ncells];
+            for (i, r) in ranges.iter().enumerate() {
+                if let (false, Some((mn, mx))) = (trusted_at(i as u32), r) {
+                    for z in mn[2]..=mx[2] {
+                        for y in mn[1]..=mx[1] {
+                            for x in mn[0]..=mx[0] {
+                                hot[key([x, y, z]) as usize] = true;
+                            }
+                        }
+                    }
+                }
+            }
+            hot
+        });
+    let kept = |c: u64| hot.as_ref().map_or(true, |h| h[c as usize]);
     let mut start = vec![0usize; ncells + 1];
     let mut big: Vec<u32> = Vec::new();
     for (i, r) in ranges.iter().enumerate() {
@@ -359,7 +588,10 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
                 for z in mn[2]..=mx[2] {
                     for y in mn[1]..=mx[1] {
                         for x in mn[0]..=mx[0] {
-                            start[key([x, y, z]) as usize + 1] += 1;
+                            let c = key([x, y, z]);
+                            if kept(c) {
+                                start[c as usize + 1] += 1;
+                            }
                         }
                     }
                 }
@@ -381,6 +613,9 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
                     for y in mn[1]..=mx[1] {
                         for x in mn[0]..=mx[0] {
                             let c = key([x, y, z]) as usize;
+                            if !kept(c as u64) {
+                                continue;
+                            }
                             ids[fill[c]] = i as u32;
                             masks[fill[c]] = (x == mn[0]) as u8
                                 | ((y == mn[1]) as u8) << 1
@@ -407,7 +642,10 @@ fn self_intersections_ordered(pos: &[P], tris: &[[u32; 3]]) -> Vec<(u32, u32)> {
         .par_iter()
         .map(|&t| TriRec::new(t, t.map(|v| pos[v as usize])))
         .collect();
-    let bad = |a: u32, b: u32| pair_meets_filtered(&recs[a as usize], &recs[b as usize]);
+    let bad = |a: u32, b: u32| {
+        !(trusted_at(a) && trusted_at(b))
+            && pair_meets_filtered(&recs[a as usize], &recs[b as usize])
+    };
     let busy: Vec<u64> = (0..ncells as u64)
         .filter(|&c| start[c as usize + 1] - start[c as usize] >= 2)
         .collect();
@@ -1055,50 +1293,10 @@ mod tests {
 
     #[test]
     fn grid_check_agrees_with_all_pairs_on_random_triangle_soups() {
-        use rand::{Rng, SeedableRng};
+        use rand::SeedableRng;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
         for round in 0..6 {
-            // small triangles, a few big ones; integer coordinates in some rounds (coplanar
-            // and touching cases), shared vertices by drawing corners from a pool
-            let n_pts = 200;
-            let integer = round % 2 == 0;
-            let pos: Vec<P> = (0..n_pts)
-                .map(|_| {
-                    std::array::from_fn(|_| {
-                        if integer {
-                            rng.gen_range(0..12) as f64
-                        } else {
-                            rng.gen_range(0.0..10.0)
-                        }
-                    })
-                })
-                .collect();
-            let mut tris = Vec::new();
-            for k in 0..250 {
-                let a = rng.gen_range(0..n_pts);
-                let near = |rng: &mut rand_chacha::ChaCha8Rng| -> usize {
-                    if k % 40 == 0 {
-                        rng.gen_range(0..n_pts) // big
-                    } else {
-                        // a close point: the nearest of a few random ones
-                        (0..8)
-                            .map(|_| rng.gen_range(0..n_pts))
-                            .min_by(|&x, &y| {
-                                let d = |v: usize| {
-                                    (0..3).map(|i| (pos[v][i] - pos[a][i]).powi(2)).sum::<f64>()
-                                };
-                                d(x).total_cmp(&d(y))
-                            })
-                            .unwrap_or(0)
-                    }
-                };
-                let (b, c) = (near(&mut rng), near(&mut rng));
-                if a != b && b != c && a != c {
-                    tris.push([a as u32, b as u32, c as u32]);
-                }
-            }
-            // a repeated triangle
-            tris.push(tris[3]);
+            let (pos, tris) = soup(&mut rng, round % 2 == 0);
             let found = self_intersections(&pos, &tris, usize::MAX);
             let expect = self_intersections_brute(&pos, &tris);
             assert!(expect.len() > 5, "round {round}: {}", expect.len());
@@ -1118,6 +1316,174 @@ mod tests {
             // the limit keeps the smallest pairs
             assert_eq!(self_intersections(&pos, &tris, 3), expect[..3].to_vec());
         }
+    }
+
+    /// 250 random triangles over 200 points, mostly small (corners drawn near the first), every
+    /// 40th big; integer coordinates (coplanar and touching cases) or not; corners shared by
+    /// drawing them from the pool; the fourth triangle repeated at the end.
+    fn soup(rng: &mut rand_chacha::ChaCha8Rng, integer: bool) -> (Vec<P>, Vec<[u32; 3]>) {
+        use rand::Rng;
+        let n_pts = 200;
+        let pos: Vec<P> = (0..n_pts)
+            .map(|_| {
+                std::array::from_fn(|_| {
+                    if integer {
+                        rng.gen_range(0..12) as f64
+                    } else {
+                        rng.gen_range(0.0..10.0)
+                    }
+                })
+            })
+            .collect();
+        let mut tris = Vec::new();
+        for k in 0..250 {
+            let a = rng.gen_range(0..n_pts);
+            let mut near = || -> usize {
+                if k % 40 == 0 {
+                    rng.gen_range(0..n_pts) // big
+                } else {
+                    // a close point: the nearest of a few random ones
+                    (0..8)
+                        .map(|_| rng.gen_range(0..n_pts))
+                        .min_by(|&x, &y| {
+                            let d = |v: usize| {
+                                (0..3).map(|i| (pos[v][i] - pos[a][i]).powi(2)).sum::<f64>()
+                            };
+                            d(x).total_cmp(&d(y))
+                        })
+                        .unwrap_or(0)
+                }
+            };
+            let (b, c) = (near(), near());
+            if a != b && b != c && a != c {
+                tris.push([a as u32, b as u32, c as u32]);
+            }
+        }
+        tris.push(tris[3]);
+        (pos, tris)
+    }
+
+    /// The trusting check returns exactly the all-pairs result restricted to pairs with an
+    /// untrusted member, whether few triangles are untrusted (the near-untrusted subset), many
+    /// (the whole grid), none or all; on random soups and on a closed mesh with crossings.
+    #[test]
+    fn trusting_check_keeps_exactly_the_pairs_with_an_untrusted_member() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(17);
+        let mut cases: Vec<(Vec<P>, Vec<[u32; 3]>)> =
+            (0..6).map(|r| soup(&mut rng, r % 2 == 0)).collect();
+        // a bumpy closed mesh with a few small triangles poking through it
+        let (mut pos, mut tris) = sphere(24, 0.02, 8);
+        for k in 0..6 {
+            let t = tris[k * 97];
+            let q = t.map(|v| pos[v as usize]);
+            let c: P = std::array::from_fn(|i| (q[0][i] + q[1][i] + q[2][i]) / 3.0);
+            let base = pos.len() as u32;
+            pos.push(c.map(|x| x * 1.05));
+            pos.push(c.map(|x| x * 0.95));
+            pos.push(std::array::from_fn(|i| {
+                c[i] * 0.95 + 0.01 * (q[0][i] - c[i])
+            }));
+            tris.push([base, base + 1, base + 2]);
+        }
+        cases.push((pos, tris));
+        let mut checked_subset = 0;
+        for (ci, (pos, tris)) in cases.iter().enumerate() {
+            let all = self_intersections_brute(pos, tris);
+            assert!(!all.is_empty(), "case {ci}");
+            let n = tris.len();
+            for frac in [0.0, 0.03, 0.1, 0.5, 1.0] {
+                let mut trusted: Vec<bool> = (0..n).map(|_| !rng.gen_bool(frac)).collect();
+                if ci == cases.len() - 1 && frac > 0.0 {
+                    // the poking triangles are the untrusted ones (plus random others)
+                    for t in trusted[n - 6..].iter_mut() {
+                        *t = false;
+                    }
+                }
+                let untrusted = trusted.iter().filter(|&&t| !t).count();
+                if untrusted > 0 && untrusted * 8 < n {
+                    checked_subset += 1;
+                }
+                let expect: Vec<(u32, u32)> = all
+                    .iter()
+                    .copied()
+                    .filter(|&(a, b)| !(trusted[a as usize] && trusted[b as usize]))
+                    .collect();
+                let found = self_intersections_trusting(pos, tris, &trusted, usize::MAX);
+                assert_eq!(found, expect, "case {ci}, untrusted {untrusted} of {n}");
+                if expect.len() > 2 {
+                    assert_eq!(
+                        self_intersections_trusting(pos, tris, &trusted, 2),
+                        expect[..2].to_vec()
+                    );
+                }
+            }
+        }
+        assert!(checked_subset >= 6, "{checked_subset}");
+    }
+
+    /// Face membership against a hash set of every tetrahedron's faces, on a Delaunay
+    /// tetrahedralization with its faces, non-faces and a repeated face (trusted once).
+    #[test]
+    fn faces_of_tetrahedra_is_membership_in_the_faces_of_the_tetrahedra() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let pts: Vec<crate::geom::Point3> = (0..300)
+            .map(|_| {
+                crate::geom::Point3::new(
+                    rng.gen_range(0.0..1.0),
+                    rng.gen_range(0.0..1.0),
+                    rng.gen_range(0.0..1.0),
+                )
+            })
+            .collect();
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let mut faces = std::collections::HashSet::new();
+        for t in &d.tets {
+            for k in 0..4 {
+                let mut f = [t[(k + 1) % 4], t[(k + 2) % 4], t[(k + 3) % 4]];
+                f.sort_unstable();
+                faces.insert(f);
+            }
+        }
+        let mut tris: Vec<[u32; 3]> = Vec::new();
+        for _ in 0..3000 {
+            let t = d.tets[rng.gen_range(0..d.tets.len())];
+            let k = rng.gen_range(0..4);
+            // a face in some rotation, or a random triple (almost never a face)
+            if rng.gen_bool(0.5) {
+                tris.push([t[(k + 2) % 4], t[(k + 1) % 4], t[(k + 3) % 4]]);
+            } else {
+                let mut v = || rng.gen_range(0..300u32);
+                let f = [v(), v(), v()];
+                if f[0] != f[1] && f[1] != f[2] && f[0] != f[2] {
+                    tris.push(f);
+                }
+            }
+        }
+        let first_face = tris.iter().position(|t| {
+            let mut s = *t;
+            s.sort_unstable();
+            faces.contains(&s)
+        });
+        let first_face = first_face.unwrap();
+        tris.push(tris[first_face]);
+        let got = faces_of_tetrahedra(&d.tets, &tris);
+        let mut seen = std::collections::HashSet::new();
+        let mut non_faces = 0;
+        for (i, t) in tris.iter().enumerate() {
+            let mut s = *t;
+            s.sort_unstable();
+            let is_face = faces.contains(&s);
+            non_faces += !is_face as usize;
+            // a repeated triangle: only its first copy is trusted
+            assert_eq!(got[i], is_face && seen.insert(s), "{i}: {t:?}");
+        }
+        assert!(
+            non_faces > 100 && non_faces < tris.len() - 100,
+            "{non_faces}"
+        );
+        assert!(!got[tris.len() - 1]);
     }
 
     /// Verdicts do not depend on the absolute scale: a clean closed mesh and one with injected
