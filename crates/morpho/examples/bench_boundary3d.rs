@@ -360,6 +360,27 @@ fn main() {
         }
         return;
     }
+    if args.iter().any(|a| a == "constrict") {
+        let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
+        let pts = if want("horse100k") {
+            sample_surface(&horse, 100_000, 1)
+        } else {
+            used_vertices(&horse)
+        };
+        let d = morpho::delaunay::d3::triangulate(&pts).expect("triangulate");
+        for _ in 0..5 {
+            let (t, cpu) = (Instant::now(), cpu_seconds());
+            let c = constrict_3d(&d, Until::All);
+            println!(
+                "constriction of {} tetrahedra: {:.3} s wall, {:.2} s CPU ({} removals)",
+                d.tets.len(),
+                t.elapsed().as_secs_f64(),
+                cpu_seconds() - cpu,
+                c.iterations
+            );
+        }
+        return;
+    }
     if args.iter().any(|a| a == "phases") {
         let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
         let bunny =

@@ -223,7 +223,9 @@ impl Grid {
     }
     /// Inserts many boxes at once, in the given order; the same grid as [`Grid::insert`] one
     /// by one (every cell lists its ids in insertion order, as long as the ids increase along
-    /// `items`), with each cell's list allocated once.
+    /// `items`), with each cell's list allocated once. The (cell, id) entries are grouped by
+    /// a counting sort when the boxes span a compact block of cells ([`Grid::dense_block`]),
+    /// otherwise by a parallel sort.
     fn insert_many(&mut self, items: impl Iterator<Item = (u32, P, P)>) {
         self.insert_many_capped(items, Self::BULK_MAX);
     }
@@ -265,10 +267,53 @@ impl Grid {
             v.reserve_exact(n);
             v.extend(ids);
         };
-        if all_fit {
+        if let Some((c0, dims)) = Self::dense_block(&boxes, total) {
+            // counting sort over the block of cells the boxes span (boxes in order, so every
+            // cell's ids stay in insertion order)
+            let idx = |x: i64, y: i64, z: i64| {
+                ((x - c0[0]) as usize * dims[1] + (y - c0[1]) as usize) * dims[2]
+                    + (z - c0[2]) as usize
+            };
+            let mut start = vec![0u32; dims[0] * dims[1] * dims[2] + 1];
+            for &(_, a, b) in &boxes {
+                for x in a[0]..=b[0] {
+                    for y in a[1]..=b[1] {
+                        for z in a[2]..=b[2] {
+                            start[idx(x, y, z) + 1] += 1;
+                        }
+                    }
+                }
+            }
+            for c in 1..start.len() {
+                start[c] += start[c - 1];
+            }
+            let mut ids = vec![0u32; total];
+            let mut fill = start.clone();
+            for &(id, a, b) in &boxes {
+                for x in a[0]..=b[0] {
+                    for y in a[1]..=b[1] {
+                        for z in a[2]..=b[2] {
+                            let c = idx(x, y, z);
+                            ids[fill[c] as usize] = id;
+                            fill[c] += 1;
+                        }
+                    }
+                }
+            }
+            drop(fill);
+            for c in 0..start.len() - 1 {
+                let (s, e) = (start[c] as usize, start[c + 1] as usize);
+                if e > s {
+                    let z = (c % dims[2]) as i64 + c0[2];
+                    let y = (c / dims[2] % dims[1]) as i64 + c0[1];
+                    let x = (c / dims[2] / dims[1]) as i64 + c0[0];
+                    add_run((x, y, z), &mut ids[s..e].iter().copied(), e - s);
+                }
+            }
+        } else if all_fit {
             let mut e: Vec<u128> = boxes
-                .iter()
-                .flat_map(cells_of)
+                .par_iter()
+                .flat_map_iter(cells_of)
                 .map(|((x, y, z), id)| {
                     let cell = (x as u128) << (2 * BITS) | (y as u128) << BITS | z as u128;
                     cell << 32 | id as u128
@@ -286,12 +331,39 @@ impl Grid {
                 );
             }
         } else {
-            let mut e: Vec<((i64, i64, i64), u32)> = boxes.iter().flat_map(cells_of).collect();
+            let mut e: Vec<((i64, i64, i64), u32)> =
+                boxes.par_iter().flat_map_iter(cells_of).collect();
             e.par_sort_unstable();
             for run in e.chunk_by(|a, b| a.0 == b.0) {
                 add_run(run[0].0, &mut run.iter().map(|x| x.1), run.len());
             }
         }
+    }
+
+    /// The block of cells spanned by `boxes` (its low cell and size per axis) when it has at
+    /// most about twice as many cells as the boxes have (cell, id) entries (`total`): then
+    /// [`Grid::insert_many`] counting-sorts over it instead of sorting the entries.
+    fn dense_block(
+        boxes: &[(u32, [i64; 3], [i64; 3])],
+        total: usize,
+    ) -> Option<([i64; 3], [usize; 3])> {
+        let (mut lo, mut hi) = ([i64::MAX; 3], [i64::MIN; 3]);
+        for (_, a, b) in boxes {
+            for k in 0..3 {
+                lo[k] = lo[k].min(a[k]);
+                hi[k] = hi[k].max(b[k]);
+            }
+        }
+        if boxes.is_empty() || total >= u32::MAX as usize {
+            return None;
+        }
+        let mut n: usize = 1;
+        let mut dims = [0usize; 3];
+        for k in 0..3 {
+            dims[k] = usize::try_from(hi[k].checked_sub(lo[k])?.checked_add(1)?).ok()?;
+            n = n.checked_mul(dims[k])?;
+        }
+        (n <= 2 * total + (1 << 16)).then_some((lo, dims))
     }
 
     /// Calls `f` on the ids whose cells meet the box (an id may come more than once) until it
@@ -1903,10 +1975,17 @@ mod tests {
     #[test]
     fn bulk_grid_insertion_equals_one_by_one_on_every_path() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
-        for (origin, cap) in [(0.0, usize::MAX), (-1e9, usize::MAX), (0.0, 100)] {
+        // (origin, cap, extent, dense): the sort of packed cells, the sort of cell tuples
+        // (cells beyond 21 bits), one box after the other (capped), the counting sort
+        for (origin, cap, extent, dense) in [
+            (0.0, usize::MAX, 100.0, false),
+            (-1e9, usize::MAX, 100.0, false),
+            (0.0, 100, 100.0, false),
+            (-1e9, usize::MAX, 12.0, true),
+        ] {
             let items: Vec<(u32, P, P)> = (0..3000u32)
                 .map(|id| {
-                    let lo: P = std::array::from_fn(|_| rng.gen_range(0.0..100.0));
+                    let lo: P = std::array::from_fn(|_| rng.gen_range(0.0..extent));
                     let w = match id % 50 {
                         _ if id % 500 == 0 => 1e5,
                         0 => 90.0,
@@ -1918,6 +1997,21 @@ mod tests {
                 })
                 .collect();
             let mut bulk = Grid::new([origin; 3], 1.0, true);
+            let fine: Vec<(u32, [i64; 3], [i64; 3])> = items
+                .iter()
+                .map(|&(id, lo, hi)| {
+                    let (a, b) = bulk.range(lo, hi);
+                    (id, a, b)
+                })
+                .filter(|(_, a, b)| {
+                    (0..3).map(|k| b[k] - a[k] + 1).product::<i64>() <= Grid::MAX_SPAN
+                })
+                .collect();
+            let total: i64 = fine
+                .iter()
+                .map(|(_, a, b)| (0..3).map(|k| b[k] - a[k] + 1).product::<i64>())
+                .sum();
+            assert_eq!(Grid::dense_block(&fine, total as usize).is_some(), dense);
             bulk.insert_many_capped(items.iter().copied(), cap);
             let mut one = Grid::new([origin; 3], 1.0, true);
             for &(id, lo, hi) in &items {
