@@ -598,6 +598,10 @@ pub fn may_meet_open_tet(t: [P; 3], tv: [u32; 3], q: [P; 4], qv: [u32; 4]) -> bo
     true
 }
 
+/// The third vertices of the live triangles on an edge (most edges have a handful: stored
+/// inline, without an allocation each).
+type Thirds = smallvec::SmallVec<[u32; 4]>;
+
 /// A removal: key, boundary faces of the tetrahedron, its new boundary faces.
 type Removal = (f64, Vec<[u32; 3]>, Vec<[u32; 3]>);
 
@@ -612,7 +616,7 @@ pub struct General3<'a> {
     /// Bounding box of every triangle.
     tbox: Vec<(P, P)>,
     id: IdMap<[u32; 3], u32>,
-    eadj: IdMap<u64, Vec<u32>>,
+    eadj: IdMap<u64, Thirds>,
     /// directed boundary edge a→b → third vertex of the outward boundary face containing it
     bnext: IdMap<u64, u32>,
     vcount: Vec<u32>,
@@ -672,10 +676,18 @@ impl<'a> General3<'a> {
     /// the live triangles `tris` (all inside the closed region; the boundary triangles are
     /// added to them). `keep` triangles are never deleted.
     pub fn new(p: &'a [P], boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) -> Self {
+        let t0 = std::time::Instant::now();
         let mut g = Self::blank(p, boundary, tris, keep);
+        let t1 = t0.elapsed();
         g.build(boundary, tris, keep);
+        let t2 = t0.elapsed();
         g.track = true;
         g.push_all();
+        eprintln!(
+            "TMP new blank {t1:?} build {t2:?} push_all {:?} heap {}",
+            t0.elapsed(),
+            g.heap.len()
+        );
         g
     }
 
@@ -755,6 +767,7 @@ impl<'a> General3<'a> {
     fn build(&mut self, boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) {
         use rayon::prelude::*;
         let nt = boundary.len() + tris.len() + keep.len();
+        let tb = std::time::Instant::now();
         self.id.reserve(nt);
         self.tris.reserve(nt);
         // ids: boundary faces first (not in the grid of live triangles), no repeats
@@ -796,6 +809,7 @@ impl<'a> General3<'a> {
                 }
             }
         }
+        eprintln!("TMP ids+boxes {:?}", tb.elapsed());
         let (tl, tbox) = (&self.tris, &self.tbox);
         let (eadj, bnext, vcount, bv, vgrid, vcoarse, tgrid, bgrid) = (
             &mut self.eadj,
@@ -809,6 +823,7 @@ impl<'a> General3<'a> {
         );
         rayon::join(
             || {
+                let te = std::time::Instant::now();
                 // edge → third vertices, in id order
                 let mut e: Vec<(u64, u32, u32)> = tl
                     .par_iter()
@@ -821,29 +836,36 @@ impl<'a> General3<'a> {
                     })
                     .collect();
                 e.par_sort_unstable();
+                eprintln!("TMP e sorted {:?}", te.elapsed());
                 eadj.reserve(e.len() / 2);
                 for run in e.chunk_by(|a, b| a.0 == b.0) {
                     eadj.insert(run[0].0, run.iter().map(|x| x.2).collect());
                 }
+                eprintln!("TMP eadj {:?}", te.elapsed());
             },
             || {
                 rayon::join(
                     || {
                         rayon::join(
                             || {
+                                let tg = std::time::Instant::now();
                                 tgrid.insert_many(
                                     (n_boundary_ids..n).map(|i| (i as u32, tbox[i].0, tbox[i].1)),
                                 );
+                                eprintln!("TMP tgrid {:?}", tg.elapsed());
                             },
                             || {
+                                let tg = std::time::Instant::now();
                                 bgrid.insert_many(bids.iter().map(|&i| {
                                     let (lo, hi) = tbox[i as usize];
                                     (i, lo, hi)
                                 }));
+                                eprintln!("TMP bgrid {:?}", tg.elapsed());
                             },
                         )
                     },
                     || {
+                        let tv = std::time::Instant::now();
                         vgrid.cells.reserve(p.len());
                         for (v, &q) in p.iter().enumerate() {
                             vgrid.insert(v as u32, q, q);
@@ -861,6 +883,7 @@ impl<'a> General3<'a> {
                                 vcount[v] += 1;
                             }
                         }
+                        eprintln!("TMP vgrid+bnext {:?}", tv.elapsed());
                     },
                 );
             },
@@ -969,7 +992,7 @@ impl<'a> General3<'a> {
         for k in 0..3 {
             let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
             if let Some(v) = self.eadj.get_mut(&ek(a, b)) {
-                v.retain(|&x| x != c);
+                v.retain(|x| *x != c);
             }
         }
     }
@@ -1279,7 +1302,7 @@ impl<'a> General3<'a> {
             // keep triangles x y m on an edge of f: make f + m a tetrahedron (V §5.7 rewiring)
             for k in 0..3 {
                 let (x, y) = (f[k], f[(k + 1) % 3]);
-                let ms: Vec<u32> = self.eadj.get(&ek(x, y)).cloned().unwrap_or_default();
+                let ms: Vec<u32> = self.eadj.get(&ek(x, y)).map_or(Vec::new(), |v| v.to_vec());
                 for m in ms {
                     if m != f[(k + 2) % 3] && self.keep.contains(&sorted3([x, y, m])) {
                         self.rewire(f, [x, y, m]);
@@ -1288,7 +1311,10 @@ impl<'a> General3<'a> {
             }
         }
         for _round in 0..4 {
-            let cands: Vec<u32> = self.eadj.get(&ek(f[0], f[1])).cloned().unwrap_or_default();
+            let cands: Vec<u32> = self
+                .eadj
+                .get(&ek(f[0], f[1]))
+                .map_or(Vec::new(), |v| v.to_vec());
             let mut keyed: Vec<(f64, u32)> = cands
                 .into_iter()
                 .filter(|&l| l != f[2])
