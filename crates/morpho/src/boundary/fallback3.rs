@@ -1646,67 +1646,22 @@ impl<'a> General3<'a> {
         let locked: Vec<u32> = (0..self.p.len() as u32)
             .filter(|&v| !self.on_boundary(v))
             .collect();
-        let mut cand: Vec<([u32; 3], u32)> = Vec::new();
-        let mut tb = Vec::new();
-        for &l in &locked {
-            if !self.near_cache.contains_key(&l) {
-                let nr = self.nearest(l, k);
-                self.near_cache.insert(l, nr);
-            }
-            let (near, rad) = &self.near_cache[&l];
-            let pl = self.pt(l);
-            // pairs of near vertices, and the edges of the k boundary faces nearest to l (by
-            // centroid; the faces a removal w.r.t. l starts from)
-            let mut pairs: Vec<(u32, u32)> = Vec::new();
-            for (i, &x) in near.iter().enumerate() {
-                for &y in &near[i + 1..] {
-                    pairs.push((x, y));
-                }
-            }
-            // the k faces nearest by centroid among those meeting the box of half-width 2·rad:
-            // a face missing from the box of half-width rad has its centroid farther than rad,
-            // so when that smaller box already holds k faces with centroids within rad, they
-            // are the same k (and the same order)
-            let mut faces: Vec<(f64, [u32; 3])> = Vec::new();
-            for reach_l in [*rad, 2.0 * rad] {
-                self.bgrid.query(
-                    std::array::from_fn(|i| pl[i] - reach_l),
-                    std::array::from_fn(|i| pl[i] + reach_l),
-                    &mut tb,
-                );
-                faces = tb
-                    .iter()
-                    .filter(|&&i| self.live[i as usize] && self.bflag[i as usize])
-                    .map(|&i| self.tris[i as usize])
-                    .map(|u| {
-                        let q = u.map(|v| self.pt(v));
-                        let d2 = (0..3)
-                            .map(|i| ((q[0][i] + q[1][i] + q[2][i]) / 3.0 - pl[i]).powi(2))
-                            .sum::<f64>();
-                        (d2, u)
-                    })
-                    .collect();
-                faces.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                if faces.iter().filter(|f| f.0 <= rad * rad).count() >= k {
-                    break;
-                }
-            }
-            for (_, u) in faces.into_iter().take(k) {
-                for e in 0..3 {
-                    pairs.push((u[e], u[(e + 1) % 3]));
-                }
-            }
-            for (x, y) in pairs {
-                let t = sorted3([l, x, y]);
-                if x == l || y == l || self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t) {
-                    continue;
-                }
-                if self.gamma_ub.get(&t).is_some_and(|&ub| ub < c) {
-                    continue;
-                }
-                cand.push((t, l));
-            }
-        }
+        // the nearest vertices of the vertices met for the first time (in parallel)
+        let missing: Vec<u32> = locked
+            .iter()
+            .copied()
+            .filter(|l| !self.near_cache.contains_key(l))
+            .collect();
+        let this = &*self;
+        let found: Vec<(Vec<u32>, f64)> = missing.par_iter().map(|&l| this.nearest(l, k)).collect();
+        self.near_cache.extend(missing.into_iter().zip(found));
+        // candidates of every locked vertex (read-only, in parallel; in the order of `locked`)
+        let this = &*self;
+        let mut cand: Vec<([u32; 3], u32)> = locked
+            .par_iter()
+            .map_init(Vec::new, |tb, &l| this.gamma_candidates(l, k, c, tb))
+            .flatten_iter()
+            .collect();
         // each triangle once (with the first locked vertex that proposed it)
         cand.sort_unstable();
         cand.dedup_by_key(|e| e.0);
@@ -1728,6 +1683,74 @@ impl<'a> General3<'a> {
             }
         }
         out
+    }
+
+    /// The candidate triangles of [`Self::local_gamma`] for the locked vertex `l` (its nearest
+    /// vertices cached): `l` with pairs of its `k` nearest vertices and with the edges of the
+    /// `k` boundary faces nearest to it, minus live triangles, triangles already found and
+    /// triangles whose cached bound of c₁′ is below `c`. `tb` is scratch space.
+    fn gamma_candidates(
+        &self,
+        l: u32,
+        k: usize,
+        c: f64,
+        tb: &mut Vec<u32>,
+    ) -> Vec<([u32; 3], u32)> {
+        let (near, rad) = &self.near_cache[&l];
+        let mut cand = Vec::new();
+        let pl = self.pt(l);
+        // pairs of near vertices, and the edges of the k boundary faces nearest to l (by
+        // centroid; the faces a removal w.r.t. l starts from)
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        for (i, &x) in near.iter().enumerate() {
+            for &y in &near[i + 1..] {
+                pairs.push((x, y));
+            }
+        }
+        // the k faces nearest by centroid among those meeting the box of half-width 2·rad:
+        // a face missing from the box of half-width rad has its centroid farther than rad,
+        // so when that smaller box already holds k faces with centroids within rad, they
+        // are the same k (and the same order)
+        let mut faces: Vec<(f64, [u32; 3])> = Vec::new();
+        for reach_l in [*rad, 2.0 * rad] {
+            self.bgrid.query(
+                std::array::from_fn(|i| pl[i] - reach_l),
+                std::array::from_fn(|i| pl[i] + reach_l),
+                tb,
+            );
+            faces = tb
+                .iter()
+                .filter(|&&i| self.live[i as usize] && self.bflag[i as usize])
+                .map(|&i| self.tris[i as usize])
+                .map(|u| {
+                    let q = u.map(|v| self.pt(v));
+                    let d2 = (0..3)
+                        .map(|i| ((q[0][i] + q[1][i] + q[2][i]) / 3.0 - pl[i]).powi(2))
+                        .sum::<f64>();
+                    (d2, u)
+                })
+                .collect();
+            faces.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            if faces.iter().filter(|f| f.0 <= rad * rad).count() >= k {
+                break;
+            }
+        }
+        for (_, u) in faces.into_iter().take(k) {
+            for e in 0..3 {
+                pairs.push((u[e], u[(e + 1) % 3]));
+            }
+        }
+        for (x, y) in pairs {
+            let t = sorted3([l, x, y]);
+            if x == l || y == l || self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t) {
+                continue;
+            }
+            if self.gamma_ub.get(&t).is_some_and(|&ub| ub < c) {
+                continue;
+            }
+            cand.push((t, l));
+        }
+        cand
     }
 
     /// The `k` nearest vertices of `l` (by growing boxes of the vertex grid; ties by index) and
