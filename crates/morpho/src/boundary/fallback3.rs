@@ -35,6 +35,9 @@
 //! are examined again, so "locked" means nothing is removable; a face found locked by an earlier
 //! sweep is examined again only when a mutation (every one stamps the grid cells of its box)
 //! met the box of the face and its apexes since — its removability depends on nothing outside.
+//! Triangles added by [`General3::augment`] are not stamped: a live triangle enters only the
+//! removability of the boundary faces on its edges, which `augment` evaluates and locks again
+//! itself.
 //!
 //! # Adaptive augmentation (V §5.4)
 //! [`General3::augment`] adds triangles (of γ([-1,1],[c,1]), c < 0) that are certified to lie in
@@ -647,7 +650,8 @@ pub struct General3<'a> {
     near_cache: IdMap<u32, (Vec<u32>, f64)>,
     /// Change tracking for [`General3::push_all`] (on after construction): every mutation of a
     /// live triangle or of the boundary stamps the cells of its box (cells of `bgrid`) with a
-    /// new epoch; `changed_all` is the epoch of a change too wide to stamp.
+    /// new epoch (except the additions of [`General3::augment`], which re-evaluates the faces
+    /// they concern); `changed_all` is the epoch of a change too wide to stamp.
     track: bool,
     epoch: u64,
     changed: IdMap<(i64, i64, i64), u64>,
@@ -1955,6 +1959,11 @@ impl<'a> General3<'a> {
         let mut one_by_one = false;
         let mut added = 0;
         let mut faces = Vec::new();
+        // No change stamps for the added triangles: a live triangle enters the removability
+        // of exactly the boundary faces on its edges (as a candidate tetrahedron's face, all
+        // of which contain an edge of the face), and those are evaluated and locked again
+        // below — other locked faces stay valid.
+        let track = std::mem::replace(&mut self.track, false);
         for (&t, ok) in tris.iter().zip(at_boundary) {
             let inserted = if one_by_one {
                 self.try_insert(t)
@@ -1980,9 +1989,16 @@ impl<'a> General3<'a> {
                 }
             }
         }
+        self.track = track;
         self.added += added;
         for f in faces {
-            self.push(f);
+            let e = self.epoch;
+            if self.push(f) {
+                self.locked_at.remove(&f);
+            } else if track {
+                let (lo, hi) = self.lock_box(f);
+                self.locked_at.insert(f, (e, lo, hi));
+            }
         }
         added
     }
