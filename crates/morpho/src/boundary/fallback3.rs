@@ -1948,7 +1948,8 @@ impl<'a> General3<'a> {
     /// changes the live triangles but not the boundary, so the boundary conditions
     /// ([`Self::insertable_at_boundary`]) are decided for all triangles first, in parallel —
     /// unless a triangle comes back that was a boundary face (its flag would count again):
-    /// from then on one by one.
+    /// from then on one by one. The boundary faces on the new triangles' edges are then
+    /// evaluated (in parallel without keep triangles) and pushed or locked again.
     pub fn augment(&mut self, tris: &[[u32; 3]]) -> usize {
         use rayon::prelude::*;
         let this = &*self;
@@ -1991,6 +1992,32 @@ impl<'a> General3<'a> {
         }
         self.track = track;
         self.added += added;
+        if self.keep.is_empty() && !self.sequential_sweeps {
+            // without keep triangles an evaluation changes nothing: all in parallel, then the
+            // verdicts in order (as one after the other)
+            let this = &*self;
+            let verdicts: Vec<Result<(f64, u32), (P, P)>> = faces
+                .par_iter()
+                .map_init(Vec::new, |buf, &f| {
+                    this.best_plain(f, buf).ok_or_else(|| this.lock_box(f))
+                })
+                .collect();
+            let e = self.epoch;
+            for (f, v) in faces.into_iter().zip(verdicts) {
+                match v {
+                    Ok((key, l)) => {
+                        self.heap.push(Entry { key, item: (f, l) });
+                        self.locked_at.remove(&f);
+                    }
+                    Err((lo, hi)) => {
+                        if track {
+                            self.locked_at.insert(f, (e, lo, hi));
+                        }
+                    }
+                }
+            }
+            return added;
+        }
         for f in faces {
             let e = self.epoch;
             if self.push(f) {
