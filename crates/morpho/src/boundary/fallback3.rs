@@ -680,18 +680,10 @@ impl<'a> General3<'a> {
     /// the live triangles `tris` (all inside the closed region; the boundary triangles are
     /// added to them). `keep` triangles are never deleted.
     pub fn new(p: &'a [P], boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) -> Self {
-        let t0 = std::time::Instant::now();
         let mut g = Self::blank(p, boundary, tris, keep);
-        let t1 = t0.elapsed();
         g.build(boundary, tris, keep);
-        let t2 = t0.elapsed();
         g.track = true;
         g.push_all();
-        eprintln!(
-            "TMP new blank {t1:?} build {t2:?} push_all {:?} heap {}",
-            t0.elapsed(),
-            g.heap.len()
-        );
         g
     }
 
@@ -771,7 +763,6 @@ impl<'a> General3<'a> {
     fn build(&mut self, boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) {
         use rayon::prelude::*;
         let nt = boundary.len() + tris.len() + keep.len();
-        let tb = std::time::Instant::now();
         self.id.reserve(nt);
         self.tris.reserve(nt);
         // ids: boundary faces first (not in the grid of live triangles), no repeats
@@ -813,7 +804,6 @@ impl<'a> General3<'a> {
                 }
             }
         }
-        eprintln!("TMP ids+boxes {:?}", tb.elapsed());
         let (tl, tbox) = (&self.tris, &self.tbox);
         let (eadj, bnext, vcount, bv, vgrid, vcoarse, tgrid, bgrid) = (
             &mut self.eadj,
@@ -827,7 +817,6 @@ impl<'a> General3<'a> {
         );
         rayon::join(
             || {
-                let te = std::time::Instant::now();
                 // edge → third vertices, in id order
                 let mut e: Vec<(u64, u32, u32)> = tl
                     .par_iter()
@@ -840,36 +829,29 @@ impl<'a> General3<'a> {
                     })
                     .collect();
                 e.par_sort_unstable();
-                eprintln!("TMP e sorted {:?}", te.elapsed());
                 eadj.reserve(e.len() / 2);
                 for run in e.chunk_by(|a, b| a.0 == b.0) {
                     eadj.insert(run[0].0, run.iter().map(|x| x.2).collect());
                 }
-                eprintln!("TMP eadj {:?}", te.elapsed());
             },
             || {
                 rayon::join(
                     || {
                         rayon::join(
                             || {
-                                let tg = std::time::Instant::now();
                                 tgrid.insert_many(
                                     (n_boundary_ids..n).map(|i| (i as u32, tbox[i].0, tbox[i].1)),
                                 );
-                                eprintln!("TMP tgrid {:?}", tg.elapsed());
                             },
                             || {
-                                let tg = std::time::Instant::now();
                                 bgrid.insert_many(bids.iter().map(|&i| {
                                     let (lo, hi) = tbox[i as usize];
                                     (i, lo, hi)
                                 }));
-                                eprintln!("TMP bgrid {:?}", tg.elapsed());
                             },
                         )
                     },
                     || {
-                        let tv = std::time::Instant::now();
                         vgrid.cells.reserve(p.len());
                         for (v, &q) in p.iter().enumerate() {
                             vgrid.insert(v as u32, q, q);
@@ -887,7 +869,6 @@ impl<'a> General3<'a> {
                                 vcount[v] += 1;
                             }
                         }
-                        eprintln!("TMP vgrid+bnext {:?}", tv.elapsed());
                     },
                 );
             },
