@@ -133,10 +133,29 @@ fn sample_surface(m: &morpho::mesh::TriMesh, n: usize, seed: u64) -> Vec<Point3>
 }
 
 fn run(name: &str, pts: &[Point3]) {
-    let t = Instant::now();
+    // Delaunay and boundary_3d alternately, three times each: the ratio of the minima (the
+    // machine's load moves single runs by ±20 %)
+    let mut dts = Vec::new();
+    let mut alls = Vec::new();
+    let mut mem_dt = f64::NAN;
+    let mut b = None;
+    for _ in 0..RUNS {
+        let t = Instant::now();
+        let d = morpho::delaunay::d3::triangulate(pts).expect("triangulate");
+        dts.push(t.elapsed().as_secs_f64());
+        if mem_dt.is_nan() {
+            mem_dt = vm_hwm_mb();
+        }
+        drop(d);
+        let t = Instant::now();
+        b = Some(boundary_3d(pts, Until::All).expect("boundary"));
+        alls.push(t.elapsed().as_secs_f64());
+    }
+    let b = b.expect("runs");
+    let min = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+    let (t_dt, t_all) = (min(&dts), min(&alls));
+    let each = |v: &[f64]| v.iter().map(|x| format!("{x:.2}")).collect::<Vec<_>>().join("/");
     let d = morpho::delaunay::d3::triangulate(pts).expect("triangulate");
-    let t_dt = t.elapsed().as_secs_f64();
-    let mem_dt = vm_hwm_mb();
     let t = Instant::now();
     let c = constrict_3d(&d, Until::All);
     let t_con = t.elapsed().as_secs_f64();
@@ -145,14 +164,13 @@ fn run(name: &str, pts: &[Point3]) {
     let _ = validity3::self_intersections(&pos, &c.triangles, 10);
     let t_si = t.elapsed().as_secs_f64();
     drop(d);
-    let t = Instant::now();
-    let b = boundary_3d(pts, Until::All).expect("boundary");
-    let t_all = t.elapsed().as_secs_f64();
     println!(
-        "{name}: {} points | delaunay {t_dt:.2} s | phases: constriction {t_con:.2} s ({} removals, {} left by Delaunay constriction), full self-intersection check (every pair, as `morpho info --check`) {t_si:.2} s | boundary_3d total {t_all:.2} s = {:.2}× delaunay | left out {}, c_used {}, added {}, closed {}, genus {:?}, intersections {} | VmHWM after delaunay {mem_dt:.0} MB, after boundary {:.0} MB",
+        "{name}: {} points | delaunay {t_dt:.2} s (min of {RUNS}: {}) | phases: constriction {t_con:.2} s ({} removals, {} left by Delaunay constriction), full self-intersection check (every pair, as `morpho info --check`) {t_si:.2} s | boundary_3d total {t_all:.2} s (min of {RUNS}: {}) = {:.2}× delaunay | left out {}, c_used {}, added {}, closed {}, genus {:?}, intersections {} | VmHWM after delaunay {mem_dt:.0} MB, after boundary {:.0} MB",
         pts.len(),
+        each(&dts),
         c.iterations,
         pts.len() - c.boundary_vertices.min(pts.len()),
+        each(&alls),
         t_all / t_dt,
         b.left_out.len(),
         b.c_used,
@@ -208,6 +226,9 @@ fn compare_keys(name: &str, m: &morpho::mesh::TriMesh) {
         }
     }
 }
+
+/// Runs of the Delaunay tetrahedralization and of boundary_3d per set in [`run`].
+const RUNS: usize = 3;
 
 /// A wall-clock and CPU stopwatch for [`phases`].
 struct Watch(Instant, f64);
