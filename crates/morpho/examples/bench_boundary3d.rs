@@ -154,7 +154,12 @@ fn run(name: &str, pts: &[Point3]) {
     let b = b.expect("runs");
     let min = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
     let (t_dt, t_all) = (min(&dts), min(&alls));
-    let each = |v: &[f64]| v.iter().map(|x| format!("{x:.2}")).collect::<Vec<_>>().join("/");
+    let each = |v: &[f64]| {
+        v.iter()
+            .map(|x| format!("{x:.2}"))
+            .collect::<Vec<_>>()
+            .join("/")
+    };
     let d = morpho::delaunay::d3::triangulate(pts).expect("triangulate");
     let t = Instant::now();
     let c = constrict_3d(&d, Until::All);
