@@ -9,17 +9,19 @@
 //!
 //! `cargo run --release -p morpho --example bench_boundary3d [horse|horse100k|bunny ...]`
 //!
-//! Latest (2026-11-23 18:57 UTC, current main, shared machine at load 1.7–2.1, better of two
-//! runs): bunny 0.58 s = 2.43× its Delaunay time (282 triangles added), horse 1.25 s = 4.36×
-//! (888 added), horse 100k 3.58 s = 5.04× (5.41× in the other run; 8823 added); all 0 left out,
-//! closed, genus 0, no intersections. (The numbers before 18:00 came from γ decisions that
-//! stopped too early; see `bench/README.md`.)
+//! Each set runs the Delaunay tetrahedralization and `boundary_3d` alternately three times and
+//! reports the ratio of the minima. Latest (2026-11-23 21:14 UTC, current main, shared machine
+//! at load 1.6): bunny 0.57 s = 3.09× its Delaunay time (282 triangles added), horse 0.75 s =
+//! 3.25× (888 added), horse 100k 2.56 s = 4.11× (8823 added); all 0 left out, closed, genus 0,
+//! no intersections. (The numbers before 18:00 came from γ decisions that stopped too early;
+//! see `bench/README.md`.)
 //! The history of these numbers (82× in the morning) and the phase breakdown are in
 //! `bench/README.md` ("3D (`bench_boundary3d`)").
 //!
 //! `... --example bench_boundary3d phases [bunny|horse|horse100k]` prints the time of every
 //! step of the general engine (as `boundary_3d_with` runs it); `... check [horse100k]` times
-//! the exact self-intersection check alone (three runs).
+//! the exact self-intersection check of every pair alone (three runs); `... constrict
+//! [horse100k]` the Delaunay constriction alone (five runs).
 //!
 //! The check alone on horse 100k (199 556 triangles; `check horse100k`, the process's CPU time
 //! alongside), measured 2026-11-23 16:35 UTC, machine loaded by other jobs (`uptime` load
