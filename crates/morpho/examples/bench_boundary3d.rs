@@ -110,6 +110,16 @@ fn used_vertices(m: &morpho::mesh::TriMesh) -> Vec<Point3> {
         .collect()
 }
 
+/// The horse's vertices, or 100 000 points sampled on its surface (`hundred_k`).
+fn horse_points(dir: &std::path::Path, hundred_k: bool) -> Vec<Point3> {
+    let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
+    if hundred_k {
+        sample_surface(&horse, 100_000, 1)
+    } else {
+        used_vertices(&horse)
+    }
+}
+
 /// `n` points uniformly distributed on the mesh surface (deterministic).
 fn sample_surface(m: &morpho::mesh::TriMesh, n: usize, seed: u64) -> Vec<Point3> {
     let mut cum = Vec::with_capacity(m.triangles.len());
@@ -367,12 +377,7 @@ fn main() {
         }
     }
     if args.iter().any(|a| a == "check") {
-        let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
-        let pts = if want("horse100k") {
-            sample_surface(&horse, 100_000, 1)
-        } else {
-            used_vertices(&horse)
-        };
+        let pts = horse_points(&dir, want("horse100k"));
         let d = morpho::delaunay::d3::triangulate(&pts).expect("triangulate");
         let c = constrict_3d(&d, Until::All);
         let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
@@ -389,12 +394,7 @@ fn main() {
         return;
     }
     if args.iter().any(|a| a == "constrict") {
-        let horse = morpho::io::read_mesh(&dir.join("meshes/horse.obj.gz")).expect("horse");
-        let pts = if want("horse100k") {
-            sample_surface(&horse, 100_000, 1)
-        } else {
-            used_vertices(&horse)
-        };
+        let pts = horse_points(&dir, want("horse100k"));
         let d = morpho::delaunay::d3::triangulate(&pts).expect("triangulate");
         for _ in 0..5 {
             let (t, cpu) = (Instant::now(), cpu_seconds());

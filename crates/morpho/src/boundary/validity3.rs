@@ -258,6 +258,20 @@ pub fn faces_of_tetrahedra(tets: &[[u32; 4]], tris: &[[u32; 3]]) -> Vec<bool> {
     out
 }
 
+/// The bounding box of every triangle (in parallel).
+fn tri_boxes(pos: &[P], tris: &[[u32; 3]]) -> Vec<(P, P)> {
+    use rayon::prelude::*;
+    tris.par_iter()
+        .map(|t| {
+            let q = t.map(|v| pos[v as usize]);
+            (
+                std::array::from_fn(|k| q[0][k].min(q[1][k]).min(q[2][k])),
+                std::array::from_fn(|k| q[0][k].max(q[1][k]).max(q[2][k])),
+            )
+        })
+        .collect()
+}
+
 /// The triangles that may meet an untrusted one: the untrusted triangles and every triangle
 /// whose bounding box reaches a grid cell that an untrusted triangle's box reaches (cells of
 /// twice the median edge length of the untrusted triangles; cell indices are monotone in the
@@ -266,16 +280,7 @@ pub fn faces_of_tetrahedra(tets: &[[u32; 4]], tris: &[[u32; 3]]) -> Vec<bool> {
 /// set is checked).
 fn near_untrusted(pos: &[P], tris: &[[u32; 3]], trusted: &[bool]) -> Option<Vec<u32>> {
     use rayon::prelude::*;
-    let boxes: Vec<(P, P)> = tris
-        .par_iter()
-        .map(|t| {
-            let q = t.map(|v| pos[v as usize]);
-            (
-                std::array::from_fn(|k| q[0][k].min(q[1][k]).min(q[2][k])),
-                std::array::from_fn(|k| q[0][k].max(q[1][k]).max(q[2][k])),
-            )
-        })
-        .collect();
+    let boxes = tri_boxes(pos, tris);
     let untrusted: Vec<u32> = (0..tris.len() as u32)
         .filter(|&i| !trusted[i as usize])
         .collect();
@@ -477,16 +482,7 @@ fn self_intersections_ordered(
     trusted: Option<&[bool]>,
 ) -> Vec<(u32, u32)> {
     use rayon::prelude::*;
-    let boxes: Vec<(P, P)> = tris
-        .par_iter()
-        .map(|t| {
-            let q = t.map(|v| pos[v as usize]);
-            (
-                std::array::from_fn(|k| q[0][k].min(q[1][k]).min(q[2][k])),
-                std::array::from_fn(|k| q[0][k].max(q[1][k]).max(q[2][k])),
-            )
-        })
-        .collect();
+    let boxes = tri_boxes(pos, tris);
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for (bl, bh) in &boxes {
