@@ -663,7 +663,8 @@ pub struct General3<'a> {
     skip_unchanged: bool,
     /// Faces skipped so (for the tests).
     skipped: usize,
-    /// Tests: evaluate the faces of a sweep one after the other even without keep triangles.
+    /// Tests: evaluate the faces of a sweep or of an augmentation one after the other even
+    /// without keep triangles.
     sequential_sweeps: bool,
     /// Tests: evaluate every skipped face anyway and panic if it has a removable tetrahedron.
     verify_skips: bool,

@@ -377,9 +377,27 @@ fn self_intersections_masked(
     trusted: Option<&[bool]>,
     limit: usize,
 ) -> Vec<(u32, u32)> {
+    use rayon::prelude::*;
     if tris.is_empty() || trusted.is_some_and(|t| t.iter().all(|&x| x)) {
         return Vec::new();
     }
+    let m = tris
+        .par_iter()
+        .map(|t| {
+            t.iter()
+                .flat_map(|&v| pos[v as usize])
+                .filter(|x| x.is_finite())
+                .fold(0.0f64, |m, x| m.max(x.abs()))
+        })
+        .reduce(|| 0.0, f64::max);
+    let s = crate::geom::power_of_two_scale(m);
+    let scaled: Vec<P>;
+    let pos = if s != 1.0 {
+        scaled = pos.par_iter().map(|q| q.map(|x| x * s)).collect();
+        &scaled[..]
+    } else {
+        pos
+    };
     // few untrusted triangles: only they and the triangles near them
     if let Some(t) = trusted {
         let untrusted = t.iter().filter(|&&x| !x).count();
@@ -401,7 +419,8 @@ fn self_intersections_masked(
     self_intersections_grid(pos, tris, trusted, limit)
 }
 
-/// [`self_intersections_masked`] by the grid over all triangles (see [`self_intersections`]).
+/// [`self_intersections_masked`] by the grid over all triangles (see [`self_intersections`]),
+/// on coordinates already scaled near 1.
 fn self_intersections_grid(
     pos: &[P],
     tris: &[[u32; 3]],
@@ -409,23 +428,6 @@ fn self_intersections_grid(
     limit: usize,
 ) -> Vec<(u32, u32)> {
     use rayon::prelude::*;
-    let m = tris
-        .par_iter()
-        .map(|t| {
-            t.iter()
-                .flat_map(|&v| pos[v as usize])
-                .filter(|x| x.is_finite())
-                .fold(0.0f64, |m, x| m.max(x.abs()))
-        })
-        .reduce(|| 0.0, f64::max);
-    let s = crate::geom::power_of_two_scale(m);
-    let scaled: Vec<P>;
-    let pos = if s != 1.0 {
-        scaled = pos.par_iter().map(|q| q.map(|x| x * s)).collect();
-        &scaled[..]
-    } else {
-        pos
-    };
     let cen: Vec<P> = tris
         .par_iter()
         .map(|t| std::array::from_fn(|k| t.iter().map(|&v| pos[v as usize][k] / 3.0).sum()))
@@ -1407,6 +1409,14 @@ mod tests {
                     .collect();
                 let found = self_intersections_trusting(pos, tris, &trusted, usize::MAX);
                 assert_eq!(found, expect, "case {ci}, untrusted {untrusted} of {n}");
+                if ci == cases.len() - 1 {
+                    // the same at extreme scales (powers of two keep the configuration)
+                    for sc in [2f64.powi(-1000), 2f64.powi(1000)] {
+                        let q: Vec<P> = pos.iter().map(|p| p.map(|x| x * sc)).collect();
+                        let got = self_intersections_trusting(&q, tris, &trusted, usize::MAX);
+                        assert_eq!(got, expect, "scale {sc:e}");
+                    }
+                }
                 if expect.len() > 2 {
                     assert_eq!(
                         self_intersections_trusting(pos, tris, &trusted, 2),
