@@ -242,9 +242,10 @@ pub fn check_polygon(points: &[Point2], cycle: &[u32]) -> PolygonCheck {
 /// polyline `pt(0), …, pt(n − 1)` (edge k from `pt(k)` to `pt(k + 1)`; `pt` wraps) that meet
 /// (exact [`segments_intersect`]).
 ///
-/// Broad phase: a sparse grid with cells of twice the median edge length, as a sorted list of
-/// (cell, edge) entries — a polygon fills a thin band of its bounding box, so a dense grid
-/// bounded by the number of edges would need cells far larger than the edges. Edges whose box
+/// Broad phase: a sparse grid with cells of twice the median edge extent (the larger side of
+/// an edge's bounding box), as a sorted list of (cell, edge) entries — a polygon fills a thin
+/// band of its bounding box, so a dense grid bounded by the number of edges would need cells
+/// far larger than the edges. Edges whose box
 /// spans more than [`BIG_SPAN`] cells are kept out of the grid and tested against every edge by
 /// boxes; the cell is doubled while there are more than a few of them. Pairs are tested in
 /// parallel (rayon), each edge against the later edges of its cells.
