@@ -27,7 +27,7 @@ use morpho::boundary::{
     boundary_2d, boundary_3d_with, check_polygon, Boundary2, CParam, Method, Options2, Options3,
 };
 use morpho::geom::Point2;
-use morpho::io::{read_points, write_atomic};
+use morpho::io::{self, read_points};
 use morpho::Error;
 use serde_json::json;
 use std::io::Write;
@@ -92,7 +92,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         "locked" => Until::Locked,
         _ => return Err(Failure::usage("--until must be `all` or `locked`")),
     };
-    let ext = ext_of(&args.output);
+    let ext = super::extension(&args.output);
     let mut inputs: Vec<&Path> = vec![&args.input];
     if let Some(k) = &args.keep {
         inputs.push(k);
@@ -157,10 +157,15 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     if let Some(l) = b.skeleton_length {
         report.set("skeleton_length", l);
     }
+    let out = &args.output;
     report.time("write", || -> morpho::Result<()> {
-        write_boundary(&args.output, &ext, &pts, &b)?;
+        if ext == "svg" {
+            io::write_atomic(out, |w| write_svg(w, &pts, &b))?;
+        } else {
+            io::write_boundary_2d(out, &pts, &b)?;
+        }
         if let Some(i) = &args.interior {
-            write_interior(i, &pts, &b)?;
+            io::write_interior_2d(i, &pts, &b)?;
         }
         Ok(())
     })?;
@@ -179,53 +184,6 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         return Ok(1);
     }
     Ok(0)
-}
-
-fn ext_of(p: &Path) -> String {
-    p.extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase()
-}
-
-fn write_boundary(path: &Path, ext: &str, pts: &[Point2], b: &Boundary2) -> morpho::Result<()> {
-    write_atomic(path, |w| {
-        match ext {
-            "csv" => {
-                writeln!(w, "index,x,y").map_err(werr)?;
-                for &i in &b.polygon {
-                    let p = pts[i as usize];
-                    writeln!(w, "{i},{},{}", p.x, p.y).map_err(werr)?;
-                }
-            }
-            "json" => {
-                let v = json!({ "polygon": b.polygon });
-                writeln!(w, "{v}").map_err(werr)?;
-            }
-            "geojson" => {
-                let mut ring: Vec<[f64; 2]> = b
-                    .polygon
-                    .iter()
-                    .map(|&i| [pts[i as usize].x, pts[i as usize].y])
-                    .collect();
-                if let Some(&f) = ring.first() {
-                    ring.push(f);
-                }
-                let v = json!({
-                    "type": "FeatureCollection",
-                    "features": [{
-                        "type": "Feature",
-                        "properties": { "all_on_boundary": b.all_on_boundary, "indices": b.polygon },
-                        "geometry": { "type": "Polygon", "coordinates": [ring] }
-                    }]
-                });
-                writeln!(w, "{v}").map_err(werr)?;
-            }
-            _ => write_svg(w, pts, b)?,
-        }
-        Ok(())
-    })
-    .map_err(|e| e.with_path(path))
 }
 
 fn write_svg(w: &mut dyn Write, pts: &[Point2], b: &Boundary2) -> morpho::Result<()> {
@@ -303,20 +261,6 @@ fn write_svg(w: &mut dyn Write, pts: &[Point2], b: &Boundary2) -> morpho::Result
     Ok(())
 }
 
-fn write_interior(path: &Path, pts: &[Point2], b: &Boundary2) -> morpho::Result<()> {
-    if ext_of(path) == "json" {
-        let v = json!({ "triangles": b.interior, "area": b.area });
-        return write_atomic(path, |w| writeln!(w, "{v}").map_err(werr))
-            .map_err(|e| e.with_path(path));
-    }
-    let positions = pts
-        .iter()
-        .map(|p| morpho::geom::Point3::new(p.x, p.y, 0.0))
-        .collect();
-    let mesh = morpho::mesh::TriMesh::new(positions, b.interior.clone());
-    morpho::io::write_mesh(path, &mesh, morpho::io::Encoding::default())
-}
-
 /// An I/O error while writing (the path is added by the caller).
 fn werr(e: std::io::Error) -> Error {
     Error::io("", e)
@@ -358,24 +302,13 @@ fn run_3d(
         report.set("skeleton_length", l);
     }
     report.time("write", || -> morpho::Result<()> {
-        if ext == "json" {
-            let v = json!({ "triangles": b.triangles });
-            write_atomic(&args.output, |w| writeln!(w, "{v}").map_err(werr))
-                .map_err(|e| e.with_path(&args.output))?;
-        } else {
-            let mesh = morpho::mesh::TriMesh::new(pts.clone(), b.triangles.clone());
-            morpho::io::write_mesh(&args.output, &mesh, morpho::io::Encoding::default())?;
-        }
+        io::write_boundary_3d(&args.output, &pts, &b)?;
         if let Some(i) = &args.interior {
-            let mut v = json!({ "tetrahedra": b.interior, "volume": b.volume });
-            if b.interior.is_empty() && !b.triangles.is_empty() {
-                // the general engine's surface need not bound Delaunay tetrahedra (see
-                // morpho::boundary::Boundary3::interior): say so instead of an unexplained []
-                let note = "no interior tetrahedralization after the augmented (c < 0) constriction; volume from the closed surface";
+            // JSON whatever the extension (`{"tetrahedra", "volume"}`, see the module docs)
+            if let Some(note) = io::json::interior_3d_note(&b) {
                 eprintln!("boundary: warning: {note}");
-                v["note"] = json!(note);
             }
-            write_atomic(i, |w| writeln!(w, "{v}").map_err(werr)).map_err(|e| e.with_path(i))?;
+            io::write_atomic(i, |w| io::json::write_interior_3d(w, &b))?;
         }
         Ok(())
     })?;

@@ -13,7 +13,7 @@
 use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
-use morpho::contour::output::{svg_string, write_cycles_json, write_geojson};
+use morpho::contour::output::svg_string;
 use morpho::contour::{Rating, SampleContour, SampleOptions};
 use morpho::io::{self, Encoding, Format};
 use morpho::mesh::PointSet;
@@ -55,7 +55,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     check_not_input(&args.output, &[&args.input])?;
     let fmt = Format::of(&args.output)?;
     let plane_out = matches!(fmt, Format::GeoJson | Format::Json | Format::Svg);
-    let mesh_out = matches!(fmt, Format::Ply | Format::Obj | Format::Off | Format::Stl);
+    let mesh_out = io::is_mesh_format(fmt);
     if !plane_out && !mesh_out {
         return Err(Failure::usage(format!(
             "{}: contour writes .geojson, .json or .svg (2D) or .ply/.obj/.off/.stl (3D)",
@@ -109,15 +109,9 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             report.set("components", r.contour.components);
             report.set("cycles", r.contour.cycles.len());
             report.set("dropped", r.contour.dropped);
-            report.time("write", || {
-                io::write_atomic(out, |w| match fmt {
-                    Format::GeoJson => write_geojson(w, r, args.threshold, args.below),
-                    Format::Json => write_cycles_json(w, r),
-                    _ => w
-                        .write_all(svg_string(r).as_bytes())
-                        .map_err(|e| morpho::Error::io(out, e)),
-                })
-                .map_err(|e| e.with_path(out))
+            report.time("write", || match fmt {
+                Format::Svg => io::write_text(out, &svg_string(r)),
+                _ => io::write_contour_2d(out, r, args.threshold, args.below),
             })?;
         }
         SampleContour::Space(r) => {

@@ -498,9 +498,7 @@ fn contour_section(ctx: &Ctx) -> Result<Vec<Section>> {
         write_svg(ctx, &format!("{name}.svg"), &output::svg_string(&pc))?;
         s.img(&format!("{name}.svg"), "black triangles and their contour");
         let gj = ctx.path(&format!("{name}.geojson"));
-        morpho::io::write_atomic(&gj, |w| {
-            output::write_geojson(w, &pc, opts.threshold, opts.below)
-        })?;
+        morpho::io::write_contour_2d(&gj, &pc, opts.threshold, opts.below)?;
         s.files.push(format!("{name}.geojson"));
         s.fig("samples", samples.len());
         s.fig("triangles", pc.triangles.len());

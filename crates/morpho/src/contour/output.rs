@@ -1,80 +1,9 @@
-//! Output of a plane contour: GeoJSON (a FeatureCollection of Polygons with closed rings, outer
-//! rings counter-clockwise and holes clockwise as RFC 7946 asks, properties `threshold`, `value`,
-//! `area`, `external`), a JSON list of cycles in input sample indices, and an SVG picture of the
-//! coloured triangulation with the contour drawn over it.
+//! SVG picture of a plane contour: the coloured triangulation with the contour drawn over it.
+//! (GeoJSON and the JSON list of cycles are written by [`crate::io::write_contour_2d`].)
 
 use super::pipeline::PlaneContour;
 use crate::geom::{bbox2, Point2};
-use crate::{Error, Result};
-use serde_json::{json, Value};
 use std::fmt::Write as _;
-use std::io::Write;
-
-fn werr(e: impl std::fmt::Display) -> Error {
-    Error::invalid(format!("cannot write: {e}"))
-}
-
-fn ring_coords(ring: &[u32], points: &[Point2]) -> Value {
-    let mut v: Vec<Value> = ring
-        .iter()
-        .map(|&i| json!([points[i as usize].x, points[i as usize].y]))
-        .collect();
-    if let Some(first) = v.first().cloned() {
-        v.push(first);
-    }
-    Value::Array(v)
-}
-
-/// The GeoJSON FeatureCollection of the contour's regions.
-pub fn geojson_value(r: &PlaneContour, threshold: f64, below: bool) -> Value {
-    let c = &r.contour;
-    let features: Vec<Value> = c
-        .regions
-        .iter()
-        .map(|reg| {
-            let rings: Vec<Value> = std::iter::once(reg.outer)
-                .chain(reg.holes.iter().copied())
-                .map(|k| ring_coords(&c.cycles[k as usize], &r.points))
-                .collect();
-            json!({
-                "type": "Feature",
-                "geometry": {"type": "Polygon", "coordinates": rings},
-                "properties": {
-                    "threshold": threshold,
-                    "value": r.selected.column,
-                    "below": below,
-                    "area": reg.area,
-                    "external": reg.external,
-                }
-            })
-        })
-        .collect();
-    json!({"type": "FeatureCollection", "features": features})
-}
-
-/// Writes the GeoJSON FeatureCollection.
-pub fn write_geojson(
-    w: &mut dyn Write,
-    r: &PlaneContour,
-    threshold: f64,
-    below: bool,
-) -> Result<()> {
-    serde_json::to_writer(&mut *w, &geojson_value(r, threshold, below)).map_err(werr)?;
-    writeln!(w).map_err(werr)
-}
-
-/// Writes `{"cycles": [[sample indices…]…], "regions": [{"outer": k, "holes": […]}…]}`.
-pub fn write_cycles_json(w: &mut dyn Write, r: &PlaneContour) -> Result<()> {
-    let regions: Vec<Value> = r
-        .contour
-        .regions
-        .iter()
-        .map(|g| json!({"outer": g.outer, "holes": g.holes, "area": g.area}))
-        .collect();
-    let v = json!({"cycles": r.cycles_as_samples(), "regions": regions});
-    serde_json::to_writer(&mut *w, &v).map_err(werr)?;
-    writeln!(w).map_err(werr)
-}
 
 /// Most triangles drawn in the SVG; larger triangulations are drawn as the contour only.
 pub const SVG_MAX_TRIANGLES: usize = 200_000;
@@ -159,59 +88,4 @@ pub fn svg_string(r: &PlaneContour) -> String {
     }
     let _ = writeln!(out, "</svg>");
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::contour::pipeline::{finish_plane, SampleOptions, SelectedSamples, Triangulation2};
-
-    fn square() -> PlaneContour {
-        let pts = [
-            Point2::new(0.0, 0.0),
-            Point2::new(1.0, 0.0),
-            Point2::new(1.0, 1.0),
-            Point2::new(0.0, 1.0),
-        ];
-        let sel = SelectedSamples {
-            column: "zinc".into(),
-            input: vec![0, 1, 2, 3],
-            values: vec![1.0, 1.0, 1.0, 1.0],
-            skipped: 0,
-        };
-        let tri = Triangulation2 {
-            points: &pts,
-            vertex_of_input: &[0, 1, 2, 3],
-            input_of_vertex: &[0, 1, 2, 3],
-            triangles: &[[0, 1, 2], [0, 2, 3]],
-            neighbors: None,
-        };
-        finish_plane(sel, tri, &SampleOptions::default()).unwrap()
-    }
-
-    #[test]
-    fn geojson_rings_closed_and_ccw() {
-        let r = square();
-        let v = geojson_value(&r, 0.0, false);
-        let ring = &v["features"][0]["geometry"]["coordinates"][0];
-        let ring = ring.as_array().unwrap();
-        assert_eq!(ring.len(), 5);
-        assert_eq!(ring[0], ring[4]);
-        let pts: Vec<(f64, f64)> = ring
-            .iter()
-            .map(|p| (p[0].as_f64().unwrap(), p[1].as_f64().unwrap()))
-            .collect();
-        let area: f64 = pts
-            .windows(2)
-            .map(|w| w[0].0 * w[1].1 - w[1].0 * w[0].1)
-            .sum();
-        assert!(area > 0.0);
-        assert_eq!(v["features"][0]["properties"]["threshold"], 0.0);
-        let mut buf = Vec::new();
-        write_cycles_json(&mut buf, &r).unwrap();
-        let j: Value = serde_json::from_slice(&buf).unwrap();
-        assert_eq!(j["cycles"][0].as_array().unwrap().len(), 4);
-        let svg = svg_string(&r);
-        assert!(svg.starts_with("<svg") && svg.contains("#c81e1e"));
-    }
 }

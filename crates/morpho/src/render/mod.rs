@@ -54,15 +54,24 @@ impl Image {
         let mut enc = png::Encoder::new(w, self.width, self.height);
         enc.set_color(png::ColorType::Rgba);
         enc.set_depth(png::BitDepth::Eight);
-        let mut wr = enc
-            .write_header()
-            .map_err(|e| Error::invalid(format!("PNG: {e}")))?;
-        wr.write_image_data(&self.rgba)
-            .map_err(|e| Error::invalid(format!("PNG: {e}")))?;
-        Ok(())
+        let mut wr = enc.write_header().map_err(png_err)?;
+        wr.write_image_data(&self.rgba).map_err(png_err)?;
+        wr.finish().map_err(png_err)
     }
     /// Writes the image to a `.png` file atomically.
     pub fn save_png(&self, path: &Path) -> Result<()> {
-        crate::io::write_atomic(path, |w| self.write_png(w)).map_err(|e| e.with_path(path))
+        crate::io::write_atomic(path, |w| self.write_png(w))
+    }
+}
+
+/// A failing writer is [`Error::Io`] (as for every writer); anything else the encoder refuses
+/// is invalid input.
+fn png_err(e: png::EncodingError) -> Error {
+    match e {
+        png::EncodingError::IoError(e) => Error::Io {
+            path: String::new(),
+            source: e,
+        },
+        e => Error::invalid(format!("PNG: {e}")),
     }
 }
