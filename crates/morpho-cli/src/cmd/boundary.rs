@@ -24,13 +24,12 @@ use crate::report::Report;
 use crate::Failure;
 use morpho::boundary::constrict3::Until;
 use morpho::boundary::{
-    boundary_2d, boundary_3d_with, check_polygon, Boundary2, CParam, Method, Options2, Options3,
+    boundary_2d, boundary_3d_with, check_polygon, CParam, Method, Options2, Options3,
 };
-use morpho::geom::Point2;
 use morpho::io::{self, read_points};
+use morpho::render::figures;
 use morpho::Error;
 use serde_json::json;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
@@ -160,7 +159,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let out = &args.output;
     report.time("write", || -> morpho::Result<()> {
         if ext == "svg" {
-            io::write_atomic(out, |w| write_svg(w, &pts, &b))?;
+            io::write_text(out, &figures::boundary_svg(&pts, &b))?;
         } else {
             io::write_boundary_2d(out, &pts, &b)?;
         }
@@ -184,86 +183,6 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         return Ok(1);
     }
     Ok(0)
-}
-
-fn write_svg(w: &mut dyn Write, pts: &[Point2], b: &Boundary2) -> morpho::Result<()> {
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in pts {
-        lo = [lo[0].min(p.x), lo[1].min(p.y)];
-        hi = [hi[0].max(p.x), hi[1].max(p.y)];
-    }
-    let size = 800.0;
-    let ext = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(f64::MIN_POSITIVE);
-    let s = (size - 40.0) / ext;
-    let tx = |p: &Point2| (20.0 + (p.x - lo[0]) * s, size - 20.0 - (p.y - lo[1]) * s);
-    let width = 40.0 + (hi[0] - lo[0]) * s;
-    let height = 40.0 + (hi[1] - lo[1]) * s;
-    let off = size - height;
-    writeln!(
-        w,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 {off:.1} {width:.1} {height:.1}">"#
-    )
-    .map_err(werr)?;
-    writeln!(
-        w,
-        r#"<rect x="0" y="{off:.1}" width="{width:.1}" height="{height:.1}" fill="white"/>"#
-    )
-    .map_err(werr)?;
-    let line = |w: &mut dyn Write, e: &[u32; 2], style: &str| -> morpho::Result<()> {
-        let (a, c) = (tx(&pts[e[0] as usize]), tx(&pts[e[1] as usize]));
-        writeln!(
-            w,
-            r#"<line x1="{:.2}" y1="{:.2}" x2="{:.2}" y2="{:.2}" {style}/>"#,
-            a.0, a.1, c.0, c.1
-        )
-        .map_err(werr)
-    };
-    writeln!(w, r##"<g stroke="#bbb" stroke-width="0.5">"##).map_err(werr)?;
-    for e in &b.graph_edges {
-        line(w, e, "")?;
-    }
-    writeln!(w, "</g>").map_err(werr)?;
-    writeln!(
-        w,
-        r##"<g stroke="#d33" stroke-width="0.8" stroke-dasharray="3 2">"##
-    )
-    .map_err(werr)?;
-    for e in &b.deleted {
-        line(w, e, "")?;
-    }
-    writeln!(w, "</g>").map_err(werr)?;
-    let poly: Vec<String> = b
-        .polygon
-        .iter()
-        .map(|&i| {
-            let (x, y) = tx(&pts[i as usize]);
-            format!("{x:.2},{y:.2}")
-        })
-        .collect();
-    writeln!(
-        w,
-        r##"<polygon points="{}" fill="none" stroke="#000" stroke-width="2"/>"##,
-        poly.join(" ")
-    )
-    .map_err(werr)?;
-    writeln!(w, r##"<g fill="#16c">"##).map_err(werr)?;
-    for p in pts {
-        let (x, y) = tx(p);
-        writeln!(w, r#"<circle cx="{x:.2}" cy="{y:.2}" r="2"/>"#).map_err(werr)?;
-    }
-    writeln!(w, "</g>").map_err(werr)?;
-    writeln!(w, r##"<g fill="#e80">"##).map_err(werr)?;
-    for &i in &b.left_out {
-        let (x, y) = tx(&pts[i as usize]);
-        writeln!(w, r#"<circle cx="{x:.2}" cy="{y:.2}" r="4"/>"#).map_err(werr)?;
-    }
-    writeln!(w, "</g>\n</svg>").map_err(werr)?;
-    Ok(())
-}
-
-/// An I/O error while writing (the path is added by the caller).
-fn werr(e: std::io::Error) -> Error {
-    Error::io("", e)
 }
 
 fn run_3d(

@@ -13,10 +13,10 @@
 use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
-use morpho::contour::output::svg_string;
 use morpho::contour::{Rating, SampleContour, SampleOptions};
 use morpho::io::{self, Encoding, Format};
 use morpho::mesh::PointSet;
+use morpho::render::figures;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -110,7 +110,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             report.set("cycles", r.contour.cycles.len());
             report.set("dropped", r.contour.dropped);
             report.time("write", || match fmt {
-                Format::Svg => io::write_text(out, &svg_string(r)),
+                Format::Svg => io::write_text(out, &figures::contour_svg(r)),
                 _ => io::write_contour_2d(out, r, args.threshold, args.below),
             })?;
         }

@@ -5,8 +5,9 @@
 
 use crate::report::Report;
 use crate::Failure;
+use morpho::io::html::{Entry, Section};
+use morpho::render::figures;
 use morpho::Result;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -18,36 +19,6 @@ pub struct Args {
     /// Folder with the real data (default: ../shared/data from the repository, if it exists).
     #[arg(long)]
     pub data: Option<PathBuf>,
-}
-
-/// One step of a pipeline as shown in the gallery.
-pub struct Section {
-    pub title: String,
-    pub text: String,
-    /// (file name relative to the gallery, caption)
-    pub images: Vec<(String, String)>,
-    /// (name, value)
-    pub figures: Vec<(String, String)>,
-    /// result files written (relative names)
-    pub files: Vec<String>,
-}
-
-impl Section {
-    fn new(title: &str, text: &str) -> Self {
-        Section {
-            title: title.into(),
-            text: text.into(),
-            images: vec![],
-            figures: vec![],
-            files: vec![],
-        }
-    }
-    fn fig(&mut self, k: &str, v: impl std::fmt::Display) {
-        self.figures.push((k.into(), v.to_string()));
-    }
-    fn img(&mut self, file: &str, caption: &str) {
-        self.images.push((file.into(), caption.into()));
-    }
 }
 
 /// Everything a section builder needs.
@@ -90,7 +61,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         out: args.out.clone(),
         data: data.clone(),
     };
-    let mut done: Vec<(Section, f64, Option<String>)> = Vec::new();
+    let mut done: Vec<Entry> = Vec::new();
     let mut failed = 0;
     let t0 = Instant::now();
     for (name, build) in SECTIONS {
@@ -98,29 +69,29 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         match build(&ctx) {
             Ok(secs) => {
                 let dt = t.elapsed().as_secs_f64() / secs.len().max(1) as f64;
-                for s in secs {
-                    done.push((s, dt, None));
+                for section in secs {
+                    done.push(Entry {
+                        section,
+                        seconds: dt,
+                        error: None,
+                    });
                 }
             }
             Err(e) => {
                 failed += 1;
                 eprintln!("error: demo step '{name}' failed: {e}");
-                done.push((
-                    Section::new(name, ""),
-                    t.elapsed().as_secs_f64(),
-                    Some(e.to_string()),
-                ));
+                done.push(Entry {
+                    section: Section::new(name, ""),
+                    seconds: t.elapsed().as_secs_f64(),
+                    error: Some(e.to_string()),
+                });
             }
         }
     }
     report.add_time("compute", t0.elapsed().as_secs_f64());
-    let html = gallery_html(&done, data.as_deref());
     let index = args.out.join("index.html");
     report.time("write", || {
-        morpho::io::write_atomic(&index, |w| {
-            w.write_all(html.as_bytes())
-                .map_err(|e| morpho::Error::io(&index, e))
-        })
+        morpho::io::html::write_gallery(&index, &done, data.as_deref())
     })?;
     report.set("sections", done.len());
     report.set("failed_sections", failed);
@@ -144,73 +115,8 @@ fn default_data_dir() -> Option<PathBuf> {
     candidates.into_iter().find(|p| p.is_dir())
 }
 
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-fn gallery_html(sections: &[(Section, f64, Option<String>)], data: Option<&Path>) -> String {
-    let mut h = String::new();
-    h.push_str(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>morpho demo</title>\n<style>\n\
-body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1200px;color:#222}\n\
-section{border-top:1px solid #ccc;padding:1em 0}\n.row{display:flex;flex-wrap:wrap;gap:1.5em;align-items:flex-start}\n\
-figure{margin:0}figure img{max-width:540px;max-height:480px;border:1px solid #ddd;background:#fff}\n\
-figcaption{font-size:90%;color:#555}\ntable{border-collapse:collapse;font-size:92%}td{padding:2px 10px;border-bottom:1px solid #eee}\n\
-td:first-child{color:#555}.fail{color:#b00}\n</style></head><body>\n",
-    );
-    let _ = writeln!(
-        h,
-        "<h1>morpho demo</h1>\n<p>Every pipeline of morpho on generated sample data{}. morpho {}.</p>",
-        match data {
-            Some(d) => format!(" and the real data in <code>{}</code>", esc(&d.display().to_string())),
-            None => " (real data folder not found)".into(),
-        },
-        morpho::VERSION
-    );
-    for (s, dt, err) in sections {
-        let _ = writeln!(h, "<section><h2>{}</h2>", esc(&s.title));
-        if let Some(e) = err {
-            let _ = writeln!(h, "<p class=\"fail\">failed: {}</p></section>", esc(e));
-            continue;
-        }
-        let _ = writeln!(h, "<p>{}</p><div class=\"row\">", esc(&s.text));
-        for (img, cap) in &s.images {
-            let _ = writeln!(
-                h,
-                "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>",
-                esc(img),
-                esc(cap),
-                esc(cap)
-            );
-        }
-        h.push_str("<table>\n");
-        for (k, v) in &s.figures {
-            let _ = writeln!(h, "<tr><td>{}</td><td>{}</td></tr>", esc(k), esc(v));
-        }
-        let _ = writeln!(h, "<tr><td>time</td><td>{dt:.3} s</td></tr>");
-        if !s.files.is_empty() {
-            let links: Vec<String> = s
-                .files
-                .iter()
-                .map(|f| format!("<a href=\"{0}\">{0}</a>", esc(f)))
-                .collect();
-            let _ = writeln!(h, "<tr><td>files</td><td>{}</td></tr>", links.join(" "));
-        }
-        h.push_str("</table></div></section>\n");
-    }
-    h.push_str("</body></html>\n");
-    h
-}
-
 fn write_svg(ctx: &Ctx, name: &str, svg: &str) -> Result<()> {
-    let p = ctx.path(name);
-    morpho::io::write_atomic(&p, |w| {
-        w.write_all(svg.as_bytes())
-            .map_err(|e| morpho::Error::io(&p, e))
-    })
+    morpho::io::write_text(&ctx.path(name), svg)
 }
 
 fn chalice() -> Vec<morpho::geom::Point2> {
@@ -259,7 +165,7 @@ fn delaunay_section(ctx: &Ctx) -> Result<Vec<Section>> {
     write_svg(
         ctx,
         "chalice_delaunay.svg",
-        &super::triangulate::picture_2d(&d, true),
+        &figures::delaunay_svg(&d, true),
     )?;
     s.img(
         "chalice_delaunay.svg",
@@ -319,7 +225,7 @@ fn gamma_section(ctx: &Ctx) -> Result<Vec<Section>> {
         for (k, (kind, label)) in kinds.into_iter().enumerate() {
             let g = graph_2d(&p, kind)?;
             let name = format!("gamma_{si}_{k}.svg");
-            write_svg(ctx, &name, &super::graph::picture(&p, &g, Some(&label)))?;
+            write_svg(ctx, &name, &figures::graph_svg(&p, &g, Some(&label)))?;
             s.img(&name, &format!("{label}: {} edges", g.edges.len()));
             s.fig(&label, format!("{} edges", g.edges.len()));
         }
@@ -461,7 +367,7 @@ fn volume_section(ctx: &Ctx) -> Result<Vec<Section>> {
 }
 
 fn contour_section(ctx: &Ctx) -> Result<Vec<Section>> {
-    use morpho::contour::{contour_samples, output, pipeline::SampleOptions, SampleContour};
+    use morpho::contour::{contour_samples, pipeline::SampleOptions, SampleContour};
     let mut out = Vec::new();
     let mut cases: Vec<(String, String, morpho::mesh::PointSet, SampleOptions, String)> = vec![(
         "Regions above a threshold: a synthetic borehole field".into(),
@@ -495,7 +401,7 @@ fn contour_section(ctx: &Ctx) -> Result<Vec<Section>> {
             continue;
         };
         let mut s = Section::new(&title, &text);
-        write_svg(ctx, &format!("{name}.svg"), &output::svg_string(&pc))?;
+        write_svg(ctx, &format!("{name}.svg"), &figures::contour_svg(&pc))?;
         s.img(&format!("{name}.svg"), "black triangles and their contour");
         let gj = ctx.path(&format!("{name}.geojson"));
         morpho::io::write_contour_2d(&gj, &pc, opts.threshold, opts.below)?;
@@ -617,17 +523,6 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
     Ok(out)
 }
 
-/// A polygon (input indices) over faint points, with an optional title.
-fn polygon_picture(p: &[morpho::geom::Point2], cycle: &[u32], title: &str, width: f64) -> String {
-    use morpho::render::svg::{point_radius, Stroke, Svg};
-    let mut svg = Svg::fit(p, width);
-    svg.title(title);
-    let poly: Vec<morpho::geom::Point2> = cycle.iter().map(|&i| p[i as usize]).collect();
-    svg.polyline(&poly, true, &Stroke::solid([200, 60, 40], 1.6));
-    svg.points(p, point_radius(p.len()), [30, 30, 30]);
-    svg.finish()
-}
-
 fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
     use morpho::boundary::{
         boundary_2d, boundary_3d, constrict3::Until, constriction_steps_2d, indicator::Key, Method,
@@ -651,7 +546,7 @@ fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
         write_svg(
             ctx,
             &name,
-            &polygon_picture(&p, cyc, &format!("after {step} deletions"), 260.0),
+            &figures::cycle_svg(&p, cyc, &format!("after {step} deletions"), 260.0),
         )?;
         s.img(
             &name,
@@ -697,7 +592,11 @@ fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
                 .filter(|&i| on.contains(&[i.min((i + 1) % n), i.max((i + 1) % n)]))
                 .count();
             let file = format!("apple_{name}.svg");
-            write_svg(ctx, &file, &polygon_picture(&pts, &b.polygon, name, 300.0))?;
+            write_svg(
+                ctx,
+                &file,
+                &figures::cycle_svg(&pts, &b.polygon, name, 300.0),
+            )?;
             s.img(&file, name);
             s.fig(
                 &format!("{name}: ground-truth edges recovered"),
@@ -825,7 +724,7 @@ fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
 }
 
 /// The picture of one γ-constriction through the Dillencourt set: the graph's edges thin, the
-/// deleted ones dashed, the polygon fat, the key vertices labelled.
+/// deleted ones dashed, the polygon fat, v highlighted, the key vertices labelled.
 fn dillencourt_picture(
     p: &[morpho::geom::Point2],
     graph: &[[u32; 2]],
@@ -833,40 +732,21 @@ fn dillencourt_picture(
     polygon: &[u32],
     title: &str,
 ) -> String {
-    use morpho::render::svg::{Stroke, Svg};
-    let key = |e: &[u32; 2]| [e[0].min(e[1]), e[0].max(e[1])];
-    let dead: std::collections::HashSet<[u32; 2]> = deleted.iter().map(key).collect();
-    let seg = |e: &[u32; 2]| (p[e[0] as usize], p[e[1] as usize]);
-    let mut svg = Svg::fit(p, 330.0);
-    svg.title(title);
-    let (gone, kept): (Vec<_>, Vec<_>) = graph.iter().partition(|e| dead.contains(&key(e)));
-    svg.segments(
-        &kept.into_iter().map(seg).collect::<Vec<_>>(),
-        &Stroke::solid([120, 150, 190], 0.8),
-    );
-    svg.segments(
-        &gone.into_iter().map(seg).collect::<Vec<_>>(),
-        &Stroke::dashed([150, 150, 150], 0.8),
-    );
-    if !polygon.is_empty() {
-        let poly: Vec<_> = polygon.iter().map(|&i| p[i as usize]).collect();
-        svg.polyline(&poly, true, &Stroke::solid([200, 60, 40], 2.4));
-    }
-    svg.points(p, 2.6, [20, 20, 20]);
-    svg.point(p[7], 3.6, [200, 30, 30]);
-    for (i, name) in ["s0", "h1", "s1", "h2", "s2", "h3", "s3", "v", "w"]
+    let labels: Vec<figures::PointLabel> = ["s0", "h1", "s1", "h2", "s2", "h3", "s3", "v", "w"]
         .iter()
         .enumerate()
-    {
-        // v and h3 (far right) are labelled on their left
-        let dx = match i {
-            7 => -13.0,
-            5 => -18.0,
-            _ => 3.0,
-        };
-        svg.label(p[i], dx, 3.0, name, 10.0, [60, 60, 60]);
-    }
-    svg.finish()
+        .map(|(index, text)| figures::PointLabel {
+            index,
+            text,
+            // v and h3 (far right) are labelled on their left
+            dx: match index {
+                7 => -13.0,
+                5 => -18.0,
+                _ => 3.0,
+            },
+        })
+        .collect();
+    figures::constriction_svg(p, graph, deleted, polygon, title, Some(7), &labels)
 }
 
 fn dillencourt_section(ctx: &Ctx) -> Result<Vec<Section>> {

@@ -8,9 +8,9 @@
 use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
-use morpho::geom::Point2;
-use morpho::graphs::{graph_2d, graph_3d, Graph, Kind};
+use morpho::graphs::{graph_2d, graph_3d, Kind};
 use morpho::io::{self, Format};
+use morpho::render::figures;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -111,7 +111,9 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let out = &args.output;
     report.time("write", || match fmt {
         Format::Json | Format::Ply => io::write_graph(out, kind, &pts, &g),
-        Format::Svg if pts.dim == 2 => io::write_text(out, &picture(&pts.to_points2(), &g, None)),
+        Format::Svg if pts.dim == 2 => {
+            io::write_text(out, &figures::graph_svg(&pts.to_points2(), &g, None))
+        }
         Format::Svg => Err(morpho::Error::unsupported(
             "SVG pictures are for 2D graphs; write .ply or .json",
         )
@@ -119,21 +121,4 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         _ => Err(morpho::Error::unsupported("graph writes .json, .svg or .ply").with_path(out)),
     })?;
     Ok(0)
-}
-
-/// A 2D graph drawn over faint points: edges in colour, with an optional title.
-pub fn picture(p: &[Point2], g: &Graph, title: Option<&str>) -> String {
-    use morpho::render::svg::{point_radius, Stroke, Svg};
-    let mut svg = Svg::fit(p, 420.0);
-    if let Some(t) = title {
-        svg.title(t);
-    }
-    let segs: Vec<_> = g
-        .edges
-        .iter()
-        .map(|e| (p[e[0] as usize], p[e[1] as usize]))
-        .collect();
-    svg.segments(&segs, &Stroke::solid([40, 90, 160], 1.2));
-    svg.points(p, point_radius(p.len()).max(2.0), [20, 20, 20]);
-    svg.finish()
 }

@@ -16,9 +16,10 @@
 use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
-use morpho::delaunay::{cdt, d2, d3, voronoi};
+use morpho::delaunay::{cdt, d2, d3};
 use morpho::io::json::{Triangulation2, Triangulation3};
 use morpho::io::{self, Format};
+use morpho::render::figures;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
@@ -118,7 +119,7 @@ fn run_2d(
     };
     let path = &args.output;
     report.time("write", || match fmt {
-        Format::Svg => io::write_text(path, &picture_2d(&d, args.voronoi)),
+        Format::Svg => io::write_text(path, &figures::delaunay_svg(&d, args.voronoi)),
         f if f == Format::Json || is_mesh(f) => io::write_triangulation_2d(path, &t),
         _ => Err(morpho::Error::unsupported(
             "triangulate writes .json, .svg, .ply, .obj, .off or .stl",
@@ -220,7 +221,7 @@ fn run_constrained(
     };
     let path = &args.output;
     report.time("write", || match fmt {
-        Format::Svg => io::write_text(path, &picture_constrained(&c)),
+        Format::Svg => io::write_text(path, &figures::cdt_svg(&c)),
         f if f == Format::Json || is_mesh(f) => io::write_triangulation_2d(path, &t),
         _ => Err(morpho::Error::unsupported(
             "triangulate writes .json, .svg, .ply, .obj, .off or .stl",
@@ -228,82 +229,4 @@ fn run_constrained(
         .with_path(path)),
     })?;
     Ok(0)
-}
-
-/// The constrained triangulation as SVG: edges thin, constrained edges bold.
-fn picture_constrained(c: &cdt::Cdt2) -> String {
-    use morpho::render::svg::{Stroke, Svg};
-    let pts = c.points();
-    let b = morpho::geom::bbox2(pts);
-    let mut svg = Svg::new(b, 900.0);
-    let (mut thin, mut bold) = (Vec::new(), Vec::new());
-    for (e, k) in c.edges() {
-        let seg = (pts[e[0] as usize], pts[e[1] as usize]);
-        if k {
-            bold.push(seg);
-        } else {
-            thin.push(seg);
-        }
-    }
-    svg.segments(&thin, &Stroke::solid([58, 110, 165], 0.8));
-    svg.segments(&bold, &Stroke::solid([20, 20, 20], 2.6));
-    svg.points(
-        pts,
-        morpho::render::svg::point_radius(pts.len()),
-        [30, 30, 30],
-    );
-    svg.finish()
-}
-
-/// The triangulation (and optionally its Voronoi diagram, clipped to a margin around the
-/// points) as SVG.
-pub fn picture_2d(d: &d2::Delaunay2, with_voronoi: bool) -> String {
-    use morpho::render::svg::{Stroke, Svg};
-    let b = morpho::geom::bbox2(&d.points);
-    let mut svg = Svg::new(b, 900.0);
-    let edges: Vec<_> = d
-        .edges()
-        .iter()
-        .map(|e| (d.points[e[0] as usize], d.points[e[1] as usize]))
-        .collect();
-    svg.segments(&edges, &Stroke::solid([58, 110, 165], 0.8));
-    if with_voronoi && !d.collinear {
-        svg.segments(&voronoi_segments(d, b), &Stroke::dashed([209, 73, 91], 0.8));
-    }
-    svg.points(
-        &d.points,
-        morpho::render::svg::point_radius(d.points.len()),
-        [30, 30, 30],
-    );
-    svg.finish()
-}
-
-/// The Voronoi edges as segments; rays and lines are cut at a distance of the box diagonal.
-pub fn voronoi_segments(
-    d: &d2::Delaunay2,
-    b: morpho::geom::Aabb2,
-) -> Vec<(morpho::geom::Point2, morpho::geom::Point2)> {
-    let v = voronoi::voronoi(d);
-    let reach = b.diagonal().max(f64::MIN_POSITIVE);
-    v.edges
-        .iter()
-        .map(|e| match *e {
-            voronoi::VoronoiEdge::Segment { vertices, .. } => (
-                v.vertices[vertices[0] as usize],
-                v.vertices[vertices[1] as usize],
-            ),
-            voronoi::VoronoiEdge::Ray {
-                from, direction, ..
-            } => {
-                let p = v.vertices[from as usize];
-                (p, p + direction.normalize() * reach)
-            }
-            voronoi::VoronoiEdge::Line {
-                point, direction, ..
-            } => {
-                let u = direction.normalize() * reach;
-                (point - u, point + u)
-            }
-        })
-        .collect()
 }

@@ -43,7 +43,8 @@
 //! [`pipeline`] runs rating, colouring and contour on rated samples given their triangulation
 //! (value column by name, samples without a value skipped, duplicates averaged);
 //! [`contour_samples`] puts the Delaunay triangulation in front. The results are written by
-//! [`crate::io::write_contour_2d`] (GeoJSON, a JSON list of cycles); [`output`] draws them.
+//! [`crate::io::write_contour_2d`] (GeoJSON, a JSON list of cycles) and drawn by
+//! [`crate::render::figures::contour_svg`].
 //!
 //! ```
 //! use morpho::contour::external_contour;
@@ -62,7 +63,6 @@
 
 pub mod cycles;
 pub mod dual;
-pub mod output;
 pub mod pipeline;
 pub mod rating;
 pub mod samples;

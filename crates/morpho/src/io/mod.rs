@@ -26,6 +26,7 @@
 
 pub mod csv;
 pub mod geojson;
+pub mod html;
 pub mod json;
 pub mod mhd;
 pub mod nrrd;
@@ -299,6 +300,7 @@ fn lifted(points: &[Point2], triangles: &[[u32; 3]]) -> TriMesh {
 
 /// Writes a 2D (constrained) triangulation: `.json` ([`json::write_triangulation_2d`]) or a
 /// mesh format ([`write_mesh`]: the triangles with z = 0, binary where there is a choice).
+/// The SVG picture is [`crate::render::figures::delaunay_svg`].
 ///
 /// ```
 /// use morpho::geom::Point2;
@@ -355,7 +357,8 @@ pub fn write_triangulation_3d(path: &Path, t: &json::Triangulation3, tets: bool)
 }
 
 /// Writes a geometric graph of `points`: `.json` ([`json::write_graph`]) or `.ply`
-/// ([`ply::write_graph`], 2D points with z = 0).
+/// ([`ply::write_graph`], 2D points with z = 0). The SVG picture is
+/// [`crate::render::figures::graph_svg`].
 ///
 /// ```
 /// use morpho::geom::Point2;
@@ -377,7 +380,8 @@ pub fn write_graph(path: &Path, kind: Kind, points: &PointSet, g: &Graph) -> Res
 }
 
 /// Writes a 2D boundary polygon through `points`: `.csv` ([`csv::write_boundary_2d`]),
-/// `.geojson` ([`geojson::write_boundary_2d`]) or `.json` ([`json::write_boundary_2d`]).
+/// `.geojson` ([`geojson::write_boundary_2d`]) or `.json` ([`json::write_boundary_2d`]). The
+/// SVG picture is [`crate::render::figures::boundary_svg`].
 pub fn write_boundary_2d(path: &Path, points: &[Point2], b: &Boundary2) -> Result<()> {
     match Format::of(path)? {
         Format::Csv => write_atomic(path, |w| csv::write_boundary_2d(w, points, b)),
@@ -409,7 +413,8 @@ pub fn write_boundary_3d(path: &Path, points: &[Point3], b: &Boundary3) -> Resul
 }
 
 /// Writes a plane contour: `.geojson` ([`geojson::write_contour`]: its regions with the
-/// `threshold` and `below` that made them) or `.json` ([`json::write_contour_cycles`]).
+/// `threshold` and `below` that made them) or `.json` ([`json::write_contour_cycles`]). The
+/// SVG picture is [`crate::render::figures::contour_svg`].
 pub fn write_contour_2d(path: &Path, r: &PlaneContour, threshold: f64, below: bool) -> Result<()> {
     match Format::of(path)? {
         Format::GeoJson => write_atomic(path, |w| geojson::write_contour(w, r, threshold, below)),

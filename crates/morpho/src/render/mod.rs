@@ -1,6 +1,9 @@
-//! Pictures of every stage: SVG for 2D, a software rasterizer (PNG) for meshes and volume views.
+//! Pictures of every stage: SVG for 2D ([`svg`]: the builder; [`figures`]: pictures of the 2D
+//! results), a software rasterizer (PNG) for meshes and volume views ([`raster`], [`slice`],
+//! [`subdivision`], [`legend`]).
 
 pub mod colormap;
+pub mod figures;
 pub mod font;
 pub mod legend;
 pub mod raster;
