@@ -2,7 +2,7 @@
 //! closed genus-0 mesh through 3D points (issue 5; Veltkamp 1992 ch. 4–5), by γ-graph
 //! constriction or (2D) one of the two comparison methods.
 //!
-//! 3D: `-o` `.ply/.obj/.off` (every input point is a vertex, in input order) or `.json`
+//! 3D: `-o` `.ply/.obj/.off/.vtu/.vtk` (every input point is a vertex, in input order) or `.json`
 //! (`{"triangles":[[i,j,k],…]}`); `--until all|locked`; `--keep` triangles; report keys `closed_manifold`, `genus`,
 //! `volume`, `c_used`, `added_triangles`; `--c auto|C` as in 2D (auto: Delaunay constriction, then
 //! the general engine with γ([-1,1],[c,1]) triangles, c = −0.1 … −1, when it locks);
@@ -193,9 +193,9 @@ fn run_3d(
     method: Method,
     report: &mut Report,
 ) -> Result<u8, Failure> {
-    if !matches!(ext, "ply" | "obj" | "off" | "json") {
+    if !matches!(ext, "ply" | "obj" | "off" | "vtu" | "vtk" | "json") {
         return Err(Failure::usage(format!(
-            "{}: 3D output must be .ply, .obj, .off or .json",
+            "{}: 3D output must be .ply, .obj, .off, .vtu, .vtk or .json",
             args.output.display()
         )));
     }

@@ -6,7 +6,7 @@
 //! 2D outputs: `.geojson` (FeatureCollection of Polygons, closed rings, outer rings
 //! counter-clockwise, holes clockwise, property `threshold`), `.json` (`{"cycles": [[sample
 //! indices…]…]}`), `.svg` (coloured triangles with the contour). 3D outputs: `.ply` (or another
-//! mesh format) with a face property `component`.
+//! mesh format: `.obj .off .stl .vtu .vtk`) with a face property `component`.
 //! Report keys: `samples`, `triangles` or `tetrahedra`, `black`, `components`, `cycles`
 //! (2D) or `surface_triangles` (3D), `skipped`, `value`.
 
@@ -23,7 +23,8 @@ use std::path::PathBuf;
 pub struct Args {
     /// Samples with values: CSV with header `x,y,value…` (2D) or `x,y,z,value…` (3D), XYZ, PLY.
     pub input: PathBuf,
-    /// Output: .geojson, .json or .svg for 2D samples; .ply (.obj .off .stl) for 3D samples.
+    /// Output: .geojson, .json or .svg for 2D samples; .ply (.obj .off .stl .vtu .vtk) for 3D
+    /// samples.
     #[arg(short, long)]
     pub output: PathBuf,
     /// Threshold of the rating: triangles rated above it are black (the regions).
@@ -58,7 +59,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let mesh_out = io::is_mesh_format(fmt);
     if !plane_out && !mesh_out {
         return Err(Failure::usage(format!(
-            "{}: contour writes .geojson, .json or .svg (2D) or .ply/.obj/.off/.stl (3D)",
+            "{}: contour writes .geojson, .json or .svg (2D) or .ply/.obj/.off/.stl/.vtu/.vtk (3D)",
             args.output.display()
         )));
     }
@@ -79,7 +80,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let samples = report.time("read", || io::read_points(&args.input))?;
     if samples.dim == 3 && plane_out {
         return Err(Failure::usage(format!(
-            "{}: the samples are 3D (x, y, z); write the surface as .ply, .obj, .off or .stl",
+            "{}: the samples are 3D (x, y, z); write the surface as .ply, .obj, .off, .stl, .vtu or .vtk",
             args.input.display()
         )));
     }

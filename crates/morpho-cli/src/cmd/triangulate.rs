@@ -2,9 +2,10 @@
 //!
 //! The dimension comes from the input. Outputs: `.json` (`{"points", "triangles"}` in 2D,
 //! `{"points", "tetrahedra"}` in 3D, indices into the input order — a merged duplicate is
-//! represented by its first occurrence), a mesh format (`.ply/.obj/.off/.stl`: the triangles in
-//! 2D with z = 0, the hull surface in 3D, or with `--tets` a tetrahedral PLY), or `.svg` (2D,
-//! optionally with the Voronoi diagram).
+//! represented by its first occurrence), a mesh format (`.ply/.obj/.off/.stl/.vtu/.vtk`: the
+//! triangles in 2D with z = 0, the hull surface in 3D), with `--tets` (3D) the tetrahedra as VTK
+//! (`.vtu` XML or `.vtk` legacy unstructured grid, cell type 10: ParaView, meshio) or as a PLY
+//! with a `tetra` element, or `.svg` (2D, optionally with the Voronoi diagram).
 //!
 //! `--constraints SEGMENTS.csv` (2D): one `i,j` pair of input indices per line (blank lines and
 //! `#` comments skipped; anything else is an error naming the line, exit 2); the result is the
@@ -26,10 +27,11 @@ use std::path::{Path, PathBuf};
 pub struct Args {
     /// Points (CSV with header, XYZ, PLY, JSON array of [x, y(, z)]).
     pub input: PathBuf,
-    /// Output: .json, .ply/.obj/.off/.stl, or .svg (2D).
+    /// Output: .json, .ply/.obj/.off/.stl/.vtu/.vtk, or .svg (2D).
     #[arg(short, long)]
     pub output: PathBuf,
-    /// 3D: write the tetrahedra as a PLY with a `tetra` element instead of the hull surface.
+    /// 3D: write the tetrahedra instead of the hull surface: .vtu/.vtk (VTK unstructured grid,
+    /// for ParaView and meshio) or .ply (a `tetra` element).
     #[arg(long)]
     pub tets: bool,
     /// 2D SVG: draw the Voronoi diagram too.
@@ -122,7 +124,7 @@ fn run_2d(
         Format::Svg => io::write_text(path, &figures::delaunay_svg(&d, args.voronoi)),
         f if f == Format::Json || is_mesh(f) => io::write_triangulation_2d(path, &t),
         _ => Err(morpho::Error::unsupported(
-            "triangulate writes .json, .svg, .ply, .obj, .off or .stl",
+            "triangulate writes .json, .svg, .ply, .obj, .off, .stl, .vtu or .vtk",
         )
         .with_path(path)),
     })?;
@@ -172,10 +174,10 @@ fn run_3d(
             "SVG pictures are for 2D points; render the hull with `morpho render`",
         )
         .with_path(path)),
-        _ => Err(
-            morpho::Error::unsupported("triangulate writes .json, .ply, .obj, .off or .stl")
-                .with_path(path),
-        ),
+        _ => Err(morpho::Error::unsupported(
+            "triangulate writes .json, .ply, .obj, .off, .stl, .vtu or .vtk",
+        )
+        .with_path(path)),
     })?;
     Ok(0)
 }
@@ -224,7 +226,7 @@ fn run_constrained(
         Format::Svg => io::write_text(path, &figures::cdt_svg(&c)),
         f if f == Format::Json || is_mesh(f) => io::write_triangulation_2d(path, &t),
         _ => Err(morpho::Error::unsupported(
-            "triangulate writes .json, .svg, .ply, .obj, .off or .stl",
+            "triangulate writes .json, .svg, .ply, .obj, .off, .stl, .vtu or .vtk",
         )
         .with_path(path)),
     })?;

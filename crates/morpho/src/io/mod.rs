@@ -5,7 +5,7 @@
 //! [`Error::Format`] naming the line or byte.
 //!
 //! Every result type is written by a function in its format's file (`ply::write_tets`,
-//! `geojson::write_boundary_2d`, `json::write_graph`, …) onto a
+//! `geojson::write_boundary_2d`, `json::write_graph`, `vtk::write_tets_vtu`, …) onto a
 //! `&mut dyn Write`; the functions of this module choose the format by the file's extension
 //! and write through [`write_atomic`], so a failed write never leaves a half-written file.
 //! Write failures are [`Error::Io`] with the output path, whatever the format (one mapping,
@@ -15,8 +15,8 @@
 //! |---|---|---|
 //! | points | [`write_points`] | `.csv .xyz .ply` |
 //! | polygons, polylines | [`write_shapes2`] | `.csv .geojson .json` |
-//! | triangle meshes | [`write_mesh`] | `.ply .obj .off .stl` |
-//! | tetrahedral meshes | [`write_tets`] | `.ply` |
+//! | triangle meshes | [`write_mesh`] | `.ply .obj .off .stl .vtu .vtk` |
+//! | tetrahedral meshes | [`write_tets`] | `.vtu .vtk .ply` |
 //! | volumes | [`write_volume`] | `.nrrd .mhd .json` (+ `.raw`) |
 //! | 2D / 3D triangulations | [`write_triangulation_2d`], [`write_triangulation_3d`] | `.json`, mesh formats |
 //! | geometric graphs | [`write_graph`] | `.json .ply` |
@@ -35,6 +35,7 @@ pub mod off;
 pub mod ply;
 pub mod rawjson;
 pub mod stl;
+pub mod vtk;
 pub mod xyz;
 
 use crate::boundary::{Boundary2, Boundary3};
@@ -67,6 +68,10 @@ pub enum Format {
     Svg,
     Png,
     Html,
+    /// VTK XML unstructured grid (writing only).
+    Vtu,
+    /// Legacy VTK (writing only).
+    Vtk,
 }
 
 impl Format {
@@ -92,6 +97,8 @@ impl Format {
             "svg" => Format::Svg,
             "png" => Format::Png,
             "html" | "htm" => Format::Html,
+            "vtu" => Format::Vtu,
+            "vtk" => Format::Vtk,
             "gz" => {
                 let stem = path.file_stem().map(Path::new).unwrap_or(Path::new(""));
                 return Format::of(stem);
@@ -232,7 +239,9 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh> {
     Ok(mesh)
 }
 
-/// Writes a triangle mesh as PLY (binary little endian by default), OBJ, OFF or STL (binary).
+/// Writes a triangle mesh as PLY (binary little endian by default), OBJ, OFF, STL (binary),
+/// or VTK (`.vtu` XML, `.vtk` legacy; triangles as cell type 5, binary unless
+/// [`Encoding::Ascii`]).
 ///
 /// ```
 /// use morpho::geom::Point3;
@@ -258,13 +267,18 @@ pub fn write_mesh(path: &Path, mesh: &TriMesh, encoding: Encoding) -> Result<()>
         Format::Ply => ply::write_mesh(w, mesh, encoding),
         Format::Obj => obj::write(w, mesh),
         Format::Off => off::write(w, mesh),
+        Format::Vtu => vtk::write_mesh_vtu(w, mesh, encoding),
+        Format::Vtk => vtk::write_mesh_vtk(w, mesh, encoding),
         _ => stl::write(w, mesh, encoding),
     })
 }
 
 /// True for the formats [`write_mesh`] writes.
 pub fn is_mesh_format(fmt: Format) -> bool {
-    matches!(fmt, Format::Ply | Format::Obj | Format::Off | Format::Stl)
+    matches!(
+        fmt,
+        Format::Ply | Format::Obj | Format::Off | Format::Stl | Format::Vtu | Format::Vtk
+    )
 }
 
 /// Reads a tetrahedral mesh from a PLY file with a `tetra` element (as
@@ -281,13 +295,54 @@ pub fn read_tets(path: &Path) -> Result<TetMesh> {
     ply::read_tets(&bytes).map_err(|e| e.with_path(path))
 }
 
-/// Writes a tetrahedral mesh as PLY with a `tetra` element ([`ply::write_tets`]).
+/// A tetrahedral mesh when `path` is a PLY file with a `tetra` element, `None` for any other
+/// file (which [`read_any`] reads).
+pub fn read_tets_if_present(path: &Path) -> Result<Option<TetMesh>> {
+    if Format::of(path)? != Format::Ply {
+        return Ok(None);
+    }
+    let bytes = read_bytes(path)?;
+    if !ply::has_tets(&bytes).map_err(|e| e.with_path(path))? {
+        return Ok(None);
+    }
+    ply::read_tets(&bytes)
+        .map(Some)
+        .map_err(|e| e.with_path(path))
+}
+
+/// Writes a tetrahedral mesh as VTK (`.vtu` XML unstructured grid, `.vtk` legacy unstructured
+/// grid; cell type 10, readable by ParaView and meshio) or as PLY with a `tetra` element.
+/// Binary unless `encoding` is [`Encoding::Ascii`] (legacy VTK binary is big endian by the
+/// format's definition; the `.vtu` and PLY byte orders follow `encoding`).
+///
+/// ```
+/// use morpho::geom::Point3;
+/// use morpho::io::{write_tets, Encoding};
+/// use morpho::mesh::TetMesh;
+/// let t = TetMesh {
+///     positions: vec![Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+///                     Point3::new(0.0, 1.0, 0.0), Point3::new(0.0, 0.0, 1.0)],
+///     tets: vec![[0, 1, 3, 2]],
+/// };
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("t.vtk");
+/// write_tets(&path, &t, Encoding::Ascii).unwrap();
+/// let text = std::fs::read_to_string(&path).unwrap();
+/// assert!(text.contains("CELLS 1 5\n4 0 3 1 2\n") && text.contains("CELL_TYPES 1\n10\n"));
+/// ```
 pub fn write_tets(path: &Path, tets: &TetMesh, encoding: Encoding) -> Result<()> {
     let fmt = Format::of(path)?;
-    if fmt != Format::Ply {
-        return Err(Error::unsupported("not a tetrahedral mesh format (use .ply)").with_path(path));
+    if !matches!(fmt, Format::Vtu | Format::Vtk | Format::Ply) {
+        return Err(
+            Error::unsupported("not a tetrahedral mesh format (use .vtu .vtk .ply)")
+                .with_path(path),
+        );
     }
-    write_atomic(path, |w| ply::write_tets(w, tets, encoding))
+    write_atomic(path, |w| match fmt {
+        Format::Vtu => vtk::write_tets_vtu(w, tets, encoding),
+        Format::Vtk => vtk::write_tets_vtk(w, tets, encoding),
+        _ => ply::write_tets(w, tets, encoding),
+    })
 }
 
 /// The lifted triangle mesh of a plane triangulation (z = 0).
@@ -330,13 +385,13 @@ pub fn write_triangulation_2d(path: &Path, t: &json::Triangulation2) -> Result<(
 }
 
 /// Writes a 3D Delaunay tetrahedralization: `.json` ([`json::write_triangulation_3d`]); with
-/// `tets` the tetrahedra in a tetrahedral mesh format ([`write_tets`]: `.ply`),
+/// `tets` the tetrahedra in a tetrahedral mesh format ([`write_tets`]: `.vtu .vtk .ply`),
 /// otherwise the hull surface in a mesh format ([`write_mesh`]). Binary where there is a
 /// choice.
 pub fn write_triangulation_3d(path: &Path, t: &json::Triangulation3, tets: bool) -> Result<()> {
     match Format::of(path)? {
         Format::Json => write_atomic(path, |w| json::write_triangulation_3d(w, t)),
-        Format::Ply if tets => write_tets(
+        Format::Ply | Format::Vtu | Format::Vtk if tets => write_tets(
             path,
             &TetMesh {
                 positions: t.points.to_vec(),
@@ -350,7 +405,7 @@ pub fn write_triangulation_3d(path: &Path, t: &json::Triangulation3, tets: bool)
             Encoding::BinaryLittleEndian,
         ),
         _ => Err(Error::unsupported(
-            "not a tetrahedralization format (use .json or a mesh format)",
+            "not a tetrahedralization format (use .json, .vtu, .vtk or a mesh format)",
         )
         .with_path(path)),
     }

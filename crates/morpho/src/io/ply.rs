@@ -1134,6 +1134,14 @@ pub fn read_points(bytes: &[u8]) -> Result<PointSet> {
     })
 }
 
+/// True when the header declares a `tetra` element (a tetrahedral mesh, see [`read_tets`]).
+pub fn has_tets(bytes: &[u8]) -> Result<bool> {
+    Ok(parse_header(bytes)?
+        .elements
+        .iter()
+        .any(|e| e.name == "tetra"))
+}
+
 /// Reads a tetrahedral mesh: the vertices and the `tetra` element (as [`write_tets`] writes
 /// it; a file without one is an error). Corner order is kept as in the file.
 ///
@@ -1403,7 +1411,7 @@ pub fn write_points(w: &mut dyn Write, pts: &PointSet, enc: Encoding) -> Result<
 /// Writes a tetrahedral mesh: `vertex` (x, y, z as `double`) and a `tetra` element with the
 /// list `vertex_indices` (`uchar` count 4, `int` indices), corners in the mesh's order. Binary
 /// little endian is what `morpho triangulate --tets` writes; meshio and trimesh do not read the
-/// `tetra` element.
+/// `tetra` element (use [`super::vtk`] for them).
 pub fn write_tets(w: &mut dyn Write, t: &TetMesh, enc: Encoding) -> Result<()> {
     let n = t.positions.len();
     if let Some((i, tet)) = t
