@@ -524,11 +524,19 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
 }
 
 fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
-    use morpho::boundary::{
-        boundary_2d, boundary_3d, constrict3::Until, constriction_steps_2d, indicator::Key, Method,
-        Options2,
-    };
-    let mut out = Vec::new();
+    let mut out = vec![chalice_constriction(ctx)?];
+    if let Some(path) = ctx.data_file("curves2d/ohrhallinger_fitconnect/apple_2percent_noise.txt") {
+        out.push(three_methods_2d(ctx, &path)?);
+    }
+    if let Some(path) = ctx.data_file("meshes/bunny_npm.obj") {
+        out.push(bunny_boundary(ctx, &path)?);
+    }
+    Ok(out)
+}
+
+/// γ-constriction of the chalice, pictured at five steps.
+fn chalice_constriction(ctx: &Ctx) -> Result<Section> {
+    use morpho::boundary::{boundary_2d, constriction_steps_2d, indicator::Key, Options2};
     let p = chalice();
     let mut s = Section::new(
         "Boundary through all points: γ-constriction of the chalice (Veltkamp §5.2)",
@@ -558,169 +566,173 @@ fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
     s.fig("all points on the boundary", b.all_on_boundary);
     s.fig("area", format!("{:.4}", b.area));
     s.fig("time", format!("{:.1} ms", dt * 1e3));
-    out.push(s);
-    // the three methods on a real data set with ground truth
-    if let Some(path) = ctx.data_file("curves2d/ohrhallinger_fitconnect/apple_2percent_noise.txt") {
-        let pts = morpho::io::read_points(&path)?.to_points2();
-        let mut s = Section::new(
-            "Three methods on a noisy outline",
-            "curves2d/ohrhallinger_fitconnect/apple_2percent_noise.txt: γ-indicator (V §5.2), minimal area change \
-             (Boissonnat, V §4.3.3) and the shortest Voronoi skeleton (O'Rourke et al., V §4.3.4). The file lists the \
-             points in curve order, so the fraction of its consecutive pairs that are polygon edges measures recovery.",
-        );
-        for (m, name) in [
-            (Method::Gamma, "gamma"),
-            (Method::MinAreaChange, "min-area-change"),
-            (Method::VoronoiSkeleton, "voronoi-skeleton"),
-        ] {
-            let t = Instant::now();
-            let b = boundary_2d(
-                &pts,
-                &Options2 {
-                    method: m,
-                    ..Default::default()
-                },
-            )?;
-            let dt = t.elapsed().as_secs_f64();
-            let mut on: std::collections::HashSet<[u32; 2]> = std::collections::HashSet::new();
-            for i in 0..b.polygon.len() {
-                let (a, c) = (b.polygon[i], b.polygon[(i + 1) % b.polygon.len()]);
-                on.insert([a.min(c), a.max(c)]);
-            }
-            let n = pts.len() as u32;
-            let hit = (0..n)
-                .filter(|&i| on.contains(&[i.min((i + 1) % n), i.max((i + 1) % n)]))
-                .count();
-            let file = format!("apple_{name}.svg");
-            write_svg(
-                ctx,
-                &file,
-                &figures::cycle_svg(&pts, &b.polygon, name, 300.0),
-            )?;
-            s.img(&file, name);
-            s.fig(
-                &format!("{name}: ground-truth edges recovered"),
-                format!("{:.3}", hit as f64 / n as f64),
-            );
-            s.fig(
-                &format!("{name}: all points on the boundary / time"),
-                format!("{} / {:.1} ms", b.all_on_boundary, dt * 1e3),
-            );
-        }
-        out.push(s);
-    }
-    if let Some(path) = ctx.data_file("meshes/bunny_npm.obj") {
-        use morpho::render::raster::{render_mesh, RenderOptions, Shading};
-        let m = morpho::io::read_mesh(&path)?;
+    Ok(s)
+}
+
+/// The three 2D methods on a noisy outline with ground truth (the points in curve order).
+fn three_methods_2d(ctx: &Ctx, path: &Path) -> Result<Section> {
+    use morpho::boundary::{boundary_2d, Method, Options2};
+    let pts = morpho::io::read_points(path)?.to_points2();
+    let mut s = Section::new(
+        "Three methods on a noisy outline",
+        "curves2d/ohrhallinger_fitconnect/apple_2percent_noise.txt: γ-indicator (V §5.2), minimal area change \
+         (Boissonnat, V §4.3.3) and the shortest Voronoi skeleton (O'Rourke et al., V §4.3.4). The file lists the \
+         points in curve order, so the fraction of its consecutive pairs that are polygon edges measures recovery.",
+    );
+    for (m, name) in [
+        (Method::Gamma, "gamma"),
+        (Method::MinAreaChange, "min-area-change"),
+        (Method::VoronoiSkeleton, "voronoi-skeleton"),
+    ] {
         let t = Instant::now();
-        let b = boundary_3d(&m.positions, Until::All)?;
+        let b = boundary_2d(
+            &pts,
+            &Options2 {
+                method: m,
+                ..Default::default()
+            },
+        )?;
         let dt = t.elapsed().as_secs_f64();
-        let mut s = Section::new(
-            "A closed boundary through the vertices of a scan (Veltkamp §5.3)",
-            "The 1839 vertices of meshes/bunny_npm.obj, without their triangles: the Delaunay tetrahedralization is \
-             constricted (tetrahedra with one or two boundary triangles, the γ-indicator of Def. 5.2 and the sum rule) \
-             until every point lies on the boundary. Below, the two comparison methods on the same points (V §5.6): \
-             Boissonnat's minimal area change fills the body but bridges concavities with long thin triangles; \
-             the shortest Voronoi skeleton twists through the body (V Figs 5.10–5.11) and gets stuck before \
-             every point is reached.",
-        );
-        let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), b.triangles.clone());
-        let opts = RenderOptions {
-            shading: Shading::Flat,
-            azimuth_deg: 20.0,
-            ..Default::default()
-        };
-        render_mesh(&mesh, &opts).save_png(&ctx.path("bunny_boundary.png"))?;
-        s.img(
-            "bunny_boundary.png",
-            "--until all: stop as soon as every point is on the boundary",
-        );
-        let bl = boundary_3d(&m.positions, Until::Locked)?;
-        let mesh_l = morpho::mesh::TriMesh::new(m.positions.clone(), bl.triangles.clone());
-        render_mesh(&mesh_l, &opts).save_png(&ctx.path("bunny_boundary_locked.png"))?;
-        s.img(
-            "bunny_boundary_locked.png",
-            "--until locked: continue while removals keep the boundary valid",
+        let mut on: std::collections::HashSet<[u32; 2]> = std::collections::HashSet::new();
+        for i in 0..b.polygon.len() {
+            let (a, c) = (b.polygon[i], b.polygon[(i + 1) % b.polygon.len()]);
+            on.insert([a.min(c), a.max(c)]);
+        }
+        let n = pts.len() as u32;
+        let hit = (0..n)
+            .filter(|&i| on.contains(&[i.min((i + 1) % n), i.max((i + 1) % n)]))
+            .count();
+        let file = format!("apple_{name}.svg");
+        write_svg(
+            ctx,
+            &file,
+            &figures::cycle_svg(&pts, &b.polygon, name, 300.0),
+        )?;
+        s.img(&file, name);
+        s.fig(
+            &format!("{name}: ground-truth edges recovered"),
+            format!("{:.3}", hit as f64 / n as f64),
         );
         s.fig(
-            "--until locked: triangles / closed / genus / volume",
-            format!(
-                "{} / {} / {} / {:.1}",
-                bl.triangles.len(),
-                bl.closed_manifold,
-                bl.genus
-                    .map(|g| g.to_string())
-                    .unwrap_or_else(|| "undefined".into()),
-                bl.volume
-            ),
+            &format!("{name}: all points on the boundary / time"),
+            format!("{} / {:.1} ms", b.all_on_boundary, dt * 1e3),
         );
-        s.fig("points", m.positions.len());
-        s.fig("boundary triangles", b.triangles.len());
-        s.fig("all points on the boundary", b.all_on_boundary);
-        s.fig("closed 2-manifold", b.closed_manifold);
-        s.fig(
-            "genus",
-            b.genus
+    }
+    Ok(s)
+}
+
+/// The 3D boundary through the vertices of the bunny scan, and the comparison methods.
+fn bunny_boundary(ctx: &Ctx, path: &Path) -> Result<Section> {
+    use morpho::boundary::{boundary_3d, constrict3::Until, Method};
+    use morpho::render::raster::{render_mesh, RenderOptions, Shading};
+    let m = morpho::io::read_mesh(path)?;
+    let t = Instant::now();
+    let b = boundary_3d(&m.positions, Until::All)?;
+    let dt = t.elapsed().as_secs_f64();
+    let mut s = Section::new(
+        "A closed boundary through the vertices of a scan (Veltkamp §5.3)",
+        "The 1839 vertices of meshes/bunny_npm.obj, without their triangles: the Delaunay tetrahedralization is \
+         constricted (tetrahedra with one or two boundary triangles, the γ-indicator of Def. 5.2 and the sum rule) \
+         until every point lies on the boundary. Below, the two comparison methods on the same points (V §5.6): \
+         Boissonnat's minimal area change fills the body but bridges concavities with long thin triangles; \
+         the shortest Voronoi skeleton twists through the body (V Figs 5.10–5.11) and gets stuck before \
+         every point is reached.",
+    );
+    let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), b.triangles.clone());
+    let opts = RenderOptions {
+        shading: Shading::Flat,
+        azimuth_deg: 20.0,
+        ..Default::default()
+    };
+    render_mesh(&mesh, &opts).save_png(&ctx.path("bunny_boundary.png"))?;
+    s.img(
+        "bunny_boundary.png",
+        "--until all: stop as soon as every point is on the boundary",
+    );
+    let bl = boundary_3d(&m.positions, Until::Locked)?;
+    let mesh_l = morpho::mesh::TriMesh::new(m.positions.clone(), bl.triangles.clone());
+    render_mesh(&mesh_l, &opts).save_png(&ctx.path("bunny_boundary_locked.png"))?;
+    s.img(
+        "bunny_boundary_locked.png",
+        "--until locked: continue while removals keep the boundary valid",
+    );
+    s.fig(
+        "--until locked: triangles / closed / genus / volume",
+        format!(
+            "{} / {} / {} / {:.1}",
+            bl.triangles.len(),
+            bl.closed_manifold,
+            bl.genus
                 .map(|g| g.to_string())
                 .unwrap_or_else(|| "undefined".into()),
-        );
-        s.fig(
-            "enclosed volume (original mesh: 194.3)",
-            format!("{:.1}", b.volume),
-        );
-        s.fig("time", format!("{:.0} ms", dt * 1e3));
-        // the comparison methods of V §4.3.3 and §4.3.4 on the same points (V §5.6)
-        use morpho::boundary::{boundary_3d_with, Options3};
-        let sorted = |t: &[u32; 3]| {
-            let mut t = *t;
-            t.sort_unstable();
-            t
+            bl.volume
+        ),
+    );
+    s.fig("points", m.positions.len());
+    s.fig("boundary triangles", b.triangles.len());
+    s.fig("all points on the boundary", b.all_on_boundary);
+    s.fig("closed 2-manifold", b.closed_manifold);
+    s.fig(
+        "genus",
+        b.genus
+            .map(|g| g.to_string())
+            .unwrap_or_else(|| "undefined".into()),
+    );
+    s.fig(
+        "enclosed volume (original mesh: 194.3)",
+        format!("{:.1}", b.volume),
+    );
+    s.fig("time", format!("{:.0} ms", dt * 1e3));
+    // the comparison methods of V §4.3.3 and §4.3.4 on the same points (V §5.6)
+    use morpho::boundary::{boundary_3d_with, Options3};
+    let sorted = |t: &[u32; 3]| {
+        let mut t = *t;
+        t.sort_unstable();
+        t
+    };
+    let truth: std::collections::HashSet<[u32; 3]> = m.triangles.iter().map(sorted).collect();
+    let recovered = |tris: &[[u32; 3]]| {
+        let hit = tris.iter().filter(|t| truth.contains(&sorted(t))).count();
+        100.0 * hit as f64 / truth.len().max(1) as f64
+    };
+    s.fig(
+        "γ-indicator: original triangles recovered",
+        format!("{:.1} %", recovered(&b.triangles)),
+    );
+    for (method, file, what) in [
+        (
+            Method::MinAreaChange,
+            "bunny_min_area.png",
+            "minimal area change (Boissonnat, V §4.3.3)",
+        ),
+        (
+            Method::VoronoiSkeleton,
+            "bunny_skeleton.png",
+            "shortest Voronoi skeleton (O'Rourke et al., V §4.3.4)",
+        ),
+    ] {
+        let o = Options3 {
+            method,
+            ..Options3::default()
         };
-        let truth: std::collections::HashSet<[u32; 3]> = m.triangles.iter().map(sorted).collect();
-        let recovered = |tris: &[[u32; 3]]| {
-            let hit = tris.iter().filter(|t| truth.contains(&sorted(t))).count();
-            100.0 * hit as f64 / truth.len().max(1) as f64
-        };
+        let t = Instant::now();
+        let bm = boundary_3d_with(&m.positions, &o)?;
+        let dt = t.elapsed().as_secs_f64();
+        let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), bm.triangles.clone());
+        render_mesh(&mesh, &opts).save_png(&ctx.path(file))?;
+        s.img(file, what);
         s.fig(
-            "γ-indicator: original triangles recovered",
-            format!("{:.1} %", recovered(&b.triangles)),
+            &format!("{what}: left out / recovered / volume / time"),
+            format!(
+                "{} / {:.1} % / {:.1} / {:.0} ms",
+                bm.left_out.len(),
+                recovered(&bm.triangles),
+                bm.volume,
+                dt * 1e3
+            ),
         );
-        for (method, file, what) in [
-            (
-                Method::MinAreaChange,
-                "bunny_min_area.png",
-                "minimal area change (Boissonnat, V §4.3.3)",
-            ),
-            (
-                Method::VoronoiSkeleton,
-                "bunny_skeleton.png",
-                "shortest Voronoi skeleton (O'Rourke et al., V §4.3.4)",
-            ),
-        ] {
-            let o = Options3 {
-                method,
-                ..Options3::default()
-            };
-            let t = Instant::now();
-            let bm = boundary_3d_with(&m.positions, &o)?;
-            let dt = t.elapsed().as_secs_f64();
-            let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), bm.triangles.clone());
-            render_mesh(&mesh, &opts).save_png(&ctx.path(file))?;
-            s.img(file, what);
-            s.fig(
-                &format!("{what}: left out / recovered / volume / time"),
-                format!(
-                    "{} / {:.1} % / {:.1} / {:.0} ms",
-                    bm.left_out.len(),
-                    recovered(&bm.triangles),
-                    bm.volume,
-                    dt * 1e3
-                ),
-            );
-        }
-        out.push(s);
     }
-    Ok(out)
+    Ok(s)
 }
 
 /// The picture of one γ-constriction through the Dillencourt set: the graph's edges thin, the
