@@ -21,7 +21,7 @@
 //! | [`write_interior_3d`] | `{"tetrahedra", "volume"[, "note"]}` |
 //! | [`write_contour_cycles`] | `{"cycles": [[sample indices]], "regions": [{"outer", "holes", "area"}]}` |
 //!
-//! Write failures are [`Error::Io`](crate::Error::Io) (through the one mapping of `io`);
+//! Write failures are [`Error::Io`] (through the one mapping of `io`);
 //! complexity is linear in the size of the result.
 
 use crate::boundary::{Boundary2, Boundary3};

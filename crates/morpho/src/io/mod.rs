@@ -388,6 +388,21 @@ pub fn write_triangulation_2d(path: &Path, t: &json::Triangulation2) -> Result<(
 /// `tets` the tetrahedra in a tetrahedral mesh format ([`write_tets`]: `.vtu .vtk .ply`),
 /// otherwise the hull surface in a mesh format ([`write_mesh`]). Binary where there is a
 /// choice.
+///
+/// ```
+/// use morpho::geom::Point3;
+/// use morpho::io::{json::Triangulation3, write_triangulation_3d};
+/// let p = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+///          Point3::new(0.0, 1.0, 0.0), Point3::new(0.0, 0.0, 1.0)];
+/// let d = morpho::delaunay::d3::triangulate(&p).unwrap();
+/// let tets = d.to_input_indices();
+/// let hull: Vec<[u32; 3]> = d.hull.iter().map(|t| t.map(|v| d.input_of_vertex[v as usize])).collect();
+/// let t = Triangulation3 { points: &p, tets: &tets, hull: &hull };
+/// let dir = tempfile::tempdir().unwrap();
+/// write_triangulation_3d(&dir.path().join("t.vtu"), &t, true).unwrap(); // the tetrahedra
+/// write_triangulation_3d(&dir.path().join("h.ply"), &t, false).unwrap(); // the hull
+/// assert_eq!(morpho::io::read_mesh(&dir.path().join("h.ply")).unwrap().triangles.len(), 4);
+/// ```
 pub fn write_triangulation_3d(path: &Path, t: &json::Triangulation3, tets: bool) -> Result<()> {
     match Format::of(path)? {
         Format::Json => write_atomic(path, |w| json::write_triangulation_3d(w, t)),
@@ -437,6 +452,18 @@ pub fn write_graph(path: &Path, kind: Kind, points: &PointSet, g: &Graph) -> Res
 /// Writes a 2D boundary polygon through `points`: `.csv` ([`csv::write_boundary_2d`]),
 /// `.geojson` ([`geojson::write_boundary_2d`]) or `.json` ([`json::write_boundary_2d`]). The
 /// SVG picture is [`crate::render::figures::boundary_svg`].
+///
+/// ```
+/// use morpho::boundary::{boundary_2d, Options2};
+/// use morpho::geom::Point2;
+/// let p = [Point2::new(0.0, 0.0), Point2::new(2.0, 0.0), Point2::new(1.0, 0.5), Point2::new(1.0, 2.0)];
+/// let b = boundary_2d(&p, &Options2::default()).unwrap();
+/// let dir = tempfile::tempdir().unwrap();
+/// morpho::io::write_boundary_2d(&dir.path().join("b.geojson"), &p, &b).unwrap();
+/// morpho::io::write_interior_2d(&dir.path().join("i.off"), &p, &b).unwrap();
+/// let back = morpho::io::read_shapes2(&dir.path().join("b.geojson")).unwrap();
+/// assert_eq!(back.polygons[0].rings[0].len(), b.polygon.len());
+/// ```
 pub fn write_boundary_2d(path: &Path, points: &[Point2], b: &Boundary2) -> Result<()> {
     match Format::of(path)? {
         Format::Csv => write_atomic(path, |w| csv::write_boundary_2d(w, points, b)),
@@ -470,6 +497,18 @@ pub fn write_boundary_3d(path: &Path, points: &[Point3], b: &Boundary3) -> Resul
 /// Writes a plane contour: `.geojson` ([`geojson::write_contour`]: its regions with the
 /// `threshold` and `below` that made them) or `.json` ([`json::write_contour_cycles`]). The
 /// SVG picture is [`crate::render::figures::contour_svg`].
+///
+/// ```
+/// use morpho::contour::{contour_samples, SampleContour, SampleOptions};
+/// use morpho::mesh::{Column, PointSet};
+/// let mut s = PointSet { dim: 2, coords: vec![0., 0., 1., 0., 1., 1., 0., 1., 0.5, 0.5], columns: vec![] };
+/// s.columns.push(Column { name: "value".into(), values: vec![0., 0., 0., 0., 10.] });
+/// let opts = SampleOptions { threshold: 1.0, ..Default::default() };
+/// let SampleContour::Plane(r) = contour_samples(&s, &opts).unwrap() else { unreachable!() };
+/// let dir = tempfile::tempdir().unwrap();
+/// morpho::io::write_contour_2d(&dir.path().join("c.geojson"), &r, 1.0, false).unwrap();
+/// assert_eq!(morpho::io::read_shapes2(&dir.path().join("c.geojson")).unwrap().polygons.len(), 1);
+/// ```
 pub fn write_contour_2d(path: &Path, r: &PlaneContour, threshold: f64, below: bool) -> Result<()> {
     match Format::of(path)? {
         Format::GeoJson => write_atomic(path, |w| geojson::write_contour(w, r, threshold, below)),

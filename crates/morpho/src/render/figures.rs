@@ -164,6 +164,16 @@ pub fn constriction_svg(
 /// A 2D boundary through `points` (`morpho boundary -o *.svg`): the Delaunay edges the
 /// construction started from faint grey, the deleted edges dashed red, the polygon bold black,
 /// the points blue and the points left out larger in orange.
+///
+/// ```
+/// use morpho::boundary::{boundary_2d, Options2};
+/// use morpho::geom::Point2;
+/// let p = [Point2::new(0.0, 0.0), Point2::new(2.0, 0.0), Point2::new(1.0, 0.4), Point2::new(1.0, 2.0)];
+/// let b = boundary_2d(&p, &Options2::default()).unwrap();
+/// let svg = morpho::render::figures::boundary_svg(&p, &b);
+/// assert_eq!(svg.matches("<polygon").count(), 1);
+/// assert_eq!(svg.matches("<circle").count(), 4 + b.left_out.len());
+/// ```
 pub fn boundary_svg(points: &[Point2], b: &Boundary2) -> String {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for p in points {
@@ -327,12 +337,16 @@ pub fn contour_svg(r: &PlaneContour) -> String {
 pub struct PointsView<'a> {
     /// A value per point shown through `colormap` (black dots without).
     pub values: Option<&'a [f64]>,
+    /// The colour map of `values`.
     pub colormap: Colormap,
     /// Values mapped to the ends of the map (default: the finite values' range).
     pub range: Option<(f64, f64)>,
-    /// 3D points: the viewpoint, as for meshes ([`RenderOptions::azimuth_deg`], …).
+    /// 3D points: rotation of the viewpoint about the up axis, degrees (as
+    /// [`RenderOptions::azimuth_deg`]).
     pub azimuth_deg: f64,
+    /// 3D points: height of the viewpoint above the horizontal plane, degrees.
     pub elevation_deg: f64,
+    /// 3D points: the axis pointing up.
     pub up: UpAxis,
     /// Figure width in pixels.
     pub width: f64,

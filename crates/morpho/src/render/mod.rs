@@ -1,5 +1,5 @@
 //! Pictures of every stage: SVG for 2D ([`svg`]: the builder; [`figures`]: pictures of the 2D
-//! results), a software rasterizer (PNG) for meshes and volume views ([`raster`], [`slice`],
+//! results), a software rasterizer (PNG) for meshes and volume views ([`raster`], [`slice`](mod@slice),
 //! [`subdivision`], [`legend`]).
 
 pub mod colormap;
