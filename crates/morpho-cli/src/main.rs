@@ -31,7 +31,7 @@ enum Command {
     Demo(cmd::demo::Args),
     /// Show what a file holds: counts, bounding box, topology.
     Info(cmd::info::Args),
-    /// Convert between file formats (by extension).
+    /// Convert between file formats (by extension; meshes and tetrahedral PLY also to .vtu/.vtk).
     Convert(cmd::convert::Args),
     /// Draw points, polygons, graphs (SVG) or meshes and volume slices (PNG).
     Render(cmd::render::Args),

@@ -63,12 +63,7 @@ impl Report {
     /// Writes the report atomically.
     pub fn save(&self, path: &Path) -> morpho::Result<()> {
         let v = self.to_json();
-        morpho::io::write_atomic(path, |w| {
-            serde_json::to_writer_pretty(&mut *w, &v)
-                .map_err(|e| morpho::Error::invalid(format!("cannot write report: {e}")))?;
-            writeln!(w).map_err(|e| morpho::Error::io(path, e))
-        })
-        .map_err(|e| e.with_path(path))
+        morpho::io::write_atomic(path, |w| morpho::io::json::write_value_pretty(w, &v))
     }
 }
 

@@ -699,3 +699,53 @@ fn info_check_reports_simplicity_and_closedness() {
         stdout(&o)
     );
 }
+
+#[test]
+fn tetrahedra_as_vtk() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let f = write(
+        d,
+        "c.xyz",
+        b"0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n0.5 0.5 0.5\n",
+    );
+    let path = |n: &str| d.join(n).to_str().unwrap().to_string();
+    for out in ["t.vtu", "t.vtk", "t.ply"] {
+        let o = morpho(&[
+            "triangulate",
+            f.to_str().unwrap(),
+            "--tets",
+            "-o",
+            &path(out),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{out}: {}", stderr(&o));
+    }
+    let has = |file: &str, what: &[u8]| {
+        std::fs::read(d.join(file))
+            .unwrap()
+            .windows(what.len())
+            .any(|w| w == what)
+    };
+    assert!(has("t.vtu", b"<VTKFile type=\"UnstructuredGrid\""));
+    assert!(has(
+        "t.vtu",
+        b"<Piece NumberOfPoints=\"9\" NumberOfCells=\"12\">"
+    ));
+    assert!(has("t.vtu", b"<AppendedData encoding=\"raw\">"));
+    assert!(has("t.vtk", b"# vtk DataFile Version 3.0\n"));
+    assert!(has("t.vtk", b"\nBINARY\n"));
+    assert!(has("t.vtk", b"\nCELLS 12 60\n"));
+    // the hull surface without --tets: 12 triangles (cell type 5)
+    let o = morpho(&["triangulate", f.to_str().unwrap(), "-o", &path("h.vtk")]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(has("h.vtk", b"\nCELLS 12 48\n"));
+    // convert: the tetrahedral PLY to VTK, ASCII
+    let o = morpho(&["convert", &path("t.ply"), "-o", &path("c.vtk"), "--ascii"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let c = std::fs::read_to_string(d.join("c.vtk")).unwrap();
+    assert!(c.contains("\nASCII\n") && c.contains("\nCELLS 12 60\n4 "));
+    assert_eq!(c.matches("\n10").count(), 12, "12 cells of type 10");
+    // a triangle mesh converts to VTK too
+    let o = morpho(&["convert", &path("h.vtk"), "-o", &path("x.vtu")]);
+    assert_eq!(o.status.code(), Some(2), "VTK is written, not read");
+}

@@ -1174,8 +1174,8 @@ fn random_delaunay_3d_match_oracle() {
 
 #[test]
 fn pipeline_and_geojson_on_meuse() {
-    use morpho::contour::output::geojson_value;
     use morpho::contour::pipeline::{finish_plane, select_samples, SampleOptions, Triangulation2};
+    use morpho::io::geojson::contour_value as geojson_value;
     use morpho::mesh::{Column, PointSet};
     let file = std::path::Path::new(concat!(
         env!("CARGO_MANIFEST_DIR"),

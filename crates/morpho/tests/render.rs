@@ -1296,3 +1296,66 @@ mod props {
         }
     }
 }
+
+/// Every picture of `render::figures` is balanced XML with the elements it promises.
+#[test]
+fn figures_are_balanced_and_complete() {
+    use morpho::boundary::{boundary_2d, Options2};
+    use morpho::contour::{contour_samples, SampleContour, SampleOptions};
+    use morpho::delaunay::{cdt::Cdt2, d2};
+    use morpho::graphs::{graph_2d, Kind};
+    use morpho::mesh::{Column, PointSet};
+    use morpho::render::figures::*;
+    let pts = morpho::samples::chalice_outline(60, 0.2, 3);
+    let n = pts.len();
+    let d = d2::triangulate(&pts).unwrap();
+    for voronoi in [false, true] {
+        let c = xml_check(&delaunay_svg(&d, voronoi));
+        assert_eq!(c["circle"], n);
+        assert_eq!(c["path"], 1 + voronoi as usize);
+    }
+    let c = xml_check(&cdt_svg(&Cdt2::build(&pts, &[[0, 30]]).unwrap()));
+    assert_eq!((c["circle"], c["path"]), (n, 2));
+    let g = graph_2d(&pts, Kind::Rng).unwrap();
+    let c = xml_check(&graph_svg(&pts, &g, Some("RNG <1>")));
+    assert_eq!((c["circle"], c["path"], c["text"]), (n, 1, 1));
+    let b = boundary_2d(&pts, &Options2::default()).unwrap();
+    let s = boundary_svg(&pts, &b);
+    let c = xml_check(&s);
+    assert_eq!(c["circle"], n + b.left_out.len());
+    assert_eq!(c["polygon"], 1);
+    assert_eq!(c["line"], b.graph_edges.len() + b.deleted.len());
+    let c = xml_check(&cycle_svg(&pts, &b.polygon, "chalice", 300.0));
+    assert_eq!((c["circle"], c["path"]), (n, 1));
+    let labels = [PointLabel {
+        index: 3,
+        text: "v",
+        dx: -4.0,
+    }];
+    let c = xml_check(&constriction_svg(
+        &pts,
+        &b.graph_edges,
+        &b.deleted,
+        &b.polygon,
+        "t",
+        Some(3),
+        &labels,
+    ));
+    assert_eq!((c["circle"], c["text"]), (n + 1, 2));
+    let mut samples = PointSet::from_points2(&pts);
+    samples.columns.push(Column {
+        name: "value".into(),
+        values: pts.iter().map(|p| p.x).collect(),
+    });
+    let opts = SampleOptions {
+        threshold: 0.0,
+        ..Default::default()
+    };
+    let SampleContour::Plane(r) = contour_samples(&samples, &opts).unwrap() else {
+        panic!("2D samples give a plane contour")
+    };
+    let s = contour_svg(&r);
+    let c = xml_check(&s);
+    assert_eq!(c["path"], 2 + r.contour.cycles.len() + 1);
+    assert!(s.contains("#c81e1e"));
+}

@@ -2,7 +2,7 @@
 //! closed genus-0 mesh through 3D points (issue 5; Veltkamp 1992 ch. 4–5), by γ-graph
 //! constriction or (2D) one of the two comparison methods.
 //!
-//! 3D: `-o` `.ply/.obj/.off` (every input point is a vertex, in input order) or `.json`
+//! 3D: `-o` `.ply/.obj/.off/.vtu/.vtk` (every input point is a vertex, in input order) or `.json`
 //! (`{"triangles":[[i,j,k],…]}`); `--until all|locked`; `--keep` triangles; report keys `closed_manifold`, `genus`,
 //! `volume`, `c_used`, `added_triangles`; `--c auto|C` as in 2D (auto: Delaunay constriction, then
 //! the general engine with γ([-1,1],[c,1]) triangles, c = −0.1 … −1, when it locks);
@@ -24,13 +24,12 @@ use crate::report::Report;
 use crate::Failure;
 use morpho::boundary::constrict3::Until;
 use morpho::boundary::{
-    boundary_2d, boundary_3d_with, check_polygon, Boundary2, CParam, Method, Options2, Options3,
+    boundary_2d, boundary_3d_with, check_polygon, CParam, Method, Options2, Options3,
 };
-use morpho::geom::Point2;
-use morpho::io::{read_points, write_atomic};
+use morpho::io::{self, read_points};
+use morpho::render::figures;
 use morpho::Error;
 use serde_json::json;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
@@ -92,7 +91,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         "locked" => Until::Locked,
         _ => return Err(Failure::usage("--until must be `all` or `locked`")),
     };
-    let ext = ext_of(&args.output);
+    let ext = super::extension(&args.output);
     let mut inputs: Vec<&Path> = vec![&args.input];
     if let Some(k) = &args.keep {
         inputs.push(k);
@@ -157,10 +156,15 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     if let Some(l) = b.skeleton_length {
         report.set("skeleton_length", l);
     }
+    let out = &args.output;
     report.time("write", || -> morpho::Result<()> {
-        write_boundary(&args.output, &ext, &pts, &b)?;
+        if ext == "svg" {
+            io::write_text(out, &figures::boundary_svg(&pts, &b))?;
+        } else {
+            io::write_boundary_2d(out, &pts, &b)?;
+        }
         if let Some(i) = &args.interior {
-            write_interior(i, &pts, &b)?;
+            io::write_interior_2d(i, &pts, &b)?;
         }
         Ok(())
     })?;
@@ -181,147 +185,6 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     Ok(0)
 }
 
-fn ext_of(p: &Path) -> String {
-    p.extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase()
-}
-
-fn write_boundary(path: &Path, ext: &str, pts: &[Point2], b: &Boundary2) -> morpho::Result<()> {
-    write_atomic(path, |w| {
-        match ext {
-            "csv" => {
-                writeln!(w, "index,x,y").map_err(werr)?;
-                for &i in &b.polygon {
-                    let p = pts[i as usize];
-                    writeln!(w, "{i},{},{}", p.x, p.y).map_err(werr)?;
-                }
-            }
-            "json" => {
-                let v = json!({ "polygon": b.polygon });
-                writeln!(w, "{v}").map_err(werr)?;
-            }
-            "geojson" => {
-                let mut ring: Vec<[f64; 2]> = b
-                    .polygon
-                    .iter()
-                    .map(|&i| [pts[i as usize].x, pts[i as usize].y])
-                    .collect();
-                if let Some(&f) = ring.first() {
-                    ring.push(f);
-                }
-                let v = json!({
-                    "type": "FeatureCollection",
-                    "features": [{
-                        "type": "Feature",
-                        "properties": { "all_on_boundary": b.all_on_boundary, "indices": b.polygon },
-                        "geometry": { "type": "Polygon", "coordinates": [ring] }
-                    }]
-                });
-                writeln!(w, "{v}").map_err(werr)?;
-            }
-            _ => write_svg(w, pts, b)?,
-        }
-        Ok(())
-    })
-    .map_err(|e| e.with_path(path))
-}
-
-fn write_svg(w: &mut dyn Write, pts: &[Point2], b: &Boundary2) -> morpho::Result<()> {
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in pts {
-        lo = [lo[0].min(p.x), lo[1].min(p.y)];
-        hi = [hi[0].max(p.x), hi[1].max(p.y)];
-    }
-    let size = 800.0;
-    let ext = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(f64::MIN_POSITIVE);
-    let s = (size - 40.0) / ext;
-    let tx = |p: &Point2| (20.0 + (p.x - lo[0]) * s, size - 20.0 - (p.y - lo[1]) * s);
-    let width = 40.0 + (hi[0] - lo[0]) * s;
-    let height = 40.0 + (hi[1] - lo[1]) * s;
-    let off = size - height;
-    writeln!(
-        w,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width:.0}" height="{height:.0}" viewBox="0 {off:.1} {width:.1} {height:.1}">"#
-    )
-    .map_err(werr)?;
-    writeln!(
-        w,
-        r#"<rect x="0" y="{off:.1}" width="{width:.1}" height="{height:.1}" fill="white"/>"#
-    )
-    .map_err(werr)?;
-    let line = |w: &mut dyn Write, e: &[u32; 2], style: &str| -> morpho::Result<()> {
-        let (a, c) = (tx(&pts[e[0] as usize]), tx(&pts[e[1] as usize]));
-        writeln!(
-            w,
-            r#"<line x1="{:.2}" y1="{:.2}" x2="{:.2}" y2="{:.2}" {style}/>"#,
-            a.0, a.1, c.0, c.1
-        )
-        .map_err(werr)
-    };
-    writeln!(w, r##"<g stroke="#bbb" stroke-width="0.5">"##).map_err(werr)?;
-    for e in &b.graph_edges {
-        line(w, e, "")?;
-    }
-    writeln!(w, "</g>").map_err(werr)?;
-    writeln!(
-        w,
-        r##"<g stroke="#d33" stroke-width="0.8" stroke-dasharray="3 2">"##
-    )
-    .map_err(werr)?;
-    for e in &b.deleted {
-        line(w, e, "")?;
-    }
-    writeln!(w, "</g>").map_err(werr)?;
-    let poly: Vec<String> = b
-        .polygon
-        .iter()
-        .map(|&i| {
-            let (x, y) = tx(&pts[i as usize]);
-            format!("{x:.2},{y:.2}")
-        })
-        .collect();
-    writeln!(
-        w,
-        r##"<polygon points="{}" fill="none" stroke="#000" stroke-width="2"/>"##,
-        poly.join(" ")
-    )
-    .map_err(werr)?;
-    writeln!(w, r##"<g fill="#16c">"##).map_err(werr)?;
-    for p in pts {
-        let (x, y) = tx(p);
-        writeln!(w, r#"<circle cx="{x:.2}" cy="{y:.2}" r="2"/>"#).map_err(werr)?;
-    }
-    writeln!(w, "</g>").map_err(werr)?;
-    writeln!(w, r##"<g fill="#e80">"##).map_err(werr)?;
-    for &i in &b.left_out {
-        let (x, y) = tx(&pts[i as usize]);
-        writeln!(w, r#"<circle cx="{x:.2}" cy="{y:.2}" r="4"/>"#).map_err(werr)?;
-    }
-    writeln!(w, "</g>\n</svg>").map_err(werr)?;
-    Ok(())
-}
-
-fn write_interior(path: &Path, pts: &[Point2], b: &Boundary2) -> morpho::Result<()> {
-    if ext_of(path) == "json" {
-        let v = json!({ "triangles": b.interior, "area": b.area });
-        return write_atomic(path, |w| writeln!(w, "{v}").map_err(werr))
-            .map_err(|e| e.with_path(path));
-    }
-    let positions = pts
-        .iter()
-        .map(|p| morpho::geom::Point3::new(p.x, p.y, 0.0))
-        .collect();
-    let mesh = morpho::mesh::TriMesh::new(positions, b.interior.clone());
-    morpho::io::write_mesh(path, &mesh, morpho::io::Encoding::default())
-}
-
-/// An I/O error while writing (the path is added by the caller).
-fn werr(e: std::io::Error) -> Error {
-    Error::io("", e)
-}
-
 fn run_3d(
     args: &Args,
     pts: Vec<morpho::geom::Point3>,
@@ -330,9 +193,9 @@ fn run_3d(
     method: Method,
     report: &mut Report,
 ) -> Result<u8, Failure> {
-    if !matches!(ext, "ply" | "obj" | "off" | "json") {
+    if !matches!(ext, "ply" | "obj" | "off" | "vtu" | "vtk" | "json") {
         return Err(Failure::usage(format!(
-            "{}: 3D output must be .ply, .obj, .off or .json",
+            "{}: 3D output must be .ply, .obj, .off, .vtu, .vtk or .json",
             args.output.display()
         )));
     }
@@ -358,24 +221,13 @@ fn run_3d(
         report.set("skeleton_length", l);
     }
     report.time("write", || -> morpho::Result<()> {
-        if ext == "json" {
-            let v = json!({ "triangles": b.triangles });
-            write_atomic(&args.output, |w| writeln!(w, "{v}").map_err(werr))
-                .map_err(|e| e.with_path(&args.output))?;
-        } else {
-            let mesh = morpho::mesh::TriMesh::new(pts.clone(), b.triangles.clone());
-            morpho::io::write_mesh(&args.output, &mesh, morpho::io::Encoding::default())?;
-        }
+        io::write_boundary_3d(&args.output, &pts, &b)?;
         if let Some(i) = &args.interior {
-            let mut v = json!({ "tetrahedra": b.interior, "volume": b.volume });
-            if b.interior.is_empty() && !b.triangles.is_empty() {
-                // the general engine's surface need not bound Delaunay tetrahedra (see
-                // morpho::boundary::Boundary3::interior): say so instead of an unexplained []
-                let note = "no interior tetrahedralization after the augmented (c < 0) constriction; volume from the closed surface";
+            // JSON whatever the extension (`{"tetrahedra", "volume"}`, see the module docs)
+            if let Some(note) = io::json::interior_3d_note(&b) {
                 eprintln!("boundary: warning: {note}");
-                v["note"] = json!(note);
             }
-            write_atomic(i, |w| writeln!(w, "{v}").map_err(werr)).map_err(|e| e.with_path(i))?;
+            io::write_atomic(i, |w| io::json::write_interior_3d(w, &b))?;
         }
         Ok(())
     })?;

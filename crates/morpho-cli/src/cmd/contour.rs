@@ -6,24 +6,25 @@
 //! 2D outputs: `.geojson` (FeatureCollection of Polygons, closed rings, outer rings
 //! counter-clockwise, holes clockwise, property `threshold`), `.json` (`{"cycles": [[sample
 //! indices…]…]}`), `.svg` (coloured triangles with the contour). 3D outputs: `.ply` (or another
-//! mesh format) with a face property `component`.
+//! mesh format: `.obj .off .stl .vtu .vtk`) with a face property `component`.
 //! Report keys: `samples`, `triangles` or `tetrahedra`, `black`, `components`, `cycles`
 //! (2D) or `surface_triangles` (3D), `skipped`, `value`.
 
 use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
-use morpho::contour::output::{svg_string, write_cycles_json, write_geojson};
 use morpho::contour::{Rating, SampleContour, SampleOptions};
 use morpho::io::{self, Encoding, Format};
 use morpho::mesh::PointSet;
+use morpho::render::figures;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct Args {
     /// Samples with values: CSV with header `x,y,value…` (2D) or `x,y,z,value…` (3D), XYZ, PLY.
     pub input: PathBuf,
-    /// Output: .geojson, .json or .svg for 2D samples; .ply (.obj .off .stl) for 3D samples.
+    /// Output: .geojson, .json or .svg for 2D samples; .ply (.obj .off .stl .vtu .vtk) for 3D
+    /// samples.
     #[arg(short, long)]
     pub output: PathBuf,
     /// Threshold of the rating: triangles rated above it are black (the regions).
@@ -55,10 +56,10 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     check_not_input(&args.output, &[&args.input])?;
     let fmt = Format::of(&args.output)?;
     let plane_out = matches!(fmt, Format::GeoJson | Format::Json | Format::Svg);
-    let mesh_out = matches!(fmt, Format::Ply | Format::Obj | Format::Off | Format::Stl);
+    let mesh_out = io::is_mesh_format(fmt);
     if !plane_out && !mesh_out {
         return Err(Failure::usage(format!(
-            "{}: contour writes .geojson, .json or .svg (2D) or .ply/.obj/.off/.stl (3D)",
+            "{}: contour writes .geojson, .json or .svg (2D) or .ply/.obj/.off/.stl/.vtu/.vtk (3D)",
             args.output.display()
         )));
     }
@@ -79,7 +80,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let samples = report.time("read", || io::read_points(&args.input))?;
     if samples.dim == 3 && plane_out {
         return Err(Failure::usage(format!(
-            "{}: the samples are 3D (x, y, z); write the surface as .ply, .obj, .off or .stl",
+            "{}: the samples are 3D (x, y, z); write the surface as .ply, .obj, .off, .stl, .vtu or .vtk",
             args.input.display()
         )));
     }
@@ -109,15 +110,9 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             report.set("components", r.contour.components);
             report.set("cycles", r.contour.cycles.len());
             report.set("dropped", r.contour.dropped);
-            report.time("write", || {
-                io::write_atomic(out, |w| match fmt {
-                    Format::GeoJson => write_geojson(w, r, args.threshold, args.below),
-                    Format::Json => write_cycles_json(w, r),
-                    _ => w
-                        .write_all(svg_string(r).as_bytes())
-                        .map_err(|e| morpho::Error::io(out, e)),
-                })
-                .map_err(|e| e.with_path(out))
+            report.time("write", || match fmt {
+                Format::Svg => io::write_text(out, &figures::contour_svg(r)),
+                _ => io::write_contour_2d(out, r, args.threshold, args.below),
             })?;
         }
         SampleContour::Space(r) => {

@@ -1,4 +1,7 @@
-//! `morpho convert IN -o OUT`: format conversion by extension.
+//! `morpho convert IN -o OUT`: format conversion by extension. Meshes, points, polygons and
+//! volumes convert between the formats of their kind; a tetrahedral PLY (a `tetra` element, as
+//! `morpho triangulate --tets` writes it) converts to VTK (`.vtu`, `.vtk`), and so does a
+//! triangle mesh.
 
 use super::check_not_input;
 use crate::report::Report;
@@ -13,10 +16,10 @@ pub struct Args {
     /// Output file; its extension chooses the format.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Write PLY/STL as ASCII instead of binary.
+    /// Write PLY/STL/VTK as ASCII instead of binary.
     #[arg(long)]
     pub ascii: bool,
-    /// Write binary PLY big endian.
+    /// Write binary PLY (and .vtu) big endian.
     #[arg(long, conflicts_with = "ascii")]
     pub big_endian: bool,
 }
@@ -31,8 +34,17 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     } else {
         Encoding::BinaryLittleEndian
     };
-    let data = report.time("read", || read_any(&args.input))?;
     let out = &args.output;
+    if matches!(Format::of(out)?, Format::Vtu | Format::Vtk) {
+        if let Some(t) = report.time("read", || io::read_tets_if_present(&args.input))? {
+            report.time("write", || io::write_tets(out, &t, enc))?;
+            report.set("input", args.input.display().to_string());
+            report.set("output", out.display().to_string());
+            report.set("tetrahedra", t.tets.len());
+            return Ok(0);
+        }
+    }
+    let data = report.time("read", || read_any(&args.input))?;
     report.time("write", || match &data {
         Data::Mesh(m) => io::write_mesh(out, m, enc),
         Data::Points(p) => io::write_points(out, p),

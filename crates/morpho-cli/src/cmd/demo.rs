@@ -5,8 +5,9 @@
 
 use crate::report::Report;
 use crate::Failure;
+use morpho::io::html::{Entry, Section};
+use morpho::render::figures;
 use morpho::Result;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -18,36 +19,6 @@ pub struct Args {
     /// Folder with the real data (default: ../shared/data from the repository, if it exists).
     #[arg(long)]
     pub data: Option<PathBuf>,
-}
-
-/// One step of a pipeline as shown in the gallery.
-pub struct Section {
-    pub title: String,
-    pub text: String,
-    /// (file name relative to the gallery, caption)
-    pub images: Vec<(String, String)>,
-    /// (name, value)
-    pub figures: Vec<(String, String)>,
-    /// result files written (relative names)
-    pub files: Vec<String>,
-}
-
-impl Section {
-    fn new(title: &str, text: &str) -> Self {
-        Section {
-            title: title.into(),
-            text: text.into(),
-            images: vec![],
-            figures: vec![],
-            files: vec![],
-        }
-    }
-    fn fig(&mut self, k: &str, v: impl std::fmt::Display) {
-        self.figures.push((k.into(), v.to_string()));
-    }
-    fn img(&mut self, file: &str, caption: &str) {
-        self.images.push((file.into(), caption.into()));
-    }
 }
 
 /// Everything a section builder needs.
@@ -90,7 +61,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         out: args.out.clone(),
         data: data.clone(),
     };
-    let mut done: Vec<(Section, f64, Option<String>)> = Vec::new();
+    let mut done: Vec<Entry> = Vec::new();
     let mut failed = 0;
     let t0 = Instant::now();
     for (name, build) in SECTIONS {
@@ -98,29 +69,29 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         match build(&ctx) {
             Ok(secs) => {
                 let dt = t.elapsed().as_secs_f64() / secs.len().max(1) as f64;
-                for s in secs {
-                    done.push((s, dt, None));
+                for section in secs {
+                    done.push(Entry {
+                        section,
+                        seconds: dt,
+                        error: None,
+                    });
                 }
             }
             Err(e) => {
                 failed += 1;
                 eprintln!("error: demo step '{name}' failed: {e}");
-                done.push((
-                    Section::new(name, ""),
-                    t.elapsed().as_secs_f64(),
-                    Some(e.to_string()),
-                ));
+                done.push(Entry {
+                    section: Section::new(name, ""),
+                    seconds: t.elapsed().as_secs_f64(),
+                    error: Some(e.to_string()),
+                });
             }
         }
     }
     report.add_time("compute", t0.elapsed().as_secs_f64());
-    let html = gallery_html(&done, data.as_deref());
     let index = args.out.join("index.html");
     report.time("write", || {
-        morpho::io::write_atomic(&index, |w| {
-            w.write_all(html.as_bytes())
-                .map_err(|e| morpho::Error::io(&index, e))
-        })
+        morpho::io::html::write_gallery(&index, &done, data.as_deref())
     })?;
     report.set("sections", done.len());
     report.set("failed_sections", failed);
@@ -144,73 +115,8 @@ fn default_data_dir() -> Option<PathBuf> {
     candidates.into_iter().find(|p| p.is_dir())
 }
 
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-fn gallery_html(sections: &[(Section, f64, Option<String>)], data: Option<&Path>) -> String {
-    let mut h = String::new();
-    h.push_str(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>morpho demo</title>\n<style>\n\
-body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1200px;color:#222}\n\
-section{border-top:1px solid #ccc;padding:1em 0}\n.row{display:flex;flex-wrap:wrap;gap:1.5em;align-items:flex-start}\n\
-figure{margin:0}figure img{max-width:540px;max-height:480px;border:1px solid #ddd;background:#fff}\n\
-figcaption{font-size:90%;color:#555}\ntable{border-collapse:collapse;font-size:92%}td{padding:2px 10px;border-bottom:1px solid #eee}\n\
-td:first-child{color:#555}.fail{color:#b00}\n</style></head><body>\n",
-    );
-    let _ = writeln!(
-        h,
-        "<h1>morpho demo</h1>\n<p>Every pipeline of morpho on generated sample data{}. morpho {}.</p>",
-        match data {
-            Some(d) => format!(" and the real data in <code>{}</code>", esc(&d.display().to_string())),
-            None => " (real data folder not found)".into(),
-        },
-        morpho::VERSION
-    );
-    for (s, dt, err) in sections {
-        let _ = writeln!(h, "<section><h2>{}</h2>", esc(&s.title));
-        if let Some(e) = err {
-            let _ = writeln!(h, "<p class=\"fail\">failed: {}</p></section>", esc(e));
-            continue;
-        }
-        let _ = writeln!(h, "<p>{}</p><div class=\"row\">", esc(&s.text));
-        for (img, cap) in &s.images {
-            let _ = writeln!(
-                h,
-                "<figure><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption></figure>",
-                esc(img),
-                esc(cap),
-                esc(cap)
-            );
-        }
-        h.push_str("<table>\n");
-        for (k, v) in &s.figures {
-            let _ = writeln!(h, "<tr><td>{}</td><td>{}</td></tr>", esc(k), esc(v));
-        }
-        let _ = writeln!(h, "<tr><td>time</td><td>{dt:.3} s</td></tr>");
-        if !s.files.is_empty() {
-            let links: Vec<String> = s
-                .files
-                .iter()
-                .map(|f| format!("<a href=\"{0}\">{0}</a>", esc(f)))
-                .collect();
-            let _ = writeln!(h, "<tr><td>files</td><td>{}</td></tr>", links.join(" "));
-        }
-        h.push_str("</table></div></section>\n");
-    }
-    h.push_str("</body></html>\n");
-    h
-}
-
 fn write_svg(ctx: &Ctx, name: &str, svg: &str) -> Result<()> {
-    let p = ctx.path(name);
-    morpho::io::write_atomic(&p, |w| {
-        w.write_all(svg.as_bytes())
-            .map_err(|e| morpho::Error::io(&p, e))
-    })
+    morpho::io::write_text(&ctx.path(name), svg)
 }
 
 fn chalice() -> Vec<morpho::geom::Point2> {
@@ -259,7 +165,7 @@ fn delaunay_section(ctx: &Ctx) -> Result<Vec<Section>> {
     write_svg(
         ctx,
         "chalice_delaunay.svg",
-        &super::triangulate::picture_2d(&d, true),
+        &figures::delaunay_svg(&d, true),
     )?;
     s.img(
         "chalice_delaunay.svg",
@@ -319,7 +225,7 @@ fn gamma_section(ctx: &Ctx) -> Result<Vec<Section>> {
         for (k, (kind, label)) in kinds.into_iter().enumerate() {
             let g = graph_2d(&p, kind)?;
             let name = format!("gamma_{si}_{k}.svg");
-            write_svg(ctx, &name, &super::graph::picture(&p, &g, Some(&label)))?;
+            write_svg(ctx, &name, &figures::graph_svg(&p, &g, Some(&label)))?;
             s.img(&name, &format!("{label}: {} edges", g.edges.len()));
             s.fig(&label, format!("{} edges", g.edges.len()));
         }
@@ -461,7 +367,7 @@ fn volume_section(ctx: &Ctx) -> Result<Vec<Section>> {
 }
 
 fn contour_section(ctx: &Ctx) -> Result<Vec<Section>> {
-    use morpho::contour::{contour_samples, output, pipeline::SampleOptions, SampleContour};
+    use morpho::contour::{contour_samples, pipeline::SampleOptions, SampleContour};
     let mut out = Vec::new();
     let mut cases: Vec<(String, String, morpho::mesh::PointSet, SampleOptions, String)> = vec![(
         "Regions above a threshold: a synthetic borehole field".into(),
@@ -495,12 +401,10 @@ fn contour_section(ctx: &Ctx) -> Result<Vec<Section>> {
             continue;
         };
         let mut s = Section::new(&title, &text);
-        write_svg(ctx, &format!("{name}.svg"), &output::svg_string(&pc))?;
+        write_svg(ctx, &format!("{name}.svg"), &figures::contour_svg(&pc))?;
         s.img(&format!("{name}.svg"), "black triangles and their contour");
         let gj = ctx.path(&format!("{name}.geojson"));
-        morpho::io::write_atomic(&gj, |w| {
-            output::write_geojson(w, &pc, opts.threshold, opts.below)
-        })?;
+        morpho::io::write_contour_2d(&gj, &pc, opts.threshold, opts.below)?;
         s.files.push(format!("{name}.geojson"));
         s.fig("samples", samples.len());
         s.fig("triangles", pc.triangles.len());
@@ -619,23 +523,20 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
     Ok(out)
 }
 
-/// A polygon (input indices) over faint points, with an optional title.
-fn polygon_picture(p: &[morpho::geom::Point2], cycle: &[u32], title: &str, width: f64) -> String {
-    use morpho::render::svg::{point_radius, Stroke, Svg};
-    let mut svg = Svg::fit(p, width);
-    svg.title(title);
-    let poly: Vec<morpho::geom::Point2> = cycle.iter().map(|&i| p[i as usize]).collect();
-    svg.polyline(&poly, true, &Stroke::solid([200, 60, 40], 1.6));
-    svg.points(p, point_radius(p.len()), [30, 30, 30]);
-    svg.finish()
+fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
+    let mut out = vec![chalice_constriction(ctx)?];
+    if let Some(path) = ctx.data_file("curves2d/ohrhallinger_fitconnect/apple_2percent_noise.txt") {
+        out.push(three_methods_2d(ctx, &path)?);
+    }
+    if let Some(path) = ctx.data_file("meshes/bunny_npm.obj") {
+        out.push(bunny_boundary(ctx, &path)?);
+    }
+    Ok(out)
 }
 
-fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
-    use morpho::boundary::{
-        boundary_2d, boundary_3d, constrict3::Until, constriction_steps_2d, indicator::Key, Method,
-        Options2,
-    };
-    let mut out = Vec::new();
+/// γ-constriction of the chalice, pictured at five steps.
+fn chalice_constriction(ctx: &Ctx) -> Result<Section> {
+    use morpho::boundary::{boundary_2d, constriction_steps_2d, indicator::Key, Options2};
     let p = chalice();
     let mut s = Section::new(
         "Boundary through all points: γ-constriction of the chalice (Veltkamp §5.2)",
@@ -653,7 +554,7 @@ fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
         write_svg(
             ctx,
             &name,
-            &polygon_picture(&p, cyc, &format!("after {step} deletions"), 260.0),
+            &figures::cycle_svg(&p, cyc, &format!("after {step} deletions"), 260.0),
         )?;
         s.img(
             &name,
@@ -665,169 +566,177 @@ fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
     s.fig("all points on the boundary", b.all_on_boundary);
     s.fig("area", format!("{:.4}", b.area));
     s.fig("time", format!("{:.1} ms", dt * 1e3));
-    out.push(s);
-    // the three methods on a real data set with ground truth
-    if let Some(path) = ctx.data_file("curves2d/ohrhallinger_fitconnect/apple_2percent_noise.txt") {
-        let pts = morpho::io::read_points(&path)?.to_points2();
-        let mut s = Section::new(
-            "Three methods on a noisy outline",
-            "curves2d/ohrhallinger_fitconnect/apple_2percent_noise.txt: γ-indicator (V §5.2), minimal area change \
-             (Boissonnat, V §4.3.3) and the shortest Voronoi skeleton (O'Rourke et al., V §4.3.4). The file lists the \
-             points in curve order, so the fraction of its consecutive pairs that are polygon edges measures recovery.",
-        );
-        for (m, name) in [
-            (Method::Gamma, "gamma"),
-            (Method::MinAreaChange, "min-area-change"),
-            (Method::VoronoiSkeleton, "voronoi-skeleton"),
-        ] {
-            let t = Instant::now();
-            let b = boundary_2d(
-                &pts,
-                &Options2 {
-                    method: m,
-                    ..Default::default()
-                },
-            )?;
-            let dt = t.elapsed().as_secs_f64();
-            let mut on: std::collections::HashSet<[u32; 2]> = std::collections::HashSet::new();
-            for i in 0..b.polygon.len() {
-                let (a, c) = (b.polygon[i], b.polygon[(i + 1) % b.polygon.len()]);
-                on.insert([a.min(c), a.max(c)]);
-            }
-            let n = pts.len() as u32;
-            let hit = (0..n)
-                .filter(|&i| on.contains(&[i.min((i + 1) % n), i.max((i + 1) % n)]))
-                .count();
-            let file = format!("apple_{name}.svg");
-            write_svg(ctx, &file, &polygon_picture(&pts, &b.polygon, name, 300.0))?;
-            s.img(&file, name);
-            s.fig(
-                &format!("{name}: ground-truth edges recovered"),
-                format!("{:.3}", hit as f64 / n as f64),
-            );
-            s.fig(
-                &format!("{name}: all points on the boundary / time"),
-                format!("{} / {:.1} ms", b.all_on_boundary, dt * 1e3),
-            );
-        }
-        out.push(s);
-    }
-    if let Some(path) = ctx.data_file("meshes/bunny_npm.obj") {
-        use morpho::render::raster::{render_mesh, RenderOptions, Shading};
-        let m = morpho::io::read_mesh(&path)?;
+    Ok(s)
+}
+
+/// The three 2D methods on a noisy outline with ground truth (the points in curve order).
+fn three_methods_2d(ctx: &Ctx, path: &Path) -> Result<Section> {
+    use morpho::boundary::{boundary_2d, Method, Options2};
+    let pts = morpho::io::read_points(path)?.to_points2();
+    let mut s = Section::new(
+        "Three methods on a noisy outline",
+        "curves2d/ohrhallinger_fitconnect/apple_2percent_noise.txt: γ-indicator (V §5.2), minimal area change \
+         (Boissonnat, V §4.3.3) and the shortest Voronoi skeleton (O'Rourke et al., V §4.3.4). The file lists the \
+         points in curve order, so the fraction of its consecutive pairs that are polygon edges measures recovery.",
+    );
+    for (m, name) in [
+        (Method::Gamma, "gamma"),
+        (Method::MinAreaChange, "min-area-change"),
+        (Method::VoronoiSkeleton, "voronoi-skeleton"),
+    ] {
         let t = Instant::now();
-        let b = boundary_3d(&m.positions, Until::All)?;
+        let b = boundary_2d(
+            &pts,
+            &Options2 {
+                method: m,
+                ..Default::default()
+            },
+        )?;
         let dt = t.elapsed().as_secs_f64();
-        let mut s = Section::new(
-            "A closed boundary through the vertices of a scan (Veltkamp §5.3)",
-            "The 1839 vertices of meshes/bunny_npm.obj, without their triangles: the Delaunay tetrahedralization is \
-             constricted (tetrahedra with one or two boundary triangles, the γ-indicator of Def. 5.2 and the sum rule) \
-             until every point lies on the boundary. Below, the two comparison methods on the same points (V §5.6): \
-             Boissonnat's minimal area change fills the body but bridges concavities with long thin triangles; \
-             the shortest Voronoi skeleton twists through the body (V Figs 5.10–5.11) and gets stuck before \
-             every point is reached.",
-        );
-        let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), b.triangles.clone());
-        let opts = RenderOptions {
-            shading: Shading::Flat,
-            azimuth_deg: 20.0,
-            ..Default::default()
-        };
-        render_mesh(&mesh, &opts).save_png(&ctx.path("bunny_boundary.png"))?;
-        s.img(
-            "bunny_boundary.png",
-            "--until all: stop as soon as every point is on the boundary",
-        );
-        let bl = boundary_3d(&m.positions, Until::Locked)?;
-        let mesh_l = morpho::mesh::TriMesh::new(m.positions.clone(), bl.triangles.clone());
-        render_mesh(&mesh_l, &opts).save_png(&ctx.path("bunny_boundary_locked.png"))?;
-        s.img(
-            "bunny_boundary_locked.png",
-            "--until locked: continue while removals keep the boundary valid",
+        let mut on: std::collections::HashSet<[u32; 2]> = std::collections::HashSet::new();
+        for i in 0..b.polygon.len() {
+            let (a, c) = (b.polygon[i], b.polygon[(i + 1) % b.polygon.len()]);
+            on.insert([a.min(c), a.max(c)]);
+        }
+        let n = pts.len() as u32;
+        let hit = (0..n)
+            .filter(|&i| on.contains(&[i.min((i + 1) % n), i.max((i + 1) % n)]))
+            .count();
+        let file = format!("apple_{name}.svg");
+        write_svg(
+            ctx,
+            &file,
+            &figures::cycle_svg(&pts, &b.polygon, name, 300.0),
+        )?;
+        s.img(&file, name);
+        s.fig(
+            &format!("{name}: ground-truth edges recovered"),
+            format!("{:.3}", hit as f64 / n as f64),
         );
         s.fig(
-            "--until locked: triangles / closed / genus / volume",
-            format!(
-                "{} / {} / {} / {:.1}",
-                bl.triangles.len(),
-                bl.closed_manifold,
-                bl.genus
-                    .map(|g| g.to_string())
-                    .unwrap_or_else(|| "undefined".into()),
-                bl.volume
-            ),
+            &format!("{name}: all points on the boundary / time"),
+            format!("{} / {:.1} ms", b.all_on_boundary, dt * 1e3),
         );
-        s.fig("points", m.positions.len());
-        s.fig("boundary triangles", b.triangles.len());
-        s.fig("all points on the boundary", b.all_on_boundary);
-        s.fig("closed 2-manifold", b.closed_manifold);
-        s.fig(
-            "genus",
-            b.genus
+    }
+    Ok(s)
+}
+
+/// The 3D boundary through the vertices of the bunny scan, and the comparison methods.
+fn bunny_boundary(ctx: &Ctx, path: &Path) -> Result<Section> {
+    use morpho::boundary::{boundary_3d, constrict3::Until, Method};
+    use morpho::render::raster::{render_mesh, RenderOptions, Shading};
+    let m = morpho::io::read_mesh(path)?;
+    let t = Instant::now();
+    let b = boundary_3d(&m.positions, Until::All)?;
+    let dt = t.elapsed().as_secs_f64();
+    let mut s = Section::new(
+        "A closed boundary through the vertices of a scan (Veltkamp §5.3)",
+        "The 1839 vertices of meshes/bunny_npm.obj, without their triangles: the Delaunay tetrahedralization is \
+         constricted (tetrahedra with one or two boundary triangles, the γ-indicator of Def. 5.2 and the sum rule) \
+         until every point lies on the boundary. Below, the two comparison methods on the same points (V §5.6): \
+         Boissonnat's minimal area change fills the body but bridges concavities with long thin triangles; \
+         the shortest Voronoi skeleton twists through the body (V Figs 5.10–5.11) and gets stuck before \
+         every point is reached.",
+    );
+    let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), b.triangles.clone());
+    let opts = RenderOptions {
+        shading: Shading::Flat,
+        azimuth_deg: 20.0,
+        ..Default::default()
+    };
+    render_mesh(&mesh, &opts).save_png(&ctx.path("bunny_boundary.png"))?;
+    s.img(
+        "bunny_boundary.png",
+        "--until all: stop as soon as every point is on the boundary",
+    );
+    let bl = boundary_3d(&m.positions, Until::Locked)?;
+    let mesh_l = morpho::mesh::TriMesh::new(m.positions.clone(), bl.triangles.clone());
+    render_mesh(&mesh_l, &opts).save_png(&ctx.path("bunny_boundary_locked.png"))?;
+    s.img(
+        "bunny_boundary_locked.png",
+        "--until locked: continue while removals keep the boundary valid",
+    );
+    s.fig(
+        "--until locked: triangles / closed / genus / volume",
+        format!(
+            "{} / {} / {} / {:.1}",
+            bl.triangles.len(),
+            bl.closed_manifold,
+            bl.genus
                 .map(|g| g.to_string())
                 .unwrap_or_else(|| "undefined".into()),
-        );
-        s.fig(
-            "enclosed volume (original mesh: 194.3)",
-            format!("{:.1}", b.volume),
-        );
-        s.fig("time", format!("{:.0} ms", dt * 1e3));
-        // the comparison methods of V §4.3.3 and §4.3.4 on the same points (V §5.6)
-        use morpho::boundary::{boundary_3d_with, Options3};
-        let sorted = |t: &[u32; 3]| {
-            let mut t = *t;
-            t.sort_unstable();
-            t
+            bl.volume
+        ),
+    );
+    s.fig("points", m.positions.len());
+    s.fig("boundary triangles", b.triangles.len());
+    s.fig("all points on the boundary", b.all_on_boundary);
+    s.fig("closed 2-manifold", b.closed_manifold);
+    s.fig(
+        "genus",
+        b.genus
+            .map(|g| g.to_string())
+            .unwrap_or_else(|| "undefined".into()),
+    );
+    s.fig(
+        "enclosed volume (original mesh: 194.3)",
+        format!("{:.1}", b.volume),
+    );
+    s.fig("time", format!("{:.0} ms", dt * 1e3));
+    // the comparison methods of V §4.3.3 and §4.3.4 on the same points (V §5.6)
+    use morpho::boundary::{boundary_3d_with, Options3};
+    let sorted = |t: &[u32; 3]| {
+        let mut t = *t;
+        t.sort_unstable();
+        t
+    };
+    let truth: std::collections::HashSet<[u32; 3]> = m.triangles.iter().map(sorted).collect();
+    let recovered = |tris: &[[u32; 3]]| {
+        let hit = tris.iter().filter(|t| truth.contains(&sorted(t))).count();
+        100.0 * hit as f64 / truth.len().max(1) as f64
+    };
+    s.fig(
+        "γ-indicator: original triangles recovered",
+        format!("{:.1} %", recovered(&b.triangles)),
+    );
+    for (method, file, what) in [
+        (
+            Method::MinAreaChange,
+            "bunny_min_area.png",
+            "minimal area change (Boissonnat, V §4.3.3)",
+        ),
+        (
+            Method::VoronoiSkeleton,
+            "bunny_skeleton.png",
+            "shortest Voronoi skeleton (O'Rourke et al., V §4.3.4)",
+        ),
+    ] {
+        let o = Options3 {
+            method,
+            ..Options3::default()
         };
-        let truth: std::collections::HashSet<[u32; 3]> = m.triangles.iter().map(sorted).collect();
-        let recovered = |tris: &[[u32; 3]]| {
-            let hit = tris.iter().filter(|t| truth.contains(&sorted(t))).count();
-            100.0 * hit as f64 / truth.len().max(1) as f64
-        };
+        let t = Instant::now();
+        let bm = boundary_3d_with(&m.positions, &o)?;
+        let dt = t.elapsed().as_secs_f64();
+        let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), bm.triangles.clone());
+        render_mesh(&mesh, &opts).save_png(&ctx.path(file))?;
+        s.img(file, what);
         s.fig(
-            "γ-indicator: original triangles recovered",
-            format!("{:.1} %", recovered(&b.triangles)),
+            &format!("{what}: left out / recovered / volume / time"),
+            format!(
+                "{} / {:.1} % / {:.1} / {:.0} ms",
+                bm.left_out.len(),
+                recovered(&bm.triangles),
+                bm.volume,
+                dt * 1e3
+            ),
         );
-        for (method, file, what) in [
-            (
-                Method::MinAreaChange,
-                "bunny_min_area.png",
-                "minimal area change (Boissonnat, V §4.3.3)",
-            ),
-            (
-                Method::VoronoiSkeleton,
-                "bunny_skeleton.png",
-                "shortest Voronoi skeleton (O'Rourke et al., V §4.3.4)",
-            ),
-        ] {
-            let o = Options3 {
-                method,
-                ..Options3::default()
-            };
-            let t = Instant::now();
-            let bm = boundary_3d_with(&m.positions, &o)?;
-            let dt = t.elapsed().as_secs_f64();
-            let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), bm.triangles.clone());
-            render_mesh(&mesh, &opts).save_png(&ctx.path(file))?;
-            s.img(file, what);
-            s.fig(
-                &format!("{what}: left out / recovered / volume / time"),
-                format!(
-                    "{} / {:.1} % / {:.1} / {:.0} ms",
-                    bm.left_out.len(),
-                    recovered(&bm.triangles),
-                    bm.volume,
-                    dt * 1e3
-                ),
-            );
-        }
-        out.push(s);
     }
-    Ok(out)
+    Ok(s)
 }
 
 /// The picture of one γ-constriction through the Dillencourt set: the graph's edges thin, the
-/// deleted ones dashed, the polygon fat, the key vertices labelled.
+/// deleted ones dashed, the polygon fat, v highlighted, the key vertices labelled.
 fn dillencourt_picture(
     p: &[morpho::geom::Point2],
     graph: &[[u32; 2]],
@@ -835,40 +744,21 @@ fn dillencourt_picture(
     polygon: &[u32],
     title: &str,
 ) -> String {
-    use morpho::render::svg::{Stroke, Svg};
-    let key = |e: &[u32; 2]| [e[0].min(e[1]), e[0].max(e[1])];
-    let dead: std::collections::HashSet<[u32; 2]> = deleted.iter().map(key).collect();
-    let seg = |e: &[u32; 2]| (p[e[0] as usize], p[e[1] as usize]);
-    let mut svg = Svg::fit(p, 330.0);
-    svg.title(title);
-    let (gone, kept): (Vec<_>, Vec<_>) = graph.iter().partition(|e| dead.contains(&key(e)));
-    svg.segments(
-        &kept.into_iter().map(seg).collect::<Vec<_>>(),
-        &Stroke::solid([120, 150, 190], 0.8),
-    );
-    svg.segments(
-        &gone.into_iter().map(seg).collect::<Vec<_>>(),
-        &Stroke::dashed([150, 150, 150], 0.8),
-    );
-    if !polygon.is_empty() {
-        let poly: Vec<_> = polygon.iter().map(|&i| p[i as usize]).collect();
-        svg.polyline(&poly, true, &Stroke::solid([200, 60, 40], 2.4));
-    }
-    svg.points(p, 2.6, [20, 20, 20]);
-    svg.point(p[7], 3.6, [200, 30, 30]);
-    for (i, name) in ["s0", "h1", "s1", "h2", "s2", "h3", "s3", "v", "w"]
+    let labels: Vec<figures::PointLabel> = ["s0", "h1", "s1", "h2", "s2", "h3", "s3", "v", "w"]
         .iter()
         .enumerate()
-    {
-        // v and h3 (far right) are labelled on their left
-        let dx = match i {
-            7 => -13.0,
-            5 => -18.0,
-            _ => 3.0,
-        };
-        svg.label(p[i], dx, 3.0, name, 10.0, [60, 60, 60]);
-    }
-    svg.finish()
+        .map(|(index, text)| figures::PointLabel {
+            index,
+            text,
+            // v and h3 (far right) are labelled on their left
+            dx: match index {
+                7 => -13.0,
+                5 => -18.0,
+                _ => 3.0,
+            },
+        })
+        .collect();
+    figures::constriction_svg(p, graph, deleted, polygon, title, Some(7), &labels)
 }
 
 fn dillencourt_section(ctx: &Ctx) -> Result<Vec<Section>> {

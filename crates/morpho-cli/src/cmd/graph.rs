@@ -8,11 +8,9 @@
 use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
-use morpho::geom::{Point2, Point3};
-use morpho::graphs::{graph_2d, graph_3d, Graph, Kind};
+use morpho::graphs::{graph_2d, graph_3d, Kind};
 use morpho::io::{self, Format};
-use serde_json::json;
-use std::io::Write;
+use morpho::render::figures;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -111,92 +109,16 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     report.set("edges", g.edges.len());
     report.set("triangles", g.triangles.len());
     let out = &args.output;
-    report.time("write", || -> morpho::Result<()> {
-        match fmt {
-            Format::Json => io::write_atomic(out, |w| {
-                let mut v = json!({
-                    "kind": kind.name(),
-                    "dim": pts.dim,
-                    "points": (0..pts.len()).map(|i| pts.point(i).to_vec()).collect::<Vec<_>>(),
-                });
-                if g.triangles.is_empty() || !g.edges.is_empty() {
-                    v["edges"] = json!(g.edges);
-                }
-                if !g.triangles.is_empty() || (g.dim == 3 && g.edges.is_empty()) {
-                    v["triangles"] = json!(g.triangles);
-                }
-                if matches!(kind, Kind::Gamma(..) | Kind::GammaRange(_)) {
-                    v["gamma"] = json!(g.gamma);
-                }
-                serde_json::to_writer(&mut *w, &v)
-                    .map_err(|e| morpho::Error::invalid(e.to_string()))?;
-                writeln!(w).map_err(|e| morpho::Error::io(out, e))
-            }),
-            Format::Svg => {
-                if pts.dim != 2 {
-                    return Err(morpho::Error::unsupported(
-                        "SVG pictures are for 2D graphs; write .ply or .json",
-                    )
-                    .with_path(out));
-                }
-                let svg = picture(&pts.to_points2(), &g, None);
-                io::write_atomic(out, |w| {
-                    w.write_all(svg.as_bytes())
-                        .map_err(|e| morpho::Error::io(out, e))
-                })
-            }
-            Format::Ply => io::write_atomic(out, |w| {
-                write_ply(w, &pts.to_points3(), &g).map_err(|e| morpho::Error::io(out, e))
-            }),
-            _ => Err(morpho::Error::unsupported("graph writes .json, .svg or .ply").with_path(out)),
+    report.time("write", || match fmt {
+        Format::Json | Format::Ply => io::write_graph(out, kind, &pts, &g),
+        Format::Svg if pts.dim == 2 => {
+            io::write_text(out, &figures::graph_svg(&pts.to_points2(), &g, None))
         }
+        Format::Svg => Err(morpho::Error::unsupported(
+            "SVG pictures are for 2D graphs; write .ply or .json",
+        )
+        .with_path(out)),
+        _ => Err(morpho::Error::unsupported("graph writes .json, .svg or .ply").with_path(out)),
     })?;
     Ok(0)
-}
-
-/// A 2D graph drawn over faint points: edges in colour, with an optional title.
-pub fn picture(p: &[Point2], g: &Graph, title: Option<&str>) -> String {
-    use morpho::render::svg::{point_radius, Stroke, Svg};
-    let mut svg = Svg::fit(p, 420.0);
-    if let Some(t) = title {
-        svg.title(t);
-    }
-    let segs: Vec<_> = g
-        .edges
-        .iter()
-        .map(|e| (p[e[0] as usize], p[e[1] as usize]))
-        .collect();
-    svg.segments(&segs, &Stroke::solid([40, 90, 160], 1.2));
-    svg.points(p, point_radius(p.len()).max(2.0), [20, 20, 20]);
-    svg.finish()
-}
-
-/// PLY with vertices, an `edge` element and triangles as faces (ASCII: graphs are small files).
-fn write_ply(w: &mut dyn Write, p: &[Point3], g: &Graph) -> std::io::Result<()> {
-    writeln!(
-        w,
-        "ply\nformat ascii 1.0\ncomment morpho graph\nelement vertex {}",
-        p.len()
-    )?;
-    writeln!(w, "property double x\nproperty double y\nproperty double z")?;
-    writeln!(
-        w,
-        "element face {}\nproperty list uchar int vertex_indices",
-        g.triangles.len()
-    )?;
-    writeln!(
-        w,
-        "element edge {}\nproperty int vertex1\nproperty int vertex2\nend_header",
-        g.edges.len()
-    )?;
-    for q in p {
-        writeln!(w, "{} {} {}", q.x, q.y, q.z)?;
-    }
-    for t in &g.triangles {
-        writeln!(w, "3 {} {} {}", t[0], t[1], t[2])?;
-    }
-    for e in &g.edges {
-        writeln!(w, "{} {}", e[0], e[1])?;
-    }
-    Ok(())
 }

@@ -1,4 +1,7 @@
-//! One file per subcommand. Each has `Args` (clap) and `run(args, report) -> Result<exit code>`.
+//! One file per subcommand. Each has `Args` (clap) and `run(args, report) -> Result<exit code>`:
+//! it checks the arguments, calls the library, writes its results through `morpho::io` (data)
+//! or `morpho::render` (pictures) and fills the report. The handling of output paths shared by
+//! all commands (never over an input, formats by extension) is here.
 
 pub mod boundary;
 pub mod contour;
@@ -12,6 +15,15 @@ pub mod triangulate;
 
 use crate::Failure;
 use std::path::Path;
+
+/// The extension of an output path, lower case (`""` without one): the formats a command
+/// accepts are checked on it before anything is computed.
+pub fn extension(p: &Path) -> String {
+    p.extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase()
+}
 
 /// Refuses to write an output over an input file (same path after resolving links).
 pub fn check_not_input(output: &Path, inputs: &[&Path]) -> Result<(), Failure> {

@@ -11,16 +11,16 @@
 use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
-use morpho::geom::{Aabb2, Point2};
 use morpho::io::{self, read_any, Data, Format};
 use morpho::mesh::{PointSet, TriMesh};
-use morpho::render::colormap::{finite_range, Colormap};
+use morpho::render::colormap::Colormap;
+use morpho::render::figures::{point_set_svg, PointsView};
 use morpho::render::legend;
 use morpho::render::raster::{
-    camera_basis, render_mesh_stats, Projection, RenderOptions, Scalars, Shading, UpAxis,
+    render_mesh_stats, Projection, RenderOptions, Scalars, Shading, UpAxis,
 };
 use morpho::render::slice::{self, Axis, SliceOptions, Upsample};
-use morpho::render::svg::{self, Svg};
+use morpho::render::svg;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -226,13 +226,7 @@ fn parse_slice(s: &str, v: &morpho::volume::Volume) -> Result<(Axis, usize), Fai
 }
 
 fn write_svg(args: &Args, text: &str, report: &mut Report) -> Result<(), Failure> {
-    report.time("write", || {
-        io::write_atomic(&args.output, |w| {
-            w.write_all(text.as_bytes())
-                .map_err(|e| morpho::Error::io(&args.output, e))
-        })
-        .map_err(|e| e.with_path(&args.output))
-    })?;
+    report.time("write", || io::write_text(&args.output, text))?;
     Ok(())
 }
 
@@ -274,70 +268,20 @@ fn points(
         Some(name) => Some(point_values(p, name)?),
         None => None,
     };
-    let (text, skipped) = report.time("compute", || {
-        let n = p.len();
-        // 2D positions (3D: orthographic projection) and a shade per point.
-        let (pos, depth): (Vec<Point2>, Vec<f64>) = if p.dim == 3 {
-            let o = RenderOptions {
-                azimuth_deg: args.azimuth,
-                elevation_deg: args.elevation,
-                up: if args.up.as_deref() == Some("z") {
-                    UpAxis::Z
-                } else {
-                    UpAxis::Y
-                },
-                ..Default::default()
-            };
-            let (r, u, e) = camera_basis(&o);
-            (0..n)
-                .map(|i| {
-                    let q = p.point(i);
-                    let v = morpho::geom::Vector3::new(q[0], q[1], q[2]);
-                    (Point2::new(v.dot(&r), v.dot(&u)), v.dot(&e))
-                })
-                .unzip()
+    let view = PointsView {
+        values: values.as_deref(),
+        colormap,
+        range,
+        azimuth_deg: args.azimuth,
+        elevation_deg: args.elevation,
+        up: if args.up.as_deref() == Some("z") {
+            UpAxis::Z
         } else {
-            (0..n)
-                .map(|i| (Point2::new(p.point(i)[0], p.point(i)[1]), 0.0))
-                .unzip()
-        };
-        let mut b = Aabb2::empty();
-        for q in &pos {
-            if q.x.is_finite() && q.y.is_finite() {
-                b.add(q.coords.as_slice());
-            }
-        }
-        let mut order: Vec<usize> = (0..n).collect();
-        if p.dim == 3 {
-            // Far points first, near points on top.
-            order.sort_by(|&a, &b| depth[a].total_cmp(&depth[b]));
-        }
-        let (dlo, dhi) = finite_range(depth.iter().copied()).unwrap_or((0.0, 1.0));
-        let (vlo, vhi) = match &values {
-            Some(v) => range
-                .or(finite_range(v.iter().copied()))
-                .unwrap_or((0.0, 1.0)),
-            None => (0.0, 1.0),
-        };
-        let mut s = Svg::new(b, args.width as f64);
-        let r = svg::point_radius(n);
-        for i in order {
-            let mut c = match &values {
-                Some(v) => colormap.color_of(v[i], vlo, vhi),
-                None => [0, 0, 0],
-            };
-            if p.dim == 3 && dhi > dlo {
-                // Fade far points towards white (depth cue).
-                let f = 0.55 * (dhi - depth[i]) / (dhi - dlo);
-                for ch in &mut c {
-                    *ch = (*ch as f64 + f * (255.0 - *ch as f64)).round() as u8;
-                }
-            }
-            s.point(pos[i], r, c);
-        }
-        let skipped = s.skipped();
-        (s.finish(), skipped)
-    });
+            UpAxis::Y
+        },
+        width: args.width as f64,
+    };
+    let (text, skipped) = report.time("compute", || point_set_svg(p, &view));
     report.set("skipped", skipped);
     report.set("width", args.width);
     write_svg(args, &text, report)

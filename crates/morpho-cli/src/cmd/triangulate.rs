@@ -2,9 +2,10 @@
 //!
 //! The dimension comes from the input. Outputs: `.json` (`{"points", "triangles"}` in 2D,
 //! `{"points", "tetrahedra"}` in 3D, indices into the input order — a merged duplicate is
-//! represented by its first occurrence), a mesh format (`.ply/.obj/.off/.stl`: the triangles in
-//! 2D with z = 0, the hull surface in 3D, or with `--tets` a tetrahedral PLY), or `.svg` (2D,
-//! optionally with the Voronoi diagram).
+//! represented by its first occurrence), a mesh format (`.ply/.obj/.off/.stl/.vtu/.vtk`: the
+//! triangles in 2D with z = 0, the hull surface in 3D), with `--tets` (3D) the tetrahedra as VTK
+//! (`.vtu` XML or `.vtk` legacy unstructured grid, cell type 10: ParaView, meshio) or as a PLY
+//! with a `tetra` element, or `.svg` (2D, optionally with the Voronoi diagram).
 //!
 //! `--constraints SEGMENTS.csv` (2D): one `i,j` pair of input indices per line (blank lines and
 //! `#` comments skipped; anything else is an error naming the line, exit 2); the result is the
@@ -16,22 +17,21 @@
 use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
-use morpho::delaunay::{cdt, d2, d3, voronoi};
-use morpho::geom::Point3;
-use morpho::io::{self, Encoding, Format};
-use morpho::mesh::TriMesh;
-use serde_json::json;
-use std::io::Write;
+use morpho::delaunay::{cdt, d2, d3};
+use morpho::io::json::{Triangulation2, Triangulation3};
+use morpho::io::{self, Format};
+use morpho::render::figures;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
 pub struct Args {
     /// Points (CSV with header, XYZ, PLY, JSON array of [x, y(, z)]).
     pub input: PathBuf,
-    /// Output: .json, .ply/.obj/.off/.stl, or .svg (2D).
+    /// Output: .json, .ply/.obj/.off/.stl/.vtu/.vtk, or .svg (2D).
     #[arg(short, long)]
     pub output: PathBuf,
-    /// 3D: write the tetrahedra as a PLY with a `tetra` element instead of the hull surface.
+    /// 3D: write the tetrahedra instead of the hull surface: .vtu/.vtk (VTK unstructured grid,
+    /// for ParaView and meshio) or .ply (a `tetra` element).
     #[arg(long)]
     pub tets: bool,
     /// 2D SVG: draw the Voronoi diagram too.
@@ -41,6 +41,11 @@ pub struct Args {
     /// constrained Delaunay triangulation.
     #[arg(long)]
     pub constraints: Option<PathBuf>,
+}
+
+/// The mesh formats a triangulation is written in (besides `.json` and, in 2D, `.svg`).
+fn is_mesh(fmt: Format) -> bool {
+    io::is_mesh_format(fmt)
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
@@ -67,111 +72,113 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             "--constraints is for 2D points (constrained Delaunay triangulation)",
         ));
     }
-    let n = pts.len();
     report.set("dim", pts.dim);
-    report.set("points", n);
-    let path = &args.output;
-    let werr = |e: std::io::Error| morpho::Error::io(path, e);
+    report.set("points", pts.len());
     if pts.dim == 2 {
-        let p2 = pts.to_points2();
-        let d = report
-            .time("compute", || d2::triangulate(&p2))
-            .map_err(|e| e.with_path(&args.input))?;
-        let unique = d.points.len();
-        if unique < 3 {
-            return Err(Failure::usage(format!(
-                "{}: a 2D triangulation needs at least 3 distinct points, the file has {unique}",
-                args.input.display()
-            )));
-        }
-        report.set("unique_points", unique);
-        report.set("duplicates", d.duplicates);
-        report.set("triangles", d.triangles.len());
-        report.set("hull_size", d.hull.len());
-        if d.collinear {
-            let note = "all points are collinear: no triangles, the hull is the line of points";
-            report.set("note", note);
-            eprintln!("note: {note}");
-        }
-        let tris = d.to_input_indices();
-        report.time("write", || -> morpho::Result<()> {
-            match fmt {
-                Format::Json => io::write_atomic(path, |w| {
-                    let v = json!({
-                        "points": p2.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
-                        "triangles": tris,
-                        "hull": d.hull.iter().map(|&v| d.input_of_vertex[v as usize]).collect::<Vec<_>>(),
-                    });
-                    serde_json::to_writer(&mut *w, &v).map_err(|e| morpho::Error::invalid(e.to_string()))?;
-                    writeln!(w).map_err(werr)
-                }),
-                Format::Svg => {
-                    let svg = picture_2d(&d, args.voronoi);
-                    io::write_atomic(path, |w| w.write_all(svg.as_bytes()).map_err(werr))
-                }
-                Format::Ply | Format::Obj | Format::Off | Format::Stl => {
-                    let mesh = TriMesh::new(p2.iter().map(|p| Point3::new(p.x, p.y, 0.0)).collect(), tris.clone());
-                    io::write_mesh(path, &mesh, Encoding::BinaryLittleEndian)
-                }
-                _ => Err(morpho::Error::unsupported("triangulate writes .json, .svg, .ply, .obj, .off or .stl").with_path(path)),
-            }
-        })?;
+        run_2d(&args, &pts.to_points2(), fmt, report)
     } else {
-        let p3 = pts.to_points3();
-        let d = report
-            .time("compute", || d3::triangulate(&p3))
-            .map_err(|e| e.with_path(&args.input))?;
-        let unique = d.points.len();
-        if unique < 4 {
-            return Err(Failure::usage(format!(
-                "{}: a 3D triangulation needs at least 4 distinct points, the file has {unique}",
-                args.input.display()
-            )));
-        }
-        report.set("unique_points", unique);
-        report.set("duplicates", d.duplicates);
-        report.set("tetrahedra", d.tets.len());
-        report.set("hull_size", d.hull.len());
-        if let Some(why) = &d.degenerate {
-            report.set("note", why.as_str());
-            eprintln!("note: {why}: no tetrahedra");
-        }
-        let tets = d.to_input_indices();
-        let hull: Vec<[u32; 3]> = d
-            .hull
-            .iter()
-            .map(|t| t.map(|v| d.input_of_vertex[v as usize]))
-            .collect();
-        report.time("write", || -> morpho::Result<()> {
-            match fmt {
-                Format::Json => io::write_atomic(path, |w| {
-                    let v = json!({
-                        "points": p3.iter().map(|p| [p.x, p.y, p.z]).collect::<Vec<_>>(),
-                        "tetrahedra": tets,
-                        "hull": hull,
-                    });
-                    serde_json::to_writer(&mut *w, &v)
-                        .map_err(|e| morpho::Error::invalid(e.to_string()))?;
-                    writeln!(w).map_err(werr)
-                }),
-                Format::Ply if args.tets => {
-                    io::write_atomic(path, |w| write_tet_ply(w, &p3, &tets).map_err(werr))
-                }
-                Format::Ply | Format::Obj | Format::Off | Format::Stl => {
-                    let mesh = TriMesh::new(p3.clone(), hull.clone());
-                    io::write_mesh(path, &mesh, Encoding::BinaryLittleEndian)
-                }
-                Format::Svg => Err(morpho::Error::unsupported(
-                    "SVG pictures are for 2D points; render the hull with `morpho render`",
-                )
-                .with_path(path)),
-                _ => Err(morpho::Error::unsupported(
-                    "triangulate writes .json, .ply, .obj, .off or .stl",
-                )
-                .with_path(path)),
-            }
-        })?;
+        run_3d(&args, &pts.to_points3(), fmt, report)
     }
+}
+
+/// The 2D Delaunay triangulation.
+fn run_2d(
+    args: &Args,
+    p2: &[morpho::geom::Point2],
+    fmt: Format,
+    report: &mut Report,
+) -> Result<u8, Failure> {
+    let d = report
+        .time("compute", || d2::triangulate(p2))
+        .map_err(|e| e.with_path(&args.input))?;
+    let unique = d.points.len();
+    if unique < 3 {
+        return Err(Failure::usage(format!(
+            "{}: a 2D triangulation needs at least 3 distinct points, the file has {unique}",
+            args.input.display()
+        )));
+    }
+    report.set("unique_points", unique);
+    report.set("duplicates", d.duplicates);
+    report.set("triangles", d.triangles.len());
+    report.set("hull_size", d.hull.len());
+    if d.collinear {
+        let note = "all points are collinear: no triangles, the hull is the line of points";
+        report.set("note", note);
+        eprintln!("note: {note}");
+    }
+    let tris = d.to_input_indices();
+    let hull: Vec<u32> = d
+        .hull
+        .iter()
+        .map(|&v| d.input_of_vertex[v as usize])
+        .collect();
+    let t = Triangulation2 {
+        points: p2,
+        triangles: &tris,
+        hull: &hull,
+        constrained: None,
+    };
+    let path = &args.output;
+    report.time("write", || match fmt {
+        Format::Svg => io::write_text(path, &figures::delaunay_svg(&d, args.voronoi)),
+        f if f == Format::Json || is_mesh(f) => io::write_triangulation_2d(path, &t),
+        _ => Err(morpho::Error::unsupported(
+            "triangulate writes .json, .svg, .ply, .obj, .off, .stl, .vtu or .vtk",
+        )
+        .with_path(path)),
+    })?;
+    Ok(0)
+}
+
+/// The 3D Delaunay tetrahedralization.
+fn run_3d(
+    args: &Args,
+    p3: &[morpho::geom::Point3],
+    fmt: Format,
+    report: &mut Report,
+) -> Result<u8, Failure> {
+    let d = report
+        .time("compute", || d3::triangulate(p3))
+        .map_err(|e| e.with_path(&args.input))?;
+    let unique = d.points.len();
+    if unique < 4 {
+        return Err(Failure::usage(format!(
+            "{}: a 3D triangulation needs at least 4 distinct points, the file has {unique}",
+            args.input.display()
+        )));
+    }
+    report.set("unique_points", unique);
+    report.set("duplicates", d.duplicates);
+    report.set("tetrahedra", d.tets.len());
+    report.set("hull_size", d.hull.len());
+    if let Some(why) = &d.degenerate {
+        report.set("note", why.as_str());
+        eprintln!("note: {why}: no tetrahedra");
+    }
+    let tets = d.to_input_indices();
+    let hull: Vec<[u32; 3]> = d
+        .hull
+        .iter()
+        .map(|t| t.map(|v| d.input_of_vertex[v as usize]))
+        .collect();
+    let t = Triangulation3 {
+        points: p3,
+        tets: &tets,
+        hull: &hull,
+    };
+    let path = &args.output;
+    report.time("write", || match fmt {
+        f if f == Format::Json || is_mesh(f) => io::write_triangulation_3d(path, &t, args.tets),
+        Format::Svg => Err(morpho::Error::unsupported(
+            "SVG pictures are for 2D points; render the hull with `morpho render`",
+        )
+        .with_path(path)),
+        _ => Err(morpho::Error::unsupported(
+            "triangulate writes .json, .ply, .obj, .off, .stl, .vtu or .vtk",
+        )
+        .with_path(path)),
+    })?;
     Ok(0)
 }
 
@@ -207,138 +214,21 @@ fn run_constrained(
     report.set("constrained_edges", cons.len());
     report.set("splits", c.splits);
     let tris = c.to_input_indices();
+    let hull: Vec<u32> = c.hull().iter().map(|&v| inp(v)).collect();
+    let t = Triangulation2 {
+        points: p2,
+        triangles: &tris,
+        hull: &hull,
+        constrained: Some(&cons),
+    };
     let path = &args.output;
-    let werr = |e: std::io::Error| morpho::Error::io(path, e);
-    report.time("write", || -> morpho::Result<()> {
-        match fmt {
-            Format::Json => io::write_atomic(path, |w| {
-                let v = json!({
-                    "points": p2.iter().map(|p| [p.x, p.y]).collect::<Vec<_>>(),
-                    "triangles": tris,
-                    "constrained": cons,
-                    "hull": c.hull().iter().map(|&v| inp(v)).collect::<Vec<_>>(),
-                });
-                serde_json::to_writer(&mut *w, &v)
-                    .map_err(|e| morpho::Error::invalid(e.to_string()))?;
-                writeln!(w).map_err(werr)
-            }),
-            Format::Svg => {
-                let svg = picture_constrained(&c);
-                io::write_atomic(path, |w| w.write_all(svg.as_bytes()).map_err(werr))
-            }
-            Format::Ply | Format::Obj | Format::Off | Format::Stl => {
-                let mesh = TriMesh::new(
-                    p2.iter().map(|p| Point3::new(p.x, p.y, 0.0)).collect(),
-                    tris.clone(),
-                );
-                io::write_mesh(path, &mesh, Encoding::BinaryLittleEndian)
-            }
-            _ => Err(morpho::Error::unsupported(
-                "triangulate writes .json, .svg, .ply, .obj, .off or .stl",
-            )
-            .with_path(path)),
-        }
+    report.time("write", || match fmt {
+        Format::Svg => io::write_text(path, &figures::cdt_svg(&c)),
+        f if f == Format::Json || is_mesh(f) => io::write_triangulation_2d(path, &t),
+        _ => Err(morpho::Error::unsupported(
+            "triangulate writes .json, .svg, .ply, .obj, .off, .stl, .vtu or .vtk",
+        )
+        .with_path(path)),
     })?;
     Ok(0)
-}
-
-/// The constrained triangulation as SVG: edges thin, constrained edges bold.
-fn picture_constrained(c: &cdt::Cdt2) -> String {
-    use morpho::render::svg::{Stroke, Svg};
-    let pts = c.points();
-    let b = morpho::geom::bbox2(pts);
-    let mut svg = Svg::new(b, 900.0);
-    let (mut thin, mut bold) = (Vec::new(), Vec::new());
-    for (e, k) in c.edges() {
-        let seg = (pts[e[0] as usize], pts[e[1] as usize]);
-        if k {
-            bold.push(seg);
-        } else {
-            thin.push(seg);
-        }
-    }
-    svg.segments(&thin, &Stroke::solid([58, 110, 165], 0.8));
-    svg.segments(&bold, &Stroke::solid([20, 20, 20], 2.6));
-    svg.points(
-        pts,
-        morpho::render::svg::point_radius(pts.len()),
-        [30, 30, 30],
-    );
-    svg.finish()
-}
-
-/// Binary little-endian PLY with `vertex` (x, y, z as double) and `tetra` (4 indices).
-fn write_tet_ply(w: &mut dyn Write, p: &[Point3], tets: &[[u32; 4]]) -> std::io::Result<()> {
-    write!(
-        w,
-        "ply\nformat binary_little_endian 1.0\ncomment morpho tetrahedralization\nelement vertex {}\nproperty double x\nproperty double y\nproperty double z\nelement tetra {}\nproperty list uchar int vertex_indices\nend_header\n",
-        p.len(),
-        tets.len()
-    )?;
-    let mut buf = Vec::with_capacity(p.len() * 24 + tets.len() * 17);
-    for q in p {
-        for c in [q.x, q.y, q.z] {
-            buf.extend_from_slice(&c.to_le_bytes());
-        }
-    }
-    for t in tets {
-        buf.push(4);
-        for &v in t {
-            buf.extend_from_slice(&(v as i32).to_le_bytes());
-        }
-    }
-    w.write_all(&buf)
-}
-
-/// The triangulation (and optionally its Voronoi diagram, clipped to a margin around the
-/// points) as SVG.
-pub fn picture_2d(d: &d2::Delaunay2, with_voronoi: bool) -> String {
-    use morpho::render::svg::{Stroke, Svg};
-    let b = morpho::geom::bbox2(&d.points);
-    let mut svg = Svg::new(b, 900.0);
-    let edges: Vec<_> = d
-        .edges()
-        .iter()
-        .map(|e| (d.points[e[0] as usize], d.points[e[1] as usize]))
-        .collect();
-    svg.segments(&edges, &Stroke::solid([58, 110, 165], 0.8));
-    if with_voronoi && !d.collinear {
-        svg.segments(&voronoi_segments(d, b), &Stroke::dashed([209, 73, 91], 0.8));
-    }
-    svg.points(
-        &d.points,
-        morpho::render::svg::point_radius(d.points.len()),
-        [30, 30, 30],
-    );
-    svg.finish()
-}
-
-/// The Voronoi edges as segments; rays and lines are cut at a distance of the box diagonal.
-pub fn voronoi_segments(
-    d: &d2::Delaunay2,
-    b: morpho::geom::Aabb2,
-) -> Vec<(morpho::geom::Point2, morpho::geom::Point2)> {
-    let v = voronoi::voronoi(d);
-    let reach = b.diagonal().max(f64::MIN_POSITIVE);
-    v.edges
-        .iter()
-        .map(|e| match *e {
-            voronoi::VoronoiEdge::Segment { vertices, .. } => (
-                v.vertices[vertices[0] as usize],
-                v.vertices[vertices[1] as usize],
-            ),
-            voronoi::VoronoiEdge::Ray {
-                from, direction, ..
-            } => {
-                let p = v.vertices[from as usize];
-                (p, p + direction.normalize() * reach)
-            }
-            voronoi::VoronoiEdge::Line {
-                point, direction, ..
-            } => {
-                let u = direction.normalize() * reach;
-                (point - u, point + u)
-            }
-        })
-        .collect()
 }

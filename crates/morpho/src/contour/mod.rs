@@ -41,9 +41,10 @@
 //! components that are not enclosed by another, as outward-oriented triangles.
 //!
 //! [`pipeline`] runs rating, colouring and contour on rated samples given their triangulation
-//! (value column by name, samples without a value skipped, duplicates averaged), [`output`]
-//! writes GeoJSON, a JSON list of cycles and an SVG picture. `samples::contour_samples` puts the
-//! Delaunay triangulation in front (declared once the Delaunay module is merged).
+//! (value column by name, samples without a value skipped, duplicates averaged);
+//! [`contour_samples`] puts the Delaunay triangulation in front. The results are written by
+//! [`crate::io::write_contour_2d`] (GeoJSON, a JSON list of cycles) and drawn by
+//! [`crate::render::figures::contour_svg`].
 //!
 //! ```
 //! use morpho::contour::external_contour;
@@ -62,7 +63,6 @@
 
 pub mod cycles;
 pub mod dual;
-pub mod output;
 pub mod pipeline;
 pub mod rating;
 pub mod samples;

@@ -147,6 +147,44 @@ impl Voronoi2 {
             rays: None,
         }
     }
+
+    /// The edges as finite segments, in the order of [`Self::edges`]: a segment as it is, a
+    /// ray cut at distance `reach` from its Voronoi vertex, a line (collinear input) cut at
+    /// `reach` on both sides of its point. Choosing `reach` (for a picture: the diagonal of the
+    /// drawn box, so that every cut lies outside it) is the caller's business.
+    ///
+    /// ```
+    /// use morpho::delaunay::{d2, voronoi};
+    /// use morpho::geom::Point2;
+    /// let p = [Point2::new(0.0, 0.0), Point2::new(4.0, 0.0), Point2::new(0.0, 4.0)];
+    /// let v = voronoi::voronoi(&d2::triangulate(&p).unwrap());
+    /// let segs = v.segments(10.0);
+    /// assert_eq!(segs.len(), 3); // three rays from the circumcentre (2, 2)
+    /// assert!(segs.iter().all(|(a, b)| *a == Point2::new(2.0, 2.0) && ((b - a).norm() - 10.0).abs() < 1e-12));
+    /// ```
+    pub fn segments(&self, reach: f64) -> Vec<(Point2, Point2)> {
+        self.edges
+            .iter()
+            .map(|e| match *e {
+                VoronoiEdge::Segment { vertices, .. } => (
+                    self.vertices[vertices[0] as usize],
+                    self.vertices[vertices[1] as usize],
+                ),
+                VoronoiEdge::Ray {
+                    from, direction, ..
+                } => {
+                    let p = self.vertices[from as usize];
+                    (p, p + direction.normalize() * reach)
+                }
+                VoronoiEdge::Line {
+                    point, direction, ..
+                } => {
+                    let u = direction.normalize() * reach;
+                    (point - u, point + u)
+                }
+            })
+            .collect()
+    }
 }
 
 #[cfg(test)]

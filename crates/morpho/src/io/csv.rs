@@ -37,9 +37,12 @@
 //! written as `x,y` rows (plus a `ring` column when it has holes), closing vertex **not**
 //! repeated; anything else as `component,closed,ring,x,y`. Limitation: a closed [`Polyline`]
 //! is written with `closed = 1` and therefore reads back as a one-ring [`Polygon`].
+//! [`write_boundary_2d`]: a boundary polygon through input points as `index,x,y` rows in
+//! boundary order.
 //!
 //! Complexity: linear in the file size (plus a stable sort when `order` is present).
 
+use crate::boundary::Boundary2;
 use crate::geom::Point2;
 use crate::mesh::{Column, PointSet, Polygon, Polyline, Shapes2};
 use crate::{Error, Result};
@@ -600,6 +603,27 @@ pub fn write_polygon(w: &mut dyn Write, shapes: &Shapes2) -> Result<()> {
             writeln!(w, "{comp},{},0,{},{}", line.closed as u8, p.x, p.y).map_err(e)?;
         }
         comp += 1;
+    }
+    Ok(())
+}
+
+/// Writes a 2D boundary polygon through `points` as `index,x,y` rows (the input index and the
+/// coordinates of each polygon vertex, in boundary order; the first vertex is not repeated).
+///
+/// ```
+/// use morpho::boundary::{boundary_2d, Options2};
+/// use morpho::geom::Point2;
+/// let p = [Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.0, 1.0)];
+/// let b = boundary_2d(&p, &Options2::default()).unwrap();
+/// let mut out = Vec::new();
+/// morpho::io::csv::write_boundary_2d(&mut out, &p, &b).unwrap();
+/// assert_eq!(String::from_utf8(out).unwrap(), "index,x,y\n0,0,0\n1,1,0\n2,0,1\n");
+/// ```
+pub fn write_boundary_2d(w: &mut dyn Write, points: &[Point2], b: &Boundary2) -> Result<()> {
+    writeln!(w, "index,x,y").map_err(e)?;
+    for &i in &b.polygon {
+        let p = points[i as usize];
+        writeln!(w, "{i},{},{}", p.x, p.y).map_err(e)?;
     }
     Ok(())
 }

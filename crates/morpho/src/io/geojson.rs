@@ -17,8 +17,16 @@
 //! **exactly** ([`ring_orientation`]), disagrees; polylines as `LineString` (closed ones with
 //! the first position repeated at the end). Numbers use serde_json's shortest round-trip form.
 //!
+//! Results: [`write_boundary_2d`] (one `Polygon` feature, the boundary in its own
+//! counter-clockwise order, properties `all_on_boundary` and `indices`) and [`write_contour`]
+//! (one `Polygon` per region of a plane contour — outer rings counter-clockwise, holes clockwise
+//! as the contour gives them — with properties `threshold`, `value`, `below`, `area`,
+//! `external`).
+//!
 //! Complexity: linear in the input size.
 
+use crate::boundary::Boundary2;
+use crate::contour::PlaneContour;
 use crate::geom::expansion::grow;
 use crate::geom::Point2;
 use crate::mesh::{Polygon, Polyline, Shapes2};
@@ -304,9 +312,91 @@ pub fn write(w: &mut dyn Write, shapes: &Shapes2) -> Result<()> {
         }));
     }
     let doc = json!({"type": "FeatureCollection", "features": features});
-    serde_json::to_writer(&mut *w, &doc).map_err(|e| Error::invalid(format!("JSON: {e}")))?;
-    writeln!(w).map_err(super::werr)?;
-    Ok(())
+    super::json::write_value(w, &doc)
+}
+
+/// Writes a 2D boundary polygon (input indices into `points`, counter-clockwise) as a
+/// FeatureCollection of one `Polygon` feature with the properties `all_on_boundary` and
+/// `indices` (the polygon's input indices).
+///
+/// ```
+/// use morpho::boundary::{boundary_2d, Options2};
+/// use morpho::geom::Point2;
+/// let p = [Point2::new(0.0, 0.0), Point2::new(2.0, 0.0), Point2::new(2.0, 2.0), Point2::new(0.0, 2.0)];
+/// let b = boundary_2d(&p, &Options2::default()).unwrap();
+/// let mut out = Vec::new();
+/// morpho::io::geojson::write_boundary_2d(&mut out, &p, &b).unwrap();
+/// let back = morpho::io::geojson::read(&out).unwrap();
+/// assert_eq!(back.polygons[0].rings[0].len(), 4);
+/// ```
+pub fn write_boundary_2d(w: &mut dyn Write, points: &[Point2], b: &Boundary2) -> Result<()> {
+    let mut ring: Vec<[f64; 2]> = b
+        .polygon
+        .iter()
+        .map(|&i| [points[i as usize].x, points[i as usize].y])
+        .collect();
+    if let Some(&f) = ring.first() {
+        ring.push(f);
+    }
+    let v = json!({
+        "type": "FeatureCollection",
+        "features": [{
+            "type": "Feature",
+            "properties": { "all_on_boundary": b.all_on_boundary, "indices": b.polygon },
+            "geometry": { "type": "Polygon", "coordinates": [ring] }
+        }]
+    });
+    super::json::write_value(w, &v)
+}
+
+/// A closed ring of vertex indices into `points` as GeoJSON positions.
+fn index_ring(ring: &[u32], points: &[Point2]) -> Value {
+    let mut v: Vec<Value> = ring
+        .iter()
+        .map(|&i| json!([points[i as usize].x, points[i as usize].y]))
+        .collect();
+    if let Some(first) = v.first().cloned() {
+        v.push(first);
+    }
+    Value::Array(v)
+}
+
+/// The GeoJSON FeatureCollection of a plane contour's regions (see the module documentation);
+/// `threshold` and `below` are the parameters that made the contour.
+pub fn contour_value(r: &PlaneContour, threshold: f64, below: bool) -> Value {
+    let c = &r.contour;
+    let features: Vec<Value> = c
+        .regions
+        .iter()
+        .map(|reg| {
+            let rings: Vec<Value> = std::iter::once(reg.outer)
+                .chain(reg.holes.iter().copied())
+                .map(|k| index_ring(&c.cycles[k as usize], &r.points))
+                .collect();
+            json!({
+                "type": "Feature",
+                "geometry": {"type": "Polygon", "coordinates": rings},
+                "properties": {
+                    "threshold": threshold,
+                    "value": r.selected.column,
+                    "below": below,
+                    "area": reg.area,
+                    "external": reg.external,
+                }
+            })
+        })
+        .collect();
+    json!({"type": "FeatureCollection", "features": features})
+}
+
+/// Writes [`contour_value`].
+pub fn write_contour(
+    w: &mut dyn Write,
+    r: &PlaneContour,
+    threshold: f64,
+    below: bool,
+) -> Result<()> {
+    super::json::write_value(w, &contour_value(r, threshold, below))
 }
 
 #[cfg(test)]
@@ -356,6 +446,54 @@ mod tests {
         assert!(read(br#"{"type":"Polygon"}"#).is_err());
         assert!(read(br#"{"type":"Blob"}"#).is_err());
         assert!(read(b"").is_err());
+    }
+
+    /// A square of two black triangles as a plane contour (zinc values).
+    fn square_contour() -> PlaneContour {
+        use crate::contour::pipeline::{
+            finish_plane, SampleOptions, SelectedSamples, Triangulation2,
+        };
+        let pts = [p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)];
+        let sel = SelectedSamples {
+            column: "zinc".into(),
+            input: vec![0, 1, 2, 3],
+            values: vec![1.0, 1.0, 1.0, 1.0],
+            skipped: 0,
+        };
+        let tri = Triangulation2 {
+            points: &pts,
+            vertex_of_input: &[0, 1, 2, 3],
+            input_of_vertex: &[0, 1, 2, 3],
+            triangles: &[[0, 1, 2], [0, 2, 3]],
+            neighbors: None,
+        };
+        finish_plane(sel, tri, &SampleOptions::default()).unwrap()
+    }
+
+    #[test]
+    fn contour_rings_are_closed_and_counter_clockwise() {
+        let r = square_contour();
+        let v = contour_value(&r, 0.0, false);
+        let ring = v["features"][0]["geometry"]["coordinates"][0]
+            .as_array()
+            .unwrap();
+        assert_eq!(ring.len(), 5);
+        assert_eq!(ring[0], ring[4]);
+        let pts: Vec<Point2> = ring
+            .iter()
+            .map(|q| p(q[0].as_f64().unwrap(), q[1].as_f64().unwrap()))
+            .collect();
+        assert_eq!(ring_orientation(&pts[..4]), 1);
+        assert_eq!(v["features"][0]["properties"]["threshold"], 0.0);
+        assert_eq!(v["features"][0]["properties"]["value"], "zinc");
+        let mut out = Vec::new();
+        write_contour(&mut out, &r, 0.0, false).unwrap();
+        assert_eq!(read(&out).unwrap().polygons.len(), 1);
+        let mut out = Vec::new();
+        crate::io::json::write_contour_cycles(&mut out, &r).unwrap();
+        let j: Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(j["cycles"][0].as_array().unwrap().len(), 4);
+        assert_eq!(j["regions"][0]["outer"], 0);
     }
 
     #[test]

@@ -1,12 +1,33 @@
-//! File formats, one file per format, and dispatch by file extension.
+//! File formats, one file per format, readers and writers, and dispatch by file extension.
 //!
 //! Every parser treats its input as untrusted: sizes claimed by headers are checked against the
 //! bytes actually present before anything is allocated, and malformed input gives an
-//! [`Error::Format`] naming the line or byte. Writers go through [`write_atomic`], so a failed
-//! write never leaves a half-written file.
+//! [`Error::Format`] naming the line or byte.
+//!
+//! Every result type is written by a function in its format's file (`ply::write_tets`,
+//! `geojson::write_boundary_2d`, `json::write_graph`, `vtk::write_tets_vtu`, …) onto a
+//! `&mut dyn Write`; the functions of this module choose the format by the file's extension
+//! and write through [`write_atomic`], so a failed write never leaves a half-written file.
+//! Write failures are [`Error::Io`] with the output path, whatever the format (one mapping,
+//! `werr`). Pictures of results (SVG, PNG) are in [`crate::render`].
+//!
+//! | result | dispatch | formats |
+//! |---|---|---|
+//! | points | [`write_points`] | `.csv .xyz .ply` |
+//! | polygons, polylines | [`write_shapes2`] | `.csv .geojson .json` |
+//! | triangle meshes | [`write_mesh`] | `.ply .obj .off .stl .vtu .vtk` |
+//! | tetrahedral meshes | [`write_tets`] | `.vtu .vtk .ply` |
+//! | volumes | [`write_volume`] | `.nrrd .mhd .json` (+ `.raw`) |
+//! | 2D / 3D triangulations | [`write_triangulation_2d`], [`write_triangulation_3d`] | `.json`, mesh formats |
+//! | geometric graphs | [`write_graph`] | `.json .ply` |
+//! | 2D boundaries, interiors | [`write_boundary_2d`], [`write_interior_2d`] | `.csv .geojson .json`; `.json`, mesh formats |
+//! | 3D boundaries | [`write_boundary_3d`] | `.json`, mesh formats |
+//! | plane contours | [`write_contour_2d`] | `.geojson .json` |
 
 pub mod csv;
 pub mod geojson;
+pub mod html;
+pub mod json;
 pub mod mhd;
 pub mod nrrd;
 pub mod obj;
@@ -14,9 +35,14 @@ pub mod off;
 pub mod ply;
 pub mod rawjson;
 pub mod stl;
+pub mod vtk;
 pub mod xyz;
 
-use crate::mesh::{PointSet, Shapes2, TriMesh};
+use crate::boundary::{Boundary2, Boundary3};
+use crate::contour::PlaneContour;
+use crate::geom::{Point2, Point3};
+use crate::graphs::{Graph, Kind};
+use crate::mesh::{PointSet, Shapes2, TetMesh, TriMesh};
 use crate::volume::Volume;
 use crate::{Error, Result};
 use std::io::Write;
@@ -42,6 +68,10 @@ pub enum Format {
     Svg,
     Png,
     Html,
+    /// VTK XML unstructured grid (writing only).
+    Vtu,
+    /// Legacy VTK (writing only).
+    Vtk,
 }
 
 impl Format {
@@ -67,6 +97,8 @@ impl Format {
             "svg" => Format::Svg,
             "png" => Format::Png,
             "html" | "htm" => Format::Html,
+            "vtu" => Format::Vtu,
+            "vtk" => Format::Vtk,
             "gz" => {
                 let stem = path.file_stem().map(Path::new).unwrap_or(Path::new(""));
                 return Format::of(stem);
@@ -120,8 +152,20 @@ pub fn gunzip(bytes: &[u8], limit: u64) -> Result<Vec<u8>> {
 }
 
 /// Writes `path` atomically: the content goes to a temporary file in the same folder, which is
-/// renamed over `path` only when `write` succeeded. On error nothing is left behind.
+/// renamed over `path` only when `write` succeeded. On error nothing is left behind, and the
+/// error names `path` (unless `write` named another file).
+///
+/// ```
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("hello.txt");
+/// morpho::io::write_atomic(&path, |w| morpho::io::write_all(w, b"hello\n")).unwrap();
+/// assert_eq!(std::fs::read(&path).unwrap(), b"hello\n");
+/// ```
 pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
+    write_atomic_inner(path, write).map_err(|e| e.with_path(path))
+}
+
+fn write_atomic_inner(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -149,12 +193,23 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
     Ok(())
 }
 
-/// Converts an I/O error during writing into an [`Error`] (the caller adds the path).
+/// The one mapping of write failures: an I/O error while writing becomes [`Error::Io`]
+/// ([`write_atomic`] adds the path).
 pub(crate) fn werr(e: std::io::Error) -> Error {
     Error::Io {
         path: String::new(),
         source: e,
     }
+}
+
+/// Writes all of `bytes` (a failure is [`Error::Io`]; [`write_atomic`] adds the path).
+pub fn write_all(w: &mut dyn Write, bytes: &[u8]) -> Result<()> {
+    w.write_all(bytes).map_err(werr)
+}
+
+/// Writes a text file (an SVG picture, an HTML page, …) atomically.
+pub fn write_text(path: &Path, text: &str) -> Result<()> {
+    write_atomic(path, |w| write_all(w, text.as_bytes()))
 }
 
 /// Mesh encodings that have a choice (PLY and STL).
@@ -184,10 +239,26 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh> {
     Ok(mesh)
 }
 
-/// Writes a triangle mesh as PLY (binary little endian by default), OBJ, OFF or STL (binary).
+/// Writes a triangle mesh as PLY (binary little endian by default), OBJ, OFF, STL (binary),
+/// or VTK (`.vtu` XML, `.vtk` legacy; triangles as cell type 5, binary unless
+/// [`Encoding::Ascii`]).
+///
+/// ```
+/// use morpho::geom::Point3;
+/// use morpho::io::{read_mesh, write_mesh, Encoding};
+/// use morpho::mesh::TriMesh;
+/// let m = TriMesh::new(
+///     vec![Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0)],
+///     vec![[0, 1, 2]],
+/// );
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("t.ply");
+/// write_mesh(&path, &m, Encoding::default()).unwrap();
+/// assert_eq!(read_mesh(&path).unwrap().triangles, m.triangles);
+/// ```
 pub fn write_mesh(path: &Path, mesh: &TriMesh, encoding: Encoding) -> Result<()> {
     let fmt = Format::of(path)?;
-    if !matches!(fmt, Format::Ply | Format::Obj | Format::Off | Format::Stl) {
+    if !is_mesh_format(fmt) {
         return Err(
             Error::unsupported("not a mesh format (use .ply .obj .off .stl)").with_path(path),
         );
@@ -196,9 +267,254 @@ pub fn write_mesh(path: &Path, mesh: &TriMesh, encoding: Encoding) -> Result<()>
         Format::Ply => ply::write_mesh(w, mesh, encoding),
         Format::Obj => obj::write(w, mesh),
         Format::Off => off::write(w, mesh),
+        Format::Vtu => vtk::write_mesh_vtu(w, mesh, encoding),
+        Format::Vtk => vtk::write_mesh_vtk(w, mesh, encoding),
         _ => stl::write(w, mesh, encoding),
     })
-    .map_err(|e| e.with_path(path))
+}
+
+/// True for the formats [`write_mesh`] writes.
+pub fn is_mesh_format(fmt: Format) -> bool {
+    matches!(
+        fmt,
+        Format::Ply | Format::Obj | Format::Off | Format::Stl | Format::Vtu | Format::Vtk
+    )
+}
+
+/// Reads a tetrahedral mesh from a PLY file with a `tetra` element (as
+/// [`write_tets`] writes it).
+pub fn read_tets(path: &Path) -> Result<TetMesh> {
+    let fmt = Format::of(path)?;
+    if fmt != Format::Ply {
+        return Err(Error::unsupported(
+            "tetrahedral meshes are read from .ply files with a 'tetra' element",
+        )
+        .with_path(path));
+    }
+    let bytes = read_bytes(path)?;
+    ply::read_tets(&bytes).map_err(|e| e.with_path(path))
+}
+
+/// A tetrahedral mesh when `path` is a PLY file with a `tetra` element, `None` for any other
+/// file (which [`read_any`] reads).
+pub fn read_tets_if_present(path: &Path) -> Result<Option<TetMesh>> {
+    if Format::of(path)? != Format::Ply {
+        return Ok(None);
+    }
+    let bytes = read_bytes(path)?;
+    if !ply::has_tets(&bytes).map_err(|e| e.with_path(path))? {
+        return Ok(None);
+    }
+    ply::read_tets(&bytes)
+        .map(Some)
+        .map_err(|e| e.with_path(path))
+}
+
+/// Writes a tetrahedral mesh as VTK (`.vtu` XML unstructured grid, `.vtk` legacy unstructured
+/// grid; cell type 10, readable by ParaView and meshio) or as PLY with a `tetra` element.
+/// Binary unless `encoding` is [`Encoding::Ascii`] (legacy VTK binary is big endian by the
+/// format's definition; the `.vtu` and PLY byte orders follow `encoding`).
+///
+/// ```
+/// use morpho::geom::Point3;
+/// use morpho::io::{write_tets, Encoding};
+/// use morpho::mesh::TetMesh;
+/// let t = TetMesh {
+///     positions: vec![Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+///                     Point3::new(0.0, 1.0, 0.0), Point3::new(0.0, 0.0, 1.0)],
+///     tets: vec![[0, 1, 3, 2]],
+/// };
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("t.vtk");
+/// write_tets(&path, &t, Encoding::Ascii).unwrap();
+/// let text = std::fs::read_to_string(&path).unwrap();
+/// assert!(text.contains("CELLS 1 5\n4 0 3 1 2\n") && text.contains("CELL_TYPES 1\n10\n"));
+/// ```
+pub fn write_tets(path: &Path, tets: &TetMesh, encoding: Encoding) -> Result<()> {
+    let fmt = Format::of(path)?;
+    if !matches!(fmt, Format::Vtu | Format::Vtk | Format::Ply) {
+        return Err(
+            Error::unsupported("not a tetrahedral mesh format (use .vtu .vtk .ply)")
+                .with_path(path),
+        );
+    }
+    write_atomic(path, |w| match fmt {
+        Format::Vtu => vtk::write_tets_vtu(w, tets, encoding),
+        Format::Vtk => vtk::write_tets_vtk(w, tets, encoding),
+        _ => ply::write_tets(w, tets, encoding),
+    })
+}
+
+/// The lifted triangle mesh of a plane triangulation (z = 0).
+fn lifted(points: &[Point2], triangles: &[[u32; 3]]) -> TriMesh {
+    TriMesh::new(
+        points.iter().map(|p| Point3::new(p.x, p.y, 0.0)).collect(),
+        triangles.to_vec(),
+    )
+}
+
+/// Writes a 2D (constrained) triangulation: `.json` ([`json::write_triangulation_2d`]) or a
+/// mesh format ([`write_mesh`]: the triangles with z = 0, binary where there is a choice).
+/// The SVG picture is [`crate::render::figures::delaunay_svg`].
+///
+/// ```
+/// use morpho::geom::Point2;
+/// use morpho::io::{json::Triangulation2, write_triangulation_2d};
+/// let p = [Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.0, 1.0)];
+/// let d = morpho::delaunay::d2::triangulate(&p).unwrap();
+/// let (tris, hull) = (d.to_input_indices(), d.hull.clone());
+/// let t = Triangulation2 { points: &p, triangles: &tris, hull: &hull, constrained: None };
+/// let dir = tempfile::tempdir().unwrap();
+/// write_triangulation_2d(&dir.path().join("t.json"), &t).unwrap();
+/// write_triangulation_2d(&dir.path().join("t.off"), &t).unwrap();
+/// assert!(write_triangulation_2d(&dir.path().join("t.nrrd"), &t).is_err());
+/// ```
+pub fn write_triangulation_2d(path: &Path, t: &json::Triangulation2) -> Result<()> {
+    match Format::of(path)? {
+        Format::Json => write_atomic(path, |w| json::write_triangulation_2d(w, t)),
+        f if is_mesh_format(f) => write_mesh(
+            path,
+            &lifted(t.points, t.triangles),
+            Encoding::BinaryLittleEndian,
+        ),
+        _ => Err(
+            Error::unsupported("not a triangulation format (use .json or a mesh format)")
+                .with_path(path),
+        ),
+    }
+}
+
+/// Writes a 3D Delaunay tetrahedralization: `.json` ([`json::write_triangulation_3d`]); with
+/// `tets` the tetrahedra in a tetrahedral mesh format ([`write_tets`]: `.vtu .vtk .ply`),
+/// otherwise the hull surface in a mesh format ([`write_mesh`]). Binary where there is a
+/// choice.
+///
+/// ```
+/// use morpho::geom::Point3;
+/// use morpho::io::{json::Triangulation3, write_triangulation_3d};
+/// let p = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+///          Point3::new(0.0, 1.0, 0.0), Point3::new(0.0, 0.0, 1.0)];
+/// let d = morpho::delaunay::d3::triangulate(&p).unwrap();
+/// let tets = d.to_input_indices();
+/// let hull: Vec<[u32; 3]> = d.hull.iter().map(|t| t.map(|v| d.input_of_vertex[v as usize])).collect();
+/// let t = Triangulation3 { points: &p, tets: &tets, hull: &hull };
+/// let dir = tempfile::tempdir().unwrap();
+/// write_triangulation_3d(&dir.path().join("t.vtu"), &t, true).unwrap(); // the tetrahedra
+/// write_triangulation_3d(&dir.path().join("h.ply"), &t, false).unwrap(); // the hull
+/// assert_eq!(morpho::io::read_mesh(&dir.path().join("h.ply")).unwrap().triangles.len(), 4);
+/// ```
+pub fn write_triangulation_3d(path: &Path, t: &json::Triangulation3, tets: bool) -> Result<()> {
+    match Format::of(path)? {
+        Format::Json => write_atomic(path, |w| json::write_triangulation_3d(w, t)),
+        Format::Ply | Format::Vtu | Format::Vtk if tets => write_tets(
+            path,
+            &TetMesh {
+                positions: t.points.to_vec(),
+                tets: t.tets.to_vec(),
+            },
+            Encoding::BinaryLittleEndian,
+        ),
+        f if is_mesh_format(f) => write_mesh(
+            path,
+            &TriMesh::new(t.points.to_vec(), t.hull.to_vec()),
+            Encoding::BinaryLittleEndian,
+        ),
+        _ => Err(Error::unsupported(
+            "not a tetrahedralization format (use .json, .vtu, .vtk or a mesh format)",
+        )
+        .with_path(path)),
+    }
+}
+
+/// Writes a geometric graph of `points`: `.json` ([`json::write_graph`]) or `.ply`
+/// ([`ply::write_graph`], 2D points with z = 0). The SVG picture is
+/// [`crate::render::figures::graph_svg`].
+///
+/// ```
+/// use morpho::geom::Point2;
+/// use morpho::graphs::{graph_2d, Kind};
+/// use morpho::mesh::PointSet;
+/// let p = [Point2::new(0.0, 0.0), Point2::new(2.0, 0.0), Point2::new(1.0, 3.0)];
+/// let g = graph_2d(&p, Kind::Rng).unwrap();
+/// let dir = tempfile::tempdir().unwrap();
+/// let path = dir.path().join("rng.ply");
+/// morpho::io::write_graph(&path, Kind::Rng, &PointSet::from_points2(&p), &g).unwrap();
+/// assert!(std::fs::read_to_string(&path).unwrap().contains("element edge 3\n"));
+/// ```
+pub fn write_graph(path: &Path, kind: Kind, points: &PointSet, g: &Graph) -> Result<()> {
+    match Format::of(path)? {
+        Format::Json => write_atomic(path, |w| json::write_graph(w, kind, points, g)),
+        Format::Ply => write_atomic(path, |w| ply::write_graph(w, &points.to_points3(), g)),
+        _ => Err(Error::unsupported("not a graph format (use .json .ply)").with_path(path)),
+    }
+}
+
+/// Writes a 2D boundary polygon through `points`: `.csv` ([`csv::write_boundary_2d`]),
+/// `.geojson` ([`geojson::write_boundary_2d`]) or `.json` ([`json::write_boundary_2d`]). The
+/// SVG picture is [`crate::render::figures::boundary_svg`].
+///
+/// ```
+/// use morpho::boundary::{boundary_2d, Options2};
+/// use morpho::geom::Point2;
+/// let p = [Point2::new(0.0, 0.0), Point2::new(2.0, 0.0), Point2::new(1.0, 0.5), Point2::new(1.0, 2.0)];
+/// let b = boundary_2d(&p, &Options2::default()).unwrap();
+/// let dir = tempfile::tempdir().unwrap();
+/// morpho::io::write_boundary_2d(&dir.path().join("b.geojson"), &p, &b).unwrap();
+/// morpho::io::write_interior_2d(&dir.path().join("i.off"), &p, &b).unwrap();
+/// let back = morpho::io::read_shapes2(&dir.path().join("b.geojson")).unwrap();
+/// assert_eq!(back.polygons[0].rings[0].len(), b.polygon.len());
+/// ```
+pub fn write_boundary_2d(path: &Path, points: &[Point2], b: &Boundary2) -> Result<()> {
+    match Format::of(path)? {
+        Format::Csv => write_atomic(path, |w| csv::write_boundary_2d(w, points, b)),
+        Format::GeoJson => write_atomic(path, |w| geojson::write_boundary_2d(w, points, b)),
+        Format::Json => write_atomic(path, |w| json::write_boundary_2d(w, b)),
+        _ => Err(
+            Error::unsupported("not a boundary format (use .csv .geojson .json)").with_path(path),
+        ),
+    }
+}
+
+/// Writes the interior triangulation of a 2D boundary: `.json` ([`json::write_interior_2d`])
+/// or any mesh format ([`write_mesh`], z = 0, binary where there is a choice).
+pub fn write_interior_2d(path: &Path, points: &[Point2], b: &Boundary2) -> Result<()> {
+    if Format::of(path)? == Format::Json {
+        return write_atomic(path, |w| json::write_interior_2d(w, b));
+    }
+    write_mesh(path, &lifted(points, &b.interior), Encoding::default())
+}
+
+/// Writes a 3D boundary surface through `points`: `.json` ([`json::write_boundary_3d`]) or any
+/// mesh format ([`write_mesh`], every point a vertex in input order).
+pub fn write_boundary_3d(path: &Path, points: &[Point3], b: &Boundary3) -> Result<()> {
+    if Format::of(path)? == Format::Json {
+        return write_atomic(path, |w| json::write_boundary_3d(w, b));
+    }
+    let mesh = TriMesh::new(points.to_vec(), b.triangles.clone());
+    write_mesh(path, &mesh, Encoding::default())
+}
+
+/// Writes a plane contour: `.geojson` ([`geojson::write_contour`]: its regions with the
+/// `threshold` and `below` that made them) or `.json` ([`json::write_contour_cycles`]). The
+/// SVG picture is [`crate::render::figures::contour_svg`].
+///
+/// ```
+/// use morpho::contour::{contour_samples, SampleContour, SampleOptions};
+/// use morpho::mesh::{Column, PointSet};
+/// let mut s = PointSet { dim: 2, coords: vec![0., 0., 1., 0., 1., 1., 0., 1., 0.5, 0.5], columns: vec![] };
+/// s.columns.push(Column { name: "value".into(), values: vec![0., 0., 0., 0., 10.] });
+/// let opts = SampleOptions { threshold: 1.0, ..Default::default() };
+/// let SampleContour::Plane(r) = contour_samples(&s, &opts).unwrap() else { unreachable!() };
+/// let dir = tempfile::tempdir().unwrap();
+/// morpho::io::write_contour_2d(&dir.path().join("c.geojson"), &r, 1.0, false).unwrap();
+/// assert_eq!(morpho::io::read_shapes2(&dir.path().join("c.geojson")).unwrap().polygons.len(), 1);
+/// ```
+pub fn write_contour_2d(path: &Path, r: &PlaneContour, threshold: f64, below: bool) -> Result<()> {
+    match Format::of(path)? {
+        Format::GeoJson => write_atomic(path, |w| geojson::write_contour(w, r, threshold, below)),
+        Format::Json => write_atomic(path, |w| json::write_contour_cycles(w, r)),
+        _ => Err(Error::unsupported("not a contour format (use .geojson .json)").with_path(path)),
+    }
 }
 
 /// Reads a point set from CSV (with header), whitespace XYZ or PLY (vertices).
@@ -209,7 +525,7 @@ pub fn read_points(path: &Path) -> Result<PointSet> {
         Format::Csv => csv::read_points(&bytes),
         Format::Xyz => xyz::read(&bytes),
         Format::Ply => ply::read_points(&bytes),
-        Format::Json => json_points(&bytes),
+        Format::Json => json::read_points(&bytes),
         Format::Obj | Format::Off | Format::Stl => {
             let m = match fmt {
                 Format::Obj => obj::read(&bytes)?,
@@ -230,56 +546,6 @@ pub fn read_points(path: &Path) -> Result<PointSet> {
     Ok(pts)
 }
 
-/// A JSON array of `[x, y]` or `[x, y, z]` numbers (the delaunator fixtures' format), or an
-/// object with a `"points"` array of that form.
-pub fn json_points(bytes: &[u8]) -> Result<PointSet> {
-    let v: serde_json::Value = serde_json::from_slice(bytes)
-        .map_err(|e| Error::at_line(e.line() as u64, format!("bad JSON: {e}")))?;
-    let arr = match &v {
-        serde_json::Value::Array(a) => a,
-        serde_json::Value::Object(o) => match o.get("points") {
-            Some(serde_json::Value::Array(a)) => a,
-            _ => {
-                return Err(Error::format(
-                    "expected an array of points or an object with \"points\"",
-                ))
-            }
-        },
-        _ => return Err(Error::format("expected an array of points")),
-    };
-    let mut dim = 0;
-    let mut coords = Vec::with_capacity(arr.len() * 3);
-    for (i, p) in arr.iter().enumerate() {
-        let p = p
-            .as_array()
-            .ok_or_else(|| Error::format(format!("point {i} is not an array")))?;
-        if dim == 0 {
-            dim = p.len();
-            if dim != 2 && dim != 3 {
-                return Err(Error::format(format!(
-                    "point {i} has {dim} coordinates; expected 2 or 3"
-                )));
-            }
-        } else if p.len() != dim {
-            return Err(Error::format(format!(
-                "point {i} has {} coordinates, the first had {dim}",
-                p.len()
-            )));
-        }
-        for c in p {
-            let c = c
-                .as_f64()
-                .ok_or_else(|| Error::format(format!("point {i} has a non-number coordinate")))?;
-            coords.push(c);
-        }
-    }
-    Ok(PointSet {
-        dim: dim.max(2),
-        coords,
-        columns: vec![],
-    })
-}
-
 /// Writes a point set as CSV, XYZ or PLY.
 pub fn write_points(path: &Path, pts: &PointSet) -> Result<()> {
     let fmt = Format::of(path)?;
@@ -291,7 +557,6 @@ pub fn write_points(path: &Path, pts: &PointSet) -> Result<()> {
             "not a point format (use .csv .xyz .ply)",
         )),
     })
-    .map_err(|e| e.with_path(path))
 }
 
 /// Reads 2D polygons/polylines from CSV (ordered vertices) or GeoJSON.
@@ -318,7 +583,6 @@ pub fn write_shapes2(path: &Path, shapes: &Shapes2) -> Result<()> {
             "not a polygon format (use .csv .geojson)",
         )),
     })
-    .map_err(|e| e.with_path(path))
 }
 
 /// Reads a volume: NRRD (attached or detached `.nhdr`), MetaImage `.mhd`, or a raw + JSON sidecar.
@@ -404,5 +668,31 @@ pub fn read_any(path: &Path) -> Result<Data> {
             }
         }
         _ => Err(Error::unsupported("cannot read this kind of file").with_path(path)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn write_failures_are_io_errors_naming_the_output() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("x.json");
+        // a failing writer inside the closure: Error::Io with the output's path, nothing left
+        let e = write_atomic(&out, |_| {
+            Err(werr(std::io::Error::new(
+                std::io::ErrorKind::StorageFull,
+                "disk full",
+            )))
+        })
+        .unwrap_err();
+        assert!(matches!(&e, Error::Io { path, .. } if *path == out.display().to_string()));
+        assert!(!e.is_input_error());
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+        // a folder that does not exist
+        let missing = dir.path().join("no/such/dir/x.ply");
+        let e = write_points(&missing, &PointSet::from_points2(&[Point2::new(0.0, 0.0)]));
+        assert!(matches!(e, Err(Error::Io { path, .. }) if path.contains("x.ply")));
     }
 }

@@ -158,12 +158,85 @@ fn skip_lines(r: &mut impl BufRead, n: u64, consumed: &mut u64) -> Result<()> {
     Ok(())
 }
 
+/// The header fields: lower-case name (`datafile` spelled `data file`) → (line, value).
+struct Fields(HashMap<String, (u64, String)>);
+
+impl Fields {
+    fn get(&self, k: &str) -> Option<(u64, &str)> {
+        self.0.get(k).map(|(l, v)| (*l, v.as_str()))
+    }
+    fn need(&self, k: &str) -> Result<(u64, &str)> {
+        self.get(k)
+            .ok_or_else(|| Error::format(format!("NRRD header has no '{k}'")))
+    }
+}
+
+/// Data encodings read.
+enum Enc {
+    Raw,
+    Gzip,
+    Text,
+}
+
+/// What the header says about the samples.
+struct Header {
+    ty: Sample,
+    dims: [usize; 3],
+    /// Number of samples and their size in bytes.
+    n: usize,
+    nbytes: usize,
+    big: bool,
+    enc: Enc,
+    spacing: [f64; 3],
+    origin: [f64; 3],
+    byte_skip: i64,
+    line_skip: u64,
+}
+
 /// Reads a volume (detached data is found relative to `path`).
 pub fn read(path: &Path) -> Result<Volume> {
     let (f, file_len) = open_data(path)?;
     let mut r = BufReader::new(f);
     let mut consumed = 0u64;
-    let magic = header_line(&mut r, &mut consumed, 1)?.unwrap_or_default();
+    let fields = read_fields(&mut r, &mut consumed)?;
+    let h = parse_header(&fields)?;
+    // the data stream
+    let (mut data_r, available): (Box<dyn BufRead>, u64) = match fields.get("data file") {
+        Some((l, v)) => {
+            let first = v.split_whitespace().next().unwrap_or("");
+            if first.eq_ignore_ascii_case("LIST") || v.contains('%') {
+                return Err(Error::unsupported(format!(
+                    "line {l}: NRRD data file lists and series are not supported"
+                )));
+            }
+            let dpath = beside(path, v);
+            let (df, dlen) = open_data(&dpath)?;
+            let mut dr = BufReader::new(df);
+            let mut c = 0;
+            skip_lines(&mut dr, h.line_skip, &mut c).map_err(|e| e.with_path(&dpath))?;
+            (Box::new(dr), dlen.saturating_sub(c))
+        }
+        None => {
+            skip_lines(&mut r, h.line_skip, &mut consumed)?;
+            (Box::new(r), file_len.saturating_sub(consumed))
+        }
+    };
+    let data = read_samples(&h, &mut data_r, available)?;
+    Ok(Volume {
+        dims: h.dims,
+        axes: Axes::Uniform {
+            origin: h.origin,
+            spacing: h.spacing,
+        },
+        data,
+        source_dtype: h.ty.source_dtype(),
+    })
+}
+
+/// The magic line and the header fields up to the blank line (or the end of the file);
+/// comments and `key:=value` pairs are skipped, a field given twice is an error.
+fn read_fields(r: &mut impl BufRead, consumed: &mut u64) -> Result<Fields> {
+    let magic = header_line(r, consumed, 1)?.unwrap_or_default();
     let ok_magic =
         magic.len() == 8 && magic.starts_with("NRRD000") && magic.as_bytes()[7].is_ascii_digit();
     if !ok_magic {
@@ -176,7 +249,7 @@ pub fn read(path: &Path) -> Result<Volume> {
     let mut lineno = 1;
     loop {
         lineno += 1;
-        let Some(line) = header_line(&mut r, &mut consumed, lineno)? else {
+        let Some(line) = header_line(r, consumed, lineno)? else {
             break;
         };
         if line.trim().is_empty() {
@@ -201,15 +274,76 @@ pub fn read(path: &Path) -> Result<Volume> {
             return Err(Error::at_line(lineno, format!("field '{k}' given twice")));
         }
     }
-    let field = |k: &str| fields.get(k).map(|(l, v)| (*l, v.as_str()));
-    let need = |k: &str| field(k).ok_or_else(|| Error::format(format!("NRRD header has no '{k}'")));
+    Ok(Fields(fields))
+}
 
-    let (tl, tv) = need("type")?;
-    let ty = nrrd_type(tv).map_err(|e| match e {
-        Error::Format { msg, .. } => Error::at_line(tl, msg),
+/// A format error at `line` (other errors as they are).
+fn at(line: u64) -> impl Fn(Error) -> Error {
+    move |e| match e {
+        Error::Format { msg, .. } => Error::at_line(line, msg),
         e => e,
-    })?;
-    let (dl, dv) = need("dimension")?;
+    }
+}
+
+/// The header's type, sizes, endianness, encoding, geometry and skips, checked in this order.
+fn parse_header(fields: &Fields) -> Result<Header> {
+    let (tl, tv) = fields.need("type")?;
+    let ty = nrrd_type(tv).map_err(at(tl))?;
+    let (dim, dims) = sizes(fields)?;
+    let (sl, _) = fields.need("sizes")?;
+    let (n, nbytes) = data_size(dims, ty).map_err(at(sl))?;
+    let big = match fields.get("endian") {
+        None => false,
+        Some((l, v)) => match v.to_ascii_lowercase().as_str() {
+            "little" => false,
+            "big" => true,
+            _ => return Err(Error::at_line(l, format!("bad endian '{v}'"))),
+        },
+    };
+    let (el, ev) = fields.need("encoding")?;
+    let enc = match ev.to_ascii_lowercase().as_str() {
+        "raw" => Enc::Raw,
+        "gzip" | "gz" => Enc::Gzip,
+        "text" | "txt" | "ascii" => Enc::Text,
+        other => {
+            return Err(Error::unsupported(format!(
+                "NRRD encoding '{other}' (line {el}); use raw, gzip or text"
+            )))
+        }
+    };
+    let spacing = spacing(fields, dim)?;
+    let origin = origin(fields, dim)?;
+    let byte_skip: i64 = match fields.get("byte skip") {
+        None => 0,
+        Some((l, v)) => v
+            .parse()
+            .ok()
+            .filter(|&b: &i64| b >= -1)
+            .ok_or_else(|| Error::at_line(l, format!("bad byte skip '{v}'")))?,
+    };
+    let line_skip: u64 = match fields.get("line skip") {
+        None => 0,
+        Some((l, v)) => v
+            .parse()
+            .map_err(|_| Error::at_line(l, format!("bad line skip '{v}'")))?,
+    };
+    Ok(Header {
+        ty,
+        dims,
+        n,
+        nbytes,
+        big,
+        enc,
+        spacing,
+        origin,
+        byte_skip,
+        line_skip,
+    })
+}
+
+/// `dimension` (2 or 3) and `sizes` (nz = 1 in 2D).
+fn sizes(fields: &Fields) -> Result<(usize, [usize; 3])> {
+    let (dl, dv) = fields.need("dimension")?;
     let dim: usize = dv
         .parse()
         .map_err(|_| Error::at_line(dl, format!("bad dimension '{dv}'")))?;
@@ -218,7 +352,7 @@ pub fn read(path: &Path) -> Result<Volume> {
             "NRRD dimension {dim}: only 2 and 3 are supported"
         )));
     }
-    let (sl, sv) = need("sizes")?;
+    let (sl, sv) = fields.need("sizes")?;
     let sizes: Vec<usize> = sv
         .split_whitespace()
         .map(|x| x.parse::<usize>())
@@ -232,38 +366,14 @@ pub fn read(path: &Path) -> Result<Volume> {
     }
     let mut dims = [1usize; 3];
     dims[..dim].copy_from_slice(&sizes);
-    let (n, nbytes) = data_size(dims, ty).map_err(|e| match e {
-        Error::Format { msg, .. } => Error::at_line(sl, msg),
-        e => e,
-    })?;
+    Ok((dim, dims))
+}
 
-    let big = match field("endian") {
-        None => false,
-        Some((l, v)) => match v.to_ascii_lowercase().as_str() {
-            "little" => false,
-            "big" => true,
-            _ => return Err(Error::at_line(l, format!("bad endian '{v}'"))),
-        },
-    };
-    enum Enc {
-        Raw,
-        Gzip,
-        Text,
-    }
-    let (el, ev) = need("encoding")?;
-    let enc = match ev.to_ascii_lowercase().as_str() {
-        "raw" => Enc::Raw,
-        "gzip" | "gz" => Enc::Gzip,
-        "text" | "txt" | "ascii" => Enc::Text,
-        other => {
-            return Err(Error::unsupported(format!(
-                "NRRD encoding '{other}' (line {el}); use raw, gzip or text"
-            )))
-        }
-    };
-
+/// `spacings` (`nan` → 1), else the norms of the `space directions` (`none` → 1); each
+/// positive and finite.
+fn spacing(fields: &Fields, dim: usize) -> Result<[f64; 3]> {
     let mut spacing = [1.0f64; 3];
-    if let Some((l, v)) = field("spacings") {
+    if let Some((l, v)) = fields.get("spacings") {
         let s = numbers(v, l, "spacings")?;
         if s.len() != dim {
             return Err(Error::at_line(
@@ -274,7 +384,7 @@ pub fn read(path: &Path) -> Result<Volume> {
         for k in 0..dim {
             spacing[k] = if s[k].is_nan() { 1.0 } else { s[k].abs() };
         }
-    } else if let Some((l, v)) = field("space directions") {
+    } else if let Some((l, v)) = fields.get("space directions") {
         let d = vectors(v, l)?;
         if d.len() != dim {
             return Err(Error::at_line(
@@ -294,8 +404,13 @@ pub fn read(path: &Path) -> Result<Volume> {
             spacing[k]
         )));
     }
+    Ok(spacing)
+}
+
+/// `space origin`, else `axis mins` (`nan` → 0), else 0; finite.
+fn origin(fields: &Fields, dim: usize) -> Result<[f64; 3]> {
     let mut origin = [0.0f64; 3];
-    if let Some((l, v)) = field("space origin") {
+    if let Some((l, v)) = fields.get("space origin") {
         let o = vectors(v, l)?;
         let o = match o.as_slice() {
             [Some(o)] if o.len() == dim || (dim == 2 && o.len() == 3) => o.clone(),
@@ -307,7 +422,7 @@ pub fn read(path: &Path) -> Result<Volume> {
             }
         };
         origin[..dim].copy_from_slice(&o[..dim]);
-    } else if let Some((l, v)) = field("axis mins") {
+    } else if let Some((l, v)) = fields.get("axis mins") {
         let m = numbers(v, l, "axis mins")?;
         if m.len() != dim {
             return Err(Error::at_line(
@@ -322,44 +437,13 @@ pub fn read(path: &Path) -> Result<Volume> {
     if origin.iter().any(|o| !o.is_finite()) {
         return Err(Error::format("space origin is not finite"));
     }
+    Ok(origin)
+}
 
-    let byte_skip: i64 = match field("byte skip") {
-        None => 0,
-        Some((l, v)) => v
-            .parse()
-            .ok()
-            .filter(|&b: &i64| b >= -1)
-            .ok_or_else(|| Error::at_line(l, format!("bad byte skip '{v}'")))?,
-    };
-    let line_skip: u64 = match field("line skip") {
-        None => 0,
-        Some((l, v)) => v
-            .parse()
-            .map_err(|_| Error::at_line(l, format!("bad line skip '{v}'")))?,
-    };
-
-    // the data stream
-    let (mut data_r, available): (Box<dyn BufRead>, u64) = match field("data file") {
-        Some((l, v)) => {
-            let first = v.split_whitespace().next().unwrap_or("");
-            if first.eq_ignore_ascii_case("LIST") || v.contains('%') {
-                return Err(Error::unsupported(format!(
-                    "line {l}: NRRD data file lists and series are not supported"
-                )));
-            }
-            let dpath = beside(path, v);
-            let (df, dlen) = open_data(&dpath)?;
-            let mut dr = BufReader::new(df);
-            let mut c = 0;
-            skip_lines(&mut dr, line_skip, &mut c).map_err(|e| e.with_path(&dpath))?;
-            (Box::new(dr), dlen.saturating_sub(c))
-        }
-        None => {
-            skip_lines(&mut r, line_skip, &mut consumed)?;
-            (Box::new(r), file_len.saturating_sub(consumed))
-        }
-    };
-    let raw = match enc {
+/// The samples from the data stream (`available` bytes), decoded as the header says.
+fn read_samples(h: &Header, data_r: &mut Box<dyn BufRead>, available: u64) -> Result<Vec<f32>> {
+    let (nbytes, byte_skip) = (h.nbytes, h.byte_skip);
+    let raw = match h.enc {
         Enc::Raw => {
             let skip = if byte_skip == -1 {
                 available.checked_sub(nbytes as u64).ok_or_else(|| {
@@ -370,61 +454,48 @@ pub fn read(path: &Path) -> Result<Volume> {
             } else {
                 byte_skip as u64
             };
-            read_data(&mut data_r, available, Codec::Raw, skip, nbytes)?
+            read_data(data_r, available, Codec::Raw, skip, nbytes)?
         }
         Enc::Gzip => {
             if byte_skip < 0 {
                 return Err(Error::format("byte skip -1 needs raw encoding"));
             }
-            read_data(
-                &mut data_r,
-                available,
-                Codec::Gzip,
-                byte_skip as u64,
-                nbytes,
-            )?
+            read_data(data_r, available, Codec::Gzip, byte_skip as u64, nbytes)?
         }
-        Enc::Text => {
-            let mut text = String::new();
-            (&mut data_r)
-                .take(available)
-                .read_to_string(&mut text)
-                .map_err(|_| Error::format("text data is not valid UTF-8"))?;
-            let mut vals = Vec::with_capacity(n.min(text.len() / 2 + 1));
-            for tok in text
-                .split(|c: char| c.is_whitespace() || c == ',')
-                .filter(|t| !t.is_empty())
-            {
-                if vals.len() == n {
-                    return Err(Error::format(format!(
-                        "text data has more than the {n} samples of the header"
-                    )));
-                }
-                let x: f64 = tok
-                    .parse()
-                    .map_err(|_| Error::format(format!("text data: bad number '{tok}'")))?;
-                vals.push(x as f32);
-            }
-            if vals.len() != n {
-                return Err(Error::format(format!(
-                    "text data has {} samples, the header needs {n}",
-                    vals.len()
-                )));
-            }
-            return Ok(Volume {
-                dims,
-                axes: Axes::Uniform { origin, spacing },
-                data: vals,
-                source_dtype: ty.source_dtype(),
-            });
-        }
+        Enc::Text => return read_text(data_r, available, h.n),
     };
-    Ok(Volume {
-        dims,
-        axes: Axes::Uniform { origin, spacing },
-        data: decode(&raw, ty, big),
-        source_dtype: ty.source_dtype(),
-    })
+    Ok(decode(&raw, h.ty, h.big))
+}
+
+/// Text data: exactly `n` numbers separated by blanks or commas.
+fn read_text(data_r: &mut Box<dyn BufRead>, available: u64, n: usize) -> Result<Vec<f32>> {
+    let mut text = String::new();
+    data_r
+        .take(available)
+        .read_to_string(&mut text)
+        .map_err(|_| Error::format("text data is not valid UTF-8"))?;
+    let mut vals = Vec::with_capacity(n.min(text.len() / 2 + 1));
+    for tok in text
+        .split(|c: char| c.is_whitespace() || c == ',')
+        .filter(|t| !t.is_empty())
+    {
+        if vals.len() == n {
+            return Err(Error::format(format!(
+                "text data has more than the {n} samples of the header"
+            )));
+        }
+        let x: f64 = tok
+            .parse()
+            .map_err(|_| Error::format(format!("text data: bad number '{tok}'")))?;
+        vals.push(x as f32);
+    }
+    if vals.len() != n {
+        return Err(Error::format(format!(
+            "text data has {} samples, the header needs {n}",
+            vals.len()
+        )));
+    }
+    Ok(vals)
 }
 
 /// Writes a volume (with its data file beside it where the format has one), atomically.

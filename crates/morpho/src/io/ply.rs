@@ -17,6 +17,9 @@
 //!   list `vertex_indices`, expanded with alternating orientation, degenerate joints dropped.
 //! * Any other element (edges, materials, …) is skipped, parsing its lists in binary files.
 //!
+//! * `tetra` ([`read_tets`] only): the list `vertex_indices` (or `vertex_index`) of exactly 4
+//!   vertices per record, as [`write_tets`] writes it.
+//!
 //! A vertex element without `z` gives `z = 0` (planar data; [`read_points`] makes it 2D).
 //!
 //! Untrusted input: before an element is allocated, its count is checked against what is left
@@ -30,10 +33,14 @@
 //! Writing: `x y z` (and `nx ny nz`) as `double` so that values round-trip exactly, extra
 //! properties with their own kinds (values must be representable in them), faces as
 //! `list uchar int vertex_indices`. ASCII numbers use the shortest round-trip representation.
+//! Besides meshes ([`write_mesh`]) and points ([`write_points`]): tetrahedral meshes with a
+//! `tetra` element ([`write_tets`]) and geometric graphs with an `edge` element
+//! ([`write_graph`]).
 use super::obj::{clip, count_lines, tokens, Lines, Tokens, F32, F64};
 use super::Encoding;
 use crate::geom::{Point3, Vector3};
-use crate::mesh::{Column, PointSet, Property, ScalarKind, TriMesh};
+use crate::graphs::Graph;
+use crate::mesh::{Column, PointSet, Property, ScalarKind, TetMesh, TriMesh};
 use crate::{Error, Result};
 use std::io::Write;
 
@@ -958,14 +965,69 @@ fn read_tristrips<S: Source>(src: &mut S, el: &ElementDef, nv: u64) -> Result<Ve
     Ok(triangles)
 }
 
+/// Tetrahedra of a `tetra` element: the list `vertex_indices` (or `vertex_index`) of each
+/// record holds exactly 4 vertex indices; other properties are skipped.
+fn read_tetra<S: Source>(src: &mut S, el: &ElementDef, nv: u64) -> Result<Vec<[u32; 4]>> {
+    let list = el
+        .props
+        .iter()
+        .position(|p| {
+            matches!(p.ty, PropType::List(..))
+                && (p.name == "vertex_indices" || p.name == "vertex_index")
+        })
+        .ok_or_else(|| Error::format("PLY tetra element has no 'vertex_indices' list property"))?;
+    src.start(el)?;
+    let mut tets = Vec::with_capacity(el.count as usize);
+    for r in 0..el.count {
+        src.begin(r)?;
+        let mut tet = [0u32; 4];
+        for (i, p) in el.props.iter().enumerate() {
+            match p.ty {
+                PropType::List(c, it) if i == list => {
+                    let len = src.list_len(c, it)?;
+                    if len != 4 {
+                        return Err(
+                            src.err(format!("tetrahedron has {len} corners; it needs exactly 4"))
+                        );
+                    }
+                    for corner in &mut tet {
+                        let v = src.scalar(it)?;
+                        *corner = vertex_index(v, nv).ok_or_else(|| {
+                            src.err(format!(
+                                "refers to vertex {v}, but there are only {nv} vertices"
+                            ))
+                        })?;
+                    }
+                }
+                ty => skip_prop(src, ty)?,
+            }
+        }
+        src.end()?;
+        tets.push(tet);
+    }
+    Ok(tets)
+}
+
+/// Which elements [`read_body`] decodes (the others are skipped).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Want {
+    /// The vertices only (reading stops after them).
+    Points,
+    /// Vertices, faces and triangle strips.
+    Mesh,
+    /// Vertices and tetrahedra.
+    Tets,
+}
+
 /// What to read from the body.
 struct Body {
     vertices: Option<Vertices>,
     faces: Option<Faces>,
     strips: Option<Vec<[u32; 3]>>,
+    tets: Option<Vec<[u32; 4]>>,
 }
 
-fn read_body<S: Source>(src: &mut S, h: &Header, mesh: bool) -> Result<Body> {
+fn read_body<S: Source>(src: &mut S, h: &Header, want: Want) -> Result<Body> {
     let nv = h
         .elements
         .iter()
@@ -976,30 +1038,32 @@ fn read_body<S: Source>(src: &mut S, h: &Header, mesh: bool) -> Result<Body> {
         vertices: None,
         faces: None,
         strips: None,
+        tets: None,
     };
     for el in &h.elements {
         match el.name.as_str() {
             "vertex" => {
                 body.vertices = Some(read_vertices(src, el)?);
-                if !mesh {
+                if want == Want::Points {
                     break;
                 }
             }
-            "face" if mesh => body.faces = Some(read_faces(src, el, nv)?),
-            "tristrips" if mesh => body.strips = Some(read_tristrips(src, el, nv)?),
+            "face" if want == Want::Mesh => body.faces = Some(read_faces(src, el, nv)?),
+            "tristrips" if want == Want::Mesh => body.strips = Some(read_tristrips(src, el, nv)?),
+            "tetra" if want == Want::Tets => body.tets = Some(read_tetra(src, el, nv)?),
             _ => src.skip_element(el)?,
         }
     }
     Ok(body)
 }
 
-fn read_file(bytes: &[u8], mesh: bool) -> Result<Body> {
+fn read_file(bytes: &[u8], want: Want) -> Result<Body> {
     let h = parse_header(bytes)?;
     let data = &bytes[h.data_start..];
     match h.fmt {
         Fmt::Ascii => {
             let text = super::obj::utf8_text(data, h.lines + 1)?;
-            read_body(&mut Ascii::new(text, h.lines), &h, mesh)
+            read_body(&mut Ascii::new(text, h.lines), &h, want)
         }
         Fmt::Le | Fmt::Be => {
             let mut src = Binary {
@@ -1010,14 +1074,14 @@ fn read_file(bytes: &[u8], mesh: bool) -> Result<Body> {
                 el: String::new(),
                 rec: 0,
             };
-            read_body(&mut src, &h, mesh)
+            read_body(&mut src, &h, want)
         }
     }
 }
 
 /// Reads vertices and faces (polygons are fan-triangulated); extra properties are kept.
 pub fn read_mesh(bytes: &[u8]) -> Result<TriMesh> {
-    let body = read_file(bytes, true)?;
+    let body = read_file(bytes, Want::Mesh)?;
     let v = body
         .vertices
         .ok_or_else(|| Error::format("PLY file has no vertex element"))?;
@@ -1047,7 +1111,7 @@ pub fn read_mesh(bytes: &[u8]) -> Result<TriMesh> {
 /// Reads the vertices only, as points (3D, or 2D when there is no `z`; extra vertex
 /// properties other than normals become columns).
 pub fn read_points(bytes: &[u8]) -> Result<PointSet> {
-    let body = read_file(bytes, false)?;
+    let body = read_file(bytes, Want::Points)?;
     let v = body
         .vertices
         .ok_or_else(|| Error::format("PLY file has no vertex element"))?;
@@ -1067,6 +1131,48 @@ pub fn read_points(bytes: &[u8]) -> Result<PointSet> {
                 values: p.values,
             })
             .collect(),
+    })
+}
+
+/// True when the header declares a `tetra` element (a tetrahedral mesh, see [`read_tets`]).
+pub fn has_tets(bytes: &[u8]) -> Result<bool> {
+    Ok(parse_header(bytes)?
+        .elements
+        .iter()
+        .any(|e| e.name == "tetra"))
+}
+
+/// Reads a tetrahedral mesh: the vertices and the `tetra` element (as [`write_tets`] writes
+/// it; a file without one is an error). Corner order is kept as in the file.
+///
+/// ```
+/// use morpho::geom::Point3;
+/// use morpho::io::{ply, Encoding};
+/// use morpho::mesh::TetMesh;
+/// let t = TetMesh {
+///     positions: vec![Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+///                     Point3::new(0.0, 1.0, 0.0), Point3::new(0.0, 0.0, 1.0)],
+///     tets: vec![[0, 1, 3, 2]],
+/// };
+/// let mut out = Vec::new();
+/// ply::write_tets(&mut out, &t, Encoding::Ascii).unwrap();
+/// assert_eq!(ply::read_tets(&out).unwrap(), t);
+/// ```
+pub fn read_tets(bytes: &[u8]) -> Result<TetMesh> {
+    let body = read_file(bytes, Want::Tets)?;
+    let v = body
+        .vertices
+        .ok_or_else(|| Error::format("PLY file has no vertex element"))?;
+    let tets = body
+        .tets
+        .ok_or_else(|| Error::format("PLY file has no 'tetra' element (no tetrahedra)"))?;
+    Ok(TetMesh {
+        positions: v
+            .coords
+            .iter()
+            .map(|c| Point3::new(c[0], c[1], c[2]))
+            .collect(),
+        tets,
     })
 }
 
@@ -1302,6 +1408,89 @@ pub fn write_points(w: &mut dyn Write, pts: &PointSet, enc: Encoding) -> Result<
     e.flush(w)
 }
 
+/// Writes a tetrahedral mesh: `vertex` (x, y, z as `double`) and a `tetra` element with the
+/// list `vertex_indices` (`uchar` count 4, `int` indices), corners in the mesh's order. Binary
+/// little endian is what `morpho triangulate --tets` writes; meshio and trimesh do not read the
+/// `tetra` element (use [`super::vtk`] for them).
+pub fn write_tets(w: &mut dyn Write, t: &TetMesh, enc: Encoding) -> Result<()> {
+    let n = t.positions.len();
+    if let Some((i, tet)) = t
+        .tets
+        .iter()
+        .enumerate()
+        .find(|(_, tet)| tet.iter().any(|&v| v as usize >= n))
+    {
+        return Err(Error::invalid(format!(
+            "tetrahedron {i} {tet:?} refers to a vertex beyond the {n} vertices"
+        )));
+    }
+    if n > i32::MAX as usize {
+        return Err(Error::invalid(
+            "more than 2^31-1 vertices cannot be indexed by PLY 'int' indices",
+        ));
+    }
+    let mut e = Enc::new(enc);
+    let h = format!(
+        "ply\nformat {} 1.0\ncomment morpho tetrahedralization\nelement vertex {}\n\
+         property double x\nproperty double y\nproperty double z\nelement tetra {}\n\
+         property list uchar int vertex_indices\nend_header\n",
+        e.format_line(),
+        n,
+        t.tets.len()
+    );
+    e.buf.extend_from_slice(h.as_bytes());
+    for p in &t.positions {
+        for c in [p.x, p.y, p.z] {
+            e.put(ScalarKind::F64, c);
+        }
+        e.end_record(w)?;
+    }
+    for tet in &t.tets {
+        e.put(ScalarKind::U8, 4.0);
+        for &v in tet {
+            e.put(ScalarKind::I32, v as f64);
+        }
+        e.end_record(w)?;
+    }
+    e.flush(w)
+}
+
+/// Writes a geometric graph on `points` as ASCII PLY (graphs are small files): the vertices
+/// (`double` x, y, z), the graph's triangles as a `face` element and its edges as an `edge`
+/// element (`int vertex1`, `int vertex2`). Numbers in Rust's shortest round-trip form.
+pub fn write_graph(w: &mut dyn Write, points: &[Point3], g: &Graph) -> Result<()> {
+    write_graph_body(w, points, g).map_err(super::werr)
+}
+
+fn write_graph_body(w: &mut dyn Write, p: &[Point3], g: &Graph) -> std::io::Result<()> {
+    writeln!(
+        w,
+        "ply\nformat ascii 1.0\ncomment morpho graph\nelement vertex {}",
+        p.len()
+    )?;
+    writeln!(w, "property double x\nproperty double y\nproperty double z")?;
+    writeln!(
+        w,
+        "element face {}\nproperty list uchar int vertex_indices",
+        g.triangles.len()
+    )?;
+    writeln!(
+        w,
+        "element edge {}\nproperty int vertex1\nproperty int vertex2\nend_header",
+        g.edges.len()
+    )?;
+    for q in p {
+        writeln!(w, "{} {} {}", q.x, q.y, q.z)?;
+    }
+    for t in &g.triangles {
+        writeln!(w, "3 {} {} {}", t[0], t[1], t[2])?;
+    }
+    for e in &g.edges {
+        writeln!(w, "{} {}", e[0], e[1])?;
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1473,5 +1662,82 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("line 3") && e.contains("UTF-8"), "{e}");
+    }
+
+    fn cube_tets() -> TetMesh {
+        let positions = (0..8)
+            .map(|i| Point3::new((i & 1) as f64, (i >> 1 & 1) as f64, 0.1 * (i >> 2) as f64))
+            .collect();
+        TetMesh {
+            positions,
+            tets: vec![
+                [0, 1, 3, 7],
+                [0, 3, 2, 7],
+                [0, 2, 6, 7],
+                [0, 6, 4, 7],
+                [0, 4, 5, 7],
+            ],
+        }
+    }
+
+    #[test]
+    fn tets_round_trip_in_every_encoding() {
+        let t = cube_tets();
+        for enc in [
+            Encoding::Ascii,
+            Encoding::BinaryLittleEndian,
+            Encoding::BinaryBigEndian,
+        ] {
+            let mut out = Vec::new();
+            write_tets(&mut out, &t, enc).unwrap();
+            assert_eq!(read_tets(&out).unwrap(), t, "{enc:?}");
+            // the vertices alone are points; a tetra PLY has no faces
+            assert_eq!(read_points(&out).unwrap().len(), 8);
+            assert!(read_mesh(&out).unwrap().triangles.is_empty());
+        }
+    }
+
+    #[test]
+    fn tets_errors() {
+        let mut t = cube_tets();
+        t.tets.push([0, 1, 2, 8]);
+        let mut out = Vec::new();
+        let e = write_tets(&mut out, &t, Encoding::Ascii).unwrap_err();
+        assert!(e.to_string().contains("tetrahedron 5"), "{e}");
+        let mut out = Vec::new();
+        write_mesh(&mut out, &sample(), Encoding::Ascii).unwrap();
+        let e = read_tets(&out).unwrap_err().to_string();
+        assert!(e.contains("no 'tetra' element"), "{e}");
+        let bad = b"ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+property float z\nelement tetra 1\nproperty list uchar int vertex_indices\nend_header\n\
+0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n";
+        let e = read_tets(bad).unwrap_err().to_string();
+        assert!(e.contains("line 14") && e.contains("exactly 4"), "{e}");
+        let bad = String::from_utf8(bad.to_vec())
+            .unwrap()
+            .replace("3 0 1 2", "4 0 1 2 4");
+        let e = read_tets(bad.as_bytes()).unwrap_err().to_string();
+        assert!(e.contains("refers to vertex 4"), "{e}");
+    }
+
+    #[test]
+    fn graph_ply_has_faces_and_edges() {
+        let g = Graph {
+            dim: 3,
+            edges: vec![[0, 1], [1, 2]],
+            triangles: vec![[0, 1, 2]],
+            gamma: vec![],
+        };
+        let p = [
+            Point3::new(0.0, 0.0, 0.0),
+            Point3::new(1.0, 0.0, 0.5),
+            Point3::new(0.0, 1.0, 0.0),
+        ];
+        let mut out = Vec::new();
+        write_graph(&mut out, &p, &g).unwrap();
+        let m = read_mesh(&out).unwrap();
+        assert_eq!(m.triangles, g.triangles);
+        assert_eq!(m.positions, p);
+        assert!(String::from_utf8(out).unwrap().ends_with("element edge 2\nproperty int vertex1\nproperty int vertex2\nend_header\n0 0 0\n1 0 0.5\n0 1 0\n3 0 1 2\n0 1\n1 2\n"));
     }
 }

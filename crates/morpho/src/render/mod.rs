@@ -1,6 +1,9 @@
-//! Pictures of every stage: SVG for 2D, a software rasterizer (PNG) for meshes and volume views.
+//! Pictures of every stage: SVG for 2D ([`svg`]: the builder; [`figures`]: pictures of the 2D
+//! results), a software rasterizer (PNG) for meshes and volume views ([`raster`], [`slice`](mod@slice),
+//! [`subdivision`], [`legend`]).
 
 pub mod colormap;
+pub mod figures;
 pub mod font;
 pub mod legend;
 pub mod raster;
@@ -54,15 +57,24 @@ impl Image {
         let mut enc = png::Encoder::new(w, self.width, self.height);
         enc.set_color(png::ColorType::Rgba);
         enc.set_depth(png::BitDepth::Eight);
-        let mut wr = enc
-            .write_header()
-            .map_err(|e| Error::invalid(format!("PNG: {e}")))?;
-        wr.write_image_data(&self.rgba)
-            .map_err(|e| Error::invalid(format!("PNG: {e}")))?;
-        Ok(())
+        let mut wr = enc.write_header().map_err(png_err)?;
+        wr.write_image_data(&self.rgba).map_err(png_err)?;
+        wr.finish().map_err(png_err)
     }
     /// Writes the image to a `.png` file atomically.
     pub fn save_png(&self, path: &Path) -> Result<()> {
-        crate::io::write_atomic(path, |w| self.write_png(w)).map_err(|e| e.with_path(path))
+        crate::io::write_atomic(path, |w| self.write_png(w))
+    }
+}
+
+/// A failing writer is [`Error::Io`] (as for every writer); anything else the encoder refuses
+/// is invalid input.
+fn png_err(e: png::EncodingError) -> Error {
+    match e {
+        png::EncodingError::IoError(e) => Error::Io {
+            path: String::new(),
+            source: e,
+        },
+        e => Error::invalid(format!("PNG: {e}")),
     }
 }

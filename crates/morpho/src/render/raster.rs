@@ -224,23 +224,116 @@ fn edge(a: &Vert, b: &Vert, x: f64, y: f64) -> f64 {
     (b.px - a.px) * (y - a.py) - (b.py - a.py) * (x - a.px)
 }
 
-/// Like [`render_mesh`], also returning counts.
+/// Like [`render_mesh`], also returning counts. The steps of the module documentation, each a
+/// function below.
 pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, RenderStats) {
-    let w = opts.width.clamp(1, 8192) as usize;
-    let h = opts.height.clamp(1, 8192) as usize;
-    let mut ss = opts.supersample.clamp(1, 4) as usize;
-    while ss > 1 && (w * h * ss * ss) as u64 > MAX_SAMPLES {
-        ss -= 1;
-    }
+    let frame = Frame::new(opts);
     let mut stats = RenderStats {
-        supersample: ss as u32,
+        supersample: frame.ss as u32,
         ..Default::default()
     };
-    let bg = opts.background;
-    let (sw, sh) = (w * ss, h * ss);
-    let n = mesh.positions.len();
 
     // 1. Valid triangles.
+    let (valid, used) = valid_triangles(mesh);
+    stats.invalid = mesh.triangles.len() - valid.len();
+    if valid.is_empty() {
+        return (
+            Image::new(frame.w as u32, frame.h as u32, opts.background),
+            stats,
+        );
+    }
+
+    // 2.–3. Normalisation, camera, projection fitted to the image; normals, scalars, lights.
+    let camera = Camera::new(opts);
+    let cam = camera_space(mesh, &used, &camera);
+    let verts = fit_to_image(&cam, &used, &camera, opts, &frame);
+    let vnormals = if opts.shading == Shading::Smooth {
+        vertex_normals(mesh, &valid, &cam, &camera)
+    } else {
+        Vec::new()
+    };
+    let (colours, range) = Colours::new(mesh, &valid, &used, opts);
+    stats.range = range;
+    let scene = Scene {
+        mesh,
+        opts,
+        frame,
+        cam,
+        verts,
+        vnormals,
+        colours,
+        lights: Lights::new(),
+        translucent: opts.transparency.map(|t| {
+            if t.is_finite() {
+                t.clamp(0.0, 1.0)
+            } else {
+                0.5
+            }
+        }),
+    };
+
+    // Triangle setup (parallel, order kept) and binning into bands.
+    let setups: Vec<Setup> = valid.par_iter().map(|&t| scene.setup(t)).collect();
+    let mut tris: Vec<Box<Tri>> = Vec::with_capacity(setups.len());
+    for st in setups {
+        match st {
+            Setup::Degenerate => stats.degenerate += 1,
+            Setup::Empty => stats.drawn += 1,
+            Setup::Tri(t) => {
+                stats.drawn += 1;
+                tris.push(t);
+            }
+        }
+    }
+    if scene.translucent.is_some() {
+        // Back to front (stable: ties keep the mesh order).
+        tris.sort_by(|a, b| a.near.total_cmp(&b.near));
+    }
+    let bins = bin_by_band(&tris, scene.frame.sh);
+
+    // 4.–5. Bands in parallel.
+    let (sw, sh) = (scene.frame.sw, scene.frame.sh);
+    let mut samples = vec![0u8; sw * sh * 4];
+    samples
+        .par_chunks_mut(BAND * sw * 4)
+        .enumerate()
+        .for_each(|(bi, band)| scene.draw_band(bi * BAND, band, &bins[bi], &tris));
+
+    // 6. Box filter down to the output size.
+    (downsample(samples, &scene.frame), stats)
+}
+
+/// Image size and the supersampled grid.
+struct Frame {
+    w: usize,
+    h: usize,
+    /// Samples per pixel along each axis.
+    ss: usize,
+    /// Sample grid size.
+    sw: usize,
+    sh: usize,
+}
+
+impl Frame {
+    fn new(opts: &RenderOptions) -> Self {
+        let w = opts.width.clamp(1, 8192) as usize;
+        let h = opts.height.clamp(1, 8192) as usize;
+        let mut ss = opts.supersample.clamp(1, 4) as usize;
+        while ss > 1 && (w * h * ss * ss) as u64 > MAX_SAMPLES {
+            ss -= 1;
+        }
+        Frame {
+            w,
+            h,
+            ss,
+            sw: w * ss,
+            sh: h * ss,
+        }
+    }
+}
+
+/// Step 1: the triangles with all corners present and finite, and the vertices they use.
+fn valid_triangles(mesh: &TriMesh) -> (Vec<usize>, Vec<bool>) {
     let finite = |i: u32| {
         mesh.positions
             .get(i as usize)
@@ -249,18 +342,62 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
     let valid: Vec<usize> = (0..mesh.triangles.len())
         .filter(|&t| mesh.triangles[t].iter().all(|&i| finite(i)))
         .collect();
-    stats.invalid = mesh.triangles.len() - valid.len();
-    if valid.is_empty() {
-        return (Image::new(w as u32, h as u32, bg), stats);
-    }
-    let mut used = vec![false; n];
+    let mut used = vec![false; mesh.positions.len()];
     for &t in &valid {
         for &i in &mesh.triangles[t] {
             used[i as usize] = true;
         }
     }
+    (valid, used)
+}
 
-    // 2. Normalisation without overflow: centre c and half extent r from halved coordinates.
+/// The camera: basis (right, up, towards the eye) and the perspective distance.
+struct Camera {
+    right: Vector3,
+    upv: Vector3,
+    eye: Vector3,
+    /// Distance of the eye from the origin (perspective), `None` for orthographic.
+    persp: Option<f64>,
+}
+
+impl Camera {
+    fn new(opts: &RenderOptions) -> Self {
+        let (right, upv, eye) = camera_basis(opts);
+        let persp = match opts.projection {
+            Projection::Perspective { fov_deg } => {
+                let f = fov_deg.clamp(1.0, 120.0).to_radians();
+                Some(3f64.sqrt() / (0.5 * f).sin() + 1e-3)
+            }
+            Projection::Orthographic => None,
+        };
+        Camera {
+            right,
+            upv,
+            eye,
+            persp,
+        }
+    }
+    /// A vector in camera coordinates.
+    #[inline]
+    fn to_cam(&self, v: &Vector3) -> Vector3 {
+        Vector3::new(v.dot(&self.right), v.dot(&self.upv), v.dot(&self.eye))
+    }
+    /// Screen x, y, depth (larger is nearer) and 1/w of a camera-space point.
+    #[inline]
+    fn screen(&self, c: &Vector3) -> (f64, f64, f64, f64) {
+        match self.persp {
+            Some(d) => {
+                let iw = 1.0 / (d - c.z);
+                (c.x * iw, c.y * iw, iw, iw)
+            }
+            None => (c.x, c.y, c.z, 1.0),
+        }
+    }
+}
+
+/// Steps 2–3: the used vertices normalised without overflow (centre and half extent from
+/// halved coordinates) and turned into camera space; unused vertices are 0.
+fn camera_space(mesh: &TriMesh, used: &[bool], camera: &Camera) -> Vec<Vector3> {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for (i, p) in mesh.positions.iter().enumerate() {
         if used[i] {
@@ -281,61 +418,48 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
             Vector3::zeros()
         }
     };
-
-    // 3. Camera.
-    let (right, upv, eye) = camera_basis(opts);
-    let persp = match opts.projection {
-        Projection::Perspective { fov_deg } => {
-            let f = fov_deg.clamp(1.0, 120.0).to_radians();
-            Some(3f64.sqrt() / (0.5 * f).sin() + 1e-3)
-        }
-        Projection::Orthographic => None,
-    };
-    let cam: Vec<Vector3> = (0..n)
+    (0..mesh.positions.len())
         .into_par_iter()
         .map(|i| {
             if used[i] {
-                let q = norm_pos(i);
-                Vector3::new(q.dot(&right), q.dot(&upv), q.dot(&eye))
+                camera.to_cam(&norm_pos(i))
             } else {
                 Vector3::zeros()
             }
         })
-        .collect();
-    let screen = |c: &Vector3| -> (f64, f64, f64, f64) {
-        match persp {
-            Some(d) => {
-                let iw = 1.0 / (d - c.z);
-                (c.x * iw, c.y * iw, iw, iw)
-            }
-            None => (c.x, c.y, c.z, 1.0),
-        }
-    };
-    // Fit the projected picture into the image.
+        .collect()
+}
+
+/// Step 3: the projected picture fitted into the sample grid with the margin.
+fn fit_to_image(
+    cam: &[Vector3],
+    used: &[bool],
+    camera: &Camera,
+    opts: &RenderOptions,
+    frame: &Frame,
+) -> Vec<Vert> {
     let (mut sx0, mut sx1, mut sy0, mut sy1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
         f64::INFINITY,
         f64::NEG_INFINITY,
     );
-    for i in 0..n {
-        if used[i] {
-            let (x, y, _, _) = screen(&cam[i]);
-            sx0 = sx0.min(x);
-            sx1 = sx1.max(x);
-            sy0 = sy0.min(y);
-            sy1 = sy1.max(y);
-        }
+    for (c, _) in cam.iter().zip(used).filter(|(_, &u)| u) {
+        let (x, y, _, _) = camera.screen(c);
+        sx0 = sx0.min(x);
+        sx1 = sx1.max(x);
+        sy0 = sy0.min(y);
+        sy1 = sy1.max(y);
     }
+    let (sw, sh) = (frame.sw, frame.sh);
     let margin = opts.margin.clamp(0.0, 0.45);
     let avail = (1.0 - 2.0 * margin) * sw.min(sh) as f64;
     let ext = (sx1 - sx0).max(sy1 - sy0);
     let k = if ext > 0.0 { avail / ext } else { 1.0 };
     let (cx, cy) = (0.5 * (sx0 + sx1), 0.5 * (sy0 + sy1));
-    let verts: Vec<Vert> = cam
-        .iter()
+    cam.iter()
         .map(|c| {
-            let (x, y, depth, invw) = screen(c);
+            let (x, y, depth, invw) = camera.screen(c);
             Vert {
                 px: 0.5 * sw as f64 + (x - cx) * k,
                 py: 0.5 * sh as f64 - (y - cy) * k,
@@ -343,86 +467,149 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
                 invw,
             }
         })
-        .collect();
+        .collect()
+}
 
-    // Normals in camera space.
-    let to_cam = |v: &Vector3| Vector3::new(v.dot(&right), v.dot(&upv), v.dot(&eye));
-    let face_normal = |t: usize| -> Vector3 {
-        let [a, b, c] = mesh.triangles[t];
-        let (a, b, c) = (cam[a as usize], cam[b as usize], cam[c as usize]);
-        (b - a).cross(&(c - a))
-    };
-    let vnormals: Vec<Vector3> = if opts.shading == Shading::Smooth {
-        match &mesh.normals {
-            Some(nr) if nr.len() == n => nr
-                .iter()
+/// The (unnormalised) normal of triangle `t` in camera space.
+#[inline]
+fn face_normal(mesh: &TriMesh, cam: &[Vector3], t: usize) -> Vector3 {
+    let [a, b, c] = mesh.triangles[t];
+    let (a, b, c) = (cam[a as usize], cam[b as usize], cam[c as usize]);
+    (b - a).cross(&(c - a))
+}
+
+/// Unit vertex normals in camera space for smooth shading: the mesh's own if it has one per
+/// vertex, else the sums of the adjacent face normals (area-weighted); 0 where undefined.
+fn vertex_normals(
+    mesh: &TriMesh,
+    valid: &[usize],
+    cam: &[Vector3],
+    camera: &Camera,
+) -> Vec<Vector3> {
+    let n = mesh.positions.len();
+    match &mesh.normals {
+        Some(nr) if nr.len() == n => nr
+            .iter()
+            .map(|v| {
+                let c = camera.to_cam(v);
+                let l = c.norm();
+                if l.is_finite() && l > 0.0 {
+                    c / l
+                } else {
+                    Vector3::zeros()
+                }
+            })
+            .collect(),
+        _ => {
+            let mut acc = vec![Vector3::zeros(); n];
+            for &t in valid {
+                let fnrm = face_normal(mesh, cam, t);
+                if fnrm.iter().all(|v| v.is_finite()) {
+                    for &i in &mesh.triangles[t] {
+                        acc[i as usize] += fnrm;
+                    }
+                }
+            }
+            acc.iter()
                 .map(|v| {
-                    let c = to_cam(v);
-                    let l = c.norm();
-                    if l.is_finite() && l > 0.0 {
-                        c / l
+                    let l = v.norm();
+                    if l > 0.0 && l.is_finite() {
+                        v / l
                     } else {
                         Vector3::zeros()
                     }
                 })
-                .collect(),
-            _ => {
-                let mut acc = vec![Vector3::zeros(); n];
-                for &t in &valid {
-                    let fnrm = face_normal(t);
-                    if fnrm.iter().all(|v| v.is_finite()) {
-                        for &i in &mesh.triangles[t] {
-                            acc[i as usize] += fnrm;
-                        }
+                .collect()
+        }
+    }
+}
+
+/// The scalars shown, as colour-map parameters.
+struct Colours<'a> {
+    /// The options' scalars when they have the right length.
+    scalars: Option<&'a Scalars>,
+    /// Parameter in [0, 1] per vertex or face (NaN = missing).
+    tvals: Vec<f64>,
+    cmap: Option<Colormap>,
+}
+
+impl<'a> Colours<'a> {
+    /// The parameters and the value range mapped to the ends of the map.
+    fn new(
+        mesh: &TriMesh,
+        valid: &[usize],
+        used: &[bool],
+        opts: &'a RenderOptions,
+    ) -> (Self, Option<(f64, f64)>) {
+        let n = mesh.positions.len();
+        let scalars = opts
+            .scalars
+            .as_ref()
+            .filter(|s| s.values.len() == if s.per_face { mesh.triangles.len() } else { n });
+        let mut range = None;
+        let tvals: Vec<f64> = match scalars {
+            None => Vec::new(),
+            Some(s) => {
+                let r = s.range.or_else(|| {
+                    if s.per_face {
+                        finite_range(valid.iter().map(|&t| s.values[t]))
+                    } else {
+                        finite_range((0..n).filter(|&i| used[i]).map(|i| s.values[i]))
                     }
-                }
-                acc.iter()
-                    .map(|v| {
-                        let l = v.norm();
-                        if l > 0.0 && l.is_finite() {
-                            v / l
-                        } else {
-                            Vector3::zeros()
-                        }
-                    })
-                    .collect()
+                });
+                let (lo, hi) = r.unwrap_or((0.0, 1.0));
+                range = Some((lo, hi));
+                s.values.iter().map(|&v| normalize(v, lo, hi)).collect()
             }
+        };
+        let cmap = scalars.map(|s| s.colormap);
+        (
+            Colours {
+                scalars,
+                tvals,
+                cmap,
+            },
+            range,
+        )
+    }
+    fn per_face(&self) -> Option<Colormap> {
+        match (self.cmap, self.scalars) {
+            (Some(m), Some(s)) if s.per_face => Some(m),
+            _ => None,
         }
-    } else {
-        Vec::new()
-    };
-
-    // Scalars → parameter t in [0, 1] (NaN = missing).
-    let scal = opts
-        .scalars
-        .as_ref()
-        .filter(|s| s.values.len() == if s.per_face { mesh.triangles.len() } else { n });
-    let tvals: Vec<f64> = match scal {
-        None => Vec::new(),
-        Some(s) => {
-            let range = s.range.or_else(|| {
-                if s.per_face {
-                    finite_range(valid.iter().map(|&t| s.values[t]))
-                } else {
-                    finite_range((0..n).filter(|&i| used[i]).map(|i| s.values[i]))
-                }
-            });
-            let (lo, hi) = range.unwrap_or((0.0, 1.0));
-            stats.range = Some((lo, hi));
-            s.values.iter().map(|&v| normalize(v, lo, hi)).collect()
+    }
+    fn per_vertex(&self) -> Option<Colormap> {
+        match (self.cmap, self.scalars) {
+            (Some(m), Some(s)) if !s.per_face => Some(m),
+            _ => None,
         }
-    };
-    let cmap = scal.map(|s| s.colormap);
+    }
+}
 
-    // Lights (camera space, towards the light).
-    let head = Vector3::new(0.0, 0.0, 1.0);
-    let key = Vector3::new(-0.45, 0.6, 0.66).normalize();
-    let half_key = (key + head).normalize();
-    let shade = |nrm: Vector3, base: [u8; 3]| -> [u8; 4] {
-        let d1 = nrm.dot(&head).max(0.0);
-        let d2 = nrm.dot(&key).max(0.0);
+/// A headlight and a key light (camera space, towards the light), Blinn–Phong.
+struct Lights {
+    head: Vector3,
+    key: Vector3,
+    half_key: Vector3,
+}
+
+impl Lights {
+    fn new() -> Self {
+        let head = Vector3::new(0.0, 0.0, 1.0);
+        let key = Vector3::new(-0.45, 0.6, 0.66).normalize();
+        Lights {
+            head,
+            key,
+            half_key: (key + head).normalize(),
+        }
+    }
+    /// The lit colour of a surface with unit normal `nrm` and colour `base`.
+    #[inline]
+    fn shade(&self, nrm: Vector3, base: [u8; 3]) -> [u8; 4] {
+        let d1 = nrm.dot(&self.head).max(0.0);
+        let d2 = nrm.dot(&self.key).max(0.0);
         let diff = 0.22 + 0.5 * d1 + 0.42 * d2;
-        let spec = 0.22 * nrm.dot(&half_key).max(0.0).powi(40);
+        let spec = 0.22 * nrm.dot(&self.half_key).max(0.0).powi(40);
         let mut c = [0u8; 4];
         for k in 0..3 {
             c[k] = (base[k] as f64 * diff + 255.0 * spec)
@@ -431,276 +618,309 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
         }
         c[3] = 255;
         c
-    };
-    // Triangle setup (parallel, order kept) and binning into bands.
+    }
+}
+
+/// Everything the triangle setup and the scan conversion read.
+struct Scene<'a> {
+    mesh: &'a TriMesh,
+    opts: &'a RenderOptions,
+    frame: Frame,
+    /// Vertices in camera space.
+    cam: Vec<Vector3>,
+    /// Vertices on the sample grid.
+    verts: Vec<Vert>,
+    /// Unit vertex normals in camera space (smooth shading only).
+    vnormals: Vec<Vector3>,
+    colours: Colours<'a>,
+    lights: Lights,
+    /// Transparency t of alpha blending, `None` for the z-buffer.
+    translucent: Option<f64>,
+}
+
+/// Triangle indices of the bands of `BAND` sample rows each triangle's box touches.
+fn bin_by_band(tris: &[Box<Tri>], sh: usize) -> Vec<Vec<u32>> {
     let nbands = sh.div_ceil(BAND).max(1);
-    let setups: Vec<Setup> = valid
-        .par_iter()
-        .map(|&t| {
-            let [a, b, c] = mesh.triangles[t];
-            let (va, vb, vc) = (verts[a as usize], verts[b as usize], verts[c as usize]);
-            let signed = edge(&va, &vb, vc.px, vc.py);
-            if signed == 0.0 || !signed.is_finite() {
-                return Setup::Degenerate;
-            }
-            let xmin = va.px.min(vb.px).min(vc.px);
-            let xmax = va.px.max(vb.px).max(vc.px);
-            let ymin = va.py.min(vb.py).min(vc.py);
-            let ymax = va.py.max(vb.py).max(vc.py);
-            // Samples at (i + 0.5); the covered range is ceil(min - 0.5) ..= floor(max - 0.5).
-            let (fx0, fx1) = ((xmin - 0.5).ceil(), (xmax - 0.5).floor());
-            let (fy0, fy1) = ((ymin - 0.5).ceil(), (ymax - 0.5).floor());
-            if fx1 < 0.0
-                || fy1 < 0.0
-                || fx0 > (sw - 1) as f64
-                || fy0 > (sh - 1) as f64
-                || fx0 > fx1
-                || fy0 > fy1
-            {
-                return Setup::Empty;
-            }
-            // Pixel y grows downwards, so a counter-clockwise (front) triangle has signed < 0.
-            let back = signed > 0.0;
-            let (p, ids) = if back {
-                ([va, vb, vc], [a, b, c])
-            } else {
-                ([va, vc, vb], [a, c, b])
-            };
-            let lens = [
-                (p[2].px - p[1].px).hypot(p[2].py - p[1].py),
-                (p[0].px - p[2].px).hypot(p[0].py - p[2].py),
-                (p[1].px - p[0].px).hypot(p[1].py - p[0].py),
-            ];
-            let face_n = {
-                let f = face_normal(t);
-                let l = f.norm();
-                let f = if l > 0.0 && l.is_finite() {
-                    f / l
-                } else {
-                    head
-                };
-                if back {
-                    -f
-                } else {
-                    f
-                }
-            };
-            let face_base = match (&cmap, scal) {
-                (Some(m), Some(s)) if s.per_face => m.color(tvals[t]),
-                _ => {
-                    if back {
-                        opts.back_color.unwrap_or(opts.color)
-                    } else {
-                        opts.color
-                    }
-                }
-            };
-            Setup::Tri(Box::new(Tri {
-                ids,
-                p,
-                x0: fx0.max(0.0) as usize,
-                x1: (fx1 as usize).min(sw - 1),
-                y0: fy0.max(0.0) as usize,
-                y1: (fy1 as usize).min(sh - 1),
-                inv_area: 1.0 / signed.abs(),
-                lens,
-                back,
-                face_n,
-                face_base,
-                flat_col: shade(face_n, face_base),
-                near: {
-                    // Depth at the midpoint of the longest edge (in camera space): the two
-                    // halves of a rectangle split along its diagonal get the same key, so the
-                    // stable sort keeps them together.
-                    let (ca, cb, cc) = (cam[a as usize], cam[b as usize], cam[c as usize]);
-                    let (lab, lbc, lca) = ((cb - ca).norm(), (cc - cb).norm(), (ca - cc).norm());
-                    if lab >= lbc && lab >= lca {
-                        0.5 * (va.depth + vb.depth)
-                    } else if lbc >= lca {
-                        0.5 * (vb.depth + vc.depth)
-                    } else {
-                        0.5 * (vc.depth + va.depth)
-                    }
-                },
-            }))
-        })
-        .collect();
-    let mut tris: Vec<Box<Tri>> = Vec::with_capacity(setups.len());
-    for st in setups {
-        match st {
-            Setup::Degenerate => stats.degenerate += 1,
-            Setup::Empty => stats.drawn += 1,
-            Setup::Tri(t) => {
-                stats.drawn += 1;
-                tris.push(t);
-            }
-        }
-    }
-    let translucent = opts.transparency.map(|t| {
-        if t.is_finite() {
-            t.clamp(0.0, 1.0)
-        } else {
-            0.5
-        }
-    });
-    if translucent.is_some() {
-        // Back to front (stable: ties keep the mesh order).
-        tris.sort_by(|a, b| a.near.total_cmp(&b.near));
-    }
     let mut bins: Vec<Vec<u32>> = vec![Vec::new(); nbands];
     for (i, t) in tris.iter().enumerate() {
         for b in bins.iter_mut().take(t.y1 / BAND + 1).skip(t.y0 / BAND) {
             b.push(i as u32);
         }
     }
+    bins
+}
 
-    let wire_half = 0.55 * ss as f64;
-
-    // 4.–5. Bands in parallel.
-    let mut samples = vec![0u8; sw * sh * 4];
-    samples
-        .par_chunks_mut(BAND * sw * 4)
-        .enumerate()
-        .for_each(|(bi, band)| {
-            let rows = band.len() / (sw * 4);
-            for px in band.chunks_exact_mut(4) {
-                px.copy_from_slice(&bg);
+impl Scene<'_> {
+    /// Triangle setup of triangle `t`: corner order, sample box, constant colours, depth key.
+    fn setup(&self, t: usize) -> Setup {
+        let (sw, sh) = (self.frame.sw, self.frame.sh);
+        let opts = self.opts;
+        let [a, b, c] = self.mesh.triangles[t];
+        let (va, vb, vc) = (
+            self.verts[a as usize],
+            self.verts[b as usize],
+            self.verts[c as usize],
+        );
+        let signed = edge(&va, &vb, vc.px, vc.py);
+        if signed == 0.0 || !signed.is_finite() {
+            return Setup::Degenerate;
+        }
+        let xmin = va.px.min(vb.px).min(vc.px);
+        let xmax = va.px.max(vb.px).max(vc.px);
+        let ymin = va.py.min(vb.py).min(vc.py);
+        let ymax = va.py.max(vb.py).max(vc.py);
+        // Samples at (i + 0.5); the covered range is ceil(min - 0.5) ..= floor(max - 0.5).
+        let (fx0, fx1) = ((xmin - 0.5).ceil(), (xmax - 0.5).floor());
+        let (fy0, fy1) = ((ymin - 0.5).ceil(), (ymax - 0.5).floor());
+        if fx1 < 0.0
+            || fy1 < 0.0
+            || fx0 > (sw - 1) as f64
+            || fy0 > (sh - 1) as f64
+            || fx0 > fx1
+            || fy0 > fy1
+        {
+            return Setup::Empty;
+        }
+        // Pixel y grows downwards, so a counter-clockwise (front) triangle has signed < 0.
+        let back = signed > 0.0;
+        let (p, ids) = if back {
+            ([va, vb, vc], [a, b, c])
+        } else {
+            ([va, vc, vb], [a, c, b])
+        };
+        let lens = [
+            (p[2].px - p[1].px).hypot(p[2].py - p[1].py),
+            (p[0].px - p[2].px).hypot(p[0].py - p[2].py),
+            (p[1].px - p[0].px).hypot(p[1].py - p[0].py),
+        ];
+        let face_n = {
+            let f = face_normal(self.mesh, &self.cam, t);
+            let l = f.norm();
+            let f = if l > 0.0 && l.is_finite() {
+                f / l
+            } else {
+                self.lights.head
+            };
+            if back {
+                -f
+            } else {
+                f
             }
-            let mut zbuf = vec![f64::NEG_INFINITY; rows * sw];
-            let y_base = bi * BAND;
-            for &ti in &bins[bi] {
-                let t = &tris[ti as usize];
-                let [p0, p1, p2] = &t.p;
-                let ids = t.ids;
-                let inv_area = t.inv_area;
-                let (lens, face_n, face_base, flat_col) =
-                    (t.lens, t.face_n, t.face_base, t.flat_col);
-                let ylo = t.y0.max(y_base);
-                let yhi = t.y1.min(y_base + rows - 1);
-                for y in ylo..=yhi {
-                    let fy = y as f64 + 0.5;
-                    let row = (y - y_base) * sw;
-                    // Span of this row inside all three half-planes (one sample of slack; the
-                    // edge test below decides).
-                    let (mut xa, mut xb) = (t.x0 as f64, t.x1 as f64);
-                    for (a, b) in [(p1, p2), (p2, p0), (p0, p1)] {
-                        // edge(a, b, x, fy) = k * x + m
-                        let k = -(b.py - a.py);
-                        let m = edge(a, b, 0.0, fy);
-                        if k > 0.0 {
-                            xa = xa.max((-m / k - 0.5).floor() - 1.0);
-                        } else if k < 0.0 {
-                            xb = xb.min((-m / k - 0.5).ceil() + 1.0);
-                        }
-                    }
-                    if xa > xb {
-                        continue;
-                    }
-                    let (xs, xe) = (xa.max(t.x0 as f64) as usize, xb.min(t.x1 as f64) as usize);
-                    for x in xs..=xe {
-                        let fx = x as f64 + 0.5;
-                        // Edge functions: w0 opposite p0, etc. Positive inside (inclusive).
-                        let w0 = edge(p1, p2, fx, fy);
-                        let w1 = edge(p2, p0, fx, fy);
-                        let w2 = edge(p0, p1, fx, fy);
-                        if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
-                            continue;
-                        }
-                        let l = [w0 * inv_area, w1 * inv_area, w2 * inv_area];
-                        let depth = l[0] * p0.depth + l[1] * p1.depth + l[2] * p2.depth;
-                        let zi = row + x;
-                        if translucent.is_none() {
-                            if depth.partial_cmp(&zbuf[zi]) != Some(std::cmp::Ordering::Greater) {
-                                continue;
-                            }
-                            zbuf[zi] = depth;
-                        }
-                        // Perspective-correct weights.
-                        let pw = [l[0] * p0.invw, l[1] * p1.invw, l[2] * p2.invw];
-                        let s = pw[0] + pw[1] + pw[2];
-                        let b = [pw[0] / s, pw[1] / s, pw[2] / s];
-                        let base = match (&cmap, scal) {
-                            (Some(m), Some(sc)) if !sc.per_face => {
-                                let tv = [
-                                    tvals[ids[0] as usize],
-                                    tvals[ids[1] as usize],
-                                    tvals[ids[2] as usize],
-                                ];
-                                let tt = b[0] * tv[0] + b[1] * tv[1] + b[2] * tv[2];
-                                if tt.is_nan() {
-                                    // Missing at some corner: nearest corner decides.
-                                    let j = if b[0] >= b[1] && b[0] >= b[2] {
-                                        0
-                                    } else if b[1] >= b[2] {
-                                        1
-                                    } else {
-                                        2
-                                    };
-                                    m.color(tv[j])
-                                } else {
-                                    m.color(tt)
-                                }
-                            }
-                            _ => face_base,
-                        };
-                        if let Some(tr) = translucent {
-                            let o = zi * 4;
-                            for k in 0..4 {
-                                let c = if k < 3 { base[k] as f64 } else { 255.0 };
-                                let old = band[o + k] as f64;
-                                band[o + k] = ((1.0 - tr) * c + tr * old).round() as u8;
-                            }
-                            continue;
-                        }
-                        let mut col = if opts.shading == Shading::Smooth {
-                            let nn = b[0] * vnormals[ids[0] as usize]
-                                + b[1] * vnormals[ids[1] as usize]
-                                + b[2] * vnormals[ids[2] as usize];
-                            let l = nn.norm();
-                            let nn = if l > 1e-12 {
-                                let nn = nn / l;
-                                if t.back {
-                                    -nn
-                                } else {
-                                    nn
-                                }
-                            } else {
-                                face_n
-                            };
-                            shade(nn, base)
-                        } else if cmap.is_some() && !scal.is_some_and(|s| s.per_face) {
-                            shade(face_n, base)
-                        } else {
-                            flat_col
-                        };
-                        if opts.wireframe {
-                            let dist = (w0 / lens[0]).min(w1 / lens[1]).min(w2 / lens[2]);
-                            if dist < wire_half {
-                                col = [
-                                    opts.wire_color[0],
-                                    opts.wire_color[1],
-                                    opts.wire_color[2],
-                                    255,
-                                ];
-                            }
-                        }
-                        let o = zi * 4;
-                        band[o..o + 4].copy_from_slice(&col);
-                    }
+        };
+        let face_base = match self.colours.per_face() {
+            Some(m) => m.color(self.colours.tvals[t]),
+            None => {
+                if back {
+                    opts.back_color.unwrap_or(opts.color)
+                } else {
+                    opts.color
                 }
             }
-        });
+        };
+        Setup::Tri(Box::new(Tri {
+            ids,
+            p,
+            x0: fx0.max(0.0) as usize,
+            x1: (fx1 as usize).min(sw - 1),
+            y0: fy0.max(0.0) as usize,
+            y1: (fy1 as usize).min(sh - 1),
+            inv_area: 1.0 / signed.abs(),
+            lens,
+            back,
+            face_n,
+            face_base,
+            flat_col: self.lights.shade(face_n, face_base),
+            near: self.depth_key([a, b, c], [va, vb, vc]),
+        }))
+    }
 
-    // 6. Box filter down to the output size.
+    /// Depth at the midpoint of the longest edge (in camera space): the two halves of a
+    /// rectangle split along its diagonal get the same key, so the stable sort keeps them
+    /// together.
+    fn depth_key(&self, [a, b, c]: [u32; 3], [va, vb, vc]: [Vert; 3]) -> f64 {
+        let cam = &self.cam;
+        let (ca, cb, cc) = (cam[a as usize], cam[b as usize], cam[c as usize]);
+        let (lab, lbc, lca) = ((cb - ca).norm(), (cc - cb).norm(), (ca - cc).norm());
+        if lab >= lbc && lab >= lca {
+            0.5 * (va.depth + vb.depth)
+        } else if lbc >= lca {
+            0.5 * (vb.depth + vc.depth)
+        } else {
+            0.5 * (vc.depth + va.depth)
+        }
+    }
+
+    /// Steps 4–5 for one band of sample rows starting at row `y_base`: the background, then
+    /// the triangles binned to it in order.
+    fn draw_band(&self, y_base: usize, band: &mut [u8], bin: &[u32], tris: &[Box<Tri>]) {
+        let sw = self.frame.sw;
+        let rows = band.len() / (sw * 4);
+        for px in band.chunks_exact_mut(4) {
+            px.copy_from_slice(&self.opts.background);
+        }
+        let mut zbuf = vec![f64::NEG_INFINITY; rows * sw];
+        for &ti in bin {
+            self.draw_triangle(&tris[ti as usize], y_base, rows, band, &mut zbuf);
+        }
+    }
+
+    /// Scan conversion of one triangle within a band.
+    fn draw_triangle(
+        &self,
+        t: &Tri,
+        y_base: usize,
+        rows: usize,
+        band: &mut [u8],
+        zbuf: &mut [f64],
+    ) {
+        let sw = self.frame.sw;
+        let [p0, p1, p2] = &t.p;
+        let inv_area = t.inv_area;
+        let ylo = t.y0.max(y_base);
+        let yhi = t.y1.min(y_base + rows - 1);
+        for y in ylo..=yhi {
+            let fy = y as f64 + 0.5;
+            let row = (y - y_base) * sw;
+            // Span of this row inside all three half-planes (one sample of slack; the edge
+            // test below decides).
+            let (mut xa, mut xb) = (t.x0 as f64, t.x1 as f64);
+            for (a, b) in [(p1, p2), (p2, p0), (p0, p1)] {
+                // edge(a, b, x, fy) = k * x + m
+                let k = -(b.py - a.py);
+                let m = edge(a, b, 0.0, fy);
+                if k > 0.0 {
+                    xa = xa.max((-m / k - 0.5).floor() - 1.0);
+                } else if k < 0.0 {
+                    xb = xb.min((-m / k - 0.5).ceil() + 1.0);
+                }
+            }
+            if xa > xb {
+                continue;
+            }
+            let (xs, xe) = (xa.max(t.x0 as f64) as usize, xb.min(t.x1 as f64) as usize);
+            for x in xs..=xe {
+                let fx = x as f64 + 0.5;
+                // Edge functions: w0 opposite p0, etc. Positive inside (inclusive).
+                let w = [
+                    edge(p1, p2, fx, fy),
+                    edge(p2, p0, fx, fy),
+                    edge(p0, p1, fx, fy),
+                ];
+                if w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0 {
+                    continue;
+                }
+                let l = [w[0] * inv_area, w[1] * inv_area, w[2] * inv_area];
+                let depth = l[0] * p0.depth + l[1] * p1.depth + l[2] * p2.depth;
+                let zi = row + x;
+                if self.translucent.is_none() {
+                    if depth.partial_cmp(&zbuf[zi]) != Some(std::cmp::Ordering::Greater) {
+                        continue;
+                    }
+                    zbuf[zi] = depth;
+                }
+                // Perspective-correct weights.
+                let pw = [l[0] * p0.invw, l[1] * p1.invw, l[2] * p2.invw];
+                let s = pw[0] + pw[1] + pw[2];
+                let b = [pw[0] / s, pw[1] / s, pw[2] / s];
+                let base = self.base_colour(t, b);
+                let o = zi * 4;
+                if let Some(tr) = self.translucent {
+                    for k in 0..4 {
+                        let c = if k < 3 { base[k] as f64 } else { 255.0 };
+                        let old = band[o + k] as f64;
+                        band[o + k] = ((1.0 - tr) * c + tr * old).round() as u8;
+                    }
+                    continue;
+                }
+                let col = self.lit_colour(t, b, base, w);
+                band[o..o + 4].copy_from_slice(&col);
+            }
+        }
+    }
+
+    /// The unlit colour at barycentric weights `b` (corner order of `t`): per-vertex scalars
+    /// interpolated (a missing corner value: the nearest corner decides), else the face's.
+    #[inline]
+    fn base_colour(&self, t: &Tri, b: [f64; 3]) -> [u8; 3] {
+        let Some(m) = self.colours.per_vertex() else {
+            return t.face_base;
+        };
+        let tvals = &self.colours.tvals;
+        let ids = t.ids;
+        let tv = [
+            tvals[ids[0] as usize],
+            tvals[ids[1] as usize],
+            tvals[ids[2] as usize],
+        ];
+        let tt = b[0] * tv[0] + b[1] * tv[1] + b[2] * tv[2];
+        if tt.is_nan() {
+            // Missing at some corner: nearest corner decides.
+            let j = if b[0] >= b[1] && b[0] >= b[2] {
+                0
+            } else if b[1] >= b[2] {
+                1
+            } else {
+                2
+            };
+            m.color(tv[j])
+        } else {
+            m.color(tt)
+        }
+    }
+
+    /// The lit colour of a sample (z-buffer mode), with the wireframe where the sample is
+    /// within half a wire width of an edge (`w`: the edge functions).
+    #[inline]
+    fn lit_colour(&self, t: &Tri, b: [f64; 3], base: [u8; 3], w: [f64; 3]) -> [u8; 4] {
+        let opts = self.opts;
+        let mut col = if opts.shading == Shading::Smooth {
+            let (vn, ids) = (&self.vnormals, t.ids);
+            let nn = b[0] * vn[ids[0] as usize]
+                + b[1] * vn[ids[1] as usize]
+                + b[2] * vn[ids[2] as usize];
+            let l = nn.norm();
+            let nn = if l > 1e-12 {
+                let nn = nn / l;
+                if t.back {
+                    -nn
+                } else {
+                    nn
+                }
+            } else {
+                t.face_n
+            };
+            self.lights.shade(nn, base)
+        } else if self.colours.per_vertex().is_some() {
+            self.lights.shade(t.face_n, base)
+        } else {
+            t.flat_col
+        };
+        if opts.wireframe {
+            let wire_half = 0.55 * self.frame.ss as f64;
+            let lens = t.lens;
+            let dist = (w[0] / lens[0]).min(w[1] / lens[1]).min(w[2] / lens[2]);
+            if dist < wire_half {
+                col = [
+                    opts.wire_color[0],
+                    opts.wire_color[1],
+                    opts.wire_color[2],
+                    255,
+                ];
+            }
+        }
+        col
+    }
+}
+
+/// Step 6: each pixel the average of its `ss × ss` samples (rounded).
+fn downsample(samples: Vec<u8>, frame: &Frame) -> Image {
+    let (w, h, ss, sw) = (frame.w, frame.h, frame.ss, frame.sw);
     if ss == 1 {
-        return (
-            Image {
-                width: w as u32,
-                height: h as u32,
-                rgba: samples,
-            },
-            stats,
-        );
+        return Image {
+            width: w as u32,
+            height: h as u32,
+            rgba: samples,
+        };
     }
     let mut rgba = vec![0u8; w * h * 4];
     let n2 = (ss * ss) as u32;
@@ -721,14 +941,11 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
             }
         }
     });
-    (
-        Image {
-            width: w as u32,
-            height: h as u32,
-            rgba,
-        },
-        stats,
-    )
+    Image {
+        width: w as u32,
+        height: h as u32,
+        rgba,
+    }
 }
 
 /// Camera basis (right, up, towards-eye) for the options' azimuth, elevation and up axis:
