@@ -23,6 +23,9 @@ struct Cli {
     /// Write machine-readable figures (counts, validity, timings) to this JSON file.
     #[arg(long, global = true, value_name = "FILE.json")]
     report: Option<PathBuf>,
+    /// Let volume headers name data files outside their own folder (absolute paths, `..`).
+    #[arg(long, global = true)]
+    allow_outside_data: bool,
 }
 
 #[derive(Subcommand)]
@@ -103,6 +106,58 @@ fn main() -> ExitCode {
         Command::Boundary(_) => "boundary",
         Command::Contour(_) => "contour",
     };
+    // every path named on the command line, checked before anything is read or written
+    let mut paths = cmd::Paths::default();
+    match &cli.command {
+        Command::Demo(_) => {}
+        Command::Info(a) => paths.inputs.push(&a.input),
+        Command::Convert(a) => {
+            paths.inputs.push(&a.input);
+            paths.output(&a.output);
+        }
+        Command::Render(a) => {
+            paths.inputs.push(&a.input);
+            paths.output(&a.output);
+        }
+        Command::Triangulate(a) => {
+            paths.inputs.push(&a.input);
+            paths.inputs.extend(a.constraints.as_deref());
+            paths.output(&a.output);
+        }
+        Command::Isosurface(a) => {
+            paths.inputs.push(&a.input);
+            paths.output(&a.output);
+        }
+        Command::Graph(a) => {
+            paths.inputs.push(&a.input);
+            paths.output(&a.output);
+        }
+        Command::Boundary(a) => {
+            paths.inputs.push(&a.input);
+            paths.inputs.extend(a.keep.as_deref());
+            paths.output(&a.output);
+            if let Some(i) = &a.interior {
+                paths.output(i);
+            }
+        }
+        Command::Contour(a) => {
+            paths.inputs.push(&a.input);
+            paths.output(&a.output);
+        }
+    }
+    if let Some(r) = &cli.report {
+        paths.output(r);
+    }
+    if let Err(f) = paths.check() {
+        // nothing is written, not even the report: its own path may be the problem
+        eprintln!("error: {}", f.msg);
+        return ExitCode::from(f.code);
+    }
+    drop(paths);
+    // from here no output may replace a file that was read (data files named by headers
+    // included) or a file this run already wrote
+    morpho::io::guard::protect_inputs();
+    morpho::io::guard::allow_data_outside_header_folder(cli.allow_outside_data);
     let mut report = Report::new(name);
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a, &mut report),

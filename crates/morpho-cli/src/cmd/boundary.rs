@@ -30,7 +30,7 @@ use morpho::io::{self, read_points};
 use morpho::render::figures;
 use morpho::Error;
 use serde_json::json;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -92,14 +92,6 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         _ => return Err(Failure::usage("--until must be `all` or `locked`")),
     };
     let ext = super::extension(&args.output);
-    let mut inputs: Vec<&Path> = vec![&args.input];
-    if let Some(k) = &args.keep {
-        inputs.push(k);
-    }
-    super::check_not_input(&args.output, &inputs)?;
-    if let Some(i) = &args.interior {
-        super::check_not_input(i, &inputs)?;
-    }
     let ps = report.time("read", || read_points(&args.input))?;
     if ps.dim == 3 {
         let keep = match &args.keep {

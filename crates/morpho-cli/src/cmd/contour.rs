@@ -10,7 +10,6 @@
 //! Report keys: `samples`, `triangles` or `tetrahedra`, `black`, `components`, `cycles`
 //! (2D) or `surface_triangles` (3D), `skipped`, `value`.
 
-use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
 use morpho::contour::{Rating, SampleContour, SampleOptions};
@@ -53,7 +52,6 @@ fn contour_samples(samples: &PointSet, opts: &SampleOptions) -> morpho::Result<S
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    check_not_input(&args.output, &[&args.input])?;
     let fmt = Format::of(&args.output)?;
     let plane_out = matches!(fmt, Format::GeoJson | Format::Json | Format::Svg);
     let mesh_out = io::is_mesh_format(fmt);

@@ -3,7 +3,6 @@
 //! `morpho triangulate --tets` writes it) converts to VTK (`.vtu`, `.vtk`), and so does a
 //! triangle mesh.
 
-use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
 use morpho::io::{self, read_any, Data, Encoding, Format};
@@ -25,7 +24,6 @@ pub struct Args {
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    check_not_input(&args.output, &[&args.input])?;
     Format::of(&args.output)?;
     let enc = if args.ascii {
         Encoding::Ascii

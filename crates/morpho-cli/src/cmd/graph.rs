@@ -5,7 +5,6 @@
 //! `"triangles"`; γ kinds add `"gamma": [[c0′, c1′]…]` aligned with the simplices), `.svg` (2D),
 //! `.ply` (edges as a PLY `edge` element, triangles as faces).
 
-use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
 use morpho::graphs::{graph_2d, graph_3d, Kind};
@@ -90,7 +89,6 @@ pub fn parse_kind(a: &Args) -> Result<Kind, Failure> {
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    check_not_input(&args.output, &[&args.input])?;
     let kind = parse_kind(&args)?;
     kind.validate().map_err(|e| Failure::usage(e.to_string()))?;
     let fmt = Format::of(&args.output)?;

@@ -5,7 +5,6 @@
 //! NaN cells were skipped), and the global `elapsed_s`. A level outside the data range writes an
 //! empty mesh, sets `note` and exits 0.
 
-use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
 use morpho::io::{self, Encoding};
@@ -69,7 +68,6 @@ pub struct Args {
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    check_not_input(&args.output, &[&args.input])?;
     io::Format::of(&args.output)?;
     let vol = report.time("read", || io::read_volume(&args.input))?;
     let t = std::time::Instant::now();

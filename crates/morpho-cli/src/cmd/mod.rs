@@ -25,22 +25,49 @@ pub fn extension(p: &Path) -> String {
         .to_ascii_lowercase()
 }
 
-/// Refuses to write an output over an input file (same path after resolving links).
-pub fn check_not_input(output: &Path, inputs: &[&Path]) -> Result<(), Failure> {
-    let out = std::fs::canonicalize(output).ok();
-    for i in inputs {
-        let same = match (&out, std::fs::canonicalize(i).ok()) {
-            (Some(a), Some(b)) => *a == b,
-            _ => output == *i,
-        };
-        if same {
-            return Err(Failure::usage(format!(
-                "{}: output would overwrite the input; choose another -o",
-                output.display()
-            )));
+/// The files a command names on its command line: what it reads and what it writes
+/// (`--report` included; the data file beside an `.mhd` output too).
+#[derive(Default)]
+pub struct Paths<'a> {
+    pub inputs: Vec<&'a Path>,
+    pub outputs: Vec<std::borrow::Cow<'a, Path>>,
+}
+
+impl<'a> Paths<'a> {
+    /// Adds an output (and the data file its format writes beside it).
+    pub fn output(&mut self, p: &'a Path) {
+        if extension(p) == "mhd" {
+            self.outputs.push(p.with_extension("raw").into());
         }
+        self.outputs.push(p.into());
     }
-    Ok(())
+
+    /// Checks, before anything is read or computed, that no output is an input, that no two
+    /// outputs are the same file, and that every output is a path morpho may write
+    /// ([`morpho::io::guard::output_target`]: a new path, a regular file, a FIFO or a
+    /// character device). Files that headers name (detached volume data) are only known
+    /// once read: the writers check them ([`morpho::io::guard`]).
+    pub fn check(&self) -> Result<(), Failure> {
+        use morpho::io::guard::same_file;
+        for (k, o) in self.outputs.iter().enumerate() {
+            if let Some(i) = self.inputs.iter().find(|i| same_file(o, i)) {
+                return Err(Failure::usage(format!(
+                    "{}: output would overwrite the input {}; choose another output",
+                    o.display(),
+                    i.display()
+                )));
+            }
+            if let Some(q) = self.outputs[..k].iter().find(|q| same_file(o, q)) {
+                return Err(Failure::usage(format!(
+                    "{} and {} are the same file; choose distinct outputs",
+                    q.display(),
+                    o.display()
+                )));
+            }
+            morpho::io::guard::output_target(o)?;
+        }
+        Ok(())
+    }
 }
 
 /// Rows of `K` point indices (keep edges/triangles, constraint segments): one row per line,

@@ -8,7 +8,6 @@
 //!   `--color-by` a vertex or face property or `x`/`y`/`z`);
 //! - volumes → PNG of the three orthogonal middle slices, or of one slice with `--slice z,10`.
 
-use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
 use morpho::io::{self, read_any, Data, Format};
@@ -90,7 +89,6 @@ pub struct Args {
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    check_not_input(&args.output, &[&args.input])?;
     let out_fmt = Format::of(&args.output)?;
     if !matches!(out_fmt, Format::Svg | Format::Png) {
         return Err(Failure::usage(format!(

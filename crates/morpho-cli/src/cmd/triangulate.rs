@@ -14,14 +14,13 @@
 //! segments split at the points they pass through), the SVG draws them bold, and the report
 //! has `constrained_edges`, `segments`, `splits`.
 
-use super::check_not_input;
 use crate::report::Report;
 use crate::Failure;
 use morpho::delaunay::{cdt, d2, d3};
 use morpho::io::json::{Triangulation2, Triangulation3};
 use morpho::io::{self, Format};
 use morpho::render::figures;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -49,11 +48,6 @@ fn is_mesh(fmt: Format) -> bool {
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    let mut inputs: Vec<&Path> = vec![&args.input];
-    if let Some(c) = &args.constraints {
-        inputs.push(c);
-    }
-    check_not_input(&args.output, &inputs)?;
     let fmt = Format::of(&args.output)?;
     let pts = report.time("read", || io::read_points(&args.input))?;
     if pts.dim == 2 {

@@ -230,7 +230,7 @@ pub fn read(path: &Path) -> Result<Volume> {
                 "line {dl}: ElementDataFile '{dv}' (lists and series are not supported)"
             )));
         } else {
-            let dpath = beside(path, &dv);
+            let dpath = beside(path, &dv)?;
             let (df, dlen) = open_data(&dpath)?;
             (Box::new(BufReader::new(df)), dlen)
         };
@@ -332,6 +332,8 @@ pub fn write(path: &Path, v: &Volume) -> Result<()> {
         ));
     }
     let h = header(v, ty, &raw_name)?;
+    // both files may be written, and neither is an input, before either is
+    super::guard::check_outputs(&[&raw_path, path])?;
     super::write_atomic(&raw_path, |w| {
         for chunk in v.data.chunks(1 << 16) {
             w.write_all(&encode(chunk, ty, false))

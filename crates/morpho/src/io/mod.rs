@@ -26,6 +26,7 @@
 
 pub mod csv;
 pub mod geojson;
+pub mod guard;
 pub mod html;
 pub mod json;
 pub mod mhd;
@@ -119,18 +120,16 @@ impl Format {
 /// Reads a whole file, refusing files larger than [`MAX_FILE_BYTES`], and decompresses it when
 /// its name ends in `.gz` or it starts with the gzip magic bytes.
 pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
-    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
-    if meta.is_dir() {
-        return Err(Error::invalid("is a directory, not a file").with_path(path));
+    use std::io::Read;
+    let (f, len) = guard::open_input(path)?;
+    let mut bytes = Vec::with_capacity(len as usize);
+    // a file that grows while it is read is cut at the limit, not followed
+    f.take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| Error::io(path, e))?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(Error::invalid("file grew past the size morpho reads").with_path(path));
     }
-    if meta.len() > MAX_FILE_BYTES {
-        return Err(Error::invalid(format!(
-            "file is {} bytes, more than morpho reads",
-            meta.len()
-        ))
-        .with_path(path));
-    }
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     if bytes.len() >= 2 && bytes[0] == 0x1f && bytes[1] == 0x8b {
         return gunzip(&bytes, MAX_FILE_BYTES).map_err(|e| e.with_path(path));
     }
@@ -153,7 +152,8 @@ pub fn gunzip(bytes: &[u8], limit: u64) -> Result<Vec<u8>> {
 
 /// Writes `path` atomically: the content goes to a temporary file in the same folder, which is
 /// renamed over `path` only when `write` succeeded. On error nothing is left behind, and the
-/// error names `path` (unless `write` named another file).
+/// error names `path` (unless `write` named another file). Which paths may be written, and
+/// how links, FIFOs and devices are treated, is decided by [`guard::output_target`].
 ///
 /// ```
 /// let dir = tempfile::tempdir().unwrap();
@@ -166,7 +166,21 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()
 }
 
 fn write_atomic_inner(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
-    let dir = match path.parent() {
+    let target = match guard::output_target(path)? {
+        guard::Target::Replace(t) => t,
+        guard::Target::Stream => {
+            // a FIFO or a character device: written straight into, never replaced
+            let f = std::fs::OpenOptions::new()
+                .write(true)
+                .open(path)
+                .map_err(|e| Error::io(path, e))?;
+            let mut w = std::io::BufWriter::new(f);
+            write(&mut w)?;
+            w.flush().map_err(|e| Error::io(path, e))?;
+            return Ok(());
+        }
+    };
+    let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
@@ -189,7 +203,8 @@ fn write_atomic_inner(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<
             .as_file()
             .set_permissions(std::fs::Permissions::from_mode(0o644));
     }
-    tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
+    tmp.persist(&target).map_err(|e| Error::io(path, e.error))?;
+    guard::written(&target);
     Ok(())
 }
 

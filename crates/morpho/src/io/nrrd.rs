@@ -209,7 +209,7 @@ pub fn read(path: &Path) -> Result<Volume> {
                     "line {l}: NRRD data file lists and series are not supported"
                 )));
             }
-            let dpath = beside(path, v);
+            let dpath = beside(path, v)?;
             let (df, dlen) = open_data(&dpath)?;
             let mut dr = BufReader::new(df);
             let mut c = 0;

@@ -251,23 +251,15 @@ pub(crate) fn read_data(
     Ok(out)
 }
 
-/// Opens a data file and returns it with its length.
+/// Opens a data file (or a header) and returns it with its length ([`super::guard::open_input`]).
 pub(crate) fn open_data(path: &Path) -> Result<(std::fs::File, u64)> {
-    let f = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
-    let len = f.metadata().map_err(|e| Error::io(path, e))?.len();
-    if len > super::MAX_FILE_BYTES {
-        return Err(Error::invalid("data file is larger than morpho reads").with_path(path));
-    }
-    Ok((f, len))
+    super::guard::open_input(path)
 }
 
 /// True when the file starts with the gzip magic bytes.
 pub(crate) fn has_gzip_magic(path: &Path) -> bool {
     let mut m = [0u8; 2];
-    std::fs::File::open(path)
-        .and_then(|mut f| f.read_exact(&mut m))
-        .is_ok()
-        && m == [0x1f, 0x8b]
+    open_data(path).is_ok_and(|(mut f, _)| f.read_exact(&mut m).is_ok()) && m == [0x1f, 0x8b]
 }
 
 /// Reads one header line (without line end) of at most [`MAX_HEADER_LINE`] bytes; `None` at
@@ -366,16 +358,10 @@ pub(crate) fn encode(data: &[f32], ty: Sample, big: bool) -> Vec<u8> {
     out
 }
 
-/// Resolves a data file name relative to the folder of `header`.
-pub(crate) fn beside(header: &Path, name: &str) -> PathBuf {
-    let p = Path::new(name);
-    if p.is_absolute() {
-        return p.to_path_buf();
-    }
-    match header.parent() {
-        Some(d) => d.join(p),
-        None => p.to_path_buf(),
-    }
+/// Resolves a data file name relative to the folder of `header`, never outside it
+/// ([`super::guard::data_file`]).
+pub(crate) fn beside(header: &Path, name: &str) -> Result<PathBuf> {
+    super::guard::data_file(header, name)
 }
 
 fn get<'a>(o: &'a Map<String, Value>, keys: &[&str]) -> Option<(&'a str, &'a Value)> {
@@ -443,8 +429,9 @@ pub fn is_sidecar(v: &Value) -> bool {
 /// Reads a volume (detached data is found relative to `path`).
 pub fn read(path: &Path) -> Result<Volume> {
     let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| f.take(MAX_HEADER_BYTES + 1).read_to_end(&mut bytes))
+    let (f, _) = open_data(path)?;
+    f.take(MAX_HEADER_BYTES + 1)
+        .read_to_end(&mut bytes)
         .map_err(|e| Error::io(path, e))?;
     if bytes.len() as u64 > MAX_HEADER_BYTES {
         return Err(Error::invalid(
@@ -547,7 +534,7 @@ pub fn read(path: &Path) -> Result<Volume> {
     let gz_key = get(o, &["compression"])
         .and_then(|(_, c)| c.as_str())
         .map(|c| c.trim().to_ascii_lowercase());
-    let dpath = beside(path, data);
+    let dpath = beside(path, data)?;
     let codec = match gz_key.as_deref() {
         Some(c) if c.starts_with("gzip") || c.starts_with("gz") => Codec::Gzip,
         Some(c) if c.starts_with("zlib") => Codec::Zlib,
@@ -580,6 +567,8 @@ pub fn write(path: &Path, v: &Volume) -> Result<()> {
         .ok_or_else(|| Error::invalid("the sidecar name must be valid UTF-8"))?
         .to_string();
     let ty = output_type(v);
+    // both files may be written, and neither is an input, before either is
+    super::guard::check_outputs(&[&raw_path, path])?;
     super::write_atomic(&raw_path, |w| {
         for chunk in v.data.chunks(1 << 16) {
             w.write_all(&encode(chunk, ty, false))
