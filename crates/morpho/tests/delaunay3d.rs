@@ -1,8 +1,9 @@
 //! 3D and d-dimensional Delaunay: brute-force oracles on random and degenerate inputs.
 
-use morpho::delaunay::d3::{insphere_exact, orient3d_exact, triangulate, Delaunay3, NONE};
+use morpho::delaunay::d3::{insphere_exact, orient3d_exact, triangulate, Delaunay3};
 use morpho::delaunay::dd::{self, triangulate_d, DelaunayD};
 use morpho::geom::Point3;
+use morpho::util::NONE;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use std::collections::{BTreeSet, HashMap, HashSet};
@@ -477,7 +478,7 @@ fn check_d(g: &DelaunayD) {
             f.sort_unstable();
             *facets.entry(f).or_default() += 1;
             let n = g.neighbors[i][k];
-            if n != dd::NONE {
+            if n != NONE {
                 assert!(g.neighbors[n as usize].contains(&(i as u32)));
             }
         }

@@ -44,8 +44,9 @@
 use super::indicator::Key;
 use super::indicator::MinKey;
 use super::validity::{segments_cross_properly, SegGrid};
-use crate::delaunay::d2::{Delaunay2, NONE};
+use crate::delaunay::d2::Delaunay2;
 use crate::geom::predicates::raw::orient2d;
+use crate::util::NONE;
 use std::collections::{BinaryHeap, HashMap, HashSet};
 
 /// Heap entries: smallest key first, ties by the smallest item.

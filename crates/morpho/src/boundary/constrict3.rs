@@ -45,59 +45,14 @@
 
 pub use super::indicator::Key;
 use super::indicator::MinKey;
-use crate::delaunay::d3::{Delaunay3, FACE_OF, NONE};
+use crate::delaunay::d3::{Delaunay3, FACE_OF};
 use crate::graphs::gamma::{cross3, dot3, sub3};
+use crate::util::{sorted3, IdSet, NONE};
 use num_bigint::BigInt;
-use std::collections::{BinaryHeap, HashMap};
-use std::hash::{BuildHasherDefault, Hasher};
+use std::collections::BinaryHeap;
 
 /// Heap entries: smallest key first, ties by the smallest item.
 type Entry = MinKey<(u32, u8)>;
-
-/// A fast multiplicative hasher for integer keys (vertex and edge ids; not for adversarial
-/// keys from the network — ids here come from our own tetrahedralization).
-#[derive(Default, Clone, Copy)]
-pub struct IdHasher(u64);
-
-impl Hasher for IdHasher {
-    #[inline]
-    fn write(&mut self, bytes: &[u8]) {
-        // eight bytes at a time ([u32; 3] keys hash their 12 bytes in one call)
-        let mut chunks = bytes.chunks_exact(8);
-        for c in &mut chunks {
-            let mut w = [0u8; 8];
-            w.copy_from_slice(c);
-            self.write_u64(u64::from_le_bytes(w));
-        }
-        let rest = chunks.remainder();
-        if !rest.is_empty() {
-            let mut w = [0u8; 8];
-            w[..rest.len()].copy_from_slice(rest);
-            self.write_u64(u64::from_le_bytes(w) ^ ((rest.len() as u64) << 59));
-        }
-    }
-    #[inline]
-    fn write_u32(&mut self, x: u32) {
-        self.write_u64(x as u64);
-    }
-    #[inline]
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(26) ^ x).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    }
-    #[inline]
-    fn write_usize(&mut self, x: usize) {
-        self.write_u64(x as u64);
-    }
-    #[inline]
-    fn finish(&self) -> u64 {
-        self.0 ^ (self.0 >> 29)
-    }
-}
-
-/// A `HashMap` with [`IdHasher`].
-pub type IdMap<K, V> = HashMap<K, V, BuildHasherDefault<IdHasher>>;
-/// A `HashSet` with [`IdHasher`].
-pub type IdSet<K> = std::collections::HashSet<K, BuildHasherDefault<IdHasher>>;
 
 /// When to stop the 3D constriction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -297,11 +252,6 @@ struct State<'a> {
     nbv: usize,
     keep: IdSet<[u32; 3]>,
     key: Key,
-}
-
-fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
-    f.sort_unstable();
-    f
 }
 
 impl State<'_> {

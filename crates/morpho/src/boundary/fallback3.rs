@@ -71,10 +71,10 @@
 //! every given triangle (as produced by [`super::constrict3`] or the convex hull).
 
 use super::constrict3::gamma_indicator_3d;
-use super::constrict3::{IdMap, IdSet};
 use super::indicator::MinKey;
 use super::validity3::{meet_beyond_edge, meet_beyond_vertex, triangles_intersect};
 use crate::geom::predicates::raw::orient3d;
+use crate::util::{sorted3, IdMap, IdSet};
 use std::collections::BinaryHeap;
 
 /// How far below c a rejected triangle's γ-scan goes on ([`General3::gamma_decide`]): the
@@ -86,11 +86,6 @@ const UB_LOOKAHEAD: f64 = 0.25;
 type Entry = MinKey<([u32; 3], u32)>;
 
 type P = [f64; 3];
-
-fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
-    f.sort_unstable();
-    f
-}
 
 /// The rotation of an oriented face that starts at its smallest vertex.
 fn sorted_rot(f: [u32; 3]) -> [u32; 3] {

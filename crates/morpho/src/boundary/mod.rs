@@ -354,7 +354,7 @@ fn live_tri_edges(d: &Delaunay2, alive: &[bool]) -> Vec<[u32; 2]> {
             for e in 0..3 {
                 let (a, b) = (tri[(e + 1) % 3], tri[(e + 2) % 3]);
                 let nb = d.neighbors[t][e];
-                if nb == crate::delaunay::d2::NONE || !alive[nb as usize] || a < b {
+                if nb == crate::util::NONE || !alive[nb as usize] || a < b {
                     out.push([a, b]);
                 }
             }
@@ -626,7 +626,7 @@ fn near_locked(
         let mut next = Vec::new();
         for &t in &front {
             for &n in &d.neighbors[t as usize] {
-                if n != crate::delaunay::d3::NONE && alive[n as usize] && !region[n as usize] {
+                if n != crate::util::NONE && alive[n as usize] && !region[n as usize] {
                     region[n as usize] = true;
                     next.push(n);
                 }
@@ -740,7 +740,7 @@ fn boundary_3d_unit(points: &[crate::geom::Point3], opts: &Options3) -> Result<B
                     let mut s = [tet[f[0]], tet[f[1]], tet[f[2]]];
                     s.sort_unstable();
                     // each interior face once (from the smaller tetrahedron), hull faces always
-                    if n == crate::delaunay::d3::NONE || !alive[n as usize] || (t as u32) < n {
+                    if n == crate::util::NONE || !alive[n as usize] || (t as u32) < n {
                         out.push(s);
                     }
                 }

@@ -228,13 +228,9 @@ pub fn self_intersections_trusting(
 /// indices in any order): the flags for [`self_intersections_trusting`] when the tetrahedra
 /// form a tetrahedralization.
 pub fn faces_of_tetrahedra(tets: &[[u32; 4]], tris: &[[u32; 3]]) -> Vec<bool> {
+    use crate::util::sorted3 as sort3;
     use rayon::prelude::*;
-    let sort3 = |t: [u32; 3]| {
-        let mut s = t;
-        s.sort_unstable();
-        s
-    };
-    let mut index: crate::boundary::constrict3::IdMap<[u32; 3], u32> = Default::default();
+    let mut index: crate::util::IdMap<[u32; 3], u32> = Default::default();
     index.reserve(tris.len());
     for (i, &t) in tris.iter().enumerate() {
         index.entry(sort3(t)).or_insert(i as u32);
@@ -332,7 +328,7 @@ fn near_untrusted(pos: &[P], tris: &[[u32; 3]], trusted: &[bool]) -> Option<Vec<
         Some((mn, mx))
     };
     let key = |x: u64, y: u64, z: u64| x | y << 21 | z << 42;
-    let mut hot: crate::boundary::constrict3::IdSet<u64> = Default::default();
+    let mut hot: crate::util::IdSet<u64> = Default::default();
     for &i in &untrusted {
         let (mn, mx) = range(boxes[i as usize])?;
         if (0..3).map(|k| mx[k] - mn[k] + 1).product::<u64>() > 4096 {

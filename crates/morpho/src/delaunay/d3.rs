@@ -49,13 +49,13 @@
 
 use crate::geom::predicates::raw::{insphere, orient2d, orient3d};
 use crate::geom::Point3;
+use crate::util::hilbert::hilbert3;
+use crate::util::{Rng, NONE};
 use crate::{Error, Result};
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use std::collections::HashSet;
 
-/// Marker for "no tetrahedron" in [`Delaunay3::neighbors`] and [`Face3::tets`].
-pub const NONE: u32 = u32::MAX;
 /// The infinite vertex (internal).
 const INF: u32 = u32::MAX;
 /// Marks a freed tetrahedron slot (internal, in vertex slot 0).
@@ -152,7 +152,7 @@ struct Builder<'a> {
     stamp: Vec<u32>,
     free: Vec<u32>,
     last: u32,
-    rng: u64,
+    rng: Rng,
     stack: Vec<u32>,
     conflict: Vec<u32>,
     bnd: Vec<Bnd>,
@@ -168,13 +168,7 @@ impl<'a> Builder<'a> {
 
     #[inline]
     fn rand(&mut self) -> u64 {
-        // xorshift64
-        let mut x = self.rng;
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        self.rng = x;
-        x
+        self.rng.next_u64()
     }
 
     fn alloc(&mut self) -> u32 {
@@ -466,46 +460,6 @@ fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     }
 }
 
-/// 3D Hilbert index of integer coordinates with `bits` bits each (Skilling's transpose method).
-fn hilbert3(mut x: [u32; 3], bits: u32) -> u64 {
-    let m = 1u32 << (bits - 1);
-    let mut q = m;
-    while q > 1 {
-        let p = q - 1;
-        for i in 0..3 {
-            if x[i] & q != 0 {
-                x[0] ^= p;
-            } else {
-                let t = (x[0] ^ x[i]) & p;
-                x[0] ^= t;
-                x[i] ^= t;
-            }
-        }
-        q >>= 1;
-    }
-    for i in 1..3 {
-        x[i] ^= x[i - 1];
-    }
-    let mut t = 0;
-    q = m;
-    while q > 1 {
-        if x[2] & q != 0 {
-            t ^= q - 1;
-        }
-        q >>= 1;
-    }
-    for xi in x.iter_mut() {
-        *xi ^= t;
-    }
-    let mut h = 0u64;
-    for b in (0..bits).rev() {
-        for xi in x {
-            h = (h << 1) | ((xi >> b) & 1) as u64;
-        }
-    }
-    h
-}
-
 /// BRIO insertion order of `pts` (fixed seed), each round Hilbert-sorted.
 pub(crate) fn brio_order(pts: &[[f64; 3]]) -> Vec<u32> {
     let n = pts.len();
@@ -688,7 +642,7 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
         stamp: Vec::with_capacity(7 * n + 16),
         free: Vec::new(),
         last: 0,
-        rng: 0x2545_F491_4F6C_DD1D,
+        rng: Rng::new(0x2545_F491_4F6C_DD1D),
         stack: Vec::new(),
         conflict: Vec::new(),
         bnd: Vec::new(),
@@ -1098,22 +1052,6 @@ mod tests {
             .sum();
         assert!((vol - 8.0).abs() < 1e-12, "{vol}");
         assert_eq!(d.hull.len(), 6 * 8);
-    }
-
-    #[test]
-    fn hilbert_is_bijective_on_small_grid() {
-        let mut keys: Vec<u64> = Vec::new();
-        for x in 0..8 {
-            for y in 0..8 {
-                for z in 0..8 {
-                    keys.push(hilbert3([x, y, z], 3));
-                }
-            }
-        }
-        keys.sort_unstable();
-        keys.dedup();
-        assert_eq!(keys.len(), 512);
-        assert_eq!(*keys.last().unwrap(), 511);
     }
 
     #[test]

@@ -38,14 +38,13 @@
 //! Randomized incremental: about `O(n^⌈d/2⌉)` expected for points in general position, plus the
 //! exact-fallback cost; meant for up to a few thousand points (exactness first, speed second).
 
+use crate::util::{Rng, NONE};
 use crate::{Error, Result};
 use num_bigint::{BigInt, Sign};
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use std::collections::HashMap;
 
-/// Marker for "no simplex" in [`DelaunayD::neighbors`].
-pub const NONE: u32 = u32::MAX;
 const INF: u32 = u32::MAX;
 const FREE: u32 = u32::MAX - 1;
 /// Largest supported dimension.
@@ -325,7 +324,7 @@ struct Builder<'a> {
     stamp: Vec<u32>,
     free: Vec<u32>,
     last: u32,
-    rng: u64,
+    rng: Rng,
     overflow: bool,
 }
 
@@ -346,12 +345,7 @@ impl<'a> Builder<'a> {
         self.sn[s as usize * d1 + i] = code;
     }
     fn rand(&mut self) -> u64 {
-        let mut x = self.rng;
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        self.rng = x;
-        x
+        self.rng.next_u64()
     }
     fn alloc(&mut self) -> u32 {
         let d1 = self.d + 1;
@@ -602,7 +596,7 @@ pub fn triangulate_d(coords: &[f64], dim: usize) -> Result<DelaunayD> {
         stamp: vec![0],
         free: Vec::new(),
         last: 0,
-        rng: 0x2545_F491_4F6C_DD1D,
+        rng: Rng::new(0x2545_F491_4F6C_DD1D),
         overflow: false,
     };
     for i in 0..d1 {

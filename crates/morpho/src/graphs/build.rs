@@ -268,7 +268,7 @@ fn nearest_tri(d: &d2::Delaunay2, p: &[[f64; 2]]) -> (Vec<u32>, Vec<f64>) {
                 let t = k * size + i;
                 let nb = &d.neighbors[t];
                 for j in 0..3 {
-                    if nb[j] == d2::NONE || nb[j] as usize > t {
+                    if nb[j] == crate::util::NONE || nb[j] as usize > t {
                         let (a, b) = (tri[(j + 1) % 3], tri[(j + 2) % 3]);
                         let x = dist2(&p[a as usize], &p[b as usize]);
                         offer(&mut near[a as usize], a, b, x);
@@ -332,7 +332,7 @@ fn tri_edges(d: &d2::Delaunay2, p: &[[f64; 2]]) -> Vec<BEdge> {
     const BLOCK: usize = 1 << 14;
     let reports = |t: usize, j: usize| {
         let nb = d.neighbors[t][j];
-        nb == d2::NONE || nb as usize > t
+        nb == crate::util::NONE || nb as usize > t
     };
     let counts: Vec<usize> = (0..d.triangles.len().div_ceil(BLOCK))
         .into_par_iter()

@@ -28,10 +28,11 @@
 use super::gamma::{offset_of, CenterInterval, EdgeFrame, TriFrame};
 use super::grid::Grid;
 use super::lune::LuneGrid;
-use crate::delaunay::d2::{Delaunay2, NONE};
+use crate::delaunay::d2::Delaunay2;
 use crate::delaunay::d3::Delaunay3;
 use crate::geom::distance::dot_sign;
 use crate::geom::predicates::raw;
+use crate::util::{sorted3, NONE};
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
 use std::sync::Mutex;
@@ -834,11 +835,6 @@ pub struct Candidates3 {
 /// The vertex coordinates of a tetrahedralization as arrays.
 pub fn coords3(d: &Delaunay3) -> Vec<[f64; 3]> {
     d.points.iter().map(|p| [p.x, p.y, p.z]).collect()
-}
-
-fn sorted3(mut t: [u32; 3]) -> [u32; 3] {
-    t.sort_unstable();
-    t
 }
 
 /// Builds the 3D candidates. Cospherical groups (adjacent tetrahedra with a common empty
