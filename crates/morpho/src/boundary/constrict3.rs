@@ -46,7 +46,7 @@
 pub use super::indicator::Key;
 use super::indicator::MinKey;
 use crate::delaunay::d3::{Delaunay3, FACE_OF};
-use crate::graphs::gamma::{cross3, dot3, sub3};
+use crate::geom::vec::{cross, dot, sub, triangle_area2};
 use crate::util::{sorted3, IdSet, NONE};
 use num_bigint::BigInt;
 use std::collections::BinaryHeap;
@@ -113,15 +113,15 @@ fn to_big(xs: &[f64]) -> Vec<BigInt> {
 /// inside, 0 on it. Exact.
 pub fn center_side(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3]) -> i32 {
     // float evaluation with a generous filter
-    let (b, c, d) = (sub3(j, i), sub3(k, i), sub3(l, i));
-    let n = cross3(b, c);
-    let (bb, cc, dd, nn) = (dot3(b, b), dot3(c, c), dot3(d, d), dot3(n, n));
+    let (b, c, d) = (sub(j, i), sub(k, i), sub(l, i));
+    let n = cross(b, c);
+    let (bb, cc, dd, nn) = (dot(b, b), dot(c, c), dot(d, d), dot(n, n));
     let w = [
-        cc * cross3(n, b)[0] + bb * cross3(c, n)[0],
-        cc * cross3(n, b)[1] + bb * cross3(c, n)[1],
-        cc * cross3(n, b)[2] + bb * cross3(c, n)[2],
+        cc * cross(n, b)[0] + bb * cross(c, n)[0],
+        cc * cross(n, b)[1] + bb * cross(c, n)[1],
+        cc * cross(n, b)[2] + bb * cross(c, n)[2],
     ];
-    let val = dd * nn - dot3(d, w);
+    let val = dd * nn - dot(d, w);
     let mag = dd * nn + dd.sqrt() * (cc * nn.sqrt() * bb.sqrt() + bb * cc.sqrt() * nn.sqrt()) * 2.0;
     if val.is_finite() && mag.is_finite() && val.abs() > 1e-9 * mag {
         return if val > 0.0 { 1 } else { -1 };
@@ -167,13 +167,10 @@ pub fn center_side(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3]) -> i32 {
 
 /// Circumradius of a 3D triangle (floating point).
 fn tri_circumradius(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
-    let (x, y, z) = (sub3(a, b), sub3(b, c), sub3(c, a));
-    let area2 = {
-        let n = cross3(sub3(b, a), sub3(c, a));
-        dot3(n, n).sqrt()
-    };
+    let (x, y, z) = (sub(a, b), sub(b, c), sub(c, a));
+    let area2 = triangle_area2(a, b, c);
     if area2 > 0.0 {
-        (dot3(x, x) * dot3(y, y) * dot3(z, z)).sqrt() / (2.0 * area2)
+        (dot(x, x) * dot(y, y) * dot(z, z)).sqrt() / (2.0 * area2)
     } else {
         f64::INFINITY
     }
@@ -199,12 +196,6 @@ pub fn gamma_indicator_3d(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3], bi
     }
 }
 
-/// Twice the area of triangle abc (floating point; it only orders the heap).
-fn area2(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
-    let n = cross3(sub3(b, a), sub3(c, a));
-    dot3(n, n).sqrt()
-}
-
 /// Boissonnat's minimal area change (V §4.3.3, Eq. 4.1) of removing the tetrahedron with
 /// corners `p` whose boundary faces are the bits of `boundary` (bit f = the face opposite
 /// corner f): (Σ area of the interior faces − Σ area of the boundary faces) / (Σ area of all
@@ -212,7 +203,7 @@ fn area2(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
 pub fn min_area_change_3d(p: [[f64; 3]; 4], boundary: u8) -> f64 {
     let (mut inner, mut outer) = (0.0, 0.0);
     for (f, o) in FACE_OF.iter().enumerate() {
-        let a = area2(p[o[0]], p[o[1]], p[o[2]]);
+        let a = triangle_area2(p[o[0]], p[o[1]], p[o[2]]);
         if boundary >> f & 1 == 1 {
             outer += a;
         } else {
@@ -532,14 +523,14 @@ mod tests {
 
     fn circumcentre(p: [[f64; 3]; 4]) -> [f64; 3] {
         // solve 2(pk − p0)·x = |pk|² − |p0|², k = 1..3 (Cramer)
-        let r = |k: usize| sub3(p[k], p[0]);
+        let r = |k: usize| sub(p[k], p[0]);
         let (a, b, c) = (r(1), r(2), r(3));
-        let rhs = [dot3(a, a) / 2.0, dot3(b, b) / 2.0, dot3(c, c) / 2.0];
-        let det = dot3(a, cross3(b, c));
+        let rhs = [dot(a, a) / 2.0, dot(b, b) / 2.0, dot(c, c) / 2.0];
+        let det = dot(a, cross(b, c));
         let x = [
-            (rhs[0] * cross3(b, c)[0] + rhs[1] * cross3(c, a)[0] + rhs[2] * cross3(a, b)[0]) / det,
-            (rhs[0] * cross3(b, c)[1] + rhs[1] * cross3(c, a)[1] + rhs[2] * cross3(a, b)[1]) / det,
-            (rhs[0] * cross3(b, c)[2] + rhs[1] * cross3(c, a)[2] + rhs[2] * cross3(a, b)[2]) / det,
+            (rhs[0] * cross(b, c)[0] + rhs[1] * cross(c, a)[0] + rhs[2] * cross(a, b)[0]) / det,
+            (rhs[0] * cross(b, c)[1] + rhs[1] * cross(c, a)[1] + rhs[2] * cross(a, b)[1]) / det,
+            (rhs[0] * cross(b, c)[2] + rhs[1] * cross(c, a)[2] + rhs[2] * cross(a, b)[2]) / det,
         ];
         [x[0] + p[0][0], x[1] + p[0][1], x[2] + p[0][2]]
     }

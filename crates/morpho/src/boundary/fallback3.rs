@@ -74,6 +74,7 @@ use super::constrict3::gamma_indicator_3d;
 use super::indicator::MinKey;
 use super::validity3::{meet_beyond_edge, meet_beyond_vertex, triangles_intersect};
 use crate::geom::predicates::raw::orient3d;
+use crate::geom::vec::{cross, dist, dot, norm, sub};
 use crate::util::{sorted3, IdMap, IdSet};
 use std::collections::BinaryHeap;
 
@@ -119,24 +120,15 @@ fn tet_faces(a: u32, b: u32, c: u32, d: u32) -> [([u32; 3], u32); 4] {
 }
 
 fn circumradius(a: P, b: P, c: P, d: P) -> f64 {
-    let s = |x: P| [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
-    let (u, v, w) = (s(b), s(c), s(d));
-    let cr = |x: P, y: P| {
-        [
-            x[1] * y[2] - x[2] * y[1],
-            x[2] * y[0] - x[0] * y[2],
-            x[0] * y[1] - x[1] * y[0],
-        ]
-    };
-    let dt = |x: P, y: P| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
-    let det = dt(u, cr(v, w));
+    let (u, v, w) = (sub(b, a), sub(c, a), sub(d, a));
+    let det = dot(u, cross(v, w));
     if det == 0.0 {
         return f64::INFINITY;
     }
-    let (vw, wu, uv) = (cr(v, w), cr(w, u), cr(u, v));
-    let (uu, vv, ww) = (dt(u, u), dt(v, v), dt(w, w));
+    let (vw, wu, uv) = (cross(v, w), cross(w, u), cross(u, v));
+    let (uu, vv, ww) = (dot(u, u), dot(v, v), dot(w, w));
     let x: P = std::array::from_fn(|k| (uu * vw[k] + vv * wu[k] + ww * uv[k]) / (2.0 * det));
-    dt(x, x).sqrt()
+    norm(x)
 }
 
 /// Uniform hash grid of ids by bounding box. An id whose box spans more than
@@ -472,8 +464,7 @@ fn boxes_meet(a: (P, P), b: (P, P)) -> bool {
 /// Sign of det[x − y, e, f] (e, f edge vectors as differences of doubles), or `None` when the
 /// floating-point value is not certified.
 fn sat_sign(x: P, y: P, e: (P, P), f: (P, P)) -> Option<i32> {
-    let d = |p: P, q: P| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-    let (u, v, w) = (d(x, y), d(e.1, e.0), d(f.1, f.0));
+    let (u, v, w) = (sub(x, y), sub(e.1, e.0), sub(f.1, f.0));
     let t = [
         u[0] * (v[1] * w[2] - v[2] * w[1]),
         u[1] * (v[2] * w[0] - v[0] * w[2]),
@@ -696,7 +687,7 @@ impl<'a> General3<'a> {
             .flat_map(|t| {
                 (0..3).map(move |k| {
                     let (a, b) = (p[t[k] as usize], p[t[(k + 1) % 3] as usize]);
-                    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+                    dist(a, b)
                 })
             })
             .filter(|x| x.is_finite())
@@ -1158,13 +1149,7 @@ impl<'a> General3<'a> {
         // floating-point plane of t: a box farther from it than a generous bound of the
         // rounding error (relative 1e-8) holds no point of t's plane, so no triangle in it can
         // meet t (a triangle sharing a vertex with t touches the plane and is never culled)
-        let d = |x: P, y: P| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
-        let (e1, e2) = (d(pt[1], pt[0]), d(pt[2], pt[0]));
-        let nrm = [
-            e1[1] * e2[2] - e1[2] * e2[1],
-            e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0],
-        ];
+        let nrm = cross(sub(pt[1], pt[0]), sub(pt[2], pt[0]));
         let n1: f64 = nrm.iter().map(|x| x.abs()).sum();
         let scale = |x: P| x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let st_scale = scale(bb.0).max(scale(bb.1));

@@ -20,6 +20,7 @@
 
 use super::validity::segments_intersect;
 use crate::geom::predicates::raw::{orient2d, orient3d};
+use crate::geom::vec::{cross, dist, dot, sub};
 
 type P = [f64; 3];
 
@@ -151,10 +152,7 @@ fn meet_beyond_vertex_planar(t: [P; 3], it: usize, u: [P; 3], iu: usize) -> bool
         let o = orient2d(v, p, q);
         let s1 = orient2d(v, p, x) * o;
         let s2 = orient2d(v, x, q) * o;
-        let along = |r: [f64; 2]| {
-            orient2d(v, r, x) == 0.0
-                && ((r[0] - v[0]) * (x[0] - v[0]) + (r[1] - v[1]) * (x[1] - v[1])) > 0.0
-        };
+        let along = |r: [f64; 2]| orient2d(v, r, x) == 0.0 && dot(sub(r, v), sub(x, v)) > 0.0;
         (s1 > 0.0 && s2 > 0.0) || along(p) || along(q)
     };
     // (a wedge containing the other has the other's edges inside it)
@@ -294,9 +292,7 @@ fn near_untrusted(pos: &[P], tris: &[[u32; 3]], trusted: &[bool]) -> Option<Vec<
         let q = tris[i as usize].map(|v| pos[v as usize]);
         for k in 0..3 {
             let (a, b) = (q[k], q[(k + 1) % 3]);
-            lens.push(
-                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt(),
-            );
+            lens.push(dist(a, b));
         }
     }
     let mid = lens.len() / 2;
@@ -496,7 +492,7 @@ fn self_intersections_ordered(
             let q = t.map(|v| pos[v as usize]);
             (0..3).map(move |k| {
                 let (a, b) = (q[k], q[(k + 1) % 3]);
-                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+                dist(a, b)
             })
         })
         .collect();
@@ -711,13 +707,7 @@ fn self_intersections_ordered(
                 .filter(|&b| overlap(a, b))
                 .collect();
             let q = tris[a as usize].map(|v| pos[v as usize]);
-            let e1 = [q[1][0] - q[0][0], q[1][1] - q[0][1], q[1][2] - q[0][2]];
-            let e2 = [q[2][0] - q[0][0], q[2][1] - q[0][1], q[2][2] - q[0][2]];
-            let n = [
-                e1[1] * e2[2] - e1[2] * e2[1],
-                e1[2] * e2[0] - e1[0] * e2[2],
-                e1[0] * e2[1] - e1[1] * e2[0],
-            ];
+            let n = cross(sub(q[1], q[0]), sub(q[2], q[0]));
             // dominant axis w: the plane is a function of the two other coordinates
             let w = (0..3)
                 .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
@@ -815,13 +805,8 @@ pub(crate) struct PlaneFilter {
 
 impl PlaneFilter {
     pub(crate) fn new(t: [P; 3]) -> Self {
-        let u: P = std::array::from_fn(|k| t[1][k] - t[0][k]);
-        let v: P = std::array::from_fn(|k| t[2][k] - t[0][k]);
-        let n = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
+        let (u, v) = (sub(t[1], t[0]), sub(t[2], t[0]));
+        let n = cross(u, v);
         let perm = [
             (u[1] * v[2]).abs() + (u[2] * v[1]).abs(),
             (u[2] * v[0]).abs() + (u[0] * v[2]).abs(),
@@ -838,8 +823,8 @@ impl PlaneFilter {
     /// relative-error model) and on non-finite values; the exact predicate decides then.
     #[inline]
     pub(crate) fn side(&self, x: P) -> i8 {
-        let w: P = std::array::from_fn(|k| x[k] - self.a[k]);
-        let s = self.n[0] * w[0] + self.n[1] * w[1] + self.n[2] * w[2];
+        let w = sub(x, self.a);
+        let s = dot(self.n, w);
         let b = self.perm[0] * w[0].abs() + self.perm[1] * w[1].abs() + self.perm[2] * w[2].abs();
         let bound = 16.0 * f64::EPSILON * b;
         if !(bound.is_finite() && s.is_finite()) || b < 1e-270 {

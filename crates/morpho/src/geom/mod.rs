@@ -8,6 +8,7 @@ pub mod distance;
 pub mod enclosing;
 pub mod expansion;
 pub mod predicates;
+pub mod vec;
 
 pub use predicates::{incircle, insphere, orient2d, orient3d};
 

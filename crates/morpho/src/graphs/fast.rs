@@ -963,9 +963,9 @@ fn flat_groups(d: &Delaunay3, p: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u32
                     continue;
                 }
                 let both_hull = hull.contains(&f) && hull.contains(&g);
-                let n = super::gamma::cross3(
-                    super::gamma::sub3(q[1], q[0]),
-                    super::gamma::sub3(q[2], q[0]),
+                let n = crate::geom::vec::cross(
+                    crate::geom::vec::sub(q[1], q[0]),
+                    crate::geom::vec::sub(q[2], q[0]),
                 );
                 let e = [q[0][0] + n[0], q[0][1] + n[1], q[0][2] + n[2]];
                 let cocircular = raw::orient3d(q[0], q[1], q[2], e) != 0.0
