@@ -46,9 +46,9 @@
 pub use super::indicator::Key;
 use super::indicator::MinKey;
 use crate::delaunay::d3::{Delaunay3, FACE_OF};
+use crate::geom::exact::diametral_side_exact;
 use crate::geom::vec::{cross, dot, sub, triangle_area2};
 use crate::util::{sorted3, IdSet, NONE};
-use num_bigint::BigInt;
 use std::collections::BinaryHeap;
 
 /// Heap entries: smallest key first, ties by the smallest item.
@@ -77,37 +77,6 @@ pub struct Constriction3 {
     pub iterations: usize,
 }
 
-/// Exact big-integer image of doubles scaled by a common power of two.
-fn to_big(xs: &[f64]) -> Vec<BigInt> {
-    let parts: Vec<(i64, i32)> = xs
-        .iter()
-        .map(|&x| {
-            if x == 0.0 {
-                return (0, 0);
-            }
-            let bits = x.to_bits();
-            let exp = ((bits >> 52) & 0x7ff) as i32;
-            let frac = (bits & ((1u64 << 52) - 1)) as i64;
-            let mant = if exp == 0 {
-                frac << 1
-            } else {
-                frac | (1i64 << 52)
-            };
-            (if x < 0.0 { -mant } else { mant }, exp - 1075)
-        })
-        .collect();
-    let emin = parts
-        .iter()
-        .filter(|p| p.0 != 0)
-        .map(|p| p.1)
-        .min()
-        .unwrap_or(0);
-    parts
-        .iter()
-        .map(|&(m, e)| BigInt::from(m) << ((e - emin).max(0) as usize))
-        .collect()
-}
-
 /// Sign of q·|n|² (see the module documentation): +1 when `l` lies outside the diametral
 /// sphere of triangle `ijk` (the tetrahedron's circumcentre is on l's side of the plane), −1
 /// inside, 0 on it. Exact.
@@ -127,42 +96,7 @@ pub fn center_side(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3]) -> i32 {
         return if val > 0.0 { 1 } else { -1 };
     }
     // exact: the same polynomial over big integers
-    let v = to_big(&[
-        i[0], i[1], i[2], j[0], j[1], j[2], k[0], k[1], k[2], l[0], l[1], l[2],
-    ]);
-    let bsub = |a: usize, o: usize| -> [BigInt; 3] {
-        [
-            &v[3 * a] - &v[3 * o],
-            &v[3 * a + 1] - &v[3 * o + 1],
-            &v[3 * a + 2] - &v[3 * o + 2],
-        ]
-    };
-    let bdot = |a: &[BigInt; 3], b: &[BigInt; 3]| -> BigInt {
-        &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
-    };
-    let bcross = |a: &[BigInt; 3], b: &[BigInt; 3]| -> [BigInt; 3] {
-        [
-            &a[1] * &b[2] - &a[2] * &b[1],
-            &a[2] * &b[0] - &a[0] * &b[2],
-            &a[0] * &b[1] - &a[1] * &b[0],
-        ]
-    };
-    let (b, c, d) = (bsub(1, 0), bsub(2, 0), bsub(3, 0));
-    let n = bcross(&b, &c);
-    let (bb, cc, dd, nn) = (bdot(&b, &b), bdot(&c, &c), bdot(&d, &d), bdot(&n, &n));
-    let nb = bcross(&n, &b);
-    let cn = bcross(&c, &n);
-    let w = [
-        &cc * &nb[0] + &bb * &cn[0],
-        &cc * &nb[1] + &bb * &cn[1],
-        &cc * &nb[2] + &bb * &cn[2],
-    ];
-    let val = dd * nn - bdot(&d, &w);
-    match val.sign() {
-        num_bigint::Sign::Plus => 1,
-        num_bigint::Sign::Minus => -1,
-        num_bigint::Sign::NoSign => 0,
-    }
+    diametral_side_exact(i, j, k, l)
 }
 
 /// Circumradius of a 3D triangle (floating point).

@@ -103,45 +103,12 @@ impl<T: Ord> Ord for MinKey<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_bigint::BigInt;
 
     /// Exact dot sign through big integers (coordinates scaled to integers).
     fn dot_sign_big(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i32 {
-        // represent each coordinate as m · 2^e with a common exponent
-        let parts: Vec<(i64, i32)> = [a[0], a[1], b[0], b[1], c[0], c[1]]
-            .iter()
-            .map(|&x| {
-                if x == 0.0 {
-                    return (0, 0);
-                }
-                let bits = x.to_bits();
-                let exp = ((bits >> 52) & 0x7ff) as i32;
-                let mant = if exp == 0 {
-                    (bits & ((1 << 52) - 1)) << 1
-                } else {
-                    (bits & ((1 << 52) - 1)) | (1 << 52)
-                } as i64;
-                let m = if x < 0.0 { -mant } else { mant };
-                (m, exp - 1075)
-            })
-            .collect();
-        let emin = parts
-            .iter()
-            .filter(|p| p.0 != 0)
-            .map(|p| p.1)
-            .min()
-            .unwrap_or(0);
-        let v: Vec<BigInt> = parts
-            .iter()
-            .map(|&(m, e)| BigInt::from(m) << ((e - emin).max(0) as usize))
-            .collect();
+        let v = crate::geom::exact::to_big_ints(&[a[0], a[1], b[0], b[1], c[0], c[1]]);
         let (ax, ay, bx, by, cx, cy) = (&v[0], &v[1], &v[2], &v[3], &v[4], &v[5]);
-        let d = (ax - cx) * (bx - cx) + (ay - cy) * (by - cy);
-        match d.sign() {
-            num_bigint::Sign::Plus => 1,
-            num_bigint::Sign::Minus => -1,
-            num_bigint::Sign::NoSign => 0,
-        }
+        crate::geom::exact::big_sign(&((ax - cx) * (bx - cx) + (ay - cy) * (by - cy)))
     }
 
     #[test]

@@ -135,7 +135,7 @@ pub struct Boundary2 {
 /// Constructs a boundary polygon through the points (see the module documentation).
 ///
 /// The points are first multiplied by the power of two that brings the largest coordinate
-/// magnitude near 1 ([`crate::geom::power_of_two_scale`]; exact), so that the result does not
+/// magnitude near 1 ([`crate::geom::exact::power_of_two_scale`]; exact), so that the result does not
 /// depend on the units: the γ-indicators, the minimal-area-change keys and the skeleton
 /// lengths are floating-point values that over- or underflow at extreme absolute scales. The
 /// area and the skeleton length are reported in input units.
@@ -146,7 +146,7 @@ pub fn boundary_2d(points: &[Point2], opts: &Options2) -> Result<Boundary2> {
     let m = points
         .iter()
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
-    let s = crate::geom::power_of_two_scale(m);
+    let s = crate::geom::exact::power_of_two_scale(m);
     if s != 1.0 {
         let scaled: Vec<Point2> = points.iter().map(|p| p * s).collect();
         let mut b = boundary_2d_unit(&scaled, opts)?;
@@ -640,7 +640,7 @@ fn near_locked(
 /// [`boundary_3d`] with all options (see [`Options3`]).
 ///
 /// The points are first multiplied by the power of two that brings the largest coordinate
-/// magnitude near 1 ([`crate::geom::power_of_two_scale`]; exact): the constriction keys and
+/// magnitude near 1 ([`crate::geom::exact::power_of_two_scale`]; exact): the constriction keys and
 /// the engines' floating-point filters would otherwise over- or underflow at extreme absolute
 /// scales, and the result would depend on the units. The volume and the skeleton length are
 /// reported in input units.
@@ -650,7 +650,7 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
         .flat_map(|p| [p.x, p.y, p.z])
         .filter(|x| x.is_finite())
         .fold(0.0f64, |m, x| m.max(x.abs()));
-    let s = crate::geom::power_of_two_scale(m);
+    let s = crate::geom::exact::power_of_two_scale(m);
     if s != 1.0 {
         let scaled: Vec<crate::geom::Point3> = points.iter().map(|p| p * s).collect();
         let mut b = boundary_3d_unit(&scaled, opts)?;

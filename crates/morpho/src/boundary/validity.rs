@@ -204,7 +204,7 @@ pub fn check_polygon(points: &[Point2], cycle: &[u32]) -> PolygonCheck {
         let p = points[i as usize];
         m.max(p.x.abs()).max(p.y.abs())
     });
-    let s = crate::geom::power_of_two_scale(m);
+    let s = crate::geom::exact::power_of_two_scale(m);
     let pt = |k: usize| {
         let p = points[cycle[k % n] as usize];
         [p.x * s, p.y * s]

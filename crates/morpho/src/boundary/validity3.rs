@@ -196,7 +196,7 @@ pub fn meet_beyond_edge(a: P, b: P, c: P, d: P) -> bool {
 /// cell sit close together in memory; the pairs are mapped back to the input indices.
 ///
 /// Coordinates are first multiplied by the power of two that brings the largest magnitude
-/// near 1 ([`crate::geom::power_of_two_scale`]; exact), so that no predicate over- or
+/// near 1 ([`crate::geom::exact::power_of_two_scale`]; exact), so that no predicate over- or
 /// underflows at extreme absolute scales (1e-300 … 1e300).
 pub fn self_intersections(pos: &[P], tris: &[[u32; 3]], limit: usize) -> Vec<(u32, u32)> {
     self_intersections_masked(pos, tris, None, limit)
@@ -382,7 +382,7 @@ fn self_intersections_masked(
                 .fold(0.0f64, |m, x| m.max(x.abs()))
         })
         .reduce(|| 0.0, f64::max);
-    let s = crate::geom::power_of_two_scale(m);
+    let s = crate::geom::exact::power_of_two_scale(m);
     let scaled: Vec<P>;
     let pos = if s != 1.0 {
         scaled = pos.par_iter().map(|q| q.map(|x| x * s)).collect();

@@ -59,6 +59,7 @@
 //! with inconsistent predicates, and hitting them is also an error.
 //! Constructions (circumcentres) are ordinary floating point.
 
+use crate::geom::exact::{incircle_i128, orient2d_i64};
 use crate::geom::predicates::raw::{incircle, orient2d};
 use crate::geom::{Point2, Vector2};
 use crate::util::hilbert::{hilbert2, HILBERT2_BITS};
@@ -207,11 +208,6 @@ struct IntKernel(Vec<[i64; 2]>);
 /// Bound on |coordinate| for [`IntKernel`]: differences < 2^29, lifts < 2^59, products < 2^118.
 const INT_LIMIT: f64 = (1u64 << 28) as f64;
 
-#[inline]
-fn orient_i(a: [i64; 2], b: [i64; 2], c: [i64; 2]) -> i64 {
-    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-}
-
 impl Kernel for IntKernel {
     type P = [i64; 2];
     #[inline]
@@ -220,19 +216,11 @@ impl Kernel for IntKernel {
     }
     #[inline]
     fn orient(a: [i64; 2], b: [i64; 2], c: [i64; 2]) -> i32 {
-        orient_i(a, b, c).signum() as i32
+        orient2d_i64(a, b, c).signum() as i32
     }
     #[inline]
     fn incircle_sos(a: [i64; 2], b: [i64; 2], c: [i64; 2], d: [i64; 2]) -> i32 {
-        let (adx, ady) = (a[0] - d[0], a[1] - d[1]);
-        let (bdx, bdy) = (b[0] - d[0], b[1] - d[1]);
-        let (cdx, cdy) = (c[0] - d[0], c[1] - d[1]);
-        let al = (adx * adx + ady * ady) as i128;
-        let bl = (bdx * bdx + bdy * bdy) as i128;
-        let cl = (cdx * cdx + cdy * cdy) as i128;
-        let det = al * (bdx * cdy - cdx * bdy) as i128
-            + bl * (cdx * ady - adx * cdy) as i128
-            + cl * (adx * bdy - bdx * ady) as i128;
+        let det = incircle_i128(a, b, c, d);
         if det != 0 {
             return det.signum() as i32;
         }
@@ -511,7 +499,7 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
         .max(lo[1].abs())
         .max(hi[0].abs())
         .max(hi[1].abs());
-    let scale = crate::geom::power_of_two_scale(m);
+    let scale = crate::geom::exact::power_of_two_scale(m);
     let n_in = points.len();
 
     // Hilbert keys on the bounding box (computed on halves to avoid overflow of hi - lo).

@@ -40,7 +40,7 @@
 //! # Errors
 //! Empty input and non-finite coordinates.
 
-use super::expansion::Expansion;
+use super::expansion::{cross as xcross, dot as xdot, Expansion};
 use super::predicates::raw;
 use super::vec::{cross, dist, dist2, dot, sub};
 use super::{Point2, Point3};
@@ -276,18 +276,6 @@ fn circle_ball_outside(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], p: &[f64; 3]) -
         .sub(&xdot(&u, &u).mul(&xdot(&w, &xcross(&v, &n))))
         .sub(&xdot(&v, &v).mul(&xdot(&w, &xcross(&n, &u))));
     val.sign() > 0
-}
-
-fn xcross(x: &[Expansion; 3], y: &[Expansion; 3]) -> [Expansion; 3] {
-    [
-        x[1].mul(&y[2]).sub(&x[2].mul(&y[1])),
-        x[2].mul(&y[0]).sub(&x[0].mul(&y[2])),
-        x[0].mul(&y[1]).sub(&x[1].mul(&y[0])),
-    ]
-}
-
-fn xdot(x: &[Expansion; 3], y: &[Expansion; 3]) -> Expansion {
-    x[0].mul(&y[0]).add(&x[1].mul(&y[1])).add(&x[2].mul(&y[2]))
 }
 
 // ---------------------------------------------------------------------------------------------
