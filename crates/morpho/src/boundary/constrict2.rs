@@ -43,8 +43,9 @@
 
 use super::indicator::Key;
 use super::indicator::MinKey;
-use super::validity::{segments_cross_properly, SegGrid};
+use super::validity::SegGrid;
 use crate::delaunay::d2::Delaunay2;
+use crate::geom::intersect::segments_cross_properly;
 use crate::geom::predicates::raw::orient2d;
 use crate::util::NONE;
 use std::collections::{BinaryHeap, HashMap, HashSet};

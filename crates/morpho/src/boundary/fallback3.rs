@@ -16,7 +16,7 @@
 //!   four) — exactly V's conditions, which keep the surface a closed 2-manifold of genus 0;
 //! - the closed Q contains no other vertex (exact `orient3d`);
 //! - its new boundary faces meet no other boundary triangle except in common vertices/edges
-//!   (exact tests of [`super::validity3`]; a safety net — the invariant already implies it);
+//!   (exact tests of [`crate::geom::intersect`]; a safety net — the invariant already implies it);
 //! - no keep triangle is a boundary face of Q or crosses its interior (V §5.7).
 //!
 //! Its key is the sum of the γ-indicators of its boundary faces w.r.t. the opposite vertices
@@ -72,7 +72,7 @@
 
 use super::constrict3::gamma_indicator_3d;
 use super::indicator::MinKey;
-use super::validity3::{meet_beyond_edge, meet_beyond_vertex, triangles_intersect};
+use crate::geom::intersect::{degenerate_triangle, triangles_meet_beyond_shared};
 use crate::geom::predicates::raw::orient3d;
 use crate::geom::vec::{cross, dist, dot, norm, sub};
 use crate::util::{sorted3, IdMap, IdSet};
@@ -1178,26 +1178,7 @@ impl<'a> General3<'a> {
                 return false;
             }
             let pu = u.map(|v| self.pt(v));
-            let mut shared = [(0usize, 0usize); 3];
-            let mut ns = 0;
-            for x in 0..3 {
-                for y in 0..3 {
-                    if t[x] == u[y] && ns < 3 {
-                        shared[ns] = (x, y);
-                        ns += 1;
-                    }
-                }
-            }
-            match ns {
-                0 => triangles_intersect(pt, pu),
-                1 => meet_beyond_vertex(pt, shared[0].0, pu, shared[0].1),
-                2 => {
-                    let (i0, i1) = (shared[0].0, shared[1].0);
-                    let (j0, j1) = (shared[0].1, shared[1].1);
-                    meet_beyond_edge(pt[i0], pt[i1], pt[3 - i0 - i1], pu[3 - j0 - j1])
-                }
-                _ => true,
-            }
+            triangles_meet_beyond_shared(t, pt, u, pu)
         })
     }
 
@@ -1395,7 +1376,7 @@ impl<'a> General3<'a> {
             return false;
         }
         let pt = t.map(|v| self.pt(v));
-        !(super::validity3::degenerate(pt[0], pt[1], pt[2]) || self.hits_boundary(t, &[]))
+        !(degenerate_triangle(pt[0], pt[1], pt[2]) || self.hits_boundary(t, &[]))
     }
 
     fn push(&mut self, f: [u32; 3]) -> bool {

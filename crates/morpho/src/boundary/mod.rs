@@ -384,7 +384,7 @@ fn check_keep(p: &[[f64; 2]], keep: &[[u32; 2]]) -> Result<()> {
             if v as u32 != a
                 && v as u32 != b
                 && orient2d(pa, pb, q) == 0.0
-                && validity::on_segment(pa, pb, q)
+                && crate::geom::intersect::on_segment(pa, pb, q)
             {
                 return Err(Error::invalid(format!(
                     "boundary: keep edge {k} passes through another point"
@@ -392,7 +392,8 @@ fn check_keep(p: &[[f64; 2]], keep: &[[u32; 2]]) -> Result<()> {
             }
         }
         for &[c, e] in &keep[k + 1..] {
-            if validity::segments_cross_properly(pa, pb, p[c as usize], p[e as usize]) {
+            if crate::geom::intersect::segments_cross_properly(pa, pb, p[c as usize], p[e as usize])
+            {
                 return Err(Error::invalid("boundary: keep edges cross each other"));
             }
         }
@@ -703,7 +704,7 @@ fn boundary_3d_unit(points: &[crate::geom::Point3], opts: &Options3) -> Result<B
     let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
     for k in &keep_v {
         let q = k.map(|v| pos[v as usize]);
-        if validity3::degenerate(q[0], q[1], q[2]) {
+        if crate::geom::intersect::degenerate_triangle(q[0], q[1], q[2]) {
             return Err(Error::invalid(format!(
                 "boundary: keep triangle {k:?} is degenerate"
             )));

@@ -9,47 +9,11 @@
 //! bucket grid of the general 2D engine. [`segments_intersect`] is the exact closed-segment test
 //! used throughout `boundary`.
 
+use crate::geom::intersect::{on_segment, segments_intersect};
 use crate::geom::predicates::raw::orient2d;
 use crate::geom::Point2;
 use rayon::prelude::*;
 use std::collections::HashMap;
-
-/// True when the closed segments ab and cd have a point in common (exact).
-pub fn segments_intersect(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
-    let o1 = orient2d(a, b, c);
-    let o2 = orient2d(a, b, d);
-    let o3 = orient2d(c, d, a);
-    let o4 = orient2d(c, d, b);
-    if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0))
-        && ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0))
-    {
-        return true;
-    }
-    (o1 == 0.0 && on_segment(a, b, c))
-        || (o2 == 0.0 && on_segment(a, b, d))
-        || (o3 == 0.0 && on_segment(c, d, a))
-        || (o4 == 0.0 && on_segment(c, d, b))
-}
-
-/// True when the open segments ab and cd cross at one point interior to both (exact).
-pub fn segments_cross_properly(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
-    let o1 = orient2d(a, b, c);
-    let o2 = orient2d(a, b, d);
-    if !((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) {
-        return false;
-    }
-    let o3 = orient2d(c, d, a);
-    let o4 = orient2d(c, d, b);
-    (o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0)
-}
-
-/// For p collinear with ab: p lies on the closed segment ab (exact: coordinate comparisons).
-pub fn on_segment(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
-    a[0].min(b[0]) <= p[0]
-        && p[0] <= a[0].max(b[0])
-        && a[1].min(b[1]) <= p[1]
-        && p[1] <= a[1].max(b[1])
-}
 
 /// A uniform grid of segments (each registered in every cell its bounding box meets) and
 /// points, for local intersection queries.
