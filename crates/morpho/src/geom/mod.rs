@@ -10,6 +10,7 @@ pub mod distance;
 pub mod enclosing;
 pub mod exact;
 pub mod expansion;
+pub mod grid;
 pub mod intersect;
 pub mod predicates;
 pub mod vec;

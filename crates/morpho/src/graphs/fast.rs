@@ -26,11 +26,11 @@
 //! brute force (limited to small inputs).
 
 use super::gamma::{offset_of, CenterInterval, EdgeFrame, TriFrame};
-use super::grid::Grid;
 use super::lune::LuneGrid;
 use crate::delaunay::d2::Delaunay2;
 use crate::delaunay::d3::Delaunay3;
 use crate::geom::distance::dot_sign;
+use crate::geom::grid::PointGrid as Grid;
 use crate::geom::predicates::raw;
 use crate::util::{sorted3, NONE};
 use rayon::prelude::*;
