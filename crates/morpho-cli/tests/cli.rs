@@ -749,3 +749,60 @@ fn tetrahedra_as_vtk() {
     let o = morpho(&["convert", &path("h.vtk"), "-o", &path("x.vtu")]);
     assert_eq!(o.status.code(), Some(2), "VTK is written, not read");
 }
+
+/// Issue 17 item 5: `info --check` on a mesh with a face that repeats a vertex (`f 1 1 2`
+/// added to a closed OBJ, or a binary STL with a sliver facet whose two corners coincide)
+/// panicked with an index out of bounds in the pair test; now it reports the mesh as not a
+/// closed 2-manifold, the degenerate face as meeting its neighbours, and exits 1.
+#[test]
+fn info_check_on_a_face_with_a_repeated_vertex_reports_instead_of_panicking() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let obj = write(d, "deg.obj", format!("{CUBE_OBJ}f 1 1 2\n").as_bytes());
+    // the cube as a binary STL, plus one facet with two equal corners
+    let (mut vs, mut fs) = (Vec::new(), Vec::new());
+    for l in CUBE_OBJ.lines() {
+        let w: Vec<&str> = l.split(' ').collect();
+        match w[0] {
+            "v" => vs.push([1, 2, 3].map(|k| w[k].parse::<f32>().unwrap())),
+            "f" => fs.push([1, 2, 3].map(|k| w[k].parse::<usize>().unwrap() - 1)),
+            _ => {}
+        }
+    }
+    fs.push([0, 0, 1]);
+    let mut stl = vec![0u8; 80];
+    stl.extend((fs.len() as u32).to_le_bytes());
+    for f in &fs {
+        stl.extend([0u8; 12]); // normal
+        for &v in f {
+            for x in vs[v] {
+                stl.extend(x.to_le_bytes());
+            }
+        }
+        stl.extend([0u8; 2]);
+    }
+    let stl = write(d, "deg.stl", &stl);
+    for f in [obj, stl] {
+        let rep = d.join("r.json");
+        let o = morpho(&[
+            "info",
+            f.to_str().unwrap(),
+            "--check",
+            "--report",
+            rep.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{}{}", stdout(&o), stderr(&o));
+        assert!(!stderr(&o).contains("panicked"), "{}", stderr(&o));
+        assert!(
+            stdout(&o).contains("closed 2-manifold: no"),
+            "{}",
+            stdout(&o)
+        );
+        let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&rep).unwrap()).unwrap();
+        assert_eq!(r["valid"], false);
+        // the face 1 1 2 is the cube's edge 1–2 doubled: it folds onto the two faces there
+        let hits = r["self_intersections"].as_array().unwrap();
+        assert_eq!(hits.len(), 2, "{hits:?}");
+        assert!(hits.iter().all(|h| h[1] == 12), "{hits:?}");
+    }
+}

@@ -295,7 +295,7 @@ fn phases(name: &str, pts: &[Point3]) {
         let mut next = Vec::new();
         for &t in &front {
             for &n in &d.neighbors[t as usize] {
-                if n != morpho::delaunay::d3::NONE && st.alive[n as usize] && !region[n as usize] {
+                if n != morpho::util::NONE && st.alive[n as usize] && !region[n as usize] {
                     region[n as usize] = true;
                     next.push(n);
                 }
@@ -310,7 +310,7 @@ fn phases(name: &str, pts: &[Point3]) {
                 let n = d.neighbors[ti][fi];
                 let mut s = [tet[f[0]], tet[f[1]], tet[f[2]]];
                 s.sort_unstable();
-                if n == morpho::delaunay::d3::NONE || !region[n as usize] || (ti as u32) < n {
+                if n == morpho::util::NONE || !region[n as usize] || (ti as u32) < n {
                     live.push(s);
                 }
             }

@@ -18,6 +18,7 @@
 //! | [`io`] | file formats |
 //! | [`render`] | SVG and PNG pictures |
 //! | [`samples`] | generated sample data (chalice outline, Shepp–Logan phantom, borehole field) |
+//! | [`util`] | sentinels, the id hasher and maps, seeded generators, Hilbert keys |
 
 // Geometry code indexes coordinates by axis on purpose.
 #![allow(clippy::needless_range_loop)]
@@ -32,6 +33,7 @@ pub mod io;
 pub mod mesh;
 pub mod render;
 pub mod samples;
+pub mod util;
 pub mod volume;
 
 pub use error::{Error, Location, Result};

@@ -40,7 +40,7 @@ fn assert_valid(pts: &[Point3], b: &Boundary3) {
 
 /// Every pair of triangles, by their number of common vertices, with the exact tests.
 fn brute_no_intersections(pos: &[[f64; 3]], tris: &[[u32; 3]]) {
-    use morpho::boundary::validity3::{meet_beyond_edge, meet_beyond_vertex, triangles_intersect};
+    use morpho::geom::intersect::{meet_beyond_edge, meet_beyond_vertex, triangles_intersect};
     for (i, t) in tris.iter().enumerate() {
         for u in &tris[i + 1..] {
             let (pt, pu) = (t.map(|v| pos[v as usize]), u.map(|v| pos[v as usize]));

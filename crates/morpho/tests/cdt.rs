@@ -6,9 +6,10 @@
 //! triangles, shoelace area) on random and real polygons; degenerate inputs; proptest.
 
 use morpho::delaunay::cdt::{triangulate_polygon_interior, Cdt2};
-use morpho::delaunay::d2::{triangulate, NONE};
+use morpho::delaunay::d2::triangulate;
 use morpho::geom::predicates::raw::{incircle, orient2d};
 use morpho::geom::Point2;
+use morpho::util::NONE;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use std::collections::HashSet;

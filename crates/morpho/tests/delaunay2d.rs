@@ -3,10 +3,11 @@
 //! symbolically perturbed triangle set from its definition), invariants (CCW, symmetric
 //! neighbours, Euler relation, hull convexity, area), degenerate and real inputs.
 
-use morpho::delaunay::d2::{incircle_sos, lex_cmp, triangulate, Delaunay2, Location, NONE};
+use morpho::delaunay::d2::{incircle_sos, lex_cmp, triangulate, Delaunay2, Location};
 use morpho::delaunay::voronoi::{voronoi, VoronoiEdge};
 use morpho::geom::predicates::raw::{incircle, orient2d};
 use morpho::geom::Point2;
+use morpho::util::NONE;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use std::collections::BTreeSet;

@@ -1,8 +1,10 @@
 //! 3D and d-dimensional Delaunay: brute-force oracles on random and degenerate inputs.
 
-use morpho::delaunay::d3::{insphere_exact, orient3d_exact, triangulate, Delaunay3, NONE};
+use morpho::delaunay::d3::{triangulate, Delaunay3};
 use morpho::delaunay::dd::{self, triangulate_d, DelaunayD};
+use morpho::geom::exact::{insphere_exact, insphere_sign, orient3d_exact, orient_sign};
 use morpho::geom::Point3;
+use morpho::util::NONE;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use std::collections::{BTreeSet, HashMap, HashSet};
@@ -456,7 +458,7 @@ fn check_d(g: &DelaunayD) {
     let nv = g.num_vertices() as u32;
     for s in &g.simplices {
         let q: Vec<&[f64]> = s.iter().map(|&v| g.point(v)).collect();
-        assert_eq!(dd::orient_sign(&q), 1);
+        assert_eq!(orient_sign(&q), 1);
         for v in 0..nv {
             if s.contains(&v) {
                 continue;
@@ -465,7 +467,7 @@ fn check_d(g: &DelaunayD) {
             r.push(g.point(v));
             let mut ids = s.clone();
             ids.push(v);
-            assert!(dd::insphere_sign(&r) <= 0);
+            assert!(insphere_sign(&r) <= 0);
             assert!(!dd::perturbed_insphere(&r, &ids));
         }
     }
@@ -477,7 +479,7 @@ fn check_d(g: &DelaunayD) {
             f.sort_unstable();
             *facets.entry(f).or_default() += 1;
             let n = g.neighbors[i][k];
-            if n != dd::NONE {
+            if n != NONE {
                 assert!(g.neighbors[n as usize].contains(&(i as u32)));
             }
         }

@@ -6,10 +6,11 @@
 //! checked against a permutation brute force and on graphs whose Hamiltonicity is known.
 
 use morpho::boundary::{boundary_2d, check_polygon, Boundary2, CParam, Options2, PolygonCheck};
-use morpho::delaunay::d2::{triangulate, Delaunay2, NONE};
+use morpho::delaunay::d2::{triangulate, Delaunay2};
 use morpho::geom::{incircle, orient2d, Point2};
 use morpho::graphs::{graph_2d, Kind};
 use morpho::samples::dillencourt_points;
+use morpho::util::NONE;
 use std::collections::HashSet;
 
 /// Adjacency lists of an undirected simple graph on `n` vertices.

@@ -3,8 +3,9 @@
 //! /work/shared/data (section 2 of its README gives their counts).
 
 use morpho::geom::Point3;
-use morpho::mesh::topology::{analyze, orient_consistently, Topology, NONE};
+use morpho::mesh::topology::{analyze, orient_consistently, Topology};
 use morpho::mesh::{generate, TriMesh};
+use morpho::util::NONE;
 use proptest::prelude::*;
 use std::collections::{BTreeMap, BTreeSet};
 

@@ -43,9 +43,11 @@
 
 use super::indicator::Key;
 use super::indicator::MinKey;
-use super::validity::{segments_cross_properly, SegGrid};
-use crate::delaunay::d2::{Delaunay2, NONE};
+use crate::delaunay::d2::Delaunay2;
+use crate::geom::grid::BoxGrid;
+use crate::geom::intersect::segments_cross_properly;
 use crate::geom::predicates::raw::orient2d;
+use crate::util::NONE;
 use std::collections::{BinaryHeap, HashMap, HashSet};
 
 /// Heap entries: smallest key first, ties by the smallest item.
@@ -198,8 +200,8 @@ pub struct General<'a> {
     pub iterations: usize,
     /// Deleted edges (vertex indices).
     pub deleted: Vec<[u32; 2]>,
-    egrid: SegGrid,
-    vgrid: SegGrid,
+    egrid: BoxGrid<2>,
+    vgrid: BoxGrid<2>,
     heap: BinaryHeap<Entry>,
 }
 
@@ -238,8 +240,8 @@ impl<'a> General<'a> {
             boundary_vertices: 0,
             iterations: 0,
             deleted: Vec::new(),
-            egrid: SegGrid::new(lo, hi, cell, 2 * n + 16),
-            vgrid: SegGrid::new(lo, hi, cell, 2 * n + 16),
+            egrid: BoxGrid::fitted(lo, hi, cell, 2 * n + 16, true),
+            vgrid: BoxGrid::fitted(lo, hi, cell, 2 * n + 16, false),
             heap: BinaryHeap::new(),
         };
         for (v, q) in p.iter().enumerate() {
@@ -282,7 +284,12 @@ impl<'a> General<'a> {
         self.id.insert(k, i);
         self.adj[a as usize].push(b);
         self.adj[b as usize].push(a);
-        self.egrid.insert(i, self.p[a as usize], self.p[b as usize]);
+        let (pa, pb) = (self.p[a as usize], self.p[b as usize]);
+        self.egrid.insert(
+            i,
+            [pa[0].min(pb[0]), pa[1].min(pb[1])],
+            [pa[0].max(pb[0]), pa[1].max(pb[1])],
+        );
     }
 
     fn kill(&mut self, i: u32) {
@@ -327,7 +334,7 @@ impl<'a> General<'a> {
         let (lo, hi) = self.tri_box(i, j, k);
         let (pi, pj, pk) = (self.p[i as usize], self.p[j as usize], self.p[k as usize]);
         let mut out = Vec::new();
-        self.egrid.query(lo, hi, |e| {
+        self.egrid.for_each(lo, hi, |e| {
             if !self.live[e as usize] {
                 return;
             }
@@ -347,7 +354,7 @@ impl<'a> General<'a> {
         let (lo, hi) = self.tri_box(i, j, k);
         let (pi, pj, pk) = (self.p[i as usize], self.p[j as usize], self.p[k as usize]);
         let mut ok = true;
-        self.vgrid.query(lo, hi, |v| {
+        self.vgrid.for_each(lo, hi, |v| {
             if !ok || v == i || v == j || v == k {
                 return;
             }
@@ -502,7 +509,7 @@ impl<'a> General<'a> {
         }
         let (pa, pb) = (self.p[a as usize], self.p[b as usize]);
         let mut ok = true;
-        self.egrid.query(
+        self.egrid.for_each(
             [pa[0].min(pb[0]), pa[1].min(pb[1])],
             [pa[0].max(pb[0]), pa[1].max(pb[1])],
             |e| {
@@ -540,7 +547,7 @@ impl<'a> General<'a> {
     fn crosses_keep(&self, a: u32, b: u32) -> bool {
         let (pa, pb) = (self.p[a as usize], self.p[b as usize]);
         let mut hit = false;
-        self.egrid.query(
+        self.egrid.for_each(
             [pa[0].min(pb[0]), pa[1].min(pb[1])],
             [pa[0].max(pb[0]), pa[1].max(pb[1])],
             |e| {
@@ -620,4 +627,30 @@ impl<'a> General<'a> {
 enum Blocked {
     Keep(u32, u32),
     Other,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every edge is found by a query of its own box, whatever the direction of its
+    /// coordinates (the grid takes boxes, not endpoints: an edge going down or left once
+    /// registered in no cell).
+    #[test]
+    fn every_edge_is_in_the_grid_cells_of_its_box() {
+        let p = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.4]];
+        let edges = [[1, 3], [4, 0], [4, 1], [3, 4]];
+        let g = General::new(&p, Key::Gamma, &[0, 1, 2, 3], edges, &[]);
+        assert_eq!(g.edges.len(), 8);
+        for (i, &[a, b]) in g.edges.iter().enumerate() {
+            let (pa, pb) = (p[a as usize], p[b as usize]);
+            let mut found = false;
+            g.egrid.for_each(
+                [pa[0].min(pb[0]), pa[1].min(pb[1])],
+                [pa[0].max(pb[0]), pa[1].max(pb[1])],
+                |e| found |= e == i as u32,
+            );
+            assert!(found, "edge {i} = {a}-{b} not in the grid");
+        }
+    }
 }

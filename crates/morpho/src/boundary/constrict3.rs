@@ -45,59 +45,14 @@
 
 pub use super::indicator::Key;
 use super::indicator::MinKey;
-use crate::delaunay::d3::{Delaunay3, FACE_OF, NONE};
-use crate::graphs::gamma::{cross3, dot3, sub3};
-use num_bigint::BigInt;
-use std::collections::{BinaryHeap, HashMap};
-use std::hash::{BuildHasherDefault, Hasher};
+use crate::delaunay::d3::{Delaunay3, FACE_OF};
+use crate::geom::exact::diametral_side_exact;
+use crate::geom::vec::{cross, dot, sub, triangle_area2};
+use crate::util::{sorted3, IdSet, NONE};
+use std::collections::BinaryHeap;
 
 /// Heap entries: smallest key first, ties by the smallest item.
 type Entry = MinKey<(u32, u8)>;
-
-/// A fast multiplicative hasher for integer keys (vertex and edge ids; not for adversarial
-/// keys from the network — ids here come from our own tetrahedralization).
-#[derive(Default, Clone, Copy)]
-pub struct IdHasher(u64);
-
-impl Hasher for IdHasher {
-    #[inline]
-    fn write(&mut self, bytes: &[u8]) {
-        // eight bytes at a time ([u32; 3] keys hash their 12 bytes in one call)
-        let mut chunks = bytes.chunks_exact(8);
-        for c in &mut chunks {
-            let mut w = [0u8; 8];
-            w.copy_from_slice(c);
-            self.write_u64(u64::from_le_bytes(w));
-        }
-        let rest = chunks.remainder();
-        if !rest.is_empty() {
-            let mut w = [0u8; 8];
-            w[..rest.len()].copy_from_slice(rest);
-            self.write_u64(u64::from_le_bytes(w) ^ ((rest.len() as u64) << 59));
-        }
-    }
-    #[inline]
-    fn write_u32(&mut self, x: u32) {
-        self.write_u64(x as u64);
-    }
-    #[inline]
-    fn write_u64(&mut self, x: u64) {
-        self.0 = (self.0.rotate_left(26) ^ x).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    }
-    #[inline]
-    fn write_usize(&mut self, x: usize) {
-        self.write_u64(x as u64);
-    }
-    #[inline]
-    fn finish(&self) -> u64 {
-        self.0 ^ (self.0 >> 29)
-    }
-}
-
-/// A `HashMap` with [`IdHasher`].
-pub type IdMap<K, V> = HashMap<K, V, BuildHasherDefault<IdHasher>>;
-/// A `HashSet` with [`IdHasher`].
-pub type IdSet<K> = std::collections::HashSet<K, BuildHasherDefault<IdHasher>>;
 
 /// When to stop the 3D constriction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -122,103 +77,34 @@ pub struct Constriction3 {
     pub iterations: usize,
 }
 
-/// Exact big-integer image of doubles scaled by a common power of two.
-fn to_big(xs: &[f64]) -> Vec<BigInt> {
-    let parts: Vec<(i64, i32)> = xs
-        .iter()
-        .map(|&x| {
-            if x == 0.0 {
-                return (0, 0);
-            }
-            let bits = x.to_bits();
-            let exp = ((bits >> 52) & 0x7ff) as i32;
-            let frac = (bits & ((1u64 << 52) - 1)) as i64;
-            let mant = if exp == 0 {
-                frac << 1
-            } else {
-                frac | (1i64 << 52)
-            };
-            (if x < 0.0 { -mant } else { mant }, exp - 1075)
-        })
-        .collect();
-    let emin = parts
-        .iter()
-        .filter(|p| p.0 != 0)
-        .map(|p| p.1)
-        .min()
-        .unwrap_or(0);
-    parts
-        .iter()
-        .map(|&(m, e)| BigInt::from(m) << ((e - emin).max(0) as usize))
-        .collect()
-}
-
 /// Sign of q·|n|² (see the module documentation): +1 when `l` lies outside the diametral
 /// sphere of triangle `ijk` (the tetrahedron's circumcentre is on l's side of the plane), −1
 /// inside, 0 on it. Exact.
 pub fn center_side(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3]) -> i32 {
     // float evaluation with a generous filter
-    let (b, c, d) = (sub3(j, i), sub3(k, i), sub3(l, i));
-    let n = cross3(b, c);
-    let (bb, cc, dd, nn) = (dot3(b, b), dot3(c, c), dot3(d, d), dot3(n, n));
+    let (b, c, d) = (sub(j, i), sub(k, i), sub(l, i));
+    let n = cross(b, c);
+    let (bb, cc, dd, nn) = (dot(b, b), dot(c, c), dot(d, d), dot(n, n));
     let w = [
-        cc * cross3(n, b)[0] + bb * cross3(c, n)[0],
-        cc * cross3(n, b)[1] + bb * cross3(c, n)[1],
-        cc * cross3(n, b)[2] + bb * cross3(c, n)[2],
+        cc * cross(n, b)[0] + bb * cross(c, n)[0],
+        cc * cross(n, b)[1] + bb * cross(c, n)[1],
+        cc * cross(n, b)[2] + bb * cross(c, n)[2],
     ];
-    let val = dd * nn - dot3(d, w);
+    let val = dd * nn - dot(d, w);
     let mag = dd * nn + dd.sqrt() * (cc * nn.sqrt() * bb.sqrt() + bb * cc.sqrt() * nn.sqrt()) * 2.0;
     if val.is_finite() && mag.is_finite() && val.abs() > 1e-9 * mag {
         return if val > 0.0 { 1 } else { -1 };
     }
     // exact: the same polynomial over big integers
-    let v = to_big(&[
-        i[0], i[1], i[2], j[0], j[1], j[2], k[0], k[1], k[2], l[0], l[1], l[2],
-    ]);
-    let bsub = |a: usize, o: usize| -> [BigInt; 3] {
-        [
-            &v[3 * a] - &v[3 * o],
-            &v[3 * a + 1] - &v[3 * o + 1],
-            &v[3 * a + 2] - &v[3 * o + 2],
-        ]
-    };
-    let bdot = |a: &[BigInt; 3], b: &[BigInt; 3]| -> BigInt {
-        &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]
-    };
-    let bcross = |a: &[BigInt; 3], b: &[BigInt; 3]| -> [BigInt; 3] {
-        [
-            &a[1] * &b[2] - &a[2] * &b[1],
-            &a[2] * &b[0] - &a[0] * &b[2],
-            &a[0] * &b[1] - &a[1] * &b[0],
-        ]
-    };
-    let (b, c, d) = (bsub(1, 0), bsub(2, 0), bsub(3, 0));
-    let n = bcross(&b, &c);
-    let (bb, cc, dd, nn) = (bdot(&b, &b), bdot(&c, &c), bdot(&d, &d), bdot(&n, &n));
-    let nb = bcross(&n, &b);
-    let cn = bcross(&c, &n);
-    let w = [
-        &cc * &nb[0] + &bb * &cn[0],
-        &cc * &nb[1] + &bb * &cn[1],
-        &cc * &nb[2] + &bb * &cn[2],
-    ];
-    let val = dd * nn - bdot(&d, &w);
-    match val.sign() {
-        num_bigint::Sign::Plus => 1,
-        num_bigint::Sign::Minus => -1,
-        num_bigint::Sign::NoSign => 0,
-    }
+    diametral_side_exact(i, j, k, l)
 }
 
 /// Circumradius of a 3D triangle (floating point).
 fn tri_circumradius(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
-    let (x, y, z) = (sub3(a, b), sub3(b, c), sub3(c, a));
-    let area2 = {
-        let n = cross3(sub3(b, a), sub3(c, a));
-        dot3(n, n).sqrt()
-    };
+    let (x, y, z) = (sub(a, b), sub(b, c), sub(c, a));
+    let area2 = triangle_area2(a, b, c);
     if area2 > 0.0 {
-        (dot3(x, x) * dot3(y, y) * dot3(z, z)).sqrt() / (2.0 * area2)
+        (dot(x, x) * dot(y, y) * dot(z, z)).sqrt() / (2.0 * area2)
     } else {
         f64::INFINITY
     }
@@ -244,12 +130,6 @@ pub fn gamma_indicator_3d(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3], bi
     }
 }
 
-/// Twice the area of triangle abc (floating point; it only orders the heap).
-fn area2(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
-    let n = cross3(sub3(b, a), sub3(c, a));
-    dot3(n, n).sqrt()
-}
-
 /// Boissonnat's minimal area change (V §4.3.3, Eq. 4.1) of removing the tetrahedron with
 /// corners `p` whose boundary faces are the bits of `boundary` (bit f = the face opposite
 /// corner f): (Σ area of the interior faces − Σ area of the boundary faces) / (Σ area of all
@@ -257,7 +137,7 @@ fn area2(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
 pub fn min_area_change_3d(p: [[f64; 3]; 4], boundary: u8) -> f64 {
     let (mut inner, mut outer) = (0.0, 0.0);
     for (f, o) in FACE_OF.iter().enumerate() {
-        let a = area2(p[o[0]], p[o[1]], p[o[2]]);
+        let a = triangle_area2(p[o[0]], p[o[1]], p[o[2]]);
         if boundary >> f & 1 == 1 {
             outer += a;
         } else {
@@ -297,11 +177,6 @@ struct State<'a> {
     nbv: usize,
     keep: IdSet<[u32; 3]>,
     key: Key,
-}
-
-fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
-    f.sort_unstable();
-    f
 }
 
 impl State<'_> {
@@ -582,14 +457,14 @@ mod tests {
 
     fn circumcentre(p: [[f64; 3]; 4]) -> [f64; 3] {
         // solve 2(pk − p0)·x = |pk|² − |p0|², k = 1..3 (Cramer)
-        let r = |k: usize| sub3(p[k], p[0]);
+        let r = |k: usize| sub(p[k], p[0]);
         let (a, b, c) = (r(1), r(2), r(3));
-        let rhs = [dot3(a, a) / 2.0, dot3(b, b) / 2.0, dot3(c, c) / 2.0];
-        let det = dot3(a, cross3(b, c));
+        let rhs = [dot(a, a) / 2.0, dot(b, b) / 2.0, dot(c, c) / 2.0];
+        let det = dot(a, cross(b, c));
         let x = [
-            (rhs[0] * cross3(b, c)[0] + rhs[1] * cross3(c, a)[0] + rhs[2] * cross3(a, b)[0]) / det,
-            (rhs[0] * cross3(b, c)[1] + rhs[1] * cross3(c, a)[1] + rhs[2] * cross3(a, b)[1]) / det,
-            (rhs[0] * cross3(b, c)[2] + rhs[1] * cross3(c, a)[2] + rhs[2] * cross3(a, b)[2]) / det,
+            (rhs[0] * cross(b, c)[0] + rhs[1] * cross(c, a)[0] + rhs[2] * cross(a, b)[0]) / det,
+            (rhs[0] * cross(b, c)[1] + rhs[1] * cross(c, a)[1] + rhs[2] * cross(a, b)[1]) / det,
+            (rhs[0] * cross(b, c)[2] + rhs[1] * cross(c, a)[2] + rhs[2] * cross(a, b)[2]) / det,
         ];
         [x[0] + p[0][0], x[1] + p[0][1], x[2] + p[0][2]]
     }

@@ -16,7 +16,7 @@
 //!   four) — exactly V's conditions, which keep the surface a closed 2-manifold of genus 0;
 //! - the closed Q contains no other vertex (exact `orient3d`);
 //! - its new boundary faces meet no other boundary triangle except in common vertices/edges
-//!   (exact tests of [`super::validity3`]; a safety net — the invariant already implies it);
+//!   (exact tests of [`crate::geom::intersect`]; a safety net — the invariant already implies it);
 //! - no keep triangle is a boundary face of Q or crosses its interior (V §5.7).
 //!
 //! Its key is the sum of the γ-indicators of its boundary faces w.r.t. the opposite vertices
@@ -71,10 +71,12 @@
 //! every given triangle (as produced by [`super::constrict3`] or the convex hull).
 
 use super::constrict3::gamma_indicator_3d;
-use super::constrict3::{IdMap, IdSet};
 use super::indicator::MinKey;
-use super::validity3::{meet_beyond_edge, meet_beyond_vertex, triangles_intersect};
+use crate::geom::grid::BoxGrid;
+use crate::geom::intersect::{degenerate_triangle, triangles_meet_beyond_shared};
 use crate::geom::predicates::raw::orient3d;
+use crate::geom::vec::{cross, dist, dot, norm, sub};
+use crate::util::{sorted3, IdMap, IdSet};
 use std::collections::BinaryHeap;
 
 /// How far below c a rejected triangle's γ-scan goes on ([`General3::gamma_decide`]): the
@@ -86,11 +88,6 @@ const UB_LOOKAHEAD: f64 = 0.25;
 type Entry = MinKey<([u32; 3], u32)>;
 
 type P = [f64; 3];
-
-fn sorted3(mut f: [u32; 3]) -> [u32; 3] {
-    f.sort_unstable();
-    f
-}
 
 /// The rotation of an oriented face that starts at its smallest vertex.
 fn sorted_rot(f: [u32; 3]) -> [u32; 3] {
@@ -124,339 +121,19 @@ fn tet_faces(a: u32, b: u32, c: u32, d: u32) -> [([u32; 3], u32); 4] {
 }
 
 fn circumradius(a: P, b: P, c: P, d: P) -> f64 {
-    let s = |x: P| [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
-    let (u, v, w) = (s(b), s(c), s(d));
-    let cr = |x: P, y: P| {
-        [
-            x[1] * y[2] - x[2] * y[1],
-            x[2] * y[0] - x[0] * y[2],
-            x[0] * y[1] - x[1] * y[0],
-        ]
-    };
-    let dt = |x: P, y: P| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
-    let det = dt(u, cr(v, w));
+    let (u, v, w) = (sub(b, a), sub(c, a), sub(d, a));
+    let det = dot(u, cross(v, w));
     if det == 0.0 {
         return f64::INFINITY;
     }
-    let (vw, wu, uv) = (cr(v, w), cr(w, u), cr(u, v));
-    let (uu, vv, ww) = (dt(u, u), dt(v, v), dt(w, w));
+    let (vw, wu, uv) = (cross(v, w), cross(w, u), cross(u, v));
+    let (uu, vv, ww) = (dot(u, u), dot(v, v), dot(w, w));
     let x: P = std::array::from_fn(|k| (uu * vw[k] + vv * wu[k] + ww * uv[k]) / (2.0 * det));
-    dt(x, x).sqrt()
+    norm(x)
 }
 
-/// Uniform hash grid of ids by bounding box. An id whose box spans more than
-/// [`Grid::MAX_SPAN`] cells goes to a coarser grid (cell × [`Grid::COARSEN`]), up to
-/// [`Grid::LEVELS`] levels; beyond that to a list returned by every query.
-#[derive(PartialEq, Debug)]
-struct Grid {
-    lo: P,
-    cell: f64,
-    cells: IdMap<(i64, i64, i64), Vec<u32>>,
-    big: Vec<u32>,
-    coarse: Option<Box<Grid>>,
-    level: usize,
-    /// Ids may sit in several cells (boxes, not points): queries deduplicate.
-    multi: bool,
-}
-
-impl Grid {
-    const MAX_SPAN: i64 = 512;
-    const COARSEN: f64 = 8.0;
-    const LEVELS: usize = 3;
-    /// [`Grid::insert_many`] sorts at most this many (cell, id) entries at once.
-    const BULK_MAX: usize = 1 << 23;
-
-    fn new(lo: P, cell: f64, multi: bool) -> Self {
-        Grid {
-            lo,
-            cell: if cell > 0.0 && cell.is_finite() {
-                cell
-            } else {
-                1.0
-            },
-            cells: IdMap::default(),
-            big: Vec::new(),
-            coarse: None,
-            level: 0,
-            multi,
-        }
-    }
-    fn range(&self, lo: P, hi: P) -> ([i64; 3], [i64; 3]) {
-        let c = |x: f64, k: usize| ((x - self.lo[k]) / self.cell).floor() as i64;
-        (
-            std::array::from_fn(|k| c(lo[k], k)),
-            std::array::from_fn(|k| c(hi[k], k)),
-        )
-    }
-    fn insert(&mut self, id: u32, lo: P, hi: P) {
-        let (a, b) = self.range(lo, hi);
-        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
-        if span > Self::MAX_SPAN {
-            if self.level + 1 < Self::LEVELS && (self.cell * Self::COARSEN).is_finite() {
-                let (origin, cell, multi, level) = (
-                    self.lo,
-                    self.cell * Self::COARSEN,
-                    self.multi,
-                    self.level + 1,
-                );
-                self.coarse
-                    .get_or_insert_with(|| {
-                        let mut g = Grid::new(origin, cell, multi);
-                        g.level = level;
-                        Box::new(g)
-                    })
-                    .insert(id, lo, hi);
-            } else {
-                self.big.push(id);
-            }
-            return;
-        }
-        self.push_cells(id, a, b);
-    }
-
-    /// Appends `id` to every cell from `a` to `b` (inclusive).
-    fn push_cells(&mut self, id: u32, a: [i64; 3], b: [i64; 3]) {
-        for x in a[0]..=b[0] {
-            for y in a[1]..=b[1] {
-                for z in a[2]..=b[2] {
-                    self.cells.entry((x, y, z)).or_default().push(id);
-                }
-            }
-        }
-    }
-    /// Inserts many boxes at once, in the given order; the same grid as [`Grid::insert`] one
-    /// by one (every cell lists its ids in insertion order, as long as the ids increase along
-    /// `items`), with each cell's list allocated once. The (cell, id) entries are grouped by
-    /// a counting sort when the boxes span a compact block of cells ([`Grid::dense_block`]),
-    /// otherwise by a parallel sort.
-    fn insert_many(&mut self, items: impl Iterator<Item = (u32, P, P)>) {
-        self.insert_many_capped(items, Self::BULK_MAX);
-    }
-    /// [`Grid::insert_many`] sorting at most `cap` entries (beyond: one box after the other).
-    fn insert_many_capped(&mut self, items: impl Iterator<Item = (u32, P, P)>, cap: usize) {
-        use rayon::prelude::*;
-        // entries: the cell's x, y, z (21 bits each, when they fit) above the id, so that one
-        // parallel integer sort orders them by cell and then by id
-        const BITS: u32 = 21;
-        let fits = |c: i64| (0..1 << BITS).contains(&c);
-        let mut boxes: Vec<(u32, [i64; 3], [i64; 3])> = Vec::new();
-        let mut all_fit = true;
-        let mut total = 0usize;
-        for (id, lo, hi) in items {
-            let (a, b) = self.range(lo, hi);
-            let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
-            if span > Self::MAX_SPAN {
-                self.insert(id, lo, hi);
-                continue;
-            }
-            all_fit &= a.iter().chain(&b).all(|&c| fits(c));
-            total += span as usize;
-            boxes.push((id, a, b));
-        }
-        if total > cap {
-            // too many entries to hold at once (16–32 bytes each against 4 in the cells)
-            for (id, a, b) in boxes {
-                self.push_cells(id, a, b);
-            }
-            return;
-        }
-        let cells_of = |&(id, a, b): &(u32, [i64; 3], [i64; 3])| {
-            (a[0]..=b[0]).flat_map(move |x| {
-                (a[1]..=b[1]).flat_map(move |y| (a[2]..=b[2]).map(move |z| ((x, y, z), id)))
-            })
-        };
-        let mut add_run = |cell: (i64, i64, i64), ids: &mut dyn Iterator<Item = u32>, n: usize| {
-            let v = self.cells.entry(cell).or_default();
-            v.reserve_exact(n);
-            v.extend(ids);
-        };
-        if let Some((c0, dims)) = Self::dense_block(&boxes, total) {
-            // counting sort over the block of cells the boxes span (boxes in order, so every
-            // cell's ids stay in insertion order)
-            let idx = |x: i64, y: i64, z: i64| {
-                ((x - c0[0]) as usize * dims[1] + (y - c0[1]) as usize) * dims[2]
-                    + (z - c0[2]) as usize
-            };
-            let mut start = vec![0u32; dims[0] * dims[1] * dims[2] + 1];
-            for &(_, a, b) in &boxes {
-                for x in a[0]..=b[0] {
-                    for y in a[1]..=b[1] {
-                        for z in a[2]..=b[2] {
-                            start[idx(x, y, z) + 1] += 1;
-                        }
-                    }
-                }
-            }
-            for c in 1..start.len() {
-                start[c] += start[c - 1];
-            }
-            let mut ids = vec![0u32; total];
-            let mut fill = start.clone();
-            for &(id, a, b) in &boxes {
-                for x in a[0]..=b[0] {
-                    for y in a[1]..=b[1] {
-                        for z in a[2]..=b[2] {
-                            let c = idx(x, y, z);
-                            ids[fill[c] as usize] = id;
-                            fill[c] += 1;
-                        }
-                    }
-                }
-            }
-            drop(fill);
-            for c in 0..start.len() - 1 {
-                let (s, e) = (start[c] as usize, start[c + 1] as usize);
-                if e > s {
-                    let z = (c % dims[2]) as i64 + c0[2];
-                    let y = (c / dims[2] % dims[1]) as i64 + c0[1];
-                    let x = (c / dims[2] / dims[1]) as i64 + c0[0];
-                    add_run((x, y, z), &mut ids[s..e].iter().copied(), e - s);
-                }
-            }
-        } else if all_fit {
-            let mut e: Vec<u128> = boxes
-                .par_iter()
-                .flat_map_iter(cells_of)
-                .map(|((x, y, z), id)| {
-                    let cell = (x as u128) << (2 * BITS) | (y as u128) << BITS | z as u128;
-                    cell << 32 | id as u128
-                })
-                .collect();
-            e.par_sort_unstable();
-            let mask = (1u128 << BITS) - 1;
-            for run in e.chunk_by(|a, b| a >> 32 == b >> 32) {
-                let cell = run[0] >> 32;
-                let c = |k: u32| (cell >> (k * BITS) & mask) as i64;
-                add_run(
-                    (c(2), c(1), c(0)),
-                    &mut run.iter().map(|&x| x as u32),
-                    run.len(),
-                );
-            }
-        } else {
-            let mut e: Vec<((i64, i64, i64), u32)> =
-                boxes.par_iter().flat_map_iter(cells_of).collect();
-            e.par_sort_unstable();
-            for run in e.chunk_by(|a, b| a.0 == b.0) {
-                add_run(run[0].0, &mut run.iter().map(|x| x.1), run.len());
-            }
-        }
-    }
-
-    /// The block of cells spanned by `boxes` (its low cell and size per axis) when it has at
-    /// most about twice as many cells as the boxes have (cell, id) entries (`total`): then
-    /// [`Grid::insert_many`] counting-sorts over it instead of sorting the entries.
-    fn dense_block(
-        boxes: &[(u32, [i64; 3], [i64; 3])],
-        total: usize,
-    ) -> Option<([i64; 3], [usize; 3])> {
-        let (mut lo, mut hi) = ([i64::MAX; 3], [i64::MIN; 3]);
-        for (_, a, b) in boxes {
-            for k in 0..3 {
-                lo[k] = lo[k].min(a[k]);
-                hi[k] = hi[k].max(b[k]);
-            }
-        }
-        if boxes.is_empty() || total >= u32::MAX as usize {
-            return None;
-        }
-        let mut n: usize = 1;
-        let mut dims = [0usize; 3];
-        for k in 0..3 {
-            dims[k] = usize::try_from(hi[k].checked_sub(lo[k])?.checked_add(1)?).ok()?;
-            n = n.checked_mul(dims[k])?;
-        }
-        (n <= 2 * total + (1 << 16)).then_some((lo, dims))
-    }
-
-    /// Calls `f` on the ids whose cells meet the box (an id may come more than once) until it
-    /// returns true; returns whether it did.
-    fn any_in_box(&self, lo: P, hi: P, mut f: impl FnMut(u32) -> bool) -> bool {
-        self.any_in_box_dyn(lo, hi, &mut f)
-    }
-    fn any_in_box_dyn(&self, lo: P, hi: P, f: &mut dyn FnMut(u32) -> bool) -> bool {
-        if self.big.iter().any(|&i| f(i)) {
-            return true;
-        }
-        if let Some(g) = &self.coarse {
-            if g.any_in_box_dyn(lo, hi, f) {
-                return true;
-            }
-        }
-        let (a, b) = self.range(lo, hi);
-        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
-        if span as usize > self.cells.len() {
-            for (key, ids) in &self.cells {
-                if (a[0]..=b[0]).contains(&key.0)
-                    && (a[1]..=b[1]).contains(&key.1)
-                    && (a[2]..=b[2]).contains(&key.2)
-                    && ids.iter().any(|&i| f(i))
-                {
-                    return true;
-                }
-            }
-        } else {
-            for x in a[0]..=b[0] {
-                for y in a[1]..=b[1] {
-                    for z in a[2]..=b[2] {
-                        if let Some(ids) = self.cells.get(&(x, y, z)) {
-                            if ids.iter().any(|&i| f(i)) {
-                                return true;
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        false
-    }
-
-    /// Ids whose cells meet the box (sorted without repetitions for a `multi` grid).
-    fn query(&self, lo: P, hi: P, out: &mut Vec<u32>) {
-        out.clear();
-        self.collect(lo, hi, out);
-        if self.multi {
-            out.sort_unstable();
-            out.dedup();
-        }
-    }
-
-    /// Appends the ids whose cells (on every level) meet the box, with repetitions.
-    fn collect(&self, lo: P, hi: P, out: &mut Vec<u32>) {
-        out.extend_from_slice(&self.big);
-        if let Some(g) = &self.coarse {
-            g.collect(lo, hi, out);
-        }
-        self.for_cells(lo, hi, |_, ids| out.extend_from_slice(ids));
-    }
-
-    /// Calls `f` on every non-empty cell of this level (not the coarser ones, not `big`)
-    /// that meets the box, with its key and ids.
-    fn for_cells<'a>(&'a self, lo: P, hi: P, mut f: impl FnMut((i64, i64, i64), &'a [u32])) {
-        let (a, b) = self.range(lo, hi);
-        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
-        if span as usize > self.cells.len() {
-            for (&key, ids) in &self.cells {
-                if (a[0]..=b[0]).contains(&key.0)
-                    && (a[1]..=b[1]).contains(&key.1)
-                    && (a[2]..=b[2]).contains(&key.2)
-                {
-                    f(key, ids);
-                }
-            }
-        } else {
-            for x in a[0]..=b[0] {
-                for y in a[1]..=b[1] {
-                    for z in a[2]..=b[2] {
-                        if let Some(ids) = self.cells.get(&(x, y, z)) {
-                            f((x, y, z), ids);
-                        }
-                    }
-                }
-            }
-        }
-    }
-}
+/// The kernel's box grid in 3D (boxes of triangles, points as zero-size boxes).
+type Grid = BoxGrid<3>;
 
 fn bbox(ps: &[P]) -> (P, P) {
     let mut lo = [f64::INFINITY; 3];
@@ -477,8 +154,7 @@ fn boxes_meet(a: (P, P), b: (P, P)) -> bool {
 /// Sign of det[x − y, e, f] (e, f edge vectors as differences of doubles), or `None` when the
 /// floating-point value is not certified.
 fn sat_sign(x: P, y: P, e: (P, P), f: (P, P)) -> Option<i32> {
-    let d = |p: P, q: P| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-    let (u, v, w) = (d(x, y), d(e.1, e.0), d(f.1, f.0));
+    let (u, v, w) = (sub(x, y), sub(e.1, e.0), sub(f.1, f.0));
     let t = [
         u[0] * (v[1] * w[2] - v[2] * w[1]),
         u[1] * (v[2] * w[0] - v[0] * w[2]),
@@ -701,7 +377,7 @@ impl<'a> General3<'a> {
             .flat_map(|t| {
                 (0..3).map(move |k| {
                     let (a, b) = (p[t[k] as usize], p[t[(k + 1) % 3] as usize]);
-                    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+                    dist(a, b)
                 })
             })
             .filter(|x| x.is_finite())
@@ -853,7 +529,7 @@ impl<'a> General3<'a> {
                         )
                     },
                     || {
-                        vgrid.cells.reserve(p.len());
+                        vgrid.reserve(p.len());
                         for (v, &q) in p.iter().enumerate() {
                             vgrid.insert(v as u32, q, q);
                             vcoarse.insert(v as u32, q, q);
@@ -883,7 +559,7 @@ impl<'a> General3<'a> {
         }
         self.epoch += 1;
         let (a, b) = self.bgrid.range(lo, hi);
-        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
+        let span = Grid::span(a, b);
         if span > Grid::MAX_SPAN {
             self.changed_all = self.epoch;
             return;
@@ -903,7 +579,7 @@ impl<'a> General3<'a> {
             return true;
         }
         let (a, b) = self.bgrid.range(lo, hi);
-        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
+        let span = Grid::span(a, b);
         span > Grid::MAX_SPAN
             || (a[0]..=b[0]).any(|x| {
                 (a[1]..=b[1]).any(|y| {
@@ -917,7 +593,7 @@ impl<'a> General3<'a> {
     /// Either holds every point at its own level (points are never wide boxes).
     fn point_grid_for(&self, lo: P, hi: P) -> &Grid {
         let (a, b) = self.vgrid.range(lo, hi);
-        let span: i64 = (0..3).map(|k| b[k] - a[k] + 1).product();
+        let span = Grid::span(a, b);
         if span <= 4096 {
             &self.vgrid
         } else {
@@ -1163,13 +839,7 @@ impl<'a> General3<'a> {
         // floating-point plane of t: a box farther from it than a generous bound of the
         // rounding error (relative 1e-8) holds no point of t's plane, so no triangle in it can
         // meet t (a triangle sharing a vertex with t touches the plane and is never culled)
-        let d = |x: P, y: P| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
-        let (e1, e2) = (d(pt[1], pt[0]), d(pt[2], pt[0]));
-        let nrm = [
-            e1[1] * e2[2] - e1[2] * e2[1],
-            e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0],
-        ];
+        let nrm = cross(sub(pt[1], pt[0]), sub(pt[2], pt[0]));
         let n1: f64 = nrm.iter().map(|x| x.abs()).sum();
         let scale = |x: P| x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let st_scale = scale(bb.0).max(scale(bb.1));
@@ -1198,26 +868,7 @@ impl<'a> General3<'a> {
                 return false;
             }
             let pu = u.map(|v| self.pt(v));
-            let mut shared = [(0usize, 0usize); 3];
-            let mut ns = 0;
-            for x in 0..3 {
-                for y in 0..3 {
-                    if t[x] == u[y] && ns < 3 {
-                        shared[ns] = (x, y);
-                        ns += 1;
-                    }
-                }
-            }
-            match ns {
-                0 => triangles_intersect(pt, pu),
-                1 => meet_beyond_vertex(pt, shared[0].0, pu, shared[0].1),
-                2 => {
-                    let (i0, i1) = (shared[0].0, shared[1].0);
-                    let (j0, j1) = (shared[0].1, shared[1].1);
-                    meet_beyond_edge(pt[i0], pt[i1], pt[3 - i0 - i1], pu[3 - j0 - j1])
-                }
-                _ => true,
-            }
+            triangles_meet_beyond_shared(t, pt, u, pu)
         })
     }
 
@@ -1415,7 +1066,7 @@ impl<'a> General3<'a> {
             return false;
         }
         let pt = t.map(|v| self.pt(v));
-        !(super::validity3::degenerate(pt[0], pt[1], pt[2]) || self.hits_boundary(t, &[]))
+        !(degenerate_triangle(pt[0], pt[1], pt[2]) || self.hits_boundary(t, &[]))
     }
 
     fn push(&mut self, f: [u32; 3]) -> bool {
@@ -1745,7 +1396,7 @@ impl<'a> General3<'a> {
         let pl = self.pt(l);
         let n = self.p.len();
         let mut buf = Vec::new();
-        let mut rad = self.vgrid.cell;
+        let mut rad = self.vgrid.cell();
         loop {
             self.vgrid.query(
                 std::array::from_fn(|i| pl[i] - rad),
@@ -1870,14 +1521,14 @@ impl<'a> General3<'a> {
                 )
             };
             let g = self.point_grid_for(lo, hi);
-            if g.coarse.is_some() || !g.big.is_empty() {
+            if !g.is_single_level() {
                 // (points are never wide boxes; kept for safety) every point, in index order
                 return scan(iv, &mut (0..pts.len() as u32));
             }
             cells.clear();
+            let (origin, cell) = (g.origin(), g.cell());
             g.for_cells(lo, hi, |k, ids| {
-                let k = [k.0, k.1, k.2];
-                let mid = std::array::from_fn(|i| g.lo[i] + (k[i] as f64 + 0.5) * g.cell);
+                let mid = std::array::from_fn(|i| origin[i] + (k[i] as f64 + 0.5) * cell);
                 cells.push((depth(mid), ids));
             });
             cells.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
@@ -2042,61 +1693,6 @@ mod tests {
         false
     }
 
-    /// `insert_many` equals `insert` one by one on each of its paths: cell coordinates packed
-    /// into integer keys, cell coordinates too far from the origin for the packing (tuple
-    /// keys), and more entries than the cap (one box after the other); boxes of every size,
-    /// wide ones going to the coarse levels and the big list.
-    #[test]
-    fn bulk_grid_insertion_equals_one_by_one_on_every_path() {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
-        // (origin, cap, extent, dense): the sort of packed cells, the sort of cell tuples
-        // (cells beyond 21 bits), one box after the other (capped), the counting sort
-        for (origin, cap, extent, dense) in [
-            (0.0, usize::MAX, 100.0, false),
-            (-1e9, usize::MAX, 100.0, false),
-            (0.0, 100, 100.0, false),
-            (-1e9, usize::MAX, 12.0, true),
-        ] {
-            let items: Vec<(u32, P, P)> = (0..3000u32)
-                .map(|id| {
-                    let lo: P = std::array::from_fn(|_| rng.gen_range(0.0..extent));
-                    let w = match id % 50 {
-                        _ if id % 500 == 0 => 1e5,
-                        0 => 90.0,
-                        1..=3 => 20.0,
-                        _ => rng.gen_range(0.0..3.0),
-                    };
-                    let hi: P = std::array::from_fn(|k| lo[k] + w * (0.5 + (k as f64) / 4.0));
-                    (id, lo, hi)
-                })
-                .collect();
-            let mut bulk = Grid::new([origin; 3], 1.0, true);
-            let fine: Vec<(u32, [i64; 3], [i64; 3])> = items
-                .iter()
-                .map(|&(id, lo, hi)| {
-                    let (a, b) = bulk.range(lo, hi);
-                    (id, a, b)
-                })
-                .filter(|(_, a, b)| {
-                    (0..3).map(|k| b[k] - a[k] + 1).product::<i64>() <= Grid::MAX_SPAN
-                })
-                .collect();
-            let total: i64 = fine
-                .iter()
-                .map(|(_, a, b)| (0..3).map(|k| b[k] - a[k] + 1).product::<i64>())
-                .sum();
-            assert_eq!(Grid::dense_block(&fine, total as usize).is_some(), dense);
-            bulk.insert_many_capped(items.iter().copied(), cap);
-            let mut one = Grid::new([origin; 3], 1.0, true);
-            for &(id, lo, hi) in &items {
-                one.insert(id, lo, hi);
-            }
-            let coarse = bulk.coarse.as_ref().and_then(|g| g.coarse.as_ref());
-            assert!(coarse.is_some_and(|g| !g.big.is_empty()) && !bulk.cells.is_empty());
-            assert_eq!(bulk, one, "origin {origin}, cap {cap}");
-        }
-    }
-
     /// The bulk construction (`build`) gives exactly the tables of adding the triangles one
     /// by one as the engine does later (`add_tri_grid`, `set_boundary`): same ids, edge lists
     /// in the same order, same grid cells (coarse levels included) — on a dense sphere with a
@@ -2141,7 +1737,10 @@ mod tests {
         for &f in &st.triangles {
             one.set_boundary(f, true);
         }
-        assert!(bulk.tgrid.coarse.is_some(), "no big triangles in the test");
+        assert!(
+            !bulk.tgrid.is_single_level(),
+            "no big triangles in the test"
+        );
         assert_eq!(bulk.tris, one.tris);
         assert_eq!(bulk.live, one.live);
         assert_eq!(bulk.bflag, one.bflag);
@@ -2169,7 +1768,7 @@ mod tests {
             let inside = |z: &u32| (0..3).all(|i| (lo[i]..=hi[i]).contains(&pos[*z as usize][i]));
             let g = bulk.point_grid_for(lo, hi);
             wide += usize::from(std::ptr::eq(g, &bulk.vcoarse));
-            assert!(g.coarse.is_none() && g.big.is_empty());
+            assert!(g.is_single_level());
             let mut a = Vec::new();
             g.for_cells(lo, hi, |_, ids| {
                 a.extend(ids.iter().copied().filter(inside))
@@ -2523,7 +2122,7 @@ mod tests {
         let all = crate::graphs::fast::candidates_3d(&d).triangles;
         let mut g = General3::new(&pos, &d.hull, &all, &[]);
         assert!(g.changed.is_empty() && g.changed_all == 0);
-        let shift = 50.0 * g.bgrid.cell + 10.0;
+        let shift = 50.0 * g.bgrid.cell() + 10.0;
         let far = |b: (P, P)| -> (P, P) { (b.0.map(|x| x + shift), b.1.map(|x| x + shift)) };
         for round in 0..60 {
             let e = g.epoch;
@@ -2542,37 +2141,6 @@ mod tests {
             assert!(!g.changed_since(g.epoch, b.0, b.1));
         }
         assert!(g.epoch >= 30, "{}", g.epoch);
-    }
-
-    /// Every id whose box meets the query box is reported by `query` and seen by
-    /// `any_in_box`, on all levels (boxes from a tenth of a cell to thousands of cells wide).
-    #[test]
-    fn grid_reports_every_meeting_box_on_every_level() {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
-        let mut g = Grid::new([0.0; 3], 1.0, true);
-        let mut boxes = Vec::new();
-        for id in 0..600u32 {
-            let size = [0.1, 3.0, 30.0, 300.0, 3000.0][id as usize % 5];
-            let lo: P = std::array::from_fn(|_| rng.gen_range(-100.0..100.0));
-            let hi: P = std::array::from_fn(|k| lo[k] + rng.gen_range(0.0..size));
-            g.insert(id, lo, hi);
-            boxes.push((lo, hi));
-        }
-        let top = g.coarse.as_ref().and_then(|c| c.coarse.as_ref());
-        assert!(top.is_some_and(|t| !t.big.is_empty() && !t.cells.is_empty()));
-        let mut out = Vec::new();
-        for _ in 0..300 {
-            let lo: P = std::array::from_fn(|_| rng.gen_range(-120.0..120.0));
-            let hi: P = std::array::from_fn(|k| lo[k] + rng.gen_range(0.0..20.0));
-            g.query(lo, hi, &mut out);
-            assert!(out.windows(2).all(|w| w[0] < w[1]));
-            for (id, b) in boxes.iter().enumerate() {
-                if boxes_meet(*b, (lo, hi)) {
-                    assert!(out.binary_search(&(id as u32)).is_ok(), "{id}");
-                    assert!(g.any_in_box(lo, hi, |i| i == id as u32), "{id}");
-                }
-            }
-        }
     }
 
     #[test]

@@ -18,6 +18,7 @@
 //! (|vᵢvₖ| + |vⱼvₖ| − |vᵢvⱼ|) / (|vᵢvₖ| + |vⱼvₖ| + |vᵢvⱼ|): "face area" is edge length in 2D.
 
 use crate::geom::distance::dot_sign;
+use crate::geom::vec::{cross2, dist_hypot, hypot, sub};
 
 /// Which selection key a constriction uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -28,10 +29,6 @@ pub enum Key {
     MinAreaChange,
 }
 
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
-}
-
 /// The γ-indicator of edge (pi, pj) with respect to pk (Def. 5.1 with the exact sign of
 /// Eq. 5.1; see the module documentation).
 pub fn gamma_indicator(pi: [f64; 2], pj: [f64; 2], pk: [f64; 2]) -> f64 {
@@ -39,11 +36,9 @@ pub fn gamma_indicator(pi: [f64; 2], pj: [f64; 2], pk: [f64; 2]) -> f64 {
     if s == 0 {
         return 0.0;
     }
-    let u = [pi[0] - pk[0], pi[1] - pk[1]];
-    let v = [pj[0] - pk[0], pj[1] - pk[1]];
-    let cross = (u[0] * v[1] - u[1] * v[0]).abs();
-    let lu = u[0].hypot(u[1]);
-    let lv = v[0].hypot(v[1]);
+    let (u, v) = (sub(pi, pk), sub(pj, pk));
+    let cross = cross2(u, v).abs();
+    let (lu, lv) = (hypot(u), hypot(v));
     let sin = if lu > 0.0 && lv > 0.0 {
         (cross / lu / lv).min(1.0)
     } else {
@@ -59,8 +54,8 @@ pub fn gamma_indicator(pi: [f64; 2], pj: [f64; 2], pk: [f64; 2]) -> f64 {
 
 /// Boissonnat's Eq. 4.1 for deleting edge (pi, pj) and exposing pk.
 pub fn min_area_change(pi: [f64; 2], pj: [f64; 2], pk: [f64; 2]) -> f64 {
-    let b = dist(pi, pj);
-    let i = dist(pi, pk) + dist(pj, pk);
+    let b = dist_hypot(pi, pj);
+    let i = dist_hypot(pi, pk) + dist_hypot(pj, pk);
     let all = b + i;
     if all > 0.0 {
         (i - b) / all
@@ -108,45 +103,12 @@ impl<T: Ord> Ord for MinKey<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_bigint::BigInt;
 
     /// Exact dot sign through big integers (coordinates scaled to integers).
     fn dot_sign_big(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i32 {
-        // represent each coordinate as m · 2^e with a common exponent
-        let parts: Vec<(i64, i32)> = [a[0], a[1], b[0], b[1], c[0], c[1]]
-            .iter()
-            .map(|&x| {
-                if x == 0.0 {
-                    return (0, 0);
-                }
-                let bits = x.to_bits();
-                let exp = ((bits >> 52) & 0x7ff) as i32;
-                let mant = if exp == 0 {
-                    (bits & ((1 << 52) - 1)) << 1
-                } else {
-                    (bits & ((1 << 52) - 1)) | (1 << 52)
-                } as i64;
-                let m = if x < 0.0 { -mant } else { mant };
-                (m, exp - 1075)
-            })
-            .collect();
-        let emin = parts
-            .iter()
-            .filter(|p| p.0 != 0)
-            .map(|p| p.1)
-            .min()
-            .unwrap_or(0);
-        let v: Vec<BigInt> = parts
-            .iter()
-            .map(|&(m, e)| BigInt::from(m) << ((e - emin).max(0) as usize))
-            .collect();
+        let v = crate::geom::exact::to_big_ints(&[a[0], a[1], b[0], b[1], c[0], c[1]]);
         let (ax, ay, bx, by, cx, cy) = (&v[0], &v[1], &v[2], &v[3], &v[4], &v[5]);
-        let d = (ax - cx) * (bx - cx) + (ay - cy) * (by - cy);
-        match d.sign() {
-            num_bigint::Sign::Plus => 1,
-            num_bigint::Sign::Minus => -1,
-            num_bigint::Sign::NoSign => 0,
-        }
+        crate::geom::exact::big_sign(&((ax - cx) * (bx - cx) + (ay - cy) * (by - cy)))
     }
 
     #[test]

@@ -135,7 +135,7 @@ pub struct Boundary2 {
 /// Constructs a boundary polygon through the points (see the module documentation).
 ///
 /// The points are first multiplied by the power of two that brings the largest coordinate
-/// magnitude near 1 ([`crate::geom::power_of_two_scale`]; exact), so that the result does not
+/// magnitude near 1 ([`crate::geom::exact::power_of_two_scale`]; exact), so that the result does not
 /// depend on the units: the γ-indicators, the minimal-area-change keys and the skeleton
 /// lengths are floating-point values that over- or underflow at extreme absolute scales. The
 /// area and the skeleton length are reported in input units.
@@ -146,7 +146,7 @@ pub fn boundary_2d(points: &[Point2], opts: &Options2) -> Result<Boundary2> {
     let m = points
         .iter()
         .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
-    let s = crate::geom::power_of_two_scale(m);
+    let s = crate::geom::exact::power_of_two_scale(m);
     if s != 1.0 {
         let scaled: Vec<Point2> = points.iter().map(|p| p * s).collect();
         let mut b = boundary_2d_unit(&scaled, opts)?;
@@ -354,7 +354,7 @@ fn live_tri_edges(d: &Delaunay2, alive: &[bool]) -> Vec<[u32; 2]> {
             for e in 0..3 {
                 let (a, b) = (tri[(e + 1) % 3], tri[(e + 2) % 3]);
                 let nb = d.neighbors[t][e];
-                if nb == crate::delaunay::d2::NONE || !alive[nb as usize] || a < b {
+                if nb == crate::util::NONE || !alive[nb as usize] || a < b {
                     out.push([a, b]);
                 }
             }
@@ -384,7 +384,7 @@ fn check_keep(p: &[[f64; 2]], keep: &[[u32; 2]]) -> Result<()> {
             if v as u32 != a
                 && v as u32 != b
                 && orient2d(pa, pb, q) == 0.0
-                && validity::on_segment(pa, pb, q)
+                && crate::geom::intersect::on_segment(pa, pb, q)
             {
                 return Err(Error::invalid(format!(
                     "boundary: keep edge {k} passes through another point"
@@ -392,7 +392,8 @@ fn check_keep(p: &[[f64; 2]], keep: &[[u32; 2]]) -> Result<()> {
             }
         }
         for &[c, e] in &keep[k + 1..] {
-            if validity::segments_cross_properly(pa, pb, p[c as usize], p[e as usize]) {
+            if crate::geom::intersect::segments_cross_properly(pa, pb, p[c as usize], p[e as usize])
+            {
                 return Err(Error::invalid("boundary: keep edges cross each other"));
             }
         }
@@ -626,7 +627,7 @@ fn near_locked(
         let mut next = Vec::new();
         for &t in &front {
             for &n in &d.neighbors[t as usize] {
-                if n != crate::delaunay::d3::NONE && alive[n as usize] && !region[n as usize] {
+                if n != crate::util::NONE && alive[n as usize] && !region[n as usize] {
                     region[n as usize] = true;
                     next.push(n);
                 }
@@ -640,7 +641,7 @@ fn near_locked(
 /// [`boundary_3d`] with all options (see [`Options3`]).
 ///
 /// The points are first multiplied by the power of two that brings the largest coordinate
-/// magnitude near 1 ([`crate::geom::power_of_two_scale`]; exact): the constriction keys and
+/// magnitude near 1 ([`crate::geom::exact::power_of_two_scale`]; exact): the constriction keys and
 /// the engines' floating-point filters would otherwise over- or underflow at extreme absolute
 /// scales, and the result would depend on the units. The volume and the skeleton length are
 /// reported in input units.
@@ -650,7 +651,7 @@ pub fn boundary_3d_with(points: &[crate::geom::Point3], opts: &Options3) -> Resu
         .flat_map(|p| [p.x, p.y, p.z])
         .filter(|x| x.is_finite())
         .fold(0.0f64, |m, x| m.max(x.abs()));
-    let s = crate::geom::power_of_two_scale(m);
+    let s = crate::geom::exact::power_of_two_scale(m);
     if s != 1.0 {
         let scaled: Vec<crate::geom::Point3> = points.iter().map(|p| p * s).collect();
         let mut b = boundary_3d_unit(&scaled, opts)?;
@@ -703,7 +704,7 @@ fn boundary_3d_unit(points: &[crate::geom::Point3], opts: &Options3) -> Result<B
     let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
     for k in &keep_v {
         let q = k.map(|v| pos[v as usize]);
-        if validity3::degenerate(q[0], q[1], q[2]) {
+        if crate::geom::intersect::degenerate_triangle(q[0], q[1], q[2]) {
             return Err(Error::invalid(format!(
                 "boundary: keep triangle {k:?} is degenerate"
             )));
@@ -740,7 +741,7 @@ fn boundary_3d_unit(points: &[crate::geom::Point3], opts: &Options3) -> Result<B
                     let mut s = [tet[f[0]], tet[f[1]], tet[f[2]]];
                     s.sort_unstable();
                     // each interior face once (from the smaller tetrahedron), hull faces always
-                    if n == crate::delaunay::d3::NONE || !alive[n as usize] || (t as u32) < n {
+                    if n == crate::util::NONE || !alive[n as usize] || (t as u32) < n {
                         out.push(s);
                     }
                 }

@@ -5,135 +5,13 @@
 //! polygon (no two non-adjacent edges meet, adjacent edges share only their common vertex, no
 //! repeated vertex) and which input points it misses. Segment pairs are found through a sparse
 //! grid of cells about the edges' size (`first_crossing`, in parallel): expected O(n log n) for
-//! boundaries with edges of similar length, worst case O(n²). [`SegGrid`] is the dynamic
-//! bucket grid of the general 2D engine. [`segments_intersect`] is the exact closed-segment test
-//! used throughout `boundary`.
+//! boundaries with edges of similar length, worst case O(n²). The segment tests are
+//! those of [`crate::geom::intersect`].
 
+use crate::geom::intersect::{on_segment, segments_intersect};
 use crate::geom::predicates::raw::orient2d;
 use crate::geom::Point2;
 use rayon::prelude::*;
-use std::collections::HashMap;
-
-/// True when the closed segments ab and cd have a point in common (exact).
-pub fn segments_intersect(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
-    let o1 = orient2d(a, b, c);
-    let o2 = orient2d(a, b, d);
-    let o3 = orient2d(c, d, a);
-    let o4 = orient2d(c, d, b);
-    if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0))
-        && ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0))
-    {
-        return true;
-    }
-    (o1 == 0.0 && on_segment(a, b, c))
-        || (o2 == 0.0 && on_segment(a, b, d))
-        || (o3 == 0.0 && on_segment(c, d, a))
-        || (o4 == 0.0 && on_segment(c, d, b))
-}
-
-/// True when the open segments ab and cd cross at one point interior to both (exact).
-pub fn segments_cross_properly(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
-    let o1 = orient2d(a, b, c);
-    let o2 = orient2d(a, b, d);
-    if !((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) {
-        return false;
-    }
-    let o3 = orient2d(c, d, a);
-    let o4 = orient2d(c, d, b);
-    (o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0)
-}
-
-/// For p collinear with ab: p lies on the closed segment ab (exact: coordinate comparisons).
-pub fn on_segment(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
-    a[0].min(b[0]) <= p[0]
-        && p[0] <= a[0].max(b[0])
-        && a[1].min(b[1]) <= p[1]
-        && p[1] <= a[1].max(b[1])
-}
-
-/// A uniform grid of segments (each registered in every cell its bounding box meets) and
-/// points, for local intersection queries.
-pub struct SegGrid {
-    min: [f64; 2],
-    cell: f64,
-    dims: [usize; 2],
-    cells: HashMap<u64, Vec<u32>>,
-}
-
-impl SegGrid {
-    /// A grid with cell size `cell` over the box `[min, max]` (at most ~`max_cells` cells: the
-    /// cell is enlarged when needed).
-    pub fn new(min: [f64; 2], max: [f64; 2], cell: f64, max_cells: usize) -> Self {
-        let ext = [(max[0] - min[0]).max(0.0), (max[1] - min[1]).max(0.0)];
-        let mut cell = if cell.is_finite() && cell > 0.0 {
-            cell
-        } else {
-            ext[0].max(ext[1]).max(1.0)
-        };
-        let mut dims;
-        loop {
-            dims = [
-                (ext[0] / cell).floor() as usize + 1,
-                (ext[1] / cell).floor() as usize + 1,
-            ];
-            if dims[0].saturating_mul(dims[1]) <= max_cells.max(16) {
-                break;
-            }
-            cell *= 1.5;
-        }
-        SegGrid {
-            min,
-            cell,
-            dims,
-            cells: HashMap::new(),
-        }
-    }
-
-    fn range(&self, lo: [f64; 2], hi: [f64; 2]) -> [[usize; 2]; 2] {
-        let f = |v: f64, k: usize| -> usize {
-            let c = ((v - self.min[k]) / self.cell).floor();
-            if c.is_nan() || c < 0.0 {
-                0
-            } else {
-                (c as usize).min(self.dims[k] - 1)
-            }
-        };
-        [[f(lo[0], 0), f(hi[0], 0)], [f(lo[1], 1), f(hi[1], 1)]]
-    }
-
-    fn key(&self, x: usize, y: usize) -> u64 {
-        (y as u64) * (self.dims[0] as u64) + x as u64
-    }
-
-    /// Registers item `id` in every cell meeting the box of `a` and `b`.
-    pub fn insert(&mut self, id: u32, a: [f64; 2], b: [f64; 2]) {
-        let r = self.range(
-            [a[0].min(b[0]), a[1].min(b[1])],
-            [a[0].max(b[0]), a[1].max(b[1])],
-        );
-        for y in r[1][0]..=r[1][1] {
-            for x in r[0][0]..=r[0][1] {
-                let k = self.key(x, y);
-                self.cells.entry(k).or_default().push(id);
-            }
-        }
-    }
-
-    /// Calls `f` for every item registered in a cell meeting the box `[lo, hi]` (an item may be
-    /// reported more than once).
-    pub fn query(&self, lo: [f64; 2], hi: [f64; 2], mut f: impl FnMut(u32)) {
-        let r = self.range(lo, hi);
-        for y in r[1][0]..=r[1][1] {
-            for x in r[0][0]..=r[0][1] {
-                if let Some(v) = self.cells.get(&self.key(x, y)) {
-                    for &id in v {
-                        f(id);
-                    }
-                }
-            }
-        }
-    }
-}
 
 /// The result of [`check_polygon`].
 #[derive(Debug, Clone, PartialEq)]
@@ -204,7 +82,7 @@ pub fn check_polygon(points: &[Point2], cycle: &[u32]) -> PolygonCheck {
         let p = points[i as usize];
         m.max(p.x.abs()).max(p.y.abs())
     });
-    let s = crate::geom::power_of_two_scale(m);
+    let s = crate::geom::exact::power_of_two_scale(m);
     let pt = |k: usize| {
         let p = points[cycle[k % n] as usize];
         [p.x * s, p.y * s]

@@ -14,7 +14,8 @@
 //! `max_seeds` caps S (seeds then evenly spaced over the triangles); with S = all triangles
 //! this is the full trial-and-error method.
 
-use crate::delaunay::d2::{Delaunay2, NONE};
+use crate::delaunay::d2::Delaunay2;
+use crate::util::NONE;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 

@@ -65,8 +65,9 @@
 //! object's (the "body is not filled properly").
 
 use super::voronoi_skeleton::E;
-use crate::delaunay::d3::{Delaunay3, FACE_OF, NONE};
+use crate::delaunay::d3::{Delaunay3, FACE_OF};
 use crate::geom::Point3;
+use crate::util::NONE;
 use rayon::prelude::*;
 use std::collections::BinaryHeap;
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};

@@ -37,9 +37,10 @@
 //! at most two triangles, the triangles around each vertex form one fan), with distinct vertex
 //! positions. Triangles may be given in either orientation; zero-area triangles are refused.
 
-use super::dual::{check_indices, check_neighbors, simplex_neighbors, Dual, NONE};
+use super::dual::{check_indices, check_neighbors, simplex_neighbors, Dual};
 use super::{ring_area, Contour2, ContourOptions, Region2};
 use crate::geom::{orient2d, Point2};
+use crate::util::NONE;
 use crate::{Error, Result};
 use std::borrow::Cow;
 use std::collections::HashMap;

@@ -20,10 +20,8 @@
 //! `{u, v_ext}` is a flag on u, and deleting a vertex (with its edges) is a flag as well, so that
 //! every step keeps O(1) work per incidence.
 
+use crate::util::NONE;
 use crate::{Error, Result};
-
-/// "No neighbour" (a hull facet) in neighbour arrays.
-pub const NONE: u32 = u32::MAX;
 
 /// Checks that every index of `simplices` is below `n`.
 pub fn check_indices<const K: usize>(simplices: &[[u32; K]], n: usize) -> Result<()> {

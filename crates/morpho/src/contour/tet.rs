@@ -16,9 +16,10 @@
 //! Preconditions: the tetrahedra form a tetrahedrization (no overlaps; each face shared by at most
 //! two); either orientation is accepted, zero-volume tetrahedra are refused.
 
-use super::dual::{check_indices, check_neighbors, facet, simplex_neighbors, Dual, NONE};
+use super::dual::{check_indices, check_neighbors, facet, simplex_neighbors, Dual};
 use crate::geom::{orient3d, Point3};
 use crate::mesh::{Property, ScalarKind, TriMesh};
+use crate::util::NONE;
 use crate::{Error, Result};
 use std::borrow::Cow;
 

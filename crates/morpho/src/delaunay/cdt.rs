@@ -56,8 +56,9 @@
 //! Those of [`crate::delaunay::d2::triangulate`] (finite coordinates in the exact range). For
 //! collinear input (no triangles) constraints are validated but there is nothing to triangulate.
 
-use crate::delaunay::d2::{triangulate, Delaunay2, NONE};
+use crate::delaunay::d2::{triangulate, Delaunay2};
 use crate::geom::Point2;
+use crate::util::NONE;
 use crate::{Error, Result};
 use std::collections::VecDeque;
 

@@ -59,12 +59,13 @@
 //! with inconsistent predicates, and hitting them is also an error.
 //! Constructions (circumcentres) are ordinary floating point.
 
+use crate::geom::exact::{incircle_i128, orient2d_i64};
 use crate::geom::predicates::raw::{incircle, orient2d};
 use crate::geom::{Point2, Vector2};
+use crate::util::hilbert::{hilbert2, HILBERT2_BITS};
+use crate::util::NONE;
+use crate::util::{Rng, Rng32};
 use crate::{Error, Result};
-
-/// Marker for "no triangle" / "no neighbour" / "no vertex".
-pub const NONE: u32 = u32::MAX;
 
 /// The infinite vertex of ghost triangles (construction only).
 const INF: u32 = u32::MAX;
@@ -169,32 +170,6 @@ pub fn triangulate_with_insertion_seed(points: &[Point2], seed: u64) -> Result<D
     build(points, Some(seed))
 }
 
-/// Number of bits per axis of the Hilbert key.
-const HILBERT_BITS: u32 = 16;
-
-/// Hilbert curve index of the cell (x, y), each coordinate < 2^HILBERT_BITS (the classic
-/// quadrant-rotation algorithm, written without data-dependent branches).
-#[inline]
-fn hilbert_index(mut x: u32, mut y: u32) -> u32 {
-    let mask = (1u32 << HILBERT_BITS) - 1;
-    let mut d: u32 = 0;
-    let mut s = 1u32 << (HILBERT_BITS - 1);
-    while s > 0 {
-        let rx = ((x & s) != 0) as u32;
-        let ry = ((y & s) != 0) as u32;
-        d += s * s * ((3 * rx) ^ ry);
-        // if ry == 0: reflect when rx == 1, then swap x and y
-        let flip = 0u32.wrapping_sub(rx & (ry ^ 1)) & mask;
-        x ^= flip;
-        y ^= flip;
-        let swap = (x ^ y) & 0u32.wrapping_sub(ry ^ 1);
-        x ^= swap;
-        y ^= swap;
-        s >>= 1;
-    }
-    d
-}
-
 /// Exact predicates on the construction's vertex coordinates.
 trait Kernel {
     type P: Copy;
@@ -233,11 +208,6 @@ struct IntKernel(Vec<[i64; 2]>);
 /// Bound on |coordinate| for [`IntKernel`]: differences < 2^29, lifts < 2^59, products < 2^118.
 const INT_LIMIT: f64 = (1u64 << 28) as f64;
 
-#[inline]
-fn orient_i(a: [i64; 2], b: [i64; 2], c: [i64; 2]) -> i64 {
-    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-}
-
 impl Kernel for IntKernel {
     type P = [i64; 2];
     #[inline]
@@ -246,19 +216,11 @@ impl Kernel for IntKernel {
     }
     #[inline]
     fn orient(a: [i64; 2], b: [i64; 2], c: [i64; 2]) -> i32 {
-        orient_i(a, b, c).signum() as i32
+        orient2d_i64(a, b, c).signum() as i32
     }
     #[inline]
     fn incircle_sos(a: [i64; 2], b: [i64; 2], c: [i64; 2], d: [i64; 2]) -> i32 {
-        let (adx, ady) = (a[0] - d[0], a[1] - d[1]);
-        let (bdx, bdy) = (b[0] - d[0], b[1] - d[1]);
-        let (cdx, cdy) = (c[0] - d[0], c[1] - d[1]);
-        let al = (adx * adx + ady * ady) as i128;
-        let bl = (bdx * bdx + bdy * bdy) as i128;
-        let cl = (cdx * cdx + cdy * cdy) as i128;
-        let det = al * (bdx * cdy - cdx * bdy) as i128
-            + bl * (cdx * ady - adx * cdy) as i128
-            + cl * (adx * bdy - bdx * ady) as i128;
+        let det = incircle_i128(a, b, c, d);
         if det != 0 {
             return det.signum() as i32;
         }
@@ -311,7 +273,7 @@ struct Builder<K: Kernel> {
     stack: Vec<u32>,
     /// Set when a safety bound is hit (only possible if the predicates were inexact).
     failed: bool,
-    rng: u32,
+    rng: Rng32,
 }
 
 enum Found {
@@ -326,12 +288,7 @@ enum Found {
 impl<K: Kernel> Builder<K> {
     #[inline]
     fn next_rand(&mut self) -> u32 {
-        let mut x = self.rng;
-        x ^= x << 13;
-        x ^= x >> 17;
-        x ^= x << 5;
-        self.rng = x;
-        x
+        self.rng.next_u32()
     }
 
     #[inline]
@@ -542,7 +499,7 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
         .max(lo[1].abs())
         .max(hi[0].abs())
         .max(hi[1].abs());
-    let scale = crate::geom::power_of_two_scale(m);
+    let scale = crate::geom::exact::power_of_two_scale(m);
     let n_in = points.len();
 
     // Hilbert keys on the bounding box (computed on halves to avoid overflow of hi - lo).
@@ -552,12 +509,12 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
             return 0;
         }
         let t = ((0.5 * v - 0.5 * lo[k]) / ext).clamp(0.0, 1.0);
-        (t * ((1u32 << HILBERT_BITS) - 1) as f64) as u32
+        (t * ((1u32 << HILBERT2_BITS) - 1) as f64) as u32
     };
     let mut keys: Vec<u64> = points
         .iter()
         .enumerate()
-        .map(|(i, p)| ((hilbert_index(cell(0, p.x), cell(1, p.y)) as u64) << 32) | i as u64)
+        .map(|(i, p)| ((hilbert2(cell(0, p.x), cell(1, p.y)) as u64) << 32) | i as u64)
         .collect();
     keys.sort_unstable();
     // Canonical order: Hilbert key, then coordinates, then input index.
@@ -712,7 +669,7 @@ fn run_insertion<K: Kernel>(k: K, n: usize, k0: usize, order_seed: Option<u64>) 
         tv: Vec::with_capacity(2 * n + 4),
         th: Vec::with_capacity(2 * n + 4),
         stack: Vec::with_capacity(64),
-        rng: 0x9e37_79b9,
+        rng: Rng32::new(0x9e37_79b9),
         failed: false,
     };
     let (a, b, cc) = if K::orient(bld.k.p(0), bld.k.p(1), bld.k.p(k0 as u32)) > 0 {
@@ -735,12 +692,9 @@ fn run_insertion<K: Kernel>(k: K, n: usize, k0: usize, order_seed: Option<u64>) 
     bld.link(7, 9); // g2 (INF,c) ↔ g3 (c,INF)
     let mut order = brio_order(n, k0);
     if let Some(seed) = order_seed {
-        let mut st = seed | 1;
+        let mut rng = Rng::new(seed | 1);
         for i in (1..order.len()).rev() {
-            st ^= st << 13;
-            st ^= st >> 7;
-            st ^= st << 17;
-            order.swap(i, (st % (i as u64 + 1)) as usize);
+            order.swap(i, rng.below(i as u64 + 1) as usize);
         }
     }
     let mut last_t = 0u32;
@@ -886,13 +840,10 @@ impl Delaunay2 {
             0
         };
         let mut from = NONE;
-        let mut rng = 0x2545_f491u32;
+        let mut rng = Rng32::new(0x2545_f491);
         'walk: loop {
             let v = self.triangles[t as usize];
-            rng ^= rng << 13;
-            rng ^= rng >> 17;
-            rng ^= rng << 5;
-            let r = (rng % 3) as usize;
+            let r = (rng.next_u32() % 3) as usize;
             let mut zeros = [false; 3];
             for k in 0..3 {
                 let e = (r + k) % 3;
@@ -1092,13 +1043,8 @@ mod tests {
 
     #[test]
     fn integer_kernel_agrees_with_float_kernel() {
-        let mut s = 12345u64;
-        let mut next = |m: i64| {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s % (2 * m as u64 + 1)) as i64 - m
-        };
+        let mut s = Rng::new(12345);
+        let mut next = |m: i64| s.below(2 * m as u64 + 1) as i64 - m;
         for k in 0..4000 {
             // small ranges give many exact ties; large ones test the i128 range
             let m = if k % 2 == 0 { 3 } else { (1 << 27) - 1 };
@@ -1204,27 +1150,5 @@ mod tests {
             }
         }
         assert!(checked > 1000);
-    }
-
-    #[test]
-    fn hilbert_is_a_bijection_on_small_grid() {
-        let mut seen = std::collections::HashSet::new();
-        for x in 0..64 {
-            for y in 0..64 {
-                seen.insert(hilbert_index(x << 10, y << 10) >> 20);
-            }
-        }
-        assert_eq!(seen.len(), 4096);
-        // consecutive cells along the curve are edge neighbours
-        let mut cells: Vec<(u32, i32, i32)> = (0..64 * 64)
-            .map(|k| {
-                let (x, y) = (k % 64, k / 64);
-                (hilbert_index(x << 10, y << 10) >> 20, x as i32, y as i32)
-            })
-            .collect();
-        cells.sort();
-        for w in cells.windows(2) {
-            assert_eq!((w[0].1 - w[1].1).abs() + (w[0].2 - w[1].2).abs(), 1);
-        }
     }
 }

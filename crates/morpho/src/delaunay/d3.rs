@@ -39,7 +39,7 @@
 //! Shewchuk's adaptive `orient3d`/`insphere` (via `geom::predicates`) when every coordinate is 0
 //! or within 2^±120 (no overflow/underflow possible); an exact i128 in-sphere when all
 //! coordinates are integers of magnitude ≤ 2^20 (lattices hit exact ties constantly); otherwise
-//! (e.g. 1e-300 or 1e300) the big-integer predicates of [`super::dd`].
+//! (e.g. 1e-300 or 1e300) the big-integer determinants; all three in [`crate::geom::exact`].
 //!
 //! # Complexity
 //! Expected `O(n log n)` for points spread in space (`O(n²)` worst case, e.g. points on the
@@ -47,15 +47,18 @@
 //! ghosts) per point during the construction, 36 bytes each; measured peak ≈ 370 bytes per
 //! point for 1M uniform points (see `examples/bench_delaunay3d.rs`).
 
-use crate::geom::predicates::raw::{insphere, orient2d, orient3d};
+use crate::geom::exact::{
+    insphere_exact, insphere_small_int, orient2d_exact, orient3d_exact, safe_range,
+};
+use crate::geom::predicates::raw::{insphere, orient3d};
 use crate::geom::Point3;
+use crate::util::hilbert::hilbert3;
+use crate::util::{Rng, NONE};
 use crate::{Error, Result};
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use std::collections::HashSet;
 
-/// Marker for "no tetrahedron" in [`Delaunay3::neighbors`] and [`Face3::tets`].
-pub const NONE: u32 = u32::MAX;
 /// The infinite vertex (internal).
 const INF: u32 = u32::MAX;
 /// Marks a freed tetrahedron slot (internal, in vertex slot 0).
@@ -152,7 +155,7 @@ struct Builder<'a> {
     stamp: Vec<u32>,
     free: Vec<u32>,
     last: u32,
-    rng: u64,
+    rng: Rng,
     stack: Vec<u32>,
     conflict: Vec<u32>,
     bnd: Vec<Bnd>,
@@ -168,13 +171,7 @@ impl<'a> Builder<'a> {
 
     #[inline]
     fn rand(&mut self) -> u64 {
-        // xorshift64
-        let mut x = self.rng;
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        self.rng = x;
-        x
+        self.rng.next_u64()
     }
 
     fn alloc(&mut self) -> u32 {
@@ -392,120 +389,6 @@ impl<'a> Builder<'a> {
     }
 }
 
-/// Exact `insphere` (same sign as Shewchuk's) for integer coordinates of magnitude ≤ 2^20:
-/// differences ≤ 2^21, 2×2 minors ≤ 2^43 (i64), the determinant ≤ 2^112 (i128). Lattice inputs
-/// hit exact zeros constantly; this avoids the expansion arithmetic of the adaptive predicate.
-#[inline]
-fn insphere_small_int(q: &[[f64; 3]; 5]) -> f64 {
-    let e = q[4];
-    let d = |p: [f64; 3]| {
-        [
-            (p[0] - e[0]) as i64,
-            (p[1] - e[1]) as i64,
-            (p[2] - e[2]) as i64,
-        ]
-    };
-    let (a, b, c, dd) = (d(q[0]), d(q[1]), d(q[2]), d(q[3]));
-    let ab = a[0] * b[1] - b[0] * a[1];
-    let bc = b[0] * c[1] - c[0] * b[1];
-    let cd = c[0] * dd[1] - dd[0] * c[1];
-    let da = dd[0] * a[1] - a[0] * dd[1];
-    let ac = a[0] * c[1] - c[0] * a[1];
-    let bd = b[0] * dd[1] - dd[0] * b[1];
-    let w = |x: i64| x as i128;
-    let abc = w(a[2]) * w(bc) - w(b[2]) * w(ac) + w(c[2]) * w(ab);
-    let bcd = w(b[2]) * w(cd) - w(c[2]) * w(bd) + w(dd[2]) * w(bc);
-    let cda = w(c[2]) * w(da) + w(dd[2]) * w(ac) + w(a[2]) * w(cd);
-    let dab = w(dd[2]) * w(ab) + w(a[2]) * w(bd) + w(b[2]) * w(da);
-    let lift = |p: [i64; 3]| w(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-    let det = (lift(dd) * abc - lift(c) * dab) + (lift(b) * cda - lift(a) * bcd);
-    det.signum() as f64
-}
-
-/// True when every coordinate is 0 or has a magnitude in [2^-120, 2^120], the range in which
-/// Shewchuk's adaptive predicates (degree ≤ 5) can neither overflow nor underflow.
-#[inline]
-fn safe_range(q: &[[f64; 3]]) -> bool {
-    q.iter().all(|p| {
-        p.iter().all(|x| {
-            let e = ((x.to_bits() >> 52) & 0x7ff) as i32;
-            *x == 0.0 || (1023 - 120..=1023 + 120).contains(&e)
-        })
-    })
-}
-
-/// Exact `orient3d` (sign exact, magnitude approximate) for any finite coordinates: Shewchuk's
-/// adaptive predicate in its safe range, big-integer arithmetic ([`super::dd::orient_sign`])
-/// outside it (tiny or huge coordinates such as 1e-300 or 1e300).
-#[inline]
-pub fn orient3d_exact(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
-    if safe_range(&[a, b, c, d]) {
-        orient3d(a, b, c, d)
-    } else {
-        super::dd::orient_sign(&[&a, &b, &c, &d]) as f64
-    }
-}
-
-/// Exact `insphere` for any finite coordinates (see [`orient3d_exact`]).
-#[inline]
-pub fn insphere_exact(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> f64 {
-    if safe_range(&[a, b, c, d, e]) {
-        insphere(a, b, c, d, e)
-    } else {
-        super::dd::insphere_sign(&[&a, &b, &c, &d, &e]) as f64
-    }
-}
-
-#[inline]
-fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    let z = |p: [f64; 2]| [p[0], p[1], 0.0];
-    if safe_range(&[z(a), z(b), z(c)]) {
-        orient2d(a, b, c)
-    } else {
-        super::dd::orient_sign(&[&a, &b, &c]) as f64
-    }
-}
-
-/// 3D Hilbert index of integer coordinates with `bits` bits each (Skilling's transpose method).
-fn hilbert3(mut x: [u32; 3], bits: u32) -> u64 {
-    let m = 1u32 << (bits - 1);
-    let mut q = m;
-    while q > 1 {
-        let p = q - 1;
-        for i in 0..3 {
-            if x[i] & q != 0 {
-                x[0] ^= p;
-            } else {
-                let t = (x[0] ^ x[i]) & p;
-                x[0] ^= t;
-                x[i] ^= t;
-            }
-        }
-        q >>= 1;
-    }
-    for i in 1..3 {
-        x[i] ^= x[i - 1];
-    }
-    let mut t = 0;
-    q = m;
-    while q > 1 {
-        if x[2] & q != 0 {
-            t ^= q - 1;
-        }
-        q >>= 1;
-    }
-    for xi in x.iter_mut() {
-        *xi ^= t;
-    }
-    let mut h = 0u64;
-    for b in (0..bits).rev() {
-        for xi in x {
-            h = (h << 1) | ((xi >> b) & 1) as u64;
-        }
-    }
-    h
-}
-
 /// BRIO insertion order of `pts` (fixed seed), each round Hilbert-sorted.
 pub(crate) fn brio_order(pts: &[[f64; 3]]) -> Vec<u32> {
     let n = pts.len();
@@ -688,7 +571,7 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
         stamp: Vec::with_capacity(7 * n + 16),
         free: Vec::new(),
         last: 0,
-        rng: 0x2545_F491_4F6C_DD1D,
+        rng: Rng::new(0x2545_F491_4F6C_DD1D),
         stack: Vec::new(),
         conflict: Vec::new(),
         bnd: Vec::new(),
@@ -1098,38 +981,6 @@ mod tests {
             .sum();
         assert!((vol - 8.0).abs() < 1e-12, "{vol}");
         assert_eq!(d.hull.len(), 6 * 8);
-    }
-
-    #[test]
-    fn hilbert_is_bijective_on_small_grid() {
-        let mut keys: Vec<u64> = Vec::new();
-        for x in 0..8 {
-            for y in 0..8 {
-                for z in 0..8 {
-                    keys.push(hilbert3([x, y, z], 3));
-                }
-            }
-        }
-        keys.sort_unstable();
-        keys.dedup();
-        assert_eq!(keys.len(), 512);
-        assert_eq!(*keys.last().unwrap(), 511);
-    }
-
-    #[test]
-    fn small_int_insphere_matches_shewchuk() {
-        use rand::Rng;
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
-        for k in 0..3000 {
-            let r = if k % 2 == 0 { 3 } else { 1 << 20 };
-            let q: [[f64; 3]; 5] =
-                std::array::from_fn(|_| std::array::from_fn(|_| rng.gen_range(-r..=r) as f64));
-            let s = crate::geom::predicates::raw::insphere(q[0], q[1], q[2], q[3], q[4]);
-            assert_eq!(
-                insphere_small_int(&q),
-                s.signum() * (s != 0.0) as i32 as f64
-            );
-        }
     }
 
     #[test]

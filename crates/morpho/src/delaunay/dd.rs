@@ -24,7 +24,7 @@
 //! absolute values, which bounds the rounding error; when the sign is not certain, the
 //! determinant is recomputed exactly with big integers (every `f64` is an integer times a power
 //! of two, so after a common power-of-two scaling all entries are integers) by Bareiss'
-//! fraction-free elimination.
+//! fraction-free elimination (both in [`crate::geom::exact`]).
 //!
 //! # Degeneracies
 //! Duplicates are merged; vertices are numbered in lexicographic order (the canonical index).
@@ -38,18 +38,17 @@
 //! Randomized incremental: about `O(n^⌈d/2⌉)` expected for points in general position, plus the
 //! exact-fallback cost; meant for up to a few thousand points (exactness first, speed second).
 
+use crate::geom::exact::{affinely_independent, insphere_sign, orient_sign};
+use crate::util::{Rng, NONE};
 use crate::{Error, Result};
-use num_bigint::{BigInt, Sign};
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use std::collections::HashMap;
 
-/// Marker for "no simplex" in [`DelaunayD::neighbors`].
-pub const NONE: u32 = u32::MAX;
 const INF: u32 = u32::MAX;
 const FREE: u32 = u32::MAX - 1;
-/// Largest supported dimension.
-pub const MAX_DIM: usize = 7;
+/// Largest supported dimension (that of the exact determinants).
+pub const MAX_DIM: usize = crate::geom::exact::MAX_DIM;
 
 /// A d-dimensional Delaunay triangulation.
 #[derive(Debug, Clone)]
@@ -73,181 +72,6 @@ pub struct DelaunayD {
     pub duplicates: usize,
     /// Why there are no simplices, if so.
     pub degenerate: Option<String>,
-}
-
-const U: f64 = f64::EPSILON * 0.5;
-
-/// Determinant of the `n`×`n` row-major matrix `m` by cofactor expansion over column subsets,
-/// with a rigorous rounding-error bound from the permanent of `|m|`; `Some(det)` when the sign is
-/// certain. `lift_col`: a column whose entries carry a relative error of up to `lift_err·u`.
-fn det_filter(m: &[f64], n: usize, lift_err: f64) -> Option<f64> {
-    let full = (1usize << n) - 1;
-    let mut d = [0.0f64; 1 << (MAX_DIM + 2)];
-    let mut p = [0.0f64; 1 << (MAX_DIM + 2)];
-    for s in 1..=full {
-        let k = s.count_ones() as usize;
-        let r = n - k;
-        let row = &m[r * n..r * n + n];
-        if k == 1 {
-            let j = s.trailing_zeros() as usize;
-            d[s] = row[j];
-            p[s] = row[j].abs();
-            continue;
-        }
-        let (mut acc, mut pacc) = (0.0, 0.0);
-        let mut pos = 0;
-        for j in 0..n {
-            if s & (1 << j) != 0 {
-                let sub = s & !(1 << j);
-                let t = row[j] * d[sub];
-                if pos & 1 == 0 {
-                    acc += t;
-                } else {
-                    acc -= t;
-                }
-                pacc += row[j].abs() * p[sub];
-                pos += 1;
-            }
-        }
-        d[s] = acc;
-        p[s] = pacc;
-    }
-    let (det, perm) = (d[full], p[full]);
-    if !perm.is_finite() || !det.is_finite() {
-        return None;
-    }
-    if perm < 1e-250 {
-        return None;
-    }
-    let nf = n as f64;
-    let bound = 2.0 * (nf * nf + 2.0 * nf + 8.0 + lift_err) * U * perm + 1e-290;
-    if det.abs() > bound {
-        Some(det)
-    } else {
-        None
-    }
-}
-
-/// `x = m · 2^e` exactly.
-fn parts(x: f64) -> (i64, i32) {
-    let bits = x.to_bits();
-    let neg = bits >> 63 != 0;
-    let eb = ((bits >> 52) & 0x7ff) as i32;
-    let frac = (bits & ((1u64 << 52) - 1)) as i64;
-    let (m, e) = if eb == 0 {
-        (frac, -1074)
-    } else {
-        (frac | (1i64 << 52), eb - 1075)
-    };
-    (if neg { -m } else { m }, e)
-}
-
-/// Exact sign of the determinant of a big-integer matrix (Bareiss).
-fn bareiss_sign(mut m: Vec<BigInt>, n: usize) -> i32 {
-    let mut sign = 1;
-    let mut prev = BigInt::from(1);
-    for k in 0..n.saturating_sub(1) {
-        if m[k * n + k].sign() == Sign::NoSign {
-            let Some(r) = (k + 1..n).find(|&r| m[r * n + k].sign() != Sign::NoSign) else {
-                return 0;
-            };
-            for j in 0..n {
-                m.swap(k * n + j, r * n + j);
-            }
-            sign = -sign;
-        }
-        for i in k + 1..n {
-            for j in k + 1..n {
-                let v = (&m[i * n + j] * &m[k * n + k] - &m[i * n + k] * &m[k * n + j]) / &prev;
-                m[i * n + j] = v;
-            }
-        }
-        prev = m[k * n + k].clone();
-    }
-    match m[n * n - 1].sign() {
-        Sign::Plus => sign,
-        Sign::Minus => -sign,
-        Sign::NoSign => 0,
-    }
-}
-
-/// Converts the coordinates of `q` to integers after a common power-of-two scaling.
-fn to_ints(q: &[&[f64]]) -> Vec<Vec<BigInt>> {
-    let emin = q
-        .iter()
-        .flat_map(|r| r.iter())
-        .filter(|x| **x != 0.0)
-        .map(|&x| parts(x).1)
-        .min()
-        .unwrap_or(0);
-    q.iter()
-        .map(|r| {
-            r.iter()
-                .map(|&x| {
-                    let (m, e) = parts(x);
-                    BigInt::from(m) << ((e - emin) as usize)
-                })
-                .collect()
-        })
-        .collect()
-}
-
-/// Exact sign (−1, 0, 1) of `orient(q_0 … q_d)` = det of rows `[q_i, 1]`; `q.len() == d + 1`.
-pub fn orient_sign(q: &[&[f64]]) -> i32 {
-    let n = q.len();
-    let d = n - 1;
-    let mut m = [0.0f64; (MAX_DIM + 1) * (MAX_DIM + 1)];
-    for (i, r) in q.iter().enumerate() {
-        m[i * n..i * n + d].copy_from_slice(&r[..d]);
-        m[i * n + d] = 1.0;
-    }
-    if let Some(v) = det_filter(&m[..n * n], n, 0.0) {
-        return if v > 0.0 {
-            1
-        } else if v < 0.0 {
-            -1
-        } else {
-            0
-        };
-    }
-    let ints = to_ints(q);
-    let mut mb = Vec::with_capacity(n * n);
-    for r in ints {
-        mb.extend(r);
-        mb.push(BigInt::from(1));
-    }
-    bareiss_sign(mb, n)
-}
-
-/// Exact sign of `insphere(q_0 … q_{d+1})` = det of rows `[q_i, |q_i|², 1]`; positive when
-/// `q_{d+1}` is inside the sphere through the positively oriented `q_0 … q_d`.
-pub fn insphere_sign(q: &[&[f64]]) -> i32 {
-    let n = q.len();
-    let d = n - 2;
-    let mut m = [0.0f64; (MAX_DIM + 2) * (MAX_DIM + 2)];
-    for (i, r) in q.iter().enumerate() {
-        m[i * n..i * n + d].copy_from_slice(&r[..d]);
-        m[i * n + d] = r[..d].iter().map(|x| x * x).sum();
-        m[i * n + d + 1] = 1.0;
-    }
-    if let Some(v) = det_filter(&m[..n * n], n, (d + 2) as f64) {
-        return if v > 0.0 {
-            1
-        } else if v < 0.0 {
-            -1
-        } else {
-            0
-        };
-    }
-    let ints = to_ints(q);
-    let mut mb = Vec::with_capacity(n * n);
-    for r in ints {
-        let s: BigInt = r.iter().map(|x| x * x).sum();
-        mb.extend(r);
-        mb.push(s);
-        mb.push(BigInt::from(1));
-    }
-    bareiss_sign(mb, n)
 }
 
 /// Symbolically perturbed in-sphere (see the module doc): `q` has d+2 points with distinct
@@ -275,42 +99,6 @@ pub fn perturbed_insphere(q: &[&[f64]], ids: &[u32]) -> bool {
     false
 }
 
-/// Exact test that the points are affinely independent.
-fn affinely_independent(q: &[&[f64]]) -> bool {
-    if q.len() <= 1 {
-        return true;
-    }
-    let ints = to_ints(q);
-    let d = q[0].len();
-    let rows = q.len() - 1;
-    let mut m: Vec<Vec<BigInt>> = (1..q.len())
-        .map(|i| (0..d).map(|k| &ints[i][k] - &ints[0][k]).collect())
-        .collect();
-    // fraction-free row echelon; rank == rows?
-    let mut rank = 0;
-    for col in 0..d {
-        if rank == rows {
-            break;
-        }
-        let Some(r) = (rank..rows).find(|&r| m[r][col].sign() != Sign::NoSign) else {
-            continue;
-        };
-        m.swap(rank, r);
-        for i in rank + 1..rows {
-            if m[i][col].sign() == Sign::NoSign {
-                continue;
-            }
-            let (a, b) = (m[rank][col].clone(), m[i][col].clone());
-            for k in 0..d {
-                let v = &m[i][k] * &a - &m[rank][k] * &b;
-                m[i][k] = v;
-            }
-        }
-        rank += 1;
-    }
-    rank == rows
-}
-
 struct Bnd {
     v: Vec<u32>,
     i: usize,
@@ -325,7 +113,7 @@ struct Builder<'a> {
     stamp: Vec<u32>,
     free: Vec<u32>,
     last: u32,
-    rng: u64,
+    rng: Rng,
     overflow: bool,
 }
 
@@ -346,12 +134,7 @@ impl<'a> Builder<'a> {
         self.sn[s as usize * d1 + i] = code;
     }
     fn rand(&mut self) -> u64 {
-        let mut x = self.rng;
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        self.rng = x;
-        x
+        self.rng.next_u64()
     }
     fn alloc(&mut self) -> u32 {
         let d1 = self.d + 1;
@@ -602,7 +385,7 @@ pub fn triangulate_d(coords: &[f64], dim: usize) -> Result<DelaunayD> {
         stamp: vec![0],
         free: Vec::new(),
         last: 0,
-        rng: 0x2545_F491_4F6C_DD1D,
+        rng: Rng::new(0x2545_F491_4F6C_DD1D),
         overflow: false,
     };
     for i in 0..d1 {
@@ -805,53 +588,6 @@ pub fn simplex_volume(q: &[&[f64]]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn predicates_match_shewchuk() {
-        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
-        use rand::Rng;
-        for _ in 0..500 {
-            let q: Vec<[f64; 3]> = (0..5)
-                .map(|_| {
-                    [
-                        rng.gen_range(-4..4) as f64,
-                        rng.gen_range(-4..4) as f64,
-                        rng.gen::<f64>(),
-                    ]
-                })
-                .collect();
-            let r: Vec<&[f64]> = q.iter().map(|x| &x[..]).collect();
-            let o = crate::geom::predicates::raw::orient3d(q[0], q[1], q[2], q[3]);
-            assert_eq!(orient_sign(&r[..4]), o.partial_cmp(&0.0).unwrap() as i32);
-            let s = crate::geom::predicates::raw::insphere(q[0], q[1], q[2], q[3], q[4]);
-            assert_eq!(insphere_sign(&r), s.partial_cmp(&0.0).unwrap() as i32);
-            let q2: Vec<&[f64]> = q.iter().map(|x| &x[..2]).collect();
-            let o2 = crate::geom::predicates::raw::orient2d(
-                [q[0][0], q[0][1]],
-                [q[1][0], q[1][1]],
-                [q[2][0], q[2][1]],
-            );
-            assert_eq!(orient_sign(&q2[..3]), o2.partial_cmp(&0.0).unwrap() as i32);
-        }
-    }
-
-    #[test]
-    fn exact_on_extreme_scales() {
-        // collinear after scaling by 1e-300 and 1e300
-        for s in [1e-300, 1e300, 1e-310] {
-            let a = [0.0, 0.0];
-            let b = [s, s];
-            let c = [2.0 * s, 2.0 * s];
-            assert_eq!(orient_sign(&[&a, &b, &c]), 0);
-            let c2 = [2.0 * s, 3.0 * s];
-            assert_eq!(orient_sign(&[&a, &b, &c2]), 1);
-        }
-        // cocircular unit square scaled by 1e200 (the lifted column overflows)
-        let s = 1e200;
-        let q = [[0.0, 0.0], [s, 0.0], [s, s], [0.0, s]];
-        let r: Vec<&[f64]> = q.iter().map(|x| &x[..]).collect();
-        assert_eq!(insphere_sign(&r), 0);
-    }
 
     #[test]
     fn square_2d() {

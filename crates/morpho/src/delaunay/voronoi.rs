@@ -15,8 +15,9 @@
 //! perturbed triangulation. For collinear input there are no Voronoi vertices, the edges are
 //! [`VoronoiEdge::Line`]s and [`Voronoi2::cell`] returns an empty vertex list.
 
-use super::d2::{Delaunay2, NONE};
+use super::d2::Delaunay2;
 use crate::geom::{Point2, Vector2};
+use crate::util::NONE;
 
 /// One edge of the Voronoi diagram, dual to the Delaunay edge `dual = [a, b]`.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -12,6 +12,7 @@
 //! `robust` predicates).
 
 use super::expansion::Expansion;
+use super::vec::dist2;
 use std::cmp::Ordering;
 
 /// Relative filter constant: every float value below has relative error at most a few ε of the
@@ -48,12 +49,6 @@ fn xdist2<const D: usize>(a: &[f64; D], b: &[f64; D]) -> Expansion {
     xdot(a, a, b)
 }
 
-/// Squared distance in floating point.
-#[inline]
-pub fn dist2<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
-    (0..D).map(|k| (a[k] - b[k]) * (a[k] - b[k])).sum()
-}
-
 /// The exact sign (−1, 0, 1) of (a − c)·(b − c): positive when the angle at c is acute,
 /// zero when right, negative when obtuse. Equivalently, −sign tells whether c lies strictly
 /// inside (−1), on (0) or outside (+1) the ball with diameter ab.
@@ -78,7 +73,7 @@ pub fn cmp_dist2<const D: usize>(
     if (a == c && b == d) || (a == d && b == c) {
         return Ordering::Equal; // the same pair: common when comparing with a nearest neighbour
     }
-    let (x, y) = (dist2(a, b), dist2(c, d));
+    let (x, y) = (dist2(*a, *b), dist2(*c, *d));
     match filtered(x - y, x + y) {
         Some(s) => s.cmp(&0),
         None => xdist2(a, b).sub(&xdist2(c, d)).sign().cmp(&0),
@@ -115,7 +110,7 @@ pub fn sum_of_roots_exceeds<const D: usize>(
     p: &[f64; D],
     q: &[f64; D],
 ) -> bool {
-    let (d2, r2, s2) = (dist2(a, b), dist2(a, p), dist2(b, q));
+    let (d2, r2, s2) = (dist2(*a, *b), dist2(*a, *p), dist2(*b, *q));
     let t = d2 - r2 - s2;
     let mag = d2 + r2 + s2;
     let lin = filtered(t, mag);

@@ -40,8 +40,9 @@
 //! # Errors
 //! Empty input and non-finite coordinates.
 
-use super::expansion::Expansion;
+use super::expansion::{cross as xcross, dot as xdot, Expansion};
 use super::predicates::raw;
+use super::vec::{cross, dist, dist2, dot, sub};
 use super::{Point2, Point3};
 use crate::{Error, Result};
 use rand::seq::SliceRandom;
@@ -78,10 +79,7 @@ pub fn smallest_enclosing_disc(points: &[Point2]) -> Result<EnclosingDisc> {
     let support = solve_all(&pts, outside2)?;
     let s: Vec<[f64; 2]> = support.iter().map(|&i| pts[i]).collect();
     let c = center2(&s);
-    let radius = s
-        .iter()
-        .map(|p| ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2)).sqrt())
-        .fold(0.0, f64::max);
+    let radius = s.iter().map(|p| dist(*p, c)).fold(0.0, f64::max);
     Ok(EnclosingDisc {
         center: Point2::new(c[0], c[1]),
         radius,
@@ -102,10 +100,7 @@ pub fn smallest_enclosing_ball(points: &[Point3]) -> Result<EnclosingBall> {
     let support = solve_all(&pts, outside3)?;
     let s: Vec<[f64; 3]> = support.iter().map(|&i| pts[i]).collect();
     let c = center3(&s);
-    let radius = s
-        .iter()
-        .map(|p| ((0..3).map(|k| (p[k] - c[k]).powi(2)).sum::<f64>()).sqrt())
-        .fold(0.0, f64::max);
+    let radius = s.iter().map(|p| dist(*p, c)).fold(0.0, f64::max);
     Ok(EnclosingBall {
         center: Point3::new(c[0], c[1], c[2]),
         radius,
@@ -212,7 +207,7 @@ fn farthest_pair<const D: usize>(s: &[[f64; D]]) -> (usize, usize) {
     let mut best = (0, 0, -1.0);
     for i in 0..s.len() {
         for j in i + 1..s.len() {
-            let d: f64 = (0..D).map(|k| (s[i][k] - s[j][k]).powi(2)).sum();
+            let d = dist2(s[i], s[j]);
             if d > best.2 {
                 best = (i, j, d);
             }
@@ -242,15 +237,7 @@ fn diametral_outside<const D: usize>(a: &[f64; D], b: &[f64; D], p: &[f64; D]) -
 
 /// p strictly outside the smallest ball through a, b, c (centre in their plane).
 fn circle_ball_outside(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], p: &[f64; 3]) -> bool {
-    let sub = |x: &[f64; 3], y: &[f64; 3]| [x[0] - y[0], x[1] - y[1], x[2] - y[2]];
-    let (u, v, w) = (sub(b, a), sub(c, a), sub(p, a));
-    let cross = |x: [f64; 3], y: [f64; 3]| {
-        [
-            x[1] * y[2] - x[2] * y[1],
-            x[2] * y[0] - x[0] * y[2],
-            x[0] * y[1] - x[1] * y[0],
-        ]
-    };
+    let (u, v, w) = (sub(*b, *a), sub(*c, *a), sub(*p, *a));
     let acr = |x: [f64; 3], y: [f64; 3]| {
         [
             x[1] * y[2] + x[2] * y[1],
@@ -258,7 +245,6 @@ fn circle_ball_outside(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], p: &[f64; 3]) -
             x[0] * y[1] + x[1] * y[0],
         ]
     };
-    let dot = |x: [f64; 3], y: [f64; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
     let abs = |x: [f64; 3]| x.map(f64::abs);
     let n = cross(u, v);
     let val =
@@ -290,18 +276,6 @@ fn circle_ball_outside(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], p: &[f64; 3]) -
         .sub(&xdot(&u, &u).mul(&xdot(&w, &xcross(&v, &n))))
         .sub(&xdot(&v, &v).mul(&xdot(&w, &xcross(&n, &u))));
     val.sign() > 0
-}
-
-fn xcross(x: &[Expansion; 3], y: &[Expansion; 3]) -> [Expansion; 3] {
-    [
-        x[1].mul(&y[2]).sub(&x[2].mul(&y[1])),
-        x[2].mul(&y[0]).sub(&x[0].mul(&y[2])),
-        x[0].mul(&y[1]).sub(&x[1].mul(&y[0])),
-    ]
-}
-
-fn xdot(x: &[Expansion; 3], y: &[Expansion; 3]) -> Expansion {
-    x[0].mul(&y[0]).add(&x[1].mul(&y[1])).add(&x[2].mul(&y[2]))
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -114,6 +114,20 @@ impl Expansion {
     }
 }
 
+/// x × y of 3-vectors of expansions, exactly.
+pub fn cross(x: &[Expansion; 3], y: &[Expansion; 3]) -> [Expansion; 3] {
+    [
+        x[1].mul(&y[2]).sub(&x[2].mul(&y[1])),
+        x[2].mul(&y[0]).sub(&x[0].mul(&y[2])),
+        x[0].mul(&y[1]).sub(&x[1].mul(&y[0])),
+    ]
+}
+
+/// x · y of 3-vectors of expansions, exactly.
+pub fn dot(x: &[Expansion; 3], y: &[Expansion; 3]) -> Expansion {
+    x[0].mul(&y[0]).add(&x[1].mul(&y[1])).add(&x[2].mul(&y[2]))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,13 +1,19 @@
 //! Geometry kernel: points, vectors, bounding boxes, exact predicates, enclosing balls.
 //!
 //! Following CGAL's kernel idea, *decisions* (which side, inside which circle) are made by the
-//! exact adaptive predicates of [`predicates`]; *constructions* (circumcentres, interpolated
-//! points) are ordinary `f64` arithmetic.
+//! exact adaptive predicates of [`predicates`] and [`distance`], whose exact fallbacks
+//! (expansions, big integers, power-of-two rescaling) are in [`expansion`] and [`exact`];
+//! *constructions* (circumcentres, interpolated points) are ordinary `f64` arithmetic, on flat
+//! coordinates through [`vec`].
 
 pub mod distance;
 pub mod enclosing;
+pub mod exact;
 pub mod expansion;
+pub mod grid;
+pub mod intersect;
 pub mod predicates;
+pub mod vec;
 
 pub use predicates::{incircle, insphere, orient2d, orient3d};
 
@@ -88,20 +94,6 @@ impl<const D: usize> Aabb<D> {
 pub type Aabb2 = Aabb<2>;
 /// 3D bounding box.
 pub type Aabb3 = Aabb<3>;
-
-/// The power of two that brings the largest coordinate magnitude `m` near 1 (1 for 0 or a
-/// non-finite `m`). Multiplying coordinates by it is exact (barring underflow of coordinates
-/// below 2⁻¹⁰²²·m), and it keeps Shewchuk's predicates — exact only while no intermediate
-/// result over- or underflows — valid at any absolute scale (1e-300 … 1e300).
-pub fn power_of_two_scale(m: f64) -> f64 {
-    if m == 0.0 || !m.is_finite() {
-        return 1.0;
-    }
-    let e = m.log2().round() as i32;
-    // 2^-e computed in two steps so that neither factor over- or underflows.
-    let half = -e / 2;
-    2f64.powi(half) * 2f64.powi(-e - half)
-}
 
 /// Bounding box of 3D points.
 pub fn bbox3(points: &[Point3]) -> Aabb3 {

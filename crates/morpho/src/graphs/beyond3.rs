@@ -63,8 +63,8 @@
 
 use super::fast::{coords3, Candidates3};
 use super::gamma::{offset_of, triangle_circle, CenterInterval, TriFrame};
-use super::grid::Grid;
 use crate::delaunay::d3::Delaunay3;
+use crate::geom::grid::PointGrid as Grid;
 use rayon::prelude::*;
 use std::collections::HashSet;
 

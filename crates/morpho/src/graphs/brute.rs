@@ -9,16 +9,11 @@
 //! to them). Where a graph is not unique (NNG and EMST under ties) the oracle returns the
 //! union of all choices (NNG) or one tree (EMST; compare lengths).
 
-use super::gamma::{
-    center_interval_2d, center_interval_3d, def_contains_2d, def_contains_3d, dot3, sub3,
-};
+use super::gamma::{center_interval_2d, center_interval_3d, def_contains_2d, def_contains_3d};
 use crate::geom::distance::{cmp_dist2, dot_sign, in_lune_ball, sum_of_roots_exceeds};
 use crate::geom::predicates::raw;
+use crate::geom::vec::{cross, dist, dot, sub};
 use std::cmp::Ordering;
-
-fn d2(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
-}
 
 fn pairs(n: usize) -> impl Iterator<Item = (usize, usize)> {
     (0..n).flat_map(move |i| (i + 1..n).map(move |j| (i, j)))
@@ -106,7 +101,7 @@ pub fn emst<const D: usize>(p: &[[f64; D]]) -> Vec<[u32; 2]> {
 pub fn length<const D: usize>(p: &[[f64; D]], edges: &[[u32; 2]]) -> f64 {
     edges
         .iter()
-        .map(|e| d2(&p[e[0] as usize], &p[e[1] as usize]).sqrt())
+        .map(|e| dist(p[e[0] as usize], p[e[1] as usize]))
         .sum()
 }
 
@@ -200,8 +195,8 @@ fn triples(n: usize) -> impl Iterator<Item = (usize, usize, usize)> {
 pub fn hull_3d(p: &[[f64; 3]]) -> Vec<[u32; 3]> {
     triples(p.len())
         .filter(|&(i, j, k)| {
-            let n = super::gamma::cross3(sub3(p[j], p[i]), sub3(p[k], p[i]));
-            if dot3(n, n) == 0.0 {
+            let n = cross(sub(p[j], p[i]), sub(p[k], p[i]));
+            if dot(n, n) == 0.0 {
                 return false;
             }
             let (mut above, mut below) = (false, false);
@@ -326,8 +321,8 @@ pub fn gamma_3d_def(p: &[[f64; 3]], c0: f64, c1: f64) -> Vec<[u32; 3]> {
     triples(p.len())
         .filter(|&(i, j, k)| {
             let t = [p[i], p[j], p[k]];
-            let n = super::gamma::cross3(sub3(t[1], t[0]), sub3(t[2], t[0]));
-            if dot3(n, n) == 0.0 {
+            let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+            if dot(n, n) == 0.0 {
                 return false;
             }
             [1.0, -1.0].iter().any(|&side| {
@@ -379,13 +374,13 @@ pub fn alpha_3d(p: &[[f64; 3]], a: f64) -> Vec<[u32; 3]> {
             if h2 < 0.0 {
                 return false;
             }
-            let t = (h2 / dot3(n, n)).sqrt();
+            let t = (h2 / dot(n, n)).sqrt();
             [1.0, -1.0].iter().any(|&sd| {
                 (0..p.len())
                     .filter(|&x| x != i && x != j && x != k)
                     .all(|x| {
-                        let xm = sub3(p[x], m);
-                        let v = dot3(xm, xm) - r2 - 2.0 * sd * t * dot3(xm, n); // |x − c|² − R²
+                        let xm = sub(p[x], m);
+                        let v = dot(xm, xm) - r2 - 2.0 * sd * t * dot(xm, n); // |x − c|² − R²
                         if a > 0.0 {
                             v <= 0.0
                         } else {

@@ -24,10 +24,11 @@ use super::beyond3;
 use super::brute::{self, in_slab};
 use super::fast;
 use super::gamma::{in_gamma, in_gamma_range, CenterInterval};
-use super::grid::Grid;
 use super::lune::LuneGrid;
 use crate::delaunay::{d2, d3};
-use crate::geom::distance::{cmp_dist2, dist2, dot_sign, in_lune_ball, sum_of_roots_exceeds};
+use crate::geom::distance::{cmp_dist2, dot_sign, in_lune_ball, sum_of_roots_exceeds};
+use crate::geom::grid::PointGrid as Grid;
+use crate::geom::vec::dist2;
 use crate::geom::{Point2, Point3};
 use crate::{Error, Result};
 use rayon::prelude::*;
@@ -268,9 +269,9 @@ fn nearest_tri(d: &d2::Delaunay2, p: &[[f64; 2]]) -> (Vec<u32>, Vec<f64>) {
                 let t = k * size + i;
                 let nb = &d.neighbors[t];
                 for j in 0..3 {
-                    if nb[j] == d2::NONE || nb[j] as usize > t {
+                    if nb[j] == crate::util::NONE || nb[j] as usize > t {
                         let (a, b) = (tri[(j + 1) % 3], tri[(j + 2) % 3]);
-                        let x = dist2(&p[a as usize], &p[b as usize]);
+                        let x = dist2(p[a as usize], p[b as usize]);
                         offer(&mut near[a as usize], a, b, x);
                         offer(&mut near[b as usize], b, a, x);
                     }
@@ -307,7 +308,7 @@ struct BEdge {
 impl BEdge {
     fn new<const D: usize>(p: &[[f64; D]], a: u32, b: u32) -> Self {
         BEdge {
-            w: dist2(&p[a as usize], &p[b as usize]),
+            w: dist2(p[a as usize], p[b as usize]),
             a,
             b,
             e: [a, b],
@@ -332,7 +333,7 @@ fn tri_edges(d: &d2::Delaunay2, p: &[[f64; 2]]) -> Vec<BEdge> {
     const BLOCK: usize = 1 << 14;
     let reports = |t: usize, j: usize| {
         let nb = d.neighbors[t][j];
-        nb == d2::NONE || nb as usize > t
+        nb == crate::util::NONE || nb as usize > t
     };
     let counts: Vec<usize> = (0..d.triangles.len().div_ceil(BLOCK))
         .into_par_iter()
@@ -526,7 +527,7 @@ fn sig_edges<const D: usize>(p: &[[f64; D]], nn: &[u32], r2: &[f64]) -> Vec<[u32
             }
             grid.for_each_run(lo, hi, |run| {
                 for &(pb, rb, b) in &slots[run] {
-                    let d2 = dist2(&pa, &pb);
+                    let d2 = dist2(pa, pb);
                     let s = ra + rb;
                     let s2 = s * s;
                     // (most candidates are rejected here) found from the end with the larger
@@ -627,7 +628,7 @@ fn classic<const D: usize>(
         }
         Kind::Sig => {
             let nn = nearest_over(p, dt_edges);
-            let r2: Vec<f64> = (0..n).map(|a| dist2(&p[a], &p[nn[a] as usize])).collect();
+            let r2: Vec<f64> = (0..n).map(|a| dist2(p[a], p[nn[a] as usize])).collect();
             sig_edges(p, &nn, &r2)
         }
         Kind::Strip => strip(p, gabriel),
@@ -649,7 +650,7 @@ fn lune_empty_grid<const D: usize>(
     b: f64,
 ) -> bool {
     let (u, v) = (&p[e[0] as usize], &p[e[1] as usize]);
-    let len = dist2(u, v).sqrt();
+    let len = dist2(*u, *v).sqrt();
     let rad = len / (2.0 * (1.0 - b));
     let mut m = [0.0; D];
     for t in 0..D {
@@ -796,7 +797,7 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         Kind::Alpha(a) if a < 0.0 => {
             let rad = 1.0 / a.abs();
             let keep = |e: [u32; 2], iv: &CenterInterval| {
-                let len = dist2(&p[e[0] as usize], &p[e[1] as usize]).sqrt();
+                let len = dist2(p[e[0] as usize], p[e[1] as usize]).sqrt();
                 let h2 = rad * rad - 0.25 * len * len;
                 if h2 < 0.0 {
                     return None;
@@ -946,7 +947,7 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
                     0.5 * (u[1] + v[1]),
                     0.5 * (u[2] + v[2]),
                 ];
-                grid.for_each_within(m, 0.5 * dist2(&u, &v).sqrt() * (1.0 + 1e-9), |x| {
+                grid.for_each_within(m, 0.5 * dist2(u, v).sqrt() * (1.0 + 1e-9), |x| {
                     x == e[0] || x == e[1] || dot_sign(&u, &v, &p[x as usize]) >= 0
                 })
             })
@@ -1140,9 +1141,9 @@ fn hull_3d(d: &d3::Delaunay3, p: &[[f64; 3]]) -> Vec<[u32; 3]> {
         for i in 0..vs.len() {
             for j in i + 1..vs.len() {
                 for k in j + 1..vs.len() {
-                    let n = super::gamma::cross3(
-                        super::gamma::sub3(gp[j], gp[i]),
-                        super::gamma::sub3(gp[k], gp[i]),
+                    let n = crate::geom::vec::cross(
+                        crate::geom::vec::sub(gp[j], gp[i]),
+                        crate::geom::vec::sub(gp[k], gp[i]),
                     );
                     if n == [0.0, 0.0, 0.0] {
                         continue;

@@ -26,12 +26,13 @@
 //! brute force (limited to small inputs).
 
 use super::gamma::{offset_of, CenterInterval, EdgeFrame, TriFrame};
-use super::grid::Grid;
 use super::lune::LuneGrid;
-use crate::delaunay::d2::{Delaunay2, NONE};
+use crate::delaunay::d2::Delaunay2;
 use crate::delaunay::d3::Delaunay3;
 use crate::geom::distance::dot_sign;
+use crate::geom::grid::PointGrid as Grid;
 use crate::geom::predicates::raw;
+use crate::util::{sorted3, NONE};
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
 use std::sync::Mutex;
@@ -836,11 +837,6 @@ pub fn coords3(d: &Delaunay3) -> Vec<[f64; 3]> {
     d.points.iter().map(|p| [p.x, p.y, p.z]).collect()
 }
 
-fn sorted3(mut t: [u32; 3]) -> [u32; 3] {
-    t.sort_unstable();
-    t
-}
-
 /// Builds the 3D candidates. Cospherical groups (adjacent tetrahedra with a common empty
 /// sphere, found by exact in-sphere) contribute every non-degenerate triple of their vertices;
 /// such a triple's interval is computed against the group's vertices and the vertices of all
@@ -967,9 +963,9 @@ fn flat_groups(d: &Delaunay3, p: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u32
                     continue;
                 }
                 let both_hull = hull.contains(&f) && hull.contains(&g);
-                let n = super::gamma::cross3(
-                    super::gamma::sub3(q[1], q[0]),
-                    super::gamma::sub3(q[2], q[0]),
+                let n = crate::geom::vec::cross(
+                    crate::geom::vec::sub(q[1], q[0]),
+                    crate::geom::vec::sub(q[2], q[0]),
                 );
                 let e = [q[0][0] + n[0], q[0][1] + n[1], q[0][2] + n[2]];
                 let cocircular = raw::orient3d(q[0], q[1], q[2], e) != 0.0

@@ -34,6 +34,7 @@
 
 use crate::geom::distance::dot_sign;
 use crate::geom::predicates::raw;
+use crate::geom::vec::{cross, dot, sub};
 
 /// The offsets (in units of the simplex's unnormalised normal) of the empty balls touching a
 /// simplex: exactly the balls with offset in `[lo, hi]` are empty (`lo > hi`: none is).
@@ -391,25 +392,25 @@ pub fn center_interval_2d(points: &[[f64; 2]], a: usize, b: usize) -> CenterInte
 /// Circumcentre of triangle (a, b, c) in its plane, its squared radius, and the unnormalised
 /// normal (b − a) × (c − a). `None` for collinear corners.
 pub fn triangle_circle(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<([f64; 3], f64, [f64; 3])> {
-    let u = sub3(b, a);
-    let v = sub3(c, a);
-    let n = cross3(u, v);
-    let nn = dot3(n, n);
+    let u = sub(b, a);
+    let v = sub(c, a);
+    let n = cross(u, v);
+    let nn = dot(n, n);
     if nn == 0.0 || !nn.is_finite() {
         return None;
     }
     // circumcentre = a + (|u|² (v × n) + |v|² (n × u)) / (2 |n|²)
-    let uu = dot3(u, u);
-    let vv = dot3(v, v);
-    let t1 = cross3(v, n);
-    let t2 = cross3(n, u);
+    let uu = dot(u, u);
+    let vv = dot(v, v);
+    let t1 = cross(v, n);
+    let t2 = cross(n, u);
     let off = [
         (uu * t1[0] + vv * t2[0]) / (2.0 * nn),
         (uu * t1[1] + vv * t2[1]) / (2.0 * nn),
         (uu * t1[2] + vv * t2[2]) / (2.0 * nn),
     ];
     let m = [a[0] + off[0], a[1] + off[1], a[2] + off[2]];
-    Some((m, dot3(off, off), n))
+    Some((m, dot(off, off), n))
 }
 
 /// The frame of a 3D triangle (a, b, c) for computing its [`CenterInterval`] point by point.
@@ -434,19 +435,19 @@ impl TriFrame {
     }
     /// The interval before any point is added.
     pub fn start(&self) -> CenterInterval {
-        CenterInterval::new((self.r2 / dot3(self.n, self.n)).sqrt())
+        CenterInterval::new((self.r2 / dot(self.n, self.n)).sqrt())
     }
     /// Side (+1 along the normal, −1 against, 0 in the plane; exact) and offset τ of x.
     pub fn tau(&self, x: [f64; 3]) -> (f64, f64) {
         let [a, b, c] = self.t;
         // orient3d(a, b, c, x) > 0 when x is below, i.e. on the side opposite to n
         let side = sign(-raw::orient3d(a, b, c, x));
-        let dx = sub3(x, self.m);
-        let q = dot3(dx, dx) - self.r2;
+        let dx = sub(x, self.m);
+        let q = dot(dx, dx) - self.r2;
         if side == 0.0 {
             return (0.0, q);
         }
-        let h = dot3(dx, self.n);
+        let h = dot(dx, self.n);
         (side, tau_of(side, q, h))
     }
     /// Narrows `iv` by point x (not a corner); binding points and the order of the ends are
@@ -562,23 +563,6 @@ pub fn in_circumcircle_3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], x: [f64; 3], n:
     raw::insphere(a, b, c, d, x) * o > 0.0
 }
 
-#[inline]
-pub(crate) fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-#[inline]
-pub(crate) fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-#[inline]
-pub(crate) fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
 /// Whether `x` lies in the neighbourhood N_γ(c₀, c₁) of the 2D edge (a, b), with the larger
 /// ball's centre on side `side` (+1: left of a→b), computed literally from Def. 3.1: explicit
 /// discs (or half-planes for |c| = 1), their union (c₁ ≥ 0) or intersection (c₁ < 0), plus the
@@ -629,10 +613,10 @@ pub fn def_contains_3d(t: [[f64; 3]; 3], c0: f64, c1: f64, side: f64, x: [f64; 3
     if o == 0.0 && in_closed_triangle_3d(a, b, c, x, n) {
         return true;
     }
-    let r_over_n = (r2 / dot3(n, n)).sqrt();
-    let xm = sub3(x, m);
-    let q = dot3(xm, xm) - r2;
-    let h = dot3(xm, n);
+    let r_over_n = (r2 / dot(n, n)).sqrt();
+    let xm = sub(x, m);
+    let q = dot(xm, xm) - r2;
+    let h = dot(xm, n);
     let in_ball = |cc: f64, sd: f64| -> bool {
         if cc.abs() >= 1.0 {
             return o * sd > 0.0;

@@ -15,8 +15,8 @@
 //! [`in_lune_ball`]. Neither the apexes nor the Delaunay neighbours of u and v alone decide the
 //! lune (the test `one_ring_is_not_enough` has a counterexample), hence step 2.
 
-use super::grid::Grid;
 use crate::geom::distance::in_lune_ball;
+use crate::geom::grid::PointGrid as Grid;
 use rayon::prelude::*;
 
 /// Relative margin of the float filters (their rounding error is a few ε of the magnitudes

@@ -9,7 +9,6 @@ pub mod brute;
 pub mod build;
 pub mod fast;
 pub mod gamma;
-pub mod grid;
 pub mod lune;
 
 pub use build::{graph_2d, graph_3d, Graph, Kind};

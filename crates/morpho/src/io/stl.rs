@@ -22,73 +22,22 @@ use super::obj::{clip, numbered_lines, parse_f64, tokens, utf8_text, F64};
 use super::Encoding;
 use crate::geom::{Point3, Vector3};
 use crate::mesh::TriMesh;
+use crate::util::KeyedIdState;
 use crate::{Error, Result};
-use std::collections::hash_map::{Entry, HashMap, RandomState};
-use std::hash::{BuildHasher, Hasher};
+use std::collections::hash_map::{Entry, HashMap};
 use std::io::Write;
-
-/// Keyed hash for the corner map: one folded 64×64→128-bit multiplication per word, with keys
-/// drawn from std's [`RandomState`] — several times faster than SipHash on three words, and
-/// still unpredictable to whoever writes the file.
-#[derive(Clone)]
-struct KeyedFold {
-    k0: u64,
-    k1: u64,
-}
-
-impl KeyedFold {
-    fn new() -> Self {
-        let s = RandomState::new();
-        KeyedFold {
-            k0: s.hash_one(0x5354_4c31u64),
-            k1: s.hash_one(0x5354_4c32u64) | 1,
-        }
-    }
-}
-
-struct FoldHasher {
-    h: u64,
-    k: u64,
-}
-
-impl Hasher for FoldHasher {
-    fn write(&mut self, bytes: &[u8]) {
-        for c in bytes.chunks(8) {
-            let mut a = [0u8; 8];
-            a[..c.len()].copy_from_slice(c);
-            self.write_u64(u64::from_le_bytes(a));
-        }
-    }
-    #[inline]
-    fn write_u64(&mut self, x: u64) {
-        let m = ((self.h ^ x) as u128) * (self.k as u128);
-        self.h = (m as u64) ^ ((m >> 64) as u64);
-    }
-    fn finish(&self) -> u64 {
-        self.h
-    }
-}
-
-impl BuildHasher for KeyedFold {
-    type Hasher = FoldHasher;
-    fn build_hasher(&self) -> FoldHasher {
-        FoldHasher {
-            h: self.k0,
-            k: self.k1,
-        }
-    }
-}
 
 /// Merges corner positions into vertices by bit pattern, in order of first appearance.
 struct Merger {
-    map: HashMap<(u64, u64, u64), u32, KeyedFold>,
+    /// Keyed: the keys come from the file ([`KeyedIdState`]).
+    map: HashMap<(u64, u64, u64), u32, KeyedIdState>,
     positions: Vec<Point3>,
 }
 
 impl Merger {
     fn with_capacity(n: usize) -> Self {
         Merger {
-            map: HashMap::with_capacity_and_hasher(n, KeyedFold::new()),
+            map: HashMap::with_capacity_and_hasher(n, KeyedIdState::new()),
             positions: Vec::with_capacity(n),
         }
     }

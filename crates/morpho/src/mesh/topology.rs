@@ -55,10 +55,8 @@
 //! like a degenerate triangle (listed in `degenerate_triangles`, otherwise ignored).
 
 use super::TriMesh;
+use crate::util::NONE;
 use std::collections::VecDeque;
-
-/// Marks "no neighbour" in [`Topology::neighbors`] (and "no part" in `part_of_triangle`).
-pub const NONE: u32 = u32::MAX;
 
 /// Figures of one connected part (triangles connected through shared edges).
 #[derive(Debug, Clone, PartialEq, Eq, Default)]

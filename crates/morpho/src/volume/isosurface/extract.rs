@@ -18,7 +18,7 @@ use crate::geom::{Point3, Vector3};
 use crate::volume::gradient::{gradient_at, CentralTable, GradientOperator};
 use crate::volume::Volume;
 
-pub(super) const NONE: u32 = u32::MAX;
+use crate::util::NONE;
 /// Chunk-local triangle corners with this bit refer to the interior point list.
 pub(super) const INTERIOR: u32 = 1 << 31;
 /// Key of vertices not on a grid entity (cell-interior points).
