@@ -966,7 +966,11 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
         }
         return brute_3d(&d, &p, kind);
     }
-    let cand = fast::candidates_3d(&d);
+    // the triples of cospherical (and flat) groups — up to g³/6 of them — only for the kinds
+    // made of such triangles; the others need the Delaunay faces and the groups' pairs
+    let triples = matches!(kind, Kind::Gamma(..) | Kind::GammaRange(_))
+        || matches!(kind, Kind::Alpha(a) if a < 0.0);
+    let (cand, groups) = fast::candidates_3d_groups(&d, triples);
     let mut dt_edges: Vec<[u32; 2]> = Vec::with_capacity(d.tets.len() * 2);
     for t in &d.tets {
         for i in 0..4 {
@@ -985,11 +989,13 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
             .collect()
     };
     let gabriel = || -> Vec<[u32; 2]> {
-        // candidate pairs: Delaunay edges and pairs within cospherical groups
+        // candidate pairs: Delaunay edges and pairs within cospherical (and flat) groups, each
+        // decided exactly below (a superset of the Gabriel edges: every Gabriel edge is an edge
+        // of the Delaunay subdivision)
         let mut pairs = dt_edges.clone();
-        for (t, indt) in cand.triangles.iter().zip(&cand.in_dt) {
-            if !indt {
-                pairs.extend([[t[0], t[1]], [t[0], t[2]], [t[1], t[2]]]);
+        for vs in &groups {
+            for i in 0..vs.len() {
+                pairs.extend(vs[i + 1..].iter().map(|&w| [vs[i], w]));
             }
         }
         pairs.sort_unstable();
