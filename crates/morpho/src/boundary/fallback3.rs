@@ -1551,9 +1551,18 @@ impl<'a> General3<'a> {
             return Some(ub_of(&iv));
         }
         let mut scanned = 0.0; // B(0) = B(m, r)
+                               // s moves only when a point of B(s) changed the interval, i.e. became a binding point
+                               // strictly better than the last one on its side (exact): at most 2n + 2 moves. The cap
+                               // makes that explicit; beyond it (never reached) every point decides.
+        let mut moves = 0usize;
         loop {
             if ub_of(&iv) < 0.0 {
                 return None; // the gap regime with B(m, r) added: c₁′ ≥ c is final
+            }
+            moves += 1;
+            if moves > 2 * pts.len() + 4 {
+                let all = scan(&mut iv, &mut (0..pts.len() as u32));
+                return all.then(|| ub_of(&iv));
             }
             let Some(s) = iv.witness_offset(c) else {
                 // only half-spaces can be empty (`finite_blocked`): every point decides

@@ -75,6 +75,10 @@ const SLACK: f64 = 1e-6;
 /// cost, cells × partners, exceeds what it saves).
 const PLANE_FILTER_CELLS: usize = 512;
 
+/// Most rounds of the cell sizing of [`Field::new`] (h grows by 1.25 per round from ≥ 2⁻¹⁰²²:
+/// it passes any finite side within ~6400 rounds).
+const SIZING_ROUNDS: usize = 8000;
+
 /// Triangles with their intervals.
 type Found = Vec<([u32; 3], CenterInterval)>;
 
@@ -368,15 +372,32 @@ impl Field {
             .max(f64::MIN_POSITIVE);
         let vol: f64 = ext.iter().map(|x| x.max(e * 1e-3)).product();
         let mut h = (vol / n as f64).cbrt();
+        if !(h >= f64::MIN_POSITIVE && h.is_finite()) {
+            // the volume under- or overflowed (a set ≤ 1e-100 or ≥ 1e100 wide): the same cell
+            // relative to the largest side, which stays representable
+            let rel: f64 = ext.iter().map(|x| (x / e).max(1e-3)).product();
+            h = e * (rel / n as f64).cbrt();
+        }
+        if !(h >= f64::MIN_POSITIVE && h.is_finite()) {
+            h = f64::MIN_POSITIVE;
+        }
         let margin = 0.25 * e;
         let mut dims = [1usize; 3];
-        loop {
+        // h ≥ 2⁻¹⁰²² grows by 1.25 (exactly representable progress) every round, so it passes
+        // the grid's side (or reaches ∞, where every axis has one cell) within ~6400 rounds;
+        // the cap makes that explicit (one cell per axis)
+        for round in 0..=SIZING_ROUNDS {
             let mut total = 1usize;
             for k in 0..3 {
                 dims[k] = ((ext[k] + 2.0 * margin) / h).ceil().max(1.0) as usize;
                 total = total.saturating_mul(dims[k]);
             }
             if total <= 8 * n + 64 {
+                break;
+            }
+            if round == SIZING_ROUNDS {
+                h = (e + 2.0 * margin).max(f64::MIN_POSITIVE);
+                dims = [1; 3];
                 break;
             }
             h *= 1.25;
@@ -570,7 +591,12 @@ impl Field {
 
 /// Distance from x to the nearest point (by growing box queries).
 fn nearest(grid: &Grid<'_, 3>, p: &[[f64; 3]], x: [f64; 3], start: f64) -> f64 {
-    let mut r = start;
+    // r ≥ 2⁻¹⁰²² doubles exactly every round: past 1e300 within ~2000 rounds
+    let mut r = if start >= f64::MIN_POSITIVE && start.is_finite() {
+        start
+    } else {
+        f64::MIN_POSITIVE
+    };
     loop {
         let mut best = f64::INFINITY;
         grid.for_each_in_box(
@@ -588,5 +614,53 @@ fn nearest(grid: &Grid<'_, 3>, p: &[[f64; 3]], x: [f64; 3], start: f64) -> f64 {
             return best.sqrt();
         }
         r *= 2.0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::delaunay::d3;
+    use crate::geom::Point3;
+
+    fn cloud(n: usize, scale: f64) -> Vec<[f64; 3]> {
+        use rand::{Rng, SeedableRng};
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        (0..n)
+            .map(|_| [0; 3].map(|_| r.gen::<f64>() * scale))
+            .collect()
+    }
+
+    /// Issue 17 item 6: at 1e-110 the cell volume underflowed to 0 and `h *= 1.25` never grew
+    /// (an endless loop); at 1e300 it overflows. The field has a positive cell and a bounded
+    /// number of cells at every scale.
+    #[test]
+    fn field_sizing_terminates_at_every_scale() {
+        for scale in [1e-320, 1e-300, 1e-110, 1e-10, 1.0, 1e100, 1e300, f64::MAX] {
+            let p = cloud(50, scale);
+            let grid = Grid::new(&p, 2.0);
+            let f = Field::new(&p, &grid);
+            let cells: usize = f.dims.iter().product();
+            assert!(f.h > 0.0, "{scale:e}: h = {}", f.h);
+            assert!(cells <= 8 * p.len() + 64, "{scale:e}: {:?}", f.dims);
+        }
+        // a set spanning the whole float range (its side overflows)
+        let mut p = cloud(20, 1.0);
+        p.push([f64::MAX, 0.0, 0.0]);
+        p.push([-f64::MAX, 0.0, 0.0]);
+        let grid = Grid::new(&p, 2.0);
+        let f = Field::new(&p, &grid);
+        assert!(f.dims.iter().product::<usize>() <= 8 * p.len() + 64);
+    }
+
+    /// The whole search on a set 1e-110 wide ends (its triangles are degenerate in floating
+    /// point there: `graph_3d` scales such sets first; see `tests/graphs_degenerate.rs`).
+    #[test]
+    fn beyond_dt_3d_terminates_on_a_tiny_set() {
+        let p = cloud(60, 1e-110);
+        let pts: Vec<Point3> = p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
+        let d = d3::triangulate(&pts).unwrap();
+        let cand = super::super::fast::candidates_3d(&d);
+        let _ = beyond_dt_3d(&d, &cand, -0.5);
     }
 }

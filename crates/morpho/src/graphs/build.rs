@@ -681,9 +681,61 @@ fn strip<const D: usize>(p: &[[f64; D]], gabriel: &[[u32; 2]]) -> Vec<[u32; 2]> 
         .collect()
 }
 
+/// Largest coordinate magnitudes (as powers of two) used as they are: the graph predicates
+/// (degree ≤ 5 in coordinate differences, on floats and expansions) neither over- nor underflow
+/// for sets whose largest magnitude M lies in [2⁻¹⁰⁰, 2¹⁰⁰].
+const SAFE_EXPONENT: i32 = 100;
+
+/// For a set whose largest coordinate magnitude `m` lies outside the safe range
+/// [2⁻¹⁰⁰, 2¹⁰⁰]: the power of two that brings it near 1 (exact: the graphs, which are
+/// invariant under scaling, do not change; `None` inside the range, where nothing is scaled).
+/// An error when the scaling would flush a non-zero coordinate below the normal range (the
+/// set spans more magnitudes than the exact predicates can hold).
+fn extreme_scale(coords: impl Iterator<Item = f64> + Clone) -> Result<Option<f64>> {
+    let m = coords.clone().fold(0.0f64, |a, x| a.max(x.abs()));
+    let safe = 2f64.powi(-SAFE_EXPONENT)..=2f64.powi(SAFE_EXPONENT);
+    if m == 0.0 || !m.is_finite() || safe.contains(&m) {
+        return Ok(None);
+    }
+    let s = crate::geom::power_of_two_scale(m);
+    if s == 1.0 {
+        return Ok(None);
+    }
+    if coords
+        .into_iter()
+        .any(|x| x != 0.0 && (x * s).abs() < f64::MIN_POSITIVE)
+    {
+        return Err(Error::invalid(format!(
+            "coordinates span too many magnitudes (largest {m:e}) for exact graph predicates"
+        )));
+    }
+    Ok(Some(s))
+}
+
+/// The kind for points multiplied by `s`: the α-shape's a is an inverse length (a/s, exact for
+/// a power of two); every other parameter is scale-free.
+fn scaled_kind(kind: Kind, s: f64) -> Result<Kind> {
+    match kind {
+        Kind::Alpha(a) if !(a / s).is_finite() => Err(Error::invalid(format!(
+            "alpha parameter {a} is out of range at the scale of these points"
+        ))),
+        Kind::Alpha(a) => Ok(Kind::Alpha(a / s)),
+        k => Ok(k),
+    }
+}
+
 /// Builds a graph on 2D points (duplicates merged). Parameters are validated.
+///
+/// Sets at extreme scales (largest coordinate outside [2⁻¹⁰⁰, 2¹⁰⁰]) are first multiplied by
+/// the power of two that brings them near 1 ([`extreme_scale`]): exact, so the graph is the
+/// same, and no predicate or float filter over- or underflows (at 1e300 every squared
+/// distance is ∞, which sent every pair to the exact fallback — and that overflowed too).
 pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
     kind.validate()?;
+    if let Some(s) = extreme_scale(points.iter().flat_map(|q| [q.x, q.y]))? {
+        let scaled: Vec<Point2> = points.iter().map(|q| q * s).collect();
+        return graph_2d(&scaled, scaled_kind(kind, s)?);
+    }
     // β_c(b) = γ(b, b) (V §3.2), and the lune-based skeleton with b < 0 is the circle-based one
     if let Kind::BetaCircle(b) | Kind::BetaLune(b) = kind {
         if matches!(kind, Kind::BetaCircle(_)) || b < 0.0 {
@@ -899,8 +951,14 @@ fn finish3(
 /// Builds a graph on 3D points (duplicates merged). Kinds made of triangles (hull, Delaunay,
 /// α, γ) fill `triangles`; the others `edges`. Circle-based β and lune-based β with b < 0 are
 /// not defined in 3D (V §2.2.11).
+///
+/// Sets at extreme scales are first scaled exactly, as in [`graph_2d`].
 pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
     kind.validate()?;
+    if let Some(s) = extreme_scale(points.iter().flat_map(|q| [q.x, q.y, q.z]))? {
+        let scaled: Vec<Point3> = points.iter().map(|q| q * s).collect();
+        return graph_3d(&scaled, scaled_kind(kind, s)?);
+    }
     let d = d3::triangulate(points)?;
     let p = fast::coords3(&d);
     if let Some(why) = &d.degenerate {
@@ -909,7 +967,11 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
         }
         return brute_3d(&d, &p, kind);
     }
-    let cand = fast::candidates_3d(&d);
+    // the triples of cospherical (and flat) groups — up to g³/6 of them — only for the kinds
+    // made of such triangles; the others need the Delaunay faces and the groups' pairs
+    let triples = matches!(kind, Kind::Gamma(..) | Kind::GammaRange(_))
+        || matches!(kind, Kind::Alpha(a) if a < 0.0);
+    let (cand, groups) = fast::candidates_3d_groups(&d, triples);
     let mut dt_edges: Vec<[u32; 2]> = Vec::with_capacity(d.tets.len() * 2);
     for t in &d.tets {
         for i in 0..4 {
@@ -928,11 +990,13 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
             .collect()
     };
     let gabriel = || -> Vec<[u32; 2]> {
-        // candidate pairs: Delaunay edges and pairs within cospherical groups
+        // candidate pairs: Delaunay edges and pairs within cospherical (and flat) groups, each
+        // decided exactly below (a superset of the Gabriel edges: every Gabriel edge is an edge
+        // of the Delaunay subdivision)
         let mut pairs = dt_edges.clone();
-        for (t, indt) in cand.triangles.iter().zip(&cand.in_dt) {
-            if !indt {
-                pairs.extend([[t[0], t[1]], [t[0], t[2]], [t[1], t[2]]]);
+        for vs in &groups {
+            for i in 0..vs.len() {
+                pairs.extend(vs[i + 1..].iter().map(|&w| [vs[i], w]));
             }
         }
         pairs.sort_unstable();

@@ -357,6 +357,163 @@ fn for_each_group_chord(
     }
 }
 
+/// Calls `f(a, b, interval)` for every chord a < b of a cocircular group that is not a Delaunay
+/// edge (as [`for_each_group_chord`]), with the chord's interval ([`chord_interval`], from the
+/// group's [`CircleOrder`] in O(1) per chord after O(g log g) per group).
+fn for_each_group_chord_interval(
+    d: &Delaunay2,
+    p: &[[f64; 2]],
+    ties: Mutex<Vec<[u32; 2]>>,
+    mut f: impl FnMut(u32, u32, &CenterInterval),
+) {
+    let mut ties = ties.into_inner().unwrap_or_else(|x| x.into_inner());
+    let (groups, existing) = cocircular_groups(d, &mut ties);
+    for vs in groups {
+        let order = group_fast_paths()
+            .then(|| CircleOrder::new(p, &vs))
+            .flatten();
+        for i in 0..vs.len() {
+            for j in i + 1..vs.len() {
+                let (a, b) = (vs[i], vs[j]);
+                if existing.contains(&[a, b]) {
+                    continue;
+                }
+                let iv = match &order {
+                    Some(o) => o.chord_interval(p, &vs, i, j),
+                    None => chord_interval(p, a, b, &vs),
+                };
+                f(a, b, &iv);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Points examined for the intervals of cocircular chords on this thread (tests only).
+    pub(super) static CHORD_WORK: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    /// Tests only: compute every group chord and triple point by point (the reference).
+    static POINT_BY_POINT: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Whether the group fast paths ([`CircleOrder`], [`SphereGroup`]) are used (always, but in
+/// the tests that compare them with the point-by-point reference).
+fn group_fast_paths() -> bool {
+    #[cfg(test)]
+    {
+        !POINT_BY_POINT.with(|c| c.get())
+    }
+    #[cfg(not(test))]
+    {
+        true
+    }
+}
+
+#[cfg(test)]
+fn count_chord_work(k: usize) {
+    CHORD_WORK.with(|c| c.set(c.get() + k as u64));
+}
+#[cfg(not(test))]
+#[inline(always)]
+fn count_chord_work(_: usize) {}
+
+/// The points of a cocircular group in their order around the circle, with a range-minimum
+/// table over it, so that the interval of a chord (V §3.3) costs O(1) instead of O(g).
+///
+/// [`chord_interval`] adds the group's points in `vs` order; all of them lie on the chord's
+/// circle, so on each side the first one added binds and the others tie (exact in-circle 0,
+/// never "better"), and the result depends only on those two points
+/// ([`EdgeFrame::cocircular_ends`]). The points on one side of a chord are an arc of the
+/// circle: the first in `vs` order is the arc's smallest index, a range minimum.
+struct CircleOrder {
+    /// the position around the circle of each group point (index into `vs`)
+    pos: Vec<u32>,
+    /// `table[k][s]`: the smallest `vs` index among the positions s .. s + 2ᵏ of the circular
+    /// sequence written twice
+    table: Vec<Vec<u32>>,
+}
+
+impl CircleOrder {
+    /// `None` when the group's points are not all on one circle (then the chords are computed
+    /// point by point): checked exactly, O(g) in-circle tests.
+    fn new(p: &[[f64; 2]], vs: &[u32]) -> Option<Self> {
+        let g = vs.len();
+        if g < 3 {
+            return None;
+        }
+        let at = |i: usize| p[vs[i] as usize];
+        let (o, u, w) = (at(0), at(1), at(2));
+        if raw::orient2d(o, u, w) == 0.0 {
+            return None;
+        }
+        count_chord_work(g);
+        if (3..g).any(|i| raw::incircle(o, u, w, at(i)) != 0.0) {
+            return None;
+        }
+        // seen from o on the circle the other points span less than a half-turn, in their order
+        // around the circle (inscribed angles): sorted by exact orientation around o
+        let mut rest: Vec<u32> = (1..g as u32).collect();
+        let mut work = 0usize;
+        let mut tie = false;
+        rest.sort_by(|&x, &y| {
+            work += 1;
+            let s = raw::orient2d(o, at(x as usize), at(y as usize));
+            if s > 0.0 {
+                std::cmp::Ordering::Less
+            } else if s < 0.0 {
+                std::cmp::Ordering::Greater
+            } else {
+                tie |= x != y;
+                std::cmp::Ordering::Equal
+            }
+        });
+        count_chord_work(work);
+        if tie {
+            return None; // (three collinear points: not a circle)
+        }
+        let mut cyc = vec![0u32];
+        cyc.extend(rest);
+        let mut pos = vec![0u32; g];
+        for (k, &i) in cyc.iter().enumerate() {
+            pos[i as usize] = k as u32;
+        }
+        let mut level: Vec<u32> = cyc.iter().chain(&cyc).copied().collect();
+        let mut table = Vec::new();
+        let mut w = 1;
+        while w <= 2 * g {
+            let next: Vec<u32> = (0..level.len().saturating_sub(w))
+                .map(|s| level[s].min(level[s + w]))
+                .collect();
+            table.push(level);
+            level = next;
+            w *= 2;
+        }
+        Some(CircleOrder { pos, table })
+    }
+
+    /// The smallest `vs` index at the positions `lo .. hi` (hi > lo) of the doubled sequence.
+    fn min(&self, lo: usize, hi: usize) -> u32 {
+        let k = (usize::BITS - 1 - (hi - lo).leading_zeros()) as usize;
+        self.table[k][lo].min(self.table[k][hi - (1 << k)])
+    }
+
+    /// The interval of the chord vs[i] vs[j] (i < j): equal to [`chord_interval`].
+    fn chord_interval(&self, p: &[[f64; 2]], vs: &[u32], i: usize, j: usize) -> CenterInterval {
+        count_chord_work(2);
+        let g = vs.len();
+        let (pa, pb) = (p[vs[i] as usize], p[vs[j] as usize]);
+        let (x, y) = (self.pos[i] as usize, self.pos[j] as usize);
+        let (lo, hi) = (x.min(y), x.max(y));
+        // the two arcs between the ends: positions lo+1 .. hi and hi+1 .. lo+g
+        let first = |s: usize, e: usize| (s < e).then(|| p[vs[self.min(s, e) as usize] as usize]);
+        let (one, two) = (first(lo + 1, hi), first(hi + 1, lo + g));
+        let rep = one.or(two);
+        let one_left = rep.is_some_and(|q| raw::orient2d(pa, pb, q) > 0.0) == one.is_some();
+        let (left, right) = if one_left { (one, two) } else { (two, one) };
+        EdgeFrame::new(pa, pb).cocircular_ends(left, right)
+    }
+}
+
 /// Decides every edge of γ([-1,1],[0,1]) in parallel: `keep(edge, interval, in_dt)` for each
 /// Delaunay edge (in triangle order) and then for each extra chord of a cocircular group
 /// (V §3.3); returns the kept results in that order. O(N + Σ g²) after the triangulation, with
@@ -388,8 +545,8 @@ pub fn filter_candidates_2d<T: Send>(
             keep([e.a, e.b], &iv, true)
         })
         .collect();
-    for_each_group_chord(d, ties, |a, b, vs| {
-        out.extend(keep([a, b], &chord_interval(&p, a, b, vs), false));
+    for_each_group_chord_interval(d, &p, ties, |a, b, iv| {
+        out.extend(keep([a, b], iv, false));
     });
     out
 }
@@ -397,6 +554,7 @@ pub fn filter_candidates_2d<T: Send>(
 /// The interval of the chord a b of a cocircular group `vs` (V §3.3): all group points lie on
 /// one circle, so the exact tie-breaking of [`EdgeFrame::add`] makes both ends its offset.
 fn chord_interval(p: &[[f64; 2]], a: u32, b: u32, vs: &[u32]) -> CenterInterval {
+    count_chord_work(vs.len());
     let f = EdgeFrame::new(p[a as usize], p[b as usize]);
     let mut iv = f.start();
     for &x in vs {
@@ -424,8 +582,8 @@ pub fn filter_candidates_sorted_2d<T: Send + Sync + Copy + Default>(
         keep([e.a, e.b], &iv)
     });
     let mut extra = Vec::new();
-    for_each_group_chord(d, ties, |a, b, vs| {
-        if let Some(x) = keep([a, b], &chord_interval(p, a, b, vs)) {
+    for_each_group_chord_interval(d, p, ties, |a, b, iv| {
+        if let Some(x) = keep([a, b], iv) {
             extra.push(([a, b], x));
         }
     });
@@ -841,7 +999,17 @@ pub fn coords3(d: &Delaunay3) -> Vec<[f64; 3]> {
 /// sphere, found by exact in-sphere) contribute every non-degenerate triple of their vertices;
 /// such a triple's interval is computed against the group's vertices and the vertices of all
 /// tetrahedra around its corners (every point that can touch an empty ball through it).
+///
+/// A group of g points has up to g³/6 triples, all in γ([-1,1],[0,1]) when the points lie on
+/// one sphere: that output costs O(1) per triple on the sphere, not O(g) ([`SphereGroup`]).
 pub fn candidates_3d(d: &Delaunay3) -> Candidates3 {
+    candidates_3d_groups(d, true).0
+}
+
+/// [`candidates_3d`], with the triples of the cospherical and flat groups only when `triples`
+/// (the kinds that need no more than the Delaunay faces and the pairs of the groups skip their
+/// Θ(g³) triples), and the groups' sorted vertex sets.
+pub fn candidates_3d_groups(d: &Delaunay3, triples: bool) -> (Candidates3, Vec<Vec<u32>>) {
     let p = coords3(d);
     let mut out = Candidates3::default();
     let nt = d.tets.len();
@@ -887,8 +1055,8 @@ pub fn candidates_3d(d: &Delaunay3) -> Candidates3 {
     }
     groups.sort();
     groups.dedup();
-    if groups.is_empty() {
-        return out;
+    if groups.is_empty() || !triples {
+        return (out, groups);
     }
     let mut existing: HashSet<[u32; 3]> = out.triangles.iter().copied().collect();
     for vs in &groups {
@@ -902,6 +1070,9 @@ pub fn candidates_3d(d: &Delaunay3) -> Candidates3 {
         }
         cands.sort_unstable();
         cands.dedup();
+        let sphere = group_fast_paths()
+            .then(|| SphereGroup::new(&p, vs, &cands))
+            .flatten();
         for i in 0..vs.len() {
             for j in i + 1..vs.len() {
                 for k in j + 1..vs.len() {
@@ -914,12 +1085,21 @@ pub fn candidates_3d(d: &Delaunay3) -> Candidates3 {
                     else {
                         continue;
                     };
-                    let mut iv = fr.start();
-                    for &x in &cands {
-                        if !t.contains(&x) {
-                            fr.add(&mut iv, p[x as usize]);
+                    let iv = match sphere.as_ref().and_then(|g| g.interval(&p, &fr, t)) {
+                        Some(iv) => iv,
+                        None => {
+                            count_triple_work(cands.len());
+                            #[cfg(test)]
+                            SLOW_TRIPLES.with(|c| c.set(c.get() + 1));
+                            let mut iv = fr.start();
+                            for &x in &cands {
+                                if !t.contains(&x) {
+                                    fr.add(&mut iv, p[x as usize]);
+                                }
+                            }
+                            iv
                         }
-                    }
+                    };
                     if iv.gamma_values().is_none() {
                         continue;
                     }
@@ -933,7 +1113,93 @@ pub fn candidates_3d(d: &Delaunay3) -> Candidates3 {
             }
         }
     }
-    out
+    (out, groups)
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Points examined for the intervals of group triples on this thread (tests only).
+    pub(super) static TRIPLE_WORK: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    static SLOW_TRIPLES: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+#[cfg(test)]
+fn count_triple_work(k: usize) {
+    TRIPLE_WORK.with(|c| c.set(c.get() + k as u64));
+}
+#[cfg(not(test))]
+#[inline(always)]
+fn count_triple_work(_: usize) {}
+
+/// A group of [`candidates_3d`] whose points lie on one sphere S that no other candidate point
+/// lies in or on (checked exactly once per group: O(g + |cands|) in-sphere tests).
+///
+/// For a triple of it, every other group point above (below) its plane lies on S, i.e. on the
+/// sphere through the triple and the first of them: they all tie (exact in-sphere 0, never
+/// "better" in [`TriFrame::add`]); a candidate off the group is strictly outside S, so it never
+/// beats a group point on its side; and no candidate in the plane is inside the triangle's
+/// circle (it would be inside S). So when the group has points on both sides, the point-by-point
+/// interval is fixed by the first group point on each side in candidate order
+/// ([`TriFrame::cospherical_ends`]) — found by scanning the group in order, usually after a few
+/// points. Triples with the whole group on one side (faces of the group's hull) are computed
+/// point by point.
+struct SphereGroup<'a> {
+    vs: &'a [u32],
+}
+
+impl<'a> SphereGroup<'a> {
+    fn new(p: &[[f64; 3]], vs: &'a [u32], cands: &[u32]) -> Option<Self> {
+        let at = |v: u32| p[v as usize];
+        // four group points off one plane define S
+        let (&a, &b) = (vs.first()?, vs.get(1)?);
+        let c = *vs
+            .iter()
+            .find(|&&c| TriFrame::new(at(a), at(b), at(c)).is_some())?;
+        let e = *vs
+            .iter()
+            .find(|&&e| raw::orient3d(at(a), at(b), at(c), at(e)) != 0.0)?;
+        let o = raw::orient3d(at(a), at(b), at(c), at(e));
+        count_triple_work(cands.len());
+        let mut g = 0;
+        for &x in cands {
+            let ins = raw::insphere(at(a), at(b), at(c), at(e), at(x)) * o;
+            let member = g < vs.len() && vs[g] == x;
+            if member {
+                g += 1;
+            }
+            // group points on S, every other candidate strictly outside
+            if (member && ins != 0.0) || (!member && ins >= 0.0) {
+                return None;
+            }
+        }
+        (g == vs.len()).then_some(SphereGroup { vs })
+    }
+
+    /// The interval of the triple `t` of the group (frame `fr`), or `None` when the group has
+    /// no point strictly on one side of its plane.
+    fn interval(&self, p: &[[f64; 3]], fr: &TriFrame, t: [u32; 3]) -> Option<CenterInterval> {
+        let (mut above, mut below) = (None, None);
+        let mut seen = 0;
+        for &x in self.vs {
+            if t.contains(&x) {
+                continue;
+            }
+            seen += 1;
+            let q = p[x as usize];
+            let side = fr.tau(q).0;
+            if side > 0.0 && above.is_none() {
+                above = Some(q);
+            } else if side < 0.0 && below.is_none() {
+                below = Some(q);
+            }
+            if above.is_some() && below.is_some() {
+                count_triple_work(seen);
+                return Some(fr.cospherical_ends(above, below));
+            }
+        }
+        count_triple_work(seen);
+        None
+    }
 }
 
 /// Vertex groups of coplanar faces sharing an edge that are cocircular (exact in-sphere test
@@ -990,4 +1256,201 @@ fn flat_groups(d: &Delaunay3, p: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u32
         }
     }
     groups.into_values().collect()
+}
+
+#[cfg(test)]
+mod tests {
+    //! The group fast paths against the point-by-point reference (bit for bit), and the work
+    //! they do on large cocircular / cospherical groups.
+    use super::*;
+    use crate::delaunay::{d2, d3};
+    use crate::geom::{Point2, Point3};
+
+    fn reference<T>(f: impl FnOnce() -> T) -> T {
+        POINT_BY_POINT.with(|c| c.set(true));
+        let out = f();
+        POINT_BY_POINT.with(|c| c.set(false));
+        out
+    }
+
+    /// Every integer point on the circle x² + y² = r².
+    fn circle(r: i64) -> Vec<[f64; 2]> {
+        let mut v = Vec::new();
+        for x in -r..=r {
+            let y2 = r * r - x * x;
+            let y = (y2 as f64).sqrt().round() as i64;
+            if y * y == y2 {
+                v.push([x as f64, y as f64]);
+                if y != 0 {
+                    v.push([x as f64, -y as f64]);
+                }
+            }
+        }
+        v
+    }
+
+    /// Every integer point on the sphere x² + y² + z² = r2.
+    fn sphere(r2: i64) -> Vec<[f64; 3]> {
+        let r = (r2 as f64).sqrt() as i64 + 1;
+        let mut v = Vec::new();
+        for x in -r..=r {
+            for y in -r..=r {
+                for z in -r..=r {
+                    if x * x + y * y + z * z == r2 {
+                        v.push([x as f64, y as f64, z as f64]);
+                    }
+                }
+            }
+        }
+        v
+    }
+
+    fn sets_2d() -> Vec<(&'static str, Vec<[f64; 2]>)> {
+        let mut with_outside = circle(25);
+        with_outside.extend([[40.0, 0.0], [0.0, -31.0], [30.5, 30.0], [-26.0, 2.0]]);
+        let mut rings = circle(5);
+        rings.extend(circle(25));
+        rings.extend(circle(65).into_iter().map(|q| [q[0] + 0.5, q[1]]));
+        vec![
+            ("circle 5", circle(5)),
+            ("circle 1105", circle(1105)),
+            ("circle 25 and outside", with_outside),
+            ("three rings", rings),
+            (
+                "grid 7×6",
+                (0..42).map(|i| [(i % 7) as f64, (i / 7) as f64]).collect(),
+            ),
+        ]
+    }
+
+    fn cands2(p: &[[f64; 2]]) -> (Candidates2, u64) {
+        let pts: Vec<Point2> = p.iter().map(|q| Point2::new(q[0], q[1])).collect();
+        let d = d2::triangulate(&pts).unwrap();
+        CHORD_WORK.with(|c| c.set(0));
+        let cand = candidates_2d(&d);
+        (cand, CHORD_WORK.with(|c| c.get()))
+    }
+
+    #[test]
+    fn cocircular_chords_equal_the_point_by_point_intervals() {
+        for (name, p) in sets_2d() {
+            let (fast, _) = cands2(&p);
+            let (slow, _) = reference(|| cands2(&p));
+            assert!(fast.in_dt.iter().any(|x| !x), "{name}: no chords");
+            assert_eq!(fast.edges, slow.edges, "{name}");
+            assert_eq!(fast.in_dt, slow.in_dt, "{name}");
+            // bit for bit, binding points included
+            assert_eq!(fast.intervals, slow.intervals, "{name}");
+        }
+    }
+
+    /// The issue-17 case: the chords of g exactly cocircular points (all of γ([-1,1],[0,1]),
+    /// Θ(g²) of them) cost O(1) each, not O(g) (the point-by-point intervals took 242 s for
+    /// g ≈ 1000 in `graph --kind gamma-range`).
+    #[test]
+    fn cocircular_chords_cost_constant_work_each() {
+        let p = circle(5 * 13 * 17 * 29);
+        let g = p.len() as u64;
+        assert_eq!(g, 324);
+        let (fast, work) = cands2(&p);
+        let chords = fast.in_dt.iter().filter(|x| !**x).count() as u64;
+        assert_eq!(chords, g * (g - 1) / 2 - (2 * g - 3));
+        let bound = 2 * chords + g * (2 + 64 - (g.leading_zeros() as u64));
+        // (the point-by-point reference examines g = 324 points per chord)
+        assert!(
+            work <= bound,
+            "{work} points examined for {chords} chords (bound {bound})"
+        );
+    }
+
+    fn sets_3d() -> Vec<(&'static str, Vec<[f64; 3]>)> {
+        // points outside the sphere (candidates off the group), or one inside (then the groups
+        // are other sets: the reference path)
+        let mut with_more = sphere(25);
+        with_more.extend([
+            [9.0, 0.5, 0.0],
+            [-2.0, 7.0, 3.0],
+            [0.0, 0.0, -5.5],
+            [4.0, 4.0, 4.0],
+        ]);
+        let mut with_inside = sphere(25);
+        with_inside.extend([[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]]);
+        let mut shells = sphere(9);
+        shells.extend(sphere(50).into_iter().map(|q| [q[0] + 0.5, q[1], q[2]]));
+        vec![
+            ("sphere 25", sphere(25)),
+            ("sphere 26", sphere(26)),
+            ("sphere 25 and outside", with_more),
+            ("sphere 25 and inside", with_inside),
+            ("two shells", shells),
+            (
+                "grid 4×3×3",
+                (0..36)
+                    .map(|i| [(i % 4) as f64, ((i / 4) % 3) as f64, (i / 12) as f64])
+                    .collect(),
+            ),
+        ]
+    }
+
+    fn cands3(p: &[[f64; 3]]) -> (Candidates3, u64) {
+        let pts: Vec<Point3> = p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
+        let d = d3::triangulate(&pts).unwrap();
+        TRIPLE_WORK.with(|c| c.set(0));
+        let cand = candidates_3d(&d);
+        (cand, TRIPLE_WORK.with(|c| c.get()))
+    }
+
+    #[test]
+    fn cospherical_triples_equal_the_point_by_point_intervals() {
+        for (name, p) in sets_3d() {
+            let (fast, _) = cands3(&p);
+            let (slow, _) = reference(|| cands3(&p));
+            assert!(fast.in_dt.iter().any(|x| !x), "{name}: no group triples");
+            assert_eq!(fast.triangles, slow.triangles, "{name}");
+            assert_eq!(fast.in_dt, slow.in_dt, "{name}");
+            assert_eq!(fast.intervals, slow.intervals, "{name}");
+        }
+    }
+
+    /// The issue-17 case: the triples of g exactly cospherical points (all of
+    /// γ([-1,1],[0,1]), Θ(g³) of them) cost O(1) each on average, not O(g) (144 points took
+    /// 48 s in `graph`, any kind).
+    #[test]
+    fn cospherical_triples_cost_constant_work_each() {
+        let p = sphere(89);
+        let g = p.len() as u64;
+        assert_eq!(g, 144);
+        let (fast, work) = cands3(&p);
+        let triples = fast.in_dt.iter().filter(|x| !**x).count() as u64;
+        assert!(triples > g * (g - 1) * (g - 2) / 6 - 4 * g * g);
+        // (the group's hull faces, whose triples have the group on one side, are point by
+        // point: 1884 triples here)
+        assert!(SLOW_TRIPLES.with(|c| c.get()) < 4 * g * g);
+        // the point-by-point reference examines 144 points per triple
+        assert!(
+            work <= 40 * triples,
+            "{work} points examined for {triples} triples"
+        );
+    }
+
+    #[test]
+    fn faces_only_candidates_skip_the_group_triples() {
+        let p = sphere(26);
+        let pts: Vec<Point3> = p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
+        let d = d3::triangulate(&pts).unwrap();
+        let all = candidates_3d(&d);
+        TRIPLE_WORK.with(|c| c.set(0));
+        let (faces, groups) = candidates_3d_groups(&d, false);
+        assert_eq!(TRIPLE_WORK.with(|c| c.get()), 0);
+        assert!(faces.in_dt.iter().all(|x| *x));
+        let dt: Vec<_> = all
+            .triangles
+            .iter()
+            .zip(&all.in_dt)
+            .filter(|x| *x.1)
+            .collect();
+        assert_eq!(dt.len(), faces.triangles.len());
+        // the sphere, and the flat groups of its circles
+        assert!(groups.iter().any(|g| g.len() == p.len()));
+    }
 }

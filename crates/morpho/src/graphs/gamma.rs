@@ -334,6 +334,32 @@ impl EdgeFrame {
         }
         iv
     }
+    /// The interval that [`EdgeFrame::add`] reaches when `left` (strictly left of a→b) is the
+    /// first point added on the left of all those with the smallest τ there, and `right` the
+    /// first on the right with the largest τ — and the two lie on one circle with a and b: the
+    /// chord of a cocircular group (V §3.3), whose group points on each side are all tied
+    /// (`add` keeps the first of equal points, and its final state depends only on the two
+    /// binding points). Equal to adding `left` and then `right`, without the exact in-circle
+    /// test that finds them cocircular (slow on exact ties).
+    pub fn cocircular_ends(
+        &self,
+        left: Option<[f64; 2]>,
+        right: Option<[f64; 2]>,
+    ) -> CenterInterval {
+        let mut iv = self.start();
+        if let Some(x) = left {
+            iv.hi = self.tau(x).1;
+            iv.hi_at = Some([x[0], x[1], 0.0]);
+        }
+        if let Some(y) = right {
+            iv.lo = self.tau(y).1;
+            iv.lo_at = Some([y[0], y[1], 0.0]);
+            if left.is_some() {
+                iv.settle(0.0);
+            }
+        }
+        iv
+    }
     /// Narrows `iv` by point x (not a or b). Which point binds each end, and whether the ends
     /// are equal or in which order, is decided by exact in-circle tests: τ(x) < τ(y) for points
     /// above ⇔ x lies inside the circle through a, b, y.
@@ -449,6 +475,28 @@ impl TriFrame {
         }
         let h = dot(dx, self.n);
         (side, tau_of(side, q, h))
+    }
+    /// The 3D analogue of [`EdgeFrame::cocircular_ends`]: `above` (on the normal's side) and
+    /// `below` the binding points, on one sphere with the corners (a triple of a cospherical
+    /// group). Equal to adding `above` and then `below`, without the exact in-sphere test.
+    pub fn cospherical_ends(
+        &self,
+        above: Option<[f64; 3]>,
+        below: Option<[f64; 3]>,
+    ) -> CenterInterval {
+        let mut iv = self.start();
+        if let Some(x) = above {
+            iv.hi = self.tau(x).1;
+            iv.hi_at = Some(x);
+        }
+        if let Some(y) = below {
+            iv.lo = self.tau(y).1;
+            iv.lo_at = Some(y);
+            if above.is_some() {
+                iv.settle(0.0);
+            }
+        }
+        iv
     }
     /// Narrows `iv` by point x (not a corner); binding points and the order of the ends are
     /// decided by exact in-sphere tests (see [`EdgeFrame::add`]).
