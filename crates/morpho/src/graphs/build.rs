@@ -697,7 +697,7 @@ fn extreme_scale(coords: impl Iterator<Item = f64> + Clone) -> Result<Option<f64
     if m == 0.0 || !m.is_finite() || safe.contains(&m) {
         return Ok(None);
     }
-    let s = crate::geom::power_of_two_scale(m);
+    let s = crate::geom::exact::power_of_two_scale(m);
     if s == 1.0 {
         return Ok(None);
     }
