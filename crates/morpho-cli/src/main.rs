@@ -76,6 +76,14 @@ impl Failure {
 }
 
 fn main() -> ExitCode {
+    // A closed pipe ends the program quietly, as it does every Unix filter (Rust ignores
+    // SIGPIPE, so `println!` would panic on `morpho info X | head -1`). Outputs named by `-o`
+    // are written atomically and are not affected.
+    #[cfg(unix)]
+    // SAFETY: called first in main, before any thread exists; SIG_DFL is a valid handler.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {

@@ -327,3 +327,31 @@ fn fifos_and_devices_are_never_read_or_replaced() {
         .unwrap()
         .contains("triangles"));
 }
+
+/// Issue 17 item 5: `morpho info X | head -1` panicked with "failed printing to stdout: Broken
+/// pipe"; a closed pipe now ends the program quietly (SIGPIPE, as for every Unix filter).
+#[cfg(unix)]
+#[test]
+fn a_closed_pipe_ends_quietly() {
+    use std::process::Stdio;
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    // enough points that reading them outlasts closing the pipe
+    let mut csv = String::from("x,y\n");
+    for i in 0..200_000u32 {
+        csv.push_str(&format!("{},{}\n", i % 997, i / 997));
+    }
+    put(d, "p.csv", csv.as_bytes());
+    let mut child = Command::new(env!("CARGO_BIN_EXE_morpho"))
+        .current_dir(d)
+        .args(["info", "p.csv"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take()); // the reader goes away before anything is printed
+    let o = child.wait_with_output().unwrap();
+    let e = stderr(&o);
+    assert!(!e.contains("panicked") && !e.contains("Broken pipe"), "{e}");
+    assert_ne!(o.status.code(), Some(101), "{e}");
+}
