@@ -79,6 +79,8 @@ pub(crate) fn read_index_rows<const K: usize>(
     what: &str,
 ) -> morpho::Result<Vec<[u32; K]>> {
     let bytes = morpho::io::read_bytes(path)?;
+    // CR, LF and CRLF line ends alike
+    let bytes = morpho::io::unify_line_ends(&bytes);
     let text = std::str::from_utf8(&bytes)
         .map_err(|_| morpho::Error::format(format!("{what} file is not UTF-8")).with_path(path))?;
     let mut out = Vec::new();

@@ -238,6 +238,7 @@ impl Table {
 }
 
 fn parse_table(bytes: &[u8]) -> Result<Table> {
+    let bytes = &*super::unify_line_ends(bytes);
     let s = text(bytes)?;
     let mut lines = numbered_lines(s).filter(|(_, l)| !l.trim().is_empty());
     let (hline, header) = lines

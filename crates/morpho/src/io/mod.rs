@@ -136,6 +136,26 @@ pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
     Ok(bytes)
 }
 
+/// Text with its bare carriage returns (old Mac OS line ends) made line feeds, byte for byte:
+/// the length is unchanged, so byte offsets and line numbers in errors stay those of the file;
+/// LF and CRLF are left as they are. Every text reader starts with it, so CR, LF and CRLF are
+/// accepted everywhere (issue 17 item 10).
+pub fn unify_line_ends(bytes: &[u8]) -> std::borrow::Cow<'_, [u8]> {
+    let bare = |i: usize| bytes[i] == b'\r' && bytes.get(i + 1) != Some(&b'\n');
+    match (0..bytes.len()).position(bare) {
+        None => std::borrow::Cow::Borrowed(bytes),
+        Some(first) => {
+            let mut v = bytes.to_vec();
+            for i in first..bytes.len() {
+                if bare(i) {
+                    v[i] = b'\n';
+                }
+            }
+            std::borrow::Cow::Owned(v)
+        }
+    }
+}
+
 /// Decompresses a gzip stream, refusing output larger than `limit` bytes.
 pub fn gunzip(bytes: &[u8], limit: u64) -> Result<Vec<u8>> {
     use std::io::Read;
@@ -689,6 +709,47 @@ pub fn read_any(path: &Path) -> Result<Data> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 17 item 10: files with bare CR line ends (old Mac OS) were read as one line
+    /// ("points: 1"). Every text format now reads CR, LF and CRLF files alike, and errors keep
+    /// the file's line numbers.
+    #[test]
+    fn cr_lf_and_crlf_line_ends_read_alike() {
+        let cases: [(&str, &str); 4] = [
+            ("p.csv", "x,y\n0,0\n1,0\n0,1\n0.5,0.25\n"),
+            ("p.xyz", "# pts\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"),
+            (
+                "m.obj",
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+            ),
+            (
+                "m.off",
+                "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n",
+            ),
+        ];
+        let dir = tempfile::tempdir().unwrap();
+        for (name, lf) in cases {
+            let mut got = Vec::new();
+            for (k, end) in ["\n", "\r", "\r\n"].iter().enumerate() {
+                let p = dir.path().join(format!("{k}{name}"));
+                std::fs::write(&p, lf.replace('\n', end)).unwrap();
+                got.push(match read_any(&p).unwrap() {
+                    Data::Points(ps) => format!("{} {:?}", ps.dim, ps.coords),
+                    Data::Mesh(m) => format!("{:?} {:?}", m.positions, m.triangles),
+                    _ => panic!("{name}"),
+                });
+            }
+            assert!(got[0].len() > 20, "{name}: {}", got[0]);
+            assert_eq!(got[0], got[1], "{name}: CR");
+            assert_eq!(got[0], got[2], "{name}: CRLF");
+        }
+        // an error on line 3 of a CR file is reported on line 3
+        let p = dir.path().join("bad.csv");
+        std::fs::write(&p, "x,y\r0,0\r1,zz\r").unwrap();
+        let e = read_points(&p).unwrap_err().to_string();
+        assert!(e.contains("line 3"), "{e}");
+        assert_eq!(&*unify_line_ends(b"a\rb\r\nc\n\r"), b"a\nb\r\nc\n\n");
+    }
 
     #[test]
     fn write_failures_are_io_errors_naming_the_output() {

@@ -215,6 +215,7 @@ const NO_NORMAL: u32 = u32::MAX;
 
 /// Reads a mesh (polygons are fan-triangulated).
 pub fn read(bytes: &[u8]) -> Result<TriMesh> {
+    let bytes = &*super::unify_line_ends(bytes);
     let text = utf8_text(bytes, 1)?;
     let mut positions: Vec<Point3> = Vec::new();
     let mut vn: Vec<Vector3> = Vec::new();

@@ -70,6 +70,7 @@ fn parse_count(tok: Option<&str>, line: u64, what: &str) -> Result<u64> {
 
 /// Reads a mesh (polygons are fan-triangulated).
 pub fn read(bytes: &[u8]) -> Result<TriMesh> {
+    let bytes = &*super::unify_line_ends(bytes);
     let text = utf8_text(bytes, 1)?;
     let total_lines = count_lines(text);
     // Significant lines: comments stripped, blank lines skipped.

@@ -20,6 +20,7 @@ use std::io::Write;
 
 /// Reads 2 or 3 numbers per line (the first line fixes the dimension).
 pub fn read(bytes: &[u8]) -> Result<PointSet> {
+    let bytes = &*super::unify_line_ends(bytes);
     let s = text(bytes)?;
     let mut ncol = 0usize;
     let mut dim = 0usize;
