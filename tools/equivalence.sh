@@ -4,7 +4,14 @@
 # behaviour:  tools/equivalence.sh OLD_BIN NEW_BIN [DATA_DIR]
 # Exit 0 when every output is identical; prints the differing files otherwise.
 set -u
-old=$1; new=$2; data=${3:-$(cd "$(dirname "$0")/../.." && pwd)/shared/data}
+old=$1; new=$2; data=${3:-}
+# default: the nearest shared/data above the repository (worktrees live deeper than main)
+if [ -z "$data" ]; then
+  d=$(cd "$(dirname "$0")/.." && pwd)
+  while [ "$d" != / ] && [ ! -d "$d/shared/data" ]; do d=$(dirname "$d"); done
+  data=$d/shared/data
+fi
+[ -d "$data" ] || { echo "equivalence: no data directory $data" >&2; exit 2; }
 work=$(mktemp -d); [ -n "${KEEP:-}" ] || trap 'rm -rf "$work"' EXIT; echo "work: $work"
 mkdir -p "$work/in"
 # inputs
