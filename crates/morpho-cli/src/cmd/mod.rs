@@ -37,7 +37,8 @@ impl<'a> Paths<'a> {
     /// Adds an output (and the data file its format writes beside it).
     pub fn output(&mut self, p: &'a Path) {
         if extension(p) == "mhd" {
-            self.outputs.push(p.with_extension("raw").into());
+            self.outputs
+                .extend(morpho::io::mhd::data_file(p).map(Into::into));
         }
         self.outputs.push(p.into());
     }
@@ -49,7 +50,7 @@ impl<'a> Paths<'a> {
     /// once read: the writers check them ([`morpho::io::guard`]).
     pub fn check(&self) -> Result<(), Failure> {
         use morpho::io::guard::same_file;
-        for (k, o) in self.outputs.iter().enumerate() {
+        for o in &self.outputs {
             if let Some(i) = self.inputs.iter().find(|i| same_file(o, i)) {
                 return Err(Failure::usage(format!(
                     "{}: output would overwrite the input {}; choose another output",
@@ -57,16 +58,8 @@ impl<'a> Paths<'a> {
                     i.display()
                 )));
             }
-            if let Some(q) = self.outputs[..k].iter().find(|q| same_file(o, q)) {
-                return Err(Failure::usage(format!(
-                    "{} and {} are the same file; choose distinct outputs",
-                    q.display(),
-                    o.display()
-                )));
-            }
-            morpho::io::guard::output_target(o)?;
         }
-        Ok(())
+        Ok(morpho::io::guard::check_outputs(&self.outputs)?)
     }
 }
 

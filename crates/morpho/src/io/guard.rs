@@ -303,30 +303,32 @@ pub fn output_target(path: &Path) -> Result<Target> {
 
 /// Remembers that `path` was written (when the guard is on).
 pub(crate) fn written(path: &Path) {
+    // only called after an atomic replace, so `path` is a regular file (streams such as
+    // /dev/null or a pipe are never remembered and may take several results)
     if let Some(r) = registry().as_mut() {
         if let Some(key) = FileKey::of(path) {
-            // streams (/dev/null, a pipe) may take several results
-            let regular = std::fs::metadata(path)
-                .map(|m| m.is_file())
-                .unwrap_or(false);
-            if regular {
-                r.written.push((key, path.to_path_buf()));
-            }
+            r.written.push((key, path.to_path_buf()));
         }
     }
 }
 
-/// Checks, before anything is written, that every path of `paths` may be written
-/// ([`output_target`]) and that no two of them are the same file — for writers that create
-/// several files (a header and its data file).
-pub fn check_outputs(paths: &[&Path]) -> Result<()> {
-    for (i, p) in paths.iter().enumerate() {
-        output_target(p)?;
-        if paths[..i].iter().any(|q| same_file(p, q)) {
-            return Err(
-                Error::invalid("two outputs of this command are the same file").with_path(p),
-            );
+/// Checks, before anything is written, that no two paths of `paths` are the same file and
+/// that every one may be written ([`output_target`]) — for a command's outputs and for writers
+/// that create several files (a header and its data file).
+pub fn check_outputs<P: AsRef<Path>>(paths: &[P]) -> Result<()> {
+    for (i, p) in paths.iter().map(AsRef::as_ref).enumerate() {
+        if let Some(q) = paths[..i]
+            .iter()
+            .map(AsRef::as_ref)
+            .find(|q| same_file(p, q))
+        {
+            return Err(Error::invalid(format!(
+                "{} and {} are the same file; choose distinct outputs",
+                q.display(),
+                p.display()
+            )));
         }
+        output_target(p)?;
     }
     Ok(())
 }

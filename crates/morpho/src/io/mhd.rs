@@ -301,15 +301,21 @@ fn header(v: &Volume, ty: Sample, data_file: &str) -> Result<String> {
     ))
 }
 
-/// Writes a volume (with its data file beside it where the format has one), atomically.
-pub fn write(path: &Path, v: &Volume) -> Result<()> {
-    v.validate()?;
-    let ty = output_type(v);
+/// The data file [`write`] creates beside the header `path`: the same name with `.raw`; `None`
+/// for `.mha`, which holds its data after the header.
+pub fn data_file(path: &Path) -> Option<std::path::PathBuf> {
     let local = path
         .extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("mha"));
-    if local {
+    (!local).then(|| path.with_extension("raw"))
+}
+
+/// Writes a volume (with its data file beside it where the format has one), atomically.
+pub fn write(path: &Path, v: &Volume) -> Result<()> {
+    v.validate()?;
+    let ty = output_type(v);
+    let Some(raw_path) = data_file(path) else {
         let h = header(v, ty, "LOCAL")?;
         return super::write_atomic(path, |w| {
             w.write_all(h.as_bytes()).map_err(super::werr)?;
@@ -319,8 +325,7 @@ pub fn write(path: &Path, v: &Volume) -> Result<()> {
             }
             Ok(())
         });
-    }
-    let raw_path = path.with_extension("raw");
+    };
     let raw_name = raw_path
         .file_name()
         .and_then(|n| n.to_str())
