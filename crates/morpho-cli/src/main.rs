@@ -75,6 +75,94 @@ impl Failure {
     }
 }
 
+/// SIGTERM, SIGHUP and SIGINT end the program as they would by default (exit status 128 +
+/// signal), but first remove the temporary files of unfinished atomic writes
+/// (`io::guard::remove_temporaries`). The signals are blocked in every thread and taken by one
+/// thread with `sigwait`, so the cleanup runs as ordinary code, not in a signal handler.
+/// Must be called before any other thread is started (threads inherit the blocked set).
+#[cfg(unix)]
+fn remove_temporaries_on_signals() {
+    // SAFETY: plain libc calls on a local, zero-initialised signal set; no other thread exists
+    // yet, so the mask applies to every thread started later.
+    let set = unsafe {
+        let mut set: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&mut set);
+        for sig in [libc::SIGTERM, libc::SIGHUP, libc::SIGINT] {
+            libc::sigaddset(&mut set, sig);
+        }
+        if libc::pthread_sigmask(libc::SIG_BLOCK, &set, std::ptr::null_mut()) != 0 {
+            return;
+        }
+        set
+    };
+    let spawned = std::thread::Builder::new()
+        .name("signals".into())
+        .spawn(move || {
+            let mut sig: libc::c_int = 0;
+            // SAFETY: `set` is a valid signal set and `sig` a valid out-pointer.
+            if unsafe { libc::sigwait(&set, &mut sig) } != 0 {
+                return;
+            }
+            morpho::io::guard::remove_temporaries();
+            // SAFETY: ends the process at once, as the default action of the signal would.
+            unsafe { libc::_exit(128 + sig) }
+        });
+    if spawned.is_err() {
+        // no thread, no cleanup: give the signals back their default action
+        // SAFETY: as above.
+        unsafe {
+            libc::pthread_sigmask(libc::SIG_UNBLOCK, &set, std::ptr::null_mut());
+        }
+    }
+}
+
+const SUBCOMMANDS: [&str; 9] = [
+    "demo",
+    "info",
+    "convert",
+    "render",
+    "triangulate",
+    "boundary",
+    "graph",
+    "isosurface",
+    "contour",
+];
+
+/// clap's usage error on one line: its first paragraph (without the `error: ` clap adds), the
+/// indented lines of that paragraph — the names of the missing arguments — joined to it, the
+/// usage synopsis and tips left out (`--help` shows them). Control characters are escaped.
+fn usage_line(rendered: &str) -> String {
+    let mut lines = rendered
+        .lines()
+        .take_while(|l| !l.trim().is_empty() && !l.starts_with("Usage:"));
+    let first = lines.next().unwrap_or("bad usage");
+    let mut out = first.trim_start_matches("error: ").trim_end().to_string();
+    let rest: Vec<&str> = lines.map(str::trim).collect();
+    if !rest.is_empty() {
+        out.push(' ');
+        out.push_str(&rest.join(", "));
+    }
+    printable(&out)
+}
+
+/// `msg` with every control character (an escape sequence, a carriage return, a NUL from a
+/// hostile file name or header) written as `\u{…}`, so an `error:` line is one line and cannot
+/// drive the terminal.
+pub fn printable(msg: &str) -> String {
+    if !msg.chars().any(char::is_control) {
+        return msg.to_string();
+    }
+    msg.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_unicode().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
 fn main() -> ExitCode {
     // A closed pipe ends the program quietly, as it does every Unix filter (Rust ignores
     // SIGPIPE, so `println!` would panic on `morpho info X | head -1`). Outputs named by `-o`
@@ -84,6 +172,8 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
+    #[cfg(unix)]
+    remove_temporaries_on_signals();
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {
@@ -92,14 +182,14 @@ fn main() -> ExitCode {
                 let _ = e.print();
                 return ExitCode::SUCCESS;
             }
-            let msg = e.to_string();
-            let first = msg
-                .lines()
-                .next()
-                .unwrap_or("bad usage")
-                .trim_start_matches("error: ");
-            eprintln!("error: {first}");
-            eprintln!("(see 'morpho --help')");
+            eprintln!("error: {}", usage_line(&e.render().to_string()));
+            let sub = std::env::args()
+                .nth(1)
+                .filter(|a| SUBCOMMANDS.contains(&a.as_str()));
+            match sub {
+                Some(sub) => eprintln!("(see 'morpho {sub} --help')"),
+                None => eprintln!("(see 'morpho --help')"),
+            }
             return ExitCode::from(2);
         }
     };
@@ -158,7 +248,7 @@ fn main() -> ExitCode {
     }
     if let Err(f) = paths.check() {
         // nothing is written, not even the report: its own path may be the problem
-        eprintln!("error: {}", f.msg);
+        eprintln!("error: {}", printable(&f.msg));
         return ExitCode::from(f.code);
     }
     drop(paths);
@@ -181,14 +271,14 @@ fn main() -> ExitCode {
     let code = match result {
         Ok(code) => code,
         Err(f) => {
-            eprintln!("error: {}", f.msg);
+            eprintln!("error: {}", printable(&f.msg));
             report.set("error", f.msg.clone());
             f.code
         }
     };
     if let Some(path) = &cli.report {
         if let Err(e) = report.save(path) {
-            eprintln!("error: {e}");
+            eprintln!("error: {}", printable(&e.to_string()));
             return ExitCode::from(if code == 0 { 1 } else { code });
         }
     }

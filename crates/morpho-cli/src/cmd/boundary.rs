@@ -49,7 +49,7 @@ pub struct Args {
     /// the whole γ([-1,1],[c,1]) from the hull; for points sampled on a closed curve that graph
     /// has Θ(N²) chords across the empty interior, so a fixed c is slow beyond a few thousand
     /// points (2000 curve points: ≈ 10 s at c = −0.1); `auto` adds those edges only where needed.
-    #[arg(long, default_value = "auto")]
+    #[arg(long, default_value = "auto", allow_hyphen_values = true)]
     pub c: String,
     /// Edges (2D: `i,j`) or triangles (3D: `i,j,k`) that must be on the boundary, input
     /// indices, one per line.
@@ -168,7 +168,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     }
     if !b.all_on_boundary || !b.keep_missing.is_empty() {
         eprintln!(
-            "boundary: no simple polygon through all points found: {} point(s) left out, {} keep edge(s) missing; the best polygon was written",
+            "error: boundary: no simple polygon through all points found: {} point(s) left out, {} keep edge(s) missing; the best polygon was written",
             b.left_out.len(),
             b.keep_missing.len()
         );
@@ -217,7 +217,7 @@ fn run_3d(
         if let Some(i) = &args.interior {
             // JSON whatever the extension (`{"tetrahedra", "volume"}`, see the module docs)
             if let Some(note) = io::json::interior_3d_note(&b) {
-                eprintln!("boundary: warning: {note}");
+                eprintln!("warning: boundary: {note}");
             }
             io::write_atomic(i, |w| io::json::write_interior_3d(w, &b))?;
         }
@@ -231,7 +231,7 @@ fn run_3d(
     }
     if !b.all_on_boundary || !b.keep_missing.is_empty() {
         eprintln!(
-            "boundary: {} point(s) are not on the boundary, {} keep triangle(s) missing; the best closed mesh was written",
+            "error: boundary: {} point(s) are not on the boundary, {} keep triangle(s) missing; the best closed mesh was written",
             b.left_out.len(),
             b.keep_missing.len()
         );

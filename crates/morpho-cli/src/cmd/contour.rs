@@ -27,7 +27,7 @@ pub struct Args {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Threshold of the rating: triangles rated above it are black (the regions).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub threshold: f64,
     /// The value column (default: `value`, or the only column).
     #[arg(long)]
@@ -42,7 +42,7 @@ pub struct Args {
     #[arg(long)]
     pub holes: bool,
     /// 2D: drop regions with a smaller area.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub min_area: f64,
 }
 

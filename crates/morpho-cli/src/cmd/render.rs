@@ -30,10 +30,10 @@ pub struct Args {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Viewpoint rotation about the up axis, degrees.
-    #[arg(long, default_value_t = 35.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 35.0, allow_hyphen_values = true)]
     pub azimuth: f64,
     /// Viewpoint height above the horizontal plane, degrees (−90…90).
-    #[arg(long, default_value_t = 25.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 25.0, allow_hyphen_values = true)]
     pub elevation: f64,
     /// Which axis points up: y or z (default: y for meshes and points, z for volume views).
     #[arg(long, value_parser = ["y", "z"])]
@@ -72,7 +72,7 @@ pub struct Args {
     #[arg(long, value_name = "STRIDE", conflicts_with = "slice")]
     pub planes: Option<usize>,
     /// Transparency t of --planes (0 opaque … 1 invisible).
-    #[arg(long, default_value_t = 0.75)]
+    #[arg(long, default_value_t = 0.75, allow_hyphen_values = true)]
     pub transparency: f64,
     /// Nearest-sample blocks instead of bilinear interpolation in volume slices.
     #[arg(long)]

@@ -24,6 +24,13 @@
 //! remembered by identity (device and inode, so links and other spellings of the same path
 //! are caught), and no output may replace a remembered input or a file already written by this
 //! process. Library users who do not call it can read and rewrite the same file as before.
+//!
+//! # Temporary files
+//! [`super::write_atomic`] writes into a temporary file beside the target and renames it at the
+//! end. While it exists the temporary file's path is listed here; a program that ends on a
+//! signal calls [`remove_temporaries`] first (the CLI does on SIGTERM, SIGHUP and SIGINT), so
+//! no `.morpho-*.tmp` file is left behind. SIGKILL cannot be caught: after `kill -9` a
+//! temporary file may remain (the target itself is never half-written).
 
 use crate::{Error, Result};
 use std::path::{Component, Path, PathBuf};
@@ -97,6 +104,43 @@ struct Registry {
 }
 
 static GUARD: Mutex<Option<Registry>> = Mutex::new(None);
+static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+static ENDING: AtomicBool = AtomicBool::new(false);
+
+/// Creates the temporary file of an atomic write in `dir` and lists it, both under the list's
+/// lock, so [`remove_temporaries`] sees every temporary file that exists. Refused once
+/// [`remove_temporaries`] ran (the program is ending).
+pub(crate) fn create_temporary(dir: &Path) -> std::io::Result<tempfile::NamedTempFile> {
+    let mut list = TEMPORARIES.lock().unwrap_or_else(|p| p.into_inner());
+    if ENDING.load(Ordering::SeqCst) {
+        return Err(std::io::Error::other("the program is ending"));
+    }
+    let tmp = tempfile::Builder::new()
+        .prefix(".morpho-")
+        .suffix(".tmp")
+        .tempfile_in(dir)?;
+    list.push(tmp.path().to_path_buf());
+    Ok(tmp)
+}
+
+/// Takes a temporary file off the list (it was renamed onto its target or removed).
+pub(crate) fn temporary_gone(path: &Path) {
+    let mut t = TEMPORARIES.lock().unwrap_or_else(|p| p.into_inner());
+    if let Some(i) = t.iter().rposition(|q| q == path) {
+        t.swap_remove(i);
+    }
+}
+
+/// Removes every temporary file of an unfinished [`super::write_atomic`] and returns how many
+/// were removed. Meant for a signal-handling thread just before the process exits: from then
+/// on no new temporary file is created (a write that starts afterwards fails).
+pub fn remove_temporaries() -> usize {
+    let mut list = TEMPORARIES.lock().unwrap_or_else(|p| p.into_inner());
+    ENDING.store(true, Ordering::SeqCst);
+    list.drain(..)
+        .filter(|p| std::fs::remove_file(p).is_ok())
+        .count()
+}
 static ALLOW_OUTSIDE: AtomicBool = AtomicBool::new(false);
 
 fn registry() -> std::sync::MutexGuard<'static, Option<Registry>> {

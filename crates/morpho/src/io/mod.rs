@@ -204,11 +204,23 @@ fn write_atomic_inner(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".morpho-")
-        .suffix(".tmp")
-        .tempfile_in(dir)
-        .map_err(|e| Error::io(path, e))?;
+    let tmp = guard::create_temporary(dir).map_err(|e| Error::io(path, e))?;
+    let tmp_path = tmp.path().to_path_buf();
+    let result = fill_and_persist(tmp, &target, path, write);
+    // renamed onto the target, or removed by the temporary's drop on failure
+    guard::temporary_gone(&tmp_path);
+    result?;
+    guard::written(&target);
+    Ok(())
+}
+
+/// The body of [`write_atomic`] once the temporary file exists: write, flush, sync, rename.
+fn fill_and_persist(
+    mut tmp: tempfile::NamedTempFile,
+    target: &Path,
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> Result<()>,
+) -> Result<()> {
     {
         let mut w = std::io::BufWriter::new(tmp.as_file_mut());
         write(&mut w)?;
@@ -223,8 +235,7 @@ fn write_atomic_inner(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<
             .as_file()
             .set_permissions(std::fs::Permissions::from_mode(0o644));
     }
-    tmp.persist(&target).map_err(|e| Error::io(path, e.error))?;
-    guard::written(&target);
+    tmp.persist(target).map_err(|e| Error::io(path, e.error))?;
     Ok(())
 }
 

@@ -1,0 +1,109 @@
+//! The CLI contract of issue 17 item 12: negative numbers are option values, a usage error
+//! names what is missing on one `error:` line, nothing from an input reaches the terminal as a
+//! control character.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn morpho(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_morpho"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("run morpho")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Twelve points on a wobbly circle (2D, CSV).
+fn ring(dir: &Path) {
+    let mut s = String::from("x,y\n");
+    for i in 0..12 {
+        let t = i as f64 * std::f64::consts::TAU / 12.0;
+        let r = 1.0 + 0.1 * (i % 3) as f64;
+        s.push_str(&format!("{},{}\n", r * t.cos(), r * t.sin()));
+    }
+    std::fs::write(dir.join("p.csv"), s).unwrap();
+}
+
+#[test]
+fn negative_numbers_are_option_values() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    ring(d);
+    // `--c -0.5` was "unexpected argument '-0' found"; `--c=-0.5` always worked
+    for args in [
+        &["boundary", "p.csv", "--c", "-0.5", "-o", "b.csv"][..],
+        &["boundary", "p.csv", "--c=-0.5", "-o", "b.csv"][..],
+        &[
+            "graph",
+            "p.csv",
+            "--kind",
+            "beta-lune",
+            "--b",
+            "-0.5",
+            "-o",
+            "g.json",
+        ][..],
+    ] {
+        let o = morpho(d, args);
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
+    }
+    // a non-finite threshold reaches the command's own check instead of clap's tokenizer
+    let o = morpho(
+        d,
+        &["contour", "p.csv", "--threshold", "-inf", "-o", "c.geojson"],
+    );
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(e.contains("--threshold"), "{e}");
+    assert!(!e.contains("unexpected argument"), "{e}");
+}
+
+#[test]
+fn a_usage_error_names_every_missing_argument_on_one_line() {
+    let t = tempfile::tempdir().unwrap();
+    let o = morpho(t.path(), &["contour"]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    let lines: Vec<&str> = e.lines().collect();
+    assert_eq!(lines.len(), 2, "{e}");
+    assert!(
+        lines[0].starts_with("error: the following required arguments"),
+        "{e}"
+    );
+    for name in ["--output <OUTPUT>", "--threshold <THRESHOLD>", "<INPUT>"] {
+        assert!(lines[0].contains(name), "{name} missing in: {e}");
+    }
+    assert_eq!(lines[1], "(see 'morpho contour --help')");
+    // a value left out names its option
+    let o = morpho(t.path(), &["graph", "p.csv", "--kind"]);
+    let e = stderr(&o);
+    assert!(e.starts_with("error: ") && e.contains("--kind"), "{e}");
+}
+
+#[test]
+fn control_characters_from_inputs_are_escaped() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    // a file name and a header line carrying an escape sequence and a carriage return
+    let o = morpho(d, &["info", "no\u{1b}[31mfile\r.xyz"]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(!e.contains('\u{1b}') && !e.contains('\r'), "{e:?}");
+    assert!(e.contains("\\u{1b}"), "{e:?}");
+    std::fs::write(
+        d.join("m.ply"),
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float \u{1b}]0;owned\u{7} x\nend_header\n0\n",
+    )
+    .unwrap();
+    let o = morpho(d, &["info", "m.ply"]);
+    let e = stderr(&o);
+    assert!(
+        !e.chars().any(|c| c.is_control() && c != '\n'),
+        "control character echoed: {e:?}"
+    );
+    assert_eq!(e.lines().count(), 1, "{e:?}");
+}
