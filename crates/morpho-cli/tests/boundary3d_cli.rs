@@ -173,10 +173,13 @@ fn voronoi_skeleton_3d_refuses_keep_and_degenerate_input() {
     let o = run(&flat, &d.join("f.ply"), &rep, &[]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     let e = stderr(&o);
+    // the last line is the error; a note before it names the constant coordinate
+    let last = e.lines().last().unwrap_or("");
     assert!(
-        e.starts_with("error: ") && e.contains("no closed surface"),
+        last.starts_with("error: ") && last.contains("no closed surface"),
         "{e}"
     );
+    assert!(e.contains("every point has z = 0"), "{e}");
     assert!(!d.join("f.ply").exists());
 }
 

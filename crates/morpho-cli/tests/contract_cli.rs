@@ -107,3 +107,52 @@ fn control_characters_from_inputs_are_escaped() {
     );
     assert_eq!(e.lines().count(), 1, "{e:?}");
 }
+
+/// Issue 17 item 10: `x y 1` rows are 3D points on a plane; the note says which coordinate is
+/// constant and `--dims 2` reads them as the 2D set they are.
+#[test]
+fn a_constant_third_column_is_named_and_dims_2_reads_it_as_2d() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    let rows: String = (0..30)
+        .map(|i| format!("{} {} 1\n", (i * 7) % 11, (i * 5) % 13))
+        .collect();
+    std::fs::write(d.join("flat.xyz"), rows).unwrap();
+    let o = morpho(d, &["triangulate", "flat.xyz", "-o", "t.json"]);
+    let e = stderr(&o);
+    assert!(
+        e.contains("every point has z = 1") && e.contains("--dims 2"),
+        "{e}"
+    );
+    let o = morpho(
+        d,
+        &[
+            "triangulate",
+            "flat.xyz",
+            "--dims",
+            "2",
+            "-o",
+            "t.json",
+            "--report",
+            "r.json",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let r = std::fs::read_to_string(d.join("r.json")).unwrap();
+    assert!(!stderr(&o).contains("coplanar"), "{}", stderr(&o));
+    assert!(r.contains("\"triangles\""), "{r}");
+    let o = morpho(
+        d,
+        &[
+            "graph", "flat.xyz", "--dims", "2", "--kind", "emst", "-o", "g.json",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let o = morpho(
+        d,
+        &[
+            "graph", "flat.xyz", "--dims", "4", "--kind", "emst", "-o", "g.json",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}

@@ -26,7 +26,7 @@ use morpho::boundary::constrict3::Until;
 use morpho::boundary::{
     boundary_2d, boundary_3d_with, check_polygon, CParam, Method, Options2, Options3,
 };
-use morpho::io::{self, read_points};
+use morpho::io;
 use morpho::render::figures;
 use morpho::Error;
 use serde_json::json;
@@ -36,6 +36,9 @@ use std::path::PathBuf;
 pub struct Args {
     /// Points (CSV with header, XYZ, PLY, JSON array); 2D.
     pub input: PathBuf,
+    /// Read the points as 2D (x, y of 3D rows, e.g. `x y 1`) or require 3D points.
+    #[arg(long, value_name = "2|3")]
+    pub dims: Option<u8>,
     /// Output: .csv, .geojson, .json or .svg.
     #[arg(short, long)]
     pub output: PathBuf,
@@ -92,7 +95,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         _ => return Err(Failure::usage("--until must be `all` or `locked`")),
     };
     let ext = super::extension(&args.output);
-    let ps = report.time("read", || read_points(&args.input))?;
+    let ps = report.time("read", || super::read_points(&args.input, args.dims))?;
     if ps.dim == 3 {
         let keep = match &args.keep {
             Some(k) => report.time("read", || super::read_index_rows::<3>(k, "keep"))?,

@@ -16,6 +16,9 @@ use std::path::PathBuf;
 pub struct Args {
     /// Points (CSV with header, XYZ, PLY, JSON array).
     pub input: PathBuf,
+    /// Read the points as 2D (x, y of 3D rows, e.g. `x y 1`) or require 3D points.
+    #[arg(long, value_name = "2|3")]
+    pub dims: Option<u8>,
     /// closest-pairs, nng, emst, strip, sig, rng, gabriel, hull, delaunay, alpha, beta-circle,
     /// beta-lune, gamma, gamma-range.
     #[arg(long)]
@@ -92,7 +95,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let kind = parse_kind(&args)?;
     kind.validate().map_err(|e| Failure::usage(e.to_string()))?;
     let fmt = Format::of(&args.output)?;
-    let pts = report.time("read", || io::read_points(&args.input))?;
+    let pts = report.time("read", || super::read_points(&args.input, args.dims))?;
     report.set("kind", kind.name());
     report.set("dim", pts.dim);
     report.set("points", pts.len());

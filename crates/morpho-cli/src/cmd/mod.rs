@@ -63,6 +63,65 @@ impl<'a> Paths<'a> {
     }
 }
 
+/// Reads the points of a geometric command (`triangulate`, `boundary`, `graph`). `dims`
+/// (`--dims`) forces the dimension: `Some(2)` keeps x and y of 3D points; `Some(3)` refuses
+/// 2D points. Without it, 3D points with a constant coordinate — `x y 1` rows, a 2D set saved
+/// with a third column — stay 3D (they are coplanar: no tetrahedra, no closed surface) and a
+/// `note:` says which coordinate is constant and how to read them as 2D (issue 17 item 10).
+pub(crate) fn read_points(
+    path: &std::path::Path,
+    dims: Option<u8>,
+) -> Result<morpho::mesh::PointSet, Failure> {
+    let mut ps = morpho::io::read_points(path)?;
+    match dims {
+        None if ps.dim == 3 && ps.len() > 1 => {
+            if let Some(axis) = constant_axis(&ps) {
+                let name = ["x", "y", "z"][axis];
+                let value = ps.coords[axis];
+                let hint = if axis == 2 {
+                    "pass --dims 2 to read them as 2D points"
+                } else {
+                    "drop that column to read them as 2D points"
+                };
+                eprintln!(
+                    "note: {}: every point has {name} = {value}: the points are coplanar; {hint}",
+                    path.display()
+                );
+            }
+        }
+        None => {}
+        Some(2) if ps.dim == 3 => {
+            ps.coords = ps
+                .coords
+                .chunks_exact(3)
+                .flat_map(|p| [p[0], p[1]])
+                .collect();
+            ps.dim = 2;
+        }
+        Some(3) if ps.dim == 2 => {
+            return Err(Failure::usage(format!(
+                "{}: --dims 3 given, but the points are 2D",
+                path.display()
+            )))
+        }
+        Some(2 | 3) => {}
+        Some(d) => return Err(Failure::usage(format!("--dims must be 2 or 3, not {d}"))),
+    }
+    Ok(ps)
+}
+
+/// The first axis on which every point has the same coordinate (bitwise equal values).
+fn constant_axis(ps: &morpho::mesh::PointSet) -> Option<usize> {
+    (0..ps.dim).find(|&k| {
+        let first = ps.coords[k];
+        ps.coords
+            .iter()
+            .skip(k)
+            .step_by(ps.dim)
+            .all(|&v| v == first)
+    })
+}
+
 /// Rows of `K` point indices (keep edges/triangles, constraint segments): one row per line,
 /// fields separated by commas, semicolons, tabs or spaces; blank lines and `#` comments are
 /// skipped; a first line with letters (`i,j`) is a header. Anything else is an error naming

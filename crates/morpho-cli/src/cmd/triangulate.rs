@@ -26,6 +26,9 @@ use std::path::PathBuf;
 pub struct Args {
     /// Points (CSV with header, XYZ, PLY, JSON array of [x, y(, z)]).
     pub input: PathBuf,
+    /// Read the points as 2D (x, y of 3D rows, e.g. `x y 1`) or require 3D points.
+    #[arg(long, value_name = "2|3")]
+    pub dims: Option<u8>,
     /// Output: .json, .ply/.obj/.off/.stl/.vtu/.vtk, or .svg (2D).
     #[arg(short, long)]
     pub output: PathBuf,
@@ -49,7 +52,7 @@ fn is_mesh(fmt: Format) -> bool {
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let fmt = Format::of(&args.output)?;
-    let pts = report.time("read", || io::read_points(&args.input))?;
+    let pts = report.time("read", || super::read_points(&args.input, args.dims))?;
     if pts.dim == 2 {
         if let Some(c) = &args.constraints {
             if args.voronoi {

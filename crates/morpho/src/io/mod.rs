@@ -726,7 +726,25 @@ mod tests {
     /// the file's line numbers.
     #[test]
     fn cr_lf_and_crlf_line_ends_read_alike() {
-        let cases: [(&str, &str); 4] = [
+        let cases: [(&str, &str); 7] = [
+            (
+                "m.ply",
+                "ply\nformat ascii 1.0\ncomment CR test\nelement vertex 4\nproperty float x\n\
+                 property float y\nproperty float z\nelement face 1\n\
+                 property list uchar int vertex_indices\nend_header\n\
+                 0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n",
+            ),
+            (
+                "v.nrrd",
+                "NRRD0004\n# comment\ntype: float\ndimension: 3\nsizes: 2 2 2\n\
+                 spacings: 1 2 3\nencoding: ascii\n\n0 1 2 3\n4 5 6 7\n",
+            ),
+            (
+                "v.mhd",
+                "ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementSpacing = 1 2 3\n\
+                 ElementType = MET_UCHAR\nElementDataFile = LOCAL\n\
+                 \u{0}\u{1}\u{2}\u{3}\u{4}\u{5}\u{6}\u{7}",
+            ),
             ("p.csv", "x,y\n0,0\n1,0\n0,1\n0.5,0.25\n"),
             ("p.xyz", "# pts\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"),
             (
@@ -747,7 +765,8 @@ mod tests {
                 got.push(match read_any(&p).unwrap() {
                     Data::Points(ps) => format!("{} {:?}", ps.dim, ps.coords),
                     Data::Mesh(m) => format!("{:?} {:?}", m.positions, m.triangles),
-                    _ => panic!("{name}"),
+                    Data::Volume(v) => format!("{:?} {:?} {:?}", v.dims, v.axes, v.data),
+                    Data::Shapes(_) => panic!("{name}"),
                 });
             }
             assert!(got[0].len() > 20, "{name}: {}", got[0]);

@@ -168,7 +168,11 @@ fn parse_header(bytes: &[u8]) -> Result<Header> {
             return Err(Error::at_line(line, "PLY header has no 'end_header' line"));
         }
         let rest = &bytes[pos..];
-        let (raw, next) = match rest.iter().position(|&b| b == b'\n') {
+        // a header line ends at LF, CRLF or a bare CR (old Mac text)
+        let (raw, next) = match rest.iter().position(|&b| b == b'\n' || b == b'\r') {
+            Some(e) if rest[e] == b'\r' && rest.get(e + 1) == Some(&b'\n') => {
+                (&rest[..e], pos + e + 2)
+            }
             Some(e) => (&rest[..e], pos + e + 1),
             None => (rest, bytes.len()),
         };
@@ -1062,7 +1066,9 @@ fn read_file(bytes: &[u8], want: Want) -> Result<Body> {
     let data = &bytes[h.data_start..];
     match h.fmt {
         Fmt::Ascii => {
-            let text = super::obj::utf8_text(data, h.lines + 1)?;
+            // CR, LF and CRLF line ends alike (bare CRs become LFs, byte for byte)
+            let data = super::unify_line_ends(data);
+            let text = super::obj::utf8_text(&data, h.lines + 1)?;
             read_body(&mut Ascii::new(text, h.lines), &h, want)
         }
         Fmt::Le | Fmt::Be => {

@@ -269,24 +269,44 @@ pub(crate) fn header_line(
     consumed: &mut u64,
     lineno: u64,
 ) -> Result<Option<String>> {
+    let cannot = |e: std::io::Error| Error::at_line(lineno, format!("cannot read header: {e}"));
     let mut buf = Vec::new();
-    let n = r
-        .take(MAX_HEADER_LINE as u64 + 1)
-        .read_until(b'\n', &mut buf)
-        .map_err(|e| Error::at_line(lineno, format!("cannot read header: {e}")))?;
-    if n == 0 {
+    // the line's end: LF, CRLF or a bare CR (old Mac text); None at the end of the stream
+    let mut ended = None;
+    while ended.is_none() {
+        let avail = r.fill_buf().map_err(cannot)?;
+        if avail.is_empty() {
+            break;
+        }
+        let room = MAX_HEADER_LINE + 1 - buf.len();
+        let window = &avail[..avail.len().min(room)];
+        let (take, end) = match window.iter().position(|&b| b == b'\n' || b == b'\r') {
+            Some(e) => (e + 1, Some(window[e])),
+            None => (window.len(), None),
+        };
+        buf.extend_from_slice(&window[..take]);
+        r.consume(take);
+        *consumed += take as u64;
+        ended = end;
+        if ended.is_none() && buf.len() > MAX_HEADER_LINE {
+            return Err(Error::at_line(
+                lineno,
+                format!("header line longer than {MAX_HEADER_LINE} bytes"),
+            ));
+        }
+    }
+    if buf.is_empty() {
         return Ok(None);
     }
-    *consumed += n as u64;
-    if buf.last() == Some(&b'\n') {
-        buf.pop();
-    } else if n > MAX_HEADER_LINE {
-        return Err(Error::at_line(
-            lineno,
-            format!("header line longer than {MAX_HEADER_LINE} bytes"),
-        ));
+    if ended == Some(b'\r') {
+        // CRLF: the LF belongs to this line
+        let avail = r.fill_buf().map_err(cannot)?;
+        if avail.first() == Some(&b'\n') {
+            r.consume(1);
+            *consumed += 1;
+        }
     }
-    if buf.last() == Some(&b'\r') {
+    if ended.is_some() {
         buf.pop();
     }
     if *consumed > MAX_HEADER_BYTES {
