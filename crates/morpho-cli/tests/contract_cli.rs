@@ -156,3 +156,30 @@ fn a_constant_third_column_is_named_and_dims_2_reads_it_as_2d() {
     );
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
+
+/// Issue 17 item 12: a NRRD whose spacing makes the coordinates overflow is blamed on the
+/// input, not on the output file the writer refused ("s.ply: vertex 1 has a non-finite
+/// coordinate" before).
+#[test]
+fn an_overflowing_volume_extent_is_blamed_on_the_input() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    let mut bytes = b"NRRD0004\ntype: float\ndimension: 3\nsizes: 3 3 3\n\
+        spacings: 1e308 1e308 1e308\nencoding: ascii\n\n"
+        .to_vec();
+    for i in 0..27 {
+        bytes.extend_from_slice(if i == 13 { b"2\n" } else { b"0\n" });
+    }
+    std::fs::write(d.join("huge.nrrd"), bytes).unwrap();
+    let o = morpho(
+        d,
+        &["isosurface", "huge.nrrd", "--level", "1", "-o", "s.ply"],
+    );
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(
+        e.starts_with("error: huge.nrrd: ") && !e.contains("s.ply"),
+        "{e}"
+    );
+    assert!(!d.join("s.ply").exists());
+}

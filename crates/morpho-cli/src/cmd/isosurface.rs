@@ -67,9 +67,33 @@ pub struct Args {
     pub ascii: bool,
 }
 
+/// Refuses a volume whose sample coordinates overflow (a header's spacing of 1e308 over a few
+/// samples): the surface's vertices would be infinite. The input is blamed, not the output
+/// (issue 17 item 12).
+fn finite_extent(vol: &morpho::volume::Volume, input: &std::path::Path) -> Result<(), Failure> {
+    let ends: Vec<f64> = match &vol.axes {
+        morpho::volume::Axes::Uniform { origin, spacing } => (0..3)
+            .flat_map(|k| {
+                let last = vol.dims[k].saturating_sub(1) as f64;
+                [origin[k], origin[k] + last * spacing[k]]
+            })
+            .collect(),
+        morpho::volume::Axes::Coords(c) => c.iter().flatten().copied().collect(),
+    };
+    if ends.iter().all(|v| v.is_finite()) {
+        return Ok(());
+    }
+    Err(Failure::usage(format!(
+        "{}: the volume's extent is not a finite number (origin + spacing × (size − 1) \
+         overflows): its sample coordinates cannot be represented",
+        input.display()
+    )))
+}
+
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     io::Format::of(&args.output)?;
     let vol = report.time("read", || io::read_volume(&args.input))?;
+    finite_extent(&vol, &args.input)?;
     let t = std::time::Instant::now();
     let mesh = process(&vol, &args, report)?;
     report.add_time("compute", t.elapsed().as_secs_f64());
