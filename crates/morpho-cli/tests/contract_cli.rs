@@ -183,3 +183,23 @@ fn an_overflowing_volume_extent_is_blamed_on_the_input() {
     );
     assert!(!d.join("s.ply").exists());
 }
+
+/// Issue 17 item 12: the 2D boundary report says how many duplicate points it merged.
+#[test]
+fn the_2d_boundary_report_counts_merged_duplicates() {
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    ring(d);
+    let mut s = std::fs::read_to_string(d.join("p.csv")).unwrap();
+    let copies: Vec<String> = s.lines().skip(1).take(3).map(String::from).collect();
+    for c in &copies {
+        s.push_str(c);
+        s.push('\n');
+    }
+    s.push_str("-0,0.5\n0,0.5\n");
+    std::fs::write(d.join("d.csv"), s).unwrap();
+    let o = morpho(d, &["boundary", "d.csv", "-o", "b.csv", "--report", "r.json"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let r = std::fs::read_to_string(d.join("r.json")).unwrap();
+    assert!(r.contains("\"duplicates_merged\": 4"), "{r}");
+}

@@ -139,6 +139,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     report.set("method", method.name());
     report.set("points", pts.len());
     report.set("boundary_vertices", b.polygon.len());
+    report.set("duplicates_merged", duplicates(&pts));
     report.set("all_on_boundary", b.all_on_boundary);
     report.set("c_used", b.c_used);
     report.set("iterations", b.iterations);
@@ -178,6 +179,15 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         return Ok(1);
     }
     Ok(0)
+}
+
+/// How many points repeat an earlier one (same coordinates; −0 equals 0): the boundary goes
+/// through each location once, so these are merged into their first copy.
+fn duplicates(pts: &[morpho::geom::Point2]) -> usize {
+    let key = |v: f64| if v == 0.0 { 0u64 } else { v.to_bits() };
+    let distinct: std::collections::HashSet<(u64, u64)> =
+        pts.iter().map(|p| (key(p.x), key(p.y))).collect();
+    pts.len() - distinct.len()
 }
 
 fn run_3d(
