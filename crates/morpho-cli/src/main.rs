@@ -26,6 +26,10 @@ struct Cli {
     /// Let volume headers name data files outside their own folder (absolute paths, `..`).
     #[arg(long, global = true)]
     allow_outside_data: bool,
+    /// Most memory a reader may allocate, e.g. `4G`, `512M` (default: MORPHO_MEMORY_LIMIT, else
+    /// three quarters of the machine's memory).
+    #[arg(long, global = true, value_name = "BYTES")]
+    memory_limit: Option<String>,
 }
 
 #[derive(Subcommand)]
@@ -256,6 +260,18 @@ fn main() -> ExitCode {
     // included) or a file this run already wrote
     morpho::io::guard::protect_inputs();
     morpho::io::guard::allow_data_outside_header_folder(cli.allow_outside_data);
+    if let Some(m) = &cli.memory_limit {
+        match morpho::io::memory::parse_size(m).filter(|&b| b > 0) {
+            Some(b) => morpho::io::memory::set_limit(b),
+            None => {
+                eprintln!(
+                    "error: --memory-limit must be a size such as 4G or 512M, not '{}'",
+                    printable(m)
+                );
+                return ExitCode::from(2);
+            }
+        }
+    }
     let mut report = Report::new(name);
     let result = match cli.command {
         Command::Demo(a) => cmd::demo::run(a, &mut report),

@@ -198,8 +198,67 @@ fn the_2d_boundary_report_counts_merged_duplicates() {
     }
     s.push_str("-0,0.5\n0,0.5\n");
     std::fs::write(d.join("d.csv"), s).unwrap();
-    let o = morpho(d, &["boundary", "d.csv", "-o", "b.csv", "--report", "r.json"]);
+    let o = morpho(
+        d,
+        &["boundary", "d.csv", "-o", "b.csv", "--report", "r.json"],
+    );
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let r = std::fs::read_to_string(d.join("r.json")).unwrap();
     assert!(r.contains("\"duplicates_merged\": 4"), "{r}");
+}
+
+/// Issue 17 item 7: a small compressed file that claims a huge volume, or decompresses into
+/// far more text than the memory limit allows, fails at once naming the limit.
+#[test]
+fn allocation_bombs_fail_at_once_naming_the_memory_limit() {
+    use std::io::Write;
+    let t = tempfile::tempdir().unwrap();
+    let d = t.path();
+    // a NRRD header claiming 2000×1000×1000 u8 (about 9.3 GiB in memory) over a tiny gzip
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+    gz.write_all(&[0u8; 1 << 16]).unwrap();
+    let mut nrrd = b"NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2000 1000 1000\n\
+        encoding: gzip\n\n"
+        .to_vec();
+    nrrd.extend(gz.finish().unwrap());
+    std::fs::write(d.join("bomb.nrrd"), nrrd).unwrap();
+    // 64 MiB of `0,0` rows in a 64 KiB gzip
+    let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+    gz.write_all(b"x,y\n").unwrap();
+    let rows = b"0,0\n".repeat(1 << 20);
+    for _ in 0..16 {
+        gz.write_all(&rows).unwrap();
+    }
+    std::fs::write(d.join("rows.csv.gz"), gz.finish().unwrap()).unwrap();
+    for (file, what) in [("bomb.nrrd", "volume"), ("rows.csv.gz", "decompresses")] {
+        let o = Command::new(env!("CARGO_BIN_EXE_morpho"))
+            .current_dir(d)
+            .args(["info", file, "--memory-limit", "256M"])
+            .output()
+            .unwrap();
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{e}");
+        assert!(e.starts_with(&format!("error: {file}: ")), "{e}");
+        assert!(
+            e.contains(what) && e.contains("memory limit of 256 MiB"),
+            "{e}"
+        );
+        // the environment variable sets the same limit
+        let o = Command::new(env!("CARGO_BIN_EXE_morpho"))
+            .current_dir(d)
+            .env("MORPHO_MEMORY_LIMIT", "256M")
+            .args(["info", file])
+            .output()
+            .unwrap();
+        assert!(
+            stderr(&o).contains("memory limit of 256 MiB"),
+            "{}",
+            stderr(&o)
+        );
+    }
+    // under a generous limit the compressed rows are read
+    let o = morpho(d, &["info", "rows.csv.gz", "--memory-limit", "4G"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let o = morpho(d, &["info", "rows.csv.gz", "--memory-limit", "lots"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }

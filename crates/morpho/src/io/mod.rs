@@ -29,6 +29,7 @@ pub mod geojson;
 pub mod guard;
 pub mod html;
 pub mod json;
+pub mod memory;
 pub mod mhd;
 pub mod nrrd;
 pub mod obj;
@@ -122,6 +123,11 @@ impl Format {
 pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
     use std::io::Read;
     let (f, len) = guard::open_input(path)?;
+    memory::check(
+        len.saturating_mul(memory::PARSE_FACTOR),
+        "reading this file",
+    )
+    .map_err(|e| e.with_path(path))?;
     let mut bytes = Vec::with_capacity(len as usize);
     // a file that grows while it is read is cut at the limit, not followed
     f.take(MAX_FILE_BYTES + 1)
@@ -131,7 +137,18 @@ pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
         return Err(Error::invalid("file grew past the size morpho reads").with_path(path));
     }
     if bytes.len() >= 2 && bytes[0] == 0x1f && bytes[1] == 0x8b {
-        return gunzip(&bytes, MAX_FILE_BYTES).map_err(|e| e.with_path(path));
+        // what it decompresses to is parsed in memory too (memory::PARSE_FACTOR)
+        let cap = MAX_FILE_BYTES.min(memory::max_read_bytes());
+        return gunzip(&bytes, cap).map_err(|e| match e {
+            Error::Invalid { .. } if cap < MAX_FILE_BYTES => Error::invalid(format!(
+                "the file decompresses to more than {}, which with what is parsed from it \
+                 exceeds the memory limit of {} (--memory-limit or MORPHO_MEMORY_LIMIT)",
+                memory::human(cap),
+                memory::human(memory::limit())
+            ))
+            .with_path(path),
+            e => e.with_path(path),
+        });
     }
     Ok(bytes)
 }

@@ -130,6 +130,11 @@ pub(crate) fn data_size(dims: [usize; 3], ty: Sample) -> Result<(usize, usize)> 
         .checked_mul(dims[1])
         .and_then(|v| v.checked_mul(dims[2]));
     let bytes = n.and_then(|n| n.checked_mul(ty.size()));
+    if let (Some(n), Some(b)) = (n, bytes) {
+        // samples as f32 plus the file's sample bytes while decoding
+        let need = (n as u64).saturating_mul(4).saturating_add(b as u64);
+        super::memory::check(need, &format!("a {dims:?} volume of {}", ty.name()))?;
+    }
     match (n, bytes) {
         (Some(n), Some(b)) if b as u64 <= super::MAX_FILE_BYTES => Ok((n, b)),
         _ => Err(Error::invalid(format!(
