@@ -59,13 +59,15 @@
 //! with inconsistent predicates, and hitting them is also an error.
 //! Constructions (circumcentres) are ordinary floating point.
 
+use super::DelaunayError;
 use crate::geom::exact::{incircle_i128, orient2d_i64};
 use crate::geom::predicates::raw::{incircle, orient2d};
 use crate::geom::{Point2, Vector2};
 use crate::util::hilbert::{hilbert2, HILBERT2_BITS};
 use crate::util::NONE;
 use crate::util::{Rng, Rng32};
-use crate::{Error, Result};
+
+type Result<T, E = DelaunayError> = std::result::Result<T, E>;
 
 /// The infinite vertex of ghost triangles (construction only).
 const INF: u32 = u32::MAX;
@@ -471,23 +473,22 @@ impl<K: Kernel> Builder<K> {
 
 fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
     if points.is_empty() {
-        return Err(Error::invalid(
-            "Delaunay triangulation of an empty point set",
-        ));
+        return Err(DelaunayError::NoPoints { dim: 2 });
     }
     if points.len() >= u32::MAX as usize / 4 {
-        return Err(Error::invalid(
-            "too many points for a 2D Delaunay triangulation",
-        ));
+        return Err(DelaunayError::TooManyPoints {
+            found: points.len(),
+            dim: 2,
+        });
     }
     let mut lo = [f64::INFINITY; 2];
     let mut hi = [f64::NEG_INFINITY; 2];
     for (i, p) in points.iter().enumerate() {
         if !p.x.is_finite() || !p.y.is_finite() {
-            return Err(Error::invalid(format!(
-                "point {i} has a non-finite coordinate ({}, {})",
-                p.x, p.y
-            )));
+            return Err(DelaunayError::NonFinite {
+                index: i,
+                coords: vec![p.x, p.y],
+            });
         }
         lo[0] = lo[0].min(p.x);
         lo[1] = lo[1].min(p.y);
@@ -606,11 +607,7 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
             .position(|p| p.iter().any(|&x| x != 0.0 && x.abs() < tiny))
         {
             let p = points_out[v];
-            return Err(Error::invalid(format!(
-                "2D Delaunay: coordinate ({}, {}) is non-zero but below 2^-180 times the largest \
-                 coordinate magnitude; exact predicates cannot be guaranteed",
-                p.x, p.y
-            )));
+            return Err(DelaunayError::CoordinateTooSmall { point: [p.x, p.y] });
         }
         run_insertion(FloatKernel(c), n, k0, order_seed)?
     };
@@ -701,9 +698,7 @@ fn run_insertion<K: Kernel>(k: K, n: usize, k0: usize, order_seed: Option<u64>) 
     for &v in &order {
         last_t = bld.insert(v, last_t);
         if bld.failed {
-            return Err(Error::invalid(
-                "2D Delaunay: inconsistent predicates (coordinates outside the exact range)",
-            ));
+            return Err(DelaunayError::InconsistentPredicates);
         }
     }
     Ok((bld.tv, bld.th))

@@ -47,6 +47,7 @@
 //! ghosts) per point during the construction, 36 bytes each; measured peak ≈ 370 bytes per
 //! point for 1M uniform points (see `examples/bench_delaunay3d.rs`).
 
+use super::DelaunayError;
 use crate::geom::exact::{
     insphere_exact, insphere_small_int, orient2d_exact, orient3d_exact, safe_range,
 };
@@ -54,7 +55,8 @@ use crate::geom::predicates::raw::{insphere, orient3d};
 use crate::geom::Point3;
 use crate::util::hilbert::hilbert3;
 use crate::util::{Rng, NONE};
-use crate::{Error, Result};
+
+type Result<T, E = DelaunayError> = std::result::Result<T, E>;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use std::collections::HashSet;
@@ -441,18 +443,21 @@ pub(crate) type Dedup<const D: usize> = (Vec<[f64; D]>, Vec<u32>, Vec<u32>);
 /// input point and the first input point of each vertex.
 pub(crate) fn dedup_sorted<const D: usize>(coords: &[[f64; D]]) -> Result<Dedup<D>> {
     if coords.is_empty() {
-        return Err(Error::invalid("no points"));
+        return Err(DelaunayError::NoPoints { dim: D });
     }
     if coords.len() >= u32::MAX as usize / 8 {
-        return Err(Error::invalid("too many points"));
+        return Err(DelaunayError::TooManyPoints {
+            found: coords.len(),
+            dim: D,
+        });
     }
     let mut pts: Vec<[f64; D]> = Vec::with_capacity(coords.len());
     for (i, c) in coords.iter().enumerate() {
         if c.iter().any(|x| !x.is_finite()) {
-            return Err(Error::invalid(format!(
-                "point {} has a non-finite coordinate",
-                i + 1
-            )));
+            return Err(DelaunayError::NonFinite {
+                index: i,
+                coords: vec![],
+            });
         }
         // normalise -0.0 to 0.0 so that equal points compare equal
         let mut q = *c;
@@ -589,9 +594,10 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     for p in 4..n as u32 {
         bld.insert(p, p - 4);
         if bld.overflow {
-            return Err(Error::unsupported(format!(
-                "more than {MAX_TETS} tetrahedra (input too large or too degenerate)"
-            )));
+            return Err(DelaunayError::TooManySimplices {
+                dim: 3,
+                limit: MAX_TETS,
+            });
         }
     }
     // compact in place

@@ -38,9 +38,11 @@
 //! Randomized incremental: about `O(n^⌈d/2⌉)` expected for points in general position, plus the
 //! exact-fallback cost; meant for up to a few thousand points (exactness first, speed second).
 
+use super::DelaunayError;
 use crate::geom::exact::{affinely_independent, insphere_sign, orient_sign};
 use crate::util::{Rng, NONE};
-use crate::{Error, Result};
+
+type Result<T, E = DelaunayError> = std::result::Result<T, E>;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use std::collections::HashMap;
@@ -287,29 +289,27 @@ impl<'a> Builder<'a> {
 /// simplices and [`DelaunayD::degenerate`] set.
 pub fn triangulate_d(coords: &[f64], dim: usize) -> Result<DelaunayD> {
     if !(2..=MAX_DIM).contains(&dim) {
-        return Err(Error::unsupported(format!(
-            "dimension {dim} (supported: 2 to {MAX_DIM})"
-        )));
+        return Err(DelaunayError::UnsupportedDimension { dim, max: MAX_DIM });
     }
     if coords.len() % dim != 0 {
-        return Err(Error::invalid(format!(
-            "{} coordinates are not a multiple of dimension {dim}",
-            coords.len()
-        )));
+        return Err(DelaunayError::DimensionMismatch {
+            coords: coords.len(),
+            dim,
+        });
     }
     let n_in = coords.len() / dim;
     if n_in == 0 {
-        return Err(Error::invalid("no points"));
+        return Err(DelaunayError::NoPoints { dim });
     }
     if n_in >= (u32::MAX as usize) / 16 {
-        return Err(Error::invalid("too many points"));
+        return Err(DelaunayError::TooManyPoints { found: n_in, dim });
     }
     for (i, x) in coords.iter().enumerate() {
         if !x.is_finite() {
-            return Err(Error::invalid(format!(
-                "point {} has a non-finite coordinate",
-                i / dim + 1
-            )));
+            return Err(DelaunayError::NonFinite {
+                index: i / dim,
+                coords: vec![],
+            });
         }
     }
     // sort + dedup
@@ -432,7 +432,10 @@ pub fn triangulate_d(coords: &[f64], dim: usize) -> Result<DelaunayD> {
         bld.insert(v, k);
         k += 1;
         if bld.overflow {
-            return Err(Error::unsupported("more than 2^28 simplices"));
+            return Err(DelaunayError::TooManySimplices {
+                dim,
+                limit: 1 << 28,
+            });
         }
     }
     let nslots = bld.stamp.len();

@@ -25,14 +25,16 @@ use super::brute::{self, in_slab};
 use super::fast;
 use super::gamma::{in_gamma, in_gamma_range, CenterInterval};
 use super::lune::LuneGrid;
+use super::GraphError;
 use crate::delaunay::{d2, d3};
 use crate::geom::distance::{cmp_dist2, dot_sign, in_lune_ball, sum_of_roots_exceeds};
 use crate::geom::grid::PointGrid as Grid;
 use crate::geom::vec::dist2;
 use crate::geom::{Point2, Point3};
-use crate::{Error, Result};
 use rayon::prelude::*;
 use std::cmp::Ordering;
+
+type Result<T, E = GraphError> = std::result::Result<T, E>;
 
 /// Largest input for the brute-force 3D constructions (degenerate input, γ with a parameter −1).
 pub const BRUTE_LIMIT_3D: usize = 150;
@@ -97,36 +99,33 @@ impl Kind {
     }
     /// Checks the parameter ranges.
     pub fn validate(&self) -> Result<()> {
-        let unit = |v: f64, what: &str| -> Result<()> {
+        let unit = |v: f64, what: &'static str| -> Result<()> {
             if !(-1.0..=1.0).contains(&v) {
-                Err(Error::invalid(format!(
-                    "{what} must lie in [-1, 1], got {v}"
-                )))
+                Err(GraphError::ParameterOutOfRange {
+                    name: what,
+                    value: v,
+                })
             } else {
                 Ok(())
             }
         };
         match *self {
-            Kind::Alpha(a) if !a.is_finite() => {
-                Err(Error::invalid("alpha parameter must be finite"))
-            }
+            Kind::Alpha(a) if !a.is_finite() => Err(GraphError::AlphaNotFinite { value: a }),
             Kind::BetaCircle(b) | Kind::BetaLune(b) => unit(b, "b"),
             Kind::Gamma(c0, c1) => {
                 unit(c0, "c0")?;
                 unit(c1, "c1")?;
                 if c0.abs() > c1.abs() {
-                    return Err(Error::invalid(format!(
-                        "γ(c0, c1) needs |c0| ≤ |c1| (got {c0}, {c1})"
-                    )));
+                    return Err(GraphError::GammaOrder { c0, c1 });
                 }
                 Ok(())
             }
             Kind::GammaRange(r) => {
-                for (i, v) in r.iter().enumerate() {
-                    unit(*v, &format!("c{i}"))?;
+                for (v, name) in r.iter().zip(["c0", "c1", "c2", "c3"]) {
+                    unit(*v, name)?;
                 }
                 if r[0] > r[1] || r[2] > r[3] {
-                    return Err(Error::invalid("γ ranges must be [c0 ≤ c1], [c2 ≤ c3]"));
+                    return Err(GraphError::GammaRangeOrder { range: r });
                 }
                 Ok(())
             }
@@ -632,12 +631,7 @@ fn classic<const D: usize>(
             sig_edges(p, &nn, &r2)
         }
         Kind::Strip => strip(p, gabriel),
-        _ => {
-            return Err(Error::invalid(format!(
-                "{} is not a distance graph",
-                kind.name()
-            )))
-        }
+        _ => return Err(GraphError::NotDistanceGraph { kind: kind.name() }),
     })
 }
 
@@ -705,9 +699,7 @@ fn extreme_scale(coords: impl Iterator<Item = f64> + Clone) -> Result<Option<f64
         .into_iter()
         .any(|x| x != 0.0 && (x * s).abs() < f64::MIN_POSITIVE)
     {
-        return Err(Error::invalid(format!(
-            "coordinates span too many magnitudes (largest {m:e}) for exact graph predicates"
-        )));
+        return Err(GraphError::ScaleRange { largest: m });
     }
     Ok(Some(s))
 }
@@ -716,9 +708,7 @@ fn extreme_scale(coords: impl Iterator<Item = f64> + Clone) -> Result<Option<f64
 /// a power of two); every other parameter is scale-free.
 fn scaled_kind(kind: Kind, s: f64) -> Result<Kind> {
     match kind {
-        Kind::Alpha(a) if !(a / s).is_finite() => Err(Error::invalid(format!(
-            "alpha parameter {a} is out of range at the scale of these points"
-        ))),
+        Kind::Alpha(a) if !(a / s).is_finite() => Err(GraphError::AlphaOutOfScale { value: a }),
         Kind::Alpha(a) => Ok(Kind::Alpha(a / s)),
         k => Ok(k),
     }
@@ -963,7 +953,11 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
     let p = fast::coords3(&d);
     if let Some(why) = &d.degenerate {
         if p.len() > BRUTE_LIMIT_3D {
-            return Err(Error::invalid(format!("3D graph of degenerate input ({why}) with more than {BRUTE_LIMIT_3D} points; use the 2D graph")));
+            return Err(GraphError::DegenerateTooLarge {
+                why: why.clone(),
+                points: p.len(),
+                limit: BRUTE_LIMIT_3D,
+            });
         }
         return brute_3d(&d, &p, kind);
     }
@@ -1065,9 +1059,10 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
                 _ => unreachable!("matched above"),
             };
             if c <= -1.0 && p.len() > BRUTE_LIMIT_3D {
-                return Err(Error::invalid(format!(
-                    "3D γ-graphs with a parameter −1 contain nearly every triple of points (the brute force of V Thm 3.1); limited to {BRUTE_LIMIT_3D} points"
-                )));
+                return Err(GraphError::GammaMinusOneTooLarge {
+                    points: p.len(),
+                    limit: BRUTE_LIMIT_3D,
+                });
             }
             let mut t = tri_filter(keep);
             let (bt, bi) = beyond3::beyond_dt_3d(&d, &cand, c);
@@ -1109,10 +1104,10 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
             hv.sort_unstable();
             hv.dedup();
             if hv.len() > ALPHA_HULL_LIMIT_3D {
-                return Err(Error::invalid(format!(
-                    "3D α-shapes with a > 0 are limited to {ALPHA_HULL_LIMIT_3D} hull vertices (got {})",
-                    hv.len()
-                )));
+                return Err(GraphError::AlphaHullTooLarge {
+                    hull_vertices: hv.len(),
+                    limit: ALPHA_HULL_LIMIT_3D,
+                });
             }
             let hp: Vec<[f64; 3]> = hv.iter().map(|&v| p[v as usize]).collect();
             let t = brute::alpha_3d(&hp, a);
@@ -1124,15 +1119,14 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
                     .collect(),
             )
         }
-        Kind::BetaCircle(_) => {
-            return Err(Error::invalid(
-                "the circle-based β-skeleton is defined in 2D only (V §2.2.11)",
-            ))
-        }
-        Kind::BetaLune(b) if b < 0.0 => {
-            return Err(Error::invalid(
-                "the lune-based β-skeleton with b < 0 is defined in 2D only (V §2.2.11)",
-            ))
+        Kind::BetaCircle(b) | Kind::BetaLune(b)
+            if matches!(kind, Kind::BetaCircle(_)) || b < 0.0 =>
+        {
+            return Err(GraphError::Only2d {
+                kind: kind.name(),
+                b,
+                degenerate: false,
+            })
         }
         Kind::Gabriel => finish3(&d, gabriel(), vec![]),
         _ => {
@@ -1269,10 +1263,12 @@ fn brute_3d(d: &d3::Delaunay3, p: &[[f64; 3]], kind: Kind) -> Result<Graph> {
         Kind::Rng => edges(brute::rng(p)),
         Kind::Gabriel => edges(brute::gabriel(p)),
         Kind::BetaLune(b) if b >= 0.0 => edges(brute::beta_lune(p, b)),
-        Kind::BetaCircle(_) | Kind::BetaLune(_) => {
-            return Err(Error::invalid(
-                "β-skeletons with b < 0 and circle-based β are defined in 2D only",
-            ))
+        Kind::BetaCircle(b) | Kind::BetaLune(b) => {
+            return Err(GraphError::Only2d {
+                kind: kind.name(),
+                b,
+                degenerate: true,
+            })
         }
     })
 }
