@@ -110,7 +110,19 @@ struct Ext {
 }
 
 impl Cdt2 {
-    /// A CDT without constraints (the Delaunay triangulation itself).
+    /// A CDT without constraints (the Delaunay triangulation itself), to insert constraints
+    /// into step by step ([`Cdt2::insert_input_segments`], [`Cdt2::insert_segment`]). O(1).
+    ///
+    /// ```rust
+    /// use morpho::delaunay::{triangulate_2d, Cdt2};
+    /// use morpho::geom::Point2;
+    /// let p = [[0., 0.], [2., 0.], [2., 2.], [0., 2.]].map(|[x, y]| Point2::new(x, y));
+    /// let mut c = Cdt2::new(triangulate_2d(&p).unwrap());
+    /// c.insert_input_segments(&[[0, 2]]).unwrap();
+    /// // a second, crossing diagonal is refused; the CDT keeps the first
+    /// assert!(c.insert_input_segments(&[[1, 3]]).is_err());
+    /// assert_eq!(c.constrained_edges().len(), 1);
+    /// ```
     pub fn new(mut d: Delaunay2) -> Cdt2 {
         let triangles = std::mem::take(&mut d.triangles);
         let neighbors = std::mem::take(&mut d.neighbors);
@@ -248,7 +260,18 @@ impl Cdt2 {
 
     /// For every triangle, the least number of constrained edges crossed by a path from outside
     /// the convex hull to it (0-1 breadth-first search). Odd depth = inside the constraint
-    /// cycles (holes of polygons have even depth).
+    /// cycles (holes of polygons have even depth). O(n).
+    ///
+    /// ```rust
+    /// use morpho::delaunay::triangulate_constrained_2d;
+    /// use morpho::geom::Point2;
+    /// // a diamond constraint cycle inside a square: its two triangles have depth 1
+    /// let p = [[0., 0.], [4., 0.], [4., 4.], [0., 4.], [2., 1.], [3., 2.], [2., 3.], [1., 2.]]
+    ///     .map(|[x, y]| Point2::new(x, y));
+    /// let c = triangulate_constrained_2d(&p, &[[4, 5], [5, 6], [6, 7], [7, 4]]).unwrap();
+    /// let inside = c.depths().iter().filter(|&&d| d % 2 == 1).count();
+    /// assert_eq!(inside, 2);
+    /// ```
     pub fn depths(&self) -> Vec<u32> {
         let nt = self.triangles.len();
         let mut depth = vec![u32::MAX; nt];
@@ -658,8 +681,10 @@ pub fn triangulate_constrained_2d(points: &[Point2], segments: &[[u32; 2]]) -> R
 /// vertex lying on an edge; and the inputs of [`triangulate`]. Cost: see the module
 /// documentation.
 ///
-/// ```
-/// use morpho::delaunay::cdt::triangulate_polygon_interior;
+/// Facade name: [`triangulate_polygon_2d`](crate::delaunay::triangulate_polygon_2d).
+///
+/// ```rust
+/// use morpho::delaunay::triangulate_polygon_2d as triangulate_polygon_interior;
 /// use morpho::geom::Point2;
 /// // an L-shaped hexagon, clockwise
 /// let p: Vec<Point2> = [[0., 0.], [0., 2.], [1., 2.], [1., 1.], [2., 1.], [2., 0.]]

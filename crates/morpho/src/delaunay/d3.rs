@@ -491,10 +491,35 @@ pub(crate) fn dedup_sorted<const D: usize>(coords: &[[f64; D]]) -> Result<Dedup<
     Ok((uniq, vertex_of_input, input_of_vertex))
 }
 
-/// Computes the Delaunay tetrahedralization of `points`.
+/// Computes the Delaunay tetrahedralization of `points` (facade name
+/// [`triangulate_3d`](crate::delaunay::triangulate_3d)).
 ///
-/// Errors: empty input, a NaN or infinite coordinate. Collinear or coplanar input (or fewer than
-/// four distinct points) gives `Ok` with no tetrahedra and [`Delaunay3::degenerate`] set.
+/// Positively oriented tetrahedra whose circumspheres contain no vertex, with neighbours and the
+/// outward hull triangles. Duplicates are merged; co-spherical ties are broken by symbolic
+/// perturbation, so the result depends on the point set only. Bowyer–Watson insertion in a
+/// biased randomized Hilbert order with exact predicates at any scale: expected O(n log n)
+/// for points spread in space, O(n²) worst case (points on the moment curve, where the output
+/// is quadratic); about 370 bytes per point at the peak.
+///
+/// Errors: empty input ([`DelaunayError::NoPoints`]), a NaN or infinite coordinate
+/// ([`DelaunayError::NonFinite`]), more than 2³⁰ tetrahedra. Collinear or coplanar input (or
+/// fewer than four distinct points) gives `Ok` with no tetrahedra and
+/// [`Delaunay3::degenerate`] set.
+///
+/// ```rust
+/// use morpho::delaunay::triangulate_3d;
+/// use morpho::geom::Point3;
+/// // a tetrahedron with a point inside: four tetrahedra, the hull keeps the four faces
+/// let p = [[0., 0., 0.], [4., 0., 0.], [0., 4., 0.], [0., 0., 4.], [1., 1., 1.]]
+///     .map(|[x, y, z]| Point3::new(x, y, z));
+/// let d = triangulate_3d(&p).unwrap();
+/// assert_eq!(d.tets.len(), 4);
+/// assert_eq!(d.hull.len(), 4);
+/// assert!(d.check_delaunay_local().is_ok() && d.check_topology().is_ok());
+/// // coplanar input is not an error
+/// let flat = triangulate_3d(&p[..3]).unwrap();
+/// assert!(flat.tets.is_empty() && flat.degenerate.is_some());
+/// ```
 pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     let coords: Vec<[f64; 3]> = points.iter().map(arr).collect();
     let (pts, vertex_of_input, input_of_vertex) = dedup_sorted(&coords)?;

@@ -282,11 +282,31 @@ impl<'a> Builder<'a> {
     }
 }
 
-/// Computes the Delaunay triangulation of the points `coords` (flat, `dim` coordinates each).
+/// Computes the Delaunay triangulation of the points `coords` (flat, `dim` coordinates each;
+/// facade name [`triangulate_nd`](crate::delaunay::triangulate_nd)).
 ///
-/// Errors: `dim` outside 2..=7, `coords.len()` not a multiple of `dim`, no points, non-finite
-/// coordinates. Affinely degenerate input (all points in a hyperplane) gives `Ok` with no
-/// simplices and [`DelaunayD::degenerate`] set.
+/// Bowyer–Watson insertion (Dorgerloh et al. §2, *SimpleDelaunay*) with exact predicates (a
+/// floating-point filter, then big-integer determinants) and symbolic perturbation; identical
+/// to [`triangulate_3d`](crate::delaunay::triangulate_3d) for d = 3. Randomized incremental,
+/// about O(n^⌈d/2⌉) expected for points in general position: meant for up to a few thousand
+/// points.
+///
+/// Errors: `dim` outside 2 ..= [`MAX_DIM`] ([`DelaunayError::UnsupportedDimension`]),
+/// `coords.len()` not a multiple of `dim` ([`DelaunayError::DimensionMismatch`]), no points,
+/// non-finite coordinates. Affinely degenerate input (all points in a hyperplane) gives `Ok`
+/// with no simplices and [`DelaunayD::degenerate`] set.
+///
+/// ```rust
+/// use morpho::delaunay::triangulate_nd;
+/// // the unit 4-cube's 16 corners: its volume is 1, and every simplex is positive
+/// let c: Vec<f64> = (0..16u32).flat_map(|i| (0..4).map(move |k| (i >> k & 1) as f64)).collect();
+/// let d = triangulate_nd(&c, 4).unwrap();
+/// assert!((d.hull_volume() - 1.0).abs() < 1e-12);
+/// assert!((0..d.simplices.len()).all(|s| d.volume(s) > 0.0));
+/// let total: f64 = (0..d.simplices.len()).map(|s| d.volume(s)).sum();
+/// assert!((total - 1.0).abs() < 1e-12);
+/// assert!(triangulate_nd(&[0.0, 1.0, 2.0], 2).is_err()); // 3 numbers are not 2D points
+/// ```
 pub fn triangulate_d(coords: &[f64], dim: usize) -> Result<DelaunayD> {
     if !(2..=MAX_DIM).contains(&dim) {
         return Err(DelaunayError::UnsupportedDimension { dim, max: MAX_DIM });

@@ -79,6 +79,12 @@ pub enum Kind {
 
 impl Kind {
     /// The CLI name of the kind.
+    ///
+    /// ```rust
+    /// use morpho::graphs::Kind;
+    /// assert_eq!(Kind::BetaLune(0.5).name(), "beta-lune");
+    /// assert_eq!(Kind::GammaRange([-1.0, 1.0, 0.0, 1.0]).name(), "gamma-range");
+    /// ```
     pub fn name(&self) -> &'static str {
         match self {
             Kind::ClosestPairs => "closest-pairs",
@@ -97,7 +103,19 @@ impl Kind {
             Kind::GammaRange(_) => "gamma-range",
         }
     }
-    /// Checks the parameter ranges.
+    /// Checks the parameter ranges: β and γ parameters in [−1, 1], |c₀| ≤ |c₁| for γ(c₀, c₁),
+    /// ordered ranges for γ([c₀,c₁],[c₂,c₃]), a finite α. [`graph_2d`] and [`graph_3d`] call
+    /// it first; the CLI calls it before reading the points.
+    ///
+    /// ```rust
+    /// use morpho::graphs::{GraphError, Kind};
+    /// assert!(Kind::Gamma(0.2, 0.5).validate().is_ok());
+    /// assert_eq!(
+    ///     Kind::Gamma(0.5, 0.2).validate(),
+    ///     Err(GraphError::GammaOrder { c0: 0.5, c1: 0.2 })
+    /// );
+    /// assert!(Kind::Alpha(f64::NAN).validate().is_err());
+    /// ```
     pub fn validate(&self) -> Result<()> {
         let unit = |v: f64, what: &'static str| -> Result<()> {
             if !(-1.0..=1.0).contains(&v) {
@@ -138,6 +156,7 @@ impl Kind {
 /// represented by its first occurrence).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Graph {
+    /// Dimension of the points (2 or 3).
     pub dim: usize,
     /// Edges `[i, j]`, i < j, sorted (2D graphs, and 3D graphs made of edges).
     pub edges: Vec<[u32; 2]>,
@@ -714,7 +733,31 @@ fn scaled_kind(kind: Kind, s: f64) -> Result<Kind> {
     }
 }
 
-/// Builds a graph on 2D points (duplicates merged). Parameters are validated.
+/// Builds the graph of kind `kind` on 2D points (duplicates merged; indices are input indices,
+/// a duplicate represented by its first occurrence). Parameters are validated
+/// ([`Kind::validate`]). Complexity per kind: see [`crate::graphs`] (O(N log N) for the
+/// triangulation, then mostly linear).
+///
+/// Errors: a parameter out of range, points the triangulation refuses
+/// ([`GraphError::Delaunay`]), coordinates spanning more magnitudes than the exact predicates
+/// handle.
+///
+/// ```rust
+/// use morpho::graphs::{graph_2d, Kind};
+/// use morpho::geom::Point2;
+/// // six points on a line and one above: the Gabriel graph keeps the five line edges
+/// let mut p: Vec<Point2> = (0..6).map(|i| Point2::new(i as f64, 0.0)).collect();
+/// p.push(Point2::new(2.5, 10.0));
+/// let g = graph_2d(&p, Kind::Gabriel).unwrap();
+/// assert!((0..5u32).all(|i| g.edges.contains(&[i, i + 1])));
+/// // γ(0, 0) (the smallest discs) is the Gabriel graph, with the γ-values of every edge
+/// let gg = graph_2d(&p, Kind::Gabriel).unwrap();
+/// let g0 = graph_2d(&p, Kind::Gamma(0.0, 0.0)).unwrap();
+/// assert_eq!(g0.edges, gg.edges);
+/// assert_eq!(g0.gamma.len(), g0.edges.len());
+/// // EMST: a tree
+/// assert_eq!(graph_2d(&p, Kind::Emst).unwrap().edges.len(), p.len() - 1);
+/// ```
 ///
 /// Sets at extreme scales (largest coordinate outside [2⁻¹⁰⁰, 2¹⁰⁰]) are first multiplied by
 /// the power of two that brings them near 1 ([`extreme_scale`]): exact, so the graph is the
@@ -942,7 +985,23 @@ fn finish3(
 /// α, γ) fill `triangles`; the others `edges`. Circle-based β and lune-based β with b < 0 are
 /// not defined in 3D (V §2.2.11).
 ///
-/// Sets at extreme scales are first scaled exactly, as in [`graph_2d`].
+/// Sets at extreme scales are first scaled exactly, as in [`graph_2d`]. Complexity: see
+/// [`crate::graphs`]; degenerate input and γ with a parameter −1 are limited to
+/// [`BRUTE_LIMIT_3D`] points, α with a > 0 to [`ALPHA_HULL_LIMIT_3D`] hull vertices.
+///
+/// ```rust
+/// use morpho::graphs::{graph_3d, GraphError, Kind};
+/// use morpho::geom::Point3;
+/// // a tetrahedron with a point inside: the hull has 4 triangles, the Delaunay
+/// // tetrahedralization's 4 tetrahedra have 10 distinct triangles
+/// let p = [[0., 0., 0.], [4., 0., 0.], [0., 4., 0.], [0., 0., 4.], [1., 1., 1.]]
+///     .map(|[x, y, z]| Point3::new(x, y, z));
+/// assert_eq!(graph_3d(&p, Kind::Hull).unwrap().triangles.len(), 4);
+/// assert_eq!(graph_3d(&p, Kind::Delaunay).unwrap().triangles.len(), 10);
+/// assert_eq!(graph_3d(&p, Kind::Emst).unwrap().edges.len(), 4);
+/// let e = graph_3d(&p, Kind::BetaCircle(0.5)).unwrap_err();
+/// assert!(matches!(e, GraphError::Only2d { kind: "beta-circle", .. }));
+/// ```
 pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
     kind.validate()?;
     if let Some(s) = extreme_scale(points.iter().flat_map(|q| [q.x, q.y, q.z]))? {
