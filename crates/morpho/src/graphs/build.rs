@@ -73,7 +73,7 @@ pub enum Kind {
     BetaLune(f64),
     /// γ(c₀, c₁) with |c₀| ≤ |c₁| (Defs. 3.1–3.2).
     Gamma(f64, f64),
-    /// γ([c₀,c₁],[c₂,c₃]) (Def. 3.3).
+    /// γ(\[c₀,c₁\],\[c₂,c₃\]) (Def. 3.3).
     GammaRange([f64; 4]),
 }
 
@@ -104,7 +104,7 @@ impl Kind {
         }
     }
     /// Checks the parameter ranges: β and γ parameters in [−1, 1], |c₀| ≤ |c₁| for γ(c₀, c₁),
-    /// ordered ranges for γ([c₀,c₁],[c₂,c₃]), a finite α. [`graph_2d`] and [`graph_3d`] call
+    /// ordered ranges for γ(\[c₀,c₁\],\[c₂,c₃\]), a finite α. [`graph_2d`] and [`graph_3d`] call
     /// it first; the CLI calls it before reading the points.
     ///
     /// ```rust
@@ -760,7 +760,7 @@ fn scaled_kind(kind: Kind, s: f64) -> Result<Kind> {
 /// ```
 ///
 /// Sets at extreme scales (largest coordinate outside [2⁻¹⁰⁰, 2¹⁰⁰]) are first multiplied by
-/// the power of two that brings them near 1 ([`extreme_scale`]): exact, so the graph is the
+/// the power of two that brings them near 1: exact, so the graph is the
 /// same, and no predicate or float filter over- or underflows (at 1e300 every squared
 /// distance is ∞, which sent every pair to the exact fallback — and that overflowed too).
 pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {

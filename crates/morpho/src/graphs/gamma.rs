@@ -254,7 +254,7 @@ pub fn in_gamma(values: (f64, f64), c0: f64, c1: f64) -> bool {
     }
 }
 
-/// σ ∈ γ([c₀,c₁],[c₂,c₃]) given σ's γ-values (Def. 3.3). O(1).
+/// σ ∈ γ(\[c₀,c₁\],\[c₂,c₃\]) given σ's γ-values (Def. 3.3). O(1).
 ///
 /// ```rust
 /// use morpho::graphs::in_gamma_range;
