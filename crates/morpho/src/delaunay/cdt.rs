@@ -1,6 +1,9 @@
 //! 2D constrained Delaunay triangulation (CDT), exact on every input, and the triangulation of
 //! the interior of a simple polygon of any size.
 //!
+//! Size (over 800 lines): one algorithm (cavity insertion of segments) and its use for polygon
+//! interiors; about 120 lines are unit tests.
+//!
 //! # What it computes
 //! [`Cdt2`] starts from a [`Delaunay2`] and inserts constraint segments (pairs of vertices).
 //! The result is the constrained Delaunay triangulation (Chew 1989; Shewchuk & Brown 2015):

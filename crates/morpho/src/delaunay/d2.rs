@@ -1,6 +1,9 @@
 //! 2D Delaunay triangulation, exact on every input (Veltkamp 1992, §2.2.8 Def. 2.10 convex hull,
 //! §2.2.9 Def. 2.11 Delaunay triangulation; Dorgerloh et al. §2, Property 1).
 //!
+//! Size (over 800 lines): one algorithm — the flip engine, generic over its two exact kernels
+//! (floating-point and integer), with the queries on its result; about 170 lines are unit tests.
+//!
 //! # What it computes
 //! [`triangulate`] returns the Delaunay triangulation of the distinct input points: counter-
 //! clockwise triangles whose circumcircles contain no vertex in their interior, with neighbour

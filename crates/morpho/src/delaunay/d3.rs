@@ -2,6 +2,9 @@
 //! hull; Dorgerloh et al. §2: Bowyer–Watson insertion, here with exact predicates instead of
 //! constructed circumcentres).
 //!
+//! Size (over 800 lines): one algorithm — the Bowyer–Watson engine with its flat arrays, work
+//! buffers and symbolic perturbation, and the queries and invariant checks on its result.
+//!
 //! # Algorithm
 //! Incremental Bowyer–Watson insertion:
 //! 1. Input points are checked (NaN/inf → error), sorted lexicographically and duplicates merged;

@@ -37,12 +37,15 @@
 pub(crate) mod beyond3;
 pub(crate) mod brute;
 mod build;
+mod build3;
+mod distance;
 mod error;
 pub(crate) mod fast;
 pub(crate) mod gamma;
 mod lune;
 
-pub use build::{graph_2d, graph_3d, Graph, Kind, ALPHA_HULL_LIMIT_3D, BRUTE_LIMIT_3D};
+pub use build::{graph_2d, Graph, Kind, ALPHA_HULL_LIMIT_3D, BRUTE_LIMIT_3D};
+pub use build3::graph_3d;
 pub use error::GraphError;
 pub use gamma::{in_gamma, in_gamma_range};
 
