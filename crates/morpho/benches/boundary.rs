@@ -26,7 +26,7 @@ fn bench(c: &mut Criterion) {
         g.bench_function(format!("delaunay {n}"), |b| {
             b.iter(|| {
                 black_box(
-                    morpho::delaunay::d2::triangulate(&pts)
+                    morpho::delaunay::triangulate_2d(&pts)
                         .unwrap()
                         .triangles
                         .len(),

@@ -2,7 +2,7 @@
 //! grid). Peer comparisons (delaunator, spade, scipy) live in `bench/` and
 //! `examples/bench_delaunay2d.rs`.
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
-use morpho::delaunay::d2::triangulate;
+use morpho::delaunay::triangulate_2d;
 use morpho::geom::Point2;
 use rand::{Rng, SeedableRng};
 
@@ -15,14 +15,14 @@ fn delaunay2d(c: &mut Criterion) {
             .map(|_| Point2::new(rng.gen::<f64>(), rng.gen::<f64>()))
             .collect();
         g.bench_with_input(BenchmarkId::new("uniform", n), &uniform, |b, p| {
-            b.iter(|| black_box(triangulate(p).map(|d| d.triangles.len())))
+            b.iter(|| black_box(triangulate_2d(p).map(|d| d.triangles.len())))
         });
         let side = (n as f64).sqrt() as usize;
         let grid: Vec<Point2> = (0..side * side)
             .map(|k| Point2::new((k % side) as f64, (k / side) as f64))
             .collect();
         g.bench_with_input(BenchmarkId::new("grid", n), &grid, |b, p| {
-            b.iter(|| black_box(triangulate(p).map(|d| d.triangles.len())))
+            b.iter(|| black_box(triangulate_2d(p).map(|d| d.triangles.len())))
         });
     }
     g.finish();

@@ -3,7 +3,7 @@
 //! `cargo run --release -p morpho --example bench_delaunay3d`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use morpho::delaunay::{d3::triangulate, dd::triangulate_d};
+use morpho::delaunay::{triangulate_3d, triangulate_nd};
 use morpho::geom::Point3;
 use rand::{Rng, SeedableRng};
 
@@ -21,7 +21,7 @@ fn bench(c: &mut Criterion) {
         let p = points(n);
         g.throughput(Throughput::Elements(n as u64));
         g.bench_with_input(BenchmarkId::new("uniform", n), &p, |b, p| {
-            b.iter(|| triangulate(p).unwrap())
+            b.iter(|| triangulate_3d(p).unwrap())
         });
     }
     let mut grid = Vec::new();
@@ -34,10 +34,12 @@ fn bench(c: &mut Criterion) {
     }
     g.throughput(Throughput::Elements(grid.len() as u64));
     g.bench_with_input(BenchmarkId::new("grid", grid.len()), &grid, |b, p| {
-        b.iter(|| triangulate(p).unwrap())
+        b.iter(|| triangulate_3d(p).unwrap())
     });
     let flat: Vec<f64> = points(500).iter().flat_map(|p| [p.x, p.y, p.z]).collect();
-    g.bench_function("dd_3d_500", |b| b.iter(|| triangulate_d(&flat, 3).unwrap()));
+    g.bench_function("dd_3d_500", |b| {
+        b.iter(|| triangulate_nd(&flat, 3).unwrap())
+    });
     g.finish();
 }
 

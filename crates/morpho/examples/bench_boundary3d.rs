@@ -153,7 +153,7 @@ fn run(name: &str, pts: &[Point3]) {
     let mut b = None;
     for _ in 0..RUNS {
         let t = Instant::now();
-        let d = morpho::delaunay::d3::triangulate(pts).expect("triangulate");
+        let d = morpho::delaunay::triangulate_3d(pts).expect("triangulate");
         dts.push(t.elapsed().as_secs_f64());
         if mem_dt.is_nan() {
             mem_dt = vm_hwm_mb();
@@ -172,7 +172,7 @@ fn run(name: &str, pts: &[Point3]) {
             .collect::<Vec<_>>()
             .join("/")
     };
-    let d = morpho::delaunay::d3::triangulate(pts).expect("triangulate");
+    let d = morpho::delaunay::triangulate_3d(pts).expect("triangulate");
     let t = Instant::now();
     let c = constrict_3d(&d, Until::All);
     let t_con = t.elapsed().as_secs_f64();
@@ -269,7 +269,7 @@ impl Watch {
 fn phases(name: &str, pts: &[Point3]) {
     use morpho::boundary::fallback3::General3;
     let t = Watch::start();
-    let d = morpho::delaunay::d3::triangulate(pts).expect("triangulate");
+    let d = morpho::delaunay::triangulate_3d(pts).expect("triangulate");
     let t_dt = t.show();
     let t = Watch::start();
     let st = constrict_3d(&d, Until::All);
@@ -306,7 +306,7 @@ fn phases(name: &str, pts: &[Point3]) {
     let mut live = Vec::new();
     for (ti, tet) in d.tets.iter().enumerate() {
         if region[ti] {
-            for (fi, f) in morpho::delaunay::d3::FACE_OF.iter().enumerate() {
+            for (fi, f) in morpho::delaunay::FACE_OF.iter().enumerate() {
                 let n = d.neighbors[ti][fi];
                 let mut s = [tet[f[0]], tet[f[1]], tet[f[2]]];
                 s.sort_unstable();
@@ -378,7 +378,7 @@ fn main() {
     }
     if args.iter().any(|a| a == "check") {
         let pts = horse_points(&dir, want("horse100k"));
-        let d = morpho::delaunay::d3::triangulate(&pts).expect("triangulate");
+        let d = morpho::delaunay::triangulate_3d(&pts).expect("triangulate");
         let c = constrict_3d(&d, Until::All);
         let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
         for _ in 0..3 {
@@ -395,7 +395,7 @@ fn main() {
     }
     if args.iter().any(|a| a == "constrict") {
         let pts = horse_points(&dir, want("horse100k"));
-        let d = morpho::delaunay::d3::triangulate(&pts).expect("triangulate");
+        let d = morpho::delaunay::triangulate_3d(&pts).expect("triangulate");
         for _ in 0..5 {
             let (t, cpu) = (Instant::now(), cpu_seconds());
             let c = constrict_3d(&d, Until::All);

@@ -9,11 +9,11 @@
 //! (default 100 000) non-crossing segments: the edges of the star-shaped polygon through the
 //! first M points sorted by angle around the centre (edges between consecutive angles never
 //! cross; they are long, each crosses many Delaunay triangles). Second input: the interior of
-//! the star-shaped polygon through all N points ([`triangulate_polygon_interior`]).
+//! the star-shaped polygon through all N points ([`triangulate_polygon_2d`]).
 //! Prints wall-clock seconds per step (on a shared machine, compare ratios of one run).
 
-use morpho::delaunay::cdt::{triangulate_polygon_interior, Cdt2};
-use morpho::delaunay::d2::triangulate;
+use morpho::delaunay::triangulate_2d;
+use morpho::delaunay::{triangulate_polygon_2d, Cdt2};
 use morpho::geom::Point2;
 use rand::{Rng, SeedableRng};
 use spade::{ConstrainedDelaunayTriangulation, DelaunayTriangulation, Triangulation};
@@ -55,7 +55,7 @@ fn main() {
     let segs: Vec<[u32; 2]> = (0..m).map(|k| [cyc[k], cyc[(k + 1) % m]]).collect();
     println!("input: {n} random points, {m} segments (star polygon through {m} of them)");
 
-    let (t_dt, d) = time(|| triangulate(&p).expect("delaunay"));
+    let (t_dt, d) = time(|| triangulate_2d(&p).expect("delaunay"));
     println!(
         "morpho Delaunay              {t_dt:8.3} s  triangles {}",
         d.triangles.len()
@@ -129,7 +129,7 @@ fn main() {
 
     // interior of a star polygon through all n points
     let cyc = star_cycle(&p, n);
-    let (t_poly, tris) = time(|| triangulate_polygon_interior(&p, &cyc).expect("interior"));
+    let (t_poly, tris) = time(|| triangulate_polygon_2d(&p, &cyc).expect("interior"));
     println!(
         "morpho polygon interior ({n} vertices) {t_poly:8.3} s  triangles {} (n − 2 = {})  ratio to Delaunay {:.2}",
         tris.len(),

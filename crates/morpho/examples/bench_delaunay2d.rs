@@ -11,7 +11,7 @@
 //! resident memory (VmHWM) per point. `--write-points FILE` also writes the uniform points as
 //! little-endian f64 pairs (for bench/run.sh to time scipy on the same points).
 
-use morpho::delaunay::d2::triangulate;
+use morpho::delaunay::triangulate_2d;
 use morpho::geom::Point2;
 use rand::{Rng, SeedableRng};
 use std::time::Instant;
@@ -73,7 +73,7 @@ fn run(name: &str, pts: &[Point2], only: Option<&str>) {
         line("spade", s, c, nt, base);
     }
     if want("morpho") {
-        let (s, c, d) = time(|| triangulate(pts));
+        let (s, c, d) = time(|| triangulate_2d(pts));
         let d = d.expect("triangulate");
         line("morpho", s, c, d.triangles.len(), base);
     }

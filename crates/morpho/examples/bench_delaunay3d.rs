@@ -7,7 +7,7 @@
 //! points as little-endian f64 triples, `--tets` the tetrahedra (input indices, little-endian u32
 //! quadruples) for `bench/delaunay3d_qhull.py` (scipy/Qhull timing and tetrahedron-set check).
 
-use morpho::delaunay::d3::triangulate;
+use morpho::delaunay::triangulate_3d;
 use morpho::geom::Point3;
 use rand::{Rng, SeedableRng};
 use std::time::Instant;
@@ -94,7 +94,7 @@ fn main() {
     let before = vm_hwm_kib().unwrap_or(0);
     let c0 = cpu_secs();
     let t = Instant::now();
-    let d = triangulate(&pts).expect("triangulate");
+    let d = triangulate_3d(&pts).expect("triangulate");
     let secs = t.elapsed().as_secs_f64();
     let cpu = cpu_secs() - c0;
     let hwm = vm_hwm_kib().unwrap_or(0);

@@ -5,9 +5,10 @@
 //! (defaults 1000000, 100000, 2000). Prints one line per kind: seconds and the ratio to the
 //! Delaunay time. `KIND=Emst` (a prefix of the kind's debug name) times only that kind.
 
-use morpho::delaunay::d2;
+use morpho::delaunay::triangulate_2d;
 use morpho::geom::Point2;
-use morpho::graphs::{brute, graph_2d, Kind};
+use morpho::graphs::{graph_2d, Kind};
+use morpho::internals::graphs::brute;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
@@ -38,7 +39,7 @@ fn main() {
     let ng = args.get(1).copied().unwrap_or(100_000);
     let nb = args.get(2).copied().unwrap_or(2000);
     let p = points(n, 1);
-    let (tdt, d) = best_of(3, || d2::triangulate(&p).expect("triangulate"));
+    let (tdt, d) = best_of(3, || triangulate_2d(&p).expect("triangulate"));
     println!(
         "{n} uniform points: Delaunay {tdt:.3} s ({} triangles)",
         d.triangles.len()
@@ -77,7 +78,7 @@ fn main() {
         );
     }
     let pg = points(ng, 2);
-    let (tdg, _) = best_of(2, || d2::triangulate(&pg).expect("triangulate"));
+    let (tdg, _) = best_of(2, || triangulate_2d(&pg).expect("triangulate"));
     let (t, g) = best_of(1, || {
         graph_2d(&pg, Kind::GammaRange([-1.0, 1.0, -0.2, 1.0])).expect("graph")
     });
@@ -94,7 +95,7 @@ fn main() {
     let (tb, vb) = best_of(1, || brute::gamma_values_2d(&arr));
     let nbrute = vb
         .iter()
-        .filter(|(_, v)| morpho::graphs::gamma::in_gamma_range(*v, [-1.0, 1.0, -0.2, 1.0]))
+        .filter(|(_, v)| morpho::graphs::in_gamma_range(*v, [-1.0, 1.0, -0.2, 1.0]))
         .count();
     println!(
         "γ([-1,1],[-0.2,1]) on {nb} points: fast {tf:.4} s, brute force (Thm 3.1) {tb:.2} s: speed-up {:.0}×; edges {} vs {}",

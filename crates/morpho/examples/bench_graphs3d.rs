@@ -7,9 +7,10 @@
 //! tetrahedralization time, the γ-graph time, the triangle count (and how many lie outside
 //! γ([-1,1],[0,1])); the brute force is timed on N/10 points and extrapolated by (N/n)⁴.
 
-use morpho::delaunay::d3;
+use morpho::delaunay::triangulate_3d;
 use morpho::geom::Point3;
-use morpho::graphs::{brute, graph_3d, Kind};
+use morpho::graphs::{graph_3d, Kind};
+use morpho::internals::graphs::brute;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::time::Instant;
@@ -31,7 +32,7 @@ fn main() {
     for n in ns {
         let p = points(n, 1);
         let t = Instant::now();
-        let d = d3::triangulate(&p).expect("triangulation");
+        let d = triangulate_3d(&p).expect("triangulation");
         let t_dt = t.elapsed().as_secs_f64();
         drop(d);
         let t = Instant::now();

@@ -73,7 +73,7 @@ fn compare(name: &str, m: &morpho::mesh::TriMesh) {
         m.triangles.len()
     );
     let t = Instant::now();
-    let d = morpho::delaunay::d3::triangulate(&m.positions).expect("triangulate");
+    let d = morpho::delaunay::triangulate_3d(&m.positions).expect("triangulate");
     println!(
         "  Delaunay: {} tetrahedra, {:.2} s",
         d.tets.len(),

@@ -46,7 +46,48 @@ pub enum Error {
     /// The file type or feature is not supported.
     #[error("{}{msg}", prefix(path))]
     Unsupported { path: String, msg: String },
+    // --- delaunay, graphs (f-tri) ---
+    /// A triangulation refused its input ([`crate::delaunay`]); `path` names the file the
+    /// points came from, when known.
+    #[error("{}{source}", prefix(path))]
+    Delaunay {
+        /// The input file, or empty.
+        path: String,
+        /// What was refused.
+        #[source]
+        source: crate::delaunay::DelaunayError,
+    },
+    /// A graph construction refused its input ([`crate::graphs`]).
+    #[error("{}{source}", prefix(path))]
+    Graph {
+        /// The input file, or empty.
+        path: String,
+        /// What was refused.
+        #[source]
+        source: crate::graphs::GraphError,
+    },
+    // --- end delaunay, graphs ---
 }
+
+// --- delaunay, graphs (f-tri) ---
+impl From<crate::delaunay::DelaunayError> for Error {
+    fn from(source: crate::delaunay::DelaunayError) -> Self {
+        Error::Delaunay {
+            path: String::new(),
+            source,
+        }
+    }
+}
+
+impl From<crate::graphs::GraphError> for Error {
+    fn from(source: crate::graphs::GraphError) -> Self {
+        Error::Graph {
+            path: String::new(),
+            source,
+        }
+    }
+}
+// --- end delaunay, graphs ---
 
 fn prefix(path: &str) -> String {
     if path.is_empty() {
@@ -116,7 +157,10 @@ impl Error {
             Error::Io { path, .. }
             | Error::Format { path, .. }
             | Error::Invalid { path, .. }
-            | Error::Unsupported { path, .. } => {
+            | Error::Unsupported { path, .. }
+            // delaunay, graphs (f-tri)
+            | Error::Delaunay { path, .. }
+            | Error::Graph { path, .. } => {
                 if path.is_empty() {
                     *path = name;
                 }
@@ -126,6 +170,12 @@ impl Error {
     }
     /// True for errors caused by the user's input or arguments (CLI exit code 2).
     pub fn is_input_error(&self) -> bool {
+        // delaunay, graphs (f-tri): a broken invariant is a bug, not bad input
+        match self {
+            Error::Delaunay { source, .. } => return source.is_input_error(),
+            Error::Graph { source, .. } => return source.is_input_error(),
+            _ => {}
+        }
         !matches!(self, Error::Io { source, .. } if source.kind() != std::io::ErrorKind::NotFound
             && source.kind() != std::io::ErrorKind::PermissionDenied
             && source.kind() != std::io::ErrorKind::InvalidData

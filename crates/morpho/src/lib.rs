@@ -38,5 +38,31 @@ pub mod volume;
 
 pub use error::{Error, Location, Result};
 
+/// Engine pieces for benches, examples and tests of internal invariants. **No stability
+/// promise**: anything here may change or disappear in any release.
+#[doc(hidden)]
+pub mod internals {
+    // --- delaunay, graphs (f-tri) ---
+    /// Delaunay engine pieces: the symbolically perturbed predicates, the insertion-order test.
+    pub mod delaunay {
+        pub use crate::delaunay::d2::{incircle_sos, lex_cmp, triangulate_with_insertion_seed};
+        pub use crate::delaunay::dd::perturbed_insphere;
+    }
+    /// Graph engine pieces: the brute-force oracles and the γ-interval of one simplex.
+    pub mod graphs {
+        pub use crate::graphs::beyond3::beyond_dt_3d;
+        pub use crate::graphs::fast::coords2;
+        pub use crate::graphs::gamma::{
+            center_interval_2d, center_interval_3d, def_contains_2d, def_contains_3d,
+            CenterInterval,
+        };
+        /// Every graph straight from its definition (the oracles of the tests).
+        pub mod brute {
+            pub use crate::graphs::brute::*;
+        }
+    }
+    // --- end delaunay, graphs ---
+}
+
 /// The library version.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -151,7 +151,7 @@ fn constriction_steps_are_simple_and_shrink() {
         &[0, 10, 30, 1000],
     )
     .unwrap();
-    let d = morpho::delaunay::d2::triangulate(&pts).unwrap();
+    let d = morpho::delaunay::triangulate_2d(&pts).unwrap();
     assert_eq!(steps[0].len(), d.hull.len());
     let mut last_area = f64::INFINITY;
     for (k, poly) in steps.iter().enumerate() {
@@ -225,7 +225,7 @@ fn random_sets_give_valid_output_or_documented_failure() {
                 }
                 Err(e) => {
                     // documented failure: collinear or < 3 distinct points
-                    let d = morpho::delaunay::d2::triangulate(&pts).unwrap();
+                    let d = morpho::delaunay::triangulate_2d(&pts).unwrap();
                     assert!(d.collinear, "unexpected error {e}");
                 }
             }
@@ -304,7 +304,7 @@ fn locked_delaunay_constriction_is_rescued_by_the_gamma_fallback() {
             continue;
         }
         locked += 1;
-        let d = morpho::delaunay::d2::triangulate(&pts).unwrap();
+        let d = morpho::delaunay::triangulate_2d(&pts).unwrap();
         if !hamiltonian(d.points.len(), &d.edges()) {
             non_ham += 1;
         }
@@ -335,7 +335,7 @@ fn keep_edges_appear_on_the_boundary() {
     let pts2: Vec<Point2> = (0..25)
         .map(|_| Point2::new(rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0)))
         .collect();
-    let d = morpho::delaunay::d2::triangulate(&pts2).unwrap();
+    let d = morpho::delaunay::triangulate_2d(&pts2).unwrap();
     let mut honoured = 0;
     for e in d.edges().iter().take(15) {
         let k = [
@@ -670,7 +670,7 @@ mod props {
                         }
                     }
                     Err(_) => {
-                        let d = morpho::delaunay::d2::triangulate(&pts).unwrap();
+                        let d = morpho::delaunay::triangulate_2d(&pts).unwrap();
                         prop_assert!(d.collinear);
                     }
                 }
@@ -711,10 +711,10 @@ fn million_points_timing() {
     let mut p = morpho::samples::chalice_outline(n, 0.0, 1);
     p.shuffle(&mut ChaCha8Rng::seed_from_u64(5));
     let t = std::time::Instant::now();
-    let d = morpho::delaunay::d2::triangulate(&p).unwrap();
+    let d = morpho::delaunay::triangulate_2d(&p).unwrap();
     let t_dt = t.elapsed().as_secs_f64();
     let t = std::time::Instant::now();
-    let c = morpho::graphs::fast::coords2(&d);
+    let c = morpho::internals::graphs::coords2(&d);
     let st = constrict_dt(&d, &c, Key::Gamma);
     let cyc = region_cycle(&d, &st.alive);
     let t_con = t.elapsed().as_secs_f64();
@@ -756,7 +756,7 @@ fn stanford_bunny_3d_timing() {
         .map(|(p, _)| *p)
         .collect();
     let t = std::time::Instant::now();
-    let d = morpho::delaunay::d3::triangulate(&pts).unwrap();
+    let d = morpho::delaunay::triangulate_3d(&pts).unwrap();
     let t_dt = t.elapsed().as_secs_f64();
     let t = std::time::Instant::now();
     let c = morpho::boundary::constrict3::constrict_3d(&d, Until::All);
@@ -790,7 +790,7 @@ fn stanford_bunny_3d_timing() {
 fn keep_triangles_stay_in_3d() {
     // bumpy sphere: keep the Delaunay hull triangles of one region; they must survive
     let pts = bumpy_sphere(400, 0.15);
-    let d = morpho::delaunay::d3::triangulate(&pts).unwrap();
+    let d = morpho::delaunay::triangulate_3d(&pts).unwrap();
     let keep: Vec<[u32; 3]> = d
         .hull
         .iter()

@@ -31,7 +31,7 @@ fn assert_valid(pts: &[Point3], b: &Boundary3) {
             on[v as usize] = true;
         }
     }
-    let d = morpho::delaunay::d3::triangulate(pts).unwrap();
+    let d = morpho::delaunay::triangulate_3d(pts).unwrap();
     let expect: Vec<u32> = (0..pts.len() as u32)
         .filter(|&i| !on[d.input_of_vertex[d.vertex_of_input[i as usize] as usize] as usize])
         .collect();
@@ -116,7 +116,7 @@ fn locked_delaunay_constriction_falls_back_and_stays_valid() {
     // seeds found by a search over clustered sets (n, seed): the Delaunay constriction locks
     for seed in [1647u64, 1755] {
         let pts = clustered(seed);
-        let d = morpho::delaunay::d3::triangulate(&pts).unwrap();
+        let d = morpho::delaunay::triangulate_3d(&pts).unwrap();
         let c = constrict_3d(&d, Until::All);
         assert!(
             c.boundary_vertices < d.points.len(),
@@ -144,7 +144,7 @@ fn find_locking_sets() {
     for seed in 1500..3000u64 {
         let pts = clustered(seed);
         let n = pts.len();
-        let d = morpho::delaunay::d3::triangulate(&pts).unwrap();
+        let d = morpho::delaunay::triangulate_3d(&pts).unwrap();
         let c = constrict_3d(&d, Until::All);
         if c.boundary_vertices < d.points.len() {
             let b = boundary_3d(&pts, Until::All).unwrap();
@@ -175,7 +175,7 @@ fn non_delaunay_keep_triangle_is_brought_to_the_boundary() {
     // sphere points: the hull is the surface. Keep the flipped diagonal triangle a b d of two
     // adjacent hull triangles a b c, c b d — not a Delaunay face (V §5.7, Fig. 5.12 right)
     let pts = morpho::samples::sphere_points(50, 1.0);
-    let d = morpho::delaunay::d3::triangulate(&pts).unwrap();
+    let d = morpho::delaunay::triangulate_3d(&pts).unwrap();
     let faces: std::collections::HashSet<[u32; 3]> =
         d.triangles().iter().map(|f| key(&f.v)).collect();
     let mut tested = 0;
@@ -259,7 +259,7 @@ mod props {
                 Ok(b) => assert_valid(&pts, &b),
                 Err(_) => {
                     // only for coplanar or too few distinct points
-                    let d = morpho::delaunay::d3::triangulate(&pts);
+                    let d = morpho::delaunay::triangulate_3d(&pts);
                     prop_assert!(d.map_or(true, |d| d.tets.is_empty()));
                 }
             }
@@ -388,7 +388,7 @@ mod min_area_change {
             assert!(b.all_on_boundary, "{name}: {} left out", b.left_out.len());
             assert_eq!(b.c_used, 0.0);
             assert_eq!(b.interior.len() + b.iterations, {
-                morpho::delaunay::d3::triangulate(&pts).unwrap().tets.len()
+                morpho::delaunay::triangulate_3d(&pts).unwrap().tets.len()
             });
         }
     }
@@ -397,7 +397,7 @@ mod min_area_change {
     fn the_key_changes_the_result() {
         // the same points, the two keys: different removal sequences give different meshes
         let pts = ellipsoid(800, 0.1);
-        let d = morpho::delaunay::d3::triangulate(&pts).unwrap();
+        let d = morpho::delaunay::triangulate_3d(&pts).unwrap();
         let g = constrict_3d_with(&d, Until::All, &[], Key::Gamma);
         let m = constrict_3d_with(&d, Until::All, &[], Key::MinAreaChange);
         assert_eq!(

@@ -5,8 +5,8 @@
 //! edge constrained, Euler relation, area coverage of the hull; polygon interiors (n − 2
 //! triangles, shoelace area) on random and real polygons; degenerate inputs; proptest.
 
-use morpho::delaunay::cdt::{triangulate_polygon_interior, Cdt2};
-use morpho::delaunay::d2::triangulate;
+use morpho::delaunay::triangulate_2d;
+use morpho::delaunay::{triangulate_constrained_2d, triangulate_polygon_2d, Cdt2};
 use morpho::geom::predicates::raw::{incircle, orient2d};
 use morpho::geom::Point2;
 use morpho::util::NONE;
@@ -243,7 +243,7 @@ fn random_sets_against_the_visibility_oracle() {
         let grid = if case % 3 == 0 { Some(6) } else { None };
         let p = random_points(n, grid, &mut r);
         let segs = noncrossing_segments(&p, 3 + case % 12, &mut r);
-        let c = Cdt2::build(&p, &segs).unwrap();
+        let c = triangulate_constrained_2d(&p, &segs).unwrap();
         check_cdt(&p, &segs, &c, true);
     }
 }
@@ -252,8 +252,8 @@ fn random_sets_against_the_visibility_oracle() {
 fn no_constraints_is_the_delaunay_triangulation() {
     let mut r = rng(11);
     let p = random_points(300, None, &mut r);
-    let d = triangulate(&p).unwrap();
-    let c = Cdt2::build(&p, &[]).unwrap();
+    let d = triangulate_2d(&p).unwrap();
+    let c = triangulate_constrained_2d(&p, &[]).unwrap();
     let set = |t: &[[u32; 3]]| {
         let mut v: Vec<[u32; 3]> = t
             .iter()
@@ -277,7 +277,7 @@ fn long_segments_through_many_triangles() {
     // random pairs among 2000 points: long segments crossing dozens of triangles each
     let segs = noncrossing_segments(&p, 60, &mut r);
     assert!(segs.len() > 10);
-    let c = Cdt2::build(&p, &segs).unwrap();
+    let c = triangulate_constrained_2d(&p, &segs).unwrap();
     check_cdt(&p, &segs, &c, false);
 }
 
@@ -304,13 +304,15 @@ fn grid_with_constraints_along_grid_lines() {
         [id(0, 8), id(2, 7)],
         [id(4, 4), id(4, 4)],
     ];
-    let c = Cdt2::build(&p, &segs).unwrap();
+    let c = triangulate_constrained_2d(&p, &segs).unwrap();
     check_cdt(&p, &segs, &c, true);
     assert_eq!(c.skipped, 1);
     assert!(c.splits >= 7 + 7 + 7);
     // a row of constraints crossing the column: error names both segments
     let bad = vec![[id(0, 2), id(8, 2)], [id(1, 0), id(2, 8)]];
-    let e = Cdt2::build(&p, &bad).unwrap_err().to_string();
+    let e = triangulate_constrained_2d(&p, &bad)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("0 (") && e.contains("1 ("), "{e}");
 }
 
@@ -323,13 +325,13 @@ fn collinear_constraint_through_vertices_and_touching() {
     p.push(Point2::new(1.0, 3.0));
     p.push(Point2::new(3.0, -2.0));
     // (1, 3)-(3, -2) meets the line at x = 11/6, not a vertex: a crossing
-    let e = Cdt2::build(&p, &[[0, 9], [10, 11]])
+    let e = triangulate_constrained_2d(&p, &[[0, 9], [10, 11]])
         .unwrap_err()
         .to_string();
     assert!(e.contains("segments 0 (0, 9) and 1 (10, 11) cross"), "{e}");
     // the line constraint passes through 8 vertices; the others touch it at vertices
     let segs = vec![[0, 9], [10, 4], [11, 6], [10, 10], [2, 7]];
-    let c = Cdt2::build(&p, &segs).unwrap();
+    let c = triangulate_constrained_2d(&p, &segs).unwrap();
     check_cdt(&p, &segs, &c, true);
     assert_eq!(c.skipped, 1);
     assert_eq!(c.splits, 8 + 4);
@@ -341,29 +343,31 @@ fn crossing_and_invalid_segments_are_errors() {
         .iter()
         .map(|q| Point2::new(q[0], q[1]))
         .collect();
-    let e = Cdt2::build(&p, &[[0, 2], [1, 3]]).unwrap_err().to_string();
+    let e = triangulate_constrained_2d(&p, &[[0, 2], [1, 3]])
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("segments 0 (0, 2) and 1 (1, 3) cross"), "{e}");
-    assert!(Cdt2::build(&p, &[[0, 7]]).is_err());
+    assert!(triangulate_constrained_2d(&p, &[[0, 7]]).is_err());
     // after an error the triangulation is intact and accepts further segments
-    let mut c = Cdt2::build(&p, &[[0, 2]]).unwrap();
+    let mut c = triangulate_constrained_2d(&p, &[[0, 2]]).unwrap();
     assert!(c.insert_input_segments(&[[1, 3]]).is_err());
     check_cdt(&p, &[[0, 2]], &c, true);
     c.insert_input_segments(&[[2, 4]]).unwrap();
     check_cdt(&p, &[[0, 2], [2, 4]], &c, true);
     // segments that share an endpoint or touch at a vertex are fine
-    let c = Cdt2::build(&p, &[[0, 2], [2, 4], [0, 1], [1, 2], [3, 4]]).unwrap();
+    let c = triangulate_constrained_2d(&p, &[[0, 2], [2, 4], [0, 1], [1, 2], [3, 4]]).unwrap();
     check_cdt(&p, &[[0, 2], [2, 4], [0, 1], [1, 2], [3, 4]], &c, true);
     // duplicate points: a segment between two copies is skipped
     let mut q = p.clone();
     q.push(Point2::new(0.0, 0.0));
-    let c = Cdt2::build(&q, &[[0, 5], [5, 2]]).unwrap();
+    let c = triangulate_constrained_2d(&q, &[[0, 5], [5, 2]]).unwrap();
     assert_eq!(c.skipped, 1);
     check_cdt(&q, &[[0, 5], [5, 2]], &c, true);
     // collinear input: no triangles, constraints validated
     let l: Vec<Point2> = (0..4).map(|k| Point2::new(k as f64, 0.0)).collect();
-    let c = Cdt2::build(&l, &[[0, 3]]).unwrap();
+    let c = triangulate_constrained_2d(&l, &[[0, 3]]).unwrap();
     assert!(c.triangles.is_empty() && c.collinear());
-    assert!(Cdt2::build(&l, &[[0, 4]]).is_err());
+    assert!(triangulate_constrained_2d(&l, &[[0, 4]]).is_err());
 }
 
 /// A star-shaped polygon: `n` points at distinct angles (sorted) and random radii.
@@ -417,10 +421,10 @@ fn random_star_polygons() {
         let n = 3 + case * 7;
         let p = star_polygon(n, &mut r);
         let mut cyc: Vec<u32> = (0..n as u32).collect();
-        let t = triangulate_polygon_interior(&p, &cyc).unwrap();
+        let t = triangulate_polygon_2d(&p, &cyc).unwrap();
         check_interior(&p, &cyc, &t);
         cyc.reverse();
-        let t = triangulate_polygon_interior(&p, &cyc).unwrap();
+        let t = triangulate_polygon_2d(&p, &cyc).unwrap();
         check_interior(&p, &cyc, &t);
     }
     // large: the old ear clipping returned nothing above 5000 vertices
@@ -437,17 +441,17 @@ fn polygon_interior_errors() {
         .map(|q| Point2::new(q[0], q[1]))
         .collect();
     // bow tie
-    assert!(triangulate_polygon_interior(&sq, &[0, 1, 3, 2]).is_err());
+    assert!(triangulate_polygon_2d(&sq, &[0, 1, 3, 2]).is_err());
     // repeated vertex
-    assert!(triangulate_polygon_interior(&sq, &[0, 1, 2, 0, 3]).is_err());
+    assert!(triangulate_polygon_2d(&sq, &[0, 1, 2, 0, 3]).is_err());
     // vertex 4 lies on edge 0-1
-    let e = triangulate_polygon_interior(&sq, &[0, 1, 2, 3, 4]).unwrap_err();
+    let e = triangulate_polygon_2d(&sq, &[0, 1, 2, 3, 4]).unwrap_err();
     assert!(e.to_string().contains("passes through"), "{e}");
-    assert!(triangulate_polygon_interior(&sq, &[0, 1, 2, 4]).is_err());
-    assert!(triangulate_polygon_interior(&sq, &[0, 1]).is_err());
-    assert!(triangulate_polygon_interior(&sq, &[0, 1, 9]).is_err());
-    assert!(triangulate_polygon_interior(&sq, &[0, 4, 1]).is_err()); // collinear
-    let t = triangulate_polygon_interior(&sq, &[0, 4, 1, 2, 3]).unwrap();
+    assert!(triangulate_polygon_2d(&sq, &[0, 1, 2, 4]).is_err());
+    assert!(triangulate_polygon_2d(&sq, &[0, 1]).is_err());
+    assert!(triangulate_polygon_2d(&sq, &[0, 1, 9]).is_err());
+    assert!(triangulate_polygon_2d(&sq, &[0, 4, 1]).is_err()); // collinear
+    let t = triangulate_polygon_2d(&sq, &[0, 4, 1, 2, 3]).unwrap();
     check_interior(&sq, &[0, 4, 1, 2, 3], &t);
 }
 
@@ -495,7 +499,7 @@ fn real_polygons() {
             p.pop();
         }
         let cyc: Vec<u32> = (0..p.len() as u32).collect();
-        let r = triangulate_polygon_interior(&p, &cyc);
+        let r = triangulate_polygon_2d(&p, &cyc);
         if simple {
             let t = r.unwrap_or_else(|e| panic!("{name}: {e}"));
             check_interior(&p, &cyc, &t);
@@ -513,7 +517,7 @@ fn real_polygons() {
     ] {
         let p = read_xy(&dir.join("curves2d/svg_groundtruth").join(name));
         let cyc: Vec<u32> = (0..p.len() as u32).collect();
-        let t = triangulate_polygon_interior(&p, &cyc).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let t = triangulate_polygon_2d(&p, &cyc).unwrap_or_else(|e| panic!("{name}: {e}"));
         check_interior(&p, &cyc, &t);
     }
     // earcut fixtures: outer rings
@@ -533,7 +537,7 @@ fn real_polygons() {
             p.pop();
         }
         let cyc: Vec<u32> = (0..p.len() as u32).collect();
-        let r = triangulate_polygon_interior(&p, &cyc);
+        let r = triangulate_polygon_2d(&p, &cyc);
         if ok {
             let t = r.unwrap_or_else(|e| panic!("{name}: {e}"));
             check_interior(&p, &cyc, &t);
@@ -569,7 +573,7 @@ fn polygon_with_holes_by_depth() {
         [6, 7],
         [7, 4],
     ];
-    let c = Cdt2::build(&p, &segs).unwrap();
+    let c = triangulate_constrained_2d(&p, &segs).unwrap();
     check_cdt(&p, &segs, &c, true);
     let d = c.depths();
     let pts = c.points();
@@ -594,7 +598,7 @@ proptest! {
         let mut r = rng(seed);
         let p = random_points(n, grid, &mut r);
         let segs = noncrossing_segments(&p, m, &mut r);
-        match Cdt2::build(&p, &segs) {
+        match triangulate_constrained_2d(&p, &segs) {
             Ok(c) => check_cdt(&p, &segs, &c, true),
             Err(e) => prop_assert!(false, "{e}"),
         }
@@ -605,7 +609,7 @@ proptest! {
         let mut r = rng(seed);
         let p = star_polygon(n, &mut r);
         let cyc: Vec<u32> = (0..n as u32).collect();
-        let t = triangulate_polygon_interior(&p, &cyc).unwrap();
+        let t = triangulate_polygon_2d(&p, &cyc).unwrap();
         check_interior(&p, &cyc, &t);
     }
 }
@@ -655,7 +659,9 @@ fn real_polygons_with_holes_by_depth_parity() {
     let p: Vec<Point2> = water[0].iter().map(|q| Point2::new(q[0], q[1])).collect();
     let m = p.len() as u32;
     let segs: Vec<[u32; 2]> = (0..m).map(|i| [i, (i + 1) % m]).collect();
-    let e = Cdt2::build(&p, &segs).unwrap_err().to_string();
+    let e = triangulate_constrained_2d(&p, &segs)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("segments 1 (1, 2) and 3 (3, 4) cross"), "{e}");
     for name in ["dude.json"] {
         let rings = load(name);
@@ -676,7 +682,7 @@ fn real_polygons_with_holes_by_depth_parity() {
                 segs.push([base + i as u32, base + (i as u32 + 1) % m]);
             }
         }
-        let c = Cdt2::build(&p, &segs).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let c = triangulate_constrained_2d(&p, &segs).unwrap_or_else(|e| panic!("{name}: {e}"));
         check_cdt(&p, &segs, &c, false);
         let d = c.depths();
         let pts = c.points();
@@ -708,7 +714,8 @@ fn stress_random_cdt() {
         let grid = if seed % 2 == 0 { Some(5) } else { None };
         let p = random_points(n, grid, &mut r);
         let segs = noncrossing_segments(&p, 3 + (seed % 10) as usize, &mut r);
-        let c = Cdt2::build(&p, &segs).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        let c =
+            triangulate_constrained_2d(&p, &segs).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
         check_cdt(&p, &segs, &c, true);
     }
 }

@@ -3,10 +3,11 @@
 //! symbolically perturbed triangle set from its definition), invariants (CCW, symmetric
 //! neighbours, Euler relation, hull convexity, area), degenerate and real inputs.
 
-use morpho::delaunay::d2::{incircle_sos, lex_cmp, triangulate, Delaunay2, Location};
-use morpho::delaunay::voronoi::{voronoi, VoronoiEdge};
+use morpho::delaunay::{triangulate_2d, Delaunay2, Location};
+use morpho::delaunay::{voronoi_2d, VoronoiEdge};
 use morpho::geom::predicates::raw::{incircle, orient2d};
 use morpho::geom::Point2;
+use morpho::internals::delaunay::{incircle_sos, lex_cmp};
 use morpho::util::NONE;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
@@ -208,7 +209,7 @@ fn geometric(d: &Delaunay2) -> BTreeSet<[(u64, u64); 3]> {
 }
 
 fn full_check(input: &[Point2]) -> Delaunay2 {
-    let d = triangulate(input).expect("triangulate");
+    let d = triangulate_2d(input).expect("triangulate");
     let small = d.points.len() <= 400;
     check(input, &d, small);
     if d.points.len() <= 40 && !d.collinear {
@@ -231,12 +232,12 @@ fn shuffled(input: &[Point2], seed: u64) -> Vec<Point2> {
 }
 
 fn assert_order_independent(input: &[Point2]) {
-    let d = triangulate(input).unwrap();
+    let d = triangulate_2d(input).unwrap();
     let g = geometric(&d);
     for seed in 1..4 {
-        let s = triangulate(&shuffled(input, seed)).unwrap();
+        let s = triangulate_2d(&shuffled(input, seed)).unwrap();
         assert_eq!(geometric(&s), g, "shuffled input changed the triangulation");
-        let r = morpho::delaunay::d2::triangulate_with_insertion_seed(input, seed).unwrap();
+        let r = morpho::internals::delaunay::triangulate_with_insertion_seed(input, seed).unwrap();
         check(input, &r, false);
         assert_eq!(
             geometric(&r),
@@ -424,7 +425,7 @@ fn mapbox_delaunator_fixtures() {
     assert!(names.len() >= 11);
     for name in &names {
         let p = load(&dir, name);
-        let d = triangulate(&p).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let d = triangulate_2d(&p).unwrap_or_else(|e| panic!("{name}: {e}"));
         check(&p, &d, p.len() <= 1000);
         assert_eq!(d.collinear, name.starts_with("collinear"), "{name}");
         if name == "issue13.json" {
@@ -442,7 +443,7 @@ fn mapbox_delaunator_fixtures() {
     full_check(&r2[..100]);
     assert_order_independent(&load(&dir, "robustness4.json"));
     let u = load(&dir, "ukraine.json");
-    let d = triangulate(&u).unwrap();
+    let d = triangulate_2d(&u).unwrap();
     assert_eq!(d.points.len(), 867);
 }
 
@@ -452,7 +453,7 @@ fn locate_agrees_with_brute_force() {
     let p: Vec<Point2> = (0..100)
         .map(|k| Point2::new((k % 10) as f64, (k / 10) as f64))
         .collect();
-    let d = triangulate(&p).unwrap();
+    let d = triangulate_2d(&p).unwrap();
     let c = scaled(&d);
     for k in 0..400 {
         let q = if k % 2 == 0 {
@@ -501,7 +502,7 @@ fn adjacency_queries() {
     let p: Vec<Point2> = (0..200)
         .map(|_| Point2::new(r.gen::<f64>(), r.gen::<f64>()))
         .collect();
-    let d = triangulate(&p).unwrap();
+    let d = triangulate_2d(&p).unwrap();
     let n = d.points.len();
     // triangles_around visits exactly the triangles containing v
     let mut count = vec![0usize; n];
@@ -558,8 +559,8 @@ fn voronoi_dual() {
                 _ => Point2::new(r.gen_range(0..8) as f64, r.gen_range(0..8) as f64),
             })
             .collect();
-        let d = triangulate(&p).unwrap();
-        let v = voronoi(&d);
+        let d = triangulate_2d(&p).unwrap();
+        let v = voronoi_2d(&d);
         assert_eq!(v.vertices.len(), d.triangles.len());
         for (t, cc) in v.vertices.iter().enumerate() {
             let rr: Vec<f64> = d.triangles[t]
@@ -602,8 +603,8 @@ fn voronoi_dual() {
             assert_eq!(cell.vertices, d.triangles_around(s).collect::<Vec<_>>());
         }
     }
-    let line = triangulate(&pts(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])).unwrap();
-    let v = voronoi(&line);
+    let line = triangulate_2d(&pts(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]])).unwrap();
+    let v = voronoi_2d(&line);
     assert_eq!(v.edges.len(), 2);
     assert!(matches!(v.edges[0], VoronoiEdge::Line { .. }));
 }
@@ -637,7 +638,7 @@ proptest! {
     #[test]
     fn prop_valid_and_order_independent(p in arb_points(), seed in 0u64..1000) {
         let d = full_check(&p);
-        let s = triangulate(&shuffled(&p, seed)).unwrap();
+        let s = triangulate_2d(&shuffled(&p, seed)).unwrap();
         prop_assert_eq!(geometric(&s), geometric(&d));
     }
 }
@@ -674,7 +675,7 @@ fn matches_qhull_when_available() {
         return;
     }
     let simplices: Vec<[u32; 3]> = serde_json::from_slice(&out.stdout).unwrap();
-    let d = triangulate(&p).unwrap();
+    let d = triangulate_2d(&p).unwrap();
     let sort = |t: [u32; 3]| {
         let mut t = t;
         t.sort();
@@ -696,7 +697,7 @@ fn out_of_range_coordinates_are_an_error_not_a_wrong_answer() {
         [1e-200, 1e-200],
         [1.0, 1.0],
     ]);
-    assert!(triangulate(&p).is_err());
+    assert!(triangulate_2d(&p).is_err());
     // the four tiny points alone are fine (the power-of-two scaling brings them to ≈ 1)
     let r: Vec<Point2> = p[..4].to_vec();
     let d = full_check(&r);

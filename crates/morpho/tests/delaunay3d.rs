@@ -1,9 +1,10 @@
 //! 3D and d-dimensional Delaunay: brute-force oracles on random and degenerate inputs.
 
-use morpho::delaunay::d3::{triangulate, Delaunay3};
-use morpho::delaunay::dd::{self, triangulate_d, DelaunayD};
+use morpho::delaunay::{triangulate_3d, Delaunay3};
+use morpho::delaunay::{triangulate_nd, DelaunayD};
 use morpho::geom::exact::{insphere_exact, insphere_sign, orient3d_exact, orient_sign};
 use morpho::geom::Point3;
+use morpho::internals::delaunay as dd;
 use morpho::util::NONE;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
@@ -197,17 +198,17 @@ fn shuffled(p: &[Point3], seed: u64) -> Vec<Point3> {
 
 /// Oracle + determinism under two shuffles + agreement with the d-dimensional code.
 fn full(points: &[Point3], with_dd: bool) -> Delaunay3 {
-    let d = triangulate(points).unwrap();
+    let d = triangulate_3d(points).unwrap();
     let c = check(&d, points);
     for s in [1, 2] {
         let q = shuffled(points, s);
-        let e = triangulate(&q).unwrap();
+        let e = triangulate_3d(&q).unwrap();
         assert_eq!(canonical(&e), c, "shuffle {s} changed the triangulation");
         check(&e, &q);
     }
     if with_dd {
         let flat: Vec<f64> = points.iter().flat_map(arr).collect();
-        let g = triangulate_d(&flat, 3).unwrap();
+        let g = triangulate_nd(&flat, 3).unwrap();
         let gs: BTreeSet<[u32; 4]> = g
             .simplices
             .iter()
@@ -231,7 +232,7 @@ fn random_sets() {
 fn larger_lattice_local_certificate() {
     // 9³ lattice in shuffled order; plus a lattice with a random jitter on one axis
     let p = shuffled(&grid(9, 1.0, 0.0), 5);
-    let d = triangulate(&p).unwrap();
+    let d = triangulate_3d(&p).unwrap();
     d.check_topology().unwrap();
     d.check_delaunay_local().unwrap();
     assert_eq!(d.hull.len(), 6 * 8 * 8 * 2);
@@ -248,7 +249,7 @@ fn larger_lattice_local_certificate() {
         })
         .sum();
     assert_eq!(six_vol, 6 * 512);
-    let e = triangulate(&shuffled(&p, 6)).unwrap();
+    let e = triangulate_3d(&shuffled(&p, 6)).unwrap();
     assert_eq!(canonical(&e), canonical(&d));
 }
 
@@ -308,7 +309,7 @@ fn degenerate_no_tets() {
     let line: Vec<Point3> = (0..10)
         .map(|i| Point3::new(i as f64, 2.0 * i as f64, -(i as f64)))
         .collect();
-    let d = triangulate(&line).unwrap();
+    let d = triangulate_3d(&line).unwrap();
     check(&d, &line);
     assert_eq!(d.degenerate.as_deref(), Some("all points collinear"));
     let mut r = rng(3);
@@ -318,15 +319,15 @@ fn degenerate_no_tets() {
             Point3::new(u, v, 2.0 * u)
         })
         .collect();
-    let d = triangulate(&plane).unwrap();
+    let d = triangulate_3d(&plane).unwrap();
     check(&d, &plane);
     assert_eq!(d.degenerate.as_deref(), Some("all points coplanar"));
     let one = vec![Point3::new(1.0, 1.0, 1.0); 3];
-    let d = triangulate(&one).unwrap();
+    let d = triangulate_3d(&one).unwrap();
     assert_eq!(d.duplicates, 2);
     assert!(d.tets.is_empty());
-    assert!(triangulate(&[]).is_err());
-    assert!(triangulate(&[Point3::new(0.0, f64::INFINITY, 0.0)]).is_err());
+    assert!(triangulate_3d(&[]).is_err());
+    assert!(triangulate_3d(&[Point3::new(0.0, f64::INFINITY, 0.0)]).is_err());
 }
 
 #[test]
@@ -334,7 +335,7 @@ fn extreme_scales() {
     // tiny, huge and huge-offset coordinates: the predicates switch to big integers
     for (s, o) in [(1e-300, 0.0), (1e300, 0.0), (1.0, 1e300), (1e-310, 0.0)] {
         let p = grid(3, s, o);
-        let d = triangulate(&p).unwrap();
+        let d = triangulate_3d(&p).unwrap();
         if o == 1e300 {
             // 1e300 + k == 1e300: everything is one point
             assert_eq!(d.points.len(), 1);
@@ -344,19 +345,19 @@ fn extreme_scales() {
         assert_eq!(d.points.len(), 27);
         assert_eq!(d.hull.len(), 48);
         // same combinatorics as the unit grid
-        let u = triangulate(&grid(3, 1.0, 0.0)).unwrap();
+        let u = triangulate_3d(&grid(3, 1.0, 0.0)).unwrap();
         let a: BTreeSet<[u32; 4]> = d.tets.iter().map(|t| sorted(*t)).collect();
         let b: BTreeSet<[u32; 4]> = u.tets.iter().map(|t| sorted(*t)).collect();
         assert_eq!(a, b, "scale {s}");
     }
     // huge offset with distinct representable coordinates: 1e300 + k·1e300·2^-40
     let p = grid(3, 1e300 / (1u64 << 40) as f64, 1e300);
-    let d = triangulate(&p).unwrap();
+    let d = triangulate_3d(&p).unwrap();
     assert_eq!(d.points.len(), 27);
     d.check_topology().unwrap();
     d.check_delaunay_local().unwrap();
     let flat: Vec<f64> = p.iter().flat_map(arr).collect();
-    let g = triangulate_d(&flat, 3).unwrap();
+    let g = triangulate_nd(&flat, 3).unwrap();
     let a: BTreeSet<[u32; 4]> = d.tets.iter().map(|t| sorted(*t)).collect();
     let b: BTreeSet<[u32; 4]> = g
         .simplices
@@ -365,7 +366,7 @@ fn extreme_scales() {
         .collect();
     assert_eq!(a, b);
     for (s, o) in [(1e-300, 0.0), (1e300, 0.0)] {
-        let d = triangulate(
+        let d = triangulate_3d(
             &random_points(40, 4)
                 .iter()
                 .map(|q| Point3::from(q.coords * s + nalgebra::Vector3::repeat(o)))
@@ -378,10 +379,10 @@ fn extreme_scales() {
     // a grid with an offset of 2^60 (representable steps)
     let o = (1u64 << 60) as f64;
     let p = grid(3, 256.0, o);
-    let d = triangulate(&p).unwrap();
+    let d = triangulate_3d(&p).unwrap();
     assert_eq!(
         d.tets.len(),
-        triangulate(&grid(3, 1.0, 0.0)).unwrap().tets.len()
+        triangulate_3d(&grid(3, 1.0, 0.0)).unwrap().tets.len()
     );
     d.check_topology().unwrap();
 }
@@ -389,7 +390,7 @@ fn extreme_scales() {
 #[test]
 fn api_queries() {
     let p = random_points(80, 11);
-    let d = triangulate(&p).unwrap();
+    let d = triangulate_3d(&p).unwrap();
     // locate: every tet's centroid is located in a tet containing it; outside → None
     for (t, v) in d.tets.iter().enumerate().step_by(7) {
         let c = v
@@ -512,7 +513,7 @@ fn dd_random_and_grids() {
         let n = [0, 0, 50, 30, 20, 14][dim];
         let mut r = rng(dim as u64);
         let c: Vec<f64> = (0..n * dim).map(|_| r.gen()).collect();
-        let g = triangulate_d(&c, dim).unwrap();
+        let g = triangulate_nd(&c, dim).unwrap();
         check_d(&g);
         // shuffled input, same simplices (vertex ids are canonical)
         let mut idx: Vec<usize> = (0..n).collect();
@@ -522,7 +523,7 @@ fn dd_random_and_grids() {
             .iter()
             .flat_map(|&i| c[i * dim..i * dim + dim].to_vec())
             .collect();
-        let g2 = triangulate_d(&c2, dim).unwrap();
+        let g2 = triangulate_nd(&c2, dim).unwrap();
         let a: BTreeSet<Vec<u32>> = g
             .simplices
             .iter()
@@ -557,7 +558,7 @@ fn dd_random_and_grids() {
                     .collect::<Vec<_>>()
             })
             .collect();
-        let g = triangulate_d(&c, dim).unwrap();
+        let g = triangulate_nd(&c, dim).unwrap();
         check_d(&g);
         let vol: f64 = (0..g.simplices.len()).map(|s| g.volume(s)).sum();
         assert!((vol - ((k - 1) as f64).powi(dim as i32)).abs() < 1e-9);
@@ -566,12 +567,12 @@ fn dd_random_and_grids() {
     let c: Vec<f64> = (0..10)
         .flat_map(|i| [i as f64, (i * i) as f64, 0.0])
         .collect();
-    let g = triangulate_d(&c, 3).unwrap();
+    let g = triangulate_nd(&c, 3).unwrap();
     assert!(g.simplices.is_empty() && g.degenerate.is_some());
-    assert!(triangulate_d(&[1.0, f64::NAN], 2).is_err());
-    assert!(triangulate_d(&[1.0, 2.0], 1).is_err());
-    assert!(triangulate_d(&[1.0, 2.0, 3.0], 2).is_err());
-    assert!(triangulate_d(&[], 2).is_err());
+    assert!(triangulate_nd(&[1.0, f64::NAN], 2).is_err());
+    assert!(triangulate_nd(&[1.0, 2.0], 1).is_err());
+    assert!(triangulate_nd(&[1.0, 2.0, 3.0], 2).is_err());
+    assert!(triangulate_nd(&[], 2).is_err());
 }
 
 #[test]
@@ -579,7 +580,7 @@ fn dd_agrees_with_2d_lattice_and_6d() {
     // d = 6, a small random set
     let mut r = rng(66);
     let c: Vec<f64> = (0..10 * 6).map(|_| r.gen()).collect();
-    let g = triangulate_d(&c, 6).unwrap();
+    let g = triangulate_nd(&c, 6).unwrap();
     check_d(&g);
 }
 
@@ -588,13 +589,13 @@ proptest! {
     #[test]
     fn prop_small_integer_sets(pts in proptest::collection::vec((0i32..4, 0i32..4, 0i32..4), 1..30)) {
         let p: Vec<Point3> = pts.iter().map(|&(x, y, z)| Point3::new(x as f64, y as f64, z as f64)).collect();
-        let d = triangulate(&p).unwrap();
+        let d = triangulate_3d(&p).unwrap();
         let c = check(&d, &p);
-        let e = triangulate(&shuffled(&p, 9)).unwrap();
+        let e = triangulate_3d(&shuffled(&p, 9)).unwrap();
         prop_assert_eq!(canonical(&e), c);
         if !d.tets.is_empty() {
             let flat: Vec<f64> = p.iter().flat_map(arr).collect();
-            let g = triangulate_d(&flat, 3).unwrap();
+            let g = triangulate_nd(&flat, 3).unwrap();
             let gs: BTreeSet<[u32; 4]> = g.simplices.iter().map(|s| sorted([s[0], s[1], s[2], s[3]])).collect();
             let ds: BTreeSet<[u32; 4]> = d.tets.iter().map(|t| sorted(*t)).collect();
             prop_assert_eq!(gs, ds);
@@ -604,7 +605,7 @@ proptest! {
     #[test]
     fn prop_dd_small_integer_sets_4d(pts in proptest::collection::vec(proptest::collection::vec(0i32..3, 4), 1..24)) {
         let c: Vec<f64> = pts.iter().flatten().map(|&x| x as f64).collect();
-        let g = triangulate_d(&c, 4).unwrap();
+        let g = triangulate_nd(&c, 4).unwrap();
         // every input maps to its vertex
         for (i, &v) in g.vertex_of_input.iter().enumerate() {
             prop_assert_eq!(g.point(v), &c[i * 4..i * 4 + 4]);
@@ -619,7 +620,7 @@ proptest! {
     #[test]
     fn prop_random_float_sets(seed in 0u64..1000, n in 5usize..50) {
         let p = random_points(n, seed);
-        let d = triangulate(&p).unwrap();
+        let d = triangulate_3d(&p).unwrap();
         check(&d, &p);
     }
 }
@@ -658,7 +659,7 @@ fn matches_qhull_when_available() {
             [v[0], v[1], v[2], v[3]]
         })
         .collect();
-    let d = triangulate(&p).unwrap();
+    let d = triangulate_3d(&p).unwrap();
     let ours: BTreeSet<[u32; 4]> = d.to_input_indices().into_iter().map(sorted).collect();
     assert_eq!(ours, qhull);
 }

@@ -6,7 +6,7 @@
 //! checked against a permutation brute force and on graphs whose Hamiltonicity is known.
 
 use morpho::boundary::{boundary_2d, check_polygon, Boundary2, CParam, Options2, PolygonCheck};
-use morpho::delaunay::d2::{triangulate, Delaunay2};
+use morpho::delaunay::{triangulate_2d, Delaunay2};
 use morpho::geom::{incircle, orient2d, Point2};
 use morpho::graphs::{graph_2d, Kind};
 use morpho::samples::dillencourt_points;
@@ -264,7 +264,7 @@ fn hamilton_search_agrees_with_brute_force() {
 
 fn delaunay() -> (Vec<Point2>, Delaunay2, Vec<Vec<usize>>) {
     let p = dillencourt_points();
-    let d = triangulate(&p).unwrap();
+    let d = triangulate_2d(&p).unwrap();
     assert_eq!(d.points.len(), p.len(), "no duplicates");
     // adjacency by input index
     let e: Vec<[usize; 2]> = d
@@ -442,7 +442,7 @@ fn mirrored_and_reordered_copies_behave_alike() {
     let mirrored: Vec<Point2> = base.iter().map(|q| Point2::new(-q.x, q.y)).collect();
     let reversed: Vec<Point2> = base.iter().rev().copied().collect();
     for p in [mirrored, reversed] {
-        let d = triangulate(&p).unwrap();
+        let d = triangulate_2d(&p).unwrap();
         let e: Vec<[usize; 2]> = d
             .edges()
             .iter()

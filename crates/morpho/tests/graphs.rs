@@ -2,8 +2,8 @@
 //! its definition (Veltkamp 1992 §2.2, ch. 3), on random and degenerate point sets in 2D and 3D.
 
 use morpho::geom::{Point2, Point3};
-use morpho::graphs::brute;
 use morpho::graphs::{graph_2d, graph_3d, Kind};
+use morpho::internals::graphs::brute;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -145,7 +145,7 @@ fn kinds_2d() -> Vec<Kind> {
 }
 
 fn oracle_2d(p: &[[f64; 2]], kind: Kind) -> Vec<[u32; 2]> {
-    use morpho::graphs::gamma::{in_gamma, in_gamma_range};
+    use morpho::graphs::{in_gamma, in_gamma_range};
     match kind {
         Kind::ClosestPairs => brute::closest_pairs(p),
         Kind::Nng => brute::nng(p),
@@ -265,7 +265,7 @@ fn every_3d_kind_equals_its_definition() {
             Kind::GammaRange([-1.0, 1.0, -0.2, 1.0]),
         ];
         for kind in tri_kinds {
-            use morpho::graphs::gamma::{in_gamma, in_gamma_range};
+            use morpho::graphs::{in_gamma, in_gamma_range};
             let g = graph_3d(&pts, kind).unwrap();
             let mut want: Vec<[u32; 3]> = match kind {
                 Kind::Hull => brute::hull_3d(&p),

@@ -8,8 +8,9 @@
 
 use morpho::boundary::{boundary_2d, CParam, Options2};
 use morpho::geom::{Point2, Point3};
-use morpho::graphs::gamma::{center_interval_2d, center_interval_3d, def_contains_2d};
-use morpho::graphs::{brute, graph_2d, graph_3d, Kind};
+use morpho::graphs::{graph_2d, graph_3d, Kind};
+use morpho::internals::graphs::brute;
+use morpho::internals::graphs::{center_interval_2d, center_interval_3d, def_contains_2d};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::sync::mpsc;
@@ -175,7 +176,7 @@ fn gamma_3d_at_1e_minus_110() {
     let range = [-1.0, 1.0, -0.5, 1.0];
     let mut want: Vec<[u32; 3]> = brute::gamma_values_3d(&p)
         .into_iter()
-        .filter(|(_, v)| morpho::graphs::gamma::in_gamma_range(*v, range))
+        .filter(|(_, v)| morpho::graphs::in_gamma_range(*v, range))
         .map(|(t, _)| t)
         .collect();
     want.sort_unstable();

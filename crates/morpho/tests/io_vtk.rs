@@ -302,7 +302,7 @@ fn vtk_volume(p: &[[f64; 3]], c: &[u64]) -> f64 {
 #[test]
 fn tetrahedra_read_back_exactly_with_positive_vtk_volume() {
     let pts = cloud(300);
-    let d = morpho::delaunay::d3::triangulate(&pts).unwrap();
+    let d = morpho::delaunay::triangulate_3d(&pts).unwrap();
     let t = TetMesh {
         positions: pts.clone(),
         tets: d.to_input_indices(),

@@ -1302,19 +1302,21 @@ mod props {
 fn figures_are_balanced_and_complete() {
     use morpho::boundary::{boundary_2d, Options2};
     use morpho::contour::{contour_samples, SampleContour, SampleOptions};
-    use morpho::delaunay::{cdt::Cdt2, d2};
+    use morpho::delaunay::{triangulate_2d, triangulate_constrained_2d};
     use morpho::graphs::{graph_2d, Kind};
     use morpho::mesh::{Column, PointSet};
     use morpho::render::figures::*;
     let pts = morpho::samples::chalice_outline(60, 0.2, 3);
     let n = pts.len();
-    let d = d2::triangulate(&pts).unwrap();
+    let d = triangulate_2d(&pts).unwrap();
     for voronoi in [false, true] {
         let c = xml_check(&delaunay_svg(&d, voronoi));
         assert_eq!(c["circle"], n);
         assert_eq!(c["path"], 1 + voronoi as usize);
     }
-    let c = xml_check(&cdt_svg(&Cdt2::build(&pts, &[[0, 30]]).unwrap()));
+    let c = xml_check(&cdt_svg(
+        &triangulate_constrained_2d(&pts, &[[0, 30]]).unwrap(),
+    ));
     assert_eq!((c["circle"], c["path"]), (n, 2));
     let g = graph_2d(&pts, Kind::Rng).unwrap();
     let c = xml_check(&graph_svg(&pts, &g, Some("RNG <1>")));

@@ -90,7 +90,7 @@ fn assert_valid(pts: &[Point3], b: &Boundary3) {
     tris.sort_unstable();
     assert_eq!(once, tris);
     assert!((vol - b.volume).abs() <= 1e-9 * vol.max(1e-300));
-    let d = morpho::delaunay::d3::triangulate(pts).unwrap();
+    let d = morpho::delaunay::triangulate_3d(pts).unwrap();
     let mut on = vec![false; pts.len()];
     for t in &b.triangles {
         for &v in t {
@@ -217,7 +217,7 @@ mod prop {
         #[test]
         fn valid_or_the_documented_error(pts in pts3(), seeds in 1usize..20) {
             let r = boundary_3d_with(&pts, &opts(seeds));
-            let Ok(d) = morpho::delaunay::d3::triangulate(&pts) else {
+            let Ok(d) = morpho::delaunay::triangulate_3d(&pts) else {
                 prop_assert!(pts.is_empty());
                 prop_assert!(r.unwrap_err().to_string().contains("no points"));
                 return Ok(());

@@ -152,10 +152,10 @@ fn points_section(ctx: &Ctx) -> Result<Vec<Section>> {
 }
 
 fn delaunay_section(ctx: &Ctx) -> Result<Vec<Section>> {
-    use morpho::delaunay::{d2, d3};
+    use morpho::delaunay::{triangulate_2d, triangulate_3d};
     let pts = chalice();
     let t = Instant::now();
-    let d = d2::triangulate(&pts)?;
+    let d = triangulate_2d(&pts)?;
     let dt = t.elapsed().as_secs_f64();
     let mut s = Section::new(
         "Delaunay triangulation and Voronoi diagram",
@@ -178,7 +178,7 @@ fn delaunay_section(ctx: &Ctx) -> Result<Vec<Section>> {
     // a 3D example: 20 000 points on and in a sphere
     let p3 = morpho::samples::sphere_points(20_000, 1.0);
     let t = Instant::now();
-    let d3 = d3::triangulate(&p3)?;
+    let d3 = triangulate_3d(&p3)?;
     s.fig("3D: points on a sphere", p3.len());
     s.fig("3D: tetrahedra", d3.tets.len());
     s.fig(

@@ -106,7 +106,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         let p = pts.to_points3();
         report.time("compute", || graph_3d(&p, kind))
     }
-    .map_err(|e| e.with_path(&args.input))?;
+    .map_err(|e| morpho::Error::from(e).with_path(&args.input))?;
     report.set("edges", g.edges.len());
     report.set("triangles", g.triangles.len());
     let out = &args.output;

@@ -16,7 +16,7 @@
 
 use crate::report::Report;
 use crate::Failure;
-use morpho::delaunay::{cdt, d2, d3};
+use morpho::delaunay::{self, triangulate_2d, triangulate_3d};
 use morpho::io::json::{Triangulation2, Triangulation3};
 use morpho::io::{self, Format};
 use morpho::render::figures;
@@ -86,8 +86,8 @@ fn run_2d(
     report: &mut Report,
 ) -> Result<u8, Failure> {
     let d = report
-        .time("compute", || d2::triangulate(p2))
-        .map_err(|e| e.with_path(&args.input))?;
+        .time("compute", || triangulate_2d(p2))
+        .map_err(|e| morpho::Error::from(e).with_path(&args.input))?;
     let unique = d.points.len();
     if unique < 3 {
         return Err(Failure::usage(format!(
@@ -136,8 +136,8 @@ fn run_3d(
     report: &mut Report,
 ) -> Result<u8, Failure> {
     let d = report
-        .time("compute", || d3::triangulate(p3))
-        .map_err(|e| e.with_path(&args.input))?;
+        .time("compute", || triangulate_3d(p3))
+        .map_err(|e| morpho::Error::from(e).with_path(&args.input))?;
     let unique = d.points.len();
     if unique < 4 {
         return Err(Failure::usage(format!(
@@ -188,8 +188,10 @@ fn run_constrained(
     report: &mut Report,
 ) -> Result<u8, Failure> {
     let c = report
-        .time("compute", || cdt::Cdt2::build(p2, segs))
-        .map_err(|e| e.with_path(args.constraints.as_deref().unwrap_or(&args.input)))?;
+        .time("compute", || delaunay::triangulate_constrained_2d(p2, segs))
+        .map_err(|e| {
+            morpho::Error::from(e).with_path(args.constraints.as_deref().unwrap_or(&args.input))
+        })?;
     let unique = c.points().len();
     if unique < 3 || c.collinear() {
         return Err(Failure::usage(format!(

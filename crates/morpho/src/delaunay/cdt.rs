@@ -1,6 +1,9 @@
 //! 2D constrained Delaunay triangulation (CDT), exact on every input, and the triangulation of
 //! the interior of a simple polygon of any size.
 //!
+//! Size (over 800 lines): one algorithm (cavity insertion of segments) and its use for polygon
+//! interiors; about 120 lines are unit tests.
+//!
 //! # What it computes
 //! [`Cdt2`] starts from a [`Delaunay2`] and inserts constraint segments (pairs of vertices).
 //! The result is the constrained Delaunay triangulation (Chew 1989; Shewchuk & Brown 2015):
@@ -32,7 +35,7 @@
 //! - duplicate segments and segments overlapping earlier ones are merged the same way;
 //! - a segment through another vertex `v` (exactly, by `orient2d == 0`) is split at `v`: both
 //!   parts are inserted (counted in [`Cdt2::splits`]); no new points are ever created;
-//! - a segment crossing an earlier constraint is an [`Error::invalid`] naming both segments
+//! - a segment crossing an earlier constraint is a [`DelaunayError::CrossingSegments`] naming both segments
 //!   (no Steiner points are invented);
 //! - a segment whose two ends are the same vertex (also: two duplicate input points) is
 //!   skipped and counted in [`Cdt2::skipped`].
@@ -56,11 +59,13 @@
 //! Those of [`crate::delaunay::d2::triangulate`] (finite coordinates in the exact range). For
 //! collinear input (no triangles) constraints are validated but there is nothing to triangulate.
 
+use super::DelaunayError;
 use crate::delaunay::d2::{triangulate, Delaunay2};
 use crate::geom::Point2;
 use crate::util::NONE;
-use crate::{Error, Result};
 use std::collections::VecDeque;
+
+type Result<T, E = DelaunayError> = std::result::Result<T, E>;
 
 /// A constrained Delaunay triangulation (see the module documentation).
 #[derive(Debug, Clone)]
@@ -108,7 +113,19 @@ struct Ext {
 }
 
 impl Cdt2 {
-    /// A CDT without constraints (the Delaunay triangulation itself).
+    /// A CDT without constraints (the Delaunay triangulation itself), to insert constraints
+    /// into step by step ([`Cdt2::insert_input_segments`], [`Cdt2::insert_segment`]). O(1).
+    ///
+    /// ```rust
+    /// use morpho::delaunay::{triangulate_2d, Cdt2};
+    /// use morpho::geom::Point2;
+    /// let p = [[0., 0.], [2., 0.], [2., 2.], [0., 2.]].map(|[x, y]| Point2::new(x, y));
+    /// let mut c = Cdt2::new(triangulate_2d(&p).unwrap());
+    /// c.insert_input_segments(&[[0, 2]]).unwrap();
+    /// // a second, crossing diagonal is refused; the CDT keeps the first
+    /// assert!(c.insert_input_segments(&[[1, 3]]).is_err());
+    /// assert_eq!(c.constrained_edges().len(), 1);
+    /// ```
     pub fn new(mut d: Delaunay2) -> Cdt2 {
         let triangles = std::mem::take(&mut d.triangles);
         let neighbors = std::mem::take(&mut d.neighbors);
@@ -127,25 +144,17 @@ impl Cdt2 {
         }
     }
 
-    /// The Delaunay triangulation of `points` with the constraint `segments` (pairs of input
-    /// indices) inserted in order. Errors: those of [`triangulate`], an index out of range,
-    /// crossing segments.
-    pub fn build(points: &[Point2], segments: &[[u32; 2]]) -> Result<Cdt2> {
-        let mut c = Cdt2::new(triangulate(points)?);
-        c.insert_input_segments(segments)?;
-        Ok(c)
-    }
-
-    /// Inserts segments given as pairs of input indices (see [`Cdt2::build`]); error messages
-    /// name a segment by its position in `segments` and its input indices.
+    /// Inserts segments given as pairs of input indices (see [`triangulate_constrained_2d`]);
+    /// error messages name a segment by its position in `segments` and its input indices.
     pub fn insert_input_segments(&mut self, segments: &[[u32; 2]]) -> Result<()> {
         let n_in = self.base.vertex_of_input.len();
         for (k, &[i, j]) in segments.iter().enumerate() {
             if i as usize >= n_in || j as usize >= n_in {
-                return Err(Error::invalid(format!(
-                    "constraint segment {k} ({i}, {j}) refers to a point that does not exist \
-                     ({n_in} points)"
-                )));
+                return Err(DelaunayError::SegmentOutOfRange {
+                    segment: k,
+                    ends: [i, j],
+                    points: n_in,
+                });
             }
             let (a, b) = (
                 self.base.vertex_of_input[i as usize],
@@ -154,16 +163,6 @@ impl Cdt2 {
             self.insert_labeled(a, b, k as u32, [i, j])?;
         }
         Ok(())
-    }
-
-    /// The CDT of `d` with the constraint `segments` given as vertex pairs (indices of
-    /// [`Delaunay2::points`]), inserted in order (see [`Cdt2::insert_segment`]).
-    pub fn from_delaunay(d: Delaunay2, segments: &[[u32; 2]]) -> Result<Cdt2> {
-        let mut c = Cdt2::new(d);
-        for s in segments {
-            c.insert_segment(s[0], s[1])?;
-        }
-        Ok(c)
     }
 
     /// Inserts the segment between vertices `a` and `b` (vertex indices of [`Cdt2::points`]).
@@ -175,9 +174,10 @@ impl Cdt2 {
     pub fn insert_segment(&mut self, a: u32, b: u32) -> Result<()> {
         let n = self.base.points.len();
         if a as usize >= n || b as usize >= n {
-            return Err(Error::invalid(format!(
-                "constraint segment ({a}, {b}) refers to a vertex that does not exist ({n} vertices)"
-            )));
+            return Err(DelaunayError::VertexOutOfRange {
+                ends: [a, b],
+                vertices: n,
+            });
         }
         let k = self.segs.len() as u32;
         let ia = self.base.input_of_vertex[a as usize];
@@ -263,7 +263,18 @@ impl Cdt2 {
 
     /// For every triangle, the least number of constrained edges crossed by a path from outside
     /// the convex hull to it (0-1 breadth-first search). Odd depth = inside the constraint
-    /// cycles (holes of polygons have even depth).
+    /// cycles (holes of polygons have even depth). O(n).
+    ///
+    /// ```rust
+    /// use morpho::delaunay::triangulate_constrained_2d;
+    /// use morpho::geom::Point2;
+    /// // a diamond constraint cycle inside a square: its two triangles have depth 1
+    /// let p = [[0., 0.], [4., 0.], [4., 4.], [0., 4.], [2., 1.], [3., 2.], [2., 3.], [1., 2.]]
+    ///     .map(|[x, y]| Point2::new(x, y));
+    /// let c = triangulate_constrained_2d(&p, &[[4, 5], [5, 6], [6, 7], [7, 4]]).unwrap();
+    /// let inside = c.depths().iter().filter(|&&d| d % 2 == 1).count();
+    /// assert_eq!(inside, 2);
+    /// ```
     pub fn depths(&self) -> Vec<u32> {
         let nt = self.triangles.len();
         let mut depth = vec![u32::MAX; nt];
@@ -421,7 +432,7 @@ impl Cdt2 {
     }
 
     /// The error for a segment crossing the constrained edge `l r`.
-    fn crossing_error(&self, l: u32, r: u32, k: u32, label: [u32; 2]) -> Error {
+    fn crossing_error(&self, l: u32, r: u32, k: u32, label: [u32; 2]) -> DelaunayError {
         let other = self
             .segs
             .iter()
@@ -432,14 +443,16 @@ impl Cdt2 {
             })
             .map(|(j, (_, lab))| (j, *lab));
         match other {
-            Some((j, lab)) => Error::invalid(format!(
-                "constraint segments {j} ({}, {}) and {k} ({}, {}) cross",
-                lab[0], lab[1], label[0], label[1]
-            )),
-            None => Error::invalid(format!(
-                "constraint segment {k} ({}, {}) crosses an earlier constraint",
-                label[0], label[1]
-            )),
+            Some((j, lab)) => DelaunayError::CrossingSegments {
+                first: j as u32,
+                first_ends: lab,
+                second: k,
+                second_ends: label,
+            },
+            None => DelaunayError::CrossesConstraint {
+                segment: k,
+                ends: label,
+            },
         }
     }
 
@@ -627,8 +640,38 @@ fn opposite_corner(tri: &[u32; 3], p: u32, q: u32) -> usize {
     tri.iter().position(|&w| w != p && w != q).unwrap_or(0)
 }
 
-fn lost() -> Error {
-    Error::invalid("constrained Delaunay: inconsistent triangulation (internal error)")
+fn lost() -> DelaunayError {
+    DelaunayError::Internal {
+        what: "constrained Delaunay: inconsistent triangulation (internal error)",
+    }
+}
+
+/// The constrained Delaunay triangulation of `points` with the constraint `segments` (pairs of
+/// input indices) inserted in order (see the module documentation for the cases: a segment
+/// through a vertex is split there, repeated and zero-length segments are merged or skipped).
+///
+/// Errors: those of [`triangulate`](crate::delaunay::triangulate_2d), a segment index out of
+/// range ([`DelaunayError::SegmentOutOfRange`]), two crossing segments
+/// ([`DelaunayError::CrossingSegments`]). Cost: the Delaunay triangulation plus O(k log k)
+/// expected per segment crossing k triangles.
+///
+/// ```rust
+/// use morpho::delaunay::triangulate_constrained_2d;
+/// use morpho::geom::Point2;
+/// // a square and a point below its diagonal 0–2: the unconstrained triangulation uses 1–3
+/// let p = [[0., 0.], [2., 0.], [2., 2.], [0., 2.]].map(|[x, y]| Point2::new(x, y));
+/// let c = triangulate_constrained_2d(&p, &[[1, 3]])?;
+/// assert_eq!(c.triangles.len(), 2);
+/// assert_eq!(c.constrained_edges().len(), 1);
+/// // crossing constraints are refused, naming both
+/// let e = triangulate_constrained_2d(&p, &[[0, 2], [1, 3]]).unwrap_err();
+/// assert_eq!(e.to_string(), "constraint segments 0 (0, 2) and 1 (1, 3) cross");
+/// # Ok::<(), morpho::delaunay::DelaunayError>(())
+/// ```
+pub fn triangulate_constrained_2d(points: &[Point2], segments: &[[u32; 2]]) -> Result<Cdt2> {
+    let mut c = Cdt2::new(triangulate(points)?);
+    c.insert_input_segments(segments)?;
+    Ok(c)
 }
 
 /// Triangulates the interior of the simple polygon `cycle` (indices into `points`, either
@@ -641,8 +684,10 @@ fn lost() -> Error {
 /// vertex lying on an edge; and the inputs of [`triangulate`]. Cost: see the module
 /// documentation.
 ///
-/// ```
-/// use morpho::delaunay::cdt::triangulate_polygon_interior;
+/// Facade name: [`triangulate_polygon_2d`](crate::delaunay::triangulate_polygon_2d).
+///
+/// ```rust
+/// use morpho::delaunay::triangulate_polygon_2d as triangulate_polygon_interior;
 /// use morpho::geom::Point2;
 /// // an L-shaped hexagon, clockwise
 /// let p: Vec<Point2> = [[0., 0.], [0., 2.], [1., 2.], [1., 1.], [2., 1.], [2., 0.]]
@@ -654,19 +699,21 @@ fn lost() -> Error {
 pub fn triangulate_polygon_interior(points: &[Point2], cycle: &[u32]) -> Result<Vec<[u32; 3]>> {
     let n = cycle.len();
     if n < 3 {
-        return Err(Error::invalid(format!(
-            "polygon interior: {n} vertices, a polygon needs at least 3"
-        )));
+        return Err(DelaunayError::PolygonTooFewVertices {
+            found: n,
+            needed: 3,
+        });
     }
     let mut local = Vec::with_capacity(n);
     for (k, &i) in cycle.iter().enumerate() {
         match points.get(i as usize) {
             Some(p) => local.push(*p),
             None => {
-                return Err(Error::invalid(format!(
-                    "polygon interior: vertex {k} is point {i}, which does not exist ({} points)",
-                    points.len()
-                )))
+                return Err(DelaunayError::PolygonVertexOutOfRange {
+                    vertex: k,
+                    point: i,
+                    points: points.len(),
+                })
             }
         }
     }
@@ -678,27 +725,25 @@ pub fn triangulate_polygon_interior(points: &[Point2], cycle: &[u32]) -> Result<
             .enumerate()
             .find(|(k, &v)| d.input_of_vertex[v as usize] as usize != *k)
             .unwrap_or((0, &0));
-        return Err(Error::invalid(format!(
-            "polygon interior: not a simple polygon, vertex {k} (point {}) repeats an earlier vertex",
-            cycle[k]
-        )));
+        return Err(DelaunayError::PolygonRepeatedVertex {
+            vertex: k,
+            point: cycle[k],
+        });
     }
     if d.collinear {
-        return Err(Error::invalid(
-            "polygon interior: all vertices are collinear (zero area)",
-        ));
+        return Err(DelaunayError::PolygonCollinear);
     }
     let mut cdt = Cdt2::new(d);
     for k in 0..n {
         let k1 = (k + 1) % n;
         let (a, b) = (cdt.base.vertex_of_input[k], cdt.base.vertex_of_input[k1]);
         cdt.insert_labeled(a, b, k as u32, [cycle[k], cycle[k1]])
-            .map_err(|e| Error::invalid(format!("polygon interior: not a simple polygon: {e}")))?;
+            .map_err(|e| DelaunayError::PolygonEdgesCross(Box::new(e)))?;
         if cdt.splits > 0 {
-            return Err(Error::invalid(format!(
-                "polygon interior: not a simple polygon, edge {k} ({}, {}) passes through another vertex",
-                cycle[k], cycle[k1]
-            )));
+            return Err(DelaunayError::PolygonEdgeThroughVertex {
+                edge: k,
+                ends: [cycle[k], cycle[k1]],
+            });
         }
     }
     let depth = cdt.depths();
@@ -710,11 +755,10 @@ pub fn triangulate_polygon_interior(points: &[Point2], cycle: &[u32]) -> Result<
         .map(|(t, _)| t.map(|v| cycle[cdt.base.input_of_vertex[v as usize] as usize]))
         .collect();
     if out.len() != n - 2 {
-        return Err(Error::invalid(format!(
-            "polygon interior: not a simple polygon ({} interior triangles, expected {})",
-            out.len(),
-            n - 2
-        )));
+        return Err(DelaunayError::PolygonNotSimple {
+            found: out.len(),
+            expected: n - 2,
+        });
     }
     Ok(out)
 }
@@ -759,7 +803,7 @@ mod tests {
     fn constraint_forces_the_other_diagonal() {
         // a flat rhombus: Delaunay takes the short diagonal 1-3, the constraint 0-2 replaces it
         let p = pts(&[[0.0, 0.0], [2.0, -0.3], [4.0, 0.0], [2.0, 0.3]]);
-        let c = Cdt2::build(&p, &[]).unwrap();
+        let c = triangulate_constrained_2d(&p, &[]).unwrap();
         let has = |c: &Cdt2, a: u32, b: u32| {
             c.edges().iter().any(|(e, _)| {
                 let (x, y) = (
@@ -770,7 +814,7 @@ mod tests {
             })
         };
         assert!(has(&c, 1, 3) && !has(&c, 0, 2));
-        let c = Cdt2::build(&p, &[[0, 2]]).unwrap();
+        let c = triangulate_constrained_2d(&p, &[[0, 2]]).unwrap();
         check(&c);
         assert!(has(&c, 0, 2) && !has(&c, 1, 3));
         assert_eq!(c.constrained_edges().len(), 1);
@@ -798,18 +842,21 @@ mod tests {
             [0.9298819835587695, 0.4851208476488845],
             [0.2806311353060852, 0.5080042100283657],
         ]);
-        let c = Cdt2::build(&p, &[[7, 9], [2, 9], [3, 6]]).unwrap();
+        let c = triangulate_constrained_2d(&p, &[[7, 9], [2, 9], [3, 6]]).unwrap();
         check(&c);
         assert_eq!(c.constrained_edges().len(), 3);
         // and with the slit edge itself constrained first
-        let c = Cdt2::build(&p, &[[0, 1], [7, 9], [2, 9], [3, 6]]).unwrap();
+        let c = triangulate_constrained_2d(&p, &[[0, 1], [7, 9], [2, 9], [3, 6]]).unwrap();
         check(&c);
         assert_eq!(c.constrained_edges().len(), 4);
         // the same through vertex indices
         let d = triangulate(&p).unwrap();
         let v = |i: usize| d.vertex_of_input[i];
         let segs = [[v(0), v(1)], [v(7), v(9)], [v(2), v(9)], [v(3), v(6)]];
-        let c2 = Cdt2::from_delaunay(d, &segs).unwrap();
+        let mut c2 = Cdt2::new(d);
+        for s in segs {
+            c2.insert_segment(s[0], s[1]).unwrap();
+        }
         assert_eq!(c2.triangles, c.triangles);
         assert_eq!(c2.constrained, c.constrained);
     }
@@ -827,7 +874,7 @@ mod tests {
                 segs.push([4 * r + k, 4 * r + (k + 1) % 4]);
             }
         }
-        let c = Cdt2::build(&p, &segs).unwrap();
+        let c = triangulate_constrained_2d(&p, &segs).unwrap();
         check(&c);
         let d = c.depths();
         // hull = outer square, its edges are constrained: every triangle is inside it

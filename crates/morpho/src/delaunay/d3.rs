@@ -2,6 +2,9 @@
 //! hull; Dorgerloh et al. §2: Bowyer–Watson insertion, here with exact predicates instead of
 //! constructed circumcentres).
 //!
+//! Size (over 800 lines): one algorithm — the Bowyer–Watson engine with its flat arrays, work
+//! buffers and symbolic perturbation, and the queries and invariant checks on its result.
+//!
 //! # Algorithm
 //! Incremental Bowyer–Watson insertion:
 //! 1. Input points are checked (NaN/inf → error), sorted lexicographically and duplicates merged;
@@ -47,6 +50,7 @@
 //! ghosts) per point during the construction, 36 bytes each; measured peak ≈ 370 bytes per
 //! point for 1M uniform points (see `examples/bench_delaunay3d.rs`).
 
+use super::DelaunayError;
 use crate::geom::exact::{
     insphere_exact, insphere_small_int, orient2d_exact, orient3d_exact, safe_range,
 };
@@ -54,7 +58,8 @@ use crate::geom::predicates::raw::{insphere, orient3d};
 use crate::geom::Point3;
 use crate::util::hilbert::hilbert3;
 use crate::util::{Rng, NONE};
-use crate::{Error, Result};
+
+type Result<T, E = DelaunayError> = std::result::Result<T, E>;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use std::collections::HashSet;
@@ -441,18 +446,21 @@ pub(crate) type Dedup<const D: usize> = (Vec<[f64; D]>, Vec<u32>, Vec<u32>);
 /// input point and the first input point of each vertex.
 pub(crate) fn dedup_sorted<const D: usize>(coords: &[[f64; D]]) -> Result<Dedup<D>> {
     if coords.is_empty() {
-        return Err(Error::invalid("no points"));
+        return Err(DelaunayError::NoPoints { dim: D });
     }
     if coords.len() >= u32::MAX as usize / 8 {
-        return Err(Error::invalid("too many points"));
+        return Err(DelaunayError::TooManyPoints {
+            found: coords.len(),
+            dim: D,
+        });
     }
     let mut pts: Vec<[f64; D]> = Vec::with_capacity(coords.len());
     for (i, c) in coords.iter().enumerate() {
         if c.iter().any(|x| !x.is_finite()) {
-            return Err(Error::invalid(format!(
-                "point {} has a non-finite coordinate",
-                i + 1
-            )));
+            return Err(DelaunayError::NonFinite {
+                index: i,
+                coords: vec![],
+            });
         }
         // normalise -0.0 to 0.0 so that equal points compare equal
         let mut q = *c;
@@ -486,10 +494,35 @@ pub(crate) fn dedup_sorted<const D: usize>(coords: &[[f64; D]]) -> Result<Dedup<
     Ok((uniq, vertex_of_input, input_of_vertex))
 }
 
-/// Computes the Delaunay tetrahedralization of `points`.
+/// Computes the Delaunay tetrahedralization of `points` (facade name
+/// [`triangulate_3d`](crate::delaunay::triangulate_3d)).
 ///
-/// Errors: empty input, a NaN or infinite coordinate. Collinear or coplanar input (or fewer than
-/// four distinct points) gives `Ok` with no tetrahedra and [`Delaunay3::degenerate`] set.
+/// Positively oriented tetrahedra whose circumspheres contain no vertex, with neighbours and the
+/// outward hull triangles. Duplicates are merged; co-spherical ties are broken by symbolic
+/// perturbation, so the result depends on the point set only. Bowyer–Watson insertion in a
+/// biased randomized Hilbert order with exact predicates at any scale: expected O(n log n)
+/// for points spread in space, O(n²) worst case (points on the moment curve, where the output
+/// is quadratic); about 370 bytes per point at the peak.
+///
+/// Errors: empty input ([`DelaunayError::NoPoints`]), a NaN or infinite coordinate
+/// ([`DelaunayError::NonFinite`]), more than 2³⁰ tetrahedra. Collinear or coplanar input (or
+/// fewer than four distinct points) gives `Ok` with no tetrahedra and
+/// [`Delaunay3::degenerate`] set.
+///
+/// ```rust
+/// use morpho::delaunay::triangulate_3d;
+/// use morpho::geom::Point3;
+/// // a tetrahedron with a point inside: four tetrahedra, the hull keeps the four faces
+/// let p = [[0., 0., 0.], [4., 0., 0.], [0., 4., 0.], [0., 0., 4.], [1., 1., 1.]]
+///     .map(|[x, y, z]| Point3::new(x, y, z));
+/// let d = triangulate_3d(&p).unwrap();
+/// assert_eq!(d.tets.len(), 4);
+/// assert_eq!(d.hull.len(), 4);
+/// assert!(d.check_delaunay_local().is_ok() && d.check_topology().is_ok());
+/// // coplanar input is not an error
+/// let flat = triangulate_3d(&p[..3]).unwrap();
+/// assert!(flat.tets.is_empty() && flat.degenerate.is_some());
+/// ```
 pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     let coords: Vec<[f64; 3]> = points.iter().map(arr).collect();
     let (pts, vertex_of_input, input_of_vertex) = dedup_sorted(&coords)?;
@@ -589,9 +622,10 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     for p in 4..n as u32 {
         bld.insert(p, p - 4);
         if bld.overflow {
-            return Err(Error::unsupported(format!(
-                "more than {MAX_TETS} tetrahedra (input too large or too degenerate)"
-            )));
+            return Err(DelaunayError::TooManySimplices {
+                dim: 3,
+                limit: MAX_TETS,
+            });
         }
     }
     // compact in place

@@ -38,9 +38,11 @@
 //! Randomized incremental: about `O(n^⌈d/2⌉)` expected for points in general position, plus the
 //! exact-fallback cost; meant for up to a few thousand points (exactness first, speed second).
 
+use super::DelaunayError;
 use crate::geom::exact::{affinely_independent, insphere_sign, orient_sign};
 use crate::util::{Rng, NONE};
-use crate::{Error, Result};
+
+type Result<T, E = DelaunayError> = std::result::Result<T, E>;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use std::collections::HashMap;
@@ -280,36 +282,54 @@ impl<'a> Builder<'a> {
     }
 }
 
-/// Computes the Delaunay triangulation of the points `coords` (flat, `dim` coordinates each).
+/// Computes the Delaunay triangulation of the points `coords` (flat, `dim` coordinates each;
+/// facade name [`triangulate_nd`](crate::delaunay::triangulate_nd)).
 ///
-/// Errors: `dim` outside 2..=7, `coords.len()` not a multiple of `dim`, no points, non-finite
-/// coordinates. Affinely degenerate input (all points in a hyperplane) gives `Ok` with no
-/// simplices and [`DelaunayD::degenerate`] set.
+/// Bowyer–Watson insertion (Dorgerloh et al. §2, *SimpleDelaunay*) with exact predicates (a
+/// floating-point filter, then big-integer determinants) and symbolic perturbation; identical
+/// to [`triangulate_3d`](crate::delaunay::triangulate_3d) for d = 3. Randomized incremental,
+/// about O(n^⌈d/2⌉) expected for points in general position: meant for up to a few thousand
+/// points.
+///
+/// Errors: `dim` outside 2 ..= [`MAX_DIM`] ([`DelaunayError::UnsupportedDimension`]),
+/// `coords.len()` not a multiple of `dim` ([`DelaunayError::DimensionMismatch`]), no points,
+/// non-finite coordinates. Affinely degenerate input (all points in a hyperplane) gives `Ok`
+/// with no simplices and [`DelaunayD::degenerate`] set.
+///
+/// ```rust
+/// use morpho::delaunay::triangulate_nd;
+/// // the unit 4-cube's 16 corners: its volume is 1, and every simplex is positive
+/// let c: Vec<f64> = (0..16u32).flat_map(|i| (0..4).map(move |k| (i >> k & 1) as f64)).collect();
+/// let d = triangulate_nd(&c, 4).unwrap();
+/// assert!((d.hull_volume() - 1.0).abs() < 1e-12);
+/// assert!((0..d.simplices.len()).all(|s| d.volume(s) > 0.0));
+/// let total: f64 = (0..d.simplices.len()).map(|s| d.volume(s)).sum();
+/// assert!((total - 1.0).abs() < 1e-12);
+/// assert!(triangulate_nd(&[0.0, 1.0, 2.0], 2).is_err()); // 3 numbers are not 2D points
+/// ```
 pub fn triangulate_d(coords: &[f64], dim: usize) -> Result<DelaunayD> {
     if !(2..=MAX_DIM).contains(&dim) {
-        return Err(Error::unsupported(format!(
-            "dimension {dim} (supported: 2 to {MAX_DIM})"
-        )));
+        return Err(DelaunayError::UnsupportedDimension { dim, max: MAX_DIM });
     }
     if coords.len() % dim != 0 {
-        return Err(Error::invalid(format!(
-            "{} coordinates are not a multiple of dimension {dim}",
-            coords.len()
-        )));
+        return Err(DelaunayError::DimensionMismatch {
+            coords: coords.len(),
+            dim,
+        });
     }
     let n_in = coords.len() / dim;
     if n_in == 0 {
-        return Err(Error::invalid("no points"));
+        return Err(DelaunayError::NoPoints { dim });
     }
     if n_in >= (u32::MAX as usize) / 16 {
-        return Err(Error::invalid("too many points"));
+        return Err(DelaunayError::TooManyPoints { found: n_in, dim });
     }
     for (i, x) in coords.iter().enumerate() {
         if !x.is_finite() {
-            return Err(Error::invalid(format!(
-                "point {} has a non-finite coordinate",
-                i / dim + 1
-            )));
+            return Err(DelaunayError::NonFinite {
+                index: i / dim,
+                coords: vec![],
+            });
         }
     }
     // sort + dedup
@@ -432,7 +452,10 @@ pub fn triangulate_d(coords: &[f64], dim: usize) -> Result<DelaunayD> {
         bld.insert(v, k);
         k += 1;
         if bld.overflow {
-            return Err(Error::unsupported("more than 2^28 simplices"));
+            return Err(DelaunayError::TooManySimplices {
+                dim,
+                limit: 1 << 28,
+            });
         }
     }
     let nslots = bld.stamp.len();

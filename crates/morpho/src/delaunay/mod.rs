@@ -1,8 +1,51 @@
-//! Delaunay triangulations in 2D ([`d2`]), 3D ([`d3`]) and d dimensions ([`dd`]), convex hulls
-//! and Voronoi duals ([`voronoi`]) (Veltkamp 1992 §2.2.8–2.2.9; Dorgerloh et al. §2).
+//! Delaunay triangulations in 2D, 3D and d dimensions, constrained triangulations, convex hulls
+//! and Voronoi duals (Veltkamp 1992 §2.2.8–2.2.9; Dorgerloh et al. §2).
+//!
+//! # Entry points
+//! One naming convention: `<what>_<dimension>` with the dimension as `2d`, `3d` or `nd`.
+//!
+//! | capability | function | result |
+//! |---|---|---|
+//! | Delaunay triangulation of points in the plane | [`triangulate_2d`] | [`Delaunay2`] |
+//! | Delaunay tetrahedralization of points in space | [`triangulate_3d`] | [`Delaunay3`] |
+//! | Delaunay triangulation in d = 2 … [`MAX_DIM`] dimensions | [`triangulate_nd`] | [`DelaunayD`] |
+//! | constrained Delaunay triangulation (segments) | [`triangulate_constrained_2d`] | [`Cdt2`] |
+//! | triangles of a simple polygon's interior | [`triangulate_polygon_2d`] | `Vec<[u32; 3]>` |
+//! | Voronoi diagram (dual of a [`Delaunay2`]) | [`voronoi_2d`] | [`Voronoi2`] |
+//!
+//! The convex hull comes with every triangulation: [`Delaunay2::hull`] (vertex cycle),
+//! [`Delaunay3::hull`] (outward triangles), [`DelaunayD::hull`] (facets), [`Cdt2::hull`]; the
+//! hull as a graph is [`crate::graphs::Kind::Hull`].
+//!
+//! All decisions use exact predicates (symbolic perturbation breaks co-circular and
+//! co-spherical ties), so the result is a function of the point *set*: independent of the input
+//! order and of the absolute scale. Every function refuses bad input with a
+//! [`DelaunayError`] naming it (no panics on user data).
+//!
+//! ```rust
+//! use morpho::delaunay::triangulate_2d;
+//! use morpho::geom::Point2;
+//! // a square with its centre: 4 triangles, Euler's relation V − E + F = 1 (no outer face)
+//! let p = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0], [1.0, 1.0]].map(|[x, y]| Point2::new(x, y));
+//! let d = triangulate_2d(&p)?;
+//! assert_eq!(d.triangles.len(), 4);
+//! assert_eq!(d.points.len() as i64 - d.edges().len() as i64 + d.triangles.len() as i64, 1);
+//! # Ok::<(), morpho::delaunay::DelaunayError>(())
+//! ```
 
-pub mod cdt;
-pub mod d2;
-pub mod d3;
-pub mod dd;
-pub mod voronoi;
+// Other families use these files by path (`crate::delaunay::d3::FACE_OF`, …): crate-visible.
+pub(crate) mod cdt;
+pub(crate) mod d2;
+pub(crate) mod d3;
+pub(crate) mod dd;
+mod error;
+pub(crate) mod voronoi;
+
+pub use cdt::{
+    triangulate_constrained_2d, triangulate_polygon_interior as triangulate_polygon_2d, Cdt2,
+};
+pub use d2::{triangulate as triangulate_2d, Delaunay2, Location, TrianglesAround};
+pub use d3::{triangulate as triangulate_3d, Delaunay3, Face3, FACE_OF};
+pub use dd::{triangulate_d as triangulate_nd, DelaunayD, MAX_DIM};
+pub use error::DelaunayError;
+pub use voronoi::{voronoi as voronoi_2d, Voronoi2, VoronoiCell, VoronoiEdge};

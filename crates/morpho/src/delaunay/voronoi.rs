@@ -24,18 +24,29 @@ use crate::util::NONE;
 pub enum VoronoiEdge {
     /// The segment between Voronoi vertices `vertices[0]` (the triangle left of `a → b`) and
     /// `vertices[1]` (the triangle right of it).
-    Segment { dual: [u32; 2], vertices: [u32; 2] },
+    Segment {
+        /// The dual Delaunay edge `[a, b]` (vertex indices).
+        dual: [u32; 2],
+        /// The two Voronoi vertices (triangle indices).
+        vertices: [u32; 2],
+    },
     /// The ray from Voronoi vertex `from` in direction `direction` (outward normal of the hull
     /// edge `a → b`, which runs counter-clockwise around the hull).
     Ray {
+        /// The dual hull edge `[a, b]` (vertex indices).
         dual: [u32; 2],
+        /// The Voronoi vertex the ray starts at (a triangle index).
         from: u32,
+        /// Its direction (not normalised).
         direction: Vector2,
     },
     /// Collinear input only: the bisector line of `a` and `b` through `point` with `direction`.
     Line {
+        /// The dual Delaunay edge `[a, b]` (consecutive points of the line).
         dual: [u32; 2],
+        /// The midpoint of `a` and `b`.
         point: Point2,
+        /// The line's direction (not normalised).
         direction: Vector2,
     },
 }
@@ -77,7 +88,24 @@ fn outward(d: &Delaunay2, a: u32, b: u32) -> Vector2 {
     Vector2::new(e.y, -e.x)
 }
 
-/// Builds the Voronoi diagram dual to `d`.
+/// Builds the Voronoi diagram dual to `d` (facade name
+/// [`voronoi_2d`](crate::delaunay::voronoi_2d)): one vertex per triangle (its circumcentre,
+/// same index), one edge per Delaunay edge (segment, ray on the hull, or a bisector line for
+/// collinear input). O(n) after the triangulation; circumcentres are floating-point
+/// constructions.
+///
+/// ```rust
+/// use morpho::delaunay::{triangulate_2d, voronoi_2d, VoronoiEdge};
+/// use morpho::geom::Point2;
+/// let p = [[0., 0.], [2., 0.], [2., 2.], [0., 2.], [1., 1.]].map(|[x, y]| Point2::new(x, y));
+/// let d = triangulate_2d(&p).unwrap();
+/// let v = voronoi_2d(&d);
+/// assert_eq!(v.vertices.len(), d.triangles.len());
+/// assert_eq!(v.edges.len(), d.edges().len());
+/// // four hull edges, four rays
+/// let rays = v.edges.iter().filter(|e| matches!(e, VoronoiEdge::Ray { .. })).count();
+/// assert_eq!(rays, 4);
+/// ```
 pub fn voronoi(d: &Delaunay2) -> Voronoi2 {
     let vertices: Vec<Point2> = (0..d.triangles.len() as u32)
         .map(|t| d.circumcenter(t))
@@ -118,6 +146,20 @@ pub fn voronoi(d: &Delaunay2) -> Voronoi2 {
 
 impl Voronoi2 {
     /// The cell of vertex `v` of `d` (the triangulation this diagram was built from).
+    /// O(degree of `v`).
+    ///
+    /// ```rust
+    /// use morpho::delaunay::{triangulate_2d, voronoi_2d};
+    /// use morpho::geom::Point2;
+    /// // a square with its centre: the centre's cell is bounded (4 Voronoi vertices),
+    /// // a corner's cell is unbounded (two rays)
+    /// let p = [[0., 0.], [2., 0.], [2., 2.], [0., 2.], [1., 1.]].map(|[x, y]| Point2::new(x, y));
+    /// let d = triangulate_2d(&p).unwrap();
+    /// let v = voronoi_2d(&d);
+    /// let centre = v.cell(&d, d.vertex_of_input[4]);
+    /// assert_eq!((centre.vertices.len(), centre.rays), (4, None));
+    /// assert!(v.cell(&d, d.vertex_of_input[0]).rays.is_some());
+    /// ```
     pub fn cell(&self, d: &Delaunay2, v: u32) -> VoronoiCell {
         let vertices: Vec<u32> = d.triangles_around(v).collect();
         let first = match vertices.first() {
@@ -155,10 +197,10 @@ impl Voronoi2 {
     /// drawn box, so that every cut lies outside it) is the caller's business.
     ///
     /// ```
-    /// use morpho::delaunay::{d2, voronoi};
+    /// use morpho::delaunay::{triangulate_2d, voronoi_2d};
     /// use morpho::geom::Point2;
     /// let p = [Point2::new(0.0, 0.0), Point2::new(4.0, 0.0), Point2::new(0.0, 4.0)];
-    /// let v = voronoi::voronoi(&d2::triangulate(&p).unwrap());
+    /// let v = voronoi_2d(&triangulate_2d(&p).unwrap());
     /// let segs = v.segments(10.0);
     /// assert_eq!(segs.len(), 3); // three rays from the circumcentre (2, 2)
     /// assert!(segs.iter().all(|(a, b)| *a == Point2::new(2.0, 2.0) && ((b - a).norm() - 10.0).abs() < 1e-12));

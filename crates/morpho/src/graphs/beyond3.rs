@@ -82,7 +82,7 @@ const SIZING_ROUNDS: usize = 8000;
 /// Triangles with their intervals.
 type Found = Vec<([u32; 3], CenterInterval)>;
 
-/// The triangles outside γ([-1,1],[0,1]) (i.e. not in `cand.triangles`) whose largest
+/// The triangles outside γ(\[-1,1\],\[0,1\]) (i.e. not in `cand.triangles`) whose largest
 /// intersection parameter c₁′ is ≥ `c` (c < 0), with their intervals (normal of the sorted
 /// corners (b − a) × (c − a)). Sorted by triangle. See the module documentation.
 pub fn beyond_dt_3d(

@@ -3,6 +3,10 @@
 //! triangulation plus, for cocircular/cospherical groups, every chord of the group (V §3.3:
 //! "γ([-1,1],[0,1]) forms all possible overlapping simplices")).
 //!
+//! Size (over 800 lines): the 2D and 3D candidate sets share the cocircular/cospherical group
+//! machinery (union–find, the group fast paths and their test switches) and its unit tests;
+//! splitting the 3D half into its own file is the next step.
+//!
 //! # Candidates
 //! [`Candidates2`]/[`Candidates3`] hold every simplex of γ([-1,1],[0,1]) with its
 //! [`CenterInterval`]: for a Delaunay edge (triangle) the interval ends are the offsets of the

@@ -226,7 +226,25 @@ impl CenterInterval {
 }
 
 /// σ ∈ γ(c₀, c₁) given σ's γ-values, by Lemma 3.1 (c₁ ≥ 0) and Lemma 3.2 (c₁ < 0).
-/// Requires |c₀| ≤ |c₁|.
+/// Requires |c₀| ≤ |c₁|. O(1): filter a γ graph's simplices ([`crate::graphs::Graph::gamma`])
+/// at other parameters without rebuilding.
+///
+/// ```rust
+/// use morpho::graphs::{graph_2d, in_gamma, Kind};
+/// use morpho::geom::Point2;
+/// let p: Vec<Point2> = (0..12).map(|i| {
+///     let t = i as f64 * 0.5;
+///     Point2::new(t.cos() * (1.0 + 0.1 * t), t.sin() * (1.0 + 0.1 * t))
+/// }).collect();
+/// let g0 = graph_2d(&p, Kind::Gamma(0.0, 0.0)).unwrap();
+/// // γ(0, 1) is γ(0, 0) filtered by the γ-values of its edges
+/// let g01 = graph_2d(&p, Kind::Gamma(0.0, 1.0)).unwrap();
+/// let filtered: Vec<[u32; 2]> = g0.edges.iter().zip(&g0.gamma)
+///     .filter(|(_, g)| in_gamma((g[0], g[1]), 0.0, 1.0))
+///     .map(|(e, _)| *e)
+///     .collect();
+/// assert_eq!(filtered, g01.edges);
+/// ```
 pub fn in_gamma(values: (f64, f64), c0: f64, c1: f64) -> bool {
     let (a, b) = values;
     if c1 >= 0.0 {
@@ -236,7 +254,13 @@ pub fn in_gamma(values: (f64, f64), c0: f64, c1: f64) -> bool {
     }
 }
 
-/// σ ∈ γ([c₀,c₁],[c₂,c₃]) given σ's γ-values (Def. 3.3).
+/// σ ∈ γ(\[c₀,c₁\],\[c₂,c₃\]) given σ's γ-values (Def. 3.3). O(1).
+///
+/// ```rust
+/// use morpho::graphs::in_gamma_range;
+/// assert!(in_gamma_range((0.2, 0.9), [0.0, 0.5, 0.5, 1.0]));
+/// assert!(!in_gamma_range((0.6, 0.9), [0.0, 0.5, 0.5, 1.0]));
+/// ```
 pub fn in_gamma_range(values: (f64, f64), range: [f64; 4]) -> bool {
     let (a, b) = values;
     range[0] <= a && a <= range[1] && range[2] <= b && b <= range[3]

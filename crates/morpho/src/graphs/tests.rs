@@ -1,5 +1,7 @@
 //! Oracle tests of the γ machinery against the literal definitions, and the inclusion hierarchy
 //! of Veltkamp Fig. 3.2 with Lemmas 3.1–3.3.
+//!
+//! Size (over 800 lines): test code only (oracles and property tests of the whole family).
 
 use super::brute::*;
 use super::gamma::*;

@@ -424,7 +424,7 @@ fn lifted(points: &[Point2], triangles: &[[u32; 3]]) -> TriMesh {
 /// use morpho::geom::Point2;
 /// use morpho::io::{json::Triangulation2, write_triangulation_2d};
 /// let p = [Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.0, 1.0)];
-/// let d = morpho::delaunay::d2::triangulate(&p).unwrap();
+/// let d = morpho::delaunay::triangulate_2d(&p).unwrap();
 /// let (tris, hull) = (d.to_input_indices(), d.hull.clone());
 /// let t = Triangulation2 { points: &p, triangles: &tris, hull: &hull, constrained: None };
 /// let dir = tempfile::tempdir().unwrap();
@@ -457,7 +457,7 @@ pub fn write_triangulation_2d(path: &Path, t: &json::Triangulation2) -> Result<(
 /// use morpho::io::{json::Triangulation3, write_triangulation_3d};
 /// let p = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
 ///          Point3::new(0.0, 1.0, 0.0), Point3::new(0.0, 0.0, 1.0)];
-/// let d = morpho::delaunay::d3::triangulate(&p).unwrap();
+/// let d = morpho::delaunay::triangulate_3d(&p).unwrap();
 /// let tets = d.to_input_indices();
 /// let hull: Vec<[u32; 3]> = d.hull.iter().map(|t| t.map(|v| d.input_of_vertex[v as usize])).collect();
 /// let t = Triangulation3 { points: &p, tets: &tets, hull: &hull };

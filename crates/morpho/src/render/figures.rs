@@ -27,7 +27,7 @@ use std::fmt::Write as _;
 /// ```
 /// use morpho::geom::Point2;
 /// let p = [Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.0, 1.0), Point2::new(1.0, 1.2)];
-/// let d = morpho::delaunay::d2::triangulate(&p).unwrap();
+/// let d = morpho::delaunay::triangulate_2d(&p).unwrap();
 /// let svg = morpho::render::figures::delaunay_svg(&d, true);
 /// assert_eq!(svg.matches("<circle").count(), 4);
 /// assert!(svg.contains("stroke-dasharray")); // the Voronoi diagram
