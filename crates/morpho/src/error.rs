@@ -46,7 +46,84 @@ pub enum Error {
     /// The file type or feature is not supported.
     #[error("{}{msg}", prefix(path))]
     Unsupported { path: String, msg: String },
+    // --- families of f-rest (volume, contour, mesh, render) ---
+    /// A volume or an isosurface request was refused ([`crate::volume`]).
+    #[error("{}{source}", prefix(path))]
+    Volume {
+        /// The file the volume came from (empty when none).
+        path: String,
+        /// What was refused.
+        #[source]
+        source: crate::volume::VolumeError,
+    },
+    /// A contour computation was refused ([`crate::contour`]).
+    #[error("{}{source}", prefix(path))]
+    Contour {
+        /// The file the samples came from (empty when none).
+        path: String,
+        /// What was refused.
+        #[source]
+        source: crate::contour::ContourError,
+    },
+    /// A mesh or point set was refused ([`crate::mesh`]).
+    #[error("{}{source}", prefix(path))]
+    Mesh {
+        /// The file the mesh came from (empty when none).
+        path: String,
+        /// What was refused.
+        #[source]
+        source: crate::mesh::MeshError,
+    },
+    /// A picture was refused ([`crate::render`]).
+    #[error("{}{source}", prefix(path))]
+    Render {
+        /// The file concerned (empty when none).
+        path: String,
+        /// What was refused.
+        #[source]
+        source: crate::render::RenderError,
+    },
+    // --- end f-rest ---
 }
+
+// --- families of f-rest: conversions (empty path, filled by `with_path`) ---
+impl From<crate::volume::VolumeError> for Error {
+    fn from(source: crate::volume::VolumeError) -> Self {
+        Error::Volume {
+            path: String::new(),
+            source,
+        }
+    }
+}
+impl From<crate::mesh::MeshError> for Error {
+    fn from(source: crate::mesh::MeshError) -> Self {
+        Error::Mesh {
+            path: String::new(),
+            source,
+        }
+    }
+}
+impl From<crate::render::RenderError> for Error {
+    fn from(source: crate::render::RenderError) -> Self {
+        Error::Render {
+            path: String::new(),
+            source,
+        }
+    }
+}
+impl From<crate::contour::ContourError> for Error {
+    fn from(source: crate::contour::ContourError) -> Self {
+        match source {
+            // a lower family's error keeps its own variant
+            crate::contour::ContourError::Lower(e) => *e,
+            source => Error::Contour {
+                path: String::new(),
+                source,
+            },
+        }
+    }
+}
+// --- end f-rest ---
 
 fn prefix(path: &str) -> String {
     if path.is_empty() {
@@ -116,7 +193,12 @@ impl Error {
             Error::Io { path, .. }
             | Error::Format { path, .. }
             | Error::Invalid { path, .. }
-            | Error::Unsupported { path, .. } => {
+            | Error::Unsupported { path, .. }
+            // f-rest families
+            | Error::Volume { path, .. }
+            | Error::Contour { path, .. }
+            | Error::Mesh { path, .. }
+            | Error::Render { path, .. } => {
                 if path.is_empty() {
                     *path = name;
                 }

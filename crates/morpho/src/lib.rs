@@ -38,5 +38,14 @@ pub mod volume;
 
 pub use error::{Error, Location, Result};
 
+/// Engine pieces for benches, examples and tests that check internal invariants, re-exported
+/// from their real place. No stability promise: anything here may change or go without notice.
+#[doc(hidden)]
+pub mod internals {
+    // --- geom (f-rest): the exact fallbacks, checked against the adaptive predicates ---
+    pub use crate::geom::exact::{insphere_exact, insphere_sign, orient3d_exact, orient_sign};
+    // --- end f-rest ---
+}
+
 /// The library version.
 pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -2,8 +2,8 @@
 
 use morpho::delaunay::d3::{triangulate, Delaunay3};
 use morpho::delaunay::dd::{self, triangulate_d, DelaunayD};
-use morpho::geom::exact::{insphere_exact, insphere_sign, orient3d_exact, orient_sign};
 use morpho::geom::Point3;
+use morpho::internals::{insphere_exact, insphere_sign, orient3d_exact, orient_sign};
 use morpho::util::NONE;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};

@@ -61,17 +61,23 @@
 //! assert!(c.cycles.iter().all(|cy| cy.len() == 3 && cy.contains(&4)));
 //! ```
 
-pub mod cycles;
-pub mod dual;
-pub mod pipeline;
-pub mod rating;
-pub mod samples;
-pub mod tet;
-pub use samples::contour_samples;
+mod cycles;
+mod dual;
+mod error;
+mod pipeline;
+mod rating;
+mod samples;
+mod tet;
 
 pub use cycles::{boundary_regions, external_contour, external_contour_with};
-pub use pipeline::{PlaneContour, SampleContour, SampleOptions, SpaceContour};
+pub use dual::simplex_neighbors;
+pub use error::ContourError;
+pub use pipeline::{
+    contour_triangulated_2d, contour_triangulated_3d, select_samples, PlaneContour, SampleContour,
+    SampleOptions, SampleTriangulation2, SampleTriangulation3, SelectedSamples, SpaceContour,
+};
 pub use rating::{classify, rate_tetrahedra, rate_triangles, Rating};
+pub use samples::contour_samples;
 pub use tet::{external_surface, external_surface_with, Surface3};
 
 use crate::geom::Point2;

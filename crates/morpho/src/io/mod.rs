@@ -24,8 +24,13 @@
 //! | 3D boundaries | [`write_boundary_3d`] | `.json`, mesh formats |
 //! | plane contours | [`write_contour_2d`] | `.geojson .json` |
 
+// One public module per format: each is a real namespace (`io::ply::read_tets`,
+// `io::nrrd::write`, `io::vtk::write_tets_vtu`, …) for format-specific readers, writers and
+// options; the functions of this module dispatch to them by extension.
 pub mod csv;
 pub mod geojson;
+/// What may be read and written (regular files, size caps, atomic replacement): a namespace
+/// because the CLI switches its policies on (`guard::protect_inputs`, …).
 pub mod guard;
 pub mod html;
 pub mod json;
@@ -157,7 +162,7 @@ pub fn unify_line_ends(bytes: &[u8]) -> std::borrow::Cow<'_, [u8]> {
 }
 
 /// Decompresses a gzip stream, refusing output larger than `limit` bytes.
-pub fn gunzip(bytes: &[u8], limit: u64) -> Result<Vec<u8>> {
+pub(crate) fn gunzip(bytes: &[u8], limit: u64) -> Result<Vec<u8>> {
     use std::io::Read;
     let mut out = Vec::new();
     flate2::read::MultiGzDecoder::new(bytes)
@@ -270,7 +275,8 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh> {
         )),
     }
     .map_err(|e| e.with_path(path))?;
-    mesh.validate().map_err(|e| e.with_path(path))?;
+    mesh.validate()
+        .map_err(|e| Error::from(e).with_path(path))?;
     Ok(mesh)
 }
 
@@ -577,7 +583,7 @@ pub fn read_points(path: &Path) -> Result<PointSet> {
     if pts.is_empty() {
         return Err(Error::invalid("no points").with_path(path));
     }
-    pts.validate().map_err(|e| e.with_path(path))?;
+    pts.validate().map_err(|e| Error::from(e).with_path(path))?;
     Ok(pts)
 }
 
@@ -632,7 +638,7 @@ pub fn read_volume(path: &Path) -> Result<Volume> {
         )),
     }
     .map_err(|e| e.with_path(path))?;
-    v.validate().map_err(|e| e.with_path(path))?;
+    v.validate().map_err(|e| Error::from(e).with_path(path))?;
     Ok(v)
 }
 
@@ -679,7 +685,7 @@ pub fn read_any(path: &Path) -> Result<Data> {
         Format::Ply => {
             let bytes = read_bytes(path)?;
             let m = ply::read_mesh(&bytes).map_err(|e| e.with_path(path))?;
-            m.validate().map_err(|e| e.with_path(path))?;
+            m.validate().map_err(|e| Error::from(e).with_path(path))?;
             if m.triangles.is_empty() {
                 Ok(Data::Points(read_points(path)?))
             } else {

@@ -332,12 +332,12 @@ pub fn cube() -> TriMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::topology::analyze;
+    use crate::mesh::analyze_topology;
 
     /// (χ, genus, boundary loops, parts) and the shared sanity checks.
     fn check(m: &TriMesh, chi: i64, genus: Option<i64>, loops: usize) {
         m.validate().unwrap();
-        let t = analyze(m);
+        let t = analyze_topology(m);
         assert_eq!(t.euler_characteristic, chi, "χ");
         assert_eq!(t.genus(), genus, "genus");
         assert_eq!(t.boundary_loops.len(), loops, "loops");
@@ -400,7 +400,7 @@ mod tests {
         assert_eq!(m.num_triangles(), 3);
         check(&m, 1, Some(0), 1);
         check(&disk(5, 12), 1, Some(0), 1);
-        let t = analyze(&disk(5, 12));
+        let t = analyze_topology(&disk(5, 12));
         assert_eq!(t.boundary_loops[0].len(), 12);
         check(&annulus(0.5, 1.0, 1, 3), 0, Some(0), 2);
         check(&annulus(0.5, 2.0, 4, 16), 0, Some(0), 2);
@@ -417,7 +417,7 @@ mod tests {
     fn mobius_strip() {
         for (n, w) in [(3, 1), (12, 3)] {
             let m = mobius(n, w);
-            let t = analyze(&m);
+            let t = analyze_topology(&m);
             assert_eq!(t.euler_characteristic, 0);
             assert_eq!(t.boundary_loops.len(), 1);
             assert_eq!(t.boundary_loops[0].len(), 2 * n);

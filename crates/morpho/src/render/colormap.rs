@@ -14,6 +14,7 @@
 //!
 //! Cost: O(1) per lookup. `t` is clamped to `[0, 1]`; NaN gives [`MISSING`].
 
+use super::RenderError;
 use std::str::FromStr;
 
 /// Colour used for missing values (NaN): a neutral mid grey.
@@ -130,15 +131,15 @@ pub fn finite_range(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)>
 }
 
 impl FromStr for Colormap {
-    type Err = crate::Error;
-    fn from_str(s: &str) -> crate::Result<Self> {
+    type Err = RenderError;
+    fn from_str(s: &str) -> Result<Self, RenderError> {
         match s.to_ascii_lowercase().as_str() {
             "viridis" => Ok(Colormap::Viridis),
             "coolwarm" => Ok(Colormap::Coolwarm),
             "grey" | "gray" | "greys" | "grays" => Ok(Colormap::Greys),
-            _ => Err(crate::Error::invalid(format!(
-                "unknown colour map {s:?} (use viridis, coolwarm or grey)"
-            ))),
+            _ => Err(RenderError::UnknownColormap {
+                name: s.to_string(),
+            }),
         }
     }
 }
