@@ -89,6 +89,14 @@ fn sorted_facet<const K: usize>(s: &[u32; K], i: usize) -> ([u32; 3], bool) {
 /// sharing the facet opposite corner `i` of `s`, or [`NONE`] on the hull. O(n + nverts) time by
 /// radix sort of the facets. Errors when a facet is shared by more than two simplices or by two
 /// simplices on the same side (inconsistent orientation or overlap).
+///
+/// ```
+/// use morpho::contour::simplex_neighbors;
+/// use morpho::util::NONE;
+/// // two counter-clockwise triangles sharing the edge 1–2 (opposite corner 0 of the first)
+/// let nb = simplex_neighbors(&[[0, 1, 2], [1, 3, 2]], 4).unwrap();
+/// assert_eq!(nb, vec![[1, NONE, NONE], [NONE, 0, NONE]]);
+/// ```
 pub fn simplex_neighbors<const K: usize>(
     simplices: &[[u32; K]],
     nverts: usize,

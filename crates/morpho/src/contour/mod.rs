@@ -149,6 +149,14 @@ impl Contour2 {
 }
 
 /// Signed area of a ring of vertex indices (shoelace; positive when counter-clockwise).
+///
+/// ```
+/// use morpho::contour::ring_area;
+/// use morpho::geom::Point2;
+/// let p = [Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.0, 1.0)];
+/// assert_eq!(ring_area(&[0, 1, 2], &p), 0.5); // counter-clockwise
+/// assert_eq!(ring_area(&[0, 2, 1], &p), -0.5);
+/// ```
 pub fn ring_area(ring: &[u32], points: &[Point2]) -> f64 {
     let n = ring.len();
     let mut s = 0.0;

@@ -90,6 +90,16 @@ fn rate<const K: usize>(corners: [f64; K], weights: Option<[f64; K]>, rating: Ra
 }
 
 /// Ratings of the triangles `tri` of `points` from the per-vertex `values`.
+///
+/// ```
+/// use morpho::contour::{classify, rate_triangles, Rating};
+/// use morpho::geom::Point2;
+/// let p = [Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.0, 1.0), Point2::new(1.0, 1.0)];
+/// let r = rate_triangles(&[[0, 1, 2], [1, 3, 2]], &p, &[0.0, 3.0, 6.0, 9.0], Rating::Mean).unwrap();
+/// assert_eq!(r, vec![3.0, 6.0]);
+/// assert_eq!(classify(&r, 4.0, false), vec![false, true]); // black above 4
+/// assert_eq!(classify(&r, 4.0, true), vec![true, false]); // black below 4
+/// ```
 pub fn rate_triangles(
     tri: &[[u32; 3]],
     points: &[Point2],

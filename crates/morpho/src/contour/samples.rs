@@ -19,6 +19,23 @@ fn lower(e: crate::Error) -> ContourError {
 /// Triangulates the samples (2D or 3D by `samples.dim`) and computes their contour. Samples
 /// without a value are skipped; samples at the same position share a vertex whose value is
 /// their mean. O(n log n) for the triangulation, O(n) after it.
+///
+/// ```
+/// use morpho::contour::{contour_samples, SampleContour, SampleOptions};
+/// use morpho::geom::Point2;
+/// use morpho::mesh::{Column, PointSet};
+/// // a 4 × 4 grid of samples, value 10 on the inner 2 × 2, 0 elsewhere
+/// let pts: Vec<Point2> = (0..16).map(|i| Point2::new((i % 4) as f64, (i / 4) as f64)).collect();
+/// let values = (0..16)
+///     .map(|i| if (1..3).contains(&(i % 4)) && (1..3).contains(&(i / 4)) { 10.0 } else { 0.0 })
+///     .collect();
+/// let mut samples = PointSet::from_points2(&pts);
+/// samples.columns.push(Column { name: "value".into(), values });
+/// let opts = SampleOptions { threshold: 5.0, ..Default::default() };
+/// let SampleContour::Plane(c) = contour_samples(&samples, &opts).unwrap() else { panic!() };
+/// assert_eq!(c.contour.cycles.len(), 1); // one black component, one external cycle
+/// assert_eq!(c.selected.skipped, 0);
+/// ```
 pub fn contour_samples(
     samples: &PointSet,
     opts: &SampleOptions,

@@ -69,6 +69,19 @@ impl Surface3 {
 }
 
 /// The external surface of a coloured tetrahedrization; `black[t]` is the colour of tetrahedron t.
+///
+/// ```
+/// use morpho::contour::external_surface;
+/// use morpho::geom::Point3;
+/// let p = [
+///     Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+///     Point3::new(0.0, 1.0, 0.0), Point3::new(0.0, 0.0, 1.0),
+/// ];
+/// let s = external_surface(&[[0, 1, 2, 3]], &p, &[true]).unwrap();
+/// assert_eq!((s.triangles.len(), s.components), (4, 1));
+/// // outward oriented: the enclosed volume is positive
+/// assert!((s.to_trimesh(&p).signed_volume() - 1.0 / 6.0).abs() < 1e-12);
+/// ```
 pub fn external_surface(
     tets: &[[u32; 4]],
     points: &[Point3],

@@ -123,6 +123,13 @@ pub fn bbox3(points: &[Point3]) -> Aabb3 {
 }
 
 /// Bounding box of 2D points.
+///
+/// ```
+/// use morpho::geom::{bbox2, Point2};
+/// let b = bbox2(&[Point2::new(1.0, 2.0), Point2::new(-1.0, 0.0)]);
+/// assert_eq!((b.min, b.max), ([-1.0, 0.0], [1.0, 2.0]));
+/// assert_eq!((b.center(), b.extent()), ([0.0, 1.0], [2.0, 2.0]));
+/// ```
 pub fn bbox2(points: &[Point2]) -> Aabb2 {
     let mut b = Aabb2::empty();
     for p in points {

@@ -278,6 +278,13 @@ pub fn annulus(r_inner: f64, r_outer: f64, n_rings: usize, n_sectors: usize) -> 
 
 /// A Möbius strip about the unit circle: `n_len ≥ 3` segments along, `n_width ≥ 1` across.
 /// Non-orientable, χ = 0, one boundary loop of 2·n_len edges.
+///
+/// ```
+/// use morpho::mesh::{analyze_topology, generate};
+/// let t = analyze_topology(&generate::mobius(12, 2));
+/// assert!(!t.orientable);
+/// assert_eq!(t.boundary_loops.len(), 1); // one boundary curve
+/// ```
 pub fn mobius(n_len: usize, n_width: usize) -> TriMesh {
     let (nu, nw) = (n_len.max(3), n_width.max(1));
     let mut pos = Vec::new();
@@ -325,6 +332,15 @@ pub fn tetrahedron() -> TriMesh {
 }
 
 /// The unit cube [0, 1]³: 8 vertices, 12 triangles, outward oriented.
+///
+/// ```
+/// use morpho::mesh::{analyze_topology, generate};
+/// let c = generate::cube();
+/// let t = analyze_topology(&c);
+/// assert!(t.is_closed() && t.consistently_oriented);
+/// assert_eq!((t.euler_characteristic, t.genus()), (2, Some(0)));
+/// assert!(c.signed_volume() > 0.0); // outward
+/// ```
 pub fn cube() -> TriMesh {
     voxel_surface([1, 1, 1], |_, _, _| true)
 }

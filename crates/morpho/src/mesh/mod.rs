@@ -251,6 +251,16 @@ pub struct Column {
 
 impl PointSet {
     /// Points from 2D positions.
+    ///
+    /// ```
+    /// use morpho::geom::Point2;
+    /// use morpho::mesh::{Column, PointSet};
+    /// let mut ps = PointSet::from_points2(&[Point2::new(0.0, 1.0), Point2::new(2.0, 3.0)]);
+    /// assert_eq!((ps.dim, ps.len()), (2, 2));
+    /// assert_eq!(ps.point(1), &[2.0, 3.0]);
+    /// ps.columns.push(Column { name: "v".into(), values: vec![1.0] });
+    /// assert_eq!(ps.validate().unwrap_err().to_string(), "column v has the wrong length");
+    /// ```
     pub fn from_points2(p: &[Point2]) -> Self {
         PointSet {
             dim: 2,

@@ -787,6 +787,17 @@ fn orientability(
 /// Flipping swaps the 2nd and 3rd index of a triangle; triangle indices, face properties and
 /// vertex normals are left unchanged. Degenerate triangles are not touched. On error the mesh is
 /// unchanged.
+///
+/// ```
+/// use morpho::mesh::{analyze_topology, generate, orient_consistently, MeshError};
+/// let mut m = generate::tetrahedron();
+/// m.triangles[0].swap(1, 2); // turn one face inside out
+/// assert!(!analyze_topology(&m).consistently_oriented);
+/// assert_eq!(orient_consistently(&mut m).unwrap(), 1);
+/// assert!(analyze_topology(&m).consistently_oriented && m.signed_volume() > 0.0);
+/// let err = orient_consistently(&mut generate::mobius(12, 2)).unwrap_err();
+/// assert!(matches!(err, MeshError::NotOrientable { .. }));
+/// ```
 pub fn orient_consistently(mesh: &mut TriMesh) -> Result<usize, MeshError> {
     let tris = &mesh.triangles;
     let nt = tris.len();

@@ -117,6 +117,13 @@ pub fn normalize(v: f64, lo: f64, hi: f64) -> f64 {
 }
 
 /// Smallest and largest finite value, or `None` when there is none.
+///
+/// ```
+/// use morpho::render::{finite_range, normalize};
+/// assert_eq!(finite_range([3.0, f64::NAN, -1.0, f64::INFINITY]), Some((-1.0, 3.0)));
+/// assert_eq!(finite_range([f64::NAN]), None);
+/// assert_eq!(normalize(5.0, 0.0, 10.0), 0.5);
+/// ```
 pub fn finite_range(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
     let mut r: Option<(f64, f64)> = None;
     for v in values {

@@ -75,6 +75,16 @@ impl Image {
         self.rgba[i..i + 4].copy_from_slice(&c);
     }
     /// Encodes the image as PNG.
+    ///
+    /// ```
+    /// use morpho::render::Image;
+    /// let mut img = Image::new(2, 1, [0, 0, 0, 255]);
+    /// img.put(1, 0, [255, 0, 0, 255]);
+    /// assert_eq!(img.get(1, 0), [255, 0, 0, 255]);
+    /// let mut png = Vec::new();
+    /// img.write_png(&mut png).unwrap();
+    /// assert_eq!(&png[1..4], b"PNG");
+    /// ```
     pub fn write_png(&self, w: &mut dyn std::io::Write) -> Result<()> {
         let mut enc = png::Encoder::new(w, self.width, self.height);
         enc.set_color(png::ColorType::Rgba);

@@ -283,6 +283,16 @@ fn slice_size(vol: &Volume, axis: Axis, p: f64) -> (usize, usize) {
 /// The slice `axis = index` as an image (see the module documentation). With `size: None` and
 /// equal spacing the image has one pixel per sample (`dims[u] × dims[v]`); anisotropic spacing
 /// stretches the coarser axis so the picture keeps its physical aspect.
+///
+/// ```
+/// use morpho::render::{slice_image, Axis, SliceOptions};
+/// use morpho::volume::Volume;
+/// let v = Volume::from_fn([8, 6, 4], [0.0; 3], [7.0, 5.0, 3.0], |x, _, _| x);
+/// let img = slice_image(&v, Axis::Z, 2, &SliceOptions::default()).unwrap();
+/// assert_eq!((img.width, img.height), (8, 6)); // one pixel per sample
+/// let err = slice_image(&v, Axis::Z, 4, &SliceOptions::default()).unwrap_err();
+/// assert_eq!(err.to_string(), "slice index 4 along z is out of range (0..4)");
+/// ```
 pub fn slice_image(
     vol: &Volume,
     axis: Axis,

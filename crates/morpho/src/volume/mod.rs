@@ -5,7 +5,7 @@ mod gradient;
 mod isosurface;
 
 pub use error::VolumeError;
-pub use gradient::{gradient_at, mesh_normals, GradientOperator};
+pub use gradient::{axis_coords, gradient_at, mesh_normals, GradientOperator};
 pub use isosurface::{
     extract_part, isosurface, largest_part, IsoMethod, IsoOptions, IsoResult, NormalMethod,
 };
@@ -72,6 +72,14 @@ impl Volume {
         Ok(v)
     }
     /// Samples a function on a uniform grid over the box `[lo, hi]`.
+    ///
+    /// ```
+    /// use morpho::volume::Volume;
+    /// let v = Volume::from_fn([3, 2, 2], [0.0; 3], [2.0, 1.0, 1.0], |x, y, _| x + 10.0 * y);
+    /// assert_eq!(v.len(), 12);
+    /// assert_eq!(v.at(2, 1, 0), 12.0); // x = 2, y = 1
+    /// assert_eq!(v.coord(0, 1), 1.0); // spacing 1 along x
+    /// ```
     pub fn from_fn(
         dims: [usize; 3],
         lo: [f64; 3],

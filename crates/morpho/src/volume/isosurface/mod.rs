@@ -140,6 +140,21 @@ pub struct IsoResult {
 /// Errors: invalid volume (sizes, axes), non-finite level, an axis longer than 2²⁰ samples, or
 /// more than 2³¹ − 1 vertices. A level outside the data range, or a volume thinner than two
 /// samples along some axis, gives an empty mesh and a note.
+///
+/// ```
+/// use morpho::mesh::analyze_topology;
+/// use morpho::volume::{isosurface, IsoOptions, Volume};
+/// // f = x² + y² + z² on 16³ samples over [-1, 1]³: the level 0.5 is a sphere
+/// let v = Volume::from_fn([16; 3], [-1.0; 3], [1.0; 3], |x, y, z| x * x + y * y + z * z);
+/// let r = isosurface(&v, &IsoOptions { level: 0.5, ..Default::default() }).unwrap();
+/// assert_eq!((r.parts, r.boundary_edges, r.interior_holes), (1, 0, 0));
+/// let t = analyze_topology(&r.mesh);
+/// assert!(t.is_closed() && t.manifold && t.consistently_oriented);
+/// assert_eq!((t.euler_characteristic, t.genus()), (2, Some(0)));
+/// // a level outside the data range gives an empty mesh and a note, not an error
+/// let r = isosurface(&v, &IsoOptions { level: 9.0, ..Default::default() }).unwrap();
+/// assert!(r.mesh.triangles.is_empty() && r.note.is_some());
+/// ```
 pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeError> {
     vol.validate()?;
     if !opts.level.is_finite() {
@@ -642,6 +657,20 @@ pub fn extract_part(mesh: &TriMesh, part: u32) -> TriMesh {
 
 /// The part with the most triangles (lowest label on ties), or `None` without parts. Labels
 /// that are not integers in `0..triangles` are ignored.
+///
+/// ```
+/// use morpho::volume::{extract_part, isosurface, largest_part, IsoOptions, Volume};
+/// // two balls side by side: two parts
+/// let ball = |x: f64, y: f64, z: f64, cx: f64| (x - cx).powi(2) + (y - 0.5).powi(2) + (z - 0.5).powi(2);
+/// let v = Volume::from_fn([24, 12, 12], [0.0; 3], [2.0, 1.0, 1.0], |x, y, z| {
+///     ball(x, y, z, 0.5).min(ball(x, y, z, 1.5))
+/// });
+/// let r = isosurface(&v, &IsoOptions { level: 0.1, ..Default::default() }).unwrap();
+/// assert_eq!(r.parts, 2);
+/// let big = extract_part(&r.mesh, largest_part(&r.mesh).unwrap());
+/// assert!(big.triangles.len() >= r.mesh.triangles.len() / 2);
+/// assert!(big.triangles.len() < r.mesh.triangles.len());
+/// ```
 pub fn largest_part(mesh: &TriMesh) -> Option<u32> {
     let labels = mesh.face_prop("part")?;
     let mut count: Vec<usize> = Vec::new();
