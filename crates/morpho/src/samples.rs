@@ -234,7 +234,7 @@ pub fn borehole_field(n: usize, seed: u64) -> PointSet {
 /// A non-degenerate Delaunay triangulation without a Hamilton cycle (V §5.4, Fig. 5.7, after
 /// Dillencourt 1987): 20 points whose Delaunay triangulation is two-connected (not
 /// three-connected) and non-Hamiltonian, so the γ-constriction of the Delaunay graph cannot reach
-/// every point and the §5.4 fallback (γ([-1,1],[c,1]), c < 0) is needed.
+/// every point and the §5.4 fallback (`γ([-1,1],[c,1])`, c < 0) is needed.
 ///
 /// Construction (our own, from first principles; Dillencourt's coordinates are not reproduced).
 /// Delaunay triangulations are 1-tough (Dillencourt, "Toughness and Delaunay triangulations",

@@ -5,9 +5,9 @@
 //! The three phases of the paper's introduction:
 //! 1. *triangulation* — done by the caller (a Delaunay triangulation of the sample positions);
 //!    every function here takes the triangulation as input;
-//! 2. *rating* — [`rating`]: one number per triangle (mean, min, max, median or an area-weighted
+//! 2. *rating* — [`rate_triangles`], [`classify`]: one number per triangle (mean, min, max, median or an area-weighted
 //!    mean of the vertex values), black when it is above (or below) a threshold;
-//! 3. *contour* — [`dual`] and [`cycles`]: the coloured dual graph (§3.1), `extend` (§3.2),
+//! 3. *contour* — [`external_contour`]: the coloured dual graph (§3.1), `extend` (§3.2),
 //!    `hollow_out` (§3.3), `remove_v_ext` and the black components (§3.4), and
 //!    `contour_of_component` (§3.5 and the Appendix), all in O(n) time and memory.
 //!
@@ -37,14 +37,14 @@
 //! clockwise, each ring simple; rings of one polygon may touch at single vertices), and both
 //! functions can drop regions smaller than an area.
 //!
-//! In 3D ([`tet`]) the same steps on tetrahedra give the closed boundary surfaces of the black
+//! In 3D ([`external_surface`]) the same steps on tetrahedra give the closed boundary surfaces of the black
 //! components that are not enclosed by another, as outward-oriented triangles.
 //!
-//! [`pipeline`] runs rating, colouring and contour on rated samples given their triangulation
+//! [`contour_triangulated_2d`] and [`contour_triangulated_3d`] run rating, colouring and contour on rated samples given their triangulation
 //! (value column by name, samples without a value skipped, duplicates averaged);
 //! [`contour_samples`] puts the Delaunay triangulation in front. The results are written by
 //! [`crate::io::write_contour_2d`] (GeoJSON, a JSON list of cycles) and drawn by
-//! [`crate::render::figures::contour_svg`].
+//! [`crate::render::contour_svg`].
 //!
 //! ```
 //! use morpho::contour::external_contour;

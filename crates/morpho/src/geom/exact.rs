@@ -150,7 +150,7 @@ pub fn to_big_rows(q: &[&[f64]]) -> Vec<Vec<BigInt>> {
 }
 
 /// Exact sign (−1, 0, 1) of `orient(q_0 … q_d)` = det of rows `[q_i, 1]`; `q.len() == d + 1`,
-/// d ≤ [`MAX_DIM`]. For d = 2, 3 the sign of Shewchuk's `orient2d`/`orient3d`.
+/// d ≤ `MAX_DIM`. For d = 2, 3 the sign of Shewchuk's `orient2d`/`orient3d`.
 pub fn orient_sign(q: &[&[f64]]) -> i32 {
     let n = q.len();
     let d = n - 1;
@@ -178,7 +178,7 @@ pub fn orient_sign(q: &[&[f64]]) -> i32 {
 }
 
 /// Exact sign of `insphere(q_0 … q_{d+1})` = det of rows `[q_i, |q_i|², 1]`; positive when
-/// `q_{d+1}` is inside the sphere through the positively oriented `q_0 … q_d`; d ≤ [`MAX_DIM`].
+/// `q_{d+1}` is inside the sphere through the positively oriented `q_0 … q_d`; d ≤ `MAX_DIM`.
 pub fn insphere_sign(q: &[&[f64]]) -> i32 {
     let n = q.len();
     let d = n - 2;

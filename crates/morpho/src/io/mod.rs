@@ -396,7 +396,7 @@ fn lifted(points: &[Point2], triangles: &[[u32; 3]]) -> TriMesh {
 
 /// Writes a 2D (constrained) triangulation: `.json` ([`json::write_triangulation_2d`]) or a
 /// mesh format ([`write_mesh`]: the triangles with z = 0, binary where there is a choice).
-/// The SVG picture is [`crate::render::figures::delaunay_svg`].
+/// The SVG picture is [`crate::render::delaunay_svg`].
 ///
 /// ```
 /// use morpho::geom::Point2;
@@ -469,7 +469,7 @@ pub fn write_triangulation_3d(path: &Path, t: &json::Triangulation3, tets: bool)
 
 /// Writes a geometric graph of `points`: `.json` ([`json::write_graph`]) or `.ply`
 /// ([`ply::write_graph`], 2D points with z = 0). The SVG picture is
-/// [`crate::render::figures::graph_svg`].
+/// [`crate::render::graph_svg`].
 ///
 /// ```
 /// use morpho::geom::Point2;
@@ -492,7 +492,7 @@ pub fn write_graph(path: &Path, kind: Kind, points: &PointSet, g: &Graph) -> Res
 
 /// Writes a 2D boundary polygon through `points`: `.csv` ([`csv::write_boundary_2d`]),
 /// `.geojson` ([`geojson::write_boundary_2d`]) or `.json` ([`json::write_boundary_2d`]). The
-/// SVG picture is [`crate::render::figures::boundary_svg`].
+/// SVG picture is [`crate::render::boundary_svg`].
 ///
 /// ```
 /// use morpho::boundary::{boundary_2d, Options2};
@@ -537,7 +537,7 @@ pub fn write_boundary_3d(path: &Path, points: &[Point3], b: &Boundary3) -> Resul
 
 /// Writes a plane contour: `.geojson` ([`geojson::write_contour`]: its regions with the
 /// `threshold` and `below` that made them) or `.json` ([`json::write_contour_cycles`]). The
-/// SVG picture is [`crate::render::figures::contour_svg`].
+/// SVG picture is [`crate::render::contour_svg`].
 ///
 /// ```
 /// use morpho::contour::{contour_samples, SampleContour, SampleOptions};
