@@ -69,6 +69,28 @@ impl From<morpho::Error> for Failure {
     }
 }
 
+// f-rest families: their errors reach the CLI through `morpho::Error` (same message, same code)
+impl From<morpho::volume::VolumeError> for Failure {
+    fn from(e: morpho::volume::VolumeError) -> Self {
+        morpho::Error::from(e).into()
+    }
+}
+impl From<morpho::mesh::MeshError> for Failure {
+    fn from(e: morpho::mesh::MeshError) -> Self {
+        morpho::Error::from(e).into()
+    }
+}
+impl From<morpho::render::RenderError> for Failure {
+    fn from(e: morpho::render::RenderError) -> Self {
+        morpho::Error::from(e).into()
+    }
+}
+impl From<morpho::contour::ContourError> for Failure {
+    fn from(e: morpho::contour::ContourError) -> Self {
+        morpho::Error::from(e).into()
+    }
+}
+
 impl Failure {
     /// A usage error (exit 2).
     pub fn usage(msg: impl Into<String>) -> Self {

@@ -3,7 +3,7 @@
 //!
 //! `cargo bench -p morpho --bench contour`
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use morpho::contour::dual::simplex_neighbors;
+use morpho::contour::simplex_neighbors;
 use morpho::contour::{
     boundary_regions, classify, external_contour_with, rate_triangles, ContourOptions, Rating,
 };

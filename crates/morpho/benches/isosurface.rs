@@ -1,8 +1,8 @@
 //! Criterion benchmarks of `volume::isosurface` on a 96³ gyroid-like field (kept small so a run
 //! stays short on a shared machine; the 256³ peer comparison is `examples/bench_isosurface.rs`).
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use morpho::volume::isosurface::{isosurface, Method, NormalMethod, Options};
 use morpho::volume::Volume;
+use morpho::volume::{isosurface, IsoMethod, IsoOptions, NormalMethod};
 
 fn field(n: usize) -> Volume {
     let t = 4.0 * std::f64::consts::PI;
@@ -16,18 +16,18 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("isosurface 96^3 gyroid");
     g.sample_size(10);
     for (name, method, normals, topology) in [
-        ("decider", Method::Decider, NormalMethod::None, false),
+        ("decider", IsoMethod::Decider, NormalMethod::None, false),
         (
             "decider+zucker+topology",
-            Method::Decider,
+            IsoMethod::Decider,
             NormalMethod::ZuckerHummel,
             true,
         ),
-        ("tetra", Method::Tetra, NormalMethod::None, false),
-        ("lorensen", Method::Lorensen, NormalMethod::None, false),
+        ("tetra", IsoMethod::Tetra, NormalMethod::None, false),
+        ("lorensen", IsoMethod::Lorensen, NormalMethod::None, false),
     ] {
         for parallel in [false, true] {
-            let opts = Options {
+            let opts = IsoOptions {
                 level: 0.0,
                 method,
                 normals,

@@ -11,8 +11,8 @@
 //!   `VARIANT=name` runs only that option set; `REPS=k` repeats each run and reports the
 //!   minimum wall and CPU times.
 
-use morpho::volume::isosurface::{isosurface, Method, NormalMethod, Options};
 use morpho::volume::Volume;
+use morpho::volume::{isosurface, IsoMethod, IsoOptions, NormalMethod};
 use std::io::Write;
 use std::time::Instant;
 
@@ -80,31 +80,31 @@ fn main() {
     let variants = [
         (
             "decider_nonormals_notopo",
-            Method::Decider,
+            IsoMethod::Decider,
             NormalMethod::None,
             false,
         ),
         (
             "decider_central_notopo",
-            Method::Decider,
+            IsoMethod::Decider,
             NormalMethod::Central,
             false,
         ),
         (
             "decider_zucker_topo",
-            Method::Decider,
+            IsoMethod::Decider,
             NormalMethod::ZuckerHummel,
             true,
         ),
         (
             "tetra_nonormals_notopo",
-            Method::Tetra,
+            IsoMethod::Tetra,
             NormalMethod::None,
             false,
         ),
         (
             "lorensen_nonormals_notopo",
-            Method::Lorensen,
+            IsoMethod::Lorensen,
             NormalMethod::None,
             false,
         ),
@@ -124,7 +124,7 @@ fn main() {
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            let opts = Options {
+            let opts = IsoOptions {
                 level,
                 method,
                 normals,

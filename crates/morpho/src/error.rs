@@ -67,27 +67,81 @@ pub enum Error {
         source: crate::graphs::GraphError,
     },
     // --- end delaunay, graphs ---
+    // --- families of f-rest (volume, contour, mesh, render) ---
+    /// A volume or an isosurface request was refused ([`crate::volume`]).
+    #[error("{}{source}", prefix(path))]
+    Volume {
+        /// The file the volume came from (empty when none).
+        path: String,
+        /// What was refused.
+        #[source]
+        source: crate::volume::VolumeError,
+    },
+    /// A contour computation was refused ([`crate::contour`]).
+    #[error("{}{source}", prefix(path))]
+    Contour {
+        /// The file the samples came from (empty when none).
+        path: String,
+        /// What was refused.
+        #[source]
+        source: crate::contour::ContourError,
+    },
+    /// A mesh or point set was refused ([`crate::mesh`]).
+    #[error("{}{source}", prefix(path))]
+    Mesh {
+        /// The file the mesh came from (empty when none).
+        path: String,
+        /// What was refused.
+        #[source]
+        source: crate::mesh::MeshError,
+    },
+    /// A picture was refused ([`crate::render`]).
+    #[error("{}{source}", prefix(path))]
+    Render {
+        /// The file concerned (empty when none).
+        path: String,
+        /// What was refused.
+        #[source]
+        source: crate::render::RenderError,
+    },
+    // --- end f-rest ---
 }
 
-// --- delaunay, graphs (f-tri) ---
-impl From<crate::delaunay::DelaunayError> for Error {
-    fn from(source: crate::delaunay::DelaunayError) -> Self {
-        Error::Delaunay {
-            path: String::new(),
-            source,
+/// `From<FamilyError> for Error`: the family's variant with an empty path (filled by
+/// [`Error::with_path`]).
+macro_rules! from_family {
+    ($($family:ty => $variant:ident),* $(,)?) => {$(
+        impl From<$family> for Error {
+            fn from(source: $family) -> Self {
+                Error::$variant {
+                    path: String::new(),
+                    source,
+                }
+            }
+        }
+    )*};
+}
+
+from_family! {
+    crate::delaunay::DelaunayError => Delaunay,
+    crate::graphs::GraphError => Graph,
+    crate::volume::VolumeError => Volume,
+    crate::mesh::MeshError => Mesh,
+    crate::render::RenderError => Render,
+}
+
+impl From<crate::contour::ContourError> for Error {
+    fn from(source: crate::contour::ContourError) -> Self {
+        match source {
+            // a lower family's error keeps its own variant
+            crate::contour::ContourError::Lower(e) => *e,
+            source => Error::Contour {
+                path: String::new(),
+                source,
+            },
         }
     }
 }
-
-impl From<crate::graphs::GraphError> for Error {
-    fn from(source: crate::graphs::GraphError) -> Self {
-        Error::Graph {
-            path: String::new(),
-            source,
-        }
-    }
-}
-// --- end delaunay, graphs ---
 
 fn prefix(path: &str) -> String {
     if path.is_empty() {
@@ -160,7 +214,12 @@ impl Error {
             | Error::Unsupported { path, .. }
             // delaunay, graphs (f-tri)
             | Error::Delaunay { path, .. }
-            | Error::Graph { path, .. } => {
+            | Error::Graph { path, .. }
+            // f-rest families
+            | Error::Volume { path, .. }
+            | Error::Contour { path, .. }
+            | Error::Mesh { path, .. }
+            | Error::Render { path, .. } => {
                 if path.is_empty() {
                     *path = name;
                 }

@@ -62,6 +62,9 @@ pub mod internals {
         }
     }
     // --- end delaunay, graphs ---
+    // --- geom (f-rest): the exact fallbacks, checked against the adaptive predicates ---
+    pub use crate::geom::exact::{insphere_exact, insphere_sign, orient3d_exact, orient_sign};
+    // --- end f-rest ---
 }
 
 /// The library version.

@@ -33,6 +33,11 @@ const CHALICE_HALF: [[f64; 2]; 15] = [
 /// Points sampled from a closed chalice-like outline, in boundary order, with roughly uniform
 /// arc-length spacing. `jitter` displaces each point randomly by up to that fraction of the
 /// spacing (0 = exactly on the curve). The result has `n` points (n ≥ 8).
+///
+/// ```
+/// let p = morpho::samples::chalice_outline(200, 0.0, 1);
+/// assert_eq!(p.len(), 200);
+/// ```
 pub fn chalice_outline(n: usize, jitter: f64, seed: u64) -> Vec<Point2> {
     // closed control polygon: right half up to the cup rim, inner cup bottom, left half mirrored
     let mut ctrl: Vec<Point2> = Vec::new();
@@ -169,6 +174,12 @@ pub fn shepp_logan_volume(n: usize) -> Volume {
 }
 
 /// `n` points spread uniformly over the unit sphere (Fibonacci lattice), scaled by `r`.
+///
+/// ```
+/// let pts = morpho::samples::sphere_points(100, 2.0);
+/// assert_eq!(pts.len(), 100);
+/// assert!(pts.iter().all(|p| (p.coords.norm() - 2.0).abs() < 1e-12));
+/// ```
 pub fn sphere_points(n: usize, r: f64) -> Vec<Point3> {
     let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
     (0..n)
@@ -183,6 +194,13 @@ pub fn sphere_points(n: usize, r: f64) -> Vec<Point3> {
 
 /// A synthetic borehole field: `n` sample sites uniformly in [0, 1000]², each with a `value`
 /// column from three Gaussian "deposits" plus noise (values roughly 0..100).
+///
+/// ```
+/// let f = morpho::samples::borehole_field(50, 7);
+/// assert_eq!((f.len(), f.dim), (50, 2));
+/// assert!(f.column("value").is_some());
+/// assert_eq!(f, morpho::samples::borehole_field(50, 7)); // the seed fixes the field
+/// ```
 pub fn borehole_field(n: usize, seed: u64) -> PointSet {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let deposits = [
@@ -216,7 +234,7 @@ pub fn borehole_field(n: usize, seed: u64) -> PointSet {
 /// A non-degenerate Delaunay triangulation without a Hamilton cycle (V §5.4, Fig. 5.7, after
 /// Dillencourt 1987): 20 points whose Delaunay triangulation is two-connected (not
 /// three-connected) and non-Hamiltonian, so the γ-constriction of the Delaunay graph cannot reach
-/// every point and the §5.4 fallback (γ([-1,1],[c,1]), c < 0) is needed.
+/// every point and the §5.4 fallback (`γ([-1,1],[c,1])`, c < 0) is needed.
 ///
 /// Construction (our own, from first principles; Dillencourt's coordinates are not reproduced).
 /// Delaunay triangulations are 1-tough (Dillencourt, "Toughness and Delaunay triangulations",

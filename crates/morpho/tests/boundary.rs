@@ -489,7 +489,7 @@ fn check_3d(pts: &[Point3], b: &morpho::boundary::Boundary3) {
         b.intersections
     );
     let mesh = morpho::mesh::TriMesh::new(pts.to_vec(), b.triangles.clone());
-    let topo = morpho::mesh::topology::analyze(&mesh);
+    let topo = morpho::mesh::analyze_topology(&mesh);
     assert!(topo.consistently_oriented);
     assert!(mesh.signed_volume() > 0.0, "not oriented outward");
     assert!((mesh.signed_volume() - b.volume).abs() <= 1e-9 * b.volume.max(1.0));

@@ -14,7 +14,7 @@ fn assert_valid(pts: &[Point3], b: &Boundary3) {
     assert_eq!(b.genus, Some(0));
     assert!(b.intersections.is_empty(), "{:?}", b.intersections);
     let mesh = morpho::mesh::TriMesh::new(pts.to_vec(), b.triangles.clone());
-    let topo = morpho::mesh::topology::analyze(&mesh);
+    let topo = morpho::mesh::analyze_topology(&mesh);
     assert!(topo.consistently_oriented);
     assert!(mesh.signed_volume() > 0.0, "not oriented outward");
     assert_eq!(b.triangles.len(), 2 * topo.num_used_vertices - 4);

@@ -680,7 +680,7 @@ fn given_neighbors_and_clockwise_input() {
     let cw: Vec<[u32; 3]> = tri.iter().map(|&[a, b, c]| [a, c, b]).collect();
     let b = external_contour(&cw, &pts, &black).unwrap();
     assert_eq!(external_set(&a), external_set(&b));
-    let nb = morpho::contour::dual::simplex_neighbors(&tri, pts.len()).unwrap();
+    let nb = morpho::contour::simplex_neighbors(&tri, pts.len()).unwrap();
     let c =
         external_contour_with(&tri, Some(&nb), &pts, &black, &ContourOptions::default()).unwrap();
     assert_eq!(a, c);
@@ -1174,7 +1174,9 @@ fn random_delaunay_3d_match_oracle() {
 
 #[test]
 fn pipeline_and_geojson_on_meuse() {
-    use morpho::contour::pipeline::{finish_plane, select_samples, SampleOptions, Triangulation2};
+    use morpho::contour::{
+        contour_triangulated_2d, select_samples, SampleOptions, SampleTriangulation2,
+    };
     use morpho::io::geojson::contour_value as geojson_value;
     use morpho::mesh::{Column, PointSet};
     let file = std::path::Path::new(concat!(
@@ -1212,14 +1214,14 @@ fn pipeline_and_geojson_on_meuse() {
             holes,
             ..Default::default()
         };
-        let t = Triangulation2 {
+        let t = SampleTriangulation2 {
             points: &pts,
             vertex_of_input: &voi,
             input_of_vertex: &ioi,
             triangles: &tri,
             neighbors: None,
         };
-        let r = finish_plane(sel.clone(), t, &opts).unwrap();
+        let r = contour_triangulated_2d(sel.clone(), t, &opts).unwrap();
         assert_eq!(r.values[0], zinc[0] + 50.0);
         let mut vals = zinc.clone();
         vals[0] += 50.0;

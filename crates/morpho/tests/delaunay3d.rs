@@ -2,9 +2,9 @@
 
 use morpho::delaunay::{triangulate_3d, Delaunay3};
 use morpho::delaunay::{triangulate_nd, DelaunayD};
-use morpho::geom::exact::{insphere_exact, insphere_sign, orient3d_exact, orient_sign};
 use morpho::geom::Point3;
 use morpho::internals::delaunay as dd;
+use morpho::internals::{insphere_exact, insphere_sign, orient3d_exact, orient_sign};
 use morpho::util::NONE;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};

@@ -712,7 +712,7 @@ fn read_any(fmt: u8, b: &[u8]) {
         2 => off::read(b),
         _ => stl::read(b),
     }
-    .and_then(|m| m.validate().map(|_| m));
+    .and_then(|m| m.validate().map(|_| m).map_err(morpho::Error::from));
 }
 
 #[derive(Debug, Clone)]

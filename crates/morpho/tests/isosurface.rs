@@ -5,7 +5,7 @@
 
 use morpho::geom::Point3;
 use morpho::mesh::TriMesh;
-use morpho::volume::isosurface::{isosurface, IsoResult, Method, NormalMethod, Options};
+use morpho::volume::{isosurface, IsoMethod, IsoOptions, IsoResult, NormalMethod};
 use morpho::volume::{Axes, DType, Volume};
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
@@ -22,10 +22,10 @@ fn vol_from(dims: [usize; 3], data: Vec<f64>) -> Volume {
     .unwrap()
 }
 
-fn run(v: &Volume, level: f64, method: Method) -> IsoResult {
+fn run(v: &Volume, level: f64, method: IsoMethod) -> IsoResult {
     isosurface(
         v,
-        &Options {
+        &IsoOptions {
             level,
             method,
             ..Default::default()
@@ -194,7 +194,7 @@ fn all_256_configurations_give_valid_cell_pieces() {
         for rep in 0..3 {
             let vals = cube_values(cfg, &mut rng);
             let v = vol_from([2, 2, 2], vals.clone());
-            for method in [Method::Decider, Method::Tetra] {
+            for method in [IsoMethod::Decider, IsoMethod::Tetra] {
                 let r = run(&v, 0.0, method);
                 let m = &r.mesh;
                 if cfg == 0 || cfg == 255 {
@@ -230,7 +230,7 @@ fn all_256_configurations_give_valid_cell_pieces() {
                             .to_vec();
                         let cuts = (0..4).filter(|&k| pos[k] != pos[(k + 1) % 4]).count();
                         match method {
-                            Method::Decider => {
+                            IsoMethod::Decider => {
                                 assert_eq!(segs.len(), cuts / 2, "cfg {cfg} face {axis}/{side}");
                                 if cuts == 4 {
                                     // each segment joins two edges around one corner; that
@@ -292,7 +292,7 @@ fn fig_3_5_configuration() {
             + 2.0 * x * y * z
     };
     let v = Volume::from_fn([2, 2, 2], [0.0; 3], [1.0; 3], f);
-    let r = run(&v, 1.5, Method::Decider);
+    let r = run(&v, 1.5, IsoMethod::Decider);
     // one polygon of 8 contour points (two segments on each of the faces x=0 and x=1),
     // triangulated as a fan of 8 triangles around y_n on the line through the asymptotes'
     // intersection (0, 1/2, 1/2) of face x = 0 (Eqs. 3.10-3.11): t0 = (1.5-1.7)/(1.0-1.7) = 2/7
@@ -338,11 +338,11 @@ fn lorensen_leaves_a_hole_where_decider_and_tetra_do_not() {
     data[idx(1, 1, 0)] = -1.0;
     data[idx(1, 0, 1)] = -1.0;
     let v = vol_from([3, 2, 2], data);
-    let l = run(&v, 0.0, Method::Lorensen);
+    let l = run(&v, 0.0, IsoMethod::Lorensen);
     assert!(l.interior_holes > 0, "{l:?}");
     assert!(l.interior_boundary_edges > 0);
     assert!(check_watertight(&l.mesh, [2.0, 1.0, 1.0]).is_err());
-    for m in [Method::Decider, Method::Tetra] {
+    for m in [IsoMethod::Decider, IsoMethod::Tetra] {
         let r = run(&v, 0.0, m);
         assert_eq!(r.interior_holes, 0, "{m:?}");
         assert_eq!(r.interior_boundary_edges, 0, "{m:?}");
@@ -375,7 +375,7 @@ proptest! {
     ) {
         let v = random_volume([nx, ny, nz], seed, discrete);
         let hi = [(nx - 1) as f64, (ny - 1) as f64, (nz - 1) as f64];
-        for m in [Method::Decider, Method::Tetra] {
+        for m in [IsoMethod::Decider, IsoMethod::Tetra] {
             let r = run(&v, 0.0, m);
             prop_assert!(check_watertight(&r.mesh, hi).is_ok(), "{m:?}: {:?}", check_watertight(&r.mesh, hi));
             prop_assert_eq!(r.interior_holes, 0);
@@ -387,7 +387,7 @@ proptest! {
     #[test]
     fn random_cells_points_on_trilinear_level_set(vals in proptest::collection::vec(-1.0f64..1.0, 8), level in -0.5f64..0.5) {
         let v = vol_from([2, 2, 2], vals);
-        let r = run(&v, level, Method::Decider);
+        let r = run(&v, level, IsoMethod::Decider);
         let hi = [1.0; 3];
         prop_assert!(check_watertight(&r.mesh, hi).is_ok());
         let exact = r.mesh.positions.len() - r.centroid_fallbacks;
@@ -415,11 +415,11 @@ proptest! {
                 *s = f32::NAN;
             }
         }
-        for m in [Method::Decider, Method::Tetra, Method::Lorensen] {
-            let o = |parallel| Options { level: 0.0, method: m, parallel, ..Default::default() };
+        for m in [IsoMethod::Decider, IsoMethod::Tetra, IsoMethod::Lorensen] {
+            let o = |parallel| IsoOptions { level: 0.0, method: m, parallel, ..Default::default() };
             let r = isosurface(&v, &o(false)).unwrap();
             r.mesh.validate().unwrap();
-            if m != Method::Lorensen {
+            if m != IsoMethod::Lorensen {
                 prop_assert_eq!(r.interior_holes, 0);
                 prop_assert_eq!(r.non_manifold_edges, 0);
             }
@@ -435,7 +435,7 @@ fn large_random_volume_is_watertight() {
         for discrete in [false, true] {
             let v = random_volume(dims, seed, discrete);
             let hi = dims.map(|d| (d - 1) as f64);
-            for m in [Method::Decider, Method::Tetra] {
+            for m in [IsoMethod::Decider, IsoMethod::Tetra] {
                 let r = run(&v, 0.0, m);
                 check_watertight(&r.mesh, hi).unwrap();
                 assert_eq!(r.interior_holes, 0);
@@ -458,7 +458,7 @@ fn level_set_accuracy_on_random_rectilinear_volume() {
         c
     });
     v.axes = Axes::Coords(coords);
-    let r = run(&v, 0.1, Method::Decider);
+    let r = run(&v, 0.1, IsoMethod::Decider);
     assert!(r.fan_points > 0 || r.mesh.positions.len() > 50);
     let exact = r.mesh.positions.len()
         - if r.centroid_fallbacks > 0 {
@@ -489,7 +489,7 @@ fn euler_characteristic_of_closed_objects() {
         let b = sphere_field([0.5, 0.1, 0.0], 0.35)(x, y, z);
         a.max(b)
     });
-    for m in [Method::Decider, Method::Tetra, Method::Lorensen] {
+    for m in [IsoMethod::Decider, IsoMethod::Tetra, IsoMethod::Lorensen] {
         for (v, chi, parts) in [(&sphere, 2, 1), (&torus, 0, 1), (&two, 4, 2)] {
             let r = run(v, 0.0, m);
             assert_eq!(euler(&r.mesh), chi, "{m:?}");
@@ -500,7 +500,7 @@ fn euler_characteristic_of_closed_objects() {
             assert!(r.mesh.signed_volume() > 0.0);
             let fl = isosurface(
                 v,
-                &Options {
+                &IsoOptions {
                     level: 0.0,
                     method: m,
                     flip: true,
@@ -512,7 +512,7 @@ fn euler_characteristic_of_closed_objects() {
         }
     }
     // enclosed volume close to the sphere's
-    let r = run(&sphere, 0.0, Method::Decider);
+    let r = run(&sphere, 0.0, IsoMethod::Decider);
     let exact = 4.0 / 3.0 * std::f64::consts::PI * 0.8f64.powi(3);
     assert!((r.mesh.signed_volume() - exact).abs() / exact < 0.02);
 }
@@ -522,12 +522,12 @@ fn parallel_equals_serial() {
     let v = Volume::from_fn([15, 11, 29], [-1.0; 3], [1.0; 3], |x, y, z| {
         (3.0 * x).sin() * (2.0 * y).cos() + (4.0 * z).sin() * 0.7 + 0.1 * x * y
     });
-    for m in [Method::Decider, Method::Tetra, Method::Lorensen] {
+    for m in [IsoMethod::Decider, IsoMethod::Tetra, IsoMethod::Lorensen] {
         for normals in [NormalMethod::ZuckerHummel, NormalMethod::Mesh] {
-            if normals == NormalMethod::Mesh && m != Method::Decider {
+            if normals == NormalMethod::Mesh && m != IsoMethod::Decider {
                 continue;
             }
-            let o = |parallel| Options {
+            let o = |parallel| IsoOptions {
                 level: 0.05,
                 method: m,
                 normals,
@@ -548,7 +548,7 @@ fn parallel_equals_serial() {
             // without the topology pass: the same triangulation, no part labels
             let nt = isosurface(
                 &v,
-                &Options {
+                &IsoOptions {
                     topology: false,
                     ..o(true)
                 },
@@ -569,7 +569,7 @@ fn shared_vertices_no_duplicates() {
         [1.0; 3],
         sphere_field([0.1, 0.0, -0.1], 0.7),
     );
-    for m in [Method::Decider, Method::Tetra, Method::Lorensen] {
+    for m in [IsoMethod::Decider, IsoMethod::Tetra, IsoMethod::Lorensen] {
         let r = run(&v, 0.0, m);
         let mut k: Vec<[u64; 3]> = r
             .mesh
@@ -623,7 +623,7 @@ fn non_uniform_grid_sphere() {
         1.0 - (x * x + y * y + z * z)
     });
     for vol in [&v, &aniso] {
-        for m in [Method::Decider, Method::Tetra] {
+        for m in [IsoMethod::Decider, IsoMethod::Tetra] {
             let r = run(vol, 0.0, m);
             assert_eq!(euler(&r.mesh), 2);
             for p in &r.mesh.positions {
@@ -654,7 +654,7 @@ fn normal_methods_agree_on_a_sphere() {
         for flip in [false, true] {
             let r = isosurface(
                 &v,
-                &Options {
+                &IsoOptions {
                     level: 0.0,
                     normals: nm,
                     flip,
@@ -672,7 +672,7 @@ fn normal_methods_agree_on_a_sphere() {
     }
     let r = isosurface(
         &v,
-        &Options {
+        &IsoOptions {
             normals: NormalMethod::None,
             ..Default::default()
         },
@@ -693,7 +693,7 @@ fn nan_samples_are_skipped_without_holes() {
     v.data[i] = f32::NAN;
     let j = v.index(2, 2, 2);
     v.data[j] = f32::NAN;
-    for m in [Method::Decider, Method::Tetra, Method::Lorensen] {
+    for m in [IsoMethod::Decider, IsoMethod::Tetra, IsoMethod::Lorensen] {
         let r = run(&v, 0.0, m);
         assert_eq!(r.skipped_cells, 16);
         assert!(r.note.as_deref().unwrap_or("").contains("NaN"));
@@ -706,7 +706,7 @@ fn nan_samples_are_skipped_without_holes() {
     }
     // all NaN
     let w = Volume::new([2, 2, 2], [0.0; 3], [1.0; 3], vec![f32::NAN; 8]).unwrap();
-    let r = run(&w, 0.0, Method::Decider);
+    let r = run(&w, 0.0, IsoMethod::Decider);
     assert!(r.mesh.triangles.is_empty() && r.note.is_some());
 }
 
@@ -714,15 +714,15 @@ fn nan_samples_are_skipped_without_holes() {
 fn degenerate_volumes() {
     // flat volume: no cells
     let v = vol_from([5, 5, 1], vec![0.0; 25]);
-    let r = run(&v, 0.0, Method::Decider);
+    let r = run(&v, 0.0, IsoMethod::Decider);
     assert!(r.mesh.triangles.is_empty() && r.note.is_some());
     // constant volume equal to the level: perturbed above, no surface
     let v = vol_from([3, 3, 3], vec![1.0; 27]);
-    let r = run(&v, 1.0, Method::Decider);
+    let r = run(&v, 1.0, IsoMethod::Decider);
     assert!(r.mesh.triangles.is_empty());
     // level at the maximum: all samples >= level
     let v = random_volume([4, 4, 4], 5, true);
-    let r = run(&v, 2.0, Method::Tetra);
+    let r = run(&v, 2.0, IsoMethod::Tetra);
     assert!(r.mesh.triangles.is_empty() || r.boundary_edges == 0 || r.interior_holes == 0);
 }
 
@@ -733,10 +733,10 @@ fn largest_part_extraction() {
         let b = sphere_field([0.5, 0.1, 0.0], 0.3)(x, y, z);
         a.max(b)
     });
-    let r = run(&v, 0.0, Method::Decider);
+    let r = run(&v, 0.0, IsoMethod::Decider);
     assert_eq!(r.parts, 2);
-    let l = morpho::volume::isosurface::largest_part(&r.mesh).unwrap();
-    let big = morpho::volume::isosurface::extract_part(&r.mesh, l);
+    let l = morpho::volume::largest_part(&r.mesh).unwrap();
+    let big = morpho::volume::extract_part(&r.mesh, l);
     big.validate().unwrap();
     assert_eq!(euler(&big), 2);
     assert!(big.bbox().center()[0] < 0.0);
@@ -747,7 +747,7 @@ fn largest_part_extraction() {
 fn regression_fan_point_on_outer_face() {
     // Eq. 3.11 gave t0 = 1 exactly (integer data): the interior point fell on the volume's face.
     let v = random_volume([5, 5, 2], 387585, true);
-    let r = run(&v, 0.0, Method::Decider);
+    let r = run(&v, 0.0, IsoMethod::Decider);
     check_watertight(&r.mesh, [4.0, 4.0, 1.0]).unwrap();
     assert!(r.centroid_fallbacks > 0);
 }
@@ -776,7 +776,7 @@ fn ct_head_bone_surface_has_no_interior_holes() {
     }
     let v = Volume::new(n, [0.0; 3], [1.0, 1.0, 2.0], data).unwrap();
     let hi = [63.0, 63.0, 46.0];
-    for m in [Method::Decider, Method::Tetra] {
+    for m in [IsoMethod::Decider, IsoMethod::Tetra] {
         let r = run(&v, 120.0, m);
         assert!(r.mesh.triangles.len() > 2_000, "{}", r.mesh.triangles.len());
         assert_eq!(r.interior_holes, 0, "{m:?}");
@@ -785,7 +785,7 @@ fn ct_head_bone_surface_has_no_interior_holes() {
         assert!(r.parts >= 1);
     }
     // integer data hits the level exactly and has ambiguous faces: Lorensen shows holes
-    let l = run(&v, 120.0, Method::Lorensen);
+    let l = run(&v, 120.0, IsoMethod::Lorensen);
     assert!(l.interior_holes > 0);
     eprintln!(
         "CT crop: lorensen interior holes {}, boundary edges {}",
@@ -807,11 +807,11 @@ fn infinite_samples_give_finite_vertices() {
     v.data[j] = f32::NEG_INFINITY;
     let k = v.index(5, 5, 2);
     v.data[k] = f32::INFINITY; // next to the surface
-    for m in [Method::Decider, Method::Tetra, Method::Lorensen] {
+    for m in [IsoMethod::Decider, IsoMethod::Tetra, IsoMethod::Lorensen] {
         for nm in [NormalMethod::ZuckerHummel, NormalMethod::Mesh] {
             let r = isosurface(
                 &v,
-                &Options {
+                &IsoOptions {
                     level: 0.0,
                     method: m,
                     normals: nm,
@@ -826,7 +826,7 @@ fn infinite_samples_give_finite_vertices() {
                 .unwrap()
                 .iter()
                 .all(|n| n.iter().all(|c| c.is_finite())));
-            if m != Method::Lorensen {
+            if m != IsoMethod::Lorensen {
                 assert_eq!(r.interior_holes, 0);
             }
         }

@@ -3,15 +3,15 @@
 
 use morpho::geom::{Aabb2, Point2, Point3};
 use morpho::mesh::{Polygon, Polyline, Property, ScalarKind, Shapes2, TriMesh};
-use morpho::render::colormap::Colormap;
-use morpho::render::raster::{
-    render_mesh, render_mesh_stats, Projection, RenderOptions, Scalars, Shading, UpAxis,
-};
-use morpho::render::slice::{
+use morpho::render::Colormap;
+use morpho::render::Image;
+use morpho::render::{self, Fill, Stroke, Svg};
+use morpho::render::{
     middle, orthogonal_slices, slice_height_mesh, slice_image, Axis, SliceOptions, Upsample,
 };
-use morpho::render::svg::{self, Fill, Stroke, Svg};
-use morpho::render::Image;
+use morpho::render::{
+    render_mesh, render_mesh_stats, Projection, RenderOptions, Scalars, Shading, UpAxis,
+};
 use morpho::volume::Volume;
 use std::f64::consts::PI;
 
@@ -606,7 +606,7 @@ fn svg_counts_and_balance() {
     let pts: Vec<Point2> = (0..50)
         .map(|i| Point2::new((i as f64).cos() * i as f64, (i as f64 * 0.7).sin()))
         .collect();
-    let c = xml_check(&svg::points_svg(&pts));
+    let c = xml_check(&render::points_svg(&pts));
     assert_eq!(c["circle"], 50);
     assert_eq!(c["svg"], 1);
 
@@ -614,7 +614,7 @@ fn svg_counts_and_balance() {
         .map(|i| [i, i + 1, i + 2])
         .chain([[0, 1, 999]])
         .collect();
-    let c = xml_check(&svg::triangulation_svg(&pts, &tris));
+    let c = xml_check(&render::triangulation_svg(&pts, &tris));
     assert_eq!(c["path"], 48);
     assert_eq!(c["circle"], 50);
 
@@ -639,7 +639,7 @@ fn svg_counts_and_balance() {
             closed: false,
         }],
     };
-    let s = svg::polygon_svg(&shapes);
+    let s = render::polygon_svg(&shapes);
     let c = xml_check(&s);
     assert_eq!(c["path"], 2);
     assert!(s.contains("evenodd"));
@@ -819,7 +819,7 @@ fn slice_errors_nan_and_ranges() {
     v.data[i] = f32::NAN;
     let img = slice_image(&v, Axis::Z, 1, &grey_opts(Upsample::Bilinear)).unwrap();
     let c = img.get(1, 1);
-    assert_eq!([c[0], c[1], c[2]], morpho::render::colormap::MISSING);
+    assert_eq!([c[0], c[1], c[2]], morpho::render::MISSING);
     // Broken volume: error, not panic.
     let mut bad = v.clone();
     bad.data.pop();
@@ -1031,7 +1031,7 @@ fn pictures() {
             closed: false,
         }],
     };
-    std::fs::write(dir.join("polygon.svg"), svg::polygon_svg(&shapes)).unwrap();
+    std::fs::write(dir.join("polygon.svg"), render::polygon_svg(&shapes)).unwrap();
     let mut gp = Vec::new();
     for j in 0..8 {
         for i in 0..12 {
@@ -1051,7 +1051,7 @@ fn pictures() {
     }
     std::fs::write(
         dir.join("triangulation.svg"),
-        svg::triangulation_svg(&gp, &gt),
+        render::triangulation_svg(&gp, &gt),
     )
     .unwrap();
     let cols: Vec<[u8; 3]> = (0..gt.len())
@@ -1059,7 +1059,7 @@ fn pictures() {
         .collect();
     std::fs::write(
         dir.join("colored.svg"),
-        svg::colored_triangulation_svg(&gp, &gt, &cols),
+        render::colored_triangulation_svg(&gp, &gt, &cols),
     )
     .unwrap();
 
@@ -1125,8 +1125,7 @@ fn pictures() {
     );
     // Hamann Fig. 2.2: domain subdivision, q = 5, α = 1 (on the same function, x, y, z in [0, 39]).
     let cube = Volume::from_fn([40, 40, 40], [0.0; 3], [39.0; 3], f);
-    let dm = morpho::render::subdivision::domain_subdivision_mesh(&cube, [5, 5, 5], [1.0; 3], 4)
-        .unwrap();
+    let dm = morpho::render::domain_subdivision_mesh(&cube, [5, 5, 5], [1.0; 3], 4).unwrap();
     let dv = dm.vertex_prop("value").unwrap().values.clone();
     save(
         "subdivision.png",
@@ -1147,7 +1146,7 @@ fn pictures() {
     );
     // Hamann Fig. 2.5: the three sets of grid rectangles, alpha blended with t = 0.5.
     let small = Volume::from_fn([9, 9, 9], [0.0; 3], [39.0; 3], f);
-    let gm = morpho::render::subdivision::grid_planes_mesh(&small, [1, 1, 1]).unwrap();
+    let gm = morpho::render::grid_planes_mesh(&small, [1, 1, 1]).unwrap();
     let gv = gm.vertex_prop("value").unwrap().values.clone();
     save(
         "transparency.png",
@@ -1255,7 +1254,7 @@ mod props {
         fn svg_points_count(pts in prop::collection::vec((coord(), coord()), 0..40)) {
             let p: Vec<Point2> = pts.iter().map(|&(x, y)| Point2::new(x, y)).collect();
             let finite = p.iter().filter(|q| q.x.is_finite() && q.y.is_finite()).count();
-            let s = svg::points_svg(&p);
+            let s = render::points_svg(&p);
             let c = xml_check(&s);
             prop_assert_eq!(c.get("circle").copied().unwrap_or(0), finite);
             prop_assert!(!s.contains("NaN") && !s.contains("inf"));
@@ -1305,7 +1304,7 @@ fn figures_are_balanced_and_complete() {
     use morpho::delaunay::{triangulate_2d, triangulate_constrained_2d};
     use morpho::graphs::{graph_2d, Kind};
     use morpho::mesh::{Column, PointSet};
-    use morpho::render::figures::*;
+    use morpho::render::*;
     let pts = morpho::samples::chalice_outline(60, 0.2, 3);
     let n = pts.len();
     let d = triangulate_2d(&pts).unwrap();

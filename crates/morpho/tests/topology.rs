@@ -3,7 +3,7 @@
 //! /work/shared/data (section 2 of its README gives their counts).
 
 use morpho::geom::Point3;
-use morpho::mesh::topology::{analyze, orient_consistently, Topology};
+use morpho::mesh::{analyze_topology, orient_consistently, Topology};
 use morpho::mesh::{generate, TriMesh};
 use morpho::util::NONE;
 use proptest::prelude::*;
@@ -240,7 +240,7 @@ fn closed_surfaces_of_known_genus() {
         ("genus 6", generate::multi_torus(6), 6),
     ];
     for (name, m, g) in cases {
-        let t = analyze(&m);
+        let t = analyze_topology(&m);
         check_invariants(&m, &t);
         assert_eq!(t.euler_characteristic, 2 - 2 * g, "{name}");
         assert_eq!(t.genus(), Some(g), "{name}");
@@ -259,7 +259,7 @@ fn closed_surfaces_of_known_genus() {
 #[test]
 fn disk_and_annulus() {
     let m = generate::disk(4, 10);
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     check_invariants(&m, &t);
     assert_eq!((t.euler_characteristic, t.boundary_loops.len()), (1, 1));
     assert_eq!(t.genus(), Some(0));
@@ -280,7 +280,7 @@ fn disk_and_annulus() {
     assert!(area > 0.0);
 
     let m = generate::annulus(1.0, 2.0, 3, 12);
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     check_invariants(&m, &t);
     assert_eq!(t.euler_characteristic, 0);
     assert_eq!(t.boundary_loops.len(), 2);
@@ -301,7 +301,7 @@ fn two_disjoint_spheres() {
             [5.0, 0.0, 0.0],
         ),
     );
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     check_invariants(&m, &t);
     assert_eq!(t.parts.len(), 2);
     assert_eq!(t.euler_characteristic, 4);
@@ -311,14 +311,14 @@ fn two_disjoint_spheres() {
     assert_eq!(*t.part_of_triangle.last().unwrap(), 1);
     // A torus and a double torus: genus adds up.
     let m = merge(&generate::torus(2.0, 0.5, 8, 6), &generate::multi_torus(2));
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     assert_eq!((t.parts.len(), t.genus()), (2, Some(3)));
 }
 
 #[test]
 fn mobius_strip_is_not_orientable() {
     let mut m = generate::mobius(20, 2);
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     check_invariants(&m, &t);
     assert!(!t.orientable && !t.consistently_oriented);
     assert!(t.manifold);
@@ -343,7 +343,7 @@ fn two_tetrahedra_sharing_an_edge() {
             }
         }
     }
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     check_invariants(&m, &t);
     assert_eq!(t.non_manifold_edges, vec![[0, 1]]);
     assert_eq!(t.non_manifold_vertices, vec![0, 1]);
@@ -375,7 +375,7 @@ fn two_cones_sharing_a_tip() {
             }
         }
     }
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     check_invariants(&m, &t);
     assert_eq!(t.parts.len(), 2);
     assert_eq!(t.non_manifold_vertices, vec![0]);
@@ -396,7 +396,7 @@ fn two_cones_sharing_a_tip() {
             }
         }
     }
-    let t = analyze(&a);
+    let t = analyze_topology(&a);
     check_invariants(&a, &t);
     assert_eq!(t.parts.len(), 1);
     assert_eq!(t.non_manifold_vertices, vec![0]);
@@ -418,13 +418,13 @@ fn sphere_with_one_flipped_triangle() {
     let mut m = generate::icosphere(2);
     let vol = m.signed_volume();
     m.triangles[37].swap(0, 1);
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     check_invariants(&m, &t);
     assert!(!t.consistently_oriented && t.orientable && t.manifold);
     assert_eq!(t.genus(), Some(0));
     assert_eq!(t.num_directed_edge_conflicts, 3);
     assert_eq!(orient_consistently(&mut m).unwrap(), 1);
-    assert!(analyze(&m).consistently_oriented);
+    assert!(analyze_topology(&m).consistently_oriented);
     assert!((m.signed_volume() - vol).abs() < 1e-12);
     assert!(same_up_to_rotation(&m, &generate::icosphere(2)));
     // Already consistent: nothing to do.
@@ -454,7 +454,7 @@ fn same_up_to_rotation(a: &TriMesh, b: &TriMesh) -> bool {
 #[test]
 fn empty_mesh() {
     let m = TriMesh::default();
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     assert_eq!(
         t,
         Topology {
@@ -467,7 +467,7 @@ fn empty_mesh() {
     assert_eq!(t.genus(), Some(0));
     // Vertices but no triangles: none used.
     let m = TriMesh::new(vec![Point3::origin(); 3], vec![]);
-    assert_eq!(analyze(&m).num_used_vertices, 0);
+    assert_eq!(analyze_topology(&m).num_used_vertices, 0);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -523,7 +523,7 @@ proptest! {
 
     #[test]
     fn neighbours_parts_chi_match_brute_force(m in arb_mesh()) {
-        let t = analyze(&m);
+        let t = analyze_topology(&m);
         prop_assert_eq!(&t.neighbors, &brute_neighbors(&m));
         prop_assert_eq!(t.parts.len(), brute_parts(&m));
         prop_assert_eq!(t.euler_characteristic, brute_chi(&m));
@@ -544,7 +544,7 @@ proptest! {
         match orient_consistently(&mut o) {
             Ok(_) => {
                 prop_assert!(t.orientable);
-                let to = analyze(&o);
+                let to = analyze_topology(&o);
                 prop_assert!(to.consistently_oriented);
                 prop_assert_eq!(summary(&to), summary(&t));
             }
@@ -574,18 +574,18 @@ proptest! {
         use rand::seq::SliceRandom;
         use rand::{Rng, SeedableRng};
         let m = if use_random { random } else { generated(which) };
-        let base = analyze(&m);
+        let base = analyze_topology(&m);
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
         // Shuffle the triangle order.
         let mut s = m.clone();
         s.triangles.shuffle(&mut rng);
-        prop_assert_eq!(summary(&analyze(&s)), summary(&base));
+        prop_assert_eq!(summary(&analyze_topology(&s)), summary(&base));
         // Rotate each triangle's vertex order (keeps orientation).
         let mut r = m.clone();
         for t in r.triangles.iter_mut() {
             t.rotate_left(rng.gen_range(0..3));
         }
-        let tr = analyze(&r);
+        let tr = analyze_topology(&r);
         prop_assert_eq!(summary(&tr), summary(&base));
         prop_assert_eq!(tr.consistently_oriented, base.consistently_oriented);
         // Renumber the vertices.
@@ -600,7 +600,7 @@ proptest! {
         }
         // Next to non-manifold edges, boundary edges are paired by edge index, a choice that
         // renumbering may change: there only the number of boundary edges must agree.
-        let tp = analyze(&p);
+        let tp = analyze_topology(&p);
         let (mut a, mut b) = (summary(&tp), summary(&base));
         if !base.non_manifold_edges.is_empty() {
             a.3 = 0;
@@ -631,7 +631,7 @@ proptest! {
         }
         // Closed surfaces: the outward class is restored, so exactly the flipped ones change.
         prop_assert_eq!(orient_consistently(&mut m).unwrap(), flipped);
-        let t = analyze(&m);
+        let t = analyze_topology(&m);
         prop_assert!(t.consistently_oriented);
         prop_assert!(m.signed_volume() > 0.0);
     }
@@ -706,7 +706,7 @@ fn real_bunny_npm_closed_genus_0() {
         return;
     };
     assert_eq!((m.num_vertices(), m.num_triangles()), (1839, 3674));
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     check_invariants(&m, &t);
     assert!(t.is_closed() && t.manifold && t.consistently_oriented);
     assert_eq!(
@@ -723,7 +723,7 @@ fn real_rocker_arm_genus_1() {
         return;
     };
     assert_eq!((m.num_vertices(), m.num_triangles()), (10044, 20088));
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     assert!(t.is_closed() && t.manifold && t.consistently_oriented);
     assert_eq!((t.euler_characteristic, t.genus()), (0, Some(1)));
 }
@@ -733,7 +733,7 @@ fn real_fandisk_and_spot_genus_0() {
     for (name, nv, nt) in [("fandisk.obj", 6475, 12946), ("spot.obj", 2930, 5856)] {
         let Some(m) = read_obj(name) else { return };
         assert_eq!((m.num_vertices(), m.num_triangles()), (nv, nt), "{name}");
-        let t = analyze(&m);
+        let t = analyze_topology(&m);
         assert!(
             t.is_closed() && t.manifold && t.consistently_oriented,
             "{name}"
@@ -749,7 +749,7 @@ fn real_stanford_bunny_open() {
         return;
     };
     assert_eq!((m.num_vertices(), m.num_triangles()), (35947, 69451));
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     check_invariants_fast(&t);
     assert_eq!(t.num_used_vertices, 34834);
     assert_eq!(t.num_boundary_edges, 223);
@@ -788,7 +788,7 @@ fn real_dragon_non_manifold() {
         return;
     };
     assert_eq!((m.num_vertices(), m.num_triangles()), (5205, 11102));
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     check_invariants_fast(&t);
     assert_eq!(t.num_used_vertices, 5203);
     assert_eq!(t.non_manifold_edges.len(), 803);
@@ -809,7 +809,7 @@ fn real_horse_closed_genus_0_inward() {
     };
     assert_eq!((m.num_vertices(), m.num_triangles()), (48485, 96966));
     let t1 = std::time::Instant::now();
-    let t = analyze(&m);
+    let t = analyze_topology(&m);
     eprintln!("horse: read {:?}, analyze {:?}", t1 - t0, t1.elapsed());
     check_invariants_fast(&t);
     assert!(t.is_closed() && t.manifold && t.consistently_oriented);

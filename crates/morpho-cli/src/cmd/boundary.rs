@@ -27,7 +27,7 @@ use morpho::boundary::{
     boundary_2d, boundary_3d_with, check_polygon, CParam, Method, Options2, Options3,
 };
 use morpho::io;
-use morpho::render::figures;
+use morpho::render;
 use morpho::Error;
 use serde_json::json;
 use std::path::PathBuf;
@@ -155,7 +155,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let out = &args.output;
     report.time("write", || -> morpho::Result<()> {
         if ext == "svg" {
-            io::write_text(out, &figures::boundary_svg(&pts, &b))?;
+            io::write_text(out, &render::boundary_svg(&pts, &b))?;
         } else {
             io::write_boundary_2d(out, &pts, &b)?;
         }

@@ -15,7 +15,7 @@ use crate::Failure;
 use morpho::contour::{Rating, SampleContour, SampleOptions};
 use morpho::io::{self, Encoding, Format};
 use morpho::mesh::PointSet;
-use morpho::render::figures;
+use morpho::render;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -48,7 +48,7 @@ pub struct Args {
 
 /// Triangulates the samples (2D or 3D by their dimension), rates and contours them.
 fn contour_samples(samples: &PointSet, opts: &SampleOptions) -> morpho::Result<SampleContour> {
-    morpho::contour::samples::contour_samples(samples, opts)
+    morpho::contour::contour_samples(samples, opts).map_err(morpho::Error::from)
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
@@ -109,7 +109,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             report.set("cycles", r.contour.cycles.len());
             report.set("dropped", r.contour.dropped);
             report.time("write", || match fmt {
-                Format::Svg => io::write_text(out, &figures::contour_svg(r)),
+                Format::Svg => io::write_text(out, &render::contour_svg(r)),
                 _ => io::write_contour_2d(out, r, args.threshold, args.below),
             })?;
         }

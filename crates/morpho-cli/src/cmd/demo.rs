@@ -6,7 +6,7 @@
 use crate::report::Report;
 use crate::Failure;
 use morpho::io::html::{Entry, Section};
-use morpho::render::figures;
+use morpho::render;
 use morpho::Result;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -133,11 +133,7 @@ fn points_section(ctx: &Ctx) -> Result<Vec<Section>> {
     let ps = morpho::mesh::PointSet::from_points2(&pts);
     morpho::io::write_points(&ctx.path("chalice.csv"), &ps)?;
     s.files.push("chalice.csv".into());
-    write_svg(
-        ctx,
-        "chalice_points.svg",
-        &morpho::render::svg::points_svg(&pts),
-    )?;
+    write_svg(ctx, "chalice_points.svg", &morpho::render::points_svg(&pts))?;
     s.img("chalice_points.svg", "240 points (generated, seed 1)");
     let b = morpho::geom::bbox2(&pts);
     s.fig("points", pts.len());
@@ -162,11 +158,7 @@ fn delaunay_section(ctx: &Ctx) -> Result<Vec<Section>> {
         "Exact predicates with symbolic perturbation (the result does not depend on the input \
          order); the Voronoi diagram is the dual (Veltkamp §2.2.9).",
     );
-    write_svg(
-        ctx,
-        "chalice_delaunay.svg",
-        &figures::delaunay_svg(&d, true),
-    )?;
+    write_svg(ctx, "chalice_delaunay.svg", &render::delaunay_svg(&d, true))?;
     s.img(
         "chalice_delaunay.svg",
         "Delaunay (blue) and Voronoi (red, dashed)",
@@ -225,7 +217,7 @@ fn gamma_section(ctx: &Ctx) -> Result<Vec<Section>> {
         for (k, (kind, label)) in kinds.into_iter().enumerate() {
             let g = graph_2d(&p, kind)?;
             let name = format!("gamma_{si}_{k}.svg");
-            write_svg(ctx, &name, &figures::graph_svg(&p, &g, Some(&label)))?;
+            write_svg(ctx, &name, &render::graph_svg(&p, &g, Some(&label)))?;
             s.img(&name, &format!("{label}: {} edges", g.edges.len()));
             s.fig(&label, format!("{} edges", g.edges.len()));
         }
@@ -253,7 +245,7 @@ mod rand_pts {
 }
 
 fn mesh_figures(s: &mut Section, m: &morpho::mesh::TriMesh) {
-    let t = morpho::mesh::topology::analyze(m);
+    let t = morpho::mesh::analyze_topology(m);
     s.fig("vertices", m.num_vertices());
     s.fig("triangles", m.num_triangles());
     s.fig("parts", t.parts.len());
@@ -269,7 +261,7 @@ fn mesh_figures(s: &mut Section, m: &morpho::mesh::TriMesh) {
 }
 
 fn mesh_section(ctx: &Ctx) -> Result<Vec<Section>> {
-    use morpho::render::raster::{render_mesh, RenderOptions};
+    use morpho::render::{render_mesh, RenderOptions};
     let mut out = Vec::new();
     let mut s = Section::new(
         "A generated mesh: the double torus",
@@ -279,7 +271,7 @@ fn mesh_section(ctx: &Ctx) -> Result<Vec<Section>> {
     let opts = RenderOptions {
         azimuth_deg: 25.0,
         elevation_deg: 50.0,
-        shading: morpho::render::raster::Shading::Flat,
+        shading: morpho::render::Shading::Flat,
         ..Default::default()
     };
     render_mesh(&m, &opts).save_png(&ctx.path("double_torus.png"))?;
@@ -329,7 +321,7 @@ fn mesh_section(ctx: &Ctx) -> Result<Vec<Section>> {
 }
 
 fn volume_section(ctx: &Ctx) -> Result<Vec<Section>> {
-    use morpho::render::slice::{middle, orthogonal_slices, SliceOptions};
+    use morpho::render::{middle, orthogonal_slices, SliceOptions};
     let mut out = Vec::new();
     let v = morpho::samples::shepp_logan_volume(96);
     let mut s = Section::new(
@@ -351,7 +343,7 @@ fn volume_section(ctx: &Ctx) -> Result<Vec<Section>> {
             "volumes/cthead_8bit_256x256x99 (u8, spacing 1:1:2), orthogonal slices.",
         );
         let opts = SliceOptions {
-            colormap: morpho::render::colormap::Colormap::Greys,
+            colormap: morpho::render::Colormap::Greys,
             ..Default::default()
         };
         orthogonal_slices(&v, middle(&v), &opts)?.save_png(&ctx.path("cthead_slices.png"))?;
@@ -367,7 +359,7 @@ fn volume_section(ctx: &Ctx) -> Result<Vec<Section>> {
 }
 
 fn contour_section(ctx: &Ctx) -> Result<Vec<Section>> {
-    use morpho::contour::{contour_samples, pipeline::SampleOptions, SampleContour};
+    use morpho::contour::{contour_samples, SampleContour, SampleOptions};
     let mut out = Vec::new();
     let mut cases: Vec<(String, String, morpho::mesh::PointSet, SampleOptions, String)> = vec![(
         "Regions above a threshold: a synthetic borehole field".into(),
@@ -401,7 +393,7 @@ fn contour_section(ctx: &Ctx) -> Result<Vec<Section>> {
             continue;
         };
         let mut s = Section::new(&title, &text);
-        write_svg(ctx, &format!("{name}.svg"), &figures::contour_svg(&pc))?;
+        write_svg(ctx, &format!("{name}.svg"), &render::contour_svg(&pc))?;
         s.img(&format!("{name}.svg"), "black triangles and their contour");
         let gj = ctx.path(&format!("{name}.geojson"));
         morpho::io::write_contour_2d(&gj, &pc, opts.threshold, opts.below)?;
@@ -420,7 +412,7 @@ fn contour_section(ctx: &Ctx) -> Result<Vec<Section>> {
     Ok(out)
 }
 
-fn iso_figures(s: &mut Section, r: &morpho::volume::isosurface::IsoResult, dt: f64) {
+fn iso_figures(s: &mut Section, r: &morpho::volume::IsoResult, dt: f64) {
     s.fig("vertices", r.mesh.num_vertices());
     s.fig("triangles", r.mesh.num_triangles());
     s.fig("parts", r.parts);
@@ -433,14 +425,14 @@ fn iso_figures(s: &mut Section, r: &morpho::volume::isosurface::IsoResult, dt: f
 }
 
 fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
-    use morpho::render::raster::{render_mesh, RenderOptions, UpAxis};
-    use morpho::volume::isosurface::{isosurface, Method, Options};
+    use morpho::render::{render_mesh, RenderOptions, UpAxis};
+    use morpho::volume::{isosurface, IsoMethod, IsoOptions};
     let mut out = Vec::new();
     let v = morpho::samples::shepp_logan_volume(128);
     let t = Instant::now();
     let r = isosurface(
         &v,
-        &Options {
+        &IsoOptions {
             level: 0.1,
             ..Default::default()
         },
@@ -477,7 +469,7 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
         let t = Instant::now();
         let r = isosurface(
             &v,
-            &Options {
+            &IsoOptions {
                 level: 120.0,
                 ..Default::default()
             },
@@ -500,9 +492,9 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
         iso_figures(&mut s, &r, dt);
         let lor = isosurface(
             &v,
-            &Options {
+            &IsoOptions {
                 level: 120.0,
-                method: Method::Lorensen,
+                method: IsoMethod::Lorensen,
                 ..Default::default()
             },
         )?;
@@ -510,9 +502,9 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
         s.fig("Lorensen–Cline: interior holes", lor.interior_holes);
         let tet = isosurface(
             &v,
-            &Options {
+            &IsoOptions {
                 level: 120.0,
-                method: Method::Tetra,
+                method: IsoMethod::Tetra,
                 ..Default::default()
             },
         )?;
@@ -554,7 +546,7 @@ fn chalice_constriction(ctx: &Ctx) -> Result<Section> {
         write_svg(
             ctx,
             &name,
-            &figures::cycle_svg(&p, cyc, &format!("after {step} deletions"), 260.0),
+            &render::cycle_svg(&p, cyc, &format!("after {step} deletions"), 260.0),
         )?;
         s.img(
             &name,
@@ -606,7 +598,7 @@ fn three_methods_2d(ctx: &Ctx, path: &Path) -> Result<Section> {
         write_svg(
             ctx,
             &file,
-            &figures::cycle_svg(&pts, &b.polygon, name, 300.0),
+            &render::cycle_svg(&pts, &b.polygon, name, 300.0),
         )?;
         s.img(&file, name);
         s.fig(
@@ -624,7 +616,7 @@ fn three_methods_2d(ctx: &Ctx, path: &Path) -> Result<Section> {
 /// The 3D boundary through the vertices of the bunny scan, and the comparison methods.
 fn bunny_boundary(ctx: &Ctx, path: &Path) -> Result<Section> {
     use morpho::boundary::{boundary_3d, constrict3::Until, Method};
-    use morpho::render::raster::{render_mesh, RenderOptions, Shading};
+    use morpho::render::{render_mesh, RenderOptions, Shading};
     let m = morpho::io::read_mesh(path)?;
     let t = Instant::now();
     let b = boundary_3d(&m.positions, Until::All)?;
@@ -744,10 +736,10 @@ fn dillencourt_picture(
     polygon: &[u32],
     title: &str,
 ) -> String {
-    let labels: Vec<figures::PointLabel> = ["s0", "h1", "s1", "h2", "s2", "h3", "s3", "v", "w"]
+    let labels: Vec<render::PointLabel> = ["s0", "h1", "s1", "h2", "s2", "h3", "s3", "v", "w"]
         .iter()
         .enumerate()
-        .map(|(index, text)| figures::PointLabel {
+        .map(|(index, text)| render::PointLabel {
             index,
             text,
             // v and h3 (far right) are labelled on their left
@@ -758,7 +750,7 @@ fn dillencourt_picture(
             },
         })
         .collect();
-    figures::constriction_svg(p, graph, deleted, polygon, title, Some(7), &labels)
+    render::constriction_svg(p, graph, deleted, polygon, title, Some(7), &labels)
 }
 
 fn dillencourt_section(ctx: &Ctx) -> Result<Vec<Section>> {

@@ -9,7 +9,7 @@ use crate::report::Report;
 use crate::Failure;
 use morpho::graphs::{graph_2d, graph_3d, Kind};
 use morpho::io::{self, Format};
-use morpho::render::figures;
+use morpho::render;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -113,7 +113,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     report.time("write", || match fmt {
         Format::Json | Format::Ply => io::write_graph(out, kind, &pts, &g),
         Format::Svg if pts.dim == 2 => {
-            io::write_text(out, &figures::graph_svg(&pts.to_points2(), &g, None))
+            io::write_text(out, &render::graph_svg(&pts.to_points2(), &g, None))
         }
         Format::Svg => Err(morpho::Error::unsupported(
             "SVG pictures are for 2D graphs; write .ply or .json",

@@ -4,7 +4,7 @@
 use crate::report::Report;
 use crate::Failure;
 use morpho::io::{read_any, Data};
-use morpho::mesh::topology;
+use morpho::mesh::analyze_topology;
 use serde_json::json;
 use std::path::PathBuf;
 
@@ -75,7 +75,7 @@ fn check(data: &Data, report: &mut Report) -> (bool, Vec<String>) {
             report.set("not_simple", bad);
         }
         Data::Mesh(m) => {
-            let t = topology::analyze(m);
+            let t = analyze_topology(m);
             let closed = t.manifold && t.boundary_loops.is_empty() && !m.triangles.is_empty();
             let pos: Vec<[f64; 3]> = m.positions.iter().map(|p| [p.x, p.y, p.z]).collect();
             let hits = validity3::self_intersections(&pos, &m.triangles, 10);
@@ -172,7 +172,7 @@ fn describe(data: &Data, report: &mut Report) -> Vec<String> {
             out.push(format!("bbox: {}", fmt_bbox(&b.min, &b.max)));
         }
         Data::Mesh(m) => {
-            let t = topology::analyze(m);
+            let t = analyze_topology(m);
             let b = m.bbox();
             report.set("kind", "mesh");
             report.set("vertices", m.num_vertices());

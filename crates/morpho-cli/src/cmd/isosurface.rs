@@ -9,10 +9,8 @@ use crate::report::Report;
 use crate::Failure;
 use morpho::io::{self, Encoding};
 use morpho::mesh::TriMesh;
-use morpho::volume::isosurface::{
-    extract_part, isosurface, largest_part, Method, NormalMethod, Options,
-};
 use morpho::volume::Volume;
+use morpho::volume::{extract_part, isosurface, largest_part, IsoMethod, IsoOptions, NormalMethod};
 use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -108,14 +106,14 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     Ok(0)
 }
 
-/// Options from the arguments.
-pub fn options(args: &Args) -> Options {
-    Options {
+/// IsoOptions from the arguments.
+pub fn options(args: &Args) -> IsoOptions {
+    IsoOptions {
         level: args.level,
         method: match args.method {
-            MethodArg::Decider => Method::Decider,
-            MethodArg::Tetra => Method::Tetra,
-            MethodArg::Lorensen => Method::Lorensen,
+            MethodArg::Decider => IsoMethod::Decider,
+            MethodArg::Tetra => IsoMethod::Tetra,
+            MethodArg::Lorensen => IsoMethod::Lorensen,
         },
         normals: match args.normals {
             NormalsArg::Zucker => NormalMethod::ZuckerHummel,

@@ -12,14 +12,10 @@ use crate::report::Report;
 use crate::Failure;
 use morpho::io::{self, read_any, Data, Format};
 use morpho::mesh::{PointSet, TriMesh};
-use morpho::render::colormap::Colormap;
-use morpho::render::figures::{point_set_svg, PointsView};
-use morpho::render::legend;
-use morpho::render::raster::{
-    render_mesh_stats, Projection, RenderOptions, Scalars, Shading, UpAxis,
-};
-use morpho::render::slice::{self, Axis, SliceOptions, Upsample};
-use morpho::render::svg;
+use morpho::render::Colormap;
+use morpho::render::{self, Axis, SliceOptions, Upsample};
+use morpho::render::{point_set_svg, PointsView};
+use morpho::render::{render_mesh_stats, Projection, RenderOptions, Scalars, Shading, UpAxis};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -109,7 +105,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let colormap: Colormap = args
         .colormap
         .parse()
-        .map_err(|e: morpho::Error| Failure::usage(e.to_string()))?;
+        .map_err(|e: morpho::render::RenderError| Failure::usage(e.to_string()))?;
     let range = match &args.range {
         None => None,
         Some(s) => Some(parse_range(s)?),
@@ -128,7 +124,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             report.set("kind", "shapes");
             report.set("polygons", s.polygons.len());
             report.set("polylines", s.polylines.len());
-            let text = report.time("compute", || svg::polygon_svg(s));
+            let text = report.time("compute", || render::polygon_svg(s));
             write_svg(&args, &text, report)?;
         }
         (Data::Shapes(_), _) => {
@@ -167,12 +163,12 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                         size: Some(args.width),
                         ..opts
                     };
-                    report.time("compute", || slice::slice_image(v, axis, index, &opts))?
+                    report.time("compute", || render::slice_image(v, axis, index, &opts))?
                 }
                 None => {
-                    let mid = slice::middle(v);
+                    let mid = render::middle(v);
                     report.set("slice", serde_json::json!(mid));
-                    report.time("compute", || slice::orthogonal_slices(v, mid, &opts))?
+                    report.time("compute", || render::orthogonal_slices(v, mid, &opts))?
                 }
             };
             report.set("width", img.width);
@@ -205,7 +201,9 @@ fn parse_slice(s: &str, v: &morpho::volume::Volume) -> Result<(Axis, usize), Fai
     let (a, i) = s
         .split_once(',')
         .ok_or_else(|| bad("expected AXIS,INDEX such as z,10".into()))?;
-    let axis: Axis = a.parse().map_err(|e: morpho::Error| bad(e.to_string()))?;
+    let axis: Axis = a
+        .parse()
+        .map_err(|e: morpho::render::RenderError| bad(e.to_string()))?;
     let n = v.dims[axis.index()];
     let index = if i.trim() == "mid" {
         n / 2
@@ -351,7 +349,7 @@ fn mesh(
         // A colour bar below the picture when a property is shown.
         match (st.range, &args.color_by) {
             (Some((lo, hi)), Some(name)) if !args.no_legend => (
-                legend::with_colorbar(&img, colormap, lo, hi, Some(name)),
+                render::with_colorbar(&img, colormap, lo, hi, Some(name)),
                 st,
             ),
             _ => (img, st),
@@ -377,7 +375,7 @@ fn volume_view(
     range: Option<(f64, f64)>,
     report: &mut Report,
 ) -> Result<(), Failure> {
-    use morpho::render::subdivision::{domain_subdivision_mesh, grid_planes_mesh};
+    use morpho::render::{domain_subdivision_mesh, grid_planes_mesh};
     if !(0.0..=1.0).contains(&args.transparency) {
         return Err(Failure::usage("--transparency must be between 0 and 1"));
     }
@@ -417,7 +415,7 @@ fn volume_view(
         let (img, st) = render_mesh_stats(&m, &opts);
         match st.range {
             Some((lo, hi)) if !args.no_legend => {
-                legend::with_colorbar(&img, colormap, lo, hi, None)
+                render::with_colorbar(&img, colormap, lo, hi, None)
             }
             _ => img,
         }

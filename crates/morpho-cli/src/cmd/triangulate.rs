@@ -19,7 +19,7 @@ use crate::Failure;
 use morpho::delaunay::{self, triangulate_2d, triangulate_3d};
 use morpho::io::json::{Triangulation2, Triangulation3};
 use morpho::io::{self, Format};
-use morpho::render::figures;
+use morpho::render;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -118,7 +118,7 @@ fn run_2d(
     };
     let path = &args.output;
     report.time("write", || match fmt {
-        Format::Svg => io::write_text(path, &figures::delaunay_svg(&d, args.voronoi)),
+        Format::Svg => io::write_text(path, &render::delaunay_svg(&d, args.voronoi)),
         f if f == Format::Json || is_mesh(f) => io::write_triangulation_2d(path, &t),
         _ => Err(morpho::Error::unsupported(
             "triangulate writes .json, .svg, .ply, .obj, .off, .stl, .vtu or .vtk",
@@ -222,7 +222,7 @@ fn run_constrained(
     };
     let path = &args.output;
     report.time("write", || match fmt {
-        Format::Svg => io::write_text(path, &figures::cdt_svg(&c)),
+        Format::Svg => io::write_text(path, &render::cdt_svg(&c)),
         f if f == Format::Json || is_mesh(f) => io::write_triangulation_2d(path, &t),
         _ => Err(morpho::Error::unsupported(
             "triangulate writes .json, .svg, .ply, .obj, .off, .stl, .vtu or .vtk",

@@ -38,10 +38,16 @@
 //! positions. Triangles may be given in either orientation; zero-area triangles are refused.
 
 use super::dual::{check_indices, check_neighbors, simplex_neighbors, Dual};
+use super::ContourError;
 use super::{ring_area, Contour2, ContourOptions, Region2};
 use crate::geom::{orient2d, Point2};
 use crate::util::NONE;
-use crate::{Error, Result};
+use crate::Result;
+
+/// The refusal of a trace that found the triangulation broken.
+fn invalid(reason: &'static str) -> ContourError {
+    ContourError::InvalidTriangulation { reason }
+}
 use std::borrow::Cow;
 use std::collections::HashMap;
 
@@ -56,22 +62,20 @@ fn prepare<'a>(
     neighbors: Option<&'a [[u32; 3]]>,
     points: &[Point2],
     black: &[bool],
-) -> Result<Prepared<'a>> {
+) -> Result<Prepared<'a>, ContourError> {
     if black.len() != tri.len() {
-        return Err(Error::invalid(format!(
-            "{} colours for {} triangles",
-            black.len(),
-            tri.len()
-        )));
+        return Err(ContourError::ColourCount {
+            colours: black.len(),
+            simplices: tri.len(),
+            kind: "triangles",
+        });
     }
     check_indices(tri, points.len())?;
     if let Some(i) = points
         .iter()
         .position(|p| !(p.x.is_finite() && p.y.is_finite()))
     {
-        return Err(Error::invalid(format!(
-            "point {i} has a non-finite coordinate"
-        )));
+        return Err(ContourError::NonFinitePoint { index: i });
     }
     let mut flip = Vec::new();
     for (t, &[a, b, c]) in tri.iter().enumerate() {
@@ -81,7 +85,7 @@ fn prepare<'a>(
             &points[c as usize],
         );
         if o == 0.0 {
-            return Err(Error::invalid(format!("triangle {t} has zero area")));
+            return Err(ContourError::ZeroArea { triangle: t });
         }
         if o < 0.0 {
             flip.push(t);
@@ -123,7 +127,11 @@ fn pos(t: &[u32; 3], v: u32) -> Option<usize> {
 
 /// The external contour of a coloured triangulation (Fig. 4): one simple counter-clockwise cycle
 /// per black component. `black[t]` is the colour of triangle `t`.
-pub fn external_contour(tri: &[[u32; 3]], points: &[Point2], black: &[bool]) -> Result<Contour2> {
+pub fn external_contour(
+    tri: &[[u32; 3]],
+    points: &[Point2],
+    black: &[bool],
+) -> Result<Contour2, ContourError> {
     external_contour_with(tri, None, points, black, &ContourOptions::default())
 }
 
@@ -135,7 +143,7 @@ pub fn external_contour_with(
     points: &[Point2],
     black: &[bool],
     opts: &ContourOptions,
-) -> Result<Contour2> {
+) -> Result<Contour2, ContourError> {
     let p = prepare(tri, neighbors, points, black)?;
     // §3.1–3.4.
     let g = Dual::<3>::run(&p.nb, black);
@@ -192,7 +200,7 @@ fn contour_of_component(
     tri: &[[u32; 3]],
     g: &Dual<'_, 3>,
     visited: &mut [u8],
-) -> Result<Vec<Vec<u32>>> {
+) -> Result<Vec<Vec<u32>>, ContourError> {
     let mut cycles = Vec::new();
     for &u in marked {
         let u = u as usize;
@@ -212,7 +220,7 @@ fn trace(
     tri: &[[u32; 3]],
     g: &Dual<'_, 3>,
     visited: &mut [u8],
-) -> Result<Vec<u32>> {
+) -> Result<Vec<u32>, ContourError> {
     let mut cycle = Vec::new();
     let (mut t, mut k) = (t0, k0);
     loop {
@@ -224,13 +232,11 @@ fn trace(
         let mut j = (k + 1) % 3;
         while !g.is_contour_facet(t, j) {
             t = g.init[t][j] as usize;
-            let pb = pos(&tri[t], b).ok_or_else(|| Error::invalid("inconsistent neighbours"))?;
+            let pb = pos(&tri[t], b).ok_or(invalid("inconsistent neighbours"))?;
             j = (pb + 2) % 3;
             steps += 1;
             if steps > tri.len() {
-                return Err(Error::invalid(
-                    "triangulation is not a valid fan around a vertex",
-                ));
+                return Err(invalid("triangulation is not a valid fan around a vertex"));
             }
         }
         k = j;
@@ -238,7 +244,7 @@ fn trace(
             return Ok(cycle);
         }
         if visited[t] & (1 << k) != 0 || cycle.len() > 3 * tri.len() {
-            return Err(Error::invalid(
+            return Err(invalid(
                 "contour does not close (triangulation is not a valid planar triangulation)",
             ));
         }
@@ -255,7 +261,7 @@ pub fn boundary_regions(
     points: &[Point2],
     black: &[bool],
     opts: &ContourOptions,
-) -> Result<Contour2> {
+) -> Result<Contour2, ContourError> {
     let p = prepare(tri, neighbors, points, black)?;
     let (tri, nb) = (&*p.tri, &*p.nb);
     let n = tri.len();
@@ -326,14 +332,15 @@ pub fn boundary_regions(
             pair_around(b, t, tri, nb, &comp, &is_bd, inc[b as usize], &mut next_at)?;
         }
     }
-    let next = |h: u32| -> Result<u32> {
+    let next = |h: u32| -> Result<u32, ContourError> {
         let (t, k) = (h as usize / 3, h as usize % 3);
         let b = tri[t][(k + 2) % 3] as usize;
         match out_count[b] {
             1 => Ok(out_he[b]),
-            _ => next_at.get(&h).copied().ok_or_else(|| {
-                Error::invalid("boundary edge without successor (invalid triangulation)")
-            }),
+            _ => next_at
+                .get(&h)
+                .copied()
+                .ok_or_else(|| invalid("boundary edge without successor (invalid triangulation)")),
         }
     };
     // Trace rings.
@@ -351,9 +358,7 @@ pub fn boundary_regions(
             loop {
                 let (ht, hk) = (h as usize / 3, h as usize % 3);
                 if visited[ht] & (1 << hk) != 0 {
-                    return Err(Error::invalid(
-                        "boundary does not close (invalid triangulation)",
-                    ));
+                    return Err(invalid("boundary does not close (invalid triangulation)"));
                 }
                 visited[ht] |= 1 << hk;
                 ring.push(tri[ht][(hk + 1) % 3]);
@@ -386,7 +391,7 @@ pub fn boundary_regions(
             area += ring_area(&rings[r as usize], points);
             if ring_is_ccw(&rings[r as usize], points) {
                 if outer.is_some() {
-                    return Err(Error::invalid(
+                    return Err(invalid(
                         "two outer rings in one component (invalid triangulation)",
                     ));
                 }
@@ -395,7 +400,7 @@ pub fn boundary_regions(
                 holes.push(r);
             }
         }
-        let outer = outer.ok_or_else(|| Error::invalid("component without outer ring"))?;
+        let outer = outer.ok_or(invalid("component without outer ring"))?;
         if area < opts.min_area {
             out.dropped += 1;
             continue;
@@ -450,8 +455,8 @@ fn pair_around(
     is_bd: &dyn Fn(usize, usize) -> bool,
     incident: u32,
     next_at: &mut HashMap<u32, u32>,
-) -> Result<()> {
-    let bad = || Error::invalid("triangles around a vertex do not form one fan");
+) -> Result<(), ContourError> {
+    let bad = || invalid("triangles around a vertex do not form one fan");
     // Find the clockwise-most triangle (or detect a closed fan).
     let mut t = t_start;
     let mut steps = 0u32;

@@ -20,29 +20,34 @@
 //! `{u, v_ext}` is a flag on u, and deleting a vertex (with its edges) is a flag as well, so that
 //! every step keeps O(1) work per incidence.
 
+use super::ContourError;
 use crate::util::NONE;
-use crate::{Error, Result};
+use crate::Result;
 
 /// Checks that every index of `simplices` is below `n`.
-pub fn check_indices<const K: usize>(simplices: &[[u32; K]], n: usize) -> Result<()> {
+pub fn check_indices<const K: usize>(simplices: &[[u32; K]], n: usize) -> Result<(), ContourError> {
     if simplices.len() >= NONE as usize {
-        return Err(Error::invalid("too many simplices"));
+        return Err(ContourError::TooManySimplices {
+            count: simplices.len(),
+        });
     }
     for (s, simplex) in simplices.iter().enumerate() {
         for &v in simplex {
             if v as usize >= n {
-                return Err(Error::invalid(format!(
-                    "simplex {s} refers to vertex {v}, but there are only {n} vertices"
-                )));
+                return Err(ContourError::VertexOutOfRange {
+                    simplex: s,
+                    vertex: v,
+                    vertices: n,
+                });
             }
         }
         for i in 0..K {
             for j in i + 1..K {
                 if simplex[i] == simplex[j] {
-                    return Err(Error::invalid(format!(
-                        "simplex {s} repeats vertex {}",
-                        simplex[i]
-                    )));
+                    return Err(ContourError::RepeatedVertex {
+                        simplex: s,
+                        vertex: simplex[i],
+                    });
                 }
             }
         }
@@ -84,10 +89,18 @@ fn sorted_facet<const K: usize>(s: &[u32; K], i: usize) -> ([u32; 3], bool) {
 /// sharing the facet opposite corner `i` of `s`, or [`NONE`] on the hull. O(n + nverts) time by
 /// radix sort of the facets. Errors when a facet is shared by more than two simplices or by two
 /// simplices on the same side (inconsistent orientation or overlap).
+///
+/// ```
+/// use morpho::contour::simplex_neighbors;
+/// use morpho::util::NONE;
+/// // two counter-clockwise triangles sharing the edge 1–2 (opposite corner 0 of the first)
+/// let nb = simplex_neighbors(&[[0, 1, 2], [1, 3, 2]], 4).unwrap();
+/// assert_eq!(nb, vec![[1, NONE, NONE], [NONE, 0, NONE]]);
+/// ```
 pub fn simplex_neighbors<const K: usize>(
     simplices: &[[u32; K]],
     nverts: usize,
-) -> Result<Vec<[u32; K]>> {
+) -> Result<Vec<[u32; K]>, ContourError> {
     check_indices(simplices, nverts)?;
     let nf = simplices.len() * K;
     let key = |f: u32, d: usize| -> u32 {
@@ -131,21 +144,19 @@ pub fn simplex_neighbors<const K: usize>(
                 let f1 = order[i + 1] as usize;
                 let p1 = sorted_facet(&simplices[f1 / K], f1 % K).1;
                 if p0 == p1 {
-                    return Err(Error::invalid(format!(
-                        "simplices {} and {} lie on the same side of their common facet \
-                         (overlapping or inconsistently oriented)",
-                        f0 / K,
-                        f1 / K
-                    )));
+                    return Err(ContourError::SameSide {
+                        first: f0 / K,
+                        second: f1 / K,
+                    });
                 }
                 nb[f0 / K][f0 % K] = (f1 / K) as u32;
                 nb[f1 / K][f1 % K] = (f0 / K) as u32;
             }
             n => {
-                return Err(Error::invalid(format!(
-                    "a facet of simplex {} is shared by {n} simplices (not a manifold)",
-                    f0 / K
-                )))
+                return Err(ContourError::NonManifoldFacet {
+                    simplex: f0 / K,
+                    count: n,
+                })
             }
         }
         i = j;
@@ -155,11 +166,15 @@ pub fn simplex_neighbors<const K: usize>(
 
 /// Checks a given neighbour array against the simplices: right length, symmetric, and each pair
 /// really shares the facet. O(n).
-pub fn check_neighbors<const K: usize>(simplices: &[[u32; K]], nb: &[[u32; K]]) -> Result<()> {
+pub fn check_neighbors<const K: usize>(
+    simplices: &[[u32; K]],
+    nb: &[[u32; K]],
+) -> Result<(), ContourError> {
     if nb.len() != simplices.len() {
-        return Err(Error::invalid(
-            "neighbour array and simplices differ in length",
-        ));
+        return Err(ContourError::NeighbourCount {
+            neighbours: nb.len(),
+            simplices: simplices.len(),
+        });
     }
     for (s, row) in nb.iter().enumerate() {
         for (i, &t) in row.iter().enumerate() {
@@ -173,9 +188,10 @@ pub fn check_neighbors<const K: usize>(simplices: &[[u32; K]], nb: &[[u32; K]]) 
                             == sorted_facet(&simplices[s], i).0
                 });
             if !ok {
-                return Err(Error::invalid(format!(
-                    "neighbour {i} of simplex {s} is inconsistent with the simplices"
-                )));
+                return Err(ContourError::BadNeighbour {
+                    simplex: s,
+                    facet: i,
+                });
             }
         }
     }
@@ -228,7 +244,7 @@ impl<'a, const K: usize> Dual<'a, K> {
     }
 
     /// Number of neighbours of `u` in G, not counting `v_ext`.
-    #[inline]
+    #[cfg(test)]
     pub fn degree(&self, u: usize) -> usize {
         self.init[u]
             .iter()

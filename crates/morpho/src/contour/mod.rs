@@ -5,9 +5,9 @@
 //! The three phases of the paper's introduction:
 //! 1. *triangulation* — done by the caller (a Delaunay triangulation of the sample positions);
 //!    every function here takes the triangulation as input;
-//! 2. *rating* — [`rating`]: one number per triangle (mean, min, max, median or an area-weighted
+//! 2. *rating* — [`rate_triangles`], [`classify`]: one number per triangle (mean, min, max, median or an area-weighted
 //!    mean of the vertex values), black when it is above (or below) a threshold;
-//! 3. *contour* — [`dual`] and [`cycles`]: the coloured dual graph (§3.1), `extend` (§3.2),
+//! 3. *contour* — [`external_contour`]: the coloured dual graph (§3.1), `extend` (§3.2),
 //!    `hollow_out` (§3.3), `remove_v_ext` and the black components (§3.4), and
 //!    `contour_of_component` (§3.5 and the Appendix), all in O(n) time and memory.
 //!
@@ -37,14 +37,14 @@
 //! clockwise, each ring simple; rings of one polygon may touch at single vertices), and both
 //! functions can drop regions smaller than an area.
 //!
-//! In 3D ([`tet`]) the same steps on tetrahedra give the closed boundary surfaces of the black
+//! In 3D ([`external_surface`]) the same steps on tetrahedra give the closed boundary surfaces of the black
 //! components that are not enclosed by another, as outward-oriented triangles.
 //!
-//! [`pipeline`] runs rating, colouring and contour on rated samples given their triangulation
+//! [`contour_triangulated_2d`] and [`contour_triangulated_3d`] run rating, colouring and contour on rated samples given their triangulation
 //! (value column by name, samples without a value skipped, duplicates averaged);
 //! [`contour_samples`] puts the Delaunay triangulation in front. The results are written by
 //! [`crate::io::write_contour_2d`] (GeoJSON, a JSON list of cycles) and drawn by
-//! [`crate::render::figures::contour_svg`].
+//! [`crate::render::contour_svg`].
 //!
 //! ```
 //! use morpho::contour::external_contour;
@@ -61,17 +61,23 @@
 //! assert!(c.cycles.iter().all(|cy| cy.len() == 3 && cy.contains(&4)));
 //! ```
 
-pub mod cycles;
-pub mod dual;
-pub mod pipeline;
-pub mod rating;
-pub mod samples;
-pub mod tet;
-pub use samples::contour_samples;
+mod cycles;
+mod dual;
+mod error;
+mod pipeline;
+mod rating;
+mod samples;
+mod tet;
 
 pub use cycles::{boundary_regions, external_contour, external_contour_with};
-pub use pipeline::{PlaneContour, SampleContour, SampleOptions, SpaceContour};
+pub use dual::simplex_neighbors;
+pub use error::ContourError;
+pub use pipeline::{
+    contour_triangulated_2d, contour_triangulated_3d, select_samples, PlaneContour, SampleContour,
+    SampleOptions, SampleTriangulation2, SampleTriangulation3, SelectedSamples, SpaceContour,
+};
 pub use rating::{classify, rate_tetrahedra, rate_triangles, Rating};
+pub use samples::contour_samples;
 pub use tet::{external_surface, external_surface_with, Surface3};
 
 use crate::geom::Point2;
@@ -143,6 +149,14 @@ impl Contour2 {
 }
 
 /// Signed area of a ring of vertex indices (shoelace; positive when counter-clockwise).
+///
+/// ```
+/// use morpho::contour::ring_area;
+/// use morpho::geom::Point2;
+/// let p = [Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.0, 1.0)];
+/// assert_eq!(ring_area(&[0, 1, 2], &p), 0.5); // counter-clockwise
+/// assert_eq!(ring_area(&[0, 2, 1], &p), -0.5);
+/// ```
 pub fn ring_area(ring: &[u32], points: &[Point2]) -> f64 {
     let n = ring.len();
     let mut s = 0.0;

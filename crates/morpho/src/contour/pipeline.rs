@@ -4,13 +4,14 @@
 //! and compute the contour. The thin `contour_samples` (file `samples.rs`) adds the Delaunay
 //! triangulation in front. O(n) after the triangulation.
 
+use super::ContourError;
 use super::{
     boundary_regions, classify, external_contour_with, external_surface_with, rate_tetrahedra,
     rate_triangles, Contour2, ContourOptions, Rating, Surface3,
 };
 use crate::geom::{Point2, Point3};
 use crate::mesh::{Column, PointSet};
-use crate::{Error, Result};
+use crate::Result;
 
 /// What to compute from rated samples.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,7 +57,10 @@ pub struct SelectedSamples {
 }
 
 /// The value column: by name, else `value`, else the only column.
-pub fn value_column<'a>(samples: &'a PointSet, name: Option<&str>) -> Result<&'a Column> {
+pub fn value_column<'a>(
+    samples: &'a PointSet,
+    name: Option<&str>,
+) -> Result<&'a Column, ContourError> {
     let names = || {
         samples
             .columns
@@ -66,36 +70,34 @@ pub fn value_column<'a>(samples: &'a PointSet, name: Option<&str>) -> Result<&'a
             .join(", ")
     };
     match name {
-        Some(n) => samples
-            .column(n)
-            .ok_or_else(|| Error::invalid(format!("no column '{n}' (columns: {})", names()))),
+        Some(n) => samples.column(n).ok_or_else(|| ContourError::NoSuchColumn {
+            name: n.to_string(),
+            columns: names(),
+        }),
         None => {
             if let Some(c) = samples.column("value") {
                 Ok(c)
             } else if samples.columns.len() == 1 {
                 Ok(&samples.columns[0])
             } else if samples.columns.is_empty() {
-                Err(Error::invalid(
-                    "the samples have no value column (CSV header x,y,value or x,y,z,value)",
-                ))
+                Err(ContourError::NoValueColumn)
             } else {
-                Err(Error::invalid(format!(
-                    "several value columns; choose one with --value (columns: {})",
-                    names()
-                )))
+                Err(ContourError::SeveralValueColumns { columns: names() })
             }
         }
     }
 }
 
 /// Chooses the value column and keeps the samples whose value is finite.
-pub fn select_samples(samples: &PointSet, name: Option<&str>) -> Result<SelectedSamples> {
+pub fn select_samples(
+    samples: &PointSet,
+    name: Option<&str>,
+) -> Result<SelectedSamples, ContourError> {
     let col = value_column(samples, name)?;
     if col.values.len() != samples.len() {
-        return Err(Error::invalid(format!(
-            "column {} has the wrong length",
-            col.name
-        )));
+        return Err(ContourError::ColumnLength {
+            name: col.name.clone(),
+        });
     }
     let mut input = Vec::with_capacity(samples.len());
     let mut values = Vec::with_capacity(samples.len());
@@ -114,16 +116,24 @@ pub fn select_samples(samples: &PointSet, name: Option<&str>) -> Result<Selected
 }
 
 /// The value of each vertex: the mean of the values of the samples merged into it.
-pub fn vertex_values(nverts: usize, vertex_of_input: &[u32], values: &[f64]) -> Result<Vec<f64>> {
+pub fn vertex_values(
+    nverts: usize,
+    vertex_of_input: &[u32],
+    values: &[f64],
+) -> Result<Vec<f64>, ContourError> {
     if vertex_of_input.len() != values.len() {
-        return Err(Error::invalid("vertex map and values differ in length"));
+        return Err(ContourError::BadVertexMap {
+            reason: "vertex map and values differ in length",
+        });
     }
     let mut sum = vec![0.0; nverts];
     let mut cnt = vec![0u32; nverts];
     for (&v, &x) in vertex_of_input.iter().zip(values) {
         let v = v as usize;
         if v >= nverts {
-            return Err(Error::invalid("vertex map refers to a missing vertex"));
+            return Err(ContourError::BadVertexMap {
+                reason: "vertex map refers to a missing vertex",
+            });
         }
         sum[v] += x;
         cnt[v] += 1;
@@ -137,7 +147,7 @@ pub fn vertex_values(nverts: usize, vertex_of_input: &[u32], values: &[f64]) -> 
 
 /// A triangulation of the kept samples, as produced by a Delaunay triangulator.
 #[derive(Debug, Clone, Copy)]
-pub struct Triangulation2<'a> {
+pub struct SampleTriangulation2<'a> {
     pub points: &'a [Point2],
     pub vertex_of_input: &'a [u32],
     pub input_of_vertex: &'a [u32],
@@ -147,7 +157,7 @@ pub struct Triangulation2<'a> {
 
 /// A tetrahedrization of the kept samples.
 #[derive(Debug, Clone, Copy)]
-pub struct Triangulation3<'a> {
+pub struct SampleTriangulation3<'a> {
     pub points: &'a [Point3],
     pub vertex_of_input: &'a [u32],
     pub input_of_vertex: &'a [u32],
@@ -210,11 +220,11 @@ pub enum SampleContour {
 }
 
 /// Rating, colouring and contour phases on a triangulation of the selected samples.
-pub fn finish_plane(
+pub fn contour_triangulated_2d(
     selected: SelectedSamples,
-    tri: Triangulation2<'_>,
+    tri: SampleTriangulation2<'_>,
     opts: &SampleOptions,
-) -> Result<PlaneContour> {
+) -> Result<PlaneContour, ContourError> {
     let values = vertex_values(tri.points.len(), tri.vertex_of_input, &selected.values)?;
     let ratings = rate_triangles(tri.triangles, tri.points, &values, opts.rating)?;
     let black = classify(&ratings, opts.threshold, opts.below);
@@ -240,11 +250,11 @@ pub fn finish_plane(
 }
 
 /// Rating, colouring and contour phases on a tetrahedrization of the selected samples.
-pub fn finish_space(
+pub fn contour_triangulated_3d(
     selected: SelectedSamples,
-    tri: Triangulation3<'_>,
+    tri: SampleTriangulation3<'_>,
     opts: &SampleOptions,
-) -> Result<SpaceContour> {
+) -> Result<SpaceContour, ContourError> {
     let values = vertex_values(tri.points.len(), tri.vertex_of_input, &selected.values)?;
     let ratings = rate_tetrahedra(tri.tets, tri.points, &values, opts.rating)?;
     let black = classify(&ratings, opts.threshold, opts.below);
@@ -262,14 +272,16 @@ pub fn finish_space(
     })
 }
 
-fn map_vertices(input_of_vertex: &[u32], input: &[u32]) -> Result<Vec<u32>> {
+fn map_vertices(input_of_vertex: &[u32], input: &[u32]) -> Result<Vec<u32>, ContourError> {
     input_of_vertex
         .iter()
         .map(|&i| {
             input
                 .get(i as usize)
                 .copied()
-                .ok_or_else(|| Error::invalid("vertex refers to a missing sample"))
+                .ok_or(ContourError::BadVertexMap {
+                    reason: "vertex refers to a missing sample",
+                })
         })
         .collect()
 }
@@ -324,7 +336,7 @@ mod tests {
             Point2::new(0.0, 1.0),
             Point2::new(1.0, 1.0),
         ];
-        let tri = Triangulation2 {
+        let tri = SampleTriangulation2 {
             points: &pts,
             vertex_of_input: &[0, 1, 2, 2],
             input_of_vertex: &[0, 1, 2],
@@ -335,7 +347,7 @@ mod tests {
             threshold: 2.0,
             ..Default::default()
         };
-        let r = finish_plane(sel, tri, &opts).unwrap();
+        let r = contour_triangulated_2d(sel, tri, &opts).unwrap();
         assert_eq!(r.ratings, [3.0]);
         assert_eq!(r.contour.cycles.len(), 1);
         // Cycles in input indices: vertex 2 is sample 3 (the first of the duplicates).

@@ -7,8 +7,9 @@
 //! of the volume of its incident tetrahedra), so that an isolated sample counts more than one in
 //! a dense cluster. O(n) time.
 
+use super::ContourError;
 use crate::geom::{Point2, Point3};
-use crate::{Error, Result};
+use crate::Result;
 
 /// How a triangle (tetrahedron) is rated from its corner values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -27,8 +28,8 @@ pub enum Rating {
 }
 
 impl std::str::FromStr for Rating {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Self> {
+    type Err = ContourError;
+    fn from_str(s: &str) -> Result<Self, ContourError> {
         Ok(match s.to_ascii_lowercase().as_str() {
             "mean" => Rating::Mean,
             "min" => Rating::Min,
@@ -36,23 +37,23 @@ impl std::str::FromStr for Rating {
             "median" => Rating::Median,
             "area-mean" | "area_mean" | "areamean" => Rating::AreaMean,
             _ => {
-                return Err(Error::invalid(format!(
-                    "unknown rating '{s}' (use mean, min, max, median or area-mean)"
-                )))
+                return Err(ContourError::UnknownRating {
+                    name: s.to_string(),
+                })
             }
         })
     }
 }
 
-fn check_values(values: &[f64], n: usize) -> Result<()> {
+fn check_values(values: &[f64], n: usize) -> Result<(), ContourError> {
     if values.len() != n {
-        return Err(Error::invalid(format!(
-            "{} values for {n} vertices",
-            values.len()
-        )));
+        return Err(ContourError::ValueCount {
+            values: values.len(),
+            vertices: n,
+        });
     }
     if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-        return Err(Error::invalid(format!("value of sample {i} is not finite")));
+        return Err(ContourError::NonFiniteValue { index: i });
     }
     Ok(())
 }
@@ -89,12 +90,22 @@ fn rate<const K: usize>(corners: [f64; K], weights: Option<[f64; K]>, rating: Ra
 }
 
 /// Ratings of the triangles `tri` of `points` from the per-vertex `values`.
+///
+/// ```
+/// use morpho::contour::{classify, rate_triangles, Rating};
+/// use morpho::geom::Point2;
+/// let p = [Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.0, 1.0), Point2::new(1.0, 1.0)];
+/// let r = rate_triangles(&[[0, 1, 2], [1, 3, 2]], &p, &[0.0, 3.0, 6.0, 9.0], Rating::Mean).unwrap();
+/// assert_eq!(r, vec![3.0, 6.0]);
+/// assert_eq!(classify(&r, 4.0, false), vec![false, true]); // black above 4
+/// assert_eq!(classify(&r, 4.0, true), vec![true, false]); // black below 4
+/// ```
 pub fn rate_triangles(
     tri: &[[u32; 3]],
     points: &[Point2],
     values: &[f64],
     rating: Rating,
-) -> Result<Vec<f64>> {
+) -> Result<Vec<f64>, ContourError> {
     check_values(values, points.len())?;
     crate::contour::dual::check_indices(tri, points.len())?;
     Ok(rate_simplices(tri, points.len(), values, rating, |t| {
@@ -109,7 +120,7 @@ pub fn rate_tetrahedra(
     points: &[Point3],
     values: &[f64],
     rating: Rating,
-) -> Result<Vec<f64>> {
+) -> Result<Vec<f64>, ContourError> {
     check_values(values, points.len())?;
     crate::contour::dual::check_indices(tets, points.len())?;
     Ok(rate_simplices(tets, points.len(), values, rating, |t| {

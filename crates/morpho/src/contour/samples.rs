@@ -1,25 +1,45 @@
 //! `contour_samples`: the three phases of Dorgerloh et al. §1 on a point set with values —
 //! Delaunay triangulation (2D, or 3D for x, y, z samples, §3.7), rating and colouring, contour.
-//!
-//! integration: this file is not declared in `contour/mod.rs` yet because it uses
-//! `delaunay::d2::triangulate` and `delaunay::d3::triangulate`, which were stubs in the contour
-//! worktree. After merging the Delaunay branches, add `pub mod samples;` and
-//! `pub use samples::contour_samples;` to `contour/mod.rs`, and replace the body of
-//! `contour_samples` in `morpho-cli/src/cmd/contour.rs` by a call to this function.
 
 use super::pipeline::{
-    finish_plane, finish_space, select_samples, SampleContour, SampleOptions, Triangulation2,
-    Triangulation3,
+    contour_triangulated_2d, contour_triangulated_3d, select_samples, SampleContour, SampleOptions,
+    SampleTriangulation2, SampleTriangulation3,
 };
+use super::ContourError;
 use crate::delaunay::{d2, d3};
 use crate::geom::{Point2, Point3};
 use crate::mesh::PointSet;
 use crate::Result;
 
+/// A refusal of the Delaunay triangulation, kept whole inside the contour error.
+fn lower(e: impl Into<crate::Error>) -> ContourError {
+    ContourError::Lower(Box::new(e.into()))
+}
+
 /// Triangulates the samples (2D or 3D by `samples.dim`) and computes their contour. Samples
 /// without a value are skipped; samples at the same position share a vertex whose value is
 /// their mean. O(n log n) for the triangulation, O(n) after it.
-pub fn contour_samples(samples: &PointSet, opts: &SampleOptions) -> Result<SampleContour> {
+///
+/// ```
+/// use morpho::contour::{contour_samples, SampleContour, SampleOptions};
+/// use morpho::geom::Point2;
+/// use morpho::mesh::{Column, PointSet};
+/// // a 4 × 4 grid of samples, value 10 on the inner 2 × 2, 0 elsewhere
+/// let pts: Vec<Point2> = (0..16).map(|i| Point2::new((i % 4) as f64, (i / 4) as f64)).collect();
+/// let values = (0..16)
+///     .map(|i| if (1..3).contains(&(i % 4)) && (1..3).contains(&(i / 4)) { 10.0 } else { 0.0 })
+///     .collect();
+/// let mut samples = PointSet::from_points2(&pts);
+/// samples.columns.push(Column { name: "value".into(), values });
+/// let opts = SampleOptions { threshold: 5.0, ..Default::default() };
+/// let SampleContour::Plane(c) = contour_samples(&samples, &opts).unwrap() else { panic!() };
+/// assert_eq!(c.contour.cycles.len(), 1); // one black component, one external cycle
+/// assert_eq!(c.selected.skipped, 0);
+/// ```
+pub fn contour_samples(
+    samples: &PointSet,
+    opts: &SampleOptions,
+) -> Result<SampleContour, ContourError> {
     let sel = select_samples(samples, opts.value.as_deref())?;
     if samples.dim == 2 {
         let pts: Vec<Point2> = sel
@@ -30,15 +50,17 @@ pub fn contour_samples(samples: &PointSet, opts: &SampleOptions) -> Result<Sampl
                 Point2::new(p[0], p[1])
             })
             .collect();
-        let d = d2::triangulate(&pts)?;
-        let tri = Triangulation2 {
+        let d = d2::triangulate(&pts).map_err(lower)?;
+        let tri = SampleTriangulation2 {
             points: &d.points,
             vertex_of_input: &d.vertex_of_input,
             input_of_vertex: &d.input_of_vertex,
             triangles: &d.triangles,
             neighbors: Some(&d.neighbors),
         };
-        Ok(SampleContour::Plane(finish_plane(sel, tri, opts)?))
+        Ok(SampleContour::Plane(contour_triangulated_2d(
+            sel, tri, opts,
+        )?))
     } else {
         let pts: Vec<Point3> = sel
             .input
@@ -48,14 +70,16 @@ pub fn contour_samples(samples: &PointSet, opts: &SampleOptions) -> Result<Sampl
                 Point3::new(p[0], p[1], p[2])
             })
             .collect();
-        let d = d3::triangulate(&pts)?;
-        let tri = Triangulation3 {
+        let d = d3::triangulate(&pts).map_err(lower)?;
+        let tri = SampleTriangulation3 {
             points: &d.points,
             vertex_of_input: &d.vertex_of_input,
             input_of_vertex: &d.input_of_vertex,
             tets: &d.tets,
             neighbors: Some(&d.neighbors),
         };
-        Ok(SampleContour::Space(finish_space(sel, tri, opts)?))
+        Ok(SampleContour::Space(contour_triangulated_3d(
+            sel, tri, opts,
+        )?))
     }
 }

@@ -17,10 +17,11 @@
 //! two); either orientation is accepted, zero-volume tetrahedra are refused.
 
 use super::dual::{check_indices, check_neighbors, facet, simplex_neighbors, Dual};
+use super::ContourError;
 use crate::geom::{orient3d, Point3};
 use crate::mesh::{Property, ScalarKind, TriMesh};
 use crate::util::NONE;
-use crate::{Error, Result};
+use crate::Result;
 use std::borrow::Cow;
 
 /// The external boundary surfaces of the black components of a coloured tetrahedrization.
@@ -68,7 +69,24 @@ impl Surface3 {
 }
 
 /// The external surface of a coloured tetrahedrization; `black[t]` is the colour of tetrahedron t.
-pub fn external_surface(tets: &[[u32; 4]], points: &[Point3], black: &[bool]) -> Result<Surface3> {
+///
+/// ```
+/// use morpho::contour::external_surface;
+/// use morpho::geom::Point3;
+/// let p = [
+///     Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0),
+///     Point3::new(0.0, 1.0, 0.0), Point3::new(0.0, 0.0, 1.0),
+/// ];
+/// let s = external_surface(&[[0, 1, 2, 3]], &p, &[true]).unwrap();
+/// assert_eq!((s.triangles.len(), s.components), (4, 1));
+/// // outward oriented: the enclosed volume is positive
+/// assert!((s.to_trimesh(&p).signed_volume() - 1.0 / 6.0).abs() < 1e-12);
+/// ```
+pub fn external_surface(
+    tets: &[[u32; 4]],
+    points: &[Point3],
+    black: &[bool],
+) -> Result<Surface3, ContourError> {
     external_surface_with(tets, None, points, black)
 }
 
@@ -79,29 +97,27 @@ pub fn external_surface_with(
     neighbors: Option<&[[u32; 4]]>,
     points: &[Point3],
     black: &[bool],
-) -> Result<Surface3> {
+) -> Result<Surface3, ContourError> {
     if black.len() != tets.len() {
-        return Err(Error::invalid(format!(
-            "{} colours for {} tetrahedra",
-            black.len(),
-            tets.len()
-        )));
+        return Err(ContourError::ColourCount {
+            colours: black.len(),
+            simplices: tets.len(),
+            kind: "tetrahedra",
+        });
     }
     check_indices(tets, points.len())?;
     if let Some(i) = points
         .iter()
         .position(|p| !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite()))
     {
-        return Err(Error::invalid(format!(
-            "point {i} has a non-finite coordinate"
-        )));
+        return Err(ContourError::NonFinitePoint { index: i });
     }
     let mut flip = Vec::new();
     for (t, &[a, b, c, d]) in tets.iter().enumerate() {
         let p = |v: u32| &points[v as usize];
         let o = orient3d(p(a), p(b), p(c), p(d));
         if o == 0.0 {
-            return Err(Error::invalid(format!("tetrahedron {t} has zero volume")));
+            return Err(ContourError::ZeroVolume { tetrahedron: t });
         }
         if o < 0.0 {
             flip.push(t);

@@ -69,7 +69,7 @@ pub struct EnclosingBall {
 /// Smallest enclosing disc of `points` (Welzl). Err for empty input or non-finite coordinates.
 ///
 /// ```
-/// use morpho::geom::{enclosing::smallest_enclosing_disc, Point2};
+/// use morpho::geom::{smallest_enclosing_disc, Point2};
 /// let d = smallest_enclosing_disc(&[Point2::new(0.0, 0.0), Point2::new(2.0, 0.0), Point2::new(1.0, 0.5)]).unwrap();
 /// assert_eq!((d.center, d.radius), (Point2::new(1.0, 0.0), 1.0));
 /// assert_eq!(d.support, vec![0, 1]);
@@ -90,7 +90,7 @@ pub fn smallest_enclosing_disc(points: &[Point2]) -> Result<EnclosingDisc> {
 /// Smallest enclosing ball of `points` (Welzl). Err for empty input or non-finite coordinates.
 ///
 /// ```
-/// use morpho::geom::{enclosing::smallest_enclosing_ball, Point3};
+/// use morpho::geom::{smallest_enclosing_ball, Point3};
 /// let pts = [Point3::new(1.0, 0.0, 0.0), Point3::new(-1.0, 0.0, 0.0), Point3::new(0.0, 0.5, 0.5)];
 /// let b = smallest_enclosing_ball(&pts).unwrap();
 /// assert_eq!((b.center, b.radius), (Point3::origin(), 1.0));

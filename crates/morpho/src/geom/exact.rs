@@ -19,18 +19,6 @@
 //! perturbation stays with the triangulations whose vertex order defines it
 //! (`delaunay::d2::incircle_sos`, `delaunay::d3`, `delaunay::dd::perturbed_insphere`); their
 //! exact arithmetic comes from here.
-//!
-//! ```
-//! use morpho::geom::exact::{insphere_exact, orient3d_exact};
-//! // a tetrahedron at 1e-300, far below the range of the adaptive predicates' products
-//! let s = 1e-300;
-//! let (a, b, c, d) = ([0.0, 0.0, 0.0], [s, 0.0, 0.0], [0.0, s, 0.0], [0.0, 0.0, s]);
-//! assert!(orient3d_exact(a, b, c, d) < 0.0); // d above the counter-clockwise abc
-//! assert!(orient3d_exact(a, c, b, d) > 0.0);
-//! // the centroid is inside the circumsphere of the positive (a, c, b, d)
-//! let g = [s / 4.0, s / 4.0, s / 4.0];
-//! assert!(insphere_exact(a, c, b, d, g) > 0.0);
-//! ```
 
 use super::predicates::raw::{insphere, orient2d, orient3d};
 use num_bigint::{BigInt, Sign};
@@ -95,12 +83,6 @@ pub fn det_filter(m: &[f64], n: usize, lift_err: f64) -> Option<f64> {
 }
 
 /// `x = m · 2^e` exactly (the mantissa with its sign, and the exponent; subnormals included).
-///
-/// ```
-/// use morpho::geom::exact::float_parts;
-/// assert_eq!(float_parts(3.0), (3 << 51, -51));
-/// assert_eq!(float_parts(-0.5), (-(1 << 52), -53));
-/// ```
 pub fn float_parts(x: f64) -> (i64, i32) {
     let bits = x.to_bits();
     let neg = bits >> 63 != 0;
@@ -168,15 +150,7 @@ pub fn to_big_rows(q: &[&[f64]]) -> Vec<Vec<BigInt>> {
 }
 
 /// Exact sign (−1, 0, 1) of `orient(q_0 … q_d)` = det of rows `[q_i, 1]`; `q.len() == d + 1`,
-/// d ≤ [`MAX_DIM`]. For d = 2, 3 the sign of Shewchuk's `orient2d`/`orient3d`.
-///
-/// ```
-/// use morpho::geom::exact::orient_sign;
-/// let (a, b, c) = ([0.0, 0.0], [1.0, 0.0], [0.0, 1.0]);
-/// assert_eq!(orient_sign(&[&a, &b, &c]), 1); // counter-clockwise
-/// assert_eq!(orient_sign(&[&a, &c, &b]), -1);
-/// assert_eq!(orient_sign(&[&a, &b, &[2.0, 0.0]]), 0);
-/// ```
+/// d ≤ `MAX_DIM`. For d = 2, 3 the sign of Shewchuk's `orient2d`/`orient3d`.
 pub fn orient_sign(q: &[&[f64]]) -> i32 {
     let n = q.len();
     let d = n - 1;
@@ -204,7 +178,7 @@ pub fn orient_sign(q: &[&[f64]]) -> i32 {
 }
 
 /// Exact sign of `insphere(q_0 … q_{d+1})` = det of rows `[q_i, |q_i|², 1]`; positive when
-/// `q_{d+1}` is inside the sphere through the positively oriented `q_0 … q_d`; d ≤ [`MAX_DIM`].
+/// `q_{d+1}` is inside the sphere through the positively oriented `q_0 … q_d`; d ≤ `MAX_DIM`.
 pub fn insphere_sign(q: &[&[f64]]) -> i32 {
     let n = q.len();
     let d = n - 2;
@@ -348,13 +322,6 @@ pub fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
 
 /// The coordinates `xs` as integers after a common power-of-two scaling (flat; see
 /// [`to_big_rows`]).
-///
-/// ```
-/// use morpho::geom::exact::to_big_ints;
-/// let v = to_big_ints(&[0.5, -1.5, 0.0]);
-/// assert_eq!(v[1], -3 * &v[0]); // the same common factor for all
-/// assert_eq!(v[2], 0.into());
-/// ```
 pub fn to_big_ints(xs: &[f64]) -> Vec<BigInt> {
     to_big_rows(&[xs]).pop().unwrap_or_default()
 }
@@ -376,15 +343,6 @@ pub fn big_sign(x: &BigInt) -> i32 {
 /// `boundary`'s 3D γ-indicator sign (Veltkamp 1992, Eq. 5.2), for when its float filter is
 /// not certain; the polynomial is |d|²|n|² − d · (|c|² n × b + |b|² c × n) with
 /// b = j − i, c = k − i, d = l − i.
-///
-/// ```
-/// use morpho::geom::exact::diametral_side_exact;
-/// let (i, j, k) = ([0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
-/// // the diametral sphere has centre (1, 1, 0) and radius √2
-/// assert_eq!(diametral_side_exact(i, j, k, [1.0, 1.0, 1.0]), -1);
-/// assert_eq!(diametral_side_exact(i, j, k, [1.0, 1.0, 2.0]), 1);
-/// assert_eq!(diametral_side_exact(i, j, k, [2.0, 2.0, 0.0]), 0);
-/// ```
 pub fn diametral_side_exact(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3]) -> i32 {
     let v = to_big_ints(&[
         i[0], i[1], i[2], j[0], j[1], j[2], k[0], k[1], k[2], l[0], l[1], l[2],
@@ -455,14 +413,6 @@ pub fn incircle_i128(a: [i64; 2], b: [i64; 2], c: [i64; 2], d: [i64; 2]) -> i128
 /// non-finite `m`). Multiplying coordinates by it is exact (barring underflow of coordinates
 /// below 2⁻¹⁰²²·m), and it keeps Shewchuk's predicates — exact only while no intermediate
 /// result over- or underflows — valid at any absolute scale (1e-300 … 1e300).
-///
-/// ```
-/// use morpho::geom::exact::power_of_two_scale;
-/// let s = power_of_two_scale(3e300);
-/// assert!((0.5..2.0).contains(&(3e300 * s)));
-/// assert_eq!(s.log2().fract(), 0.0); // a power of two: the scaling is exact
-/// assert_eq!(power_of_two_scale(0.0), 1.0);
-/// ```
 pub fn power_of_two_scale(m: f64) -> f64 {
     if m == 0.0 || !m.is_finite() {
         return 1.0;
@@ -661,5 +611,61 @@ mod tests {
         }
         let big = to_big_ints(&[1e-310, 1.0]);
         assert!(big[0] > BigInt::from(0) && big[1] > big[0]);
+    }
+}
+
+/// The examples of this crate-private module (run as unit tests, since doc-tests only see
+/// the public API).
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn example_1() {
+        use crate::geom::exact::{insphere_exact, orient3d_exact};
+        // a tetrahedron at 1e-300, far below the range of the adaptive predicates' products
+        let s = 1e-300;
+        let (a, b, c, d) = ([0.0, 0.0, 0.0], [s, 0.0, 0.0], [0.0, s, 0.0], [0.0, 0.0, s]);
+        assert!(orient3d_exact(a, b, c, d) < 0.0); // d above the counter-clockwise abc
+        assert!(orient3d_exact(a, c, b, d) > 0.0);
+        // the centroid is inside the circumsphere of the positive (a, c, b, d)
+        let g = [s / 4.0, s / 4.0, s / 4.0];
+        assert!(insphere_exact(a, c, b, d, g) > 0.0);
+    }
+    #[test]
+    fn example_2() {
+        use crate::geom::exact::float_parts;
+        assert_eq!(float_parts(3.0), (3 << 51, -51));
+        assert_eq!(float_parts(-0.5), (-(1 << 52), -53));
+    }
+    #[test]
+    fn example_3() {
+        use crate::geom::exact::orient_sign;
+        let (a, b, c) = ([0.0, 0.0], [1.0, 0.0], [0.0, 1.0]);
+        assert_eq!(orient_sign(&[&a, &b, &c]), 1); // counter-clockwise
+        assert_eq!(orient_sign(&[&a, &c, &b]), -1);
+        assert_eq!(orient_sign(&[&a, &b, &[2.0, 0.0]]), 0);
+    }
+    #[test]
+    fn example_4() {
+        use crate::geom::exact::to_big_ints;
+        let v = to_big_ints(&[0.5, -1.5, 0.0]);
+        assert_eq!(v[1], -3 * &v[0]); // the same common factor for all
+        assert_eq!(v[2], 0.into());
+    }
+    #[test]
+    fn example_5() {
+        use crate::geom::exact::diametral_side_exact;
+        let (i, j, k) = ([0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]);
+        // the diametral sphere has centre (1, 1, 0) and radius √2
+        assert_eq!(diametral_side_exact(i, j, k, [1.0, 1.0, 1.0]), -1);
+        assert_eq!(diametral_side_exact(i, j, k, [1.0, 1.0, 2.0]), 1);
+        assert_eq!(diametral_side_exact(i, j, k, [2.0, 2.0, 0.0]), 0);
+    }
+    #[test]
+    fn example_6() {
+        use crate::geom::exact::power_of_two_scale;
+        let s = power_of_two_scale(3e300);
+        assert!((0.5..2.0).contains(&(3e300 * s)));
+        assert_eq!(s.log2().fract(), 0.0); // a power of two: the scaling is exact
+        assert_eq!(power_of_two_scale(0.0), 1.0);
     }
 }

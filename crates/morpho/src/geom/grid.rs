@@ -14,25 +14,6 @@
 //! number of cells bounded: a point set 1e-300 wide, 1e300 wide, with zero-extent axes, or with
 //! an extent that overflows (coordinates near ±f64::MAX) gets a positive finite cell and at
 //! most the allowed number of cells (in the last case a single cell).
-//!
-//! ```
-//! use morpho::geom::grid::{BoxGrid, PointGrid};
-//! let pts = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [5.0, 5.0]];
-//! let g = PointGrid::new(&pts, 1.0);
-//! let mut near = Vec::new();
-//! g.for_each_within([0.0, 0.0], 1.5, |i| {
-//!     near.push(i);
-//!     true
-//! });
-//! near.sort();
-//! assert_eq!(near, [0, 1, 2]);
-//!
-//! let mut b = BoxGrid::new([0.0; 3], 1.0, true);
-//! b.insert(7, [0.5, 0.5, 0.5], [2.5, 0.6, 0.7]);
-//! let mut out = Vec::new();
-//! b.query([2.0, 0.0, 0.0], [3.0, 1.0, 1.0], &mut out);
-//! assert_eq!(out, [7]);
-//! ```
 
 use crate::util::IdMap;
 use std::hash::{Hash, Hasher};
@@ -43,16 +24,6 @@ use std::hash::{Hash, Hasher};
 /// are at most `max_cells` cells. Always terminates (at the
 /// latest when the cell overflows to infinity, which leaves one cell per axis) and always
 /// returns at least one cell per axis; negative or NaN extents count as 0.
-///
-/// ```
-/// use morpho::geom::grid::fit_cells;
-/// let (cell, dims) = fit_cells([10.0, 0.0], 1.0, 100);
-/// assert_eq!((cell, dims), (1.0, [11, 1]));
-/// let (cell, dims) = fit_cells([1e300, 1e300], 1e-300, 1000);
-/// assert!(cell.is_finite() && dims[0] * dims[1] <= 1000);
-/// let (_, dims) = fit_cells([f64::INFINITY, 1.0], 1.0, 1000);
-/// assert_eq!(dims[0], 1);
-/// ```
 pub fn fit_cells<const D: usize>(ext: [f64; D], cell: f64, max_cells: usize) -> (f64, [usize; D]) {
     let ext = ext.map(|e| if e > 0.0 { e } else { 0.0 });
     let mut cell = if cell.is_finite() && cell > 0.0 {
@@ -180,16 +151,19 @@ impl<'a, const D: usize> PointGrid<'a, D> {
     }
 
     /// The cell size.
+    #[allow(dead_code)] // kernel API without a caller yet
     pub fn cell(&self) -> f64 {
         self.cell
     }
 
     /// The number of cells.
+    #[allow(dead_code)] // kernel API without a caller yet
     pub fn cell_count(&self) -> usize {
         self.start.len() - 1
     }
 
     /// The points of cell `cell`.
+    #[allow(dead_code)] // kernel API without a caller yet
     pub fn cell_items(&self, cell: usize) -> &[u32] {
         &self.items[self.start[cell] as usize..self.start[cell + 1] as usize]
     }
@@ -197,6 +171,7 @@ impl<'a, const D: usize> PointGrid<'a, D> {
     /// Calls `f(cell, d2)` for every cell meeting the box of half-width `r` around `c`, with
     /// `d2` the squared distance from `c` to the cell (0 inside); stops early when `f` returns
     /// false.
+    #[allow(dead_code)] // kernel API without a caller yet
     pub fn for_each_cell_near(&self, c: [f64; D], r: f64, mut f: impl FnMut(usize, f64) -> bool) {
         let mut a = [0usize; D];
         let mut b = [0usize; D];
@@ -960,5 +935,40 @@ mod tests {
         for c in [[0i64, 0, 0], [1, -2, 3], [i64::MIN, 7, i64::MAX]] {
             assert_eq!(s.hash_one(Cell(c)), s.hash_one((c[0], c[1], c[2])));
         }
+    }
+}
+
+/// The examples of this crate-private module (run as unit tests, since doc-tests only see
+/// the public API).
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn example_1() {
+        use crate::geom::grid::{BoxGrid, PointGrid};
+        let pts = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [5.0, 5.0]];
+        let g = PointGrid::new(&pts, 1.0);
+        let mut near = Vec::new();
+        g.for_each_within([0.0, 0.0], 1.5, |i| {
+            near.push(i);
+            true
+        });
+        near.sort();
+        assert_eq!(near, [0, 1, 2]);
+
+        let mut b = BoxGrid::new([0.0; 3], 1.0, true);
+        b.insert(7, [0.5, 0.5, 0.5], [2.5, 0.6, 0.7]);
+        let mut out = Vec::new();
+        b.query([2.0, 0.0, 0.0], [3.0, 1.0, 1.0], &mut out);
+        assert_eq!(out, [7]);
+    }
+    #[test]
+    fn example_2() {
+        use crate::geom::grid::fit_cells;
+        let (cell, dims) = fit_cells([10.0, 0.0], 1.0, 100);
+        assert_eq!((cell, dims), (1.0, [11, 1]));
+        let (cell, dims) = fit_cells([1e300, 1e300], 1e-300, 1000);
+        assert!(cell.is_finite() && dims[0] * dims[1] <= 1000);
+        let (_, dims) = fit_cells([f64::INFINITY, 1.0], 1.0, 1000);
+        assert_eq!(dims[0], 1);
     }
 }

@@ -1,20 +1,38 @@
-//! Geometry kernel: points, vectors, bounding boxes, exact predicates, enclosing balls.
+//! Geometry kernel: points, vectors, bounding boxes, exact predicates, intersection tests,
+//! enclosing balls.
 //!
 //! Following CGAL's kernel idea, *decisions* (which side, inside which circle) are made by the
-//! exact adaptive predicates of [`predicates`] and [`distance`], whose exact fallbacks
-//! (expansions, big integers, power-of-two rescaling) are in [`expansion`] and [`exact`];
-//! *constructions* (circumcentres, interpolated points) are ordinary `f64` arithmetic, on flat
-//! coordinates through [`vec`].
+//! exact adaptive predicates of [`predicates`] (and the crate's exact distance comparisons),
+//! whose exact fallbacks (expansions, big integers, power-of-two rescaling) live in crate-private
+//! modules; *constructions* (circumcentres, interpolated points) are ordinary `f64` arithmetic.
+//! The public surface is the point types, [`Aabb`], the predicates (also re-exported here:
+//! [`orient2d`], [`orient3d`], [`incircle`], [`insphere`]), the intersection tests of
+//! [`intersect`] and the smallest enclosing disc and ball.
+//!
+//! ```
+//! use morpho::geom::{orient2d, Point2};
+//! let (a, b) = (Point2::new(0.0, 0.0), Point2::new(1.0, 0.0));
+//! assert!(orient2d(&a, &b, &Point2::new(0.5, 1.0)) > 0.0); // left of a→b
+//! assert!(orient2d(&a, &b, &Point2::new(0.5, -1.0)) < 0.0); // right
+//! assert_eq!(orient2d(&a, &b, &Point2::new(7.0, 0.0)), 0.0); // exactly collinear
+//! ```
 
-pub mod distance;
-pub mod enclosing;
-pub mod exact;
-pub mod expansion;
-pub mod grid;
+pub(crate) mod distance;
+mod enclosing;
+pub(crate) mod exact;
+pub(crate) mod expansion;
+pub(crate) mod grid;
+/// Exact intersection tests of segments and triangles (2D and 3D): a namespace of its own because
+/// its names (`segments_intersect`, `triangles_intersect`, …) only make sense next to each other.
 pub mod intersect;
+/// The exact adaptive predicates, on [`Point2`]/[`Point3`] and (in [`predicates::raw`]) on flat
+/// `[f64; D]` coordinates: a namespace so that both flavours keep the classic names.
 pub mod predicates;
-pub mod vec;
+pub(crate) mod vec;
 
+pub use enclosing::{
+    smallest_enclosing_ball, smallest_enclosing_disc, EnclosingBall, EnclosingDisc,
+};
 pub use predicates::{incircle, insphere, orient2d, orient3d};
 
 /// A point in the plane.
@@ -105,6 +123,13 @@ pub fn bbox3(points: &[Point3]) -> Aabb3 {
 }
 
 /// Bounding box of 2D points.
+///
+/// ```
+/// use morpho::geom::{bbox2, Point2};
+/// let b = bbox2(&[Point2::new(1.0, 2.0), Point2::new(-1.0, 0.0)]);
+/// assert_eq!((b.min, b.max), ([-1.0, 0.0], [1.0, 2.0]));
+/// assert_eq!((b.center(), b.extent()), ([0.0, 1.0], [2.0, 2.0]));
+/// ```
 pub fn bbox2(points: &[Point2]) -> Aabb2 {
     let mut b = Aabb2::empty();
     for p in points {

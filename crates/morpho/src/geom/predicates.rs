@@ -35,12 +35,28 @@ pub fn orient2d(a: &Point2, b: &Point2, c: &Point2) -> f64 {
 }
 
 /// Six times the signed volume of (a, b, c, d) with exact sign: (a−d)·((b−d)×(c−d)).
+///
+/// ```
+/// use morpho::geom::{orient3d, Point3};
+/// let (a, b, c) = (Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.0, 0.0), Point3::new(0.0, 1.0, 0.0));
+/// assert!(orient3d(&a, &b, &c, &Point3::new(0.0, 0.0, 1.0)) < 0.0); // above the ccw a, b, c
+/// assert!(orient3d(&a, &b, &c, &Point3::new(0.0, 0.0, -1.0)) > 0.0);
+/// assert_eq!(orient3d(&a, &b, &c, &Point3::new(3.0, 7.0, 0.0)), 0.0); // coplanar
+/// ```
 #[inline]
 pub fn orient3d(a: &Point3, b: &Point3, c: &Point3, d: &Point3) -> f64 {
     robust::orient3d(c3(a), c3(b), c3(c), c3(d))
 }
 
 /// > 0 when d is strictly inside the circle through the counter-clockwise a, b, c; 0 when on it.
+///
+/// ```
+/// use morpho::geom::{incircle, Point2};
+/// let (a, b, c) = (Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.0, 1.0));
+/// assert!(incircle(&a, &b, &c, &Point2::new(0.5, 0.5)) > 0.0); // inside
+/// assert!(incircle(&a, &b, &c, &Point2::new(2.0, 2.0)) < 0.0); // outside
+/// assert_eq!(incircle(&a, &b, &c, &Point2::new(1.0, 1.0)), 0.0); // exactly on the circle
+/// ```
 #[inline]
 pub fn incircle(a: &Point2, b: &Point2, c: &Point2, d: &Point2) -> f64 {
     robust::incircle(c2(a), c2(b), c2(c), c2(d))

@@ -7,15 +7,6 @@
 //! — so replacing a local helper by one of these never changes a result. Decisions (signs,
 //! comparisons) are made by the exact predicates of [`super::predicates`] and
 //! [`super::distance`], never from these values.
-//!
-//! ```
-//! use morpho::geom::vec::{cross, dot, norm, sub};
-//! let (a, b, c) = ([0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 3.0, 0.0]);
-//! let n = cross(sub(b, a), sub(c, a));
-//! assert_eq!(n, [0.0, 0.0, 6.0]); // twice the triangle's area along z
-//! assert_eq!(dot(n, sub(b, a)), 0.0);
-//! assert_eq!(norm(n) / 2.0, 3.0);
-//! ```
 
 /// a − b.
 #[inline(always)]
@@ -25,18 +16,21 @@ pub fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
 
 /// a + b.
 #[inline(always)]
+#[allow(dead_code)] // kernel API without a caller yet
 pub fn add<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
     std::array::from_fn(|k| a[k] + b[k])
 }
 
 /// s · a.
 #[inline(always)]
+#[allow(dead_code)] // kernel API without a caller yet
 pub fn scale<const D: usize>(a: [f64; D], s: f64) -> [f64; D] {
     std::array::from_fn(|k| s * a[k])
 }
 
 /// a + s · b (one rounding per product and per sum, no fused multiply-add).
 #[inline(always)]
+#[allow(dead_code)] // kernel API without a caller yet
 pub fn add_scaled<const D: usize>(a: [f64; D], s: f64, b: [f64; D]) -> [f64; D] {
     std::array::from_fn(|k| a[k] + s * b[k])
 }
@@ -96,6 +90,7 @@ pub fn cross2(a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// The left normal (−a₁, a₀) of a 2D vector (a turned by +90°).
 #[inline(always)]
+#[allow(dead_code)] // kernel API without a caller yet
 pub fn perp(a: [f64; 2]) -> [f64; 2] {
     [-a[1], a[0]]
 }
@@ -115,6 +110,7 @@ pub fn dist_hypot(a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// a + t · (b − a): the point at parameter t on the line from a (t = 0) to b (t = 1).
 #[inline(always)]
+#[allow(dead_code)] // kernel API without a caller yet
 pub fn lerp<const D: usize>(a: [f64; D], b: [f64; D], t: f64) -> [f64; D] {
     std::array::from_fn(|k| a[k] + t * (b[k] - a[k]))
 }
@@ -122,6 +118,7 @@ pub fn lerp<const D: usize>(a: [f64; D], b: [f64; D], t: f64) -> [f64; D] {
 /// The midpoint (a + b) / 2, computed as ½a + ½b so that it does not overflow for huge
 /// coordinates (exact scaling by ½ unless a coordinate is subnormal).
 #[inline(always)]
+#[allow(dead_code)] // kernel API without a caller yet
 pub fn midpoint<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
     std::array::from_fn(|k| 0.5 * a[k] + 0.5 * b[k])
 }
@@ -135,6 +132,7 @@ pub fn triangle_area2(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
 /// The componentwise minimum and maximum of the points: their bounding box `(lo, hi)`
 /// (`lo > hi` everywhere for no points).
 #[inline]
+#[allow(dead_code)] // kernel API without a caller yet
 pub fn bounds<const D: usize>(points: &[[f64; D]]) -> ([f64; D], [f64; D]) {
     let mut lo = [f64::INFINITY; D];
     let mut hi = [f64::NEG_INFINITY; D];
@@ -201,5 +199,20 @@ mod tests {
         );
         let (lo, hi) = bounds(&[[1.0, 5.0], [-1.0, 2.0]]);
         assert_eq!((lo, hi), ([-1.0, 2.0], [1.0, 5.0]));
+    }
+}
+
+/// The examples of this crate-private module (run as unit tests, since doc-tests only see
+/// the public API).
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn example_1() {
+        use crate::geom::vec::{cross, dot, norm, sub};
+        let (a, b, c) = ([0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 3.0, 0.0]);
+        let n = cross(sub(b, a), sub(c, a));
+        assert_eq!(n, [0.0, 0.0, 6.0]); // twice the triangle's area along z
+        assert_eq!(dot(n, sub(b, a)), 0.0);
+        assert_eq!(norm(n) / 2.0, 3.0);
     }
 }

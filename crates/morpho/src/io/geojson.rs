@@ -450,8 +450,8 @@ mod tests {
 
     /// A square of two black triangles as a plane contour (zinc values).
     fn square_contour() -> PlaneContour {
-        use crate::contour::pipeline::{
-            finish_plane, SampleOptions, SelectedSamples, Triangulation2,
+        use crate::contour::{
+            contour_triangulated_2d, SampleOptions, SampleTriangulation2, SelectedSamples,
         };
         let pts = [p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0), p(0.0, 1.0)];
         let sel = SelectedSamples {
@@ -460,14 +460,14 @@ mod tests {
             values: vec![1.0, 1.0, 1.0, 1.0],
             skipped: 0,
         };
-        let tri = Triangulation2 {
+        let tri = SampleTriangulation2 {
             points: &pts,
             vertex_of_input: &[0, 1, 2, 3],
             input_of_vertex: &[0, 1, 2, 3],
             triangles: &[[0, 1, 2], [0, 2, 3]],
             neighbors: None,
         };
-        finish_plane(sel, tri, &SampleOptions::default()).unwrap()
+        contour_triangulated_2d(sel, tri, &SampleOptions::default()).unwrap()
     }
 
     #[test]

@@ -39,7 +39,7 @@ use std::sync::Mutex;
 
 /// The identity of an existing file: device and inode on Unix, the canonical path elsewhere.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct FileKey(Key);
+pub(crate) struct FileKey(Key);
 
 #[derive(Debug, Clone, PartialEq, Eq)]
 enum Key {
@@ -167,7 +167,7 @@ pub fn allow_data_outside_header_folder(allow: bool) {
 /// Opens `path` for reading: a regular file of at most [`super::MAX_FILE_BYTES`] bytes
 /// (anything else is an error naming it), remembered by the input guard when it is on.
 /// Returns the file and its length.
-pub fn open_input(path: &Path) -> Result<(std::fs::File, u64)> {
+pub(crate) fn open_input(path: &Path) -> Result<(std::fs::File, u64)> {
     let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
     check_regular(path, &meta)?;
     let f = open_no_block(path).map_err(|e| Error::io(path, e))?;
@@ -244,7 +244,7 @@ fn special_kind(_meta: &std::fs::Metadata) -> &'static str {
 /// The path of the data file `name` that the header `header` refers to: relative to the
 /// header's folder. An empty name, an absolute name or one whose `..` leaves the folder is
 /// refused (unless [`allow_data_outside_header_folder`]).
-pub fn data_file(header: &Path, name: &str) -> Result<PathBuf> {
+pub(crate) fn data_file(header: &Path, name: &str) -> Result<PathBuf> {
     let p = Path::new(name);
     let folder = match header.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),

@@ -217,9 +217,9 @@ pub fn write_boundary_3d(w: &mut dyn Write, b: &Boundary3) -> Result<()> {
 
 /// Why [`Boundary3::interior`] is empty although there is a surface: the general engine ran
 /// (its surface need not bound Delaunay tetrahedra), so the volume comes from the surface.
-pub const NO_INTERIOR_NOTE: &str = "no interior tetrahedralization after the augmented (c < 0) constriction; volume from the closed surface";
+pub(crate) const NO_INTERIOR_NOTE: &str = "no interior tetrahedralization after the augmented (c < 0) constriction; volume from the closed surface";
 
-/// [`NO_INTERIOR_NOTE`] when it applies to `b` (no interior tetrahedra, some triangles).
+/// `NO_INTERIOR_NOTE` when it applies to `b` (no interior tetrahedra, some triangles).
 pub fn interior_3d_note(b: &Boundary3) -> Option<&'static str> {
     (b.interior.is_empty() && !b.triangles.is_empty()).then_some(NO_INTERIOR_NOTE)
 }

@@ -301,7 +301,7 @@ fn header(v: &Volume, ty: Sample, data_file: &str) -> Result<String> {
     ))
 }
 
-/// The data file [`write`] creates beside the header `path`: the same name with `.raw`; `None`
+/// The data file [`write()`] creates beside the header `path`: the same name with `.raw`; `None`
 /// for `.mha`, which holds its data after the header.
 pub fn data_file(path: &Path) -> Option<std::path::PathBuf> {
     let local = path

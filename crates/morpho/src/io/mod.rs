@@ -24,8 +24,13 @@
 //! | 3D boundaries | [`write_boundary_3d`] | `.json`, mesh formats |
 //! | plane contours | [`write_contour_2d`] | `.geojson .json` |
 
+// One public module per format: each is a real namespace (`io::ply::read_tets`,
+// `io::nrrd::write`, `io::vtk::write_tets_vtu`, …) for format-specific readers, writers and
+// options; the functions of this module dispatch to them by extension.
 pub mod csv;
 pub mod geojson;
+/// What may be read and written (regular files, size caps, atomic replacement): a namespace
+/// because the CLI switches its policies on (`guard::protect_inputs`, …).
 pub mod guard;
 pub mod html;
 pub mod json;
@@ -174,7 +179,7 @@ pub fn unify_line_ends(bytes: &[u8]) -> std::borrow::Cow<'_, [u8]> {
 }
 
 /// Decompresses a gzip stream, refusing output larger than `limit` bytes.
-pub fn gunzip(bytes: &[u8], limit: u64) -> Result<Vec<u8>> {
+pub(crate) fn gunzip(bytes: &[u8], limit: u64) -> Result<Vec<u8>> {
     use std::io::Read;
     let mut out = Vec::new();
     flate2::read::MultiGzDecoder::new(bytes)
@@ -298,7 +303,8 @@ pub fn read_mesh(path: &Path) -> Result<TriMesh> {
         )),
     }
     .map_err(|e| e.with_path(path))?;
-    mesh.validate().map_err(|e| e.with_path(path))?;
+    mesh.validate()
+        .map_err(|e| Error::from(e).with_path(path))?;
     Ok(mesh)
 }
 
@@ -418,7 +424,7 @@ fn lifted(points: &[Point2], triangles: &[[u32; 3]]) -> TriMesh {
 
 /// Writes a 2D (constrained) triangulation: `.json` ([`json::write_triangulation_2d`]) or a
 /// mesh format ([`write_mesh`]: the triangles with z = 0, binary where there is a choice).
-/// The SVG picture is [`crate::render::figures::delaunay_svg`].
+/// The SVG picture is [`crate::render::delaunay_svg`].
 ///
 /// ```
 /// use morpho::geom::Point2;
@@ -491,7 +497,7 @@ pub fn write_triangulation_3d(path: &Path, t: &json::Triangulation3, tets: bool)
 
 /// Writes a geometric graph of `points`: `.json` ([`json::write_graph`]) or `.ply`
 /// ([`ply::write_graph`], 2D points with z = 0). The SVG picture is
-/// [`crate::render::figures::graph_svg`].
+/// [`crate::render::graph_svg`].
 ///
 /// ```
 /// use morpho::geom::Point2;
@@ -514,7 +520,7 @@ pub fn write_graph(path: &Path, kind: Kind, points: &PointSet, g: &Graph) -> Res
 
 /// Writes a 2D boundary polygon through `points`: `.csv` ([`csv::write_boundary_2d`]),
 /// `.geojson` ([`geojson::write_boundary_2d`]) or `.json` ([`json::write_boundary_2d`]). The
-/// SVG picture is [`crate::render::figures::boundary_svg`].
+/// SVG picture is [`crate::render::boundary_svg`].
 ///
 /// ```
 /// use morpho::boundary::{boundary_2d, Options2};
@@ -559,7 +565,7 @@ pub fn write_boundary_3d(path: &Path, points: &[Point3], b: &Boundary3) -> Resul
 
 /// Writes a plane contour: `.geojson` ([`geojson::write_contour`]: its regions with the
 /// `threshold` and `below` that made them) or `.json` ([`json::write_contour_cycles`]). The
-/// SVG picture is [`crate::render::figures::contour_svg`].
+/// SVG picture is [`crate::render::contour_svg`].
 ///
 /// ```
 /// use morpho::contour::{contour_samples, SampleContour, SampleOptions};
@@ -605,7 +611,7 @@ pub fn read_points(path: &Path) -> Result<PointSet> {
     if pts.is_empty() {
         return Err(Error::invalid("no points").with_path(path));
     }
-    pts.validate().map_err(|e| e.with_path(path))?;
+    pts.validate().map_err(|e| Error::from(e).with_path(path))?;
     Ok(pts)
 }
 
@@ -660,7 +666,7 @@ pub fn read_volume(path: &Path) -> Result<Volume> {
         )),
     }
     .map_err(|e| e.with_path(path))?;
-    v.validate().map_err(|e| e.with_path(path))?;
+    v.validate().map_err(|e| Error::from(e).with_path(path))?;
     Ok(v)
 }
 
@@ -707,7 +713,7 @@ pub fn read_any(path: &Path) -> Result<Data> {
         Format::Ply => {
             let bytes = read_bytes(path)?;
             let m = ply::read_mesh(&bytes).map_err(|e| e.with_path(path))?;
-            m.validate().map_err(|e| e.with_path(path))?;
+            m.validate().map_err(|e| Error::from(e).with_path(path))?;
             if m.triangles.is_empty() {
                 Ok(Data::Points(read_points(path)?))
             } else {

@@ -1295,6 +1295,18 @@ fn check_props(props: &[Property], reserved: &[&str], what: &str) -> Result<()> 
 }
 
 /// Writes a mesh with its normals and extra properties.
+///
+/// ```
+/// use morpho::io::{ply, Encoding};
+/// use morpho::mesh::generate;
+/// let m = generate::cube();
+/// for enc in [Encoding::Ascii, Encoding::BinaryLittleEndian, Encoding::BinaryBigEndian] {
+///     let mut bytes = Vec::new();
+///     ply::write_mesh(&mut bytes, &m, enc).unwrap();
+///     let back = ply::read_mesh(&bytes).unwrap();
+///     assert_eq!((back.positions, back.triangles), (m.positions.clone(), m.triangles.clone()));
+/// }
+/// ```
 pub fn write_mesh(w: &mut dyn Write, mesh: &TriMesh, enc: Encoding) -> Result<()> {
     mesh.validate()?;
     let has_normals = mesh.normals.is_some();

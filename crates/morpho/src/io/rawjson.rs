@@ -446,7 +446,7 @@ fn affine_origin(o: &Map<String, Value>) -> Option<([f64; 3], [f64; 3])> {
 /// True when a parsed JSON document looks like a volume sidecar (an object with one of the
 /// size keys `dims`, `dims_xyz`, `sizes`) — for dispatch in [`super::read_any`], which today
 /// only checks `dims` and so misses the shipped `*.json` sidecars (`dims_xyz`).
-pub fn is_sidecar(v: &Value) -> bool {
+pub(crate) fn is_sidecar(v: &Value) -> bool {
     v.as_object()
         .is_some_and(|o| get(o, &["dims", "dims_xyz", "sizes"]).is_some())
 }

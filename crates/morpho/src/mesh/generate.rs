@@ -278,6 +278,13 @@ pub fn annulus(r_inner: f64, r_outer: f64, n_rings: usize, n_sectors: usize) -> 
 
 /// A Möbius strip about the unit circle: `n_len ≥ 3` segments along, `n_width ≥ 1` across.
 /// Non-orientable, χ = 0, one boundary loop of 2·n_len edges.
+///
+/// ```
+/// use morpho::mesh::{analyze_topology, generate};
+/// let t = analyze_topology(&generate::mobius(12, 2));
+/// assert!(!t.orientable);
+/// assert_eq!(t.boundary_loops.len(), 1); // one boundary curve
+/// ```
 pub fn mobius(n_len: usize, n_width: usize) -> TriMesh {
     let (nu, nw) = (n_len.max(3), n_width.max(1));
     let mut pos = Vec::new();
@@ -325,6 +332,15 @@ pub fn tetrahedron() -> TriMesh {
 }
 
 /// The unit cube [0, 1]³: 8 vertices, 12 triangles, outward oriented.
+///
+/// ```
+/// use morpho::mesh::{analyze_topology, generate};
+/// let c = generate::cube();
+/// let t = analyze_topology(&c);
+/// assert!(t.is_closed() && t.consistently_oriented);
+/// assert_eq!((t.euler_characteristic, t.genus()), (2, Some(0)));
+/// assert!(c.signed_volume() > 0.0); // outward
+/// ```
 pub fn cube() -> TriMesh {
     voxel_surface([1, 1, 1], |_, _, _| true)
 }
@@ -332,12 +348,12 @@ pub fn cube() -> TriMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::topology::analyze;
+    use crate::mesh::analyze_topology;
 
     /// (χ, genus, boundary loops, parts) and the shared sanity checks.
     fn check(m: &TriMesh, chi: i64, genus: Option<i64>, loops: usize) {
         m.validate().unwrap();
-        let t = analyze(m);
+        let t = analyze_topology(m);
         assert_eq!(t.euler_characteristic, chi, "χ");
         assert_eq!(t.genus(), genus, "genus");
         assert_eq!(t.boundary_loops.len(), loops, "loops");
@@ -400,7 +416,7 @@ mod tests {
         assert_eq!(m.num_triangles(), 3);
         check(&m, 1, Some(0), 1);
         check(&disk(5, 12), 1, Some(0), 1);
-        let t = analyze(&disk(5, 12));
+        let t = analyze_topology(&disk(5, 12));
         assert_eq!(t.boundary_loops[0].len(), 12);
         check(&annulus(0.5, 1.0, 1, 3), 0, Some(0), 2);
         check(&annulus(0.5, 2.0, 4, 16), 0, Some(0), 2);
@@ -417,7 +433,7 @@ mod tests {
     fn mobius_strip() {
         for (n, w) in [(3, 1), (12, 3)] {
             let m = mobius(n, w);
-            let t = analyze(&m);
+            let t = analyze_topology(&m);
             assert_eq!(t.euler_characteristic, 0);
             assert_eq!(t.boundary_loops.len(), 1);
             assert_eq!(t.boundary_loops[0].len(), 2 * n);

@@ -3,11 +3,16 @@
 //! Storage is flat (`Vec<[u32; 3]>` for triangles) as in meshoptimizer; typed ids
 //! ([`VertexId`], [`TriId`]) are used where an index of one kind could be mistaken for another.
 
+mod error;
+/// Generated test surfaces (`generate::torus(…)`, `generate::cube()`, …): a namespace of its own
+/// so that the shape names do not crowd the mesh types.
 pub mod generate;
-pub mod topology;
+pub(crate) mod topology;
+
+pub use error::MeshError;
+pub use topology::{analyze_topology, orient_consistently, PartInfo, Topology};
 
 use crate::geom::{Aabb3, Point2, Point3, Vector3};
-use crate::{Error, Result};
 
 macro_rules! id_type {
     ($(#[$m:meta])* $name:ident) => {
@@ -133,46 +138,49 @@ impl TriMesh {
         ]
     }
     /// Checks the invariants: indices in range, finite coordinates, property lengths.
-    pub fn validate(&self) -> Result<()> {
+    pub fn validate(&self) -> Result<(), MeshError> {
         let n = self.positions.len();
         if n > u32::MAX as usize {
-            return Err(Error::invalid("more than 2^32-1 vertices"));
+            return Err(MeshError::TooManyVertices { vertices: n });
         }
         for (i, p) in self.positions.iter().enumerate() {
             if !(p.x.is_finite() && p.y.is_finite() && p.z.is_finite()) {
-                return Err(Error::invalid(format!(
-                    "vertex {i} has a non-finite coordinate"
-                )));
+                return Err(MeshError::NonFiniteVertex { vertex: i });
             }
         }
         for (t, tri) in self.triangles.iter().enumerate() {
             for &v in tri {
                 if v as usize >= n {
-                    return Err(Error::invalid(format!(
-                        "triangle {t} refers to vertex {v}, but there are only {n} vertices"
-                    )));
+                    return Err(MeshError::VertexOutOfRange {
+                        triangle: t,
+                        vertex: v,
+                        vertices: n,
+                    });
                 }
             }
         }
         if let Some(nr) = &self.normals {
             if nr.len() != n {
-                return Err(Error::invalid("normal count differs from vertex count"));
+                return Err(MeshError::NormalCount {
+                    normals: nr.len(),
+                    vertices: n,
+                });
             }
         }
         for p in &self.vertex_props {
             if p.values.len() != n {
-                return Err(Error::invalid(format!(
-                    "vertex property {} has the wrong length",
-                    p.name
-                )));
+                return Err(MeshError::PropertyLength {
+                    per: "vertex",
+                    name: p.name.clone(),
+                });
             }
         }
         for p in &self.face_props {
             if p.values.len() != self.triangles.len() {
-                return Err(Error::invalid(format!(
-                    "face property {} has the wrong length",
-                    p.name
-                )));
+                return Err(MeshError::PropertyLength {
+                    per: "face",
+                    name: p.name.clone(),
+                });
             }
         }
         Ok(())
@@ -243,6 +251,16 @@ pub struct Column {
 
 impl PointSet {
     /// Points from 2D positions.
+    ///
+    /// ```
+    /// use morpho::geom::Point2;
+    /// use morpho::mesh::{Column, PointSet};
+    /// let mut ps = PointSet::from_points2(&[Point2::new(0.0, 1.0), Point2::new(2.0, 3.0)]);
+    /// assert_eq!((ps.dim, ps.len()), (2, 2));
+    /// assert_eq!(ps.point(1), &[2.0, 3.0]);
+    /// ps.columns.push(Column { name: "v".into(), values: vec![1.0] });
+    /// assert_eq!(ps.validate().unwrap_err().to_string(), "column v has the wrong length");
+    /// ```
     pub fn from_points2(p: &[Point2]) -> Self {
         PointSet {
             dim: 2,
@@ -293,28 +311,26 @@ impl PointSet {
         self.columns.iter().find(|c| c.name == name)
     }
     /// Checks dim ∈ {2,3}, finite coordinates and column lengths.
-    pub fn validate(&self) -> Result<()> {
+    pub fn validate(&self) -> Result<(), MeshError> {
         if self.dim != 2 && self.dim != 3 {
-            return Err(Error::invalid(format!(
-                "points must be 2D or 3D, not {}D",
-                self.dim
-            )));
+            return Err(MeshError::Dimension { dim: self.dim });
         }
         if self.coords.len() % self.dim != 0 {
-            return Err(Error::invalid("coordinate count is not a multiple of dim"));
+            return Err(MeshError::CoordinateCount {
+                coords: self.coords.len(),
+                dim: self.dim,
+            });
         }
         if let Some(i) = self.coords.iter().position(|c| !c.is_finite()) {
-            return Err(Error::invalid(format!(
-                "point {} has a non-finite coordinate",
-                i / self.dim
-            )));
+            return Err(MeshError::NonFinitePoint {
+                point: i / self.dim,
+            });
         }
         for c in &self.columns {
             if c.values.len() != self.len() {
-                return Err(Error::invalid(format!(
-                    "column {} has the wrong length",
-                    c.name
-                )));
+                return Err(MeshError::ColumnLength {
+                    name: c.name.clone(),
+                });
             }
         }
         Ok(())

@@ -54,8 +54,11 @@
 //! allocated beyond O(n + V): a triangle with an index `>= positions.len()` is treated exactly
 //! like a degenerate triangle (listed in `degenerate_triangles`, otherwise ignored).
 
-use super::TriMesh;
+use super::{MeshError, TriMesh};
+
 use crate::util::NONE;
+/// The old path of [`analyze_topology`], still used by the boundary family.
+pub(crate) use analyze_topology as analyze;
 use std::collections::VecDeque;
 
 /// Figures of one connected part (triangles connected through shared edges).
@@ -335,46 +338,103 @@ fn flip_colouring(tris: &[[u32; 3]], nv: usize, twin: &[u32]) -> (Vec<u8>, Vec<u
 /// (no panic).
 ///
 /// ```
-/// use morpho::mesh::{generate, topology};
-/// let t = topology::analyze(&generate::torus(2.0, 0.5, 24, 12));
+/// use morpho::mesh::{analyze_topology, generate};
+/// let t = analyze_topology(&generate::torus(2.0, 0.5, 24, 12));
 /// assert_eq!((t.euler_characteristic, t.genus()), (0, Some(1)));
 /// ```
-pub fn analyze(mesh: &TriMesh) -> Topology {
+pub fn analyze_topology(mesh: &TriMesh) -> Topology {
     let tris = &mesh.triangles;
     let nt = tris.len();
     let nv = mesh.positions.len();
     let edges = Edges::build(tris, nv);
     let ne = edges.len();
-
     let degenerate_triangles: Vec<u32> = (0..nt as u32)
         .filter(|&t| is_degenerate(&tris[t as usize], nv))
         .collect();
+    let ep = edge_pass(tris, &edges);
+    let (part_of_triangle, mut parts) = label_parts(tris, nv, &edges, &ep.edge_inconsistent);
+    let vp = vertex_pass(tris, nv, &edges, &part_of_triangle, &mut parts);
+    let bd = trace_boundary(tris, &edges, &vp.partner, &part_of_triangle, &mut parts);
+    let boundary_loop_lengths = loop_lengths(mesh, &bd.boundary_loops);
+    orientability(tris, nv, &edges, &part_of_triangle, &mut parts);
 
-    // Neighbours (Alg. 3.1), non-manifold edges, orientation consistency.
-    let mut neighbors = vec![[NONE; 3]; nt];
-    let mut non_manifold_edges = Vec::new();
-    let mut num_boundary_edges = 0;
-    let mut num_directed_edge_conflicts = 0;
-    let mut edge_inconsistent = vec![false; ne];
+    let nfaces = nt - degenerate_triangles.len();
+    let manifold = ep.non_manifold_edges.is_empty()
+        && vp.non_manifold_vertices.is_empty()
+        && degenerate_triangles.is_empty();
+    Topology {
+        neighbors: ep.neighbors,
+        part_of_triangle,
+        consistently_oriented: parts.iter().all(|p| p.consistently_oriented),
+        orientable: parts.iter().all(|p| p.orientable),
+        parts,
+        boundary_loops: bd.boundary_loops,
+        boundary_loop_lengths,
+        part_of_loop: bd.part_of_loop,
+        open_boundary_chains: bd.open_boundary_chains,
+        non_manifold_edges: ep.non_manifold_edges,
+        non_manifold_vertices: vp.non_manifold_vertices,
+        degenerate_triangles,
+        num_boundary_edges: ep.num_boundary_edges,
+        num_directed_edge_conflicts: ep.num_directed_edge_conflicts,
+        num_edges: ne,
+        num_used_vertices: vp.num_used_vertices,
+        euler_characteristic: vp.num_used_vertices as i64 - ne as i64 + nfaces as i64,
+        manifold,
+    }
+}
+
+/// What [`edge_pass`] finds per edge.
+struct EdgePass {
+    neighbors: Vec<[u32; 3]>,
+    non_manifold_edges: Vec<[u32; 2]>,
+    num_boundary_edges: usize,
+    num_directed_edge_conflicts: usize,
+    /// Per edge: a manifold edge used twice in the same direction.
+    edge_inconsistent: Vec<bool>,
+}
+
+/// Neighbours (Alg. 3.1), non-manifold edges, orientation consistency: one pass over the edges.
+fn edge_pass(tris: &[[u32; 3]], edges: &Edges) -> EdgePass {
+    let ne = edges.len();
+    let mut r = EdgePass {
+        neighbors: vec![[NONE; 3]; tris.len()],
+        non_manifold_edges: Vec::new(),
+        num_boundary_edges: 0,
+        num_directed_edge_conflicts: 0,
+        edge_inconsistent: vec![false; ne],
+    };
     for e in 0..ne {
         let hs = edges.halves(e);
         let lo = (edges.key[e] >> 32) as u32;
         let forward = hs.iter().filter(|&&h| half_verts(tris, h).0 == lo).count();
         let backward = hs.len() - forward;
-        num_directed_edge_conflicts += (forward >= 2) as usize + (backward >= 2) as usize;
+        r.num_directed_edge_conflicts += (forward >= 2) as usize + (backward >= 2) as usize;
         match hs.len() {
-            1 => num_boundary_edges += 1,
+            1 => r.num_boundary_edges += 1,
             2 => {
                 let (a, b) = (hs[0], hs[1]);
-                neighbors[(a / 3) as usize][(a % 3) as usize] = b / 3;
-                neighbors[(b / 3) as usize][(b % 3) as usize] = a / 3;
-                edge_inconsistent[e] = forward != 1;
+                r.neighbors[(a / 3) as usize][(a % 3) as usize] = b / 3;
+                r.neighbors[(b / 3) as usize][(b % 3) as usize] = a / 3;
+                r.edge_inconsistent[e] = forward != 1;
             }
-            _ => non_manifold_edges.push([lo, edges.key[e] as u32]),
+            _ => r.non_manifold_edges.push([lo, edges.key[e] as u32]),
         }
     }
+    r
+}
 
-    // Parts (Def. 3.9; Alg. 3.2 done with union–find so that it is near-linear).
+/// Parts (Def. 3.9; Alg. 3.2 done with union–find so that it is near-linear): the part of each
+/// triangle ([`NONE`] for degenerate ones) and per part its triangle and edge counts, with
+/// `manifold` and `consistently_oriented` as far as edges tell.
+fn label_parts(
+    tris: &[[u32; 3]],
+    nv: usize,
+    edges: &Edges,
+    edge_inconsistent: &[bool],
+) -> (Vec<u32>, Vec<PartInfo>) {
+    let nt = tris.len();
+    let ne = edges.len();
     let mut dsu = Dsu::new(nt);
     for e in 0..ne {
         let hs = edges.halves(e);
@@ -420,9 +480,12 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
             p.consistently_oriented = false;
         }
     }
+    (part_of_triangle, parts)
+}
 
-    // Corner table by vertex (counting sort): corners of v are corner[cstart[v]..cstart[v+1]],
-    // each a half-edge index 3t + k with tris[t][k] == v.
+/// Corner table by vertex (counting sort): corners of v are `corner[cstart[v]..cstart[v+1]]`,
+/// each a half-edge index 3t + k with `tris[t][k] == v`. Degenerate triangles are left out.
+fn corners_by_vertex(tris: &[[u32; 3]], nv: usize) -> (Vec<u32>, Vec<u32>) {
     let mut cstart = vec![0u32; nv + 1];
     for tri in tris {
         if !is_degenerate(tri, nv) {
@@ -445,14 +508,12 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
             fill[v as usize] += 1;
         }
     }
-    drop(fill);
+    (cstart, corner)
+}
 
-    // Per vertex: fans, non-manifold vertices, part vertex counts, boundary pairing.
-    // partner[2e + s] = 2f + r: boundary edge e at its endpoint s (0 = lo, 1 = hi) continues with
-    // boundary edge f, entered at its endpoint r.
-    let mut partner = vec![NONE; 2 * ne];
-    // Fans: corners (3t + k, the corner of tris[t][k]) joined across manifold edges at both
-    // endpoints of the edge, by a global union–find.
+/// Fans: corners (3t + k, the corner of `tris[t][k]`) joined across manifold edges at both
+/// endpoints of the edge, by a global union–find; and the vertices on non-manifold edges.
+fn fans(tris: &[[u32; 3]], nv: usize, edges: &Edges) -> (Dsu, Vec<bool>) {
     let corner_at = |t: u32, x: u32| -> u32 {
         let tri = &tris[t as usize];
         3 * t
@@ -464,9 +525,9 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
                 2
             }
     };
-    let mut fans = Dsu::new(3 * nt);
+    let mut fans = Dsu::new(3 * tris.len());
     let mut on_nm_edge = vec![false; nv];
-    for e in 0..ne {
+    for e in 0..edges.len() {
         let hs = edges.halves(e);
         let (lo, hi) = ((edges.key[e] >> 32) as u32, edges.key[e] as u32);
         match *hs {
@@ -482,18 +543,44 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
             }
         }
     }
-    let mut non_manifold_vertices = Vec::new();
-    let mut num_used_vertices = 0usize;
+    (fans, on_nm_edge)
+}
+
+/// What [`vertex_pass`] finds per vertex.
+struct VertexPass {
+    /// `partner[2e + s] = 2f + r`: boundary edge e at its endpoint s (0 = lo, 1 = hi) continues
+    /// with boundary edge f, entered at its endpoint r.
+    partner: Vec<u32>,
+    non_manifold_vertices: Vec<u32>,
+    num_used_vertices: usize,
+}
+
+/// Per vertex: fans, non-manifold vertices, part vertex counts, boundary pairing.
+fn vertex_pass(
+    tris: &[[u32; 3]],
+    nv: usize,
+    edges: &Edges,
+    part_of_triangle: &[u32],
+    parts: &mut [PartInfo],
+) -> VertexPass {
+    let nt = tris.len();
+    let (cstart, corner) = corners_by_vertex(tris, nv);
+    let (mut fans, on_nm_edge) = fans(tris, nv, edges);
+    let mut r = VertexPass {
+        partner: vec![NONE; 2 * edges.len()],
+        non_manifold_vertices: Vec::new(),
+        num_used_vertices: 0,
+    };
     let mut root_seen = vec![NONE; 3 * nt];
-    let mut part_seen = vec![NONE; nparts as usize];
-    let mut part_fan_seen = vec![NONE; nparts as usize];
+    let mut part_seen = vec![NONE; parts.len()];
+    let mut part_fan_seen = vec![NONE; parts.len()];
     let mut ends: Vec<(u32, u32)> = Vec::new(); // (fan root, boundary edge)
     for v in 0..nv {
         let cs = &corner[cstart[v] as usize..cstart[v + 1] as usize];
         if cs.is_empty() {
             continue;
         }
-        num_used_vertices += 1;
+        r.num_used_vertices += 1;
         let vv = v as u32;
         let mut nfans = 0;
         ends.clear();
@@ -503,9 +590,9 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
                 part_seen[p] = vv;
                 parts[p].vertices += 1;
             }
-            let r = fans.find(c);
-            if root_seen[r as usize] != vv {
-                root_seen[r as usize] = vv;
+            let root = fans.find(c);
+            if root_seen[root as usize] != vv {
+                root_seen[root as usize] = vv;
                 nfans += 1;
                 // A second fan of the same part at v: that part is not a manifold.
                 if part_fan_seen[p] == vv {
@@ -517,46 +604,67 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
             for h in [c, prev] {
                 let e = edges.edge_of[h as usize];
                 if edges.mult(e as usize) == 1 {
-                    ends.push((r, e));
+                    ends.push((root, e));
                 }
             }
         }
         if nfans > 1 || on_nm_edge[v] {
-            non_manifold_vertices.push(vv);
+            r.non_manifold_vertices.push(vv);
         }
-        // Boundary edge ends at v, grouped by fan.
-        if ends.is_empty() {
-            continue;
-        }
-        ends.sort_unstable();
-        let side = |e: u32| -> u32 { ((edges.key[e as usize] >> 32) as u32 != v as u32) as u32 };
-        let mut leftovers: Vec<u32> = Vec::new();
-        let mut k = 0;
-        while k < ends.len() {
-            if k + 1 < ends.len()
-                && ends[k].0 == ends[k + 1].0
-                && (k + 2 >= ends.len() || ends[k + 2].0 != ends[k].0)
-            {
-                let (a, b) = (ends[k].1, ends[k + 1].1);
-                partner[(2 * a + side(a)) as usize] = 2 * b + side(b);
-                partner[(2 * b + side(b)) as usize] = 2 * a + side(a);
-                k += 2;
-            } else {
-                leftovers.push(ends[k].1);
-                k += 1;
-            }
-        }
-        leftovers.sort_unstable();
-        for pair in leftovers.chunks_exact(2) {
-            let (a, b) = (pair[0], pair[1]);
-            partner[(2 * a + side(a)) as usize] = 2 * b + side(b);
-            partner[(2 * b + side(b)) as usize] = 2 * a + side(a);
+        pair_boundary_ends(vv, edges, &mut ends, &mut r.partner);
+    }
+    r
+}
+
+/// Boundary edge ends at `v`, grouped by fan: the two ends of a fan are partners; ends left over
+/// (fans with other than two ends) are paired in edge order.
+fn pair_boundary_ends(v: u32, edges: &Edges, ends: &mut [(u32, u32)], partner: &mut [u32]) {
+    if ends.is_empty() {
+        return;
+    }
+    ends.sort_unstable();
+    let side = |e: u32| -> u32 { ((edges.key[e as usize] >> 32) as u32 != v) as u32 };
+    let mut join = |a: u32, b: u32| {
+        partner[(2 * a + side(a)) as usize] = 2 * b + side(b);
+        partner[(2 * b + side(b)) as usize] = 2 * a + side(a);
+    };
+    let mut leftovers: Vec<u32> = Vec::new();
+    let mut k = 0;
+    while k < ends.len() {
+        if k + 1 < ends.len()
+            && ends[k].0 == ends[k + 1].0
+            && (k + 2 >= ends.len() || ends[k + 2].0 != ends[k].0)
+        {
+            join(ends[k].1, ends[k + 1].1);
+            k += 2;
+        } else {
+            leftovers.push(ends[k].1);
+            k += 1;
         }
     }
-    drop(corner);
-    drop(cstart);
+    leftovers.sort_unstable();
+    for pair in leftovers.chunks_exact(2) {
+        join(pair[0], pair[1]);
+    }
+}
 
-    // Boundary loops and open chains.
+/// The boundary found by [`trace_boundary`].
+struct Boundary {
+    open_boundary_chains: Vec<Vec<u32>>,
+    boundary_loops: Vec<Vec<u32>>,
+    part_of_loop: Vec<u32>,
+}
+
+/// Boundary loops and open chains, by following `partner` from edge to edge; counts each
+/// loop in its part.
+fn trace_boundary(
+    tris: &[[u32; 3]],
+    edges: &Edges,
+    partner: &[u32],
+    part_of_triangle: &[u32],
+    parts: &mut [PartInfo],
+) -> Boundary {
+    let ne = edges.len();
     let endpoint = |e: u32, s: u32| -> u32 {
         let k = edges.key[e as usize];
         if s == 0 {
@@ -619,9 +727,18 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
         part_of_loop.push(p);
         boundary_loops.push(cycle);
     }
-    let boundary_loop_lengths = boundary_loops
+    Boundary {
+        open_boundary_chains,
+        boundary_loops,
+        part_of_loop,
+    }
+}
+
+/// Euclidean length of each loop (NaN when a vertex index is out of range).
+fn loop_lengths(mesh: &TriMesh, loops: &[Vec<u32>]) -> Vec<f64> {
+    loops
         .iter()
-        .map(|l: &Vec<u32>| {
+        .map(|l| {
             (0..l.len())
                 .map(|i| {
                     let a = mesh.positions.get(l[i] as usize);
@@ -633,12 +750,20 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
                 })
                 .sum()
         })
-        .collect();
+        .collect()
+}
 
-    // Orientability (BFS 2-colouring over manifold edges).
-    let twin = twins(&edges, 3 * nt);
+/// Orientability (BFS 2-colouring over manifold edges), then each part's χ and genus.
+fn orientability(
+    tris: &[[u32; 3]],
+    nv: usize,
+    edges: &Edges,
+    part_of_triangle: &[u32],
+    parts: &mut [PartInfo],
+) {
+    let twin = twins(edges, 3 * tris.len());
     let (_, comp, conflict) = flip_colouring(tris, nv, &twin);
-    for t in 0..nt {
+    for t in 0..tris.len() {
         if comp[t] != NONE && conflict[comp[t] as usize] {
             parts[part_of_triangle[t] as usize].orientable = false;
         }
@@ -647,31 +772,6 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
         p.euler_characteristic = p.vertices as i64 - p.edges as i64 + p.triangles as i64;
         let twice = 2 - p.euler_characteristic - p.boundary_loops as i64;
         p.genus = (p.manifold && p.orientable && twice >= 0 && twice % 2 == 0).then_some(twice / 2);
-    }
-
-    let nfaces = nt - degenerate_triangles.len();
-    let manifold = non_manifold_edges.is_empty()
-        && non_manifold_vertices.is_empty()
-        && degenerate_triangles.is_empty();
-    Topology {
-        neighbors,
-        part_of_triangle,
-        consistently_oriented: parts.iter().all(|p| p.consistently_oriented),
-        orientable: parts.iter().all(|p| p.orientable),
-        parts,
-        boundary_loops,
-        boundary_loop_lengths,
-        part_of_loop,
-        open_boundary_chains,
-        non_manifold_edges,
-        non_manifold_vertices,
-        degenerate_triangles,
-        num_boundary_edges,
-        num_directed_edge_conflicts,
-        num_edges: ne,
-        num_used_vertices,
-        euler_characteristic: num_used_vertices as i64 - ne as i64 + nfaces as i64,
-        manifold,
     }
 }
 
@@ -687,7 +787,18 @@ pub fn analyze(mesh: &TriMesh) -> Topology {
 /// Flipping swaps the 2nd and 3rd index of a triangle; triangle indices, face properties and
 /// vertex normals are left unchanged. Degenerate triangles are not touched. On error the mesh is
 /// unchanged.
-pub fn orient_consistently(mesh: &mut TriMesh) -> crate::Result<usize> {
+///
+/// ```
+/// use morpho::mesh::{analyze_topology, generate, orient_consistently, MeshError};
+/// let mut m = generate::tetrahedron();
+/// m.triangles[0].swap(1, 2); // turn one face inside out
+/// assert!(!analyze_topology(&m).consistently_oriented);
+/// assert_eq!(orient_consistently(&mut m).unwrap(), 1);
+/// assert!(analyze_topology(&m).consistently_oriented && m.signed_volume() > 0.0);
+/// let err = orient_consistently(&mut generate::mobius(12, 2)).unwrap_err();
+/// assert!(matches!(err, MeshError::NotOrientable { .. }));
+/// ```
+pub fn orient_consistently(mesh: &mut TriMesh) -> Result<usize, MeshError> {
     let tris = &mesh.triangles;
     let nt = tris.len();
     if let Some(&v) = tris
@@ -695,10 +806,10 @@ pub fn orient_consistently(mesh: &mut TriMesh) -> crate::Result<usize> {
         .flatten()
         .find(|&&v| v as usize >= mesh.positions.len())
     {
-        return Err(crate::Error::invalid(format!(
-            "triangle refers to vertex {v}, but there are only {} vertices",
-            mesh.positions.len()
-        )));
+        return Err(MeshError::IndexOutOfRange {
+            vertex: v,
+            vertices: mesh.positions.len(),
+        });
     }
     let nv = mesh.positions.len();
     let edges = Edges::build(tris, nv);
@@ -706,9 +817,7 @@ pub fn orient_consistently(mesh: &mut TriMesh) -> crate::Result<usize> {
     let (colour, comp, conflict) = flip_colouring(tris, nv, &twin);
     if let Some(c) = conflict.iter().position(|&c| c) {
         let t = comp.iter().position(|&x| x == c as u32).unwrap_or(0);
-        return Err(crate::Error::invalid(format!(
-            "the surface containing triangle {t} is not orientable (e.g. a Möbius strip)"
-        )));
+        return Err(MeshError::NotOrientable { triangle: t });
     }
     let nc = conflict.len();
     // Per component: triangle counts per colour, closedness, centroid, volume with colour 1 flipped.
@@ -790,7 +899,7 @@ mod tests {
 
     #[test]
     fn empty_mesh() {
-        let t = analyze(&TriMesh::default());
+        let t = analyze_topology(&TriMesh::default());
         assert_eq!(t.parts.len(), 0);
         assert_eq!(t.euler_characteristic, 0);
         assert_eq!(t.genus(), Some(0));
@@ -801,7 +910,7 @@ mod tests {
 
     #[test]
     fn single_triangle() {
-        let t = analyze(&mesh(&[[0, 1, 2]]));
+        let t = analyze_topology(&mesh(&[[0, 1, 2]]));
         assert_eq!(t.boundary_loops, vec![vec![0, 1, 2]]);
         assert_eq!(t.euler_characteristic, 1);
         assert_eq!(t.genus(), Some(0));
@@ -810,7 +919,7 @@ mod tests {
 
     #[test]
     fn tetrahedron_closed() {
-        let t = analyze(&mesh(&tetra()));
+        let t = analyze_topology(&mesh(&tetra()));
         assert_eq!(t.num_edges, 6);
         assert_eq!(t.euler_characteristic, 2);
         assert_eq!(t.genus(), Some(0));
@@ -824,7 +933,7 @@ mod tests {
         let mut tris = tetra();
         tris.push([0, 0, 1]);
         tris.push([2, 2, 2]);
-        let t = analyze(&mesh(&tris));
+        let t = analyze_topology(&mesh(&tris));
         assert_eq!(t.degenerate_triangles, vec![4, 5]);
         assert_eq!(t.euler_characteristic, 2);
         assert_eq!(t.part_of_triangle[4], NONE);
@@ -835,7 +944,7 @@ mod tests {
     #[test]
     fn out_of_range_index_no_panic() {
         let m = TriMesh::new(vec![Point3::origin(); 3], vec![[0, 1, 2], [0, 5, u32::MAX]]);
-        let t = analyze(&m);
+        let t = analyze_topology(&m);
         assert_eq!(t.degenerate_triangles, vec![1]);
         assert_eq!(t.num_used_vertices, 3);
         assert_eq!(t.boundary_loops.len(), 1);
@@ -846,7 +955,7 @@ mod tests {
     #[test]
     fn bowtie_vertex() {
         // Two triangles touching at vertex 0 only: 2 parts, vertex 0 non-manifold.
-        let t = analyze(&mesh(&[[0, 1, 2], [0, 3, 4]]));
+        let t = analyze_topology(&mesh(&[[0, 1, 2], [0, 3, 4]]));
         assert_eq!(t.parts.len(), 2);
         assert_eq!(t.non_manifold_vertices, vec![0]);
         assert_eq!(t.boundary_loops.len(), 2);
@@ -868,7 +977,7 @@ mod tests {
             [2, 5, 0],
         ];
         // [2,5,0] makes 0 part of a third corner; fans at 0 now connect. Just check invariants.
-        let t = analyze(&mesh(&tris));
+        let t = analyze_topology(&mesh(&tris));
         let nb: usize = t.boundary_loops.iter().map(|l| l.len()).sum::<usize>()
             + t.open_boundary_chains
                 .iter()
@@ -880,7 +989,7 @@ mod tests {
     #[test]
     fn three_triangles_on_one_edge() {
         // Odd non-manifold edge: boundary degree 3 at both ends ⇒ an open chain remains.
-        let t = analyze(&mesh(&[[0, 1, 2], [1, 0, 3], [0, 1, 4]]));
+        let t = analyze_topology(&mesh(&[[0, 1, 2], [1, 0, 3], [0, 1, 4]]));
         assert_eq!(t.non_manifold_edges, vec![[0, 1]]);
         assert_eq!(t.parts.len(), 1);
         assert!(!t.manifold);
@@ -907,10 +1016,10 @@ mod tests {
         ];
         assert!(m.signed_volume() > 0.0);
         m.triangles[0].swap(0, 1);
-        let t = analyze(&m);
+        let t = analyze_topology(&m);
         assert!(!t.consistently_oriented && t.orientable);
         assert_eq!(orient_consistently(&mut m).unwrap(), 1);
-        assert!(analyze(&m).consistently_oriented);
+        assert!(analyze_topology(&m).consistently_oriented);
         assert!(m.signed_volume() > 0.0);
         // Fully inverted: all four flipped back.
         for t in m.triangles.iter_mut() {
@@ -922,7 +1031,7 @@ mod tests {
 
     #[test]
     fn duplicate_triangle_is_inconsistent() {
-        let t = analyze(&mesh(&[[0, 1, 2], [0, 1, 2]]));
+        let t = analyze_topology(&mesh(&[[0, 1, 2], [0, 1, 2]]));
         assert_eq!(t.num_directed_edge_conflicts, 3);
         assert!(!t.consistently_oriented);
         assert!(t.orientable);

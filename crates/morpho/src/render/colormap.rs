@@ -14,6 +14,7 @@
 //!
 //! Cost: O(1) per lookup. `t` is clamped to `[0, 1]`; NaN gives [`MISSING`].
 
+use super::RenderError;
 use std::str::FromStr;
 
 /// Colour used for missing values (NaN): a neutral mid grey.
@@ -116,6 +117,13 @@ pub fn normalize(v: f64, lo: f64, hi: f64) -> f64 {
 }
 
 /// Smallest and largest finite value, or `None` when there is none.
+///
+/// ```
+/// use morpho::render::{finite_range, normalize};
+/// assert_eq!(finite_range([3.0, f64::NAN, -1.0, f64::INFINITY]), Some((-1.0, 3.0)));
+/// assert_eq!(finite_range([f64::NAN]), None);
+/// assert_eq!(normalize(5.0, 0.0, 10.0), 0.5);
+/// ```
 pub fn finite_range(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
     let mut r: Option<(f64, f64)> = None;
     for v in values {
@@ -130,15 +138,15 @@ pub fn finite_range(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)>
 }
 
 impl FromStr for Colormap {
-    type Err = crate::Error;
-    fn from_str(s: &str) -> crate::Result<Self> {
+    type Err = RenderError;
+    fn from_str(s: &str) -> Result<Self, RenderError> {
         match s.to_ascii_lowercase().as_str() {
             "viridis" => Ok(Colormap::Viridis),
             "coolwarm" => Ok(Colormap::Coolwarm),
             "grey" | "gray" | "greys" | "grays" => Ok(Colormap::Greys),
-            _ => Err(crate::Error::invalid(format!(
-                "unknown colour map {s:?} (use viridis, coolwarm or grey)"
-            ))),
+            _ => Err(RenderError::UnknownColormap {
+                name: s.to_string(),
+            }),
         }
     }
 }

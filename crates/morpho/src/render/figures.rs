@@ -28,7 +28,7 @@ use std::fmt::Write as _;
 /// use morpho::geom::Point2;
 /// let p = [Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.0, 1.0), Point2::new(1.0, 1.2)];
 /// let d = morpho::delaunay::triangulate_2d(&p).unwrap();
-/// let svg = morpho::render::figures::delaunay_svg(&d, true);
+/// let svg = morpho::render::delaunay_svg(&d, true);
 /// assert_eq!(svg.matches("<circle").count(), 4);
 /// assert!(svg.contains("stroke-dasharray")); // the Voronoi diagram
 /// ```
@@ -81,7 +81,7 @@ pub fn cdt_svg(c: &Cdt2) -> String {
 /// use morpho::graphs::{graph_2d, Kind};
 /// let p = [Point2::new(0.0, 0.0), Point2::new(1.0, 0.0), Point2::new(0.5, 2.0)];
 /// let g = graph_2d(&p, Kind::Emst).unwrap();
-/// let svg = morpho::render::figures::graph_svg(&p, &g, Some("EMST"));
+/// let svg = morpho::render::graph_svg(&p, &g, Some("EMST"));
 /// assert!(svg.contains(">EMST</text>"));
 /// ```
 pub fn graph_svg(points: &[Point2], g: &Graph, title: Option<&str>) -> String {
@@ -170,7 +170,7 @@ pub fn constriction_svg(
 /// use morpho::geom::Point2;
 /// let p = [Point2::new(0.0, 0.0), Point2::new(2.0, 0.0), Point2::new(1.0, 0.4), Point2::new(1.0, 2.0)];
 /// let b = boundary_2d(&p, &Options2::default()).unwrap();
-/// let svg = morpho::render::figures::boundary_svg(&p, &b);
+/// let svg = morpho::render::boundary_svg(&p, &b);
 /// assert_eq!(svg.matches("<polygon").count(), 1);
 /// assert_eq!(svg.matches("<circle").count(), 4 + b.left_out.len());
 /// ```
@@ -358,9 +358,9 @@ pub struct PointsView<'a> {
 ///
 /// ```
 /// use morpho::mesh::PointSet;
-/// use morpho::render::colormap::Colormap;
-/// use morpho::render::figures::{point_set_svg, PointsView};
-/// use morpho::render::raster::UpAxis;
+/// use morpho::render::Colormap;
+/// use morpho::render::{point_set_svg, PointsView};
+/// use morpho::render::UpAxis;
 /// let p = PointSet { dim: 3, coords: vec![0.0, 0.0, 0.0, 1.0, 2.0, 3.0], columns: vec![] };
 /// let view = PointsView {
 ///     values: None, colormap: Colormap::Viridis, range: None,

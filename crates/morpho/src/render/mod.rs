@@ -1,15 +1,37 @@
-//! Pictures of every stage: SVG for 2D ([`svg`]: the builder; [`figures`]: pictures of the 2D
-//! results), a software rasterizer (PNG) for meshes and volume views ([`raster`], [`slice`](mod@slice),
-//! [`subdivision`], [`legend`]).
+//! Pictures of every stage: SVG for 2D (the [`Svg`] builder and the pictures of the 2D results:
+//! [`delaunay_svg`], [`boundary_svg`], [`contour_svg`], …), a software rasterizer (PNG) for meshes
+//! ([`render_mesh`]) and volume views ([`slice_image`], [`orthogonal_slices`],
+//! [`domain_subdivision_mesh`], colour bars by [`with_colorbar`]). Every picture is a value (an
+//! SVG string or an [`Image`]); saving goes through [`crate::io`].
 
-pub mod colormap;
-pub mod figures;
-pub mod font;
-pub mod legend;
-pub mod raster;
-pub mod slice;
-pub mod subdivision;
-pub mod svg;
+mod colormap;
+mod error;
+mod figures;
+mod font;
+mod legend;
+mod raster;
+mod slice;
+mod subdivision;
+mod svg;
+
+pub use colormap::{finite_range, luminance, normalize, Colormap, MISSING};
+pub use error::RenderError;
+pub use figures::{
+    boundary_svg, cdt_svg, constriction_svg, contour_svg, cycle_svg, delaunay_svg, graph_svg,
+    point_set_svg, PointLabel, PointsView, CONTOUR_SVG_MAX_TRIANGLES,
+};
+pub use legend::with_colorbar;
+pub use raster::{
+    render_mesh, render_mesh_stats, Projection, RenderOptions, RenderStats, Scalars, Shading,
+    UpAxis,
+};
+pub use slice::{
+    middle, orthogonal_slices, slice_height_mesh, slice_image, Axis, SliceOptions, Upsample,
+};
+pub use subdivision::{domain_subdivision_mesh, grid_planes_mesh};
+pub use svg::{
+    colored_triangulation_svg, points_svg, polygon_svg, triangulation_svg, Fill, Rgb, Stroke, Svg,
+};
 
 use crate::{Error, Result};
 use std::path::Path;
@@ -53,6 +75,16 @@ impl Image {
         self.rgba[i..i + 4].copy_from_slice(&c);
     }
     /// Encodes the image as PNG.
+    ///
+    /// ```
+    /// use morpho::render::Image;
+    /// let mut img = Image::new(2, 1, [0, 0, 0, 255]);
+    /// img.put(1, 0, [255, 0, 0, 255]);
+    /// assert_eq!(img.get(1, 0), [255, 0, 0, 255]);
+    /// let mut png = Vec::new();
+    /// img.write_png(&mut png).unwrap();
+    /// assert_eq!(&png[1..4], b"PNG");
+    /// ```
     pub fn write_png(&self, w: &mut dyn std::io::Write) -> Result<()> {
         let mut enc = png::Encoder::new(w, self.width, self.height);
         enc.set_color(png::ColorType::Rgba);
@@ -75,6 +107,9 @@ fn png_err(e: png::EncodingError) -> Error {
             path: String::new(),
             source: e,
         },
-        e => Error::invalid(format!("PNG: {e}")),
+        e => RenderError::Png {
+            reason: e.to_string(),
+        }
+        .into(),
     }
 }

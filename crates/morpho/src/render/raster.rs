@@ -29,7 +29,7 @@
 //! ```
 //! use morpho::geom::Point3;
 //! use morpho::mesh::TriMesh;
-//! use morpho::render::raster::{render_mesh, RenderOptions};
+//! use morpho::render::{render_mesh, RenderOptions};
 //!
 //! let tet = TriMesh::new(
 //!     vec![

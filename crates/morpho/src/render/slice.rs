@@ -24,10 +24,11 @@ use super::colormap::{finite_range, normalize, Colormap};
 use super::font::{draw_text, text_height, text_width};
 use super::legend::{label_num, with_colorbar};
 use super::Image;
+use super::RenderError;
 use crate::geom::Point3;
 use crate::mesh::{Property, ScalarKind, TriMesh};
 use crate::volume::Volume;
-use crate::{Error, Result};
+use crate::Result;
 
 /// The normal of a slice plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -65,15 +66,15 @@ impl Axis {
 }
 
 impl std::str::FromStr for Axis {
-    type Err = Error;
-    fn from_str(s: &str) -> Result<Axis> {
+    type Err = RenderError;
+    fn from_str(s: &str) -> Result<Axis, RenderError> {
         match s.trim().to_ascii_lowercase().as_str() {
             "x" | "0" => Ok(Axis::X),
             "y" | "1" => Ok(Axis::Y),
             "z" | "2" => Ok(Axis::Z),
-            _ => Err(Error::invalid(format!(
-                "unknown axis {s:?} (use x, y or z)"
-            ))),
+            _ => Err(RenderError::UnknownAxis {
+                name: s.to_string(),
+            }),
         }
     }
 }
@@ -187,18 +188,18 @@ fn taps(g: &AxisGeom, pixels: usize, flip: bool, mode: Upsample) -> Vec<Tap> {
         .collect()
 }
 
-fn check(vol: &Volume, axis: Axis, index: usize) -> Result<()> {
+fn check(vol: &Volume, axis: Axis, index: usize) -> Result<(), RenderError> {
     vol.validate()?;
     if vol.dims.contains(&0) {
-        return Err(Error::invalid("volume has no samples"));
+        return Err(RenderError::EmptyVolume { dims: vol.dims });
     }
     let k = axis.index();
     if index >= vol.dims[k] {
-        return Err(Error::invalid(format!(
-            "slice index {index} along {} is out of range (0..{})",
-            axis.name(),
-            vol.dims[k]
-        )));
+        return Err(RenderError::SliceOutOfRange {
+            index,
+            axis: axis.name(),
+            len: vol.dims[k],
+        });
     }
     Ok(())
 }
@@ -282,7 +283,22 @@ fn slice_size(vol: &Volume, axis: Axis, p: f64) -> (usize, usize) {
 /// The slice `axis = index` as an image (see the module documentation). With `size: None` and
 /// equal spacing the image has one pixel per sample (`dims[u] × dims[v]`); anisotropic spacing
 /// stretches the coarser axis so the picture keeps its physical aspect.
-pub fn slice_image(vol: &Volume, axis: Axis, index: usize, opts: &SliceOptions) -> Result<Image> {
+///
+/// ```
+/// use morpho::render::{slice_image, Axis, SliceOptions};
+/// use morpho::volume::Volume;
+/// let v = Volume::from_fn([8, 6, 4], [0.0; 3], [7.0, 5.0, 3.0], |x, _, _| x);
+/// let img = slice_image(&v, Axis::Z, 2, &SliceOptions::default()).unwrap();
+/// assert_eq!((img.width, img.height), (8, 6)); // one pixel per sample
+/// let err = slice_image(&v, Axis::Z, 4, &SliceOptions::default()).unwrap_err();
+/// assert_eq!(err.to_string(), "slice index 4 along z is out of range (0..4)");
+/// ```
+pub fn slice_image(
+    vol: &Volume,
+    axis: Axis,
+    index: usize,
+    opts: &SliceOptions,
+) -> Result<Image, RenderError> {
     check(vol, axis, index)?;
     let (ku, kv) = axis.in_plane();
     let (gu, gv) = (axis_geom(vol, ku), axis_geom(vol, kv));
@@ -316,7 +332,11 @@ pub fn middle(vol: &Volume) -> [usize; 3] {
 /// Three slices `x = c[ix]`, `y = c[iy]`, `z = c[iz]` side by side at one common scale, each
 /// labelled with its axis, coordinate and index (`x = 1.5 [12]`), with a colour bar and the
 /// value range below when `opts.labels`. Hamann 1991, §2.3, first possibility.
-pub fn orthogonal_slices(vol: &Volume, index: [usize; 3], opts: &SliceOptions) -> Result<Image> {
+pub fn orthogonal_slices(
+    vol: &Volume,
+    index: [usize; 3],
+    opts: &SliceOptions,
+) -> Result<Image, RenderError> {
     for (k, &i) in index.iter().enumerate() {
         let axis = Axis::from_index(k).unwrap_or(Axis::Z);
         check(vol, axis, i)?;

@@ -19,10 +19,11 @@
 //! parallel to the xy-, xz- and yz-planes coloured by the samples at their corners; render it
 //! with `RenderOptions::transparency = Some(t)` (back-to-front alpha blending).
 
+use super::RenderError;
 use crate::geom::Point3;
 use crate::mesh::{Property, ScalarKind, TriMesh};
 use crate::volume::Volume;
-use crate::{Error, Result};
+use crate::Result;
 
 /// Largest number of triangles [`domain_subdivision_mesh`] builds.
 pub const MAX_TRIANGLES: usize = 20_000_000;
@@ -75,29 +76,23 @@ pub fn domain_subdivision_mesh(
     q: [usize; 3],
     alpha: [f64; 3],
     k: usize,
-) -> Result<TriMesh> {
+) -> Result<TriMesh, RenderError> {
     vol.validate()?;
     if vol.dims.contains(&0) {
-        return Err(Error::invalid("volume has no samples"));
+        return Err(RenderError::EmptyVolume { dims: vol.dims });
     }
     if q.contains(&0) || k == 0 {
-        return Err(Error::invalid(
-            "need at least one sub-box per axis and k >= 1",
-        ));
+        return Err(RenderError::SubBoxes { boxes: q, k });
     }
     if alpha.iter().any(|a| !a.is_finite() || *a < 0.0) {
-        return Err(Error::invalid("gap ratios must be finite and >= 0"));
+        return Err(RenderError::GapRatios { ratios: alpha });
     }
     let boxes = q[0]
         .checked_mul(q[1])
         .and_then(|v| v.checked_mul(q[2]))
         .and_then(|v| v.checked_mul(12 * k * k))
         .filter(|&t| t <= MAX_TRIANGLES)
-        .ok_or_else(|| {
-            Error::invalid(format!(
-                "too many triangles (more than {MAX_TRIANGLES}); use fewer sub-boxes or a smaller k"
-            ))
-        })?;
+        .ok_or(RenderError::TooManyBoxTriangles { max: MAX_TRIANGLES })?;
     let lo: [f64; 3] = std::array::from_fn(|a| vol.coord(a, 0));
     let hi: [f64; 3] = std::array::from_fn(|a| vol.coord(a, vol.dims[a] - 1));
     let delta: [f64; 3] =
@@ -157,10 +152,10 @@ pub fn domain_subdivision_mesh(
 /// `z = z_k`, `y = y_j`, `x = x_i`, taking every `stride[a]`-th plane along axis `a` (the last
 /// plane always included), each rectangle split into two triangles, vertex property `value` =
 /// the samples. Planes with fewer than 2 × 2 samples are left out.
-pub fn grid_planes_mesh(vol: &Volume, stride: [usize; 3]) -> Result<TriMesh> {
+pub fn grid_planes_mesh(vol: &Volume, stride: [usize; 3]) -> Result<TriMesh, RenderError> {
     vol.validate()?;
     if vol.dims.contains(&0) {
-        return Err(Error::invalid("volume has no samples"));
+        return Err(RenderError::EmptyVolume { dims: vol.dims });
     }
     let stride = stride.map(|s| s.max(1));
     let planes = |a: usize| -> Vec<usize> {
@@ -178,9 +173,7 @@ pub fn grid_planes_mesh(vol: &Volume, stride: [usize; 3]) -> Result<TriMesh> {
         total = total.saturating_add(planes(a).len().saturating_mul(2 * cells));
     }
     if total > MAX_TRIANGLES {
-        return Err(Error::invalid(format!(
-            "too many triangles ({total}); use a larger plane stride"
-        )));
+        return Err(RenderError::TooManyPlaneTriangles { triangles: total });
     }
     let mut positions = Vec::new();
     let mut values = Vec::new();

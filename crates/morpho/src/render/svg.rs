@@ -12,7 +12,7 @@
 //!
 //! ```
 //! use morpho::geom::{bbox2, Point2};
-//! use morpho::render::svg::{Stroke, Svg};
+//! use morpho::render::{Stroke, Svg};
 //!
 //! let pts = [Point2::new(0.0, 0.0), Point2::new(2.0, 1.0)];
 //! let mut svg = Svg::new(bbox2(&pts), 400.0);

@@ -26,13 +26,6 @@ fn fold(a: u64, b: u64) -> u64 {
 
 /// The library's hasher (see the module documentation). `Default` gives the unkeyed hasher of
 /// [`IdMap`]/[`IdSet`]; [`KeyedIdState`] gives keyed ones. Not a cryptographic hash.
-///
-/// ```
-/// use morpho::util::IdMap;
-/// let mut m: IdMap<[u32; 3], u32> = IdMap::default();
-/// m.insert([1, 2, 3], 7);
-/// assert_eq!(m.get(&[1, 2, 3]), Some(&7));
-/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct IdHasher {
     h: u64,
@@ -89,15 +82,6 @@ pub type IdSet<K> = HashSet<K, BuildHasherDefault<IdHasher>>;
 
 /// Builds keyed [`IdHasher`]s: a starting state and an odd multiplier drawn from std's
 /// [`RandomState`] (different per map and per run), for keys that come from input files.
-///
-/// ```
-/// use morpho::util::KeyedIdState;
-/// use std::collections::HashMap;
-/// let mut m: HashMap<(u64, u64, u64), u32, KeyedIdState> =
-///     HashMap::with_hasher(KeyedIdState::new());
-/// m.insert((2.0f64.to_bits(), 0, 1), 0);
-/// assert!(m.contains_key(&(2.0f64.to_bits(), 0, 1)));
-/// ```
 #[derive(Clone, Debug)]
 pub struct KeyedIdState {
     k0: u64,
@@ -180,5 +164,27 @@ mod tests {
         assert_ne!(a.hash_one(k), b.hash_one(k));
         let mut s: IdSet<[u32; 3]> = IdSet::default();
         assert!(s.insert([1, 2, 3]) && !s.insert([1, 2, 3]) && s.insert([1, 2, 4]));
+    }
+}
+
+/// The examples of this crate-private module (run as unit tests, since doc-tests only see
+/// the public API).
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn example_1() {
+        use crate::util::IdMap;
+        let mut m: IdMap<[u32; 3], u32> = IdMap::default();
+        m.insert([1, 2, 3], 7);
+        assert_eq!(m.get(&[1, 2, 3]), Some(&7));
+    }
+    #[test]
+    fn example_2() {
+        use crate::util::KeyedIdState;
+        use std::collections::HashMap;
+        let mut m: HashMap<(u64, u64, u64), u32, KeyedIdState> =
+            HashMap::with_hasher(KeyedIdState::new());
+        m.insert((2.0f64.to_bits(), 0, 1), 0);
+        assert!(m.contains_key(&(2.0f64.to_bits(), 0, 1)));
     }
 }

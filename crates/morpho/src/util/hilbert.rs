@@ -7,13 +7,6 @@ pub const HILBERT2_BITS: u32 = 16;
 
 /// Hilbert curve index of the 2D cell (x, y), each coordinate < 2^[`HILBERT2_BITS`] (the
 /// classic quadrant-rotation algorithm, written without data-dependent branches).
-///
-/// ```
-/// use morpho::util::hilbert::hilbert2;
-/// // the curve starts at the origin cell; the key is a bijection of the grid
-/// assert_eq!(hilbert2(0, 0), 0);
-/// assert_ne!(hilbert2(1, 0), hilbert2(0, 1));
-/// ```
 #[inline]
 pub fn hilbert2(mut x: u32, mut y: u32) -> u32 {
     let mask = (1u32 << HILBERT2_BITS) - 1;
@@ -37,12 +30,6 @@ pub fn hilbert2(mut x: u32, mut y: u32) -> u32 {
 
 /// 3D Hilbert index of integer coordinates with `bits` bits each (1 ≤ `bits` ≤ 21; Skilling
 /// 2004, "Programming the Hilbert curve", transpose method).
-///
-/// ```
-/// use morpho::util::hilbert::hilbert3;
-/// assert_eq!(hilbert3([0, 0, 0], 4), 0);
-/// assert!(hilbert3([15, 15, 15], 4) < 1 << 12);
-/// ```
 pub fn hilbert3(mut x: [u32; 3], bits: u32) -> u64 {
     let m = 1u32 << (bits - 1);
     let mut q = m;
@@ -123,5 +110,24 @@ mod tests {
             let d: i32 = (0..3).map(|k| (w[0].1[k] - w[1].1[k]).abs()).sum();
             assert_eq!(d, 1);
         }
+    }
+}
+
+/// The examples of this crate-private module (run as unit tests, since doc-tests only see
+/// the public API).
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn example_1() {
+        use crate::util::hilbert::hilbert2;
+        // the curve starts at the origin cell; the key is a bijection of the grid
+        assert_eq!(hilbert2(0, 0), 0);
+        assert_ne!(hilbert2(1, 0), hilbert2(0, 1));
+    }
+    #[test]
+    fn example_2() {
+        use crate::util::hilbert::hilbert3;
+        assert_eq!(hilbert3([0, 0, 0], 4), 0);
+        assert!(hilbert3([15, 15, 15], 4) < 1 << 12);
     }
 }

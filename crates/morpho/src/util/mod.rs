@@ -1,13 +1,16 @@
-//! Small shared helpers below the geometry kernel: the [`NONE`] sentinel, [`sorted3`], the id
-//! hasher and its maps ([`IdMap`], [`IdSet`]), the seeded generators ([`Rng`], [`Rng32`]) and
-//! Hilbert curve keys ([`hilbert`]). No module defines its own copy of these.
+//! Small shared helpers below the geometry kernel: the [`NONE`] sentinel of index tables and
+//! [`sorted3`], the canonical key of a triangle. Inside the crate this family also holds the id
+//! hasher and its maps, the seeded generators and the Hilbert curve keys (crate-private engine
+//! pieces). No module defines its own copy of these.
 
-pub mod hash;
-pub mod hilbert;
-pub mod rng;
+mod hash;
+pub(crate) mod hilbert;
+mod rng;
 
-pub use hash::{IdHasher, IdMap, IdSet, KeyedIdState};
-pub use rng::{Rng, Rng32};
+#[cfg(test)]
+pub(crate) use hash::IdHasher;
+pub(crate) use hash::{IdMap, IdSet, KeyedIdState};
+pub(crate) use rng::{Rng, Rng32};
 
 /// The "no index" sentinel of every `u32` index table (no neighbour, no part, no tetrahedron, …).
 ///

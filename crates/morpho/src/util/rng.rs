@@ -8,14 +8,6 @@
 //! (13, 17, 5) of the 2D point-location walks.
 
 /// Marsaglia's 64-bit xorshift generator, shifts (13, 7, 17).
-///
-/// ```
-/// use morpho::util::Rng;
-/// let mut a = Rng::new(42);
-/// let mut b = Rng::new(42);
-/// assert_eq!(a.next_u64(), b.next_u64()); // same seed, same sequence
-/// assert!(a.below(6) < 6);
-/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Rng(u64);
 
@@ -51,13 +43,6 @@ impl Rng {
 }
 
 /// Marsaglia's 32-bit xorshift generator, shifts (13, 17, 5).
-///
-/// ```
-/// use morpho::util::Rng32;
-/// let mut r = Rng32::new(0x9e37_79b9);
-/// let first = r.next_u32();
-/// assert_ne!(first, 0x9e37_79b9);
-/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Rng32(u32);
 
@@ -113,5 +98,26 @@ mod tests {
         // never stuck at zero
         assert_ne!(Rng::new(0).next_u64(), 0);
         assert_ne!(Rng32::new(0).next_u32(), 0);
+    }
+}
+
+/// The examples of this crate-private module (run as unit tests, since doc-tests only see
+/// the public API).
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn example_1() {
+        use crate::util::Rng;
+        let mut a = Rng::new(42);
+        let mut b = Rng::new(42);
+        assert_eq!(a.next_u64(), b.next_u64()); // same seed, same sequence
+        assert!(a.below(6) < 6);
+    }
+    #[test]
+    fn example_2() {
+        use crate::util::Rng32;
+        let mut r = Rng32::new(0x9e37_79b9);
+        let first = r.next_u32();
+        assert_ne!(first, 0x9e37_79b9);
     }
 }

@@ -40,6 +40,16 @@ pub fn axis_coords(vol: &Volume) -> [Vec<f64>; 3] {
 
 /// Gradient estimate at grid point `p` (`p[k] < vol.dims[k]`, every dim ≥ 2). `axes` comes from
 /// [`axis_coords`]. NaN samples in the stencil give a NaN component.
+///
+/// ```
+/// use morpho::volume::{axis_coords, gradient_at, GradientOperator, Volume};
+/// let v = Volume::from_fn([5; 3], [0.0; 3], [4.0; 3], |x, y, z| 2.0 * x + 3.0 * y - z);
+/// let axes = axis_coords(&v);
+/// for op in [GradientOperator::Central, GradientOperator::ZuckerHummel] {
+///     let g = gradient_at(&v, &axes, [2, 2, 2], op);
+///     assert!((g[0] - 2.0).abs() < 1e-4 && (g[1] - 3.0).abs() < 1e-4 && (g[2] + 1.0).abs() < 1e-4);
+/// }
+/// ```
 pub fn gradient_at(
     vol: &Volume,
     axes: &[Vec<f64>; 3],

@@ -1,9 +1,14 @@
 //! Rectilinear volumes f(x, y, z) sampled on a grid (Hamann 1991, ch. 2–3).
 
-pub mod gradient;
-pub mod isosurface;
+mod error;
+mod gradient;
+mod isosurface;
 
-use crate::{Error, Result};
+pub use error::VolumeError;
+pub use gradient::{axis_coords, gradient_at, mesh_normals, GradientOperator};
+pub use isosurface::{
+    extract_part, isosurface, largest_part, IsoMethod, IsoOptions, IsoResult, NormalMethod,
+};
 
 /// Data type of the samples as stored in a file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -56,7 +61,7 @@ impl Volume {
         origin: [f64; 3],
         spacing: [f64; 3],
         data: Vec<f32>,
-    ) -> Result<Self> {
+    ) -> Result<Self, VolumeError> {
         let v = Volume {
             dims,
             axes: Axes::Uniform { origin, spacing },
@@ -67,6 +72,14 @@ impl Volume {
         Ok(v)
     }
     /// Samples a function on a uniform grid over the box `[lo, hi]`.
+    ///
+    /// ```
+    /// use morpho::volume::Volume;
+    /// let v = Volume::from_fn([3, 2, 2], [0.0; 3], [2.0, 1.0, 1.0], |x, y, _| x + 10.0 * y);
+    /// assert_eq!(v.len(), 12);
+    /// assert_eq!(v.at(2, 1, 0), 12.0); // x = 2, y = 1
+    /// assert_eq!(v.coord(0, 1), 1.0); // spacing 1 along x
+    /// ```
     pub fn from_fn(
         dims: [usize; 3],
         lo: [f64; 3],
@@ -158,46 +171,44 @@ impl Volume {
         r
     }
     /// Checks sizes, axes and spacing.
-    pub fn validate(&self) -> Result<()> {
+    pub fn validate(&self) -> Result<(), VolumeError> {
         let n = self.dims[0]
             .checked_mul(self.dims[1])
             .and_then(|v| v.checked_mul(self.dims[2]))
-            .ok_or_else(|| Error::invalid("volume dimensions overflow"))?;
+            .ok_or(VolumeError::DimsOverflow { dims: self.dims })?;
         if n != self.data.len() {
-            return Err(Error::invalid(format!(
-                "volume has {} samples but dims {:?} need {}",
-                self.data.len(),
-                self.dims,
-                n
-            )));
+            return Err(VolumeError::SampleCount {
+                found: self.data.len(),
+                dims: self.dims,
+                needed: n,
+            });
         }
         match &self.axes {
             Axes::Uniform { origin, spacing } => {
                 if origin.iter().chain(spacing).any(|v| !v.is_finite())
                     || spacing.iter().any(|&s| s <= 0.0)
                 {
-                    return Err(Error::invalid(
-                        "spacing must be finite and positive, origin finite",
-                    ));
+                    return Err(VolumeError::BadSpacing {
+                        origin: *origin,
+                        spacing: *spacing,
+                    });
                 }
             }
             Axes::Coords(c) => {
                 for k in 0..3 {
                     if c[k].len() != self.dims[k] {
-                        return Err(Error::invalid(format!(
-                            "axis {k} has {} coordinates, dims say {}",
-                            c[k].len(),
-                            self.dims[k]
-                        )));
+                        return Err(VolumeError::AxisLength {
+                            axis: k,
+                            found: c[k].len(),
+                            needed: self.dims[k],
+                        });
                     }
                     if c[k]
                         .windows(2)
                         .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
                         || c[k].iter().any(|v| !v.is_finite())
                     {
-                        return Err(Error::invalid(format!(
-                            "axis {k} coordinates must be finite and strictly increasing"
-                        )));
+                        return Err(VolumeError::AxisNotIncreasing { axis: k });
                     }
                 }
             }

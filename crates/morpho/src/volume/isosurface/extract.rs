@@ -13,7 +13,7 @@
 //! O(nx·ny) per slab.
 
 use super::tables::{self, polygon_table, tet_table, FACE_CORNERS, NO_FACE, TETS};
-use super::{Method, NormalMethod};
+use super::{IsoMethod, NormalMethod};
 use crate::geom::{Point3, Vector3};
 use crate::volume::gradient::{gradient_at, CentralTable, GradientOperator};
 use crate::volume::Volume;
@@ -147,7 +147,7 @@ pub(super) struct Ctx<'a> {
     pub axes: &'a [Vec<f64>; 3],
     pub alpha: f64,
     pub eps: f64,
-    pub method: Method,
+    pub method: IsoMethod,
     pub normals: NormalMethod,
     /// false: triangles and normals point out of {f > α} (along −∇f); true: along +∇f.
     pub flip: bool,
@@ -336,7 +336,7 @@ impl Ctx<'_> {
 
     fn build_plane(&self, z: usize, s: &[u8], rows: &[u8], arr: &mut [u32], out: &mut ChunkOut) {
         let [nx, ny, _] = self.vol.dims;
-        let tet = self.method == Method::Tetra;
+        let tet = self.method == IsoMethod::Tetra;
         let ps = self.strides().0;
         for y in 0..ny {
             let xe = rows[y] >= 2;
@@ -374,7 +374,7 @@ impl Ctx<'_> {
 
     fn build_layer(&self, z: usize, sg: &Signs, arr: &mut [u32], out: &mut ChunkOut) {
         let [nx, ny, _] = self.vol.dims;
-        let tet = self.method == Method::Tetra;
+        let tet = self.method == IsoMethod::Tetra;
         let ls = self.strides().1;
         let (s0, s1) = (sg.s0, sg.s1);
         for y in 0..ny {
@@ -417,7 +417,7 @@ impl Ctx<'_> {
 
     /// Slots per grid position in the plane and layer index arrays.
     fn strides(&self) -> (usize, usize) {
-        if self.method == Method::Tetra {
+        if self.method == IsoMethod::Tetra {
             (3, 4)
         } else {
             (2, 1)
@@ -605,7 +605,7 @@ impl Ctx<'_> {
         let push = |out: &mut ChunkOut, a: u32, b: u32, c: u32| {
             out.tris.push(if flip { [a, c, b] } else { [a, b, c] });
         };
-        if self.method == Method::Tetra {
+        if self.method == IsoMethod::Tetra {
             let tets = tet_table();
             for (t, tet) in TETS.iter().enumerate() {
                 let mut c4 = 0usize;
@@ -643,7 +643,7 @@ impl Ctx<'_> {
         };
         let connect = if amb == 0 {
             0
-        } else if self.method == Method::Lorensen {
+        } else if self.method == IsoMethod::Lorensen {
             tables::lorensen_connect(cfg)
         } else {
             load(&mut g);
@@ -678,7 +678,7 @@ impl Ctx<'_> {
             for i in 0..n {
                 v[i] = ent(poly.edges[i]);
             }
-            if poly.fan_face == NO_FACE || self.method == Method::Lorensen {
+            if poly.fan_face == NO_FACE || self.method == IsoMethod::Lorensen {
                 for i in 1..n - 1 {
                     push(out, v[0], v[i], v[i + 1]);
                 }

@@ -1,6 +1,6 @@
 //! Contour surfaces f = α of rectilinear volumes (Hamann 1991, §3.1–3.4).
 //!
-//! Three methods ([`Method`]):
+//! Three methods ([`IsoMethod`]):
 //! * `Decider` — consistent marching cubes (H §3.2): contour points by linear interpolation on
 //!   cell edges; on faces with four contour points (Eq. 3.5) the asymptotic decider of the
 //!   bilinear face interpolant (Thm. 3.3, Eq. 3.8) joins the points lying in the same quadrant of
@@ -22,7 +22,7 @@
 //! Samples equal to α are raised by ε = 10⁻⁹·(max − min) (Rem. 3.8), so every decision sees
 //! f ≠ α. Vertices are shared: one per cut grid entity (edge/diagonal). Triangles are oriented
 //! with normals pointing out of the region {f > α} (i.e. along −∇f, "inside = above α", the
-//! CT convention); [`Options::flip`] reverses this (normals along +∇f, H's Def. 3.14 when the
+//! CT convention); [`IsoOptions::flip`] reverses this (normals along +∇f, H's Def. 3.14 when the
 //! inside is {f < α}). Vertex normals ([`NormalMethod`]) follow the same orientation.
 //!
 //! NaN samples: cells with a NaN corner are skipped; the surface then has boundary edges on the
@@ -46,19 +46,19 @@
 //! grid keys (8 bytes) and a transient edge table (≈ 40 bytes per triangle) are added.
 
 mod extract;
-pub mod tables;
+mod tables;
 
 use crate::geom::Vector3;
 use crate::mesh::{Property, ScalarKind, TriMesh};
 use crate::volume::gradient::{axis_coords, mesh_normals, mesh_normals_where, CentralTable};
 use crate::volume::Volume;
-use crate::{Error, Result};
+use crate::volume::VolumeError;
 use extract::{extent, ChunkOut, Ctx, INTERIOR, KEY_INTERIOR};
 use rayon::prelude::*;
 
 /// Contouring method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Method {
+pub enum IsoMethod {
     /// Marching cubes with the asymptotic decider and interior points (consistent).
     #[default]
     Decider,
@@ -84,10 +84,10 @@ pub enum NormalMethod {
 
 /// Options of [`isosurface`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct Options {
+pub struct IsoOptions {
     /// Contour level α.
     pub level: f64,
-    pub method: Method,
+    pub method: IsoMethod,
     pub normals: NormalMethod,
     /// Orient triangles and normals along +∇f (out of {f < α}) instead of −∇f.
     pub flip: bool,
@@ -97,11 +97,11 @@ pub struct Options {
     pub topology: bool,
 }
 
-impl Default for Options {
+impl Default for IsoOptions {
     fn default() -> Self {
-        Options {
+        IsoOptions {
             level: 0.0,
-            method: Method::Decider,
+            method: IsoMethod::Decider,
             normals: NormalMethod::ZuckerHummel,
             flip: false,
             parallel: true,
@@ -140,13 +140,28 @@ pub struct IsoResult {
 /// Errors: invalid volume (sizes, axes), non-finite level, an axis longer than 2²⁰ samples, or
 /// more than 2³¹ − 1 vertices. A level outside the data range, or a volume thinner than two
 /// samples along some axis, gives an empty mesh and a note.
-pub fn isosurface(vol: &Volume, opts: &Options) -> Result<IsoResult> {
+///
+/// ```
+/// use morpho::mesh::analyze_topology;
+/// use morpho::volume::{isosurface, IsoOptions, Volume};
+/// // f = x² + y² + z² on 16³ samples over [-1, 1]³: the level 0.5 is a sphere
+/// let v = Volume::from_fn([16; 3], [-1.0; 3], [1.0; 3], |x, y, z| x * x + y * y + z * z);
+/// let r = isosurface(&v, &IsoOptions { level: 0.5, ..Default::default() }).unwrap();
+/// assert_eq!((r.parts, r.boundary_edges, r.interior_holes), (1, 0, 0));
+/// let t = analyze_topology(&r.mesh);
+/// assert!(t.is_closed() && t.manifold && t.consistently_oriented);
+/// assert_eq!((t.euler_characteristic, t.genus()), (2, Some(0)));
+/// // a level outside the data range gives an empty mesh and a note, not an error
+/// let r = isosurface(&v, &IsoOptions { level: 9.0, ..Default::default() }).unwrap();
+/// assert!(r.mesh.triangles.is_empty() && r.note.is_some());
+/// ```
+pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeError> {
     vol.validate()?;
     if !opts.level.is_finite() {
-        return Err(Error::invalid("contour level must be finite"));
+        return Err(VolumeError::NonFiniteLevel { level: opts.level });
     }
     if vol.dims.iter().any(|&d| d >= 1 << 20) {
-        return Err(Error::unsupported("volume axes longer than 2^20 samples"));
+        return Err(VolumeError::AxisTooLong { dims: vol.dims });
     }
     let empty = |note: String| IsoResult {
         note: Some(note),
@@ -299,7 +314,10 @@ fn fast_range(data: &[f32]) -> Option<(f32, f32)> {
 }
 
 /// Concatenates slab outputs in canonical order; returns the result and per-vertex grid keys.
-fn assemble(chunks: Vec<ChunkOut>, opts: &Options) -> Result<(IsoResult, Vec<u64>)> {
+fn assemble(
+    chunks: Vec<ChunkOut>,
+    opts: &IsoOptions,
+) -> Result<(IsoResult, Vec<u64>), VolumeError> {
     let nc = chunks.len();
     let mut edge_off = Vec::with_capacity(nc);
     let mut int_off = Vec::with_capacity(nc);
@@ -316,10 +334,7 @@ fn assemble(chunks: Vec<ChunkOut>, opts: &Options) -> Result<(IsoResult, Vec<u64
         nt += c.tris.len();
     }
     if ne + ni >= INTERIOR as usize || chunks.iter().any(|c| c.overflow) {
-        return Err(Error::invalid(format!(
-            "contour has {} vertices, more than 2^31 - 1",
-            ne + ni
-        )));
+        return Err(VolumeError::TooManyVertices { vertices: ne + ni });
     }
     let grid_normals = matches!(
         opts.normals,
@@ -642,6 +657,20 @@ pub fn extract_part(mesh: &TriMesh, part: u32) -> TriMesh {
 
 /// The part with the most triangles (lowest label on ties), or `None` without parts. Labels
 /// that are not integers in `0..triangles` are ignored.
+///
+/// ```
+/// use morpho::volume::{extract_part, isosurface, largest_part, IsoOptions, Volume};
+/// // two balls side by side: two parts
+/// let ball = |x: f64, y: f64, z: f64, cx: f64| (x - cx).powi(2) + (y - 0.5).powi(2) + (z - 0.5).powi(2);
+/// let v = Volume::from_fn([24, 12, 12], [0.0; 3], [2.0, 1.0, 1.0], |x, y, z| {
+///     ball(x, y, z, 0.5).min(ball(x, y, z, 1.5))
+/// });
+/// let r = isosurface(&v, &IsoOptions { level: 0.1, ..Default::default() }).unwrap();
+/// assert_eq!(r.parts, 2);
+/// let big = extract_part(&r.mesh, largest_part(&r.mesh).unwrap());
+/// assert!(big.triangles.len() >= r.mesh.triangles.len() / 2);
+/// assert!(big.triangles.len() < r.mesh.triangles.len());
+/// ```
 pub fn largest_part(mesh: &TriMesh) -> Option<u32> {
     let labels = mesh.face_prop("part")?;
     let mut count: Vec<usize> = Vec::new();
@@ -681,10 +710,10 @@ mod tests {
     #[test]
     fn single_corner_is_one_outward_triangle() {
         let v = cube([1.0, -1.0, -1.0, -1.0, -1.0, -1.0, -1.0, -1.0]);
-        for m in [Method::Decider, Method::Tetra, Method::Lorensen] {
+        for m in [IsoMethod::Decider, IsoMethod::Tetra, IsoMethod::Lorensen] {
             let r = isosurface(
                 &v,
-                &Options {
+                &IsoOptions {
                     level: 0.0,
                     method: m,
                     ..Default::default()
@@ -740,7 +769,7 @@ mod tests {
         let v = cube([0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
         let r = isosurface(
             &v,
-            &Options {
+            &IsoOptions {
                 level: 9.0,
                 ..Default::default()
             },
@@ -750,7 +779,7 @@ mod tests {
         assert!(r.note.unwrap().contains("outside"));
         assert!(isosurface(
             &v,
-            &Options {
+            &IsoOptions {
                 level: f64::NAN,
                 ..Default::default()
             }
@@ -763,19 +792,19 @@ mod tests {
         // face z = 0 with f = +1, -1, -1, +1: the face contour is the two asymptotes (Eq. 3.9
         // collapses); H's adhoc rule cuts off the positive corners -> two separate triangles.
         let v = cube([1.0, -1.0, -1.0, 1.0, -1.0, -1.0, -1.0, -1.0]);
-        let r = isosurface(&v, &Options::default()).unwrap();
+        let r = isosurface(&v, &IsoOptions::default()).unwrap();
         assert_eq!(r.mesh.triangles.len(), 2);
         assert_eq!(r.parts, 2);
         // a slightly larger positive diagonal joins them (saddle above α): one hexagon with two
         // segments on face z = 0, fanned around an interior point (Thm. 3.5)
         let v = cube([1.1, -1.0, -1.0, 1.0, -1.0, -1.0, -1.0, -1.0]);
-        let r = isosurface(&v, &Options::default()).unwrap();
+        let r = isosurface(&v, &IsoOptions::default()).unwrap();
         assert_eq!(r.parts, 1);
         assert_eq!(r.fan_points, 1);
         assert_eq!(r.mesh.triangles.len(), 6);
         // and a smaller one separates them
         let v = cube([0.9, -1.0, -1.0, 1.0, -1.0, -1.0, -1.0, -1.0]);
-        assert_eq!(isosurface(&v, &Options::default()).unwrap().parts, 2);
+        assert_eq!(isosurface(&v, &IsoOptions::default()).unwrap().parts, 2);
     }
 
     #[test]
@@ -784,7 +813,7 @@ mod tests {
         let v = cube([0.0, -1.0, -1.0, -1.0, -1.0, -1.0, -1.0, -1.0]);
         let r = isosurface(
             &v,
-            &Options {
+            &IsoOptions {
                 level: 0.0,
                 ..Default::default()
             },

@@ -30,6 +30,7 @@ pub const FACE_CORNERS: [[u8; 4]; 6] = [
 ];
 
 /// The two corners of cube edge `e` (lower corner first).
+#[cfg(test)]
 pub const fn edge_corners(e: u8) -> (u8, u8) {
     let axis = e / 4;
     let j = e % 4;
@@ -242,6 +243,7 @@ pub fn entity_of(a: u8, b: u8) -> u8 {
 /// The two corners of face diagonal / body diagonal entity `ent` (12..19), in the order used for
 /// interpolation: from the corner with the higher lowest-differing coordinate, as in H's split
 /// (e.g. face z = 0: corner (1,0,0) to corner (0,1,0)).
+#[cfg(test)]
 pub fn diagonal_corners(ent: u8) -> (u8, u8) {
     match ent {
         12 => (2, 4),
