@@ -22,7 +22,7 @@
 //! `cargo run --release -p morpho --example bench_boundary2d [FILTER]` prints a Markdown table
 //! (rows whose set name contains FILTER only).
 
-use morpho::boundary::{boundary_2d, check_polygon, Method, Options2};
+use morpho::boundary::{boundary_2d, check_polygon, Options2};
 use morpho::geom::Point2;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
@@ -135,15 +135,12 @@ fn main() {
             pos[old as usize] = new as u32;
         }
         let truth = edge_set(&pos);
-        for m in [
-            Method::Gamma,
-            Method::MinAreaChange,
-            Method::VoronoiSkeleton,
+        for opts in [
+            Options2::gamma(),
+            Options2::min_area_change(),
+            Options2::voronoi_skeleton(200),
         ] {
-            let opts = Options2 {
-                method: m,
-                ..Options2::default()
-            };
+            let m = &opts.method;
             let t = Instant::now();
             let r = boundary_2d(&pts, &opts);
             let el = t.elapsed().as_secs_f64();

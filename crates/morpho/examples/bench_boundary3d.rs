@@ -48,9 +48,11 @@
 //! | spot (2930, 5856) | γ-indicator | 0 | 4030 = 68.8 % | 0.05 s |
 //! | spot | min area change | 0 | 1557 = 26.6 % | 0.05 s |
 
-use morpho::boundary::constrict3::{constrict_3d, Until};
-use morpho::boundary::{boundary_3d, boundary_3d_with, validity3, CParam, Method, Options3};
+use morpho::boundary::Until;
+use morpho::boundary::{boundary_3d, CParam, Method3, Options3};
 use morpho::geom::Point3;
+use morpho::internals::constrict_3d;
+use morpho::mesh::validity;
 use rand::{Rng, SeedableRng};
 use std::time::Instant;
 
@@ -160,7 +162,7 @@ fn run(name: &str, pts: &[Point3]) {
         }
         drop(d);
         let t = Instant::now();
-        b = Some(boundary_3d(pts, Until::All).expect("boundary"));
+        b = Some(boundary_3d(pts, &Options3::gamma(Until::All)).expect("boundary"));
         alls.push(t.elapsed().as_secs_f64());
     }
     let b = b.expect("runs");
@@ -178,7 +180,7 @@ fn run(name: &str, pts: &[Point3]) {
     let t_con = t.elapsed().as_secs_f64();
     let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
     let t = Instant::now();
-    let _ = validity3::self_intersections(&pos, &c.triangles, 10);
+    let _ = validity::self_intersections(&pos, &c.triangles, 10);
     let t_si = t.elapsed().as_secs_f64();
     drop(d);
     println!(
@@ -213,15 +215,18 @@ fn compare_keys(name: &str, m: &morpho::mesh::TriMesh) {
         used_vertices(m).len(),
         m.triangles.len()
     );
-    for method in [Method::Gamma, Method::MinAreaChange] {
+    for mac in [false, true] {
         for (cname, c) in [("Fixed(0)", CParam::Fixed(0.0)), ("Auto", CParam::Auto)] {
-            let opts = Options3 {
-                c,
-                method,
-                ..Options3::default()
+            let (until, keep) = (Until::All, Vec::new());
+            let method = if mac {
+                Method3::MinAreaChange { c, until, keep }
+            } else {
+                Method3::Gamma { c, until, keep }
             };
+            let opts = Options3 { method };
+            let mname = if mac { "MinAreaChange" } else { "Gamma" };
             let t = Instant::now();
-            let b = boundary_3d_with(&m.positions, &opts).expect("boundary");
+            let b = boundary_3d(&m.positions, &opts).expect("boundary");
             let secs = t.elapsed().as_secs_f64();
             let hit = b
                 .triangles
@@ -229,7 +234,7 @@ fn compare_keys(name: &str, m: &morpho::mesh::TriMesh) {
                 .filter(|t| orig.contains(&sorted(t)))
                 .count();
             println!(
-                "  {method:?} {cname}: left out {}, closed {}, genus {:?}, intersections {}, c_used {}, added {}, triangles {}, recovered {hit}/{} = {:.1} %, {secs:.2} s",
+                "  {mname} {cname}: left out {}, closed {}, genus {:?}, intersections {}, c_used {}, added {}, triangles {}, recovered {hit}/{} = {:.1} %, {secs:.2} s",
                 b.left_out.len(),
                 b.closed_manifold,
                 b.genus,
@@ -267,7 +272,7 @@ impl Watch {
 /// Phase timing of the fallback path (`phases` argument): constriction, engine construction,
 /// each run / local_gamma / augment step, final checks.
 fn phases(name: &str, pts: &[Point3]) {
-    use morpho::boundary::fallback3::General3;
+    use morpho::internals::General3;
     let t = Watch::start();
     let d = morpho::delaunay::triangulate_3d(pts).expect("triangulate");
     let t_dt = t.show();
@@ -350,8 +355,8 @@ fn phases(name: &str, pts: &[Point3]) {
     }
     let t = Watch::start();
     let b = g.boundary();
-    let delaunay_face = validity3::faces_of_tetrahedra(&d.tets, &b);
-    let si = validity3::self_intersections_trusting(&pos, &b, &delaunay_face, 10);
+    let delaunay_face = validity::faces_of_tetrahedra(&d.tets, &b);
+    let si = validity::self_intersections_trusting(&pos, &b, &delaunay_face, 10);
     println!(
         "  final check {} ({} intersections), iterations {}",
         t.show(),
@@ -383,7 +388,7 @@ fn main() {
         let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
         for _ in 0..3 {
             let (t, cpu) = (Instant::now(), cpu_seconds());
-            let n = validity3::self_intersections(&pos, &c.triangles, 10).len();
+            let n = validity::self_intersections(&pos, &c.triangles, 10).len();
             println!(
                 "check {} triangles: {:.3} s wall, {:.2} s CPU ({n})",
                 c.triangles.len(),

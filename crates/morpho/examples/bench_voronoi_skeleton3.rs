@@ -42,7 +42,7 @@
 //! The skeleton's enclosed volume is about 10–25 % of the γ result's (bunny_npm 44.9 vs 223.9,
 //! spot 0.15 vs 0.82): V §5.6's "the body of the object is not filled properly".
 
-use morpho::boundary::{boundary_3d_with, CParam, Method, Options3};
+use morpho::boundary::{boundary_3d, CParam, Method3, Options3, Until};
 use std::collections::HashSet;
 use std::time::Instant;
 
@@ -80,43 +80,31 @@ fn compare(name: &str, m: &morpho::mesh::TriMesh) {
         t.elapsed().as_secs_f64()
     );
     let mut runs: Vec<(String, Options3)> = vec![
-        (
-            "gamma (Auto)".into(),
-            Options3 {
-                c: CParam::Auto,
-                ..Options3::default()
-            },
-        ),
+        ("gamma (Auto)".into(), Options3::gamma(Until::All)),
         (
             "min-area-change (Fixed(0))".into(),
             Options3 {
-                c: CParam::Fixed(0.0),
-                method: Method::MinAreaChange,
-                ..Options3::default()
+                method: Method3::MinAreaChange {
+                    c: CParam::Fixed(0.0),
+                    until: Until::All,
+                    keep: Vec::new(),
+                },
             },
         ),
         (
             "voronoi-skeleton (200 seeds)".into(),
-            Options3 {
-                method: Method::VoronoiSkeleton,
-                max_seeds: 200,
-                ..Options3::default()
-            },
+            Options3::voronoi_skeleton(200),
         ),
     ];
     if d.tets.len() <= 25_000 {
         runs.push((
             format!("voronoi-skeleton (all {} seeds)", d.tets.len()),
-            Options3 {
-                method: Method::VoronoiSkeleton,
-                max_seeds: usize::MAX,
-                ..Options3::default()
-            },
+            Options3::voronoi_skeleton(usize::MAX),
         ));
     }
     for (label, opts) in runs {
         let t = Instant::now();
-        let b = boundary_3d_with(&m.positions, &opts).expect("boundary");
+        let b = boundary_3d(&m.positions, &opts).expect("boundary");
         let secs = t.elapsed().as_secs_f64();
         let hit = b
             .triangles

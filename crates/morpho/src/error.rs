@@ -105,6 +105,16 @@ pub enum Error {
         source: crate::render::RenderError,
     },
     // --- end f-rest ---
+    // --- boundary family (f-bnd) ---
+    /// A refusal of [`crate::boundary`] (`path`: the input file when known).
+    #[error("{}{source}", prefix(path))]
+    Boundary {
+        /// The input file, empty when unknown.
+        path: String,
+        /// The refusal.
+        #[source]
+        source: crate::boundary::BoundaryError,
+    },
 }
 
 /// `From<FamilyError> for Error`: the family's variant with an empty path (filled by
@@ -128,6 +138,7 @@ from_family! {
     crate::volume::VolumeError => Volume,
     crate::mesh::MeshError => Mesh,
     crate::render::RenderError => Render,
+    crate::boundary::BoundaryError => Boundary,
 }
 
 impl From<crate::contour::ContourError> for Error {
@@ -219,7 +230,8 @@ impl Error {
             | Error::Volume { path, .. }
             | Error::Contour { path, .. }
             | Error::Mesh { path, .. }
-            | Error::Render { path, .. } => {
+            | Error::Render { path, .. }
+            | Error::Boundary { path, .. } => {
                 if path.is_empty() {
                     *path = name;
                 }
@@ -233,6 +245,7 @@ impl Error {
         match self {
             Error::Delaunay { source, .. } => return source.is_input_error(),
             Error::Graph { source, .. } => return source.is_input_error(),
+            Error::Boundary { source, .. } => return source.is_input_error(),
             _ => {}
         }
         !matches!(self, Error::Io { source, .. } if source.kind() != std::io::ErrorKind::NotFound

@@ -15,6 +15,7 @@
 //! | [`delaunay`] | Delaunay triangulations, hulls, Voronoi |
 //! | [`volume`] | rectilinear volumes |
 //! | [`graphs`] | geometric graphs and the γ-neighbourhood graph (Veltkamp ch. 2–3) |
+//! | [`boundary`] | boundaries through scattered points: γ-constriction in 2D and 3D (Veltkamp ch. 4–5) |
 //! | [`io`] | file formats |
 //! | [`render`] | SVG and PNG pictures |
 //! | [`samples`] | generated sample data (chalice outline, Shepp–Logan phantom, borehole field) |
@@ -65,6 +66,8 @@ pub mod internals {
     // --- geom (f-rest): the exact fallbacks, checked against the adaptive predicates ---
     pub use crate::geom::exact::{insphere_exact, insphere_sign, orient3d_exact, orient_sign};
     // --- end f-rest ---
+    // --- boundary (f-bnd): engines of boundary_2d / boundary_3d ---
+    pub use crate::boundary::internals::*;
 }
 
 /// The library version.

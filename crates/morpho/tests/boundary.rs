@@ -2,9 +2,9 @@
 //! random sets give valid output or the documented failure, constraints appear, the comparison
 //! methods are valid, the Hamiltonicity fallback rescues a locked constriction, and real data.
 
-use morpho::boundary::validity::is_simple_brute;
-use morpho::boundary::{boundary_2d, check_polygon, CParam, Method, Options2};
+use morpho::boundary::{boundary_2d, check_polygon, CParam, Method2, Options2};
 use morpho::geom::Point2;
+use morpho::mesh::validity::is_simple_brute;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -35,10 +35,38 @@ fn same_cycle(a: &[u32], b: &[u32]) -> bool {
     fwd || bwd
 }
 
+/// The three 2D methods (the tests loop over them).
+#[derive(Clone, Copy, PartialEq, Debug)]
+enum Method {
+    Gamma,
+    MinAreaChange,
+    VoronoiSkeleton,
+}
+
+impl Method {
+    fn name(self) -> &'static str {
+        opts(self).method.name()
+    }
+}
+
+/// The defaults of `method` (c = auto, no keep edges, 200 seeds).
 fn opts(method: Method) -> Options2 {
+    opts_seeds(method, 200)
+}
+
+fn opts_seeds(method: Method, max_seeds: usize) -> Options2 {
     Options2 {
-        method,
-        ..Options2::default()
+        method: match method {
+            Method::Gamma => Method2::Gamma {
+                c: CParam::Auto,
+                keep: Vec::new(),
+            },
+            Method::MinAreaChange => Method2::MinAreaChange {
+                c: CParam::Auto,
+                keep: Vec::new(),
+            },
+            Method::VoronoiSkeleton => Method2::VoronoiSkeleton { max_seeds },
+        },
     }
 }
 
@@ -243,8 +271,10 @@ fn fixed_c_constriction_is_valid() {
             .collect();
         for c in [-0.2, -0.5] {
             let o = Options2 {
-                c: CParam::Fixed(c),
-                ..Options2::default()
+                method: morpho::boundary::Method2::Gamma {
+                    c: CParam::Fixed(c),
+                    keep: Vec::new(),
+                },
             };
             let b = boundary_2d(&pts, &o).unwrap();
             assert_valid(&pts, &b);
@@ -295,8 +325,10 @@ fn locked_delaunay_constriction_is_rescued_by_the_gamma_fallback() {
             .map(|_| Point2::new(rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0)))
             .collect();
         let dt_only = Options2 {
-            c: CParam::Fixed(0.0),
-            ..Options2::default()
+            method: morpho::boundary::Method2::Gamma {
+                c: CParam::Fixed(0.0),
+                keep: Vec::new(),
+            },
         };
         let b0 = boundary_2d(&pts, &dt_only).unwrap();
         assert_valid(&pts, &b0);
@@ -324,8 +356,10 @@ fn keep_edges_appear_on_the_boundary() {
     // keep a chord across the cup: from the left rim-ish point to a far point
     let keep = vec![[order[10], order[11]], [order[50], order[51]]];
     let o = Options2 {
-        keep: keep.clone(),
-        ..Options2::default()
+        method: morpho::boundary::Method2::Gamma {
+            c: CParam::Auto,
+            keep: keep.clone(),
+        },
     };
     let b = boundary_2d(&pts, &o).unwrap();
     assert_valid(&pts, &b);
@@ -343,8 +377,10 @@ fn keep_edges_appear_on_the_boundary() {
             d.input_of_vertex[e[1] as usize],
         ];
         let o = Options2 {
-            keep: vec![k],
-            ..Options2::default()
+            method: morpho::boundary::Method2::Gamma {
+                c: CParam::Auto,
+                keep: vec![k],
+            },
         };
         let b = boundary_2d(&pts2, &o).unwrap();
         assert_valid(&pts2, &b);
@@ -377,8 +413,10 @@ fn duplicates_and_errors() {
     assert!(boundary_2d(&line, &Options2::default()).is_err());
     assert!(boundary_2d(&[Point2::new(f64::NAN, 0.0)], &Options2::default()).is_err());
     let o = Options2 {
-        keep: vec![[0, 99]],
-        ..Options2::default()
+        method: morpho::boundary::Method2::Gamma {
+            c: CParam::Auto,
+            keep: vec![[0, 99]],
+        },
     };
     assert!(boundary_2d(&c, &o).is_err());
 }
@@ -451,10 +489,7 @@ fn real_single_curve_data_sets() {
         ] {
             let t = std::time::Instant::now();
             // (skeleton: 50 seeds keep the debug test fast; the CLI default is 200)
-            let o = Options2 {
-                max_seeds: 50,
-                ..opts(m)
-            };
+            let o = opts_seeds(m, 50);
             let b = boundary_2d(&pts, &o).unwrap();
             let el = t.elapsed().as_secs_f64();
             assert_valid(&pts, &b);
@@ -477,7 +512,18 @@ fn real_single_curve_data_sets() {
 // 3D
 
 use morpho::boundary::boundary_3d;
-use morpho::boundary::constrict3::Until;
+use morpho::boundary::{Options3, Until};
+
+/// γ-constriction with keep triangles.
+fn keep_opts(until: Until, keep: &[[u32; 3]]) -> Options3 {
+    Options3 {
+        method: morpho::boundary::Method3::Gamma {
+            c: CParam::Auto,
+            until,
+            keep: keep.to_vec(),
+        },
+    }
+}
 use morpho::geom::Point3;
 
 fn check_3d(pts: &[Point3], b: &morpho::boundary::Boundary3) {
@@ -514,14 +560,14 @@ fn bumpy_sphere(n: usize, a: f64) -> Vec<Point3> {
 #[test]
 fn sphere_and_ellipsoid_are_their_hull() {
     let s = morpho::samples::sphere_points(300, 1.0);
-    let b = boundary_3d(&s, Until::All).unwrap();
+    let b = boundary_3d(&s, &Options3::gamma(Until::All)).unwrap();
     check_3d(&s, &b);
     assert!(b.all_on_boundary && b.iterations == 0);
     let e: Vec<Point3> = s
         .iter()
         .map(|p| Point3::new(2.0 * p.x, p.y, 0.5 * p.z))
         .collect();
-    let b = boundary_3d(&e, Until::All).unwrap();
+    let b = boundary_3d(&e, &Options3::gamma(Until::All)).unwrap();
     check_3d(&e, &b);
     assert!(b.all_on_boundary);
 }
@@ -530,7 +576,7 @@ fn sphere_and_ellipsoid_are_their_hull() {
 fn bumpy_sphere_gives_a_closed_genus0_mesh_through_all_points() {
     let pts = bumpy_sphere(1500, 0.15);
     for until in [Until::Locked, Until::All] {
-        let b = boundary_3d(&pts, until).unwrap();
+        let b = boundary_3d(&pts, &Options3::gamma(until)).unwrap();
         check_3d(&pts, &b);
         assert!(
             b.all_on_boundary,
@@ -586,7 +632,7 @@ fn random_3d_sets_give_closed_genus0_boundaries() {
             })
             .collect();
         for until in [Until::All, Until::Locked] {
-            let b = boundary_3d(&pts, until).unwrap();
+            let b = boundary_3d(&pts, &Options3::gamma(until)).unwrap();
             check_3d(&pts, &b);
         }
     }
@@ -594,7 +640,7 @@ fn random_3d_sets_give_closed_genus0_boundaries() {
     let pts: Vec<Point3> = (0..64)
         .map(|k| Point3::new((k % 4) as f64, ((k / 4) % 4) as f64, (k / 16) as f64))
         .collect();
-    let b = boundary_3d(&pts, Until::All).unwrap();
+    let b = boundary_3d(&pts, &Options3::gamma(Until::All)).unwrap();
     check_3d(&pts, &b);
 }
 
@@ -611,7 +657,7 @@ fn bunny_vertices_give_a_closed_genus0_mesh() {
     }
     let mesh = morpho::io::read_mesh(&path).unwrap();
     let pts = mesh.positions.clone();
-    let b = boundary_3d(&pts, Until::All).unwrap();
+    let b = boundary_3d(&pts, &Options3::gamma(Until::All)).unwrap();
     check_3d(&pts, &b);
     assert!(b.all_on_boundary, "{} left out", b.left_out.len());
     let key = |t: &[u32; 3]| {
@@ -682,14 +728,14 @@ mod props {
             v in proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0), 4..30)
         ) {
             let pts: Vec<Point3> = v.into_iter().map(|(x, y, z)| Point3::new(x, y, z)).collect();
-            if let Ok(b) = boundary_3d(&pts, Until::All) {
+            if let Ok(b) = boundary_3d(&pts, &Options3::gamma(Until::All)) {
                 prop_assert!(b.closed_manifold);
                 prop_assert_eq!(b.genus, Some(0));
                 prop_assert!(b.intersections.is_empty());
                 // (the report skips pairs of Delaunay faces; every pair, exactly:)
                 let pos: Vec<[f64; 3]> = pts.iter().map(|p| [p.x, p.y, p.z]).collect();
                 prop_assert!(
-                    morpho::boundary::validity3::self_intersections_brute(&pos, &b.triangles)
+                    morpho::mesh::validity::self_intersections_brute(&pos, &b.triangles)
                         .is_empty()
                 );
             }
@@ -702,8 +748,8 @@ mod props {
 #[test]
 #[ignore]
 fn million_points_timing() {
-    use morpho::boundary::constrict2::{constrict_dt, region_cycle};
     use morpho::boundary::Key;
+    use morpho::internals::{constrict_dt, region_cycle};
     let n = std::env::var("MORPHO_BOUNDARY_N")
         .ok()
         .and_then(|s| s.parse().ok())
@@ -759,18 +805,18 @@ fn stanford_bunny_3d_timing() {
     let d = morpho::delaunay::triangulate_3d(&pts).unwrap();
     let t_dt = t.elapsed().as_secs_f64();
     let t = std::time::Instant::now();
-    let c = morpho::boundary::constrict3::constrict_3d(&d, Until::All);
+    let c = morpho::internals::constrict_3d(&d, Until::All);
     let t_con = t.elapsed().as_secs_f64();
     let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
     let t = std::time::Instant::now();
-    let _ = morpho::boundary::validity3::self_intersections(&pos, &c.triangles, 10);
+    let _ = morpho::mesh::validity::self_intersections(&pos, &c.triangles, 10);
     let t_si = t.elapsed().as_secs_f64();
     eprintln!(
         "constriction {t_con:.2}s ({} removals), self-intersection check {t_si:.2}s",
         c.iterations
     );
     let t = std::time::Instant::now();
-    let b = boundary_3d(&pts, Until::All).unwrap();
+    let b = boundary_3d(&pts, &Options3::gamma(Until::All)).unwrap();
     let t_all = t.elapsed().as_secs_f64();
     eprintln!(
         "stanford bunny {} points: delaunay {t_dt:.2}s ({} tets), boundary total {t_all:.2}s (ratio {:.2}), all={} ({} left out), closed={}, genus={:?}, intersections={}",
@@ -797,10 +843,10 @@ fn keep_triangles_stay_in_3d() {
         .take(20)
         .map(|t| t.map(|v| d.input_of_vertex[v as usize]))
         .collect();
-    let b = morpho::boundary::boundary_3d_keep(&pts, Until::Locked, &keep).unwrap();
+    let b = morpho::boundary::boundary_3d(&pts, &keep_opts(Until::Locked, &keep)).unwrap();
     check_3d(&pts, &b);
     assert!(b.keep_missing.is_empty(), "{:?}", b.keep_missing);
-    let plain = boundary_3d(&pts, Until::Locked).unwrap();
+    let plain = boundary_3d(&pts, &Options3::gamma(Until::Locked)).unwrap();
     let key = |t: &[u32; 3]| {
         let mut k = *t;
         k.sort_unstable();
@@ -831,10 +877,7 @@ fn results_do_not_depend_on_the_absolute_scale_2d() {
             Method::MinAreaChange,
             Method::VoronoiSkeleton,
         ] {
-            let o = Options2 {
-                method,
-                ..Options2::default()
-            };
+            let o = opts(method);
             let want = boundary_2d(&base, &o).unwrap();
             for e in [-1000, -600, -100, 500, 1000] {
                 let s = 2f64.powi(e);
@@ -866,12 +909,12 @@ fn results_do_not_depend_on_the_absolute_scale_3d() {
                 Point3::new(x.powi(3), y.powi(3), z.powi(3))
             })
             .collect();
-        let want = boundary_3d(&base, Until::All).unwrap();
+        let want = boundary_3d(&base, &Options3::gamma(Until::All)).unwrap();
         assert!(want.c_used < 0.0 && want.all_on_boundary, "seed {seed}");
         for e in [-1000, -600, 100, 500, 1000] {
             let s = 2f64.powi(e);
             let pts: Vec<Point3> = base.iter().map(|p| p * s).collect();
-            let b = boundary_3d(&pts, Until::All).unwrap();
+            let b = boundary_3d(&pts, &Options3::gamma(Until::All)).unwrap();
             assert_eq!(b.triangles, want.triangles, "seed {seed} 2^{e}");
             assert_eq!(
                 (b.c_used, b.added_triangles),

@@ -1,8 +1,19 @@
 //! 3D boundary: the general constriction engine (V §5.4 fallback, γ([-1,1],[c,1]) with c < 0)
 //! and keep triangles (V §5.7). The Delaunay-constriction tests are in `boundary.rs`.
 
-use morpho::boundary::constrict3::{constrict_3d, Until};
-use morpho::boundary::{boundary_3d, boundary_3d_with, Boundary3, CParam, Method, Options3};
+use morpho::boundary::{boundary_3d, Boundary3, CParam, Method3, Options3, Until};
+use morpho::internals::constrict_3d;
+
+/// γ-constriction with keep triangles.
+fn keep_opts(until: Until, keep: &[[u32; 3]]) -> Options3 {
+    Options3 {
+        method: Method3::Gamma {
+            c: CParam::Auto,
+            until,
+            keep: keep.to_vec(),
+        },
+    }
+}
 use morpho::geom::Point3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -24,7 +35,7 @@ fn assert_valid(pts: &[Point3], b: &Boundary3) {
         brute_no_intersections(&pos, &b.triangles);
     }
     // the report skips pairs of Delaunay faces: the full check of every pair agrees
-    assert!(morpho::boundary::validity3::self_intersections(&pos, &b.triangles, 1).is_empty());
+    assert!(morpho::mesh::validity::self_intersections(&pos, &b.triangles, 1).is_empty());
     let mut on = vec![false; pts.len()];
     for t in &b.triangles {
         for &v in t {
@@ -96,11 +107,14 @@ fn fixed_negative_c_constriction_is_valid_on_random_sets() {
         let n = rng.gen_range(6..16);
         let pts = cube_points(&mut rng, n);
         let c = [-0.2, -0.5, -1.0][k % 3];
-        let b = boundary_3d_with(
+        let b = boundary_3d(
             &pts,
             &Options3 {
-                c: CParam::Fixed(c),
-                ..Options3::default()
+                method: morpho::boundary::Method3::Gamma {
+                    c: CParam::Fixed(c),
+                    until: morpho::boundary::Until::All,
+                    keep: Vec::new(),
+                },
             },
         )
         .unwrap();
@@ -122,7 +136,7 @@ fn locked_delaunay_constriction_falls_back_and_stays_valid() {
             c.boundary_vertices < d.points.len(),
             "seed {seed} no longer locks"
         );
-        let b = boundary_3d(&pts, Until::All).unwrap();
+        let b = boundary_3d(&pts, &Options3::gamma(Until::All)).unwrap();
         assert_valid(&pts, &b);
         eprintln!(
             "seed {seed}: Delaunay leaves {}, fallback leaves {} (c = {}, {} triangles added)",
@@ -147,7 +161,7 @@ fn find_locking_sets() {
         let d = morpho::delaunay::triangulate_3d(&pts).unwrap();
         let c = constrict_3d(&d, Until::All);
         if c.boundary_vertices < d.points.len() {
-            let b = boundary_3d(&pts, Until::All).unwrap();
+            let b = boundary_3d(&pts, &Options3::gamma(Until::All)).unwrap();
             eprintln!(
                 "seed {seed} n {n}: Delaunay leaves {}, fallback leaves {} (c {}, added {}), closed {} genus {:?}, {} intersections",
                 d.points.len() - c.boundary_vertices,
@@ -199,7 +213,7 @@ fn non_delaunay_keep_triangle_is_brought_to_the_boundary() {
             continue;
         }
         let keep = [kt.map(|v| d.input_of_vertex[v as usize])];
-        let b = morpho::boundary::boundary_3d_keep(&pts, Until::All, &keep).unwrap();
+        let b = morpho::boundary::boundary_3d(&pts, &keep_opts(Until::All, &keep)).unwrap();
         assert_valid(&pts, &b);
         assert!(b.all_on_boundary);
         let on: std::collections::HashSet<[u32; 3]> = b.triangles.iter().map(key).collect();
@@ -217,7 +231,7 @@ fn keep_triangles_are_on_the_result_or_reported_missing() {
         let pts = cube_points(&mut rng, 16);
         // an arbitrary (usually non-Delaunay, interior) triangle
         let keep = [[0u32, 1, 2]];
-        let b = morpho::boundary::boundary_3d_keep(&pts, Until::All, &keep).unwrap();
+        let b = morpho::boundary::boundary_3d(&pts, &keep_opts(Until::All, &keep)).unwrap();
         assert_valid(&pts, &b);
         let on: std::collections::HashSet<[u32; 3]> = b.triangles.iter().map(key).collect();
         assert_eq!(on.contains(&key(&keep[0])), b.keep_missing.is_empty());
@@ -225,7 +239,7 @@ fn keep_triangles_are_on_the_result_or_reported_missing() {
     // invalid constraints
     let pts = morpho::samples::sphere_points(30, 1.0);
     let crossing = [[0u32, 1, 2], [0, 1, 2]];
-    assert!(morpho::boundary::boundary_3d_keep(&pts, Until::All, &crossing).is_err());
+    assert!(morpho::boundary::boundary_3d(&pts, &keep_opts(Until::All, &crossing)).is_err());
 }
 
 mod props {
@@ -254,8 +268,8 @@ mod props {
         #[test]
         fn general_engine_gives_a_valid_closed_genus0_mesh(pts in pts3(), ci in 1usize..=10) {
             let c = -0.1 * ci as f64;
-            let opts = Options3 { c: CParam::Fixed(c), ..Options3::default() };
-            match boundary_3d_with(&pts, &opts) {
+            let opts = Options3 { method: morpho::boundary::Method3::Gamma { c: CParam::Fixed(c), until: morpho::boundary::Until::All, keep: Vec::new() } };
+            match boundary_3d(&pts, &opts) {
                 Ok(b) => assert_valid(&pts, &b),
                 Err(_) => {
                     // only for coplanar or too few distinct points
@@ -271,7 +285,8 @@ mod props {
 
 mod min_area_change {
     use super::*;
-    use morpho::boundary::constrict3::{constrict_3d_with, min_area_change_3d, removal_key, Key};
+    use morpho::boundary::Key;
+    use morpho::internals::{constrict_3d_with, min_area_change_3d, removal_key};
 
     /// Circumradius of a tetrahedron (Cramer on 2(pₖ − p₀)·c = |pₖ|² − |p₀|²).
     fn circumradius(p: [[f64; 3]; 4]) -> f64 {
@@ -362,10 +377,16 @@ mod min_area_change {
     }
 
     fn mac_opts() -> Options3 {
+        mac_opts_c(CParam::Fixed(0.0))
+    }
+
+    fn mac_opts_c(c: CParam) -> Options3 {
         Options3 {
-            c: CParam::Fixed(0.0),
-            method: Method::MinAreaChange,
-            ..Options3::default()
+            method: Method3::MinAreaChange {
+                c,
+                until: Until::All,
+                keep: Vec::new(),
+            },
         }
     }
 
@@ -378,7 +399,7 @@ mod min_area_change {
             ("ellipsoid", ellipsoid(600, 0.0)),
             ("bumpy ellipsoid", ellipsoid(800, 0.1)),
         ] {
-            let b = boundary_3d_with(&pts, &mac_opts()).unwrap();
+            let b = boundary_3d(&pts, &mac_opts()).unwrap();
             assert_valid(&pts, &b);
             eprintln!(
                 "{name}: {} removals, {} left out",
@@ -424,8 +445,8 @@ mod min_area_change {
                     .collect()
             };
             for c in [CParam::Fixed(0.0), CParam::Auto] {
-                let opts = Options3 { c, ..mac_opts() };
-                let b = boundary_3d_with(&pts, &opts).unwrap();
+                let opts = mac_opts_c(c);
+                let b = boundary_3d(&pts, &opts).unwrap();
                 assert_valid(&pts, &b); // includes: left_out = exactly the points off it
                 assert_eq!(b.all_on_boundary, b.left_out.is_empty());
                 complete += b.all_on_boundary as usize;

@@ -624,8 +624,10 @@ fn boundary_interior_in_the_general_engine() {
         let n = r.gen_range(5..60);
         let p = random_points(n, None, &mut r);
         let o = Options2 {
-            c: CParam::Fixed(-0.3),
-            ..Options2::default()
+            method: morpho::boundary::Method2::Gamma {
+                c: CParam::Fixed(-0.3),
+                keep: Vec::new(),
+            },
         };
         let b = boundary_2d(&p, &o).unwrap();
         check_interior(&p, &b.polygon, &b.interior);

@@ -354,8 +354,10 @@ fn run(p: &[Point2], c: CParam) -> (Boundary2, PolygonCheck, HashSet<[u32; 2]>) 
     let b = boundary_2d(
         p,
         &Options2 {
-            c,
-            ..Default::default()
+            method: morpho::boundary::Method2::Gamma {
+                c,
+                keep: Vec::new(),
+            },
         },
     )
     .unwrap();

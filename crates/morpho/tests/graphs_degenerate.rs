@@ -250,8 +250,10 @@ fn cocircular_integer_points_2d() {
     let pp = p.clone();
     let b = within_bound("cocircular boundary c = −0.5", move || {
         let opts = Options2 {
-            c: CParam::Fixed(-0.5),
-            ..Options2::default()
+            method: morpho::boundary::Method2::Gamma {
+                c: CParam::Fixed(-0.5),
+                keep: Vec::new(),
+            },
         };
         boundary_2d(&pts2(&pp), &opts).unwrap()
     });

@@ -1,21 +1,17 @@
 //! 3D boundary by the shortest Voronoi skeleton (O'Rourke et al. as in Veltkamp §4.3.4, §5.6)
-//! through the public entry point `boundary_3d_with(.., method: VoronoiSkeleton)`: validity
+//! through the public entry point `boundary_3d(.., method: VoronoiSkeleton)`: validity
 //! (closed genus-0 2-manifold, exact self-intersection check), coverage, the interior
 //! tetrahedra, errors on degenerate input, and a property test over random and degenerate
 //! sets. The growth itself is tested against its definition and an exhaustive enumeration in
 //! `boundary::voronoi_skeleton3`.
 
-use morpho::boundary::{boundary_3d_with, Boundary3, Method, Options3};
+use morpho::boundary::{boundary_3d, Boundary3, Options3};
 use morpho::geom::Point3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 fn opts(max_seeds: usize) -> Options3 {
-    Options3 {
-        method: Method::VoronoiSkeleton,
-        max_seeds,
-        ..Options3::default()
-    }
+    Options3::voronoi_skeleton(max_seeds)
 }
 
 fn ellipsoid(seed: u64, n: usize, ax: [f64; 3]) -> Vec<Point3> {
@@ -114,7 +110,7 @@ fn random_sphere_and_ellipsoid_sets_give_valid_boundaries() {
             ellipsoid(seed, 40, [1.0, 1.0, 1.0]),
             ellipsoid(seed + 50, 60, [3.0, 1.5, 0.6]),
         ] {
-            let b = boundary_3d_with(&pts, &opts(200)).unwrap();
+            let b = boundary_3d(&pts, &opts(200)).unwrap();
             assert_valid(&pts, &b);
             total += 1;
             complete += b.all_on_boundary as usize;
@@ -128,8 +124,8 @@ fn random_sphere_and_ellipsoid_sets_give_valid_boundaries() {
 fn more_seeds_never_give_a_worse_tree() {
     for seed in 0..4u64 {
         let pts = ellipsoid(seed + 7, 35, [2.0, 1.0, 1.0]);
-        let few = boundary_3d_with(&pts, &opts(3)).unwrap();
-        let all = boundary_3d_with(&pts, &opts(usize::MAX)).unwrap();
+        let few = boundary_3d(&pts, &opts(3)).unwrap();
+        let all = boundary_3d(&pts, &opts(usize::MAX)).unwrap();
         assert_valid(&pts, &few);
         assert_valid(&pts, &all);
         assert!(all.left_out.len() <= few.left_out.len());
@@ -161,7 +157,7 @@ fn degenerate_input_is_a_clear_error_or_valid() {
             .collect(),
     ];
     for pts in &bad {
-        let e = boundary_3d_with(pts, &opts(10)).unwrap_err();
+        let e = boundary_3d(pts, &opts(10)).unwrap_err();
         let m = e.to_string();
         assert!(
             m.contains("no closed surface") || m.contains("no points"),
@@ -174,21 +170,16 @@ fn degenerate_input_is_a_clear_error_or_valid() {
         p(0., 1., 0.),
         p(0., 0., f64::NAN),
     ];
-    assert!(boundary_3d_with(&nan, &opts(10)).is_err());
+    assert!(boundary_3d(&nan, &opts(10)).is_err());
     // duplicates of a tetrahedron's corners: valid, copies count as on the boundary
     let mut pts = vec![p(0., 0., 0.), p(1., 0., 0.), p(0., 1., 0.), p(0., 0., 1.)];
     pts.extend(pts.clone());
     pts.push(p(0.2, 0.2, 0.2));
-    let b = boundary_3d_with(&pts, &opts(10)).unwrap();
+    let b = boundary_3d(&pts, &opts(10)).unwrap();
     assert_valid(&pts, &b);
     assert!(b.all_on_boundary);
-    // keep triangles are not supported by this method
-    let o = Options3 {
-        keep: vec![[0, 1, 2]],
-        ..opts(10)
-    };
-    let e = boundary_3d_with(&pts, &o).unwrap_err();
-    assert!(e.to_string().contains("keep"), "{e}");
+    // (keep triangles: Method3::VoronoiSkeleton has no such parameter; the CLI refuses
+    // `--keep` with this method, tested in morpho-cli)
 }
 
 mod prop {
@@ -216,7 +207,7 @@ mod prop {
 
         #[test]
         fn valid_or_the_documented_error(pts in pts3(), seeds in 1usize..20) {
-            let r = boundary_3d_with(&pts, &opts(seeds));
+            let r = boundary_3d(&pts, &opts(seeds));
             let Ok(d) = morpho::delaunay::triangulate_3d(&pts) else {
                 prop_assert!(pts.is_empty());
                 prop_assert!(r.unwrap_err().to_string().contains("no points"));

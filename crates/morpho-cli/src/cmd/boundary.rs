@@ -22,9 +22,9 @@
 
 use crate::report::Report;
 use crate::Failure;
-use morpho::boundary::constrict3::Until;
 use morpho::boundary::{
-    boundary_2d, boundary_3d_with, check_polygon, CParam, Method, Options2, Options3,
+    boundary_2d, boundary_3d, check_polygon, BoundaryError, CParam, Method2, Method3, Options2,
+    Options3, Until,
 };
 use morpho::io;
 use morpho::render;
@@ -71,16 +71,15 @@ pub struct Args {
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    let method = match args.method.as_str() {
-        "gamma" => Method::Gamma,
-        "min-area-change" => Method::MinAreaChange,
-        "voronoi-skeleton" => Method::VoronoiSkeleton,
+    let method = args.method.as_str();
+    match method {
+        "gamma" | "min-area-change" | "voronoi-skeleton" => {}
         m => {
             return Err(Failure::usage(format!(
                 "unknown --method {m}: use gamma, min-area-change or voronoi-skeleton"
             )))
         }
-    };
+    }
     let c = if args.c == "auto" {
         CParam::Auto
     } else {
@@ -101,14 +100,17 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             Some(k) => report.time("read", || super::read_index_rows::<3>(k, "keep"))?,
             None => Vec::new(),
         };
-        let opts = Options3 {
-            until,
-            c,
-            keep,
-            method,
-            max_seeds: args.seeds.max(1),
+        let method = match method {
+            "gamma" => Method3::Gamma { c, until, keep },
+            "min-area-change" => Method3::MinAreaChange { c, until, keep },
+            _ => {
+                no_keep(&keep, "triangles")?;
+                Method3::VoronoiSkeleton {
+                    max_seeds: args.seeds.max(1),
+                }
+            }
         };
-        return run_3d(&args, ps.to_points3(), &opts, &ext, method, report);
+        return run_3d(&args, ps.to_points3(), &Options3 { method }, &ext, report);
     }
     if !matches!(ext.as_str(), "csv" | "geojson" | "json" | "svg") {
         return Err(Failure::usage(format!(
@@ -128,15 +130,21 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         };
         Ok((ps.to_points2(), keep))
     })?;
-    let opts = Options2 {
-        method,
-        c,
-        keep,
-        max_seeds: args.seeds.max(1),
+    let with_keep = !keep.is_empty();
+    let method = match method {
+        "gamma" => Method2::Gamma { c, keep },
+        "min-area-change" => Method2::MinAreaChange { c, keep },
+        _ => {
+            no_keep(&keep, "edges")?;
+            Method2::VoronoiSkeleton {
+                max_seeds: args.seeds.max(1),
+            }
+        }
     };
-    let b = report.time("compute", || boundary_2d(&pts, &opts))?;
+    let opts = Options2 { method };
+    let b = report.time("compute", || boundary_2d(&pts, &opts).map_err(Error::from))?;
     let check = report.time("compute", || check_polygon(&pts, &b.polygon));
-    report.set("method", method.name());
+    report.set("method", opts.method.name());
     report.set("points", pts.len());
     report.set("boundary_vertices", b.polygon.len());
     report.set("duplicates_merged", duplicates(&pts));
@@ -146,7 +154,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     report.set("simple", check.simple);
     report.set("area", b.area);
     report.set("left_out", json!(b.left_out));
-    if !opts.keep.is_empty() {
+    if with_keep {
         report.set("keep_missing", json!(b.keep_missing));
     }
     if let Some(l) = b.skeleton_length {
@@ -195,7 +203,6 @@ fn run_3d(
     pts: Vec<morpho::geom::Point3>,
     opts: &Options3,
     ext: &str,
-    method: Method,
     report: &mut Report,
 ) -> Result<u8, Failure> {
     if !matches!(ext, "ply" | "obj" | "off" | "vtu" | "vtk" | "json") {
@@ -204,9 +211,9 @@ fn run_3d(
             args.output.display()
         )));
     }
-    let b = report.time("compute", || boundary_3d_with(&pts, opts))?;
+    let b = report.time("compute", || boundary_3d(&pts, opts).map_err(Error::from))?;
     let vertices: std::collections::HashSet<u32> = b.triangles.iter().flatten().copied().collect();
-    report.set("method", method.name());
+    report.set("method", opts.method.name());
     report.set("points", pts.len());
     report.set("boundary_vertices", vertices.len());
     report.set("all_on_boundary", b.all_on_boundary);
@@ -219,7 +226,11 @@ fn run_3d(
     report.set("triangles", b.triangles.len());
     report.set("volume", b.volume);
     report.set("left_out", json!(b.left_out));
-    if !opts.keep.is_empty() {
+    let with_keep = match &opts.method {
+        Method3::Gamma { keep, .. } | Method3::MinAreaChange { keep, .. } => !keep.is_empty(),
+        Method3::VoronoiSkeleton { .. } => false,
+    };
+    if with_keep {
         report.set("keep_missing", json!(b.keep_missing));
     }
     if let Some(l) = b.skeleton_length {
@@ -251,4 +262,12 @@ fn run_3d(
         return Ok(1);
     }
     Ok(0)
+}
+
+/// The Voronoi skeleton method takes no keep edges or triangles (`what`).
+fn no_keep<T>(keep: &[T], what: &'static str) -> morpho::Result<()> {
+    if keep.is_empty() {
+        return Ok(());
+    }
+    Err(BoundaryError::KeepUnsupported { what }.into())
 }

@@ -528,7 +528,7 @@ fn boundary_section(ctx: &Ctx) -> Result<Vec<Section>> {
 
 /// γ-constriction of the chalice, pictured at five steps.
 fn chalice_constriction(ctx: &Ctx) -> Result<Section> {
-    use morpho::boundary::{boundary_2d, constriction_steps_2d, indicator::Key, Options2};
+    use morpho::boundary::{boundary_2d, constriction_steps_2d, Key, Options2};
     let p = chalice();
     let mut s = Section::new(
         "Boundary through all points: γ-constriction of the chalice (Veltkamp §5.2)",
@@ -563,7 +563,7 @@ fn chalice_constriction(ctx: &Ctx) -> Result<Section> {
 
 /// The three 2D methods on a noisy outline with ground truth (the points in curve order).
 fn three_methods_2d(ctx: &Ctx, path: &Path) -> Result<Section> {
-    use morpho::boundary::{boundary_2d, Method, Options2};
+    use morpho::boundary::{boundary_2d, Options2};
     let pts = morpho::io::read_points(path)?.to_points2();
     let mut s = Section::new(
         "Three methods on a noisy outline",
@@ -572,18 +572,12 @@ fn three_methods_2d(ctx: &Ctx, path: &Path) -> Result<Section> {
          points in curve order, so the fraction of its consecutive pairs that are polygon edges measures recovery.",
     );
     for (m, name) in [
-        (Method::Gamma, "gamma"),
-        (Method::MinAreaChange, "min-area-change"),
-        (Method::VoronoiSkeleton, "voronoi-skeleton"),
+        (Options2::gamma(), "gamma"),
+        (Options2::min_area_change(), "min-area-change"),
+        (Options2::voronoi_skeleton(200), "voronoi-skeleton"),
     ] {
         let t = Instant::now();
-        let b = boundary_2d(
-            &pts,
-            &Options2 {
-                method: m,
-                ..Default::default()
-            },
-        )?;
+        let b = boundary_2d(&pts, &m)?;
         let dt = t.elapsed().as_secs_f64();
         let mut on: std::collections::HashSet<[u32; 2]> = std::collections::HashSet::new();
         for i in 0..b.polygon.len() {
@@ -615,11 +609,11 @@ fn three_methods_2d(ctx: &Ctx, path: &Path) -> Result<Section> {
 
 /// The 3D boundary through the vertices of the bunny scan, and the comparison methods.
 fn bunny_boundary(ctx: &Ctx, path: &Path) -> Result<Section> {
-    use morpho::boundary::{boundary_3d, constrict3::Until, Method};
+    use morpho::boundary::{boundary_3d, Method3, Options3, Until};
     use morpho::render::{render_mesh, RenderOptions, Shading};
     let m = morpho::io::read_mesh(path)?;
     let t = Instant::now();
-    let b = boundary_3d(&m.positions, Until::All)?;
+    let b = boundary_3d(&m.positions, &Options3::gamma(Until::All))?;
     let dt = t.elapsed().as_secs_f64();
     let mut s = Section::new(
         "A closed boundary through the vertices of a scan (Veltkamp §5.3)",
@@ -641,7 +635,7 @@ fn bunny_boundary(ctx: &Ctx, path: &Path) -> Result<Section> {
         "bunny_boundary.png",
         "--until all: stop as soon as every point is on the boundary",
     );
-    let bl = boundary_3d(&m.positions, Until::Locked)?;
+    let bl = boundary_3d(&m.positions, &Options3::gamma(Until::Locked))?;
     let mesh_l = morpho::mesh::TriMesh::new(m.positions.clone(), bl.triangles.clone());
     render_mesh(&mesh_l, &opts).save_png(&ctx.path("bunny_boundary_locked.png"))?;
     s.img(
@@ -676,7 +670,6 @@ fn bunny_boundary(ctx: &Ctx, path: &Path) -> Result<Section> {
     );
     s.fig("time", format!("{:.0} ms", dt * 1e3));
     // the comparison methods of V §4.3.3 and §4.3.4 on the same points (V §5.6)
-    use morpho::boundary::{boundary_3d_with, Options3};
     let sorted = |t: &[u32; 3]| {
         let mut t = *t;
         t.sort_unstable();
@@ -693,22 +686,23 @@ fn bunny_boundary(ctx: &Ctx, path: &Path) -> Result<Section> {
     );
     for (method, file, what) in [
         (
-            Method::MinAreaChange,
+            Method3::MinAreaChange {
+                c: morpho::boundary::CParam::Auto,
+                until: Until::All,
+                keep: Vec::new(),
+            },
             "bunny_min_area.png",
             "minimal area change (Boissonnat, V §4.3.3)",
         ),
         (
-            Method::VoronoiSkeleton,
+            Method3::VoronoiSkeleton { max_seeds: 200 },
             "bunny_skeleton.png",
             "shortest Voronoi skeleton (O'Rourke et al., V §4.3.4)",
         ),
     ] {
-        let o = Options3 {
-            method,
-            ..Options3::default()
-        };
+        let o = Options3 { method };
         let t = Instant::now();
-        let bm = boundary_3d_with(&m.positions, &o)?;
+        let bm = boundary_3d(&m.positions, &o)?;
         let dt = t.elapsed().as_secs_f64();
         let mesh = morpho::mesh::TriMesh::new(m.positions.clone(), bm.triangles.clone());
         render_mesh(&mesh, &opts).save_png(&ctx.path(file))?;
@@ -791,8 +785,10 @@ fn dillencourt_section(ctx: &Ctx) -> Result<Vec<Section>> {
         let b = boundary_2d(
             &p,
             &Options2 {
-                c,
-                ..Default::default()
+                method: morpho::boundary::Method2::Gamma {
+                    c,
+                    keep: Vec::new(),
+                },
             },
         )?;
         let chk = check_polygon(&p, &b.polygon);

@@ -43,7 +43,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
 
 /// The `--check` validity tests; returns whether everything passed and the lines to print.
 fn check(data: &Data, report: &mut Report) -> (bool, Vec<String>) {
-    use morpho::boundary::{validity, validity3};
+    use morpho::mesh::validity;
     let mut out = Vec::new();
     let mut valid = true;
     match data {
@@ -78,7 +78,7 @@ fn check(data: &Data, report: &mut Report) -> (bool, Vec<String>) {
             let t = analyze_topology(m);
             let closed = t.manifold && t.boundary_loops.is_empty() && !m.triangles.is_empty();
             let pos: Vec<[f64; 3]> = m.positions.iter().map(|p| [p.x, p.y, p.z]).collect();
-            let hits = validity3::self_intersections(&pos, &m.triangles, 10);
+            let hits = validity::self_intersections(&pos, &m.triangles, 10);
             valid = closed && hits.is_empty();
             out.push(format!("check: closed 2-manifold: {}", yes(closed)));
             out.push(format!(

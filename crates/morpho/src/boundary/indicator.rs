@@ -67,6 +67,15 @@ pub fn min_area_change(pi: [f64; 2], pj: [f64; 2], pk: [f64; 2]) -> f64 {
 impl Key {
     /// The key of deleting boundary edge (pi, pj) with respect to pk (smaller is deleted
     /// first).
+    ///
+    /// A right angle at pk has γ-indicator 0 (pk on the circle with diameter pi pj); an
+    /// obtuse one is negative, an acute one positive:
+    /// ```rust
+    /// use morpho::boundary::Key;
+    /// assert_eq!(Key::Gamma.value([0.0, 0.0], [2.0, 0.0], [1.0, 1.0]), 0.0);
+    /// assert!(Key::Gamma.value([0.0, 0.0], [2.0, 0.0], [1.0, 0.5]) < 0.0);
+    /// assert!(Key::Gamma.value([0.0, 0.0], [2.0, 0.0], [1.0, 3.0]) > 0.0);
+    /// ```
     pub fn value(self, pi: [f64; 2], pj: [f64; 2], pk: [f64; 2]) -> f64 {
         match self {
             Key::Gamma => gamma_indicator(pi, pj, pk),

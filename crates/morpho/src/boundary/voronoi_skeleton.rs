@@ -44,6 +44,7 @@ impl Ord for E {
 
 /// The result of [`shortest_skeleton`].
 #[derive(Debug, Clone)]
+#[allow(dead_code)] // `vertices`, `seeds`: diagnostics, read by no caller yet
 pub struct Skeleton {
     /// Triangles of the region (the interior triangulation).
     pub alive: Vec<bool>,

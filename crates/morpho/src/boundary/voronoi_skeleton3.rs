@@ -87,6 +87,7 @@ pub fn voronoi_edge_length(a: &Point3, b: &Point3) -> f64 {
 /// The result of [`shortest_skeleton_3d`] (vertex and tetrahedron indices of the
 /// [`Delaunay3`]).
 #[derive(Debug, Clone)]
+#[cfg_attr(not(test), allow(dead_code))] // `vertices`, `seed`, `seeds`: read by the tests
 pub struct Skeleton3 {
     /// The region's tetrahedra.
     pub alive: Vec<bool>,
@@ -309,6 +310,7 @@ pub fn shortest_skeleton_3d(d: &Delaunay3, max_seeds: usize) -> Skeleton3 {
 }
 
 /// The growth from one seed without early abandoning (for tests and comparisons).
+#[cfg(test)]
 pub fn grow_from(d: &Delaunay3, seed: u32) -> Skeleton3 {
     let dual = Dual::new(d);
     let mut g = Grower::new(d, &dual);
@@ -422,7 +424,7 @@ mod tests {
         let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
         if exact_check {
             assert!(mesh.signed_volume() > 0.0);
-            let si = crate::boundary::validity3::self_intersections(&pos, &sk.triangles, 1);
+            let si = crate::mesh::validity::self_intersections(&pos, &sk.triangles, 1);
             assert!(si.is_empty());
         }
         let l = tree_length(d, &sk.alive);
@@ -678,7 +680,7 @@ mod tests {
             let d = triangulate(&pts).unwrap();
             assert!(!d.tets.is_empty());
             let sk = shortest_skeleton_3d(&d, usize::MAX);
-            // validity3's Shewchuk predicates underflow at 1e-300 and overflow at 1e155
+            // mesh::validity's Shewchuk predicates underflow at 1e-300 and overflow at 1e155
             assert_region_with(&d, &sk, scale == 1.0 && lift >= 1e-30);
             assert!(!sk.length.is_nan());
             infinite |= sk.length == f64::INFINITY;

@@ -11,6 +11,8 @@ pub(crate) mod topology;
 
 pub use error::MeshError;
 pub use topology::{analyze_topology, orient_consistently, PartInfo, Topology};
+/// The polygon and mesh validators (a namespace of its own: `mesh::validity::check_polygon`, …).
+pub mod validity;
 
 use crate::geom::{Aabb3, Point2, Point3, Vector3};
 

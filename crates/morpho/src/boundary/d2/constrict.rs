@@ -41,8 +41,8 @@
 //!
 //! Every sidedness, crossing and containment decision uses the exact `orient2d`.
 
-use super::indicator::Key;
-use super::indicator::MinKey;
+use crate::boundary::indicator::Key;
+use crate::boundary::indicator::MinKey;
 use crate::delaunay::d2::Delaunay2;
 use crate::geom::grid::BoxGrid;
 use crate::geom::intersect::segments_cross_properly;
@@ -177,32 +177,32 @@ pub fn region_cycle(d: &Delaunay2, alive: &[bool]) -> Vec<u32> {
     cyc
 }
 
-fn ekey(a: u32, b: u32) -> u64 {
+pub(super) fn ekey(a: u32, b: u32) -> u64 {
     let (a, b) = if a < b { (a, b) } else { (b, a) };
     ((a as u64) << 32) | b as u64
 }
 
 /// Constriction of a general (pruned) graph; see the module documentation.
 pub struct General<'a> {
-    p: &'a [[f64; 2]],
-    key: Key,
-    edges: Vec<[u32; 2]>,
-    live: Vec<bool>,
-    id: HashMap<u64, u32>,
-    adj: Vec<Vec<u32>>,
-    keep: HashSet<u64>,
+    pub(super) p: &'a [[f64; 2]],
+    pub(super) key: Key,
+    pub(super) edges: Vec<[u32; 2]>,
+    pub(super) live: Vec<bool>,
+    pub(super) id: HashMap<u64, u32>,
+    pub(super) adj: Vec<Vec<u32>>,
+    pub(super) keep: HashSet<u64>,
     /// Boundary successor (counter-clockwise) of each vertex, `NONE` when not on the boundary.
     pub next: Vec<u32>,
-    prev: Vec<u32>,
+    pub(super) prev: Vec<u32>,
     /// Number of boundary vertices.
     pub boundary_vertices: usize,
     /// Number of deletions.
     pub iterations: usize,
     /// Deleted edges (vertex indices).
     pub deleted: Vec<[u32; 2]>,
-    egrid: BoxGrid<2>,
-    vgrid: BoxGrid<2>,
-    heap: BinaryHeap<Entry>,
+    pub(super) egrid: BoxGrid<2>,
+    pub(super) vgrid: BoxGrid<2>,
+    pub(super) heap: BinaryHeap<Entry>,
 }
 
 impl<'a> General<'a> {
@@ -265,7 +265,7 @@ impl<'a> General<'a> {
         g
     }
 
-    fn add_edge(&mut self, a: u32, b: u32) {
+    pub(super) fn add_edge(&mut self, a: u32, b: u32) {
         if a == b {
             return;
         }
@@ -292,7 +292,7 @@ impl<'a> General<'a> {
         );
     }
 
-    fn kill(&mut self, i: u32) {
+    pub(super) fn kill(&mut self, i: u32) {
         let i = i as usize;
         if !self.live[i] {
             return;
@@ -309,16 +309,6 @@ impl<'a> General<'a> {
         self.id
             .get(&ekey(a, b))
             .is_some_and(|&i| self.live[i as usize])
-    }
-
-    /// The live edges.
-    pub fn live_edges(&self) -> Vec<[u32; 2]> {
-        self.edges
-            .iter()
-            .zip(&self.live)
-            .filter(|(_, &l)| l)
-            .map(|(e, _)| *e)
-            .collect()
     }
 
     fn tri_box(&self, i: u32, j: u32, k: u32) -> ([f64; 2], [f64; 2]) {
@@ -423,25 +413,10 @@ impl<'a> General<'a> {
                     None => return Some((key, k)),
                     Some(Blocked::Keep(a, b)) if rounds < 8 => {
                         // keep edge from i or j through the triangle: V §5.7 rewiring
-                        let (shared, l) = if a == j || b == j {
-                            (j, if a == j { b } else { a })
-                        } else if a == i || b == i {
-                            (i, if a == i { b } else { a })
-                        } else {
-                            continue;
-                        };
-                        let other = if shared == j { i } else { j };
-                        // delete other–k, insert other–l so that i j l is a boundary triangle
-                        if let Some(&e) = self.id.get(&ekey(other, k)) {
-                            if !self.keep.contains(&ekey(other, k)) {
-                                self.kill(e);
-                            }
+                        if self.rewire(i, j, k, [a, b]) {
+                            rewired = true;
+                            break;
                         }
-                        if !self.has(other, l) && self.inside(other, l) {
-                            self.add_edge(other, l);
-                        }
-                        rewired = true;
-                        break;
                     }
                     Some(_) => {}
                 }
@@ -453,7 +428,7 @@ impl<'a> General<'a> {
         }
     }
 
-    fn push(&mut self, i: u32, j: u32) -> bool {
+    pub(super) fn push(&mut self, i: u32, j: u32) -> bool {
         if let Some((key, k)) = self.best(i, j) {
             self.heap.push(Entry {
                 key,
@@ -465,7 +440,7 @@ impl<'a> General<'a> {
         }
     }
 
-    fn push_all(&mut self) -> bool {
+    pub(super) fn push_all(&mut self) -> bool {
         let mut any = false;
         for v in 0..self.next.len() as u32 {
             let w = self.next[v as usize];
@@ -474,94 +449,6 @@ impl<'a> General<'a> {
             }
         }
         any
-    }
-
-    /// Segment ab lies in the closed current region (exact; see the module documentation).
-    fn inside(&self, a: u32, b: u32) -> bool {
-        for (u, w) in [(a, b), (b, a)] {
-            let nx = self.next[u as usize];
-            if nx == NONE {
-                continue;
-            }
-            if nx == w || self.prev[u as usize] == w {
-                return true; // a boundary edge
-            }
-            let pv = self.prev[u as usize];
-            let (pu, pn, pp, pw) = (
-                self.p[u as usize],
-                self.p[nx as usize],
-                self.p[pv as usize],
-                self.p[w as usize],
-            );
-            let turn = orient2d(pp, pu, pn);
-            let left_next = orient2d(pu, pn, pw) > 0.0;
-            let left_prev = orient2d(pu, pp, pw) < 0.0;
-            let ok = if turn > 0.0 {
-                left_next && left_prev
-            } else if turn < 0.0 {
-                left_next || left_prev
-            } else {
-                left_next
-            };
-            if !ok {
-                return false;
-            }
-        }
-        let (pa, pb) = (self.p[a as usize], self.p[b as usize]);
-        let mut ok = true;
-        self.egrid.for_each(
-            [pa[0].min(pb[0]), pa[1].min(pb[1])],
-            [pa[0].max(pb[0]), pa[1].max(pb[1])],
-            |e| {
-                if !ok || !self.live[e as usize] {
-                    return;
-                }
-                let [u, w] = self.edges[e as usize];
-                let bnd = self.next[u as usize] == w || self.next[w as usize] == u;
-                if bnd && segments_cross_properly(pa, pb, self.p[u as usize], self.p[w as usize]) {
-                    ok = false;
-                }
-            },
-        );
-        ok
-    }
-
-    /// Adds the given edges where they lie inside the current region and cross no keep edge;
-    /// returns how many were added. Then every boundary edge is re-examined.
-    pub fn augment(&mut self, edges: &[[u32; 2]]) -> usize {
-        let mut added = 0;
-        for &[a, b] in edges {
-            if self.has(a, b) || !self.inside(a, b) {
-                continue;
-            }
-            if !self.keep.is_empty() && self.crosses_keep(a, b) {
-                continue;
-            }
-            self.add_edge(a, b);
-            added += 1;
-        }
-        self.push_all();
-        added
-    }
-
-    fn crosses_keep(&self, a: u32, b: u32) -> bool {
-        let (pa, pb) = (self.p[a as usize], self.p[b as usize]);
-        let mut hit = false;
-        self.egrid.for_each(
-            [pa[0].min(pb[0]), pa[1].min(pb[1])],
-            [pa[0].max(pb[0]), pa[1].max(pb[1])],
-            |e| {
-                let [u, w] = self.edges[e as usize];
-                if !hit
-                    && self.live[e as usize]
-                    && self.keep.contains(&ekey(u, w))
-                    && segments_cross_properly(pa, pb, self.p[u as usize], self.p[w as usize])
-                {
-                    hit = true;
-                }
-            },
-        );
-        hit
     }
 
     /// Runs the constriction until every vertex is on the boundary or nothing is removable.
@@ -624,7 +511,7 @@ impl<'a> General<'a> {
     }
 }
 
-enum Blocked {
+pub(super) enum Blocked {
     Keep(u32, u32),
     Other,
 }

@@ -31,6 +31,17 @@ pub struct PolygonCheck {
 /// `points` not on it (a point is on it when a cycle vertex has the same coordinates, so
 /// duplicated input points count as covered). Exact; expected O(n log n) for well-spread
 /// polygons (parallel). Of edges that meet, the lexicographically smallest pair is reported.
+///
+/// ```rust
+/// use morpho::geom::Point2;
+/// use morpho::mesh::validity::check_polygon;
+/// let p = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+/// let square = check_polygon(&p, &[0, 1, 2, 3]);
+/// assert!(square.simple && square.missing.is_empty() && square.area2 == 2.0);
+/// let bowtie = check_polygon(&p, &[0, 2, 1, 3]);
+/// assert!(!bowtie.simple && bowtie.conflict.is_some());
+/// assert_eq!(check_polygon(&p, &[0, 1, 2]).missing, vec![3]);
+/// ```
 pub fn check_polygon(points: &[Point2], cycle: &[u32]) -> PolygonCheck {
     let n = cycle.len();
     let mut out = PolygonCheck {
@@ -271,7 +282,16 @@ fn cells_spanned(b: &([f64; 2], [f64; 2]), lo: [f64; 2], cell: f64, dims: [u64; 
     (r[0][1] - r[0][0] + 1) * (r[1][1] - r[1][0] + 1)
 }
 
-/// The O(n²) reference check of simplicity (every pair of edges), for tests.
+/// The O(n²) reference check of simplicity (every pair of edges), for tests: the oracle of
+/// [`check_polygon`]`(…).simple`.
+///
+/// ```rust
+/// use morpho::geom::Point2;
+/// use morpho::mesh::validity::is_simple_brute;
+/// let p = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+/// assert!(is_simple_brute(&p, &[0, 1, 2, 3]));
+/// assert!(!is_simple_brute(&p, &[0, 2, 1, 3]));
+/// ```
 pub fn is_simple_brute(points: &[Point2], cycle: &[u32]) -> bool {
     let n = cycle.len();
     if n < 3 {

@@ -43,8 +43,8 @@
 //!
 //! Preconditions: a non-degenerate tetrahedralization (at least one tetrahedron).
 
-pub use super::indicator::Key;
-use super::indicator::MinKey;
+pub use crate::boundary::indicator::Key;
+use crate::boundary::indicator::MinKey;
 use crate::delaunay::d3::{Delaunay3, FACE_OF};
 use crate::geom::exact::diametral_side_exact;
 use crate::geom::vec::{cross, dot, sub, triangle_area2};

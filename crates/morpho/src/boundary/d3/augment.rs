@@ -1,0 +1,735 @@
+//! Adaptive augmentation in 3D (Veltkamp 1992, §5.4): the triangles of γ([-1,1],[c,1]),
+//! c < 0, at the vertices off the boundary ([`General3::local_gamma`]), their certified
+//! insertion ([`General3::augment`]), and the schedule c = −0.1, …, −1 of [`super::boundary_3d`]
+//! (local first, then the whole object).
+//!
+//! [`General3::augment`] adds triangles (of γ([-1,1],[c,1]), c < 0) that are certified to lie in
+//! the region: they meet no boundary triangle except in common vertices/edges (exact), and have
+//! a vertex not on the boundary, or a boundary edge from which they go inward (m strictly inside
+//! the interior dihedral wedge of the two boundary faces there; exact `orient3d`). Such a
+//! triangle is connected, starts inside and never crosses the surface, so it lies in the closed
+//! region.
+
+use super::constrict::Constriction3;
+use super::engine::{Engine3, Outcome3};
+use super::general::*;
+use crate::delaunay::d3::Delaunay3;
+use crate::geom::intersect::degenerate_triangle;
+use crate::geom::predicates::raw::orient3d;
+use crate::util::sorted3;
+
+impl General3<'_> {
+    /// Does the triangle a b m leave the boundary edge ab into the region? (exact: m strictly
+    /// inside the interior dihedral wedge of the two boundary faces at ab)
+    pub(super) fn inward_at_edge(&self, a: u32, b: u32, m: u32) -> bool {
+        let (Some(&y), Some(&w)) = (self.bnext.get(&dk(a, b)), self.bnext.get(&dk(b, a))) else {
+            return false;
+        };
+        let (pa, pb, py, pw, pm) = (self.pt(a), self.pt(b), self.pt(y), self.pt(w), self.pt(m));
+        let convex = orient3d(pa, pb, py, pw);
+        let o1 = orient3d(pa, pb, py, pm) > 0.0;
+        let o2 = orient3d(pb, pa, pw, pm) > 0.0;
+        if convex > 0.0 {
+            o1 && o2
+        } else if convex < 0.0 {
+            o1 || o2
+        } else {
+            o1 && o2
+        }
+    }
+
+    /// Inserts triangle t when it is new, non-degenerate, certified to start inside the region
+    /// (a vertex off the boundary, or a boundary edge it leaves inward) and meets no boundary
+    /// triangle beyond common vertices/edges.
+    pub(super) fn try_insert(&mut self, t: [u32; 3]) -> bool {
+        !self.has(t[0], t[1], t[2]) && self.insertable_at_boundary(t) && self.add_tri(t)
+    }
+
+    /// The conditions of [`Self::try_insert`] that depend on the boundary only (not on the
+    /// live triangles, which adding changes): distinct corners, started inside, not
+    /// degenerate, meeting no boundary triangle.
+    pub(super) fn insertable_at_boundary(&self, t: [u32; 3]) -> bool {
+        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+            return false;
+        }
+        if t.iter().all(|&v| self.on_boundary(v))
+            && !(0..3).any(|k| {
+                let (a, b, m) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                self.bedge(a, b) && self.inward_at_edge(a, b, m)
+            })
+        {
+            return false;
+        }
+        let pt = t.map(|v| self.pt(v));
+        !(degenerate_triangle(pt[0], pt[1], pt[2]) || self.hits_boundary(t, &[]))
+    }
+
+    /// The triangles of γ([-1,1],[c,1]) (Def. 3.1 by the exact centre intervals of
+    /// [`crate::graphs::gamma::TriFrame`]) on the vertices not on the boundary and pairs of
+    /// their `k` nearest vertices or edges of the `k` boundary faces nearest to them — the part
+    /// of the γ-graph needed to free a locked vertex (V §5.4 "adaptive augmentation": only where
+    /// needed). Each triangle is decided against every point that can change the decision
+    /// (the diametral ball, then the balls that certify an empty neighbourhood; for c = −1 the
+    /// points in the closed triangle); see [`Self::gamma_decide`]. Triangles found at an
+    /// earlier (larger) c are not returned again, and triangles rejected earlier with an upper
+    /// bound of c₁′ below c are not tested again. The nearest vertices of a vertex are computed
+    /// once (positions do not change); the candidates are decided in parallel (rayon).
+    /// O(L·k²·m) for L locked vertices and m points in the balls scanned.
+    pub fn local_gamma(&mut self, c: f64, k: usize) -> Vec<[u32; 3]> {
+        use rayon::prelude::*;
+        let locked: Vec<u32> = (0..self.p.len() as u32)
+            .filter(|&v| !self.on_boundary(v))
+            .collect();
+        // the nearest vertices of the vertices met for the first time (in parallel)
+        let missing: Vec<u32> = locked
+            .iter()
+            .copied()
+            .filter(|l| !self.near_cache.contains_key(l))
+            .collect();
+        let this = &*self;
+        let found: Vec<(Vec<u32>, f64)> = missing.par_iter().map(|&l| this.nearest(l, k)).collect();
+        self.near_cache.extend(missing.into_iter().zip(found));
+        // candidates of every locked vertex (read-only, in parallel; in the order of `locked`)
+        let this = &*self;
+        let mut cand: Vec<([u32; 3], u32)> = locked
+            .par_iter()
+            .map_init(Vec::new, |tb, &l| this.gamma_candidates(l, k, c, tb))
+            .flatten_iter()
+            .collect();
+        // each triangle once (with the first locked vertex that proposed it)
+        cand.sort_unstable();
+        cand.dedup_by_key(|e| e.0);
+        let this = &*self;
+        let verdicts: Vec<Option<f64>> = cand
+            .par_iter()
+            .map(|&(t, l)| this.gamma_decide(t, c, &this.near_cache[&l].0))
+            .collect();
+        let mut out = Vec::new();
+        for (&(t, _), v) in cand.iter().zip(verdicts) {
+            match v {
+                None => {
+                    self.in_gamma.insert(t);
+                    out.push(t);
+                }
+                Some(ub) => {
+                    self.gamma_ub.insert(t, ub);
+                }
+            }
+        }
+        out
+    }
+
+    /// The candidate triangles of [`Self::local_gamma`] for the locked vertex `l` (its nearest
+    /// vertices cached): `l` with pairs of its `k` nearest vertices and with the edges of the
+    /// `k` boundary faces nearest to it, minus live triangles, triangles already found and
+    /// triangles whose cached bound of c₁′ is below `c`. `tb` is scratch space.
+    pub(super) fn gamma_candidates(
+        &self,
+        l: u32,
+        k: usize,
+        c: f64,
+        tb: &mut Vec<u32>,
+    ) -> Vec<([u32; 3], u32)> {
+        let (near, rad) = &self.near_cache[&l];
+        let mut cand = Vec::new();
+        let pl = self.pt(l);
+        // pairs of near vertices, and the edges of the k boundary faces nearest to l (by
+        // centroid; the faces a removal w.r.t. l starts from)
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        for (i, &x) in near.iter().enumerate() {
+            for &y in &near[i + 1..] {
+                pairs.push((x, y));
+            }
+        }
+        // the k faces nearest by centroid among those meeting the box of half-width 2·rad:
+        // a face missing from the box of half-width rad has its centroid farther than rad,
+        // so when that smaller box already holds k faces with centroids within rad, they
+        // are the same k (and the same order)
+        let mut faces: Vec<(f64, [u32; 3])> = Vec::new();
+        for reach_l in [*rad, 2.0 * rad] {
+            self.bgrid.query(
+                std::array::from_fn(|i| pl[i] - reach_l),
+                std::array::from_fn(|i| pl[i] + reach_l),
+                tb,
+            );
+            faces = tb
+                .iter()
+                .filter(|&&i| self.live[i as usize] && self.bflag[i as usize])
+                .map(|&i| self.tris[i as usize])
+                .map(|u| {
+                    let q = u.map(|v| self.pt(v));
+                    let d2 = (0..3)
+                        .map(|i| ((q[0][i] + q[1][i] + q[2][i]) / 3.0 - pl[i]).powi(2))
+                        .sum::<f64>();
+                    (d2, u)
+                })
+                .collect();
+            faces.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            if faces.iter().filter(|f| f.0 <= rad * rad).count() >= k {
+                break;
+            }
+        }
+        for (_, u) in faces.into_iter().take(k) {
+            for e in 0..3 {
+                pairs.push((u[e], u[(e + 1) % 3]));
+            }
+        }
+        for (x, y) in pairs {
+            let t = sorted3([l, x, y]);
+            if x == l || y == l || self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t) {
+                continue;
+            }
+            if self.gamma_ub.get(&t).is_some_and(|&ub| ub < c) {
+                continue;
+            }
+            cand.push((t, l));
+        }
+        cand
+    }
+
+    /// The `k` nearest vertices of `l` (by growing boxes of the vertex grid; ties by index) and
+    /// the box half-width that certified them.
+    pub(super) fn nearest(&self, l: u32, k: usize) -> (Vec<u32>, f64) {
+        let pl = self.pt(l);
+        let n = self.p.len();
+        let mut buf = Vec::new();
+        let mut rad = self.vgrid.cell();
+        loop {
+            self.vgrid.query(
+                std::array::from_fn(|i| pl[i] - rad),
+                std::array::from_fn(|i| pl[i] + rad),
+                &mut buf,
+            );
+            if buf.len() > k || buf.len() >= n {
+                let mut v: Vec<(f64, u32)> = buf
+                    .iter()
+                    .filter(|&&x| x != l)
+                    .map(|&x| {
+                        let q = self.pt(x);
+                        let d2 = (0..3).map(|i| (q[i] - pl[i]).powi(2)).sum::<f64>();
+                        (d2, x)
+                    })
+                    .collect();
+                v.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                // only points within rad are certainly among the nearest (unless the box holds
+                // every point)
+                if buf.len() < n {
+                    v.retain(|e| e.0 <= rad * rad);
+                }
+                if v.len() >= k || buf.len() >= n {
+                    return (v.into_iter().take(k).map(|e| e.1).collect(), rad);
+                }
+            }
+            rad *= 2.0;
+        }
+    }
+
+    /// Decides whether triangle `t` is in γ([-1,1],[c,1]): `None` when it is, `Some(ub)` with an
+    /// upper bound ub < c of its c₁′ when it is not. Points only narrow the centre interval
+    /// (c₁′ never grows), so a decision needs only the points that could still change it:
+    /// 1. the points `first` (near the triangle; blocking points are often among them);
+    /// 2. the points of the diametral ball B(m, r). If then no ball is empty (c₁′ < 0, the gap
+    ///    regime of `gamma_values`), c₁′ is final: a point outside B(m, r) has τ of the sign
+    ///    of its side (q > 0) and never moves the gap's farther end;
+    /// 3. otherwise the points of the witness ball B(s) of
+    ///    [`CenterInterval::witness_offset`], again and again while s moves: once every point
+    ///    of B(s) has been added and s stays, an empty neighbourhood of γ([-1,1],[c,1]) lies in
+    ///    a ball no further point enters. No fixed radius in terms of c suffices: while some
+    ///    ball is empty (c₁′ ≥ 0) a far point inside the largest empty balls can still open a
+    ///    gap whose far end passes c.
+    ///
+    /// A rejection scans on until ub < c − [`UB_LOOKAHEAD`] (or the ball's points run out) so
+    /// that the cached bound also settles the next smaller c. Each ball's points are added
+    /// nearest to its centre first.
+    pub(super) fn gamma_decide(&self, t: [u32; 3], c: f64, first: &[u32]) -> Option<f64> {
+        use crate::graphs::gamma::{triangle_circle, CenterInterval, TriFrame};
+        let [pa, pb, pc] = t.map(|v| self.pt(v));
+        let (Some(f), Some((m, r2, n))) = (TriFrame::new(pa, pb, pc), triangle_circle(pa, pb, pc))
+        else {
+            // degenerate (collinear corners): never a γ-triangle
+            return Some(f64::NEG_INFINITY);
+        };
+        let mut iv = f.start();
+        let mut buf = Vec::new();
+        let pts = self.p;
+        if c <= -1.0 {
+            // c = −1: every triangle is in γ([-1,1],[-1,1]) unless a point lies in the closed
+            // triangle (then no neighbourhood is empty); such points lie in its bounding box
+            let (lo, hi) = bbox(&[pa, pb, pc]);
+            self.vgrid.query(lo, hi, &mut buf);
+            for &z in &buf {
+                if !t.contains(&z) {
+                    f.add(&mut iv, pts[z as usize]);
+                }
+            }
+            return if iv.all_blocked {
+                Some(f64::NEG_INFINITY)
+            } else {
+                None
+            };
+        }
+        let ub_of = |iv: &CenterInterval| iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
+        let stop = c - UB_LOOKAHEAD;
+        // adds the points; true when rejected (ub below stop on the way, or below c at the end)
+        let scan = |iv: &mut CenterInterval, ids: &mut dyn Iterator<Item = u32>| -> bool {
+            for (j, z) in ids.enumerate() {
+                if !t.contains(&z) {
+                    f.add(iv, pts[z as usize]);
+                }
+                if j % 32 == 31 && ub_of(iv) < stop {
+                    return true;
+                }
+            }
+            ub_of(iv) < c
+        };
+        if scan(&mut iv, &mut first.iter().copied()) {
+            return Some(ub_of(&iv));
+        }
+        let nlen = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let (plo, phi) = self.pbox;
+        // every point of the ball B(s) (touching the triangle, offset s), by cells of the point
+        // grid (the coarse one for wide boxes) whose centres lie deepest in the ball first —
+        // by the power q − 2·s·h (< 0 inside; divided by |s| when |s| > 1: the same order
+        // without overflow). When the ball's box holds every point, or is not finite: all
+        // points in that order.
+        let mut cells: Vec<(f64, &[u32])> = Vec::new();
+        let mut scan_ball = |iv: &mut CenterInterval, s: f64| -> bool {
+            let depth = |x: P| {
+                let d: P = std::array::from_fn(|i| x[i] - m[i]);
+                let q = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - r2;
+                let h = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+                if s.abs() > 1.0 {
+                    q / s.abs() - 2.0 * s.signum() * h
+                } else {
+                    q - 2.0 * s * h
+                }
+            };
+            let centre: P = std::array::from_fn(|i| m[i] + s * n[i]);
+            let radius = nlen * (iv.r_over_n * iv.r_over_n + s * s).sqrt() * (1.0 + 1e-9);
+            let finite = radius.is_finite() && centre.iter().all(|x| x.is_finite());
+            let all = !finite
+                || (0..3).all(|i| centre[i] - radius <= plo[i] && centre[i] + radius >= phi[i]);
+            let (lo, hi): (P, P) = if all {
+                (plo, phi)
+            } else {
+                (
+                    std::array::from_fn(|i| centre[i] - radius),
+                    std::array::from_fn(|i| centre[i] + radius),
+                )
+            };
+            let g = self.point_grid_for(lo, hi);
+            if !g.is_single_level() {
+                // (points are never wide boxes; kept for safety) every point, in index order
+                return scan(iv, &mut (0..pts.len() as u32));
+            }
+            cells.clear();
+            let (origin, cell) = (g.origin(), g.cell());
+            g.for_cells(lo, hi, |k, ids| {
+                let mid = std::array::from_fn(|i| origin[i] + (k[i] as f64 + 0.5) * cell);
+                cells.push((depth(mid), ids));
+            });
+            cells.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+            let r2s = radius * radius;
+            let inside = |z: &u32| {
+                all || {
+                    let x = pts[*z as usize];
+                    (0..3).map(|i| (x[i] - centre[i]).powi(2)).sum::<f64>() <= r2s
+                }
+            };
+            scan(
+                iv,
+                &mut cells
+                    .iter()
+                    .flat_map(|e| e.1.iter().copied())
+                    .filter(inside),
+            )
+        };
+        if scan_ball(&mut iv, 0.0) {
+            return Some(ub_of(&iv));
+        }
+        let mut scanned = 0.0; // B(0) = B(m, r)
+                               // s moves only when a point of B(s) changed the interval, i.e. became a binding point
+                               // strictly better than the last one on its side (exact): at most 2n + 2 moves. The cap
+                               // makes that explicit; beyond it (never reached) every point decides.
+        let mut moves = 0usize;
+        loop {
+            if ub_of(&iv) < 0.0 {
+                return None; // the gap regime with B(m, r) added: c₁′ ≥ c is final
+            }
+            moves += 1;
+            if moves > 2 * pts.len() + 4 {
+                let all = scan(&mut iv, &mut (0..pts.len() as u32));
+                return all.then(|| ub_of(&iv));
+            }
+            let Some(s) = iv.witness_offset(c) else {
+                // only half-spaces can be empty (`finite_blocked`): every point decides
+                return if scan(&mut iv, &mut (0..pts.len() as u32)) {
+                    Some(ub_of(&iv))
+                } else {
+                    None
+                };
+            };
+            if s == scanned {
+                return None;
+            }
+            if scan_ball(&mut iv, s) {
+                return Some(ub_of(&iv));
+            }
+            scanned = s;
+        }
+    }
+
+    /// Adds the given triangles where they are certified inside (as for the rewiring; see
+    /// the module documentation) and pushes the boundary faces on their edges; returns how
+    /// many were added.
+    ///
+    /// The same as [`Self::try_insert`] one after the other, in order: adding a triangle
+    /// changes the live triangles but not the boundary, so the boundary conditions
+    /// ([`Self::insertable_at_boundary`]) are decided for all triangles first, in parallel —
+    /// unless a triangle comes back that was a boundary face (its flag would count again):
+    /// from then on one by one. The boundary faces on the new triangles' edges are then
+    /// evaluated (in parallel without keep triangles) and pushed or locked again.
+    pub fn augment(&mut self, tris: &[[u32; 3]]) -> usize {
+        use rayon::prelude::*;
+        let this = &*self;
+        let at_boundary: Vec<bool> = tris
+            .par_iter()
+            .map(|&t| this.insertable_at_boundary(t))
+            .collect();
+        let mut one_by_one = false;
+        let mut added = 0;
+        let mut faces = Vec::new();
+        // No change stamps for the added triangles: a live triangle enters the removability
+        // of exactly the boundary faces on its edges (as a candidate tetrahedron's face, all
+        // of which contain an edge of the face), and those are evaluated and locked again
+        // below — other locked faces stay valid.
+        let track = std::mem::replace(&mut self.track, false);
+        for (&t, ok) in tris.iter().zip(at_boundary) {
+            let inserted = if one_by_one {
+                self.try_insert(t)
+            } else if ok && !self.has(t[0], t[1], t[2]) {
+                one_by_one = self
+                    .id
+                    .get(&sorted3(t))
+                    .is_some_and(|&i| self.bflag[i as usize]);
+                self.add_tri(t)
+            } else {
+                false
+            };
+            if inserted {
+                added += 1;
+                // the boundary faces on its edges may have gained a tetrahedron
+                for k in 0..3 {
+                    let (a, b) = (t[k], t[(k + 1) % 3]);
+                    for (x, y) in [(a, b), (b, a)] {
+                        if let Some(&z) = self.bnext.get(&dk(x, y)) {
+                            faces.push([x, y, z]);
+                        }
+                    }
+                }
+            }
+        }
+        self.track = track;
+        self.added += added;
+        if self.keep.is_empty() && !self.sequential_sweeps {
+            // without keep triangles an evaluation changes nothing: all in parallel, then the
+            // verdicts in order (as one after the other)
+            let this = &*self;
+            let verdicts: Vec<Result<(f64, u32), (P, P)>> = faces
+                .par_iter()
+                .map_init(Vec::new, |buf, &f| {
+                    this.best_plain(f, buf).ok_or_else(|| this.lock_box(f))
+                })
+                .collect();
+            let e = self.epoch;
+            for (f, v) in faces.into_iter().zip(verdicts) {
+                match v {
+                    Ok((key, l)) => {
+                        self.heap.push(Entry { key, item: (f, l) });
+                        self.locked_at.remove(&f);
+                    }
+                    Err((lo, hi)) => {
+                        if track {
+                            self.locked_at.insert(f, (e, lo, hi));
+                        }
+                    }
+                }
+            }
+            return added;
+        }
+        for f in faces {
+            let e = self.epoch;
+            if self.push(f) {
+                self.locked_at.remove(&f);
+            } else if track {
+                let (lo, hi) = self.lock_box(f);
+                self.locked_at.insert(f, (e, lo, hi));
+            }
+        }
+        added
+    }
+}
+
+impl Engine3 {
+    /// V §5.4 after a locked Delaunay constriction `st`: augment only where needed. First the
+    /// live tetrahedra within [`LOCAL_DEPTH`] neighbour steps of the vertices off the boundary
+    /// (the rest of the object is locked for the Delaunay constriction and far from the added
+    /// triangles; without keep triangles only); the whole object when that does not free every
+    /// vertex.
+    pub(super) fn augment_after_lock(&self, st: &Constriction3) -> Outcome3 {
+        if self.keep_v.is_empty() {
+            let region = near_locked(&self.d, &st.alive, &st.triangles, LOCAL_DEPTH);
+            let live = self.faces_of(&region);
+            let mut g = General3::new(&self.pos, &st.triangles, &live, &self.keep_v);
+            let c = augment_until_done_3d(&mut g, 0.0);
+            if g.done() {
+                return Outcome3::general(&g, c, st.iterations);
+            }
+        }
+        let live = self.faces_of(&st.alive);
+        let mut g = General3::new(&self.pos, &st.triangles, &live, &self.keep_v);
+        let c = augment_until_done_3d(&mut g, 0.0);
+        Outcome3::general(&g, c, st.iterations)
+    }
+}
+
+/// Up to this many vertices [`crate::boundary::CParam::Fixed`]`(c < 0)` constricts all of
+/// γ([-1,1],[c,1]) ([`crate::graphs::beyond3::beyond_dt_3d`], which tries every triple: O(N³));
+/// above, the Delaunay triangles plus the γ-triangles at every interior vertex and pairs of its
+/// 16 nearest vertices ([`General3::local_gamma`]).
+pub(super) const BEYOND_ALL_MAX: usize = 400;
+
+/// Runs `g` and, while locked, augments it with the γ([-1,1],[c,1]) triangles at the vertices
+/// off the boundary ([`General3::local_gamma`], their 16 nearest vertices) for
+/// c = from − 0.1, … −1. Returns the last c used.
+pub(super) fn augment_until_done_3d(g: &mut General3<'_>, from: f64) -> f64 {
+    g.run();
+    let mut c = from;
+    let mut step = 1;
+    while !g.done() && step <= 10 {
+        c = (from - step as f64 / 10.0).max(-1.0);
+        let extra = g.local_gamma(c, 16);
+        if g.augment(&extra) > 0 {
+            g.run();
+        }
+        step += 1;
+    }
+    c
+}
+
+/// Tetrahedron steps from the vertices off the boundary that the local general engine sees.
+const LOCAL_DEPTH: usize = 4;
+
+/// The live tetrahedra within `depth` neighbour steps of a tetrahedron at a vertex that is
+/// not on the boundary `tris` (O(T) for T tetrahedra).
+fn near_locked(d: &Delaunay3, alive: &[bool], tris: &[[u32; 3]], depth: usize) -> Vec<bool> {
+    let mut on = vec![false; d.points.len()];
+    for t in tris {
+        for &v in t {
+            on[v as usize] = true;
+        }
+    }
+    let mut region = vec![false; d.tets.len()];
+    let mut front: Vec<u32> = Vec::new();
+    for (t, tet) in d.tets.iter().enumerate() {
+        if alive[t] && tet.iter().any(|&v| !on[v as usize]) {
+            region[t] = true;
+            front.push(t as u32);
+        }
+    }
+    for _ in 0..depth {
+        let mut next = Vec::new();
+        for &t in &front {
+            for &n in &d.neighbors[t as usize] {
+                if n != crate::util::NONE && alive[n as usize] && !region[n as usize] {
+                    region[n as usize] = true;
+                    next.push(n);
+                }
+            }
+        }
+        front = next;
+    }
+    region
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    /// local_gamma with k ≥ n tries every triangle at a vertex off the boundary: its results
+    /// over decreasing c must be exactly the triangles of γ([-1,1],[c,1]) there (Def. 3.1 by
+    /// the full center interval over all points), without the live ones.
+    #[test]
+    fn local_gamma_matches_the_full_definition() {
+        use crate::graphs::gamma::center_interval_3d;
+        for seed in 0..4u64 {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let n = 24;
+            let pts: Vec<crate::geom::Point3> = (0..n)
+                .map(|i| {
+                    if seed == 3 && i % 4 == 0 {
+                        // far points: they decide for balls far beyond the diametral ones
+                        let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                        let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                        crate::geom::Point3::new(4.0 * v[0] / r, 4.0 * v[1] / r, 4.0 * v[2] / r)
+                    } else if i % 2 == 0 || seed == 2 {
+                        // on a sphere (rounded), and inside
+                        let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                        let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                        let s = if i % 4 == 0 { 1.0 } else { 0.6 };
+                        crate::geom::Point3::new(v[0] / r * s, v[1] / r * s, v[2] / r * s)
+                    } else {
+                        let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-0.5..0.5));
+                        crate::geom::Point3::new(v[0], v[1], v[2])
+                    }
+                })
+                .collect();
+            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let nv = pos.len();
+            let mut g = General3::new(&pos, &d.hull, &[], &[]);
+            let locked: Vec<u32> = (0..nv as u32).filter(|&v| !g.on_boundary(v)).collect();
+            assert!(locked.len() >= 5, "{}", locked.len());
+            let mut found: std::collections::BTreeSet<[u32; 3]> = Default::default();
+            for c in [-0.1, -0.3, -0.5, -0.7, -0.9, -1.0] {
+                for t in g.local_gamma(c, nv) {
+                    assert!(found.insert(t), "returned twice: {t:?}");
+                }
+                let mut expect: std::collections::BTreeSet<[u32; 3]> = Default::default();
+                for a in 0..nv as u32 {
+                    for b in a + 1..nv as u32 {
+                        for e in b + 1..nv as u32 {
+                            let t = [a, b, e];
+                            if !t.iter().any(|v| locked.contains(v)) || g.has(a, b, e) {
+                                continue;
+                            }
+                            let Some(iv) =
+                                center_interval_3d(&pos, a as usize, b as usize, e as usize)
+                            else {
+                                continue;
+                            };
+                            if iv.gamma_values().is_some_and(|v| v.1 >= c) {
+                                expect.insert(t);
+                            }
+                        }
+                    }
+                }
+                let missing: Vec<_> = expect.difference(&found).collect();
+                let extra: Vec<_> = found.difference(&expect).collect();
+                for t in missing.iter().chain(&extra) {
+                    let iv = center_interval_3d(&pos, t[0] as usize, t[1] as usize, t[2] as usize);
+                    eprintln!("{t:?}: {:?}", iv.and_then(|iv| iv.gamma_values()));
+                }
+                assert!(
+                    missing.is_empty() && extra.is_empty(),
+                    "seed {seed}, c {c}: missing {missing:?}, extra {extra:?}"
+                );
+            }
+        }
+    }
+
+    /// n points on a bumpy ellipsoid (radius 1 ± 0.15 waves, ±0.01 noise, z stretched by 1.3).
+    fn bumpy_sphere(n: usize, seed: u64) -> Vec<crate::geom::Point3> {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        (0..n)
+            .map(|_| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                let s = 1.0
+                    + 0.15 * (5.0 * v[0] / n).sin() * (4.0 * v[1] / n).cos()
+                    + rng.gen_range(-0.01..0.01);
+                crate::geom::Point3::new(v[0] / n * s, v[1] / n * s, 1.3 * v[2] / n * s)
+            })
+            .collect()
+    }
+
+    /// gamma_decide on a dense bumpy sphere (3000 points, grid cells far smaller than the
+    /// set): for triangles among the 16 nearest vertices of many vertices, at several c, it
+    /// accepts exactly the triangles whose c₁′ over *all* points (the full center interval)
+    /// is ≥ c, and a rejection's bound is ≥ that c₁′. Includes triangles whose largest empty
+    /// balls reach far beyond the balls of parameter c (a far point inside them opens the gap
+    /// that rejects them), which a scan bounded by those balls gets wrong.
+    #[test]
+    fn gamma_decide_matches_the_full_center_interval() {
+        use crate::graphs::gamma::center_interval_3d;
+        let pts = bumpy_sphere(3000, 9);
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let g = General3::new(&pos, &d.hull, &[], &[]);
+        let (mut accepted, mut rejected, mut far_gap) = (0, 0, 0);
+        for l in (0..pos.len() as u32).step_by(97) {
+            let near = g.nearest(l, 16).0;
+            for (i, &x) in near.iter().enumerate() {
+                for &y in &near[i + 1..] {
+                    let t = sorted3([l, x, y]);
+                    let Some(full) =
+                        center_interval_3d(&pos, t[0] as usize, t[1] as usize, t[2] as usize)
+                    else {
+                        continue;
+                    };
+                    let c1 = full.gamma_values().map_or(f64::NEG_INFINITY, |v| v.1);
+                    for c in [-0.1, -0.3, -0.6, -0.9] {
+                        match g.gamma_decide(t, c, &near) {
+                            None => {
+                                assert!(c1 >= c, "{t:?} c {c}: accepted, c1' = {c1}");
+                                accepted += 1;
+                            }
+                            Some(ub) => {
+                                assert!(c1 < c && ub >= c1, "{t:?} c {c}: {ub} vs c1' {c1}");
+                                rejected += 1;
+                                // a gap on one side beyond the balls of parameter c
+                                far_gap +=
+                                    usize::from(full.lo > full.hi && full.lo * full.hi > 0.0);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            accepted > 500 && rejected > 500 && far_gap > 100,
+            "{accepted} {rejected} {far_gap}"
+        );
+    }
+
+    /// augment (boundary conditions decided in parallel first) adds exactly the triangles that
+    /// try_insert one after the other adds, in the same order: same ids, live flags and edge
+    /// lists — with repeated triangles, boundary faces and degenerate ones among them.
+    #[test]
+    fn augment_equals_inserting_one_by_one() {
+        let pts = bumpy_sphere(1500, 4);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4);
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let mut a = General3::new(&pos, &d.hull, &[], &[]);
+        let mut b = General3::new(&pos, &d.hull, &[], &[]);
+        let mut extra = a.local_gamma(-0.6, 16);
+        extra.extend(b.local_gamma(-0.6, 16).into_iter().take(40));
+        extra.extend(d.hull.iter().take(30).map(|&f| sorted3(f)));
+        extra.push([5, 5, 9]);
+        // triples of hull vertices: outside the region unless along an inward hull edge
+        let hv: Vec<u32> = d.hull.iter().flatten().copied().collect();
+        for _ in 0..200 {
+            let t = [0; 3].map(|_: u32| hv[rng.gen_range(0..hv.len())]);
+            extra.push(t);
+        }
+        let added = a.augment(&extra);
+        let mut one = 0;
+        for &t in &extra {
+            one += usize::from(b.try_insert(t));
+        }
+        assert_eq!(added, one);
+        let fails = extra
+            .iter()
+            .filter(|&&t| !b.insertable_at_boundary(t))
+            .count();
+        assert!(
+            added > 100 && fails > 100,
+            "{added} of {}, {fails}",
+            extra.len()
+        );
+        assert_eq!(a.tris, b.tris);
+        assert_eq!(a.live, b.live);
+        assert_eq!(a.eadj, b.eadj);
+    }
+}

@@ -1,0 +1,810 @@
+//! The general 3D constriction engine [`General3`] (Veltkamp 1992, §5.4 last paragraphs: 3D
+//! γ([-1,1],[c,1]) with c < 0 by adaptive augmentation; §5.3 removability; §5.5 heap; §5.7
+//! constraints): the fallback of the Delaunay constriction ([`super::constrict`]) when it locks.
+//! This file holds the engine's state, its bulk construction and its mutation primitives;
+//! removals are in [`super::removal`], augmentation in [`super::augment`], constraints in
+//! [`super::keep`]. (About 770 lines: the tables, their construction and the tests that the
+//! bulk construction and the change stamps equal the one-by-one mutations belong together.)
+//!
+//! # State
+//! A set of live triangles (the pruned graph; tetrahedra are implicit: four live triangles on
+//! four vertices) and a closed boundary surface made of live triangles, oriented outward
+//! (`bface`, with a directed-edge map). Invariant: every live triangle lies in the closed region
+//! bounded by the surface, and every vertex lies in it (no vertex is ever cut off).
+//!
+//! # Heap (V §5.5)
+//! One entry per boundary face with its best (smallest-key) removable tetrahedron; a popped
+//! entry is re-checked and, when stale, recomputed. When the heap runs empty all boundary faces
+//! are examined again, so "locked" means nothing is removable; a face found locked by an earlier
+//! sweep is examined again only when a mutation (every one stamps the grid cells of its box)
+//! met the box of the face and its apexes since — its removability depends on nothing outside.
+//! Triangles added by [`General3::augment`] are not stamped: a live triangle enters only the
+//! removability of the boundary faces on its edges, which `augment` evaluates and locks again
+//! itself.
+//!
+//! # Complexity
+//! Removal: O(k log n) with k the live triangles and vertices near Q (uniform hash grids over
+//! bounding boxes, cell twice the median edge length; boundary faces and the other live
+//! triangles in separate grids; triangles spanning more than 512 cells are kept in a list
+//! tested always). Boundary tests stop at the first hit and skip boxes that a conservative
+//! floating-point bound puts off the triangle's plane. The sweep of `run` visits only the
+//! boundary faces next to a live non-boundary triangle (the only ones that can carry a
+//! removable tetrahedron), so a caller may pass only the live triangles near the locked
+//! vertices (as [`super::boundary_3d`] does) and pay for the boundary only once, in
+//! [`General3::new`]. Worst case O(T²) for T triangles.
+//!
+//! Preconditions: the initial surface is a closed genus-0 2-manifold enclosing every vertex and
+//! every given triangle (as produced by [`super::constrict3`] or the convex hull).
+
+use crate::boundary::indicator::MinKey;
+use crate::geom::grid::BoxGrid;
+use crate::geom::vec::{cross, dist, dot, norm, sub};
+use crate::util::{sorted3, IdMap, IdSet};
+use std::collections::BinaryHeap;
+
+/// How far below c a rejected triangle's γ-scan goes on ([`General3::gamma_decide`]): the
+/// cached upper bound of c₁′ then also rejects it for c − 0.1, … (the steps of the caller's
+/// schedule), instead of rescanning it at every step.
+pub(super) const UB_LOOKAHEAD: f64 = 0.25;
+
+/// Heap entries: smallest key first, ties by the smallest item.
+pub(super) type Entry = MinKey<([u32; 3], u32)>;
+
+pub(super) type P = [f64; 3];
+
+/// The rotation of an oriented face that starts at its smallest vertex.
+pub(super) fn sorted_rot(f: [u32; 3]) -> [u32; 3] {
+    if f[0] < f[1] && f[0] < f[2] {
+        f
+    } else if f[1] < f[2] {
+        [f[1], f[2], f[0]]
+    } else {
+        [f[2], f[0], f[1]]
+    }
+}
+
+pub(super) fn ek(a: u32, b: u32) -> u64 {
+    let (a, b) = if a < b { (a, b) } else { (b, a) };
+    ((a as u64) << 32) | b as u64
+}
+
+pub(super) fn dk(a: u32, b: u32) -> u64 {
+    ((a as u64) << 32) | b as u64
+}
+
+/// The four outward faces of tetrahedron (a, b, c, d) when (a, b, c) is outward (d on the inner
+/// side), each with its opposite vertex.
+pub(super) fn tet_faces(a: u32, b: u32, c: u32, d: u32) -> [([u32; 3], u32); 4] {
+    [
+        ([a, b, c], d),
+        ([b, a, d], c),
+        ([c, b, d], a),
+        ([a, c, d], b),
+    ]
+}
+
+pub(super) fn circumradius(a: P, b: P, c: P, d: P) -> f64 {
+    let (u, v, w) = (sub(b, a), sub(c, a), sub(d, a));
+    let det = dot(u, cross(v, w));
+    if det == 0.0 {
+        return f64::INFINITY;
+    }
+    let (vw, wu, uv) = (cross(v, w), cross(w, u), cross(u, v));
+    let (uu, vv, ww) = (dot(u, u), dot(v, v), dot(w, w));
+    let x: P = std::array::from_fn(|k| (uu * vw[k] + vv * wu[k] + ww * uv[k]) / (2.0 * det));
+    norm(x)
+}
+
+/// The kernel's box grid in 3D (boxes of triangles, points as zero-size boxes).
+pub(super) type Grid = BoxGrid<3>;
+
+pub(super) fn bbox(ps: &[P]) -> (P, P) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for q in ps {
+        for k in 0..3 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+    }
+    (lo, hi)
+}
+
+pub(super) fn boxes_meet(a: (P, P), b: (P, P)) -> bool {
+    (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
+}
+
+/// The third vertices of the live triangles on an edge (most edges have a handful: stored
+/// inline, without an allocation each).
+pub(super) type Thirds = smallvec::SmallVec<[u32; 4]>;
+
+/// A removal: key, boundary faces of the tetrahedron, its new boundary faces.
+pub(super) type Removal = (f64, Vec<[u32; 3]>, Vec<[u32; 3]>);
+
+/// The general 3D constriction (see the module documentation). Vertex indices are indices into
+/// the point array given to [`General3::new`].
+pub struct General3<'a> {
+    pub(super) p: &'a [P],
+    pub(super) tris: Vec<[u32; 3]>,
+    pub(super) live: Vec<bool>,
+    /// The triangle is a boundary face (in either orientation).
+    pub(super) bflag: Vec<bool>,
+    /// Bounding box of every triangle.
+    pub(super) tbox: Vec<(P, P)>,
+    pub(super) id: IdMap<[u32; 3], u32>,
+    pub(super) eadj: IdMap<u64, Thirds>,
+    /// directed boundary edge a→b → third vertex of the outward boundary face containing it
+    pub(super) bnext: IdMap<u64, u32>,
+    pub(super) vcount: Vec<u32>,
+    pub(super) keep: IdSet<[u32; 3]>,
+    /// Live triangles that were not boundary faces when added (for [`Self::crossing`]).
+    pub(super) tgrid: Grid,
+    /// Triangles that have been boundary faces (for [`Self::hits_boundary`]; `bflag` tells
+    /// which still are).
+    pub(super) bgrid: Grid,
+    pub(super) in_bgrid: Vec<bool>,
+    pub(super) vgrid: Grid,
+    /// The bounding box of the points.
+    pub(super) pbox: (P, P),
+    /// The points again in cells 8× wider, for walks over wide boxes
+    /// ([`General3::point_grid_for`]).
+    pub(super) vcoarse: Grid,
+    pub(super) heap: BinaryHeap<Entry>,
+    pub(super) buf: Vec<u32>,
+    pub(super) blocked_by: Option<[u32; 3]>,
+    /// Triangles found in a γ-graph by [`General3::local_gamma`] (not tested again).
+    pub(super) in_gamma: IdSet<[u32; 3]>,
+    /// Upper bounds of c₁′ of triangles rejected by [`General3::local_gamma`] (from a subset
+    /// of the points: more points only lower it), so that a smaller c skips them when the
+    /// bound is already below it.
+    pub(super) gamma_ub: IdMap<[u32; 3], f64>,
+    /// The nearest vertices of a vertex and the box half-width that certified them
+    /// ([`General3::local_gamma`]).
+    pub(super) near_cache: IdMap<u32, (Vec<u32>, f64)>,
+    /// Change tracking for [`General3::push_all`] (on after construction): every mutation of a
+    /// live triangle or of the boundary stamps the cells of its box (cells of `bgrid`) with a
+    /// new epoch (except the additions of [`General3::augment`], which re-evaluates the faces
+    /// they concern); `changed_all` is the epoch of a change too wide to stamp.
+    pub(super) track: bool,
+    pub(super) epoch: u64,
+    pub(super) changed: IdMap<(i64, i64, i64), u64>,
+    pub(super) changed_all: u64,
+    /// Boundary faces found without a removable tetrahedron by a sweep, with the epoch and the
+    /// box of everything their removability depends on (see [`General3::push_all`]).
+    pub(super) locked_at: IdMap<[u32; 3], (u64, P, P)>,
+    /// Sweeps skip unchanged locked faces (switchable for the equivalence test).
+    pub(super) skip_unchanged: bool,
+    /// Faces skipped so (for the tests).
+    pub(super) skipped: usize,
+    /// Tests: evaluate the faces of a sweep or of an augmentation one after the other even
+    /// without keep triangles.
+    pub(super) sequential_sweeps: bool,
+    /// Tests: evaluate every skipped face anyway and panic if it has a removable tetrahedron.
+    pub(super) verify_skips: bool,
+    /// Number of boundary vertices.
+    pub boundary_vertices: usize,
+    /// Number of removed tetrahedra.
+    pub iterations: usize,
+    /// Number of triangles added by [`General3::augment`].
+    pub added: usize,
+}
+
+impl<'a> General3<'a> {
+    /// A graph on points `p` with the closed outward-oriented boundary surface `boundary` and
+    /// the live triangles `tris` (all inside the closed region; the boundary triangles are
+    /// added to them). `keep` triangles are never deleted.
+    pub fn new(p: &'a [P], boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) -> Self {
+        let mut g = Self::blank(p, boundary, tris, keep);
+        g.build(boundary, tris, keep);
+        g.track = true;
+        g.push_all();
+        g
+    }
+
+    /// The engine's tables before anything is added (cell size from the given triangles).
+    pub(super) fn blank(
+        p: &'a [P],
+        boundary: &[[u32; 3]],
+        tris: &[[u32; 3]],
+        keep: &[[u32; 3]],
+    ) -> Self {
+        let (lo, hi) = bbox(p);
+        let n = p.len().max(1);
+        // cell: twice the median edge length of the triangles (points of a scanned surface
+        // fill the bounding box far from evenly, so its volume per point is a poor scale)
+        let mut lens: Vec<f64> = boundary
+            .iter()
+            .chain(tris)
+            .step_by((boundary.len() + tris.len()) / 20_000 + 1)
+            .flat_map(|t| {
+                (0..3).map(move |k| {
+                    let (a, b) = (p[t[k] as usize], p[t[(k + 1) % 3] as usize]);
+                    dist(a, b)
+                })
+            })
+            .filter(|x| x.is_finite())
+            .collect();
+        let mut cell = if lens.is_empty() {
+            0.0
+        } else {
+            let mid = lens.len() / 2;
+            2.0 * *lens.select_nth_unstable_by(mid, f64::total_cmp).1
+        };
+        if cell <= 0.0 || !cell.is_finite() {
+            let vol = (0..3).map(|k| (hi[k] - lo[k]).max(0.0)).product::<f64>();
+            cell = 2.0 * (vol / n as f64).cbrt();
+        }
+        if cell <= 0.0 || !cell.is_finite() {
+            cell = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max).max(1.0) / (n as f64).sqrt();
+        }
+        General3 {
+            p,
+            tris: Vec::new(),
+            live: Vec::new(),
+            bflag: Vec::new(),
+            tbox: Vec::new(),
+            id: IdMap::default(),
+            eadj: IdMap::default(),
+            bnext: IdMap::default(),
+            vcount: vec![0; p.len()],
+            keep: keep.iter().map(|&f| sorted3(f)).collect(),
+            tgrid: Grid::new(lo, cell, true),
+            bgrid: Grid::new(lo, cell, true),
+            in_bgrid: Vec::new(),
+            vgrid: Grid::new(lo, cell, false),
+            pbox: (lo, hi),
+            vcoarse: Grid::new(lo, cell * Grid::COARSEN, false),
+            heap: BinaryHeap::new(),
+            buf: Vec::new(),
+            blocked_by: None,
+            in_gamma: IdSet::default(),
+            gamma_ub: IdMap::default(),
+            near_cache: IdMap::default(),
+            track: false,
+            epoch: 0,
+            changed: IdMap::default(),
+            changed_all: 0,
+            locked_at: IdMap::default(),
+            skip_unchanged: true,
+            skipped: 0,
+            sequential_sweeps: false,
+            verify_skips: false,
+            boundary_vertices: 0,
+            iterations: 0,
+            added: 0,
+        }
+    }
+
+    /// The initial state of [`General3::new`], in bulk: the same as adding every boundary
+    /// face (boundary grid only), then every live triangle, then marking the boundary faces —
+    /// ids, edge lists and grid cells in that order — but with every list allocated once and
+    /// the independent tables built in parallel.
+    pub(super) fn build(&mut self, boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) {
+        use rayon::prelude::*;
+        let nt = boundary.len() + tris.len() + keep.len();
+        self.id.reserve(nt);
+        self.tris.reserve(nt);
+        // ids: boundary faces first (not in the grid of live triangles), no repeats
+        let mut n_boundary_ids = 0;
+        for (k, &t) in boundary.iter().chain(tris).chain(keep).enumerate() {
+            if k == boundary.len() {
+                n_boundary_ids = self.tris.len();
+            }
+            let s = sorted3(t);
+            if s[0] == s[1] || s[1] == s[2] {
+                continue;
+            }
+            if let std::collections::hash_map::Entry::Vacant(e) = self.id.entry(s) {
+                e.insert(self.tris.len() as u32);
+                self.tris.push(s);
+            }
+        }
+        if tris.is_empty() && keep.is_empty() {
+            n_boundary_ids = self.tris.len();
+        }
+        let n = self.tris.len();
+        self.live = vec![true; n];
+        self.bflag = vec![false; n];
+        self.in_bgrid = vec![false; n];
+        let p = self.p;
+        self.tbox = self
+            .tris
+            .par_iter()
+            .map(|s| bbox(&s.map(|v| p[v as usize])))
+            .collect();
+        // boundary faces in the boundary grid, in the order of the list
+        let mut bids = Vec::with_capacity(boundary.len());
+        for f in boundary {
+            if let Some(&i) = self.id.get(&sorted3(*f)) {
+                self.bflag[i as usize] = true;
+                if !self.in_bgrid[i as usize] {
+                    self.in_bgrid[i as usize] = true;
+                    bids.push(i);
+                }
+            }
+        }
+        let (tl, tbox) = (&self.tris, &self.tbox);
+        let (eadj, bnext, vcount, bv, vgrid, vcoarse, tgrid, bgrid) = (
+            &mut self.eadj,
+            &mut self.bnext,
+            &mut self.vcount,
+            &mut self.boundary_vertices,
+            &mut self.vgrid,
+            &mut self.vcoarse,
+            &mut self.tgrid,
+            &mut self.bgrid,
+        );
+        rayon::join(
+            || {
+                // edge → third vertices, in id order
+                let mut e: Vec<(u64, u32, u32)> = tl
+                    .par_iter()
+                    .enumerate()
+                    .flat_map_iter(|(i, s)| {
+                        (0..3).map(move |k| {
+                            let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
+                            (ek(a, b), i as u32, c)
+                        })
+                    })
+                    .collect();
+                e.par_sort_unstable();
+                eadj.reserve(e.len() / 2);
+                for run in e.chunk_by(|a, b| a.0 == b.0) {
+                    eadj.insert(run[0].0, run.iter().map(|x| x.2).collect());
+                }
+            },
+            || {
+                rayon::join(
+                    || {
+                        rayon::join(
+                            || {
+                                tgrid.insert_many(
+                                    (n_boundary_ids..n).map(|i| (i as u32, tbox[i].0, tbox[i].1)),
+                                );
+                            },
+                            || {
+                                bgrid.insert_many(bids.iter().map(|&i| {
+                                    let (lo, hi) = tbox[i as usize];
+                                    (i, lo, hi)
+                                }));
+                            },
+                        )
+                    },
+                    || {
+                        vgrid.reserve(p.len());
+                        for (v, &q) in p.iter().enumerate() {
+                            vgrid.insert(v as u32, q, q);
+                            vcoarse.insert(v as u32, q, q);
+                        }
+                        bnext.reserve(3 * boundary.len());
+                        for f in boundary {
+                            for k in 0..3 {
+                                let (a, b, c) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+                                bnext.insert(dk(a, b), c);
+                                let v = a as usize;
+                                if vcount[v] == 0 {
+                                    *bv += 1;
+                                }
+                                vcount[v] += 1;
+                            }
+                        }
+                    },
+                );
+            },
+        );
+    }
+
+    /// Records a mutation inside the box (see `track`).
+    pub(super) fn touched(&mut self, lo: P, hi: P) {
+        if !self.track {
+            return;
+        }
+        self.epoch += 1;
+        let (a, b) = self.bgrid.range(lo, hi);
+        let span = Grid::span(a, b);
+        if span > Grid::MAX_SPAN {
+            self.changed_all = self.epoch;
+            return;
+        }
+        for x in a[0]..=b[0] {
+            for y in a[1]..=b[1] {
+                for z in a[2]..=b[2] {
+                    self.changed.insert((x, y, z), self.epoch);
+                }
+            }
+        }
+    }
+
+    /// Has anything meeting the box changed after `epoch`?
+    pub(super) fn changed_since(&self, epoch: u64, lo: P, hi: P) -> bool {
+        if self.changed_all > epoch {
+            return true;
+        }
+        let (a, b) = self.bgrid.range(lo, hi);
+        let span = Grid::span(a, b);
+        span > Grid::MAX_SPAN
+            || (a[0]..=b[0]).any(|x| {
+                (a[1]..=b[1]).any(|y| {
+                    (a[2]..=b[2]).any(|z| self.changed.get(&(x, y, z)).is_some_and(|&e| e > epoch))
+                })
+            })
+    }
+
+    /// The point grid to walk for a box: `vgrid`, or `vcoarse` (cells 8× wider) when the box
+    /// spans many fine cells (a wide box over a scanned surface has mostly empty cells).
+    /// Either holds every point at its own level (points are never wide boxes).
+    pub(super) fn point_grid_for(&self, lo: P, hi: P) -> &Grid {
+        let (a, b) = self.vgrid.range(lo, hi);
+        let span = Grid::span(a, b);
+        if span <= 4096 {
+            &self.vgrid
+        } else {
+            &self.vcoarse
+        }
+    }
+
+    pub(super) fn pt(&self, v: u32) -> P {
+        self.p[v as usize]
+    }
+
+    pub(super) fn add_tri(&mut self, t: [u32; 3]) -> bool {
+        self.add_tri_grid(t, true)
+    }
+
+    pub(super) fn add_tri_grid(&mut self, t: [u32; 3], grid: bool) -> bool {
+        let s = sorted3(t);
+        if s[0] == s[1] || s[1] == s[2] {
+            return false;
+        }
+        if let Some(&i) = self.id.get(&s) {
+            if self.live[i as usize] {
+                return false;
+            }
+            self.live[i as usize] = true;
+        } else {
+            let i = self.tris.len() as u32;
+            self.tris.push(s);
+            self.live.push(true);
+            self.bflag.push(false);
+            self.in_bgrid.push(false);
+            self.id.insert(s, i);
+            let (lo, hi) = bbox(&s.map(|v| self.pt(v)));
+            self.tbox.push((lo, hi));
+            if grid {
+                self.tgrid.insert(i, lo, hi);
+            }
+        }
+        for k in 0..3 {
+            let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
+            self.eadj.entry(ek(a, b)).or_default().push(c);
+        }
+        if self.track {
+            let (lo, hi) = self.tbox[self.id[&s] as usize];
+            self.touched(lo, hi);
+        }
+        true
+    }
+
+    pub(super) fn kill(&mut self, i: u32) {
+        if !self.live[i as usize] {
+            return;
+        }
+        self.live[i as usize] = false;
+        let (lo, hi) = self.tbox[i as usize];
+        self.touched(lo, hi);
+        let s = self.tris[i as usize];
+        for k in 0..3 {
+            let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
+            if let Some(v) = self.eadj.get_mut(&ek(a, b)) {
+                v.retain(|x| *x != c);
+            }
+        }
+    }
+
+    /// True when triangle abc is live.
+    pub fn has(&self, a: u32, b: u32, c: u32) -> bool {
+        self.id
+            .get(&sorted3([a, b, c]))
+            .is_some_and(|&i| self.live[i as usize])
+    }
+
+    pub(super) fn set_boundary(&mut self, f: [u32; 3], on: bool) {
+        if self.track {
+            let (lo, hi) = bbox(&f.map(|v| self.pt(v)));
+            self.touched(lo, hi);
+        }
+        if let Some(&i) = self.id.get(&sorted3(f)) {
+            self.bflag[i as usize] = on;
+            if on && !self.in_bgrid[i as usize] {
+                self.in_bgrid[i as usize] = true;
+                let (lo, hi) = self.tbox[i as usize];
+                self.bgrid.insert(i, lo, hi);
+            }
+        }
+        for k in 0..3 {
+            let (a, b, c) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+            if on {
+                self.bnext.insert(dk(a, b), c);
+            } else {
+                self.bnext.remove(&dk(a, b));
+            }
+            let v = a as usize;
+            if on {
+                if self.vcount[v] == 0 {
+                    self.boundary_vertices += 1;
+                }
+                self.vcount[v] += 1;
+            } else {
+                self.vcount[v] = self.vcount[v].saturating_sub(1);
+                if self.vcount[v] == 0 {
+                    self.boundary_vertices -= 1;
+                }
+            }
+        }
+    }
+
+    /// Is the oriented face a boundary face (with this orientation)?
+    pub(super) fn is_bface(&self, f: [u32; 3]) -> bool {
+        self.bnext.get(&dk(f[0], f[1])) == Some(&f[2])
+    }
+
+    pub(super) fn on_boundary(&self, v: u32) -> bool {
+        self.vcount[v as usize] > 0
+    }
+
+    pub(super) fn bedge(&self, a: u32, b: u32) -> bool {
+        self.bnext.contains_key(&dk(a, b)) || self.bnext.contains_key(&dk(b, a))
+    }
+
+    /// The boundary surface (outward faces).
+    pub fn boundary(&self) -> Vec<[u32; 3]> {
+        let mut out: Vec<[u32; 3]> = self
+            .bnext
+            .iter()
+            .filter_map(|(&k, &c)| {
+                let (a, b) = ((k >> 32) as u32, k as u32);
+                (a < b && a < c).then_some([a, b, c])
+            })
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    /// Keep triangles not (yet) on the boundary.
+    pub fn keep_missing(&self) -> usize {
+        self.keep
+            .iter()
+            .filter(|k| !self.is_bface(**k) && !self.is_bface([k[0], k[2], k[1]]))
+            .count()
+    }
+
+    /// Every vertex and every keep triangle is on the boundary.
+    pub fn done(&self) -> bool {
+        self.boundary_vertices >= self.p.len() && (self.keep.is_empty() || self.keep_missing() == 0)
+    }
+
+    /// Runs the constriction until every vertex and keep triangle is on the boundary or nothing
+    /// is removable.
+    pub fn run(&mut self) {
+        loop {
+            while !self.done() {
+                let Some(en) = self.heap.pop() else { break };
+                if !self.is_bface(en.item.0) {
+                    continue;
+                }
+                match self.check(en.item.0, en.item.1) {
+                    Some((_, bf, nf)) => self.remove(en.item.0, en.item.1, &bf, &nf),
+                    None => {
+                        self.push(en.item.0);
+                    }
+                }
+            }
+            if self.done() || !self.push_all() {
+                break;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    /// The bulk construction (`build`) gives exactly the tables of adding the triangles one
+    /// by one as the engine does later (`add_tri_grid`, `set_boundary`): same ids, edge lists
+    /// in the same order, same grid cells (coarse levels included) — on a dense sphere with a
+    /// few far points (big triangles on coarse levels), with repeated and degenerate triangles
+    /// among the live ones.
+    #[test]
+    fn bulk_construction_equals_one_by_one() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(31);
+        let mut pts: Vec<crate::geom::Point3> = (0..12000)
+            .map(|_| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-9);
+                let s = 1.0 + rng.gen_range(0.0..0.01);
+                crate::geom::Point3::new(v[0] / r * s, v[1] / r * s, v[2] / r * s)
+            })
+            .collect();
+        for k in 0..4 {
+            let f = 40.0 * (k as f64 + 1.0);
+            pts.push(crate::geom::Point3::new(f, -f / 2.0, f / 3.0));
+        }
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let st = crate::boundary::d3::constrict::constrict_3d(
+            &d,
+            crate::boundary::d3::constrict::Until::All,
+        );
+        let mut live = crate::graphs::fast::candidates_3d(&d).triangles;
+        live.extend_from_slice(&st.triangles[..50]);
+        live.push([3, 3, 7]);
+        live.push(live[10]);
+        let keep = vec![live[20]];
+        let mut bulk = General3::blank(&pos, &st.triangles, &live, &keep);
+        bulk.build(&st.triangles, &live, &keep);
+        let mut one = General3::blank(&pos, &st.triangles, &live, &keep);
+        for (v, &q) in pos.iter().enumerate() {
+            one.vgrid.insert(v as u32, q, q);
+        }
+        for &t in &st.triangles {
+            one.add_tri_grid(t, false);
+        }
+        for &t in live.iter().chain(&keep) {
+            one.add_tri(t);
+        }
+        for &f in &st.triangles {
+            one.set_boundary(f, true);
+        }
+        assert!(
+            !bulk.tgrid.is_single_level(),
+            "no big triangles in the test"
+        );
+        assert_eq!(bulk.tris, one.tris);
+        assert_eq!(bulk.live, one.live);
+        assert_eq!(bulk.bflag, one.bflag);
+        assert_eq!(bulk.in_bgrid, one.in_bgrid);
+        assert_eq!(bulk.tbox, one.tbox);
+        assert_eq!(bulk.id, one.id);
+        assert_eq!(bulk.eadj, one.eadj);
+        assert_eq!(bulk.bnext, one.bnext);
+        assert_eq!(bulk.vcount, one.vcount);
+        assert_eq!(bulk.boundary_vertices, one.boundary_vertices);
+        assert_eq!(bulk.tgrid, one.tgrid);
+        assert_eq!(bulk.bgrid, one.bgrid);
+        assert_eq!(bulk.vgrid, one.vgrid);
+        // the cells of the point grid chosen for a box (the coarse one for wide boxes) hold
+        // every point inside the box, each once
+        let mut wide = 0;
+        for k in 0..200 {
+            let c: P = pos[k * 7 % pos.len()];
+            let h = if k % 2 == 0 {
+                0.005 * k as f64
+            } else {
+                0.6 + 0.004 * k as f64
+            };
+            let (lo, hi) = (c.map(|x| x - h), c.map(|x| x + h));
+            let inside = |z: &u32| (0..3).all(|i| (lo[i]..=hi[i]).contains(&pos[*z as usize][i]));
+            let g = bulk.point_grid_for(lo, hi);
+            wide += usize::from(std::ptr::eq(g, &bulk.vcoarse));
+            assert!(g.is_single_level());
+            let mut a = Vec::new();
+            g.for_cells(lo, hi, |_, ids| {
+                a.extend(ids.iter().copied().filter(inside))
+            });
+            let b: Vec<u32> = (0..pos.len() as u32).filter(inside).collect();
+            a.sort_unstable();
+            assert_eq!(a, b, "box {lo:?} {hi:?}");
+        }
+        assert!(wide > 50, "{wide}");
+    }
+
+    /// Skipping the locked faces whose surroundings did not change gives exactly the
+    /// constriction of the full sweep (same surface, same number of removals), through
+    /// several sweeps, augmentations and c steps; every skipped face, evaluated anyway, has no
+    /// removable tetrahedron; and it does skip. The sweeps' parallel evaluation (no keep
+    /// triangles) equals the evaluation one face after the other.
+    #[test]
+    fn sweeps_that_skip_unchanged_faces_constrict_identically() {
+        let mut skipped = 0;
+        // clustered cube points on which the Delaunay constriction locks (seeds of the
+        // integration test `locked_delaunay_constriction_falls_back_and_stays_valid`), plus
+        // more clustered sets
+        for seed in [1647u64, 1755, 1, 2, 3, 4] {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let n = rng.gen_range(40..600);
+            let pts: Vec<crate::geom::Point3> = (0..n)
+                .map(|_| {
+                    let x: f64 = rng.gen_range(-1.0..1.0);
+                    let y: f64 = rng.gen_range(-1.0..1.0);
+                    let z: f64 = rng.gen_range(-1.0..1.0);
+                    crate::geom::Point3::new(x.powi(3), y.powi(3), z.powi(3))
+                })
+                .collect();
+            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let st = crate::boundary::d3::constrict::constrict_3d(
+                &d,
+                crate::boundary::d3::constrict::Until::All,
+            );
+            let mut live: Vec<[u32; 3]> = Vec::new();
+            for (t, tet) in d.tets.iter().enumerate() {
+                if st.alive[t] {
+                    for (a, b, c) in [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)] {
+                        live.push(sorted3([tet[a], tet[b], tet[c]]));
+                    }
+                }
+            }
+            live.sort_unstable();
+            live.dedup();
+            // reference: no skipping, faces one after the other; against it: skipping (each
+            // skipped face verified), faces evaluated in parallel — from the first sweep on
+            let go = |fast: bool| {
+                let mut g = General3::blank(&pos, &st.triangles, &live, &[]);
+                g.build(&st.triangles, &live, &[]);
+                g.track = true;
+                g.skip_unchanged = fast;
+                g.verify_skips = fast;
+                g.sequential_sweeps = !fast;
+                g.push_all();
+                g.run();
+                let mut trace = vec![(g.iterations, g.boundary_vertices)];
+                for step in 1..=10 {
+                    if g.done() {
+                        break;
+                    }
+                    let x = g.local_gamma(-(step as f64) / 10.0, 16);
+                    g.augment(&x);
+                    g.run();
+                    trace.push((g.iterations, g.boundary_vertices));
+                }
+                (g.boundary(), trace, g.skipped)
+            };
+            let (b1, t1, _) = go(false);
+            let (b2, t2, sk) = go(true);
+            assert_eq!(t1, t2, "seed {seed}");
+            assert_eq!(b1, b2, "seed {seed}");
+            skipped += sk;
+        }
+        assert!(skipped > 500, "{skipped}");
+    }
+
+    /// Every mutation primitive (kill, add, boundary flag) stamps its box: a box meeting the
+    /// mutated triangle sees the change, a far box does not, and nothing is stamped during
+    /// construction.
+    #[test]
+    fn mutations_stamp_the_cells_they_touch() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
+        let pts: Vec<crate::geom::Point3> = (0..300)
+            .map(|_| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                crate::geom::Point3::new(v[0], v[1], v[2])
+            })
+            .collect();
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let all = crate::graphs::fast::candidates_3d(&d).triangles;
+        let mut g = General3::new(&pos, &d.hull, &all, &[]);
+        assert!(g.changed.is_empty() && g.changed_all == 0);
+        let shift = 50.0 * g.bgrid.cell() + 10.0;
+        let far = |b: (P, P)| -> (P, P) { (b.0.map(|x| x + shift), b.1.map(|x| x + shift)) };
+        for round in 0..60 {
+            let e = g.epoch;
+            let i = rng.gen_range(0..g.tris.len());
+            let t = g.tris[i];
+            let b = g.tbox[i];
+            match round % 3 {
+                0 if g.live[i] => g.kill(i as u32),
+                1 if !g.live[i] => assert!(g.add_tri(t)),
+                _ => g.set_boundary(t, !g.bflag[i]),
+            }
+            assert!(g.epoch > e, "round {round}: a mutation without a stamp");
+            assert!(g.changed_since(e, b.0, b.1), "round {round}");
+            let (flo, fhi) = far(b);
+            assert!(!g.changed_since(e, flo, fhi), "round {round}");
+            assert!(!g.changed_since(g.epoch, b.0, b.1));
+        }
+        assert!(g.epoch >= 30, "{}", g.epoch);
+    }
+}

@@ -1,0 +1,757 @@
+//! Removal of a tetrahedron by the general 3D engine [`General3`] (Veltkamp 1992, §5.3
+//! conditions, §5.4 deletion of crossing triangles, §5.5 heap): the removability test, the
+//! conservative exact open-tetrahedron test, the heap and its sweeps.
+//!
+//! A tetrahedron Q = abcl with boundary face abc (l strictly on its inner side, all four faces
+//! live, Q not flat) is removable iff
+//! - it has **one** boundary face and l is not a boundary vertex, or **two** boundary faces and
+//!   the edge joining the two vertices opposite them is not a boundary edge (never three or
+//!   four) — exactly V's conditions, which keep the surface a closed 2-manifold of genus 0;
+//! - the closed Q contains no other vertex (exact `orient3d`);
+//! - its new boundary faces meet no other boundary triangle except in common vertices/edges
+//!   (exact tests of [`crate::geom::intersect`]; a safety net — the invariant already implies it);
+//! - no keep triangle is a boundary face of Q or crosses its interior (V §5.7).
+//!
+//! Its key is the sum of the γ-indicators of its boundary faces w.r.t. the opposite vertices
+//! ([`super::constrict::gamma_indicator_3d`], Def. 5.2). Removing Q deletes its boundary faces
+//! and **every live triangle meeting the open Q** (V §5.4). That test is conservative and exact:
+//! a triangle is kept only when a separating plane is proven — for a triangle sharing a vertex
+//! a with Q, the planes through a spanned by two other corners (complete for two cones with a
+//! common apex; only `orient3d`); otherwise the face planes of Q, the triangle's plane, and the
+//! edge–edge planes of the separating-axis theorem evaluated in floating point with an error
+//! filter (a doubtful sign counts as "meets"). Deleting too much only removes choices; it never
+//! breaks the invariant.
+
+use super::constrict::gamma_indicator_3d;
+use super::general::*;
+use crate::geom::intersect::triangles_meet_beyond_shared;
+use crate::geom::predicates::raw::orient3d;
+use crate::geom::vec::{cross, sub};
+use crate::util::sorted3;
+
+/// Sign of det[x − y, e, f] (e, f edge vectors as differences of doubles), or `None` when the
+/// floating-point value is not certified.
+pub(super) fn sat_sign(x: P, y: P, e: (P, P), f: (P, P)) -> Option<i32> {
+    let (u, v, w) = (sub(x, y), sub(e.1, e.0), sub(f.1, f.0));
+    let t = [
+        u[0] * (v[1] * w[2] - v[2] * w[1]),
+        u[1] * (v[2] * w[0] - v[0] * w[2]),
+        u[2] * (v[0] * w[1] - v[1] * w[0]),
+    ];
+    let val = t[0] + t[1] + t[2];
+    let mag = (0..3)
+        .map(|k| {
+            let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
+            u[k].abs() * ((v[k1] * w[k2]).abs() + (v[k2] * w[k1]).abs())
+        })
+        .sum::<f64>();
+    let bound = 16.0 * f64::EPSILON * mag;
+    if !val.is_finite() || !mag.is_finite() {
+        None
+    } else if val > bound {
+        Some(1)
+    } else if val < -bound {
+        Some(-1)
+    } else if mag == 0.0 {
+        Some(0)
+    } else {
+        None
+    }
+}
+
+/// Conservative exact test: may closed triangle `t` meet the open tetrahedron `q`? `false` only
+/// when a separating plane is proven (see the module documentation).
+pub fn may_meet_open_tet(t: [P; 3], tv: [u32; 3], q: [P; 4], qv: [u32; 4]) -> bool {
+    // shared vertex: cones with a common apex, planes through it spanned by two corners
+    if let Some((it, iq)) = (0..3)
+        .flat_map(|i| (0..4).map(move |j| (i, j)))
+        .find(|&(i, j)| tv[i] == qv[j])
+    {
+        let a = t[it];
+        let ts: Vec<P> = (0..3).filter(|&i| i != it).map(|i| t[i]).collect();
+        let qs: Vec<P> = (0..4)
+            .filter(|&j| j != iq && !tv.contains(&qv[j]))
+            .map(|j| q[j])
+            .collect();
+        // Q's corners shared with t other than a lie on t: they are on both sides; keep them
+        let qsh: Vec<P> = (0..4)
+            .filter(|&j| j != iq && tv.contains(&qv[j]))
+            .map(|j| q[j])
+            .collect();
+        let all: Vec<P> = ts.iter().chain(&qs).copied().collect();
+        for i in 0..all.len() {
+            for j in i + 1..all.len() {
+                let (u, v) = (all[i], all[j]);
+                let st: Vec<f64> = ts.iter().map(|&x| orient3d(a, u, v, x)).collect();
+                let sq: Vec<f64> = qs
+                    .iter()
+                    .chain(&qsh)
+                    .map(|&x| orient3d(a, u, v, x))
+                    .collect();
+                if st.iter().chain(&sq).all(|&s| s == 0.0) {
+                    continue; // degenerate plane
+                }
+                if (st.iter().all(|&s| s <= 0.0) && sq.iter().all(|&s| s >= 0.0))
+                    || (st.iter().all(|&s| s >= 0.0) && sq.iter().all(|&s| s <= 0.0))
+                {
+                    return false;
+                }
+            }
+        }
+        return true;
+    }
+    // face planes of q
+    let o = orient3d(q[0], q[1], q[2], q[3]);
+    if o == 0.0 {
+        return false; // flat: no interior
+    }
+    let faces = [[1, 2, 3, 0], [0, 2, 3, 1], [0, 1, 3, 2], [0, 1, 2, 3]];
+    for f in faces {
+        let s = orient3d(q[f[0]], q[f[1]], q[f[2]], q[f[3]]);
+        if t.iter()
+            .all(|&x| orient3d(q[f[0]], q[f[1]], q[f[2]], x) * s <= 0.0)
+        {
+            return false;
+        }
+    }
+    // the triangle's plane
+    let sq: Vec<f64> = q.iter().map(|&x| orient3d(t[0], t[1], t[2], x)).collect();
+    if sq.iter().all(|&s| s >= 0.0) || sq.iter().all(|&s| s <= 0.0) {
+        return false;
+    }
+    // edge–edge planes
+    let qe = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+    for i in 0..3 {
+        let e = (t[i], t[(i + 1) % 3]);
+        for &(j, k) in &qe {
+            let f = (q[j], q[k]);
+            // signs of (x − e.0)·(e × f) for every corner x
+            let mut st = [0i32; 3];
+            let mut sqs = [0i32; 4];
+            let mut ok = true;
+            // the corners of e are exactly on the plane; only the third one is evaluated
+            match sat_sign(t[(i + 2) % 3], e.0, e, f) {
+                Some(s) => st[2] = s,
+                None => ok = false,
+            }
+            for (m, &x) in q.iter().enumerate() {
+                match sat_sign(x, e.0, e, f) {
+                    Some(s) => sqs[m] = s,
+                    None => ok = false,
+                }
+            }
+            if !ok || (st.iter().all(|&s| s == 0) && sqs.iter().all(|&s| s == 0)) {
+                continue;
+            }
+            // t lies in a closed half-space through e; q's vertices of edge f share one value,
+            // the separating plane through e works when q is on the other closed side
+            if (st.iter().all(|&s| s <= 0) && sqs.iter().all(|&s| s >= 0))
+                || (st.iter().all(|&s| s >= 0) && sqs.iter().all(|&s| s <= 0))
+            {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+impl General3<'_> {
+    /// Combinatorial removability of tetrahedron (face, l) and its key; cheap checks only.
+    /// Returns (key, boundary faces of Q, new faces).
+    pub(super) fn combinatorial(&self, f: [u32; 3], l: u32) -> Option<Removal> {
+        let [a, b, c] = f;
+        if l == a || l == b || l == c || !self.is_bface(f) {
+            return None;
+        }
+        if !self.has(a, b, l) || !self.has(b, c, l) || !self.has(a, c, l) {
+            return None;
+        }
+        let (pa, pb, pc, pl) = (self.pt(a), self.pt(b), self.pt(c), self.pt(l));
+        if orient3d(pa, pb, pc, pl) <= 0.0 {
+            return None;
+        }
+        let faces = tet_faces(a, b, c, l);
+        let mut bf = Vec::new();
+        let mut nf = Vec::new();
+        let mut opp = Vec::new();
+        for (face, o) in faces {
+            if self.is_bface(face) {
+                bf.push(face);
+                opp.push(o);
+            } else {
+                if self.is_bface([face[1], face[0], face[2]]) {
+                    return None; // the reversed face is on the boundary: Q lies outside
+                }
+                nf.push([face[0], face[2], face[1]]);
+            }
+        }
+        match bf.len() {
+            1 => {
+                if self.on_boundary(l) {
+                    return None;
+                }
+            }
+            2 => {
+                if self.bedge(opp[0], opp[1]) {
+                    return None;
+                }
+            }
+            _ => return None,
+        }
+        if !self.keep.is_empty() && bf.iter().any(|&x| self.keep.contains(&sorted3(x))) {
+            return None;
+        }
+        let r = circumradius(pa, pb, pc, pl);
+        let mut key = 0.0;
+        for (face, &o) in bf.iter().zip(&opp) {
+            key += gamma_indicator_3d(
+                self.pt(face[0]),
+                self.pt(face[1]),
+                self.pt(face[2]),
+                self.pt(o),
+                r,
+            );
+        }
+        Some((key, bf, nf))
+    }
+
+    /// The closed tetrahedron contains no vertex but its corners.
+    pub(super) fn empty(&mut self, qv: [u32; 4]) -> bool {
+        let mut buf = std::mem::take(&mut self.buf);
+        let ok = self.empty_with(qv, &mut buf);
+        self.buf = buf;
+        ok
+    }
+
+    /// [`Self::empty`] with a scratch buffer of the caller's.
+    pub(super) fn empty_with(&self, qv: [u32; 4], buf: &mut Vec<u32>) -> bool {
+        let q = qv.map(|v| self.pt(v));
+        let (lo, hi) = bbox(&q);
+        self.vgrid.query(lo, hi, buf);
+        let o = orient3d(q[0], q[1], q[2], q[3]);
+        let faces = [[1, 2, 3, 0], [0, 2, 3, 1], [0, 1, 3, 2], [0, 1, 2, 3]];
+        let signs: Vec<f64> = faces
+            .iter()
+            .map(|f| orient3d(q[f[0]], q[f[1]], q[f[2]], q[f[3]]))
+            .collect();
+        let mut ok = o != 0.0;
+        for &v in buf.iter() {
+            if !ok {
+                break;
+            }
+            if qv.contains(&v) {
+                continue;
+            }
+            let x = self.pt(v);
+            if faces
+                .iter()
+                .zip(&signs)
+                .all(|(f, &s)| orient3d(q[f[0]], q[f[1]], q[f[2]], x) * s >= 0.0)
+            {
+                ok = false;
+            }
+        }
+        ok
+    }
+
+    /// Triangle `t` (vertex ids) meets a boundary triangle other than those in `skip` beyond
+    /// their common vertices/edges. Stops at the first such triangle.
+    pub(super) fn hits_boundary(&self, t: [u32; 3], skip: &[[u32; 3]]) -> bool {
+        let pt = t.map(|v| self.pt(v));
+        let bb = bbox(&pt);
+        let mut skip_s = [[u32::MAX; 3]; 4];
+        for (k, &x) in skip.iter().take(4).enumerate() {
+            skip_s[k] = sorted3(x);
+        }
+        let st = sorted3(t);
+        // floating-point plane of t: a box farther from it than a generous bound of the
+        // rounding error (relative 1e-8) holds no point of t's plane, so no triangle in it can
+        // meet t (a triangle sharing a vertex with t touches the plane and is never culled)
+        let nrm = cross(sub(pt[1], pt[0]), sub(pt[2], pt[0]));
+        let n1: f64 = nrm.iter().map(|x| x.abs()).sum();
+        let scale = |x: P| x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let st_scale = scale(bb.0).max(scale(bb.1));
+        let plane_ok = n1.is_finite() && n1 > 0.0;
+        self.bgrid.any_in_box(bb.0, bb.1, |i| {
+            // live boundary triangle (either orientation of the sorted triple)
+            if !self.live[i as usize] || !self.bflag[i as usize] {
+                return false;
+            }
+            let ub = self.tbox[i as usize];
+            if !boxes_meet(bb, ub) {
+                return false;
+            }
+            if plane_ok {
+                let c: P = std::array::from_fn(|k| 0.5 * (ub.0[k] + ub.1[k]));
+                let h: P = std::array::from_fn(|k| 0.5 * (ub.1[k] - ub.0[k]));
+                let dist = (0..3).map(|k| nrm[k] * (c[k] - pt[0][k])).sum::<f64>();
+                let rad = (0..3).map(|k| nrm[k].abs() * h[k]).sum::<f64>();
+                let margin = 1e-8 * n1 * (st_scale + scale(ub.0).max(scale(ub.1)));
+                if dist.abs() > rad + margin {
+                    return false;
+                }
+            }
+            let u = self.tris[i as usize];
+            if u == st || skip_s.contains(&u) || skip.iter().skip(4).any(|&x| sorted3(x) == u) {
+                return false;
+            }
+            let pu = u.map(|v| self.pt(v));
+            triangles_meet_beyond_shared(t, pt, u, pu)
+        })
+    }
+
+    /// Live triangles meeting the open tetrahedron (conservative), other than its faces.
+    pub(super) fn crossing(&mut self, qv: [u32; 4]) -> Vec<u32> {
+        let q = qv.map(|v| self.pt(v));
+        let bb = bbox(&q);
+        let mut buf = std::mem::take(&mut self.buf);
+        self.tgrid.query(bb.0, bb.1, &mut buf);
+        let mut out = Vec::new();
+        for &i in &buf {
+            if !self.live[i as usize] {
+                continue;
+            }
+            let u = self.tris[i as usize];
+            if u.iter().all(|v| qv.contains(v)) {
+                continue;
+            }
+            let pu = u.map(|v| self.pt(v));
+            if !boxes_meet(bb, bbox(&pu)) {
+                continue;
+            }
+            if may_meet_open_tet(pu, u, q, qv) {
+                out.push(i);
+            }
+        }
+        self.buf = buf;
+        out
+    }
+
+    /// Full removability check of tetrahedron (boundary face f, apex l).
+    pub(super) fn check(&mut self, f: [u32; 3], l: u32) -> Option<Removal> {
+        let (key, bf, nf) = self.combinatorial(f, l)?;
+        let qv = [f[0], f[1], f[2], l];
+        if !self.empty(qv) {
+            return None;
+        }
+        for &t in &nf {
+            if self.hits_boundary(t, &bf) {
+                return None;
+            }
+        }
+        if !self.keep.is_empty() {
+            let cr = self.crossing(qv);
+            if let Some(&i) = cr
+                .iter()
+                .find(|&&i| self.keep.contains(&self.tris[i as usize]))
+            {
+                self.blocked_by = Some(self.tris[i as usize]);
+                return None;
+            }
+        }
+        Some((key, bf, nf))
+    }
+
+    /// The smallest-key removable tetrahedron on boundary face f.
+    pub(super) fn best(&mut self, f: [u32; 3]) -> Option<(f64, u32)> {
+        if self.keep.is_empty() {
+            let mut buf = std::mem::take(&mut self.buf);
+            let b = self.best_plain(f, &mut buf);
+            self.buf = buf;
+            return b;
+        }
+        if !self.is_bface(f) || self.keep.contains(&sorted3(f)) {
+            return None;
+        }
+        if !self.keep.is_empty() {
+            // keep triangles x y m on an edge of f: make f + m a tetrahedron (V §5.7 rewiring)
+            for k in 0..3 {
+                let (x, y) = (f[k], f[(k + 1) % 3]);
+                let ms: Vec<u32> = self.eadj.get(&ek(x, y)).map_or(Vec::new(), |v| v.to_vec());
+                for m in ms {
+                    if m != f[(k + 2) % 3] && self.keep.contains(&sorted3([x, y, m])) {
+                        self.rewire(f, [x, y, m]);
+                    }
+                }
+            }
+        }
+        for _round in 0..4 {
+            let cands: Vec<u32> = self
+                .eadj
+                .get(&ek(f[0], f[1]))
+                .map_or(Vec::new(), |v| v.to_vec());
+            let mut keyed: Vec<(f64, u32)> = cands
+                .into_iter()
+                .filter(|&l| l != f[2])
+                .filter_map(|l| self.combinatorial(f, l).map(|(k, _, _)| (k, l)))
+                .collect();
+            keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            let mut rewired = false;
+            for (k, l) in keyed {
+                self.blocked_by = None;
+                if self.check(f, l).is_some() {
+                    return Some((k, l));
+                }
+                if let Some(kt) = self.blocked_by.take() {
+                    rewired |= self.rewire(f, kt);
+                    if rewired {
+                        break;
+                    }
+                }
+            }
+            if !rewired {
+                return None;
+            }
+        }
+        None
+    }
+
+    /// [`Self::best`] without keep triangles, where nothing is rewired: read-only (the
+    /// removability checks of [`Self::check`] without the keep crossings), so that
+    /// [`Self::push_all`] can evaluate faces in parallel.
+    pub(super) fn best_plain(&self, f: [u32; 3], buf: &mut Vec<u32>) -> Option<(f64, u32)> {
+        debug_assert!(self.keep.is_empty());
+        if !self.is_bface(f) {
+            return None;
+        }
+        let mut keyed: Vec<(f64, u32, Removal)> = self
+            .eadj
+            .get(&ek(f[0], f[1]))
+            .into_iter()
+            .flatten()
+            .filter(|&&l| l != f[2])
+            .filter_map(|&l| self.combinatorial(f, l).map(|r| (r.0, l, r)))
+            .collect();
+        keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        keyed.into_iter().find_map(|(k, l, (_, bf, nf))| {
+            let removable = self.empty_with([f[0], f[1], f[2], l], buf)
+                && !nf.iter().any(|&t| self.hits_boundary(t, &bf));
+            removable.then_some((k, l))
+        })
+    }
+
+    pub(super) fn push(&mut self, f: [u32; 3]) -> bool {
+        if let Some((key, l)) = self.best(f) {
+            self.heap.push(Entry { key, item: (f, l) });
+            true
+        } else {
+            false
+        }
+    }
+
+    /// Pushes every boundary face that can have a removable tetrahedron: one sharing an edge
+    /// with a live triangle that is not a boundary face (a tetrahedron with at most two
+    /// boundary faces has two other live faces, each on an edge of every boundary face of it;
+    /// the other boundary faces never have one).
+    pub(super) fn push_all(&mut self) -> bool {
+        use rayon::prelude::*;
+        let this = &*self;
+        let mut faces: Vec<[u32; 3]> = (0..this.tris.len())
+            .into_par_iter()
+            .filter(|&i| this.live[i] && !this.bflag[i])
+            .flat_map_iter(|i| {
+                let t = this.tris[i];
+                (0..6).filter_map(move |j| {
+                    let (a, b) = (t[j / 2], t[(j / 2 + 1) % 3]);
+                    let (x, y) = if j % 2 == 0 { (a, b) } else { (b, a) };
+                    this.bnext.get(&dk(x, y)).map(|&z| sorted_rot([x, y, z]))
+                })
+            })
+            .collect();
+        faces.par_sort_unstable();
+        faces.dedup();
+        // Without keep triangles evaluating a face changes nothing (no rewiring): the faces
+        // are tested and evaluated in parallel against the same state, then handled in order.
+        if self.keep.is_empty() && !self.sequential_sweeps {
+            enum Verdict {
+                Skipped,
+                Push(f64, u32),
+                Locked(P, P),
+            }
+            let this = &*self;
+            let verdicts: Vec<Verdict> = faces
+                .par_iter()
+                .map_init(Vec::new, |buf, &f| {
+                    if this.unchanged_lock(f) {
+                        Verdict::Skipped
+                    } else if let Some((key, l)) = this.best_plain(f, buf) {
+                        Verdict::Push(key, l)
+                    } else {
+                        let (lo, hi) = this.lock_box(f);
+                        Verdict::Locked(lo, hi)
+                    }
+                })
+                .collect();
+            let mut any = false;
+            for (f, v) in faces.into_iter().zip(verdicts) {
+                match v {
+                    Verdict::Skipped => {
+                        self.skipped += 1;
+                        if self.verify_skips {
+                            assert!(self.best(f).is_none(), "skipped a removable face {f:?}");
+                        }
+                    }
+                    Verdict::Push(key, l) => {
+                        self.heap.push(Entry { key, item: (f, l) });
+                        any = true;
+                        self.locked_at.remove(&f);
+                    }
+                    Verdict::Locked(lo, hi) => {
+                        self.locked_at.insert(f, (self.epoch, lo, hi));
+                    }
+                }
+            }
+            return any;
+        }
+        let mut any = false;
+        for f in faces {
+            // A face found locked is skipped while nothing meeting the box of f and its
+            // apexes has changed: its removability depends only on the live triangles on its
+            // edges and the tetrahedra they span (boundary flags of their faces and edges,
+            // points inside, live triangles crossing them, boundary faces meeting their new
+            // faces) — all inside that box — and every mutation stamps the cells of its box.
+            if self.skip_locked(f) {
+                continue;
+            }
+            let e = self.epoch;
+            if self.push(f) {
+                any = true;
+                self.locked_at.remove(&f);
+            } else {
+                // (a mutation during this face's own evaluation, e.g. a rewiring, is after e)
+                let (lo, hi) = self.lock_box(f);
+                self.locked_at.insert(f, (e, lo, hi));
+            }
+        }
+        any
+    }
+
+    /// Whether face f was found locked before and nothing meeting the box of f and its
+    /// apexes has changed since (then [`Self::push_all`] skips it).
+    pub(super) fn unchanged_lock(&self, f: [u32; 3]) -> bool {
+        self.skip_unchanged
+            && self
+                .locked_at
+                .get(&f)
+                .is_some_and(|&(e, lo, hi)| !self.changed_since(e, lo, hi))
+    }
+
+    /// [`Self::unchanged_lock`], counted, and in the tests verified.
+    pub(super) fn skip_locked(&mut self, f: [u32; 3]) -> bool {
+        if !self.unchanged_lock(f) {
+            return false;
+        }
+        self.skipped += 1;
+        if self.verify_skips {
+            assert!(self.best(f).is_none(), "skipped a removable face {f:?}");
+        }
+        true
+    }
+
+    /// The box of face f and the apexes on its edges: everything its removability depends on.
+    pub(super) fn lock_box(&self, f: [u32; 3]) -> (P, P) {
+        let mut q: Vec<P> = f.iter().map(|&v| self.pt(v)).collect();
+        for k in 0..3 {
+            if let Some(ls) = self.eadj.get(&ek(f[k], f[(k + 1) % 3])) {
+                q.extend(ls.iter().map(|&l| self.pt(l)));
+            }
+        }
+        bbox(&q)
+    }
+
+    pub(super) fn remove(&mut self, f: [u32; 3], l: u32, bf: &[[u32; 3]], nf: &[[u32; 3]]) {
+        let qv = [f[0], f[1], f[2], l];
+        let cross = self.crossing(qv);
+        for i in cross {
+            if self.bflag[i as usize] {
+                continue; // (cannot meet the open Q; never delete the surface)
+            }
+            self.kill(i);
+        }
+        for &b in bf {
+            self.set_boundary(b, false);
+            if let Some(&i) = self.id.get(&sorted3(b)) {
+                self.kill(i);
+            }
+        }
+        for &n in nf {
+            self.set_boundary(n, true);
+        }
+        self.iterations += 1;
+        for &n in nf {
+            self.push(n);
+        }
+        // the faces next to the new ones may have gained options (two-face removals); others
+        // are recomputed lazily when popped, and by the final sweep of `run`
+        for &n in nf {
+            for k in 0..3 {
+                let (a, b) = (n[k], n[(k + 1) % 3]);
+                if let Some(&c) = self.bnext.get(&dk(b, a)) {
+                    self.push([b, a, c]);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    /// Brute force: does closed triangle t meet the open tetrahedron q? Dense sampling of t in
+    /// barycentric coordinates with an exact in-open-tetrahedron test (a sampled point is a
+    /// rounded float, so this is an oracle for the "meets" direction only, in general position).
+    fn sampled_meet(t: [P; 3], q: [P; 4]) -> bool {
+        let faces = [[1, 2, 3, 0], [0, 2, 3, 1], [0, 1, 3, 2], [0, 1, 2, 3]];
+        let m = 40;
+        // interior samples only: a rounded point of an edge shared with q could fall inside
+        for i in 1..m {
+            for j in 1..m - i {
+                let (u, v) = (i as f64 / m as f64, j as f64 / m as f64);
+                let w = 1.0 - u - v;
+                let x: P = std::array::from_fn(|k| u * t[0][k] + v * t[1][k] + w * t[2][k]);
+                if faces.iter().all(|f| {
+                    orient3d(q[f[0]], q[f[1]], q[f[2]], x)
+                        * orient3d(q[f[0]], q[f[1]], q[f[2]], q[f[3]])
+                        > 0.0
+                }) {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
+    #[test]
+    fn open_tet_test_never_misses_a_sampled_hit() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let (mut hits, mut sep) = (0, 0);
+        for it in 0..3000 {
+            let mut pts: Vec<P> = (0..7)
+                .map(|_| std::array::from_fn(|_| rng.gen_range(-1.0..1.0)))
+                .collect();
+            // share 0, 1 or 2 vertices
+            let share = it % 3;
+            let qv = [0u32, 1, 2, 3];
+            let tv: [u32; 3] = match share {
+                0 => [4, 5, 6],
+                1 => [0, 5, 6],
+                _ => [0, 1, 6],
+            };
+            if it % 7 == 0 {
+                pts[6] = [
+                    0.5 * (pts[2][0] + pts[3][0]),
+                    0.5 * (pts[2][1] + pts[3][1]),
+                    0.5 * (pts[2][2] + pts[3][2]),
+                ];
+            }
+            let q = qv.map(|v| pts[v as usize]);
+            let t = tv.map(|v| pts[v as usize]);
+            if orient3d(q[0], q[1], q[2], q[3]) == 0.0 {
+                continue;
+            }
+            let got = may_meet_open_tet(t, tv, q, qv);
+            if sampled_meet(t, q) {
+                assert!(got, "missed {t:?} {q:?}");
+                hits += 1;
+            } else if !got {
+                sep += 1;
+            }
+        }
+        assert!(hits > 300 && sep > 300, "{hits} {sep}");
+    }
+
+    #[test]
+    fn disjoint_and_touching_cases_are_separated() {
+        let q = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let qv = [0, 1, 2, 3];
+        // a triangle on the face z = 0 (outside), sharing edge 0 1
+        assert!(!may_meet_open_tet(
+            [q[0], q[1], [0.5, -1.0, 0.0]],
+            [0, 1, 9],
+            q,
+            qv
+        ));
+        // the same edge, pointing inside
+        assert!(may_meet_open_tet(
+            [q[0], q[1], [0.3, 0.3, 0.3]],
+            [0, 1, 9],
+            q,
+            qv
+        ));
+        // far away, no shared vertex
+        assert!(!may_meet_open_tet(
+            [[2.0, 2.0, 2.0], [3.0, 2.0, 2.0], [2.0, 3.0, 2.0]],
+            [7, 8, 9],
+            q,
+            qv
+        ));
+        // piercing through the middle
+        assert!(may_meet_open_tet(
+            [[0.2, 0.2, -1.0], [0.2, 0.2, 2.0], [-3.0, -3.0, 0.2]],
+            [7, 8, 9],
+            q,
+            qv
+        ));
+    }
+
+    /// hits_boundary (grid, plane culling, early exit) against all boundary faces tested
+    /// exactly one by one.
+
+    #[test]
+    fn hits_boundary_matches_all_faces() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let pts: Vec<crate::geom::Point3> = (0..200)
+            .map(|i| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                if i % 3 == 0 {
+                    crate::geom::Point3::new(v[0], v[1], (v[2] * 8.0).round() / 8.0)
+                } else {
+                    crate::geom::Point3::new(v[0], v[1], v[2])
+                }
+            })
+            .collect();
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        // the hull of the first 40 points: a closed surface the random triangles cross
+        let d2 = crate::delaunay::d3::triangulate(&pts[..40]).unwrap();
+        let inner: Vec<[u32; 3]> = d2
+            .hull
+            .iter()
+            .map(|f| f.map(|v| d.vertex_of_input[d2.input_of_vertex[v as usize] as usize]))
+            .collect();
+        let g = General3::new(&pos, &inner, &[], &[]);
+        let faces = g.boundary();
+        assert_eq!(faces.len(), inner.len());
+        let n = pos.len() as u32;
+        let (mut hits, mut clear) = (0, 0);
+        for _ in 0..1500 {
+            let t = [
+                rng.gen_range(0..n),
+                rng.gen_range(0..n),
+                rng.gen_range(0..n),
+            ];
+            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+                continue;
+            }
+            let st = sorted3(t);
+            let expect = faces.iter().any(|&u| {
+                sorted3(u) != st
+                    && !crate::mesh::validity::self_intersections_brute(&pos, &[t, u]).is_empty()
+            });
+            assert_eq!(g.hits_boundary(t, &[]), expect, "{t:?}");
+            if expect {
+                hits += 1;
+            } else {
+                clear += 1;
+            }
+        }
+        assert!(hits > 100 && clear > 100, "{hits} {clear}");
+    }
+}
