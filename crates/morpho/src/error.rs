@@ -29,23 +29,38 @@ pub enum Error {
     /// The operating system refused to read or write a file.
     #[error("{}{source}", prefix(path))]
     Io {
+        /// The file, empty when the data did not come from a file.
         path: String,
         #[source]
+        /// What the operating system said.
         source: std::io::Error,
     },
     /// An input file is malformed (bad header, truncated, out-of-range index, NaN, …).
     #[error("{}{}{msg}", prefix(path), loc(location))]
     Format {
+        /// The file, empty when the data did not come from a file.
         path: String,
+        /// Line (and column, where known) of the fault.
         location: Option<Location>,
+        /// What is wrong, in words.
         msg: String,
     },
     /// The input is well-formed but cannot be processed (too few points, wrong dimension, …).
     #[error("{}{msg}", prefix(path))]
-    Invalid { path: String, msg: String },
+    Invalid {
+        /// The input file, empty for in-memory data.
+        path: String,
+        /// What is wrong, in words.
+        msg: String,
+    },
     /// The file type or feature is not supported.
     #[error("{}{msg}", prefix(path))]
-    Unsupported { path: String, msg: String },
+    Unsupported {
+        /// The input or output file, empty for in-memory data.
+        path: String,
+        /// The missing feature, in words.
+        msg: String,
+    },
     // --- delaunay, graphs (f-tri) ---
     /// A triangulation refused its input ([`crate::delaunay`]); `path` names the file the
     /// points came from, when known.

@@ -21,6 +21,8 @@
 //! | [`samples`] | generated sample data (chalice outline, Shepp–Logan phantom, borehole field) |
 //! | [`util`] | sentinels, the id hasher and maps, seeded generators, Hilbert keys |
 
+#![warn(missing_docs)]
+#![deny(rustdoc::broken_intra_doc_links)]
 // Geometry code indexes coordinates by axis on purpose.
 #![allow(clippy::needless_range_loop)]
 

@@ -43,7 +43,7 @@
 //! get length `+∞` ([`voronoi_edge_length`]): such tetrahedra are still usable, after every
 //! finite edge. A tree containing one has length `+∞` and loses to every finite complete tree.
 //! Input with fewer than four distinct points or all coplanar has no tetrahedron: the entry
-//! point ([`crate::boundary::boundary_3d_with`]) returns an `invalid` error then.
+//! point ([`crate::boundary::boundary_3d`]) returns an `invalid` error then.
 //!
 //! The combinatorial decisions (region membership, apex test) are exact; the edge lengths are
 //! `f64` distances between `f64` circumcentres, a heuristic measure (V's "short Voronoi tree"),

@@ -148,31 +148,43 @@ pub fn vertex_values(
 /// A triangulation of the kept samples, as produced by a Delaunay triangulator.
 #[derive(Debug, Clone, Copy)]
 pub struct SampleTriangulation2<'a> {
+    /// Vertices of the triangulation (the kept samples, duplicates merged).
     pub points: &'a [Point2],
+    /// Triangulation vertex of each kept sample (index into `points`).
     pub vertex_of_input: &'a [u32],
+    /// Kept-sample index of each triangulation vertex (the first of a merged group).
     pub input_of_vertex: &'a [u32],
+    /// Triangles, counter-clockwise, as indices into `points`.
     pub triangles: &'a [[u32; 3]],
+    /// `neighbors[t][i]`: the triangle across edge (v_i, v_{i+1}) of triangle t, or `NONE`; computed when `None`.
     pub neighbors: Option<&'a [[u32; 3]]>,
 }
 
 /// A tetrahedrization of the kept samples.
 #[derive(Debug, Clone, Copy)]
 pub struct SampleTriangulation3<'a> {
+    /// Vertices of the tetrahedrization (the kept samples, duplicates merged).
     pub points: &'a [Point3],
+    /// Tetrahedrization vertex of each kept sample (index into `points`).
     pub vertex_of_input: &'a [u32],
+    /// Kept-sample index of each tetrahedrization vertex (the first of a merged group).
     pub input_of_vertex: &'a [u32],
+    /// Positively oriented tetrahedra, as indices into `points`.
     pub tets: &'a [[u32; 4]],
+    /// `neighbors[t][i]`: the tetrahedron opposite vertex i of tetrahedron t, or `NONE`; computed when `None`.
     pub neighbors: Option<&'a [[u32; 4]]>,
 }
 
 /// The result in the plane.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlaneContour {
+    /// The samples that took part (finite values) and their values.
     pub selected: SelectedSamples,
     /// Triangulation vertices.
     pub points: Vec<Point2>,
     /// Input sample index of each vertex.
     pub sample_of_vertex: Vec<u32>,
+    /// Triangles of the triangulation, counter-clockwise, as indices into `points`.
     pub triangles: Vec<[u32; 3]>,
     /// Value of each vertex.
     pub values: Vec<f64>,
@@ -202,20 +214,30 @@ impl PlaneContour {
 /// The result in space.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SpaceContour {
+    /// The samples that took part (finite values) and their values.
     pub selected: SelectedSamples,
+    /// Tetrahedrization vertices.
     pub points: Vec<Point3>,
+    /// Input sample index of each vertex.
     pub sample_of_vertex: Vec<u32>,
+    /// Positively oriented tetrahedra, as indices into `points`.
     pub tets: Vec<[u32; 4]>,
+    /// Value of each vertex.
     pub values: Vec<f64>,
+    /// Rating of each tetrahedron.
     pub ratings: Vec<f64>,
+    /// Colour of each tetrahedron.
     pub black: Vec<bool>,
+    /// The contour surface (triangles between black and white tetrahedra).
     pub surface: Surface3,
 }
 
 /// Either result.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SampleContour {
+    /// Samples in the plane (two coordinates).
     Plane(PlaneContour),
+    /// Samples in space (three coordinates).
     Space(SpaceContour),
 }
 

@@ -51,7 +51,9 @@ use rand::SeedableRng;
 /// The smallest disc containing a set of plane points.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EnclosingDisc {
+    /// Centre of the disc.
     pub center: Point2,
+    /// Radius (0 for a single point).
     pub radius: f64,
     /// Indices of the input points defining the disc (all on its boundary).
     pub support: Vec<usize>,
@@ -60,7 +62,9 @@ pub struct EnclosingDisc {
 /// The smallest ball containing a set of points in space.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EnclosingBall {
+    /// Centre of the ball.
     pub center: Point3,
+    /// Radius (0 for a single point).
     pub radius: f64,
     /// Indices of the input points defining the ball (all on its boundary).
     pub support: Vec<usize>,

@@ -10,7 +10,7 @@
 //! *else* than in what they share — the condition for a valid triangulated surface.
 //!
 //! Exact as long as no predicate over- or underflows (coordinates within about 2^±120 of 1;
-//! callers rescale by [`super::exact::power_of_two_scale`] first).
+//! callers rescale by a power of two first).
 
 use super::predicates::raw::{orient2d, orient3d};
 use super::vec::{dot, sub};

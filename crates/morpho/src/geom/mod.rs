@@ -22,11 +22,11 @@ mod enclosing;
 pub(crate) mod exact;
 pub(crate) mod expansion;
 pub(crate) mod grid;
-/// Exact intersection tests of segments and triangles (2D and 3D): a namespace of its own because
-/// its names (`segments_intersect`, `triangles_intersect`, …) only make sense next to each other.
+// Exact intersection tests of segments and triangles (2D and 3D): a namespace of its own because
+// its names (`segments_intersect`, `triangles_intersect`, …) only make sense next to each other.
 pub mod intersect;
-/// The exact adaptive predicates, on [`Point2`]/[`Point3`] and (in [`predicates::raw`]) on flat
-/// `[f64; D]` coordinates: a namespace so that both flavours keep the classic names.
+// The exact adaptive predicates, on [`Point2`]/[`Point3`] and (in [`predicates::raw`]) on flat
+// `[f64; D]` coordinates: a namespace so that both flavours keep the classic names.
 pub mod predicates;
 pub(crate) mod vec;
 
@@ -47,7 +47,9 @@ pub type Vector3 = nalgebra::Vector3<f64>;
 /// Axis-aligned bounding box in `D` dimensions. An empty box has `min > max`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Aabb<const D: usize> {
+    /// Smallest coordinate on each axis.
     pub min: [f64; D],
+    /// Largest coordinate on each axis.
     pub max: [f64; D],
 }
 

@@ -1,5 +1,5 @@
 //! 3D γ-graphs beyond the Delaunay tetrahedralization (Veltkamp 1992, Defs. 3.1–3.3, Thm 3.1,
-//! §3.3–3.6): the triangles outside γ([-1,1],[0,1]) whose largest intersection parameter c₁′
+//! §3.3–3.6): the triangles outside γ(\[-1,1\],\[0,1\]) whose largest intersection parameter c₁′
 //! is ≥ c for a given c < 0 — the 3D analogue of [`super::fast::beyond_dt_2d`].
 //!
 //! # Necessary condition
@@ -8,7 +8,7 @@
 //! (F = r·√(k² − 1), radius k·r, k = 1/(1 − |c|)). The lens is convex, has a, b, c on its
 //! boundary and contains the open ball B(m, μ·r), μ = k − √(k² − 1). Hence for every corner v
 //! and every y = v + t(m − v), t ∈ (0, 1], the open ball B(y, μ·|y − v|) (inside the cone from
-//! v to B(m, μr)) is empty: the whole segment [v, m] lies in the region
+//! v to B(m, μr)) is empty: the whole segment \[v, m\] lies in the region
 //! `A_v = { y : μ·|y − v| ≤ NN(y) }`, NN = distance to the nearest point.
 //!
 //! # Algorithm
@@ -17,7 +17,7 @@
 //!    for all y in it: the exact NN of the cell centre plus the half diagonal near the points,
 //!    a chamfer propagation `U(C) ≤ U(C′) + |step|` in the margin.
 //! 2. For each vertex a (in parallel; results sorted at the end): flood fill (26-connected) of
-//!    the cells C with μ·dist(a, C) ≤ U(C) from a's cell. Every segment [a, m] of a qualifying
+//!    the cells C with μ·dist(a, C) ≤ U(C) from a's cell. Every segment \[a, m\] of a qualifying
 //!    triangle lies in the flood region `F_a` (the cells it crosses are admitted and
 //!    connected), so r ≤ `R_a` = the largest distance from a to a far corner of F_a. If `F_a`
 //!    reaches the boundary of the grid, a is *open* (m may lie outside the grid).
@@ -28,7 +28,7 @@
 //!    point y = v + t(m − v) needs NN(y) ≥ μ·t·r, bounded above by the exact NN of its cell
 //!    centre plus the distance to it.
 //! 4. A triangle whose circumcentre lies outside the grid has all three corners open (each
-//!    segment [v, m] leaves the grid inside `A_v`): such triples are enumerated among the open
+//!    segment \[v, m\] leaves the grid inside `A_v`): such triples are enumerated among the open
 //!    vertices only, with the same cone filter.
 //! 5. Every surviving triple is decided exactly by the [`TriFrame`] interval over all points
 //!    within r·(k + √(k² − 1)) of m (every point that can bind an end ≤ F in absolute value,
@@ -51,7 +51,7 @@
 //! μ-cone out of the cloud and is *open*: its F_a spans the margin, K_a is O(N) and it costs
 //! O(N²) triple filters; step 4 is O(h³) over the h open vertices. Uniform points in a cube
 //! are "all boundary" in this sense up to several thousand points at c = −0.2, so the running
-//! time there is Θ(N³) cheap filters (measured for γ([-1,1],[-0.2,1]) on 2 shared cores:
+//! time there is Θ(N³) cheap filters (measured for γ(\[-1,1\],\[-0.2,1\]) on 2 shared cores:
 //! 500 points 7.5 s, 1000 points 30–43 s, 2000 points 221–254 s, against ≈ 1600 s, ≈ 2·10⁴ s
 //! and ≈ 2–4·10⁵ s extrapolated for the O(N⁴) brute force; 100k points are out of reach);
 //! samples of a surface are open everywhere. The worst case is the brute force's O(N³) triples, each
@@ -268,7 +268,7 @@ impl<'a> Decider<'a> {
         }
     }
 
-    /// Decides one triangle outside γ([-1,1],[0,1]): its exact interval when c₁′ ≥ c.
+    /// Decides one triangle outside γ(\[-1,1\],\[0,1\]): its exact interval when c₁′ ≥ c.
     fn decide(&self, t: [u32; 3]) -> Option<CenterInterval> {
         let p = self.p;
         let [pa, pb, pc] = t.map(|v| p[v as usize]);

@@ -1,14 +1,14 @@
 //! Geometric graphs from the Delaunay triangulation (Veltkamp 1992, Thms 3.2–3.3: every
-//! γ([c₀,c₁],[c₂,c₃]) with [c₂,c₃] ⊆ [0,1] is a subgraph of γ([-1,1],[0,1]), which is the Delaunay
+//! γ(\[c₀,c₁\],\[c₂,c₃\]) with \[c₂,c₃\] ⊆ \[0,1\] is a subgraph of γ(\[-1,1\],\[0,1\]), which is the Delaunay
 //! triangulation plus, for cocircular/cospherical groups, every chord of the group (V §3.3:
-//! "γ([-1,1],[0,1]) forms all possible overlapping simplices")).
+//! "γ(\[-1,1\],\[0,1\]) forms all possible overlapping simplices")).
 //!
 //! Size (over 800 lines): the 2D and 3D candidate sets share the cocircular/cospherical group
 //! machinery (union–find, the group fast paths and their test switches) and its unit tests;
 //! splitting the 3D half into its own file is the next step.
 //!
 //! # Candidates
-//! [`Candidates2`]/[`Candidates3`] hold every simplex of γ([-1,1],[0,1]) with its
+//! [`Candidates2`]/[`Candidates3`] hold every simplex of γ(\[-1,1\],\[0,1\]) with its
 //! [`CenterInterval`]: for a Delaunay edge (triangle) the interval ends are the offsets of the
 //! circumcircles of its two adjacent triangles (tetrahedra) — the largest empty balls on each
 //! side —, ±∞ on the hull. Cocircular (cospherical) groups are found by exact in-circle
@@ -17,7 +17,7 @@
 //! points), so every Delaunay-subgraph kind costs O(N log N) in total.
 //!
 //! # Beyond the Delaunay triangulation (c < 0)
-//! An edge outside γ([-1,1],[0,1]) belongs to γ([-1,1],[c,1]) iff the lens of two balls with
+//! An edge outside γ(\[-1,1\],\[0,1\]) belongs to γ(\[-1,1\],\[c,1\]) iff the lens of two balls with
 //! offsets ±F(c) is empty. The lens contains the disc of radius w = λ·|uv| around the edge's
 //! midpoint (λ = (k − √(k² − 1))/2, k = 1/(1 − |c|)), and an empty disc centred at a point m of
 //! Delaunay triangle T has radius at most B_T (the circumradius of an acute T, the longest edge
@@ -41,7 +41,7 @@ use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
 use std::sync::Mutex;
 
-/// Every edge of γ([-1,1],[0,1]) of a 2D point set with its interval of empty-ball offsets.
+/// Every edge of γ(\[-1,1\],\[0,1\]) of a 2D point set with its interval of empty-ball offsets.
 /// Edges are `[a, b]` with a < b in vertex indices of the triangulation; the interval's normal
 /// is the left normal of a→b.
 #[derive(Debug, Clone, Default)]
@@ -501,7 +501,7 @@ impl CircleOrder {
         self.table[k][lo].min(self.table[k][hi - (1 << k)])
     }
 
-    /// The interval of the chord vs[i] vs[j] (i < j): equal to [`chord_interval`].
+    /// The interval of the chord `vs[i] vs[j]` (i < j): equal to [`chord_interval`].
     fn chord_interval(&self, p: &[[f64; 2]], vs: &[u32], i: usize, j: usize) -> CenterInterval {
         count_chord_work(2);
         let g = vs.len();
@@ -518,7 +518,7 @@ impl CircleOrder {
     }
 }
 
-/// Decides every edge of γ([-1,1],[0,1]) in parallel: `keep(edge, interval, in_dt)` for each
+/// Decides every edge of γ(\[-1,1\],\[0,1\]) in parallel: `keep(edge, interval, in_dt)` for each
 /// Delaunay edge (in triangle order) and then for each extra chord of a cocircular group
 /// (V §3.3); returns the kept results in that order. O(N + Σ g²) after the triangulation, with
 /// one exact in-circle test per edge.
@@ -700,7 +700,7 @@ struct MidpointBound {
     h: f64,
     /// side of the finest level (power of two)
     side: usize,
-    /// levels[0] is the finest: side × side; levels[k] has side >> k.
+    /// `levels[0]` is the finest: side × side; `levels[k]` has side >> k.
     levels: Vec<Vec<f64>>,
 }
 
@@ -807,7 +807,7 @@ impl MidpointBound {
     }
 }
 
-/// The edges outside γ([-1,1],[0,1]) whose largest intersection parameter c₁′ is ≥ `c` (c < 0),
+/// The edges outside γ(\[-1,1\],\[0,1\]) whose largest intersection parameter c₁′ is ≥ `c` (c < 0),
 /// with their intervals. See the module documentation for the algorithm.
 pub fn beyond_dt_2d(
     d: &Delaunay2,
@@ -985,7 +985,7 @@ fn beyond_dt_2d_impl(
     (edges, ivs)
 }
 
-/// Every triangle of 3D γ([-1,1],[0,1]) with its interval (normal of the sorted corners
+/// Every triangle of 3D γ(\[-1,1\],\[0,1\]) with its interval (normal of the sorted corners
 /// (b − a) × (c − a)).
 #[derive(Debug, Clone, Default)]
 pub struct Candidates3 {
@@ -1004,7 +1004,7 @@ pub fn coords3(d: &Delaunay3) -> Vec<[f64; 3]> {
 /// such a triple's interval is computed against the group's vertices and the vertices of all
 /// tetrahedra around its corners (every point that can touch an empty ball through it).
 ///
-/// A group of g points has up to g³/6 triples, all in γ([-1,1],[0,1]) when the points lie on
+/// A group of g points has up to g³/6 triples, all in γ(\[-1,1\],\[0,1\]) when the points lie on
 /// one sphere: that output costs O(1) per triple on the sphere, not O(g) ([`SphereGroup`]).
 pub fn candidates_3d(d: &Delaunay3) -> Candidates3 {
     candidates_3d_groups(d, true).0
@@ -1348,7 +1348,7 @@ mod tests {
         }
     }
 
-    /// The issue-17 case: the chords of g exactly cocircular points (all of γ([-1,1],[0,1]),
+    /// The issue-17 case: the chords of g exactly cocircular points (all of γ(\[-1,1\],\[0,1\]),
     /// Θ(g²) of them) cost O(1) each, not O(g) (the point-by-point intervals took 242 s for
     /// g ≈ 1000 in `graph --kind gamma-range`).
     #[test]
@@ -1417,7 +1417,7 @@ mod tests {
     }
 
     /// The issue-17 case: the triples of g exactly cospherical points (all of
-    /// γ([-1,1],[0,1]), Θ(g³) of them) cost O(1) each on average, not O(g) (144 points took
+    /// γ(\[-1,1\],\[0,1\]), Θ(g³) of them) cost O(1) each on average, not O(g) (144 points took
     /// 48 s in `graph`, any kind).
     #[test]
     fn cospherical_triples_cost_constant_work_each() {

@@ -22,7 +22,7 @@
 //! The *γ-values* (c₀′, c₁′) of σ — the largest parameters whose neighbourhood is empty
 //! (Def. 3.3) — follow from the interval's two ends (see [`CenterInterval::gamma_values`]), and
 //! σ ∈ γ(c₀, c₁) is then decided by Lemmas 3.1 and 3.2 ([`in_gamma`]) and
-//! σ ∈ γ([c₀,c₁],[c₂,c₃]) by Def. 3.3 ([`in_gamma_range`]).
+//! σ ∈ γ(\[c₀,c₁\],\[c₂,c₃\]) by Def. 3.3 ([`in_gamma_range`]).
 //!
 //! Sidedness (the sign of h) is decided by the exact orientation predicates. The offsets τ are
 //! computed in floating point from exactly representable q and h for the unnormalised normal,
@@ -153,7 +153,7 @@ impl CenterInterval {
     /// The γ-values (c₀′, c₁′) of Def. 3.3: the largest parameters whose neighbourhood is
     /// empty; `None` when no neighbourhood at all is empty (a point lies in the closed simplex).
     ///
-    /// - `lo ≤ hi` (some ball is empty; the simplex is in γ([-1,1],[0,1]) = DT in general
+    /// - `lo ≤ hi` (some ball is empty; the simplex is in γ(\[-1,1\],\[0,1\]) = DT in general
     ///   position): c₁′ = |c| of the end farther from the smallest ball, c₀′ = |c| of the
     ///   nearer end, positive when the ends lie on opposite sides (c₀c₁ > 0), negative when on
     ///   the same side.
@@ -200,8 +200,8 @@ impl CenterInterval {
     }
 
     /// The offset s of a ball B(s) touching the simplex that holds an empty neighbourhood of
-    /// γ([-1,1],[c,1]) (c ≤ 0) among the points added so far: while no point lies strictly
-    /// inside B(s), the simplex is in γ([-1,1],[c,1]) — so once every point inside B(s) has
+    /// γ(\[-1,1\],\[c,1\]) (c ≤ 0) among the points added so far: while no point lies strictly
+    /// inside B(s), the simplex is in γ(\[-1,1\],\[c,1\]) — so once every point inside B(s) has
     /// been added and s is still the offset named, the farther points cannot change that.
     /// `None` when no such neighbourhood is empty so far (c₁′ < c), when c > 0, or when only
     /// half-spaces are left (`finite_blocked`).

@@ -2,11 +2,11 @@
 //! an input or replaced as an output (issue 17, items 1–4).
 //!
 //! # Inputs
-//! Every reader opens its files through [`open_input`]: only regular files are read (a FIFO, a
+//! Every reader opens its files through `open_input`: only regular files are read (a FIFO, a
 //! device, a socket or a directory is refused before it is opened, so a FIFO cannot hang a read
 //! and a link to the zero device cannot fill memory), no file larger than
 //! [`super::MAX_FILE_BYTES`]. Detached data files named by a header (NRRD `data file`, MHD
-//! `ElementDataFile`, the sidecar's `data`) are resolved by [`data_file`]: relative to the
+//! `ElementDataFile`, the sidecar's `data`) are resolved by `data_file`: relative to the
 //! header's folder, and never outside it — an absolute name or a `..` that leaves the folder is
 //! refused unless the program called [`allow_data_outside_header_folder`] (the CLI's
 //! `--allow-outside-data`). The check is on the name the header gives; links inside the
@@ -20,7 +20,7 @@
 //!
 //! # The input guard
 //! A program that reads and writes files named by untrusted input (the CLI) calls
-//! [`protect_inputs`] once at start. From then on every file opened by [`open_input`] is
+//! [`protect_inputs`] once at start. From then on every file opened by `open_input` is
 //! remembered by identity (device and inode, so links and other spellings of the same path
 //! are caught), and no output may replace a remembered input or a file already written by this
 //! process. Library users who do not call it can read and rewrite the same file as before.

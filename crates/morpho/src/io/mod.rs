@@ -29,8 +29,8 @@
 // options; the functions of this module dispatch to them by extension.
 pub mod csv;
 pub mod geojson;
-/// What may be read and written (regular files, size caps, atomic replacement): a namespace
-/// because the CLI switches its policies on (`guard::protect_inputs`, …).
+// What may be read and written (regular files, size caps, atomic replacement): a namespace
+// because the CLI switches its policies on (`guard::protect_inputs`, …).
 pub mod guard;
 pub mod html;
 pub mod json;
@@ -61,19 +61,33 @@ pub const MAX_FILE_BYTES: u64 = 8 << 30;
 /// File formats known by extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
+    /// Comma-separated values (`.csv`): points with columns, or polygon rings.
     Csv,
+    /// Whitespace-separated coordinates (`.xyz`, `.txt`).
     Xyz,
+    /// Stanford PLY (`.ply`), ASCII or binary.
     Ply,
+    /// Wavefront OBJ (`.obj`).
     Obj,
+    /// Object File Format (`.off`).
     Off,
+    /// STL (`.stl`), ASCII or binary.
     Stl,
+    /// GeoJSON (`.geojson`): points, polygons, line strings.
     GeoJson,
+    /// JSON (`.json`): point objects, or a volume sidecar with its raw data file.
     Json,
+    /// NRRD with attached data (`.nrrd`).
     Nrrd,
+    /// NRRD header with detached data (`.nhdr`).
     Nhdr,
+    /// MetaImage header (`.mhd`) with its data file.
     Mhd,
+    /// SVG picture (`.svg`, writing only).
     Svg,
+    /// PNG picture (`.png`, writing only).
     Png,
+    /// HTML page (`.html`, writing only).
     Html,
     /// VTK XML unstructured grid (writing only).
     Vtu,
@@ -283,9 +297,12 @@ pub fn write_text(path: &Path, text: &str) -> Result<()> {
 /// Mesh encodings that have a choice (PLY and STL).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Encoding {
+    /// Text.
     Ascii,
     #[default]
+    /// Binary, least significant byte first (the default).
     BinaryLittleEndian,
+    /// Binary, most significant byte first.
     BinaryBigEndian,
 }
 
@@ -697,9 +714,13 @@ fn is_ring_array(v: &serde_json::Value) -> bool {
 /// What a file holds, as far as morpho can tell from its extension and content.
 #[derive(Debug, Clone)]
 pub enum Data {
+    /// A point set with its value columns.
     Points(PointSet),
+    /// 2D polygons and polylines.
     Shapes(Shapes2),
+    /// A triangle mesh.
     Mesh(TriMesh),
+    /// A scalar volume.
     Volume(Volume),
 }
 

@@ -17,7 +17,7 @@
 //! seen from the fourth (right-hand normal towards it), the opposite of a positively oriented
 //! [`TetMesh`] tetrahedron (`orient3d(a, b, c, d) > 0` in Shewchuk's convention). The writers
 //! take the mesh's documented orientation and write `[a, c, b, d]`, so that tetrahedra from
-//! [`crate::delaunay::d3`] have a positive volume in ParaView; no geometric test is made.
+//! [`crate::delaunay::triangulate_3d`] have a positive volume in ParaView; no geometric test is made.
 //! Triangles keep their order.
 //!
 //! Triangle meshes carry their data along: vertex normals as point data `Normals` (three

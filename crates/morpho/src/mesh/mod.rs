@@ -4,14 +4,14 @@
 //! ([`VertexId`], [`TriId`]) are used where an index of one kind could be mistaken for another.
 
 mod error;
-/// Generated test surfaces (`generate::torus(…)`, `generate::cube()`, …): a namespace of its own
-/// so that the shape names do not crowd the mesh types.
+// Generated test surfaces (`generate::torus(…)`, `generate::cube()`, …): a namespace of its own
+// so that the shape names do not crowd the mesh types.
 pub mod generate;
 pub(crate) mod topology;
 
 pub use error::MeshError;
 pub use topology::{analyze_topology, orient_consistently, PartInfo, Topology};
-/// The polygon and mesh validators (a namespace of its own: `mesh::validity::check_polygon`, …).
+// The polygon and mesh validators (a namespace of its own: `mesh::validity::check_polygon`, …).
 pub mod validity;
 
 use crate::geom::{Aabb3, Point2, Point3, Vector3};
@@ -53,21 +53,32 @@ id_type!(
 /// Scalar type of a property as stored in a file (kept so a PLY round trip is faithful).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ScalarKind {
+    /// Signed 8-bit integer.
     I8,
+    /// Unsigned 8-bit integer.
     U8,
+    /// Signed 16-bit integer.
     I16,
+    /// Unsigned 16-bit integer.
     U16,
+    /// Signed 32-bit integer.
     I32,
+    /// Unsigned 32-bit integer.
     U32,
+    /// 32-bit float.
     F32,
+    /// 64-bit float.
     F64,
 }
 
 /// A named per-vertex or per-face scalar column (PLY extra properties, curvatures, part labels…).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Property {
+    /// Property name as in the file (`k1`, `part`, `quality`, …).
     pub name: String,
+    /// Type the values had (or will have) in the file.
     pub kind: ScalarKind,
+    /// One value per vertex or per face.
     pub values: Vec<f64>,
 }
 
@@ -75,12 +86,14 @@ pub struct Property {
 /// explicitly (the last vertex connects back to the first).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Polygon {
+    /// The rings: ring 0 is the outer ring, the others are holes.
     pub rings: Vec<Vec<Point2>>,
 }
 
 /// An open or closed sequence of points in the plane.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Polyline {
+    /// The vertices in order.
     pub points: Vec<Point2>,
     /// If true, the last point connects back to the first.
     pub closed: bool,
@@ -89,7 +102,9 @@ pub struct Polyline {
 /// What a 2D vector file (CSV polygon, GeoJSON) holds.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Shapes2 {
+    /// Closed polygons, with holes.
     pub polygons: Vec<Polygon>,
+    /// Open or closed polylines.
     pub polylines: Vec<Polyline>,
 }
 
@@ -99,7 +114,9 @@ pub struct Shapes2 {
 /// coordinate is finite, every property column has the right length.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct TriMesh {
+    /// Vertex positions.
     pub positions: Vec<Point3>,
+    /// Triangles as indices into `positions`, counter-clockwise seen from outside.
     pub triangles: Vec<[u32; 3]>,
     /// Optional per-vertex normals (same length as `positions`).
     pub normals: Option<Vec<Vector3>>,
@@ -229,7 +246,9 @@ impl TriMesh {
 /// Shewchuk's convention.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct TetMesh {
+    /// Vertex positions.
     pub positions: Vec<Point3>,
+    /// Tetrahedra as indices into `positions`.
     pub tets: Vec<[u32; 4]>,
 }
 
@@ -247,7 +266,9 @@ pub struct PointSet {
 /// A named column of values, one per point.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Column {
+    /// Column name (the CSV header).
     pub name: String,
+    /// One value per point.
     pub values: Vec<f64>,
 }
 

@@ -64,11 +64,14 @@ use std::collections::VecDeque;
 /// Figures of one connected part (triangles connected through shared edges).
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct PartInfo {
+    /// Triangles in the part.
     pub triangles: usize,
     /// Vertices used by the part's triangles. A vertex shared by two parts (two cones touching at
     /// their tips) counts in both, so the parts' χ need not add up to the mesh's χ.
     pub vertices: usize,
+    /// Edges of the part's triangles.
     pub edges: usize,
+    /// Boundary loops of the part.
     pub boundary_loops: usize,
     /// χ = V − E + F of the part.
     pub euler_characteristic: i64,
@@ -91,6 +94,7 @@ pub struct Topology {
     pub neighbors: Vec<[u32; 3]>,
     /// Part index of each triangle (parts numbered in order of their first triangle).
     pub part_of_triangle: Vec<u32>,
+    /// Figures of each connected part, in part order.
     pub parts: Vec<PartInfo>,
     /// Closed vertex cycles formed by boundary edges (edges of exactly one triangle). The last
     /// vertex connects back to the first; a loop of `k` vertices has `k` edges.

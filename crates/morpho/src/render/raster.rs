@@ -55,8 +55,11 @@ use rayon::prelude::*;
 /// Projection of the camera.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Projection {
-    /// Pinhole camera with the given vertical field of view in degrees (clamped to 1°…120°).
-    Perspective { fov_deg: f64 },
+    /// Pinhole camera.
+    Perspective {
+        /// Vertical field of view in degrees (clamped to 1°…120°).
+        fov_deg: f64,
+    },
     /// Parallel projection.
     Orthographic,
 }
@@ -84,7 +87,9 @@ pub enum UpAxis {
 pub struct Scalars {
     /// One value per vertex, or per triangle if `per_face`.
     pub values: Vec<f64>,
+    /// The values are per triangle, not per vertex.
     pub per_face: bool,
+    /// The colour map.
     pub colormap: Colormap,
     /// Values mapped to the ends of the map; `None`: min..max of the finite values used.
     pub range: Option<(f64, f64)>,
@@ -96,22 +101,29 @@ pub struct Scalars {
 pub struct RenderOptions {
     /// Image size in pixels (each clamped to 1…8192).
     pub width: u32,
+    /// Image height in pixels (clamped to 1…8192).
     pub height: u32,
     /// Rotation of the viewpoint about the up axis, degrees.
     pub azimuth_deg: f64,
     /// Height of the viewpoint above the horizontal plane, degrees (clamped to ±90).
     pub elevation_deg: f64,
+    /// Which axis points up on screen.
     pub up: UpAxis,
+    /// Perspective or orthographic.
     pub projection: Projection,
+    /// Flat or smooth normals.
     pub shading: Shading,
     /// Surface colour when no scalars are given.
     pub color: [u8; 3],
     /// Colour of back faces (`None`: same as the front).
     pub back_color: Option<[u8; 3]>,
+    /// Values shown through a colour map instead of `color`.
     pub scalars: Option<Scalars>,
     /// Draw triangle edges (meant for small meshes).
     pub wireframe: bool,
+    /// Colour of the wireframe.
     pub wire_color: [u8; 3],
+    /// Background colour with alpha (alpha 0: transparent).
     pub background: [u8; 4],
     /// Samples per pixel along each axis (clamped to 1…4; lowered for very large images).
     pub supersample: u32,

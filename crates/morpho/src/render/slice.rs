@@ -33,8 +33,11 @@ use crate::Result;
 /// The normal of a slice plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Axis {
+    /// Slice planes normal to x (the y–z plane).
     X,
+    /// Slice planes normal to y (the x–z plane).
     Y,
+    /// Slice planes normal to z (the x–y plane).
     Z,
 }
 
@@ -92,6 +95,7 @@ pub enum Upsample {
 /// Options of the slice pictures.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SliceOptions {
+    /// The colour map.
     pub colormap: Colormap,
     /// Values mapped to the ends of the colour map; `None`: min..max of the volume's finite
     /// samples (shared by all slices of one volume).
@@ -99,6 +103,7 @@ pub struct SliceOptions {
     /// Longer side of one slice image in pixels (for [`orthogonal_slices`]: of the longest
     /// physical extent among the three axes). `None`: one pixel per (smallest mean) spacing.
     pub size: Option<u32>,
+    /// How samples are interpolated between grid points.
     pub upsample: Upsample,
     /// Draw axis labels and a colour bar in [`orthogonal_slices`].
     pub labels: bool,

@@ -33,9 +33,11 @@ pub type Rgb = [u8; 3];
 /// How a line is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Stroke {
+    /// Line colour.
     pub color: Rgb,
     /// Width in pixels.
     pub width: f64,
+    /// Dashed instead of solid.
     pub dashed: bool,
     /// 0 (invisible) … 1 (opaque).
     pub opacity: f64,
@@ -69,6 +71,7 @@ impl Default for Stroke {
 /// How an area is filled.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fill {
+    /// Fill colour.
     pub color: Rgb,
     /// 0 (invisible) … 1 (opaque).
     pub opacity: f64,

@@ -1,5 +1,5 @@
 //! The refusals of the volume family ([`crate::volume::Volume::validate`],
-//! [`crate::volume::isosurface`]).
+//! [`crate::volume::isosurface()`]).
 
 /// Why a volume or an isosurface request was refused. Each variant carries the offending input;
 /// the `Display` text is the one-line message the CLI prints after `error: `.

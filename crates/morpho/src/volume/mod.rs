@@ -14,11 +14,17 @@ pub use isosurface::{
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum DType {
+    /// Unsigned 8-bit integer.
     U8,
+    /// Signed 16-bit integer.
     I16,
+    /// Unsigned 16-bit integer.
     U16,
+    /// Signed 32-bit integer.
     I32,
+    /// 32-bit float.
     F32,
+    /// 64-bit float.
     F64,
 }
 
@@ -38,7 +44,12 @@ impl DType {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Axes {
     /// Uniform spacing: coordinate of index i on axis k is `origin[k] + i * spacing[k]`.
-    Uniform { origin: [f64; 3], spacing: [f64; 3] },
+    Uniform {
+        /// Position of the sample (0, 0, 0).
+        origin: [f64; 3],
+        /// Distance between neighbouring samples along each axis (positive).
+        spacing: [f64; 3],
+    },
     /// Per-index coordinates, strictly increasing, `coords[k].len() == dims[k]`.
     Coords([Vec<f64>; 3]),
 }
@@ -47,8 +58,11 @@ pub enum Axes {
 /// then y, then z (`data[x + nx * (y + ny * z)]`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Volume {
+    /// Number of samples along x, y and z.
     pub dims: [usize; 3],
+    /// Positions of the grid planes.
     pub axes: Axes,
+    /// Samples, x fastest: `data[x + nx * (y + ny * z)]`.
     pub data: Vec<f32>,
     /// Type of the samples in the file they came from.
     pub source_dtype: DType,

@@ -81,7 +81,7 @@ impl General<'_> {
 
 impl Engine2 {
     /// V §5.4 after a locked Delaunay constriction `st`: the general engine continues from the
-    /// locked boundary with the live triangles' edges, adding γ([-1,1],[c,1]) edges at the
+    /// locked boundary with the live triangles' edges, adding γ(\[-1,1\],\[c,1\]) edges at the
     /// vertices off the boundary for c = −0.1, …, −1 ([`augment_until_done`]).
     pub(super) fn augment_after_lock(&self, key: Key, st: DtState) -> Outcome2 {
         let d = &self.d;
@@ -103,7 +103,7 @@ impl Engine2 {
     }
 }
 
-/// Runs `g` and, while locked, augments it with γ([-1,1],[c,1]) for c = from − 0.1, … −1
+/// Runs `g` and, while locked, augments it with γ(\[-1,1\],\[c,1\]) for c = from − 0.1, … −1
 /// (`local`: only the edges at vertices off the boundary, see below; the full graph otherwise,
 /// kept for the test that both agree). Returns the last c used.
 pub(super) fn augment_until_done(

@@ -2,7 +2,7 @@
 //! fallback, §5.5 heap, §5.7 constrained constriction; V §4.3.3 for the minimal-area-change key).
 //!
 //! # Two engines
-//! - [`constrict_dt`] — constriction of γ([-1,1],[0,1]) in general position, i.e. of the
+//! - [`constrict_dt`] — constriction of γ(\[-1,1\],\[0,1\]) in general position, i.e. of the
 //!   Delaunay triangulation. The pruned graph is a set of live triangles; a boundary edge vᵢvⱼ
 //!   of live triangle vᵢvⱼvₖ (its neighbour across vᵢvⱼ dead or absent) is *removable* iff vₖ is
 //!   not yet a boundary vertex. Removing it kills the triangle, puts vₖ on the boundary and
@@ -11,10 +11,10 @@
 //!   entry that became unremovable stays so and is skipped). The loop stops when every vertex is
 //!   on the boundary or the heap is empty ("locked"). O(N log N) after the triangulation.
 //!   Cocircular groups are handled by the triangulation's symbolic perturbation: the engine
-//!   constricts that one Delaunay triangulation (a subgraph of γ([-1,1],[0,1]); the general
+//!   constricts that one Delaunay triangulation (a subgraph of γ(\[-1,1\],\[0,1\]); the general
 //!   engine adds the other chords of the group when needed).
 //! - [`General`] — constriction of an arbitrary (pruned) graph whose edges may cross, as
-//!   needed for γ([-1,1],[c,1]) with c < 0 (§5.4) and for constraints (§5.7). The boundary is an
+//!   needed for γ(\[-1,1\],\[c,1\]) with c < 0 (§5.4) and for constraints (§5.7). The boundary is an
 //!   explicit vertex cycle (`next`/`prev`), triangles are implicit (edges vᵢvₖ and vⱼvₖ present,
 //!   vₖ left of the counter-clockwise boundary edge vᵢ→vⱼ). Boundary edge vᵢvⱼ is removable
 //!   w.r.t. vₖ iff vₖ is not on the boundary, vᵢvₖ and vⱼvₖ are live, the closed triangle
@@ -27,7 +27,7 @@
 //!   boundary edges are re-examined once more, so "locked" really means nothing is removable.
 //!
 //! # Adaptive augmentation (§5.4)
-//! [`General::augment`] adds the edges of γ([-1,1],[c,1]) (from
+//! [`General::augment`] adds the edges of γ(\[-1,1\],\[c,1\]) (from
 //! [`crate::graphs::fast::beyond_dt_2d`] and the cocircular chords) that lie inside the current
 //! region — both ends in it, inward at boundary ends (exact cone test), crossing no boundary
 //! edge — and constriction continues from the locked state. `c = auto` tries c = −0.1, −0.2, …,

@@ -163,7 +163,7 @@ pub struct Boundary2 {
 /// Constructs a boundary polygon through the points (see the module documentation).
 ///
 /// The points are first multiplied by the power of two that brings the largest coordinate
-/// magnitude near 1 ([`crate::geom::exact::power_of_two_scale`]; exact), so that the result does not
+/// magnitude near 1 (exact), so that the result does not
 /// depend on the units: the γ-indicators, the minimal-area-change keys and the skeleton
 /// lengths are floating-point values that over- or underflow at extreme absolute scales. The
 /// area and the skeleton length are reported in input units.

@@ -1,9 +1,9 @@
-//! Adaptive augmentation in 3D (Veltkamp 1992, §5.4): the triangles of γ([-1,1],[c,1]),
+//! Adaptive augmentation in 3D (Veltkamp 1992, §5.4): the triangles of γ(\[-1,1\],\[c,1\]),
 //! c < 0, at the vertices off the boundary ([`General3::local_gamma`]), their certified
 //! insertion ([`General3::augment`]), and the schedule c = −0.1, …, −1 of [`super::boundary_3d`]
 //! (local first, then the whole object).
 //!
-//! [`General3::augment`] adds triangles (of γ([-1,1],[c,1]), c < 0) that are certified to lie in
+//! [`General3::augment`] adds triangles (of γ(\[-1,1\],\[c,1\]), c < 0) that are certified to lie in
 //! the region: they meet no boundary triangle except in common vertices/edges (exact), and have
 //! a vertex not on the boundary, or a boundary edge from which they go inward (m strictly inside
 //! the interior dihedral wedge of the two boundary faces there; exact `orient3d`). Such a
@@ -45,7 +45,7 @@ impl General3<'_> {
         !self.has(t[0], t[1], t[2]) && self.insertable_at_boundary(t) && self.add_tri(t)
     }
 
-    /// The conditions of [`Self::try_insert`] that depend on the boundary only (not on the
+    /// The conditions of `try_insert` that depend on the boundary only (not on the
     /// live triangles, which adding changes): distinct corners, started inside, not
     /// degenerate, meeting no boundary triangle.
     pub(super) fn insertable_at_boundary(&self, t: [u32; 3]) -> bool {
@@ -64,13 +64,13 @@ impl General3<'_> {
         !(degenerate_triangle(pt[0], pt[1], pt[2]) || self.hits_boundary(t, &[]))
     }
 
-    /// The triangles of γ([-1,1],[c,1]) (Def. 3.1 by the exact centre intervals of
-    /// [`crate::graphs::gamma::TriFrame`]) on the vertices not on the boundary and pairs of
+    /// The triangles of γ(\[-1,1\],\[c,1\]) (Def. 3.1 by the exact centre intervals of
+    /// `TriFrame` of the γ-graph module) on the vertices not on the boundary and pairs of
     /// their `k` nearest vertices or edges of the `k` boundary faces nearest to them — the part
     /// of the γ-graph needed to free a locked vertex (V §5.4 "adaptive augmentation": only where
     /// needed). Each triangle is decided against every point that can change the decision
     /// (the diametral ball, then the balls that certify an empty neighbourhood; for c = −1 the
-    /// points in the closed triangle); see [`Self::gamma_decide`]. Triangles found at an
+    /// points in the closed triangle); see `gamma_decide`. Triangles found at an
     /// earlier (larger) c are not returned again, and triangles rejected earlier with an upper
     /// bound of c₁′ below c are not tested again. The nearest vertices of a vertex are computed
     /// once (positions do not change); the candidates are decided in parallel (rayon).
@@ -224,7 +224,7 @@ impl General3<'_> {
         }
     }
 
-    /// Decides whether triangle `t` is in γ([-1,1],[c,1]): `None` when it is, `Some(ub)` with an
+    /// Decides whether triangle `t` is in γ(\[-1,1\],\[c,1\]): `None` when it is, `Some(ub)` with an
     /// upper bound ub < c of its c₁′ when it is not. Points only narrow the centre interval
     /// (c₁′ never grows), so a decision needs only the points that could still change it:
     /// 1. the points `first` (near the triangle; blocking points are often among them);
@@ -232,8 +232,8 @@ impl General3<'_> {
     ///    regime of `gamma_values`), c₁′ is final: a point outside B(m, r) has τ of the sign
     ///    of its side (q > 0) and never moves the gap's farther end;
     /// 3. otherwise the points of the witness ball B(s) of
-    ///    [`CenterInterval::witness_offset`], again and again while s moves: once every point
-    ///    of B(s) has been added and s stays, an empty neighbourhood of γ([-1,1],[c,1]) lies in
+    ///    [`crate::graphs::gamma::CenterInterval::witness_offset`], again and again while s moves: once every point
+    ///    of B(s) has been added and s stays, an empty neighbourhood of γ(\[-1,1\],\[c,1\]) lies in
     ///    a ball no further point enters. No fixed radius in terms of c suffices: while some
     ///    ball is empty (c₁′ ≥ 0) a far point inside the largest empty balls can still open a
     ///    gap whose far end passes c.
@@ -383,9 +383,9 @@ impl General3<'_> {
     /// the module documentation) and pushes the boundary faces on their edges; returns how
     /// many were added.
     ///
-    /// The same as [`Self::try_insert`] one after the other, in order: adding a triangle
+    /// The same as `try_insert` one after the other, in order: adding a triangle
     /// changes the live triangles but not the boundary, so the boundary conditions
-    /// ([`Self::insertable_at_boundary`]) are decided for all triangles first, in parallel —
+    /// (`insertable_at_boundary`) are decided for all triangles first, in parallel —
     /// unless a triangle comes back that was a boundary face (its flag would count again):
     /// from then on one by one. The boundary faces on the new triangles' edges are then
     /// evaluated (in parallel without keep triangles) and pushed or locked again.
@@ -494,12 +494,12 @@ impl Engine3 {
 }
 
 /// Up to this many vertices [`crate::boundary::CParam::Fixed`]`(c < 0)` constricts all of
-/// γ([-1,1],[c,1]) ([`crate::graphs::beyond3::beyond_dt_3d`], which tries every triple: O(N³));
+/// γ(\[-1,1\],\[c,1\]) ([`crate::graphs::beyond3::beyond_dt_3d`], which tries every triple: O(N³));
 /// above, the Delaunay triangles plus the γ-triangles at every interior vertex and pairs of its
 /// 16 nearest vertices ([`General3::local_gamma`]).
 pub(super) const BEYOND_ALL_MAX: usize = 400;
 
-/// Runs `g` and, while locked, augments it with the γ([-1,1],[c,1]) triangles at the vertices
+/// Runs `g` and, while locked, augments it with the γ(\[-1,1\],\[c,1\]) triangles at the vertices
 /// off the boundary ([`General3::local_gamma`], their 16 nearest vertices) for
 /// c = from − 0.1, … −1. Returns the last c used.
 pub(super) fn augment_until_done_3d(g: &mut General3<'_>, from: f64) -> f64 {
@@ -557,7 +557,7 @@ mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
     /// local_gamma with k ≥ n tries every triangle at a vertex off the boundary: its results
-    /// over decreasing c must be exactly the triangles of γ([-1,1],[c,1]) there (Def. 3.1 by
+    /// over decreasing c must be exactly the triangles of γ(\[-1,1\],\[c,1\]) there (Def. 3.1 by
     /// the full center interval over all points), without the live ones.
     #[test]
     fn local_gamma_matches_the_full_definition() {

@@ -1,4 +1,4 @@
-//! 3D constriction of γ([-1,1],[0,1]) = the Delaunay tetrahedralization (Veltkamp 1992, §5.3,
+//! 3D constriction of γ(\[-1,1\],\[0,1\]) = the Delaunay tetrahedralization (Veltkamp 1992, §5.3,
 //! Def. 5.2, Eq. 5.2, the selection rule with the sum of γ-indicators; Algorithm 5.1 and the
 //! heap of §5.5).
 //!

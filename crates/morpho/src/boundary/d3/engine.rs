@@ -111,7 +111,7 @@ impl Engine3 {
         }
     }
 
-    /// Step 3, γ([-1,1],[c,1]) with c < 0 constricted from the convex hull: the whole graph up
+    /// Step 3, γ(\[-1,1\],\[c,1\]) with c < 0 constricted from the convex hull: the whole graph up
     /// to [`BEYOND_ALL_MAX`] vertices, the Delaunay triangles plus the local γ-triangles above.
     pub(super) fn gamma_from_hull(&self, c: f64) -> Outcome3 {
         let d = &self.d;

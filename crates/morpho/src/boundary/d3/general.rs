@@ -1,5 +1,5 @@
 //! The general 3D constriction engine [`General3`] (Veltkamp 1992, §5.4 last paragraphs: 3D
-//! γ([-1,1],[c,1]) with c < 0 by adaptive augmentation; §5.3 removability; §5.5 heap; §5.7
+//! γ(\[-1,1\],\[c,1\]) with c < 0 by adaptive augmentation; §5.3 removability; §5.5 heap; §5.7
 //! constraints): the fallback of the Delaunay constriction ([`super::constrict`]) when it locks.
 //! This file holds the engine's state, its bulk construction and its mutation primitives;
 //! removals are in [`super::removal`], augmentation in [`super::augment`], constraints in
@@ -34,7 +34,7 @@
 //! [`General3::new`]. Worst case O(T²) for T triangles.
 //!
 //! Preconditions: the initial surface is a closed genus-0 2-manifold enclosing every vertex and
-//! every given triangle (as produced by [`super::constrict3`] or the convex hull).
+//! every given triangle (as produced by [`super::constrict`] or the convex hull).
 
 use crate::boundary::indicator::MinKey;
 use crate::geom::grid::BoxGrid;

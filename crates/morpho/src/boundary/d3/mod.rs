@@ -164,7 +164,7 @@ pub struct Boundary3 {
 /// is out of range, degenerate, or intersects another, and for c outside [−1, 0].
 ///
 /// The points are first multiplied by the power of two that brings the largest coordinate
-/// magnitude near 1 ([`crate::geom::exact::power_of_two_scale`]; exact): the constriction keys and
+/// magnitude near 1 (exact): the constriction keys and
 /// the engines' floating-point filters would otherwise over- or underflow at extreme absolute
 /// scales, and the result would depend on the units. The volume and the skeleton length are
 /// reported in input units.

@@ -44,7 +44,7 @@ type P = [f64; 3];
 /// cell sit close together in memory; the pairs are mapped back to the input indices.
 ///
 /// Coordinates are first multiplied by the power of two that brings the largest magnitude
-/// near 1 ([`crate::geom::exact::power_of_two_scale`]; exact), so that no predicate over- or
+/// near 1 (exact), so that no predicate over- or
 /// underflows at extreme absolute scales (1e-300 … 1e300).
 ///
 /// The surface of a tetrahedron is clean; a triangle piercing it is found:

@@ -167,7 +167,7 @@ pub(super) fn pair_meets_filtered(ta: &TriRec, tb: &TriRec) -> bool {
 /// sense of [`PlaneFilter::side`] (n · (x − a) > 0; swap the other two corners, i.e. reverse
 /// the orientation, when not), the two segments overlap iff orient3d(p₁, q₁, p₂, q₂) ≥ 0 and
 /// orient3d(p₁, r₁, r₂, p₂) ≥ 0 (the paper's ≤ 0 with its opposite orientation convention):
-/// two exact predicates in place of the up to thirty of [`triangles_intersect`] (= 0 is a
+/// two exact predicates in place of the up to thirty of [`crate::geom::intersect::triangles_intersect`] (= 0 is a
 /// touching, which counts).
 pub(super) fn crossing_triangles_meet(t: [P; 3], st: [i8; 3], u: [P; 3], su: [i8; 3]) -> bool {
     // the corner whose sign differs from the two others'

@@ -87,7 +87,9 @@ pub enum NormalMethod {
 pub struct IsoOptions {
     /// Contour level α.
     pub level: f64,
+    /// Which extraction (marching cubes, marching tetrahedra, …).
     pub method: IsoMethod,
+    /// How vertex normals are computed.
     pub normals: NormalMethod,
     /// Orient triangles and normals along +∇f (out of {f < α}) instead of −∇f.
     pub flip: bool,
