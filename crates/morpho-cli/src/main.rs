@@ -30,6 +30,10 @@ struct Cli {
     /// three quarters of the machine's memory).
     #[arg(long, global = true, value_name = "BYTES")]
     memory_limit: Option<String>,
+    /// Coordinate reference system named in GeoJSON outputs, e.g. `EPSG:28992` (GeoJSON
+    /// readers otherwise assume WGS84 longitude/latitude).
+    #[arg(long, global = true, value_name = "NAME")]
+    crs: Option<String>,
 }
 
 #[derive(Subcommand)]
@@ -293,6 +297,10 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
         }
+    }
+    if let Err(e) = morpho::io::geojson::set_crs(cli.crs.as_deref()) {
+        eprintln!("error: {}", printable(&e.to_string()));
+        return ExitCode::from(2);
     }
     let mut report = Report::new(name);
     let result = match cli.command {

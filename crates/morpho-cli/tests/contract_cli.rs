@@ -262,3 +262,64 @@ fn allocation_bombs_fail_at_once_naming_the_memory_limit() {
     let o = morpho(d, &["info", "rows.csv.gz", "--memory-limit", "lots"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
 }
+
+/// Issue 17 item 11: GeoJSON never claims WGS84 on its own; `--crs` names the system.
+#[test]
+fn geojson_names_the_crs_it_is_given() {
+    let dir = tempfile::tempdir().unwrap();
+    ring(dir.path());
+    let o = morpho(dir.path(), &["boundary", "p.csv", "-o", "plain.geojson"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let plain = std::fs::read_to_string(dir.path().join("plain.geojson")).unwrap();
+    assert!(!plain.contains("crs"), "{plain}");
+    let o = morpho(
+        dir.path(),
+        &[
+            "boundary",
+            "p.csv",
+            "-o",
+            "rd.geojson",
+            "--crs",
+            "EPSG:28992",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("rd.geojson")).unwrap()).unwrap();
+    assert_eq!(
+        v["crs"]["properties"]["name"],
+        "urn:ogc:def:crs:EPSG::28992"
+    );
+    let o = morpho(
+        dir.path(),
+        &["boundary", "p.csv", "-o", "bad.geojson", "--crs", " "],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).starts_with("error: "), "{}", stderr(&o));
+}
+
+/// Issue 17 item 11: `convert` of the MNI template (RAS) to MetaImage keeps it in place
+/// (SimpleITK showed it mirrored in x and y when the orientation was dropped).
+#[test]
+fn volume_conversion_keeps_the_orientation() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/volumes/mni_icbm152_t1_2009a_197x233x189.nhdr");
+    if !src.exists() {
+        eprintln!("note: shared/data absent; skipped");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let o = morpho(
+        dir.path(),
+        &["convert", src.to_str().unwrap(), "-o", "mni.mhd"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let h = std::fs::read_to_string(dir.path().join("mni.mhd")).unwrap();
+    assert!(
+        h.contains("TransformMatrix = -1.0 0.0 0.0 0.0 -1.0 0.0 0.0 0.0 1.0"),
+        "{h}"
+    );
+    assert!(h.contains("Offset = 98.0 134.0 -72.0"), "{h}");
+    let o = morpho(dir.path(), &["convert", "mni.mhd", "-o", "back.nrrd"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}

@@ -618,6 +618,7 @@ fn non_uniform_grid_sphere() {
         axes: Axes::Coords(coords),
         data,
         source_dtype: DType::F32,
+        orientation: Default::default(),
     };
     let aniso = Volume::from_fn([20, 40, 12], [-1.3; 3], [1.3; 3], |x, y, z| {
         1.0 - (x * x + y * y + z * z)

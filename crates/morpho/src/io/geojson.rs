@@ -23,6 +23,14 @@
 //! as the contour gives them — with properties `threshold`, `value`, `below`, `area`,
 //! `external`).
 //!
+//! **Coordinate reference system.** RFC 7946 coordinates are WGS84 longitude/latitude, and
+//! readers assume so. morpho never writes a `crs` member unless told: [`set_crs`] (the CLI's
+//! global `--crs`, e.g. `--crs EPSG:28992` for the Meuse data in RD New metres) adds the
+//! 2008-spec member `"crs": {"type": "name", "properties": {"name":
+//! "urn:ogc:def:crs:EPSG::28992"}}` (an `EPSG:n` code is written as its OGC URN, any other
+//! name as given) to every FeatureCollection written afterwards, which GDAL/OGR, QGIS and
+//! geopandas honour.
+//!
 //! Complexity: linear in the input size.
 
 use crate::boundary::Boundary2;
@@ -33,6 +41,7 @@ use crate::mesh::{Polygon, Polyline, Shapes2};
 use crate::{Error, Result};
 use serde_json::{json, Value};
 use std::io::Write;
+use std::sync::Mutex;
 
 fn position(v: &Value, ctx: &str) -> Result<Point2> {
     let a = v
@@ -276,6 +285,44 @@ fn closed_ring(r: &[Point2], ccw: bool) -> Result<Value> {
     Ok(Value::Array(pts))
 }
 
+static CRS: Mutex<Option<String>> = Mutex::new(None);
+
+/// Sets (or, with `None`, clears) the coordinate reference system named in every GeoJSON
+/// written afterwards in this process (see the module documentation). `EPSG:n` (any case)
+/// becomes `urn:ogc:def:crs:EPSG::n`; other names are written as given. Refused: an empty name
+/// or one with control characters.
+pub fn set_crs(name: Option<&str>) -> Result<()> {
+    let value = match name.map(str::trim) {
+        None => None,
+        Some(n) if n.is_empty() || n.chars().any(char::is_control) => {
+            return Err(Error::invalid(format!(
+                "--crs needs a name such as EPSG:28992, not '{}'",
+                n.escape_debug()
+            )));
+        }
+        Some(n) => Some(match n.split_once(':') {
+            Some((auth, code))
+                if auth.eq_ignore_ascii_case("epsg")
+                    && !code.is_empty()
+                    && code.chars().all(|c| c.is_ascii_digit()) =>
+            {
+                format!("urn:ogc:def:crs:EPSG::{code}")
+            }
+            _ => n.to_string(),
+        }),
+    };
+    *CRS.lock().unwrap_or_else(|e| e.into_inner()) = value;
+    Ok(())
+}
+
+/// `doc` with the `crs` member when one is set.
+fn with_crs(mut doc: Value) -> Value {
+    if let Some(name) = CRS.lock().unwrap_or_else(|e| e.into_inner()).clone() {
+        doc["crs"] = json!({"type": "name", "properties": {"name": name}});
+    }
+    doc
+}
+
 /// Writes a FeatureCollection.
 pub fn write(w: &mut dyn Write, shapes: &Shapes2) -> Result<()> {
     let mut features = Vec::new();
@@ -312,7 +359,7 @@ pub fn write(w: &mut dyn Write, shapes: &Shapes2) -> Result<()> {
         }));
     }
     let doc = json!({"type": "FeatureCollection", "features": features});
-    super::json::write_value(w, &doc)
+    super::json::write_value(w, &with_crs(doc))
 }
 
 /// Writes a 2D boundary polygon (input indices into `points`, counter-clockwise) as a
@@ -346,7 +393,7 @@ pub fn write_boundary_2d(w: &mut dyn Write, points: &[Point2], b: &Boundary2) ->
             "geometry": { "type": "Polygon", "coordinates": [ring] }
         }]
     });
-    super::json::write_value(w, &v)
+    super::json::write_value(w, &with_crs(v))
 }
 
 /// A closed ring of vertex indices into `points` as GeoJSON positions.
@@ -396,7 +443,7 @@ pub fn write_contour(
     threshold: f64,
     below: bool,
 ) -> Result<()> {
-    super::json::write_value(w, &contour_value(r, threshold, below))
+    super::json::write_value(w, &with_crs(contour_value(r, threshold, below)))
 }
 
 #[cfg(test)]

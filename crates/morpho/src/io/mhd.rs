@@ -7,8 +7,10 @@
 //!   `DimSize` one positive integer per axis; `ElementNumberOfChannels` must be 1;
 //!   `BinaryData = False` (ASCII data) is refused.
 //! - `ElementSpacing`, else `ElementSize` (default 1); `Offset`, else `Origin`, else `Position`
-//!   (default 0). `TransformMatrix`, `CenterOfRotation`, `AnatomicalOrientation` are ignored
-//!   (morpho volumes are axis-aligned).
+//!   (default 0). `TransformMatrix` (the i-th triple is the direction of grid axis i, as ITK
+//!   reads it) becomes [`crate::volume::Orientation::directions`] (normalized),
+//!   `AnatomicalOrientation` is kept as given, and the world space is LPS (ITK's convention);
+//!   `CenterOfRotation` is ignored.
 //! - `ElementType`: `MET_UCHAR`, `MET_CHAR`, `MET_SHORT`, `MET_USHORT`, `MET_INT`, `MET_UINT`,
 //!   `MET_FLOAT`, `MET_DOUBLE` (`MET_CHAR` → source type `I16`, `MET_UINT` → `F64`, see
 //!   [`super::rawjson`]); 64-bit types are refused.
@@ -24,7 +26,9 @@
 //! which stops one byte past that size).
 //!
 //! # Writing
-//! `NAME.mhd` + `NAME.raw` beside it (both atomic, raw first), or a single `NAME.mha` with
+//! `TransformMatrix` when the directions are not the identity and `AnatomicalOrientation` when
+//! known; a volume in RAS or LAS space (from NRRD) is converted to LPS (x, and y for RAS,
+//! negated in the origin and the directions). `NAME.mhd` + `NAME.raw` beside it (both atomic, raw first), or a single `NAME.mha` with
 //! `ElementDataFile = LOCAL`; uncompressed, little endian, samples in the source type when
 //! lossless, else `MET_FLOAT`.
 //!
@@ -34,7 +38,7 @@ use super::rawjson::{
     beside, data_size, decode, encode, header_line, open_data, output_type, read_data, uniform,
     Codec, Sample,
 };
-use crate::volume::{Axes, Volume};
+use crate::volume::{Axes, Orientation, Volume};
 use crate::{Error, Result};
 use std::collections::HashMap;
 use std::io::{BufReader, Read};
@@ -204,6 +208,29 @@ pub fn read(path: &Path) -> Result<Volume> {
     if let Some(o) = nums("offset")?.or(nums("origin")?).or(nums("position")?) {
         origin[..nd].copy_from_slice(&o);
     }
+    // MetaImage world coordinates are LPS (ITK); the i-th triple of TransformMatrix is the
+    // direction of grid axis i (ITK's MetaImageIO reads it so)
+    let mut orientation = Orientation {
+        space: Some("left-posterior-superior".into()),
+        anatomical: field("anatomicalorientation").map(|(_, v)| v.trim().to_string()),
+        directions: None,
+    };
+    if let (Some((l, v)), 3) = (field("transformmatrix"), nd) {
+        let m = v
+            .split_whitespace()
+            .map(|t| t.parse::<f64>())
+            .collect::<std::result::Result<Vec<_>, _>>()
+            .map_err(|_| Error::at_line(l, format!("bad TransformMatrix '{v}'")))?;
+        if m.len() != 9 {
+            return Err(Error::at_line(
+                l,
+                format!("TransformMatrix needs 9 numbers, got {}", m.len()),
+            ));
+        }
+        let rows = [[m[0], m[1], m[2]], [m[3], m[4], m[5]], [m[6], m[7], m[8]]];
+        orientation.directions =
+            Orientation::unit_directions(rows).map_err(|e| Error::at_line(l, e))?;
+    }
     let big = match field("elementbyteordermsb").or(field("binarydatabyteordermsb")) {
         Some((l, v)) => boolean(v, l)?,
         None => false,
@@ -278,14 +305,37 @@ pub fn read(path: &Path) -> Result<Volume> {
         axes: Axes::Uniform { origin, spacing },
         data: decode(&raw, ty, big),
         source_dtype: ty.source_dtype(),
+        orientation,
     })
 }
 
 fn header(v: &Volume, ty: Sample, data_file: &str) -> Result<String> {
     let (o, s) = uniform(v)?;
+    // MetaImage is LPS: a volume in RAS or LAS is converted; another named space is written as
+    // it is (its name does not survive: MetaImage has no field for it)
+    let (o, d) = v.orientation.to_lps(o).unwrap_or((
+        o,
+        v.orientation
+            .directions
+            .unwrap_or([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]),
+    ));
+    let identity = (0..3).all(|a| (0..3).all(|b| d[a][b] == if a == b { 1.0 } else { 0.0 }));
+    let mut extra = String::new();
+    if !identity {
+        let t: Vec<String> = d.iter().flatten().map(|x| format!("{x:?}")).collect();
+        extra.push_str(&format!("TransformMatrix = {}\n", t.join(" ")));
+    }
+    if let Some(a) = v
+        .orientation
+        .anatomical
+        .as_deref()
+        .filter(|a| !a.contains('\n'))
+    {
+        extra.push_str(&format!("AnatomicalOrientation = {a}\n"));
+    }
     Ok(format!(
         "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n\
-         CompressedData = False\nOffset = {:?} {:?} {:?}\nElementSpacing = {:?} {:?} {:?}\n\
+         CompressedData = False\n{extra}Offset = {:?} {:?} {:?}\nElementSpacing = {:?} {:?} {:?}\n\
          DimSize = {} {} {}\nElementType = {}\nElementDataFile = {}\n",
         o[0],
         o[1],

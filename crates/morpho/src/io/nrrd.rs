@@ -12,8 +12,9 @@
 //! - `endian`: `little`/`big`; optional (default little).
 //! - `encoding`: `raw`, `gzip`/`gz`, `text`/`txt`/`ascii`; others (bzip2, hex) are refused.
 //! - `spacings` (`nan` → 1), else `space directions` (`none` → 1): the spacing of an axis is
-//!   the Euclidean norm of its direction vector — an oblique or permuted orientation is **not**
-//!   kept (morpho volumes are axis-aligned); a negative spacing is taken by absolute value.
+//!   the Euclidean norm of its direction vector, and (3D volumes) the unit vectors are kept as
+//!   [`crate::volume::Orientation::directions`] with `space` as its name, so that a conversion
+//!   keeps an oblique, permuted or mirrored grid; a negative spacing is taken by absolute value.
 //! - `space origin` `(x,y,z)`, else `axis mins` (`nan` → 0); default 0.
 //! - `byte skip` (≥ 0, or −1 with raw encoding = the data are the last bytes of the file;
 //!   with gzip the skip is applied after decompression), `line skip` (lines skipped in the
@@ -26,8 +27,9 @@
 //! decompression stops one byte past that size.
 //!
 //! # Writing
-//! An attached, gzip-encoded, little-endian `NRRD0004` file with `space directions` (diagonal:
-//! the spacings) and `space origin` — the spec forbids `spacings` together with a space, so
+//! An attached, gzip-encoded, little-endian `NRRD0004` file with `space` (when the volume names
+//! one, else `space dimension: 3`), `space directions` (spacing × unit direction of each axis;
+//! diagonal for axis-aligned volumes) and `space origin` — the spec forbids `spacings` together with a space, so
 //! the spacings travel as the diagonal. Samples are in the source type if that is lossless,
 //! else `float`.
 //!
@@ -37,7 +39,7 @@ use super::rawjson::{
     beside, data_size, decode, encode, header_line, open_data, output_type, read_data, uniform,
     Codec, Sample,
 };
-use crate::volume::{Axes, Volume};
+use crate::volume::{Axes, Orientation, Volume};
 use crate::{Error, Result};
 use std::collections::HashMap;
 use std::io::{BufRead, BufReader, Read, Write};
@@ -189,6 +191,7 @@ struct Header {
     enc: Enc,
     spacing: [f64; 3],
     origin: [f64; 3],
+    orientation: Orientation,
     byte_skip: i64,
     line_skip: u64,
 }
@@ -230,6 +233,7 @@ pub fn read(path: &Path) -> Result<Volume> {
         },
         data,
         source_dtype: h.ty.source_dtype(),
+        orientation: h.orientation,
     })
 }
 
@@ -313,6 +317,7 @@ fn parse_header(fields: &Fields) -> Result<Header> {
     };
     let spacing = spacing(fields, dim)?;
     let origin = origin(fields, dim)?;
+    let orientation = orientation(fields, dim)?;
     let byte_skip: i64 = match fields.get("byte skip") {
         None => 0,
         Some((l, v)) => v
@@ -336,6 +341,7 @@ fn parse_header(fields: &Fields) -> Result<Header> {
         enc,
         spacing,
         origin,
+        orientation,
         byte_skip,
         line_skip,
     })
@@ -405,6 +411,26 @@ fn spacing(fields: &Fields, dim: usize) -> Result<[f64; 3]> {
         )));
     }
     Ok(spacing)
+}
+
+/// `space` (kept by name) and the unit `space directions` of a 3D volume (a 2D volume's
+/// directions are dropped).
+fn orientation(fields: &Fields, dim: usize) -> Result<Orientation> {
+    let space = fields.get("space").map(|(_, v)| v.trim().to_string());
+    let mut directions = None;
+    if let (Some((l, v)), 3) = (fields.get("space directions"), dim) {
+        if let [Some(a), Some(b), Some(c)] = vectors(v, l)?.as_slice() {
+            if a.len() == 3 && b.len() == 3 && c.len() == 3 {
+                let m = [[a[0], a[1], a[2]], [b[0], b[1], b[2]], [c[0], c[1], c[2]]];
+                directions = Orientation::unit_directions(m).map_err(|e| Error::at_line(l, e))?;
+            }
+        }
+    }
+    Ok(Orientation {
+        space,
+        anatomical: None,
+        directions,
+    })
 }
 
 /// `space origin`, else `axis mins` (`nan` → 0), else 0; finite.
@@ -505,19 +531,31 @@ pub fn write(path: &Path, v: &Volume) -> Result<()> {
     let ty = output_type(v);
     super::write_atomic(path, |w| {
         let e = super::werr;
+        let space = match &v.orientation.space {
+            Some(name) if !name.contains('\n') => format!("space: {name}"),
+            _ => "space dimension: 3".to_string(),
+        };
+        let d =
+            v.orientation
+                .directions
+                .unwrap_or([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        let dirs = (0..3)
+            .map(|a| {
+                let x = d[a].map(|c| c * s[a] + 0.0);
+                format!("({:?},{:?},{:?})", x[0], x[1], x[2])
+            })
+            .collect::<Vec<_>>()
+            .join(" ");
         write!(
             w,
-            "NRRD0004\n# written by morpho\ntype: {}\ndimension: 3\nspace dimension: 3\n\
-             sizes: {} {} {}\nspace directions: ({:?},0,0) (0,{:?},0) (0,0,{:?})\n\
+            "NRRD0004\n# written by morpho\ntype: {}\ndimension: 3\n{space}\n\
+             sizes: {} {} {}\nspace directions: {dirs}\n\
              kinds: domain domain domain\nendian: little\nencoding: gzip\n\
              space origin: ({:?},{:?},{:?})\n\n",
             type_name(ty),
             v.dims[0],
             v.dims[1],
             v.dims[2],
-            s[0],
-            s[1],
-            s[2],
             o[0],
             o[1],
             o[2]

@@ -15,6 +15,7 @@
 //! | byte order | `endian`, `endianness`, `byte_order` | `little`/`big` (`le`/`be`); optional, default little; ignored for 1-byte types |
 //! | spacing | `spacing`, `spacing_xyz`, `voxel_size` | optional, default 1 |
 //! | origin | `origin`, `origin_xyz`, `offset` | optional, default 0; else the translation of an axis-aligned `affine*` 4×4 matrix (an oblique affine is ignored: morpho volumes are axis-aligned) |
+//! | orientation | `space`, `directions`, `anatomical_orientation` | optional: the world space's NRRD name, the direction of each grid axis (3 vectors), MetaImage's code — see [`crate::volume::Orientation`]; written when the volume has them |
 //! | header bytes | `header_bytes`, `byte_skip`, `header_size` | bytes skipped at the start of the (decompressed) data |
 //! | raw size | `raw_bytes` | optional; must equal header bytes + samples × sample size |
 //!
@@ -573,11 +574,37 @@ pub fn read(path: &Path) -> Result<Volume> {
         .map_err(|e| e.with_path(&dpath))?;
     let samples = decode(&raw, ty, big);
     debug_assert_eq!(samples.len(), n);
+    let text = |k: &str| o.get(k).and_then(|v| v.as_str()).map(str::to_string);
+    let mut orientation = crate::volume::Orientation {
+        space: text("space"),
+        anatomical: text("anatomical_orientation"),
+        directions: None,
+    };
+    if let Some(d) = o.get("directions") {
+        let rows = d
+            .as_array()
+            .filter(|r| r.len() == 3)
+            .and_then(|r| {
+                r.iter()
+                    .map(|row| {
+                        let row = row.as_array().filter(|x| x.len() == 3)?;
+                        Some([row[0].as_f64()?, row[1].as_f64()?, row[2].as_f64()?])
+                    })
+                    .collect::<Option<Vec<_>>>()
+            })
+            .ok_or_else(|| {
+                Error::format("\"directions\" must be three vectors of three numbers")
+            })?;
+        orientation.directions =
+            crate::volume::Orientation::unit_directions([rows[0], rows[1], rows[2]])
+                .map_err(|e| Error::format(format!("\"directions\": {e}")))?;
+    }
     Ok(Volume {
         dims,
         axes: Axes::Uniform { origin, spacing },
         data: samples,
         source_dtype: ty.source_dtype(),
+        orientation,
     })
 }
 
@@ -602,7 +629,7 @@ pub fn write(path: &Path, v: &Volume) -> Result<()> {
         Ok(())
     })
     .map_err(|e| e.with_path(&raw_path))?;
-    let doc = json!({
+    let mut doc = json!({
         "data": raw_name,
         "dims": v.dims,
         "spacing": spacing,
@@ -610,6 +637,15 @@ pub fn write(path: &Path, v: &Volume) -> Result<()> {
         "dtype": ty.name(),
         "endian": "little",
     });
+    if let Some(space) = &v.orientation.space {
+        doc["space"] = json!(space);
+    }
+    if let Some(d) = v.orientation.directions {
+        doc["directions"] = json!(d);
+    }
+    if let Some(a) = &v.orientation.anatomical {
+        doc["anatomical_orientation"] = json!(a);
+    }
     super::write_atomic(path, |w| {
         serde_json::to_writer_pretty(&mut *w, &doc)
             .map_err(|e| Error::invalid(format!("JSON: {e}")))?;

@@ -506,6 +506,7 @@ mod tests {
             axes: crate::volume::Axes::Coords([vec![0.0, 1.0, 3.0], vec![0.0], vec![0.0]]),
             data: vec![0.0, 1.0, 2.0],
             source_dtype: crate::volume::DType::F32,
+            orientation: Default::default(),
         };
         let g = axis_geom(&v, 0);
         assert_eq!(g.bounds, vec![-0.5, 0.5, 2.0, 4.0]);

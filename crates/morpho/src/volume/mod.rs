@@ -5,6 +5,7 @@ mod gradient;
 mod isosurface;
 
 pub use error::VolumeError;
+// `Orientation` is defined below, beside `Volume`.
 pub use gradient::{axis_coords, gradient_at, mesh_normals, GradientOperator};
 pub use isosurface::{
     extract_part, isosurface, largest_part, IsoMethod, IsoOptions, IsoResult, NormalMethod,
@@ -66,6 +67,136 @@ pub struct Volume {
     pub data: Vec<f32>,
     /// Type of the samples in the file they came from.
     pub source_dtype: DType,
+    /// Where the grid sits in the scanner's or patient's space (NRRD `space`, `space
+    /// directions`; MHD `TransformMatrix`, `AnatomicalOrientation`). Default: axis-aligned,
+    /// no named space.
+    pub orientation: Orientation,
+}
+
+/// The orientation of a uniform grid in its world space (issue 17 item 11).
+///
+/// Convention (that of NRRD, ITK and 3D Slicer): the world position of sample (i, j, k) is
+/// `origin + i·spacing[0]·d[0] + j·spacing[1]·d[1] + k·spacing[2]·d[2]`, where `d[a]` is the
+/// unit direction of grid axis a ([`Orientation::directions`]) and `origin`, `spacing` are
+/// those of [`Axes::Uniform`]. The world axes are those of [`Orientation::space`]: NRRD names
+/// them (`left-posterior-superior` = LPS: +x towards the patient's left, +y posterior, +z
+/// superior; `right-anterior-superior` = RAS), MetaImage files are LPS (ITK's convention), and
+/// morpho writes what it read. Contour surfaces ([`isosurface()`]) are returned in world
+/// coordinates. Per-index coordinates ([`Axes::Coords`]) carry no directions.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Orientation {
+    /// The world space by its NRRD name (`left-posterior-superior`, `right-anterior-superior`,
+    /// `left-anterior-superior`, `scanner-xyz`, `3D-right-handed`, …), as in the file; `None`
+    /// when the file names none.
+    pub space: Option<String>,
+    /// MetaImage's `AnatomicalOrientation` code (e.g. `RAI`), as in the file.
+    pub anatomical: Option<String>,
+    /// Unit direction of each grid axis in world coordinates (`directions[a]` for axis a);
+    /// `None`: the identity (axis a along world axis a).
+    pub directions: Option<[[f64; 3]; 3]>,
+}
+
+impl Orientation {
+    /// True when the grid axes are the world axes (no directions, or the identity).
+    pub fn is_axis_aligned(&self) -> bool {
+        match self.directions {
+            None => true,
+            Some(d) => (0..3).all(|a| (0..3).all(|b| d[a][b] == if a == b { 1.0 } else { 0.0 })),
+        }
+    }
+
+    /// The world position of a point given in the axis-aligned frame (`origin + Σ offset_a e_a`):
+    /// `origin + Σ offset_a d[a]`.
+    pub fn to_world(&self, origin: [f64; 3], p: [f64; 3]) -> [f64; 3] {
+        match self.directions {
+            None => p,
+            Some(d) => {
+                let o = [p[0] - origin[0], p[1] - origin[1], p[2] - origin[2]];
+                std::array::from_fn(|b| {
+                    origin[b] + o[0] * d[0][b] + o[1] * d[1][b] + o[2] * d[2][b]
+                })
+            }
+        }
+    }
+
+    /// The determinant of the direction matrix (1 for axis-aligned grids; negative when the
+    /// directions mirror, so that triangle windings must flip to keep their orientation).
+    pub fn determinant(&self) -> f64 {
+        match self.directions {
+            None => 1.0,
+            Some(d) => {
+                d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1])
+                    - d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0])
+                    + d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0])
+            }
+        }
+    }
+
+    /// Directions from a file: each axis vector (any length, as NRRD `space directions` or a
+    /// MetaImage `TransformMatrix` row) normalized; `None` for the identity. Fails when a vector
+    /// is zero or not finite, or the three are linearly dependent.
+    pub fn unit_directions(v: [[f64; 3]; 3]) -> Result<Option<[[f64; 3]; 3]>, String> {
+        let mut d = [[0.0; 3]; 3];
+        for a in 0..3 {
+            let len = v[a].iter().map(|x| x * x).sum::<f64>().sqrt();
+            if !(len.is_finite() && len > 0.0) {
+                return Err(format!("the direction of axis {a} is {:?}", v[a]));
+            }
+            d[a] = v[a].map(|x| x / len);
+        }
+        let o = Orientation {
+            directions: Some(d),
+            ..Default::default()
+        };
+        if o.determinant().abs() < 1e-12 {
+            return Err("the axis directions are linearly dependent".into());
+        }
+        Ok((!o.is_axis_aligned()).then_some(d))
+    }
+
+    /// Origin and directions in LPS (MetaImage's world space) when [`Orientation::space`] is
+    /// LPS, RAS or LAS (or unnamed: taken as LPS); `None` for any other named space.
+    pub fn to_lps(&self, origin: [f64; 3]) -> Option<([f64; 3], [[f64; 3]; 3])> {
+        let d = self
+            .directions
+            .unwrap_or([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        let flip: [f64; 3] = match self
+            .space
+            .as_deref()
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
+            None | Some("left-posterior-superior") | Some("lps") => [1.0, 1.0, 1.0],
+            Some("right-anterior-superior") | Some("ras") => [-1.0, -1.0, 1.0],
+            Some("left-anterior-superior") | Some("las") => [1.0, -1.0, 1.0],
+            _ => return None,
+        };
+        // `+ 0.0` turns −0 into 0, so that files do not show "-0.0"
+        let o = std::array::from_fn(|b| origin[b] * flip[b] + 0.0);
+        let dd = d.map(|row| std::array::from_fn(|b| row[b] * flip[b] + 0.0));
+        Some((o, dd))
+    }
+
+    /// A vector normal to a surface in the axis-aligned frame, mapped to the world frame (by the
+    /// inverse transpose of the direction matrix, then normalized).
+    pub fn normal_to_world(&self, n: [f64; 3]) -> [f64; 3] {
+        let Some(d) = self.directions else { return n };
+        // M maps e_a to d[a]; M^{-T} = cof(M) / det, and cof(M)[b][a] is the cofactor of d[a][b]
+        let c = |a: usize, b: usize| {
+            let (a1, a2) = ((a + 1) % 3, (a + 2) % 3);
+            let (b1, b2) = ((b + 1) % 3, (b + 2) % 3);
+            d[a1][b1] * d[a2][b2] - d[a1][b2] * d[a2][b1]
+        };
+        let det = self.determinant();
+        let w: [f64; 3] =
+            std::array::from_fn(|b| (0..3).map(|a| c(a, b) * n[a]).sum::<f64>() / det);
+        let len = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+        if len > 0.0 && len.is_finite() {
+            w.map(|x| x / len)
+        } else {
+            n
+        }
+    }
 }
 
 impl Volume {
@@ -81,6 +212,7 @@ impl Volume {
             axes: Axes::Uniform { origin, spacing },
             data,
             source_dtype: DType::F32,
+            orientation: Orientation::default(),
         };
         v.validate()?;
         Ok(v)
@@ -128,6 +260,7 @@ impl Volume {
             },
             data,
             source_dtype: DType::F32,
+            orientation: Orientation::default(),
         }
     }
     /// Number of samples.

@@ -290,7 +290,37 @@ pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeEr
     if r.mesh.triangles.is_empty() && r.note.is_none() {
         r.note = Some(format!("no contour at level {}", opts.level));
     }
+    to_world(vol, &mut r.mesh);
     Ok(r)
+}
+
+/// Places the surface in the volume's world space ([`crate::volume::Orientation`]): positions
+/// by the axis directions about the origin, normals by the inverse transpose, and triangle
+/// windings reversed when the directions mirror (so that normals and windings keep pointing to
+/// the same side). A no-op for axis-aligned volumes.
+fn to_world(vol: &Volume, mesh: &mut TriMesh) {
+    let o = &vol.orientation;
+    let crate::volume::Axes::Uniform { origin, .. } = vol.axes else {
+        return;
+    };
+    if o.is_axis_aligned() {
+        return;
+    }
+    for p in &mut mesh.positions {
+        let w = o.to_world(origin, [p.x, p.y, p.z]);
+        *p = crate::geom::Point3::new(w[0], w[1], w[2]);
+    }
+    if let Some(ns) = &mut mesh.normals {
+        for n in ns.iter_mut() {
+            let w = o.normal_to_world([n.x, n.y, n.z]);
+            *n = crate::geom::Vector3::new(w[0], w[1], w[2]);
+        }
+    }
+    if o.determinant() < 0.0 {
+        for t in &mut mesh.triangles {
+            t.swap(1, 2);
+        }
+    }
 }
 
 /// Smallest and largest sample ignoring NaN (`f32::min`/`max` skip a NaN operand), in chunks
