@@ -298,6 +298,7 @@ fn main() -> ExitCode {
             }
         }
     }
+    morpho::io::geojson::carry_input_crs(true);
     if let Err(e) = morpho::io::geojson::set_crs(cli.crs.as_deref()) {
         eprintln!("error: {}", printable(&e.to_string()));
         return ExitCode::from(2);

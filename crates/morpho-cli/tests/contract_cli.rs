@@ -290,6 +290,19 @@ fn geojson_names_the_crs_it_is_given() {
         v["crs"]["properties"]["name"],
         "urn:ogc:def:crs:EPSG::28992"
     );
+    // an input's crs is carried to the outputs (never replaced by an implied WGS84)
+    let o = morpho(
+        dir.path(),
+        &["convert", "rd.geojson", "-o", "carried.geojson"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("carried.geojson")).unwrap())
+            .unwrap();
+    assert_eq!(
+        v["crs"]["properties"]["name"],
+        "urn:ogc:def:crs:EPSG::28992"
+    );
     let o = morpho(
         dir.path(),
         &["boundary", "p.csv", "-o", "bad.geojson", "--crs", " "],

@@ -243,3 +243,59 @@ fn mni_template_keeps_its_placement_in_metaimage() {
         Some([[-1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]])
     );
 }
+
+/// A sidecar's `affine_ijk_to_ras_mm` (as the shipped MNI/dipy sidecars carry) gives the
+/// space, the axis directions (oblique and mirrored allowed) and, without a spacing key, the
+/// spacing; the world position of voxel (i,j,k) is the affine applied to it.
+#[test]
+fn sidecar_affine_gives_space_directions_and_spacing() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("v.raw"), [0u8, 1, 2, 3, 4, 5, 6, 7]).unwrap();
+    // axis 0 along -x scaled 2, axis 1 rotated 30° in y–z scaled 3, axis 2 scaled 0.5
+    let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    let a = [
+        [-2.0, 0.0, 0.0, 10.0],
+        [0.0, 3.0 * c, -0.5 * s, -20.0],
+        [0.0, 3.0 * s, 0.5 * c, 30.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ];
+    let doc = serde_json::json!({
+        "data_file": "v.raw", "dims_xyz": [2, 2, 2], "dtype": "uint8",
+        "affine_ijk_to_ras_mm": a,
+    });
+    let path = dir.path().join("v.json");
+    std::fs::write(&path, doc.to_string()).unwrap();
+    let v = io::read_volume(&path).unwrap();
+    assert_eq!(
+        v.orientation.space.as_deref(),
+        Some("right-anterior-superior")
+    );
+    for (got, want) in v.spacing().iter().zip([2.0, 3.0, 0.5]) {
+        assert!((got - want).abs() < 1e-12, "{:?}", v.spacing());
+    }
+    let o = origin(&v);
+    assert_eq!(o, [10.0, -20.0, 30.0]);
+    for (i, j, k) in [(1usize, 0usize, 0usize), (0, 1, 0), (0, 0, 1), (1, 1, 1)] {
+        let grid = [
+            o[0] + i as f64 * 2.0,
+            o[1] + j as f64 * 3.0,
+            o[2] + k as f64 * 0.5,
+        ];
+        let w = v.orientation.to_world(o, grid);
+        let (fi, fj, fk) = (i as f64, j as f64, k as f64);
+        let want = [0, 1, 2].map(|r| a[r][0] * fi + a[r][1] * fj + a[r][2] * fk + a[r][3]);
+        for r in 0..3 {
+            assert!(
+                (w[r] - want[r]).abs() < 1e-12,
+                "voxel {i},{j},{k}: {w:?} vs {want:?}"
+            );
+        }
+    }
+    // a singular affine is refused with the key named
+    let mut bad = doc.clone();
+    bad["affine_ijk_to_ras_mm"] =
+        serde_json::json!([[1, 0, 0, 0], [2, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]);
+    std::fs::write(&path, bad.to_string()).unwrap();
+    let e = io::read_volume(&path).unwrap_err().to_string();
+    assert!(e.contains("affine_ijk_to_ras_mm"), "{e}");
+}

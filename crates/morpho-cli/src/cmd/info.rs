@@ -250,11 +250,21 @@ fn describe(data: &Data, report: &mut Report) -> Vec<String> {
             report.set("max", json!(hi.is_finite().then_some(hi)));
             let nonfinite = v.data.iter().filter(|x| !x.is_finite()).count();
             report.set("nonfinite_samples", nonfinite);
-            let bmin: Vec<f64> = (0..3).map(|k| v.coord(k, 0)).collect();
-            let bmax: Vec<f64> = (0..3)
-                .map(|k| v.coord(k, v.dims[k].saturating_sub(1)))
-                .collect();
+            // the world-space box of the grid's 8 corners (through the axis directions)
+            let lo3: [f64; 3] = std::array::from_fn(|k| v.coord(k, 0));
+            let hi3: [f64; 3] = std::array::from_fn(|k| v.coord(k, v.dims[k].saturating_sub(1)));
+            let (mut bmin, mut bmax) = (vec![f64::INFINITY; 3], vec![f64::NEG_INFINITY; 3]);
+            for c in 0..8 {
+                let corner = std::array::from_fn(|k| if c >> k & 1 == 0 { lo3[k] } else { hi3[k] });
+                let w = v.orientation.to_world(lo3, corner);
+                for k in 0..3 {
+                    bmin[k] = bmin[k].min(w[k]);
+                    bmax[k] = bmax[k].max(w[k]);
+                }
+            }
             report.set("bbox", json!([bmin, bmax]));
+            report.set("space", json!(v.orientation.space));
+            report.set("directions", json!(v.orientation.directions));
             out.push("kind: volume".into());
             out.push(format!(
                 "dims: {} x {} x {}",
@@ -267,6 +277,12 @@ fn describe(data: &Data, report: &mut Report) -> Vec<String> {
             ));
             let s = v.spacing();
             out.push(format!("spacing: {} x {} x {}", s[0], s[1], s[2]));
+            if let Some(space) = &v.orientation.space {
+                out.push(format!("space: {space}"));
+            }
+            if let Some(d) = v.orientation.directions {
+                out.push(format!("axis directions: {d:?}"));
+            }
             out.push(format!("bbox: {}", fmt_bbox(&bmin, &bmax)));
             out.push(format!("value range: {lo} .. {hi}"));
             if nonfinite > 0 {

@@ -24,7 +24,8 @@
 //! `external`).
 //!
 //! **Coordinate reference system.** RFC 7946 coordinates are WGS84 longitude/latitude, and
-//! readers assume so. morpho never writes a `crs` member unless told: [`set_crs`] (the CLI's
+//! readers assume so. morpho never writes a `crs` member unless told or carrying an input's
+//! (see [`carry_input_crs`]): [`set_crs`] (the CLI's
 //! global `--crs`, e.g. `--crs EPSG:28992` for the Meuse data in RD New metres) adds the
 //! 2008-spec member `"crs": {"type": "name", "properties": {"name":
 //! "urn:ogc:def:crs:EPSG::28992"}}` (an `EPSG:n` code is written as its OGC URN, any other
@@ -187,6 +188,7 @@ pub fn read(bytes: &[u8]) -> Result<Shapes2> {
         out.polygons.extend(polygon(&v, "array of rings")?);
     } else {
         walk(&v, &mut out)?;
+        note_input_crs(&v);
     }
     Ok(out)
 }
@@ -286,6 +288,36 @@ fn closed_ring(r: &[Point2], ccw: bool) -> Result<Value> {
 }
 
 static CRS: Mutex<Option<String>> = Mutex::new(None);
+/// The first named `crs` read from an input since [`carry_input_crs`] was turned on.
+static INPUT_CRS: Mutex<Option<String>> = Mutex::new(None);
+static CARRY: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Turns on (or off) carrying an input's `crs`: once on, the first GeoJSON read whose top
+/// level names a `crs` (`{"type":"name","properties":{"name":…}}`) has that name written into
+/// every GeoJSON output that [`set_crs`] did not name — so a file in RD New stays RD New.
+/// Off by default (a library reading unrelated files must not tag one with another's CRS);
+/// the CLI turns it on for each run.
+pub fn carry_input_crs(on: bool) {
+    CARRY.store(on, std::sync::atomic::Ordering::Relaxed);
+    *INPUT_CRS.lock().unwrap_or_else(|e| e.into_inner()) = None;
+}
+
+fn note_input_crs(doc: &Value) {
+    if !CARRY.load(std::sync::atomic::Ordering::Relaxed) {
+        return;
+    }
+    let Some(name) = doc
+        .pointer("/crs/properties/name")
+        .and_then(Value::as_str)
+        .filter(|n| !n.is_empty() && !n.chars().any(char::is_control))
+    else {
+        return;
+    };
+    let mut slot = INPUT_CRS.lock().unwrap_or_else(|e| e.into_inner());
+    if slot.is_none() {
+        *slot = Some(name.to_string());
+    }
+}
 
 /// Sets (or, with `None`, clears) the coordinate reference system named in every GeoJSON
 /// written afterwards in this process (see the module documentation). `EPSG:n` (any case)
@@ -315,9 +347,11 @@ pub fn set_crs(name: Option<&str>) -> Result<()> {
     Ok(())
 }
 
-/// `doc` with the `crs` member when one is set.
+/// `doc` with the `crs` member when one is set (or carried from an input).
 fn with_crs(mut doc: Value) -> Value {
-    if let Some(name) = CRS.lock().unwrap_or_else(|e| e.into_inner()).clone() {
+    let set = CRS.lock().unwrap_or_else(|e| e.into_inner()).clone();
+    let name = set.or_else(|| INPUT_CRS.lock().unwrap_or_else(|e| e.into_inner()).clone());
+    if let Some(name) = name {
         doc["crs"] = json!({"type": "name", "properties": {"name": name}});
     }
     doc

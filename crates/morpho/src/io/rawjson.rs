@@ -14,8 +14,8 @@
 //! | sample type | `dtype`, `type`, `data_type` | `u8 uint8 uchar`, `i8 int8`, `i16 int16 short`, `u16 uint16 ushort`, `i32 int32 int`, `u32 uint32 uint`, `f32 float32 float`, `f64 float64 double` |
 //! | byte order | `endian`, `endianness`, `byte_order` | `little`/`big` (`le`/`be`); optional, default little; ignored for 1-byte types |
 //! | spacing | `spacing`, `spacing_xyz`, `voxel_size` | optional, default 1 |
-//! | origin | `origin`, `origin_xyz`, `offset` | optional, default 0; else the translation of an axis-aligned `affine*` 4×4 matrix (an oblique affine is ignored: morpho volumes are axis-aligned) |
-//! | orientation | `space`, `directions`, `anatomical_orientation` | optional: the world space's NRRD name, the direction of each grid axis (3 vectors), MetaImage's code — see [`crate::volume::Orientation`]; written when the volume has them |
+//! | origin | `origin`, `origin_xyz`, `offset` | optional, default 0; else the translation of an `affine*` 4×4 matrix |
+//! | orientation | `space`, `directions`, `anatomical_orientation` | optional: the world space's NRRD name, the direction of each grid axis (3 vectors), MetaImage's code — see [`crate::volume::Orientation`]; written when the volume has them. Without them, an `affine*` matrix gives the axis directions (its columns, normalised; oblique allowed), its column lengths the spacing when no spacing key is given, and its key the space (`…ras…` → RAS, `…lps…` → LPS) |
 //! | header bytes | `header_bytes`, `byte_skip`, `header_size` | bytes skipped at the start of the (decompressed) data |
 //! | raw size | `raw_bytes` | optional; must equal header bytes + samples × sample size |
 //!
@@ -414,34 +414,55 @@ fn numbers(key: &str, v: &Value, n: usize) -> Result<Vec<f64>> {
         .collect()
 }
 
-/// Origin (and diagonal) of an axis-aligned 4×4 affine, if the sidecar has one.
-fn affine_origin(o: &Map<String, Value>) -> Option<([f64; 3], [f64; 3])> {
-    let (_, v) = o.iter().find(|(k, _)| k.starts_with("affine"))?;
-    let rows = v.as_array()?;
-    if rows.len() < 3 {
-        return None;
-    }
+/// A 4×4 (or 3×4) voxel-to-world affine from a sidecar key starting with `affine`
+/// (`affine_ijk_to_ras_mm`, `affine_ijk_to_world_mm`, …): column `a` of its 3×3 part is
+/// spacing × direction of grid axis `a`, the last column the origin.
+struct Affine {
+    origin: [f64; 3],
+    spacing: [f64; 3],
+    /// Unit axis directions, `None` when they are the identity.
+    directions: Option<[[f64; 3]; 3]>,
+    /// The NRRD space named by the key (`…ras…` → RAS, `…lps…` → LPS), else unnamed.
+    space: Option<&'static str>,
+}
+
+fn affine(o: &Map<String, Value>) -> Result<Option<Affine>> {
+    let Some((key, v)) = o.iter().find(|(k, _)| k.starts_with("affine")) else {
+        return Ok(None);
+    };
+    let bad = || Error::format(format!("\"{key}\" must be a 4×4 matrix of finite numbers"));
+    let rows = v
+        .as_array()
+        .filter(|r| r.len() == 3 || r.len() == 4)
+        .ok_or_else(bad)?;
     let mut m = [[0.0; 4]; 3];
     for i in 0..3 {
-        let r = rows[i].as_array()?;
-        if r.len() != 4 {
-            return None;
-        }
+        let r = rows[i]
+            .as_array()
+            .filter(|r| r.len() == 4)
+            .ok_or_else(bad)?;
         for j in 0..4 {
-            m[i][j] = r[j].as_f64()?;
+            m[i][j] = r[j].as_f64().filter(|x| x.is_finite()).ok_or_else(bad)?;
         }
     }
-    for i in 0..3 {
-        for j in 0..3 {
-            if i != j && m[i][j] != 0.0 {
-                return None;
-            }
-        }
-        if m[i][i].is_nan() || m[i][i] <= 0.0 {
-            return None;
-        }
-    }
-    Some(([m[0][3], m[1][3], m[2][3]], [m[0][0], m[1][1], m[2][2]]))
+    let column = |a: usize| [m[0][a], m[1][a], m[2][a]];
+    let spacing = [0, 1, 2].map(|a| column(a).iter().map(|x| x * x).sum::<f64>().sqrt());
+    let directions = crate::volume::Orientation::unit_directions([column(0), column(1), column(2)])
+        .map_err(|e| Error::format(format!("\"{key}\": {e}")))?;
+    let k = key.to_ascii_lowercase();
+    let space = if k.contains("ras") {
+        Some("right-anterior-superior")
+    } else if k.contains("lps") {
+        Some("left-posterior-superior")
+    } else {
+        None
+    };
+    Ok(Some(Affine {
+        origin: [m[0][3], m[1][3], m[2][3]],
+        spacing,
+        directions,
+        space,
+    }))
 }
 
 /// True when a parsed JSON document looks like a volume sidecar (an object with one of the
@@ -519,13 +540,13 @@ pub fn read(path: &Path) -> Result<Volume> {
             }
         }
     };
-    let affine = affine_origin(o);
+    let affine = if nd == 3 { affine(o)? } else { None };
     let mut spacing = [1.0; 3];
     match get(o, &["spacing", "spacing_xyz", "voxel_size"]) {
         Some((k, s)) => spacing[..nd].copy_from_slice(&numbers(k, s, nd)?),
         None => {
-            if let Some((_, d)) = affine {
-                spacing = d;
+            if let Some(a) = &affine {
+                spacing = a.spacing;
             }
         }
     }
@@ -533,8 +554,8 @@ pub fn read(path: &Path) -> Result<Volume> {
     match get(o, &["origin", "origin_xyz", "offset"]) {
         Some((k, s)) => origin[..nd].copy_from_slice(&numbers(k, s, nd)?),
         None => {
-            if let Some((t, _)) = affine {
-                origin = t;
+            if let Some(a) = &affine {
+                origin = a.origin;
             }
         }
     }
@@ -575,10 +596,11 @@ pub fn read(path: &Path) -> Result<Volume> {
     let samples = decode(&raw, ty, big);
     debug_assert_eq!(samples.len(), n);
     let text = |k: &str| o.get(k).and_then(|v| v.as_str()).map(str::to_string);
+    // explicit `space`/`directions` keys win over what an affine implies
     let mut orientation = crate::volume::Orientation {
-        space: text("space"),
+        space: text("space").or_else(|| affine.as_ref()?.space.map(str::to_string)),
         anatomical: text("anatomical_orientation"),
-        directions: None,
+        directions: affine.as_ref().and_then(|a| a.directions),
     };
     if let Some(d) = o.get("directions") {
         let rows = d
