@@ -2,6 +2,9 @@
 //! real data (`../shared/data` next to the repository, when present) and writes a gallery:
 //! `index.html` with one section per pipeline step, each picture beside its figures, plus the
 //! result files. A section that fails is shown as failed and makes the command exit 1.
+//!
+//! Size (over 800 lines): one function per gallery section of the first pipelines; sections of
+//! newer modules live in their own command files (`pub fn demo_section`).
 
 use crate::report::Report;
 use crate::Failure;

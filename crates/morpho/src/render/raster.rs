@@ -1,6 +1,9 @@
 //! Software rasterizer for triangle meshes: z-buffer, flat or smooth (Phong) shading, two-sided
 //! lighting, scalar colour maps, wireframe overlay, supersampling — no GPU, no window.
 //!
+//! Size (over 800 lines): the rasterizer is one pipeline (camera, clipping, z-buffer, shading,
+//! colour maps, wireframe, supersampling) over one private frame-buffer type.
+//!
 //! Method (standard scan conversion, e.g. Foley et al. 1990, ch. 15–16):
 //! 1. triangles with an index out of range or a non-finite corner are skipped (counted);
 //! 2. the used vertices are normalised by their bounding box (centre → origin, largest half
