@@ -5,6 +5,7 @@
 
 mod cmd;
 mod report;
+mod stream;
 
 use clap::{Parser, Subcommand};
 use report::Report;
@@ -34,6 +35,14 @@ struct Cli {
     /// readers otherwise assume WGS84 longitude/latitude).
     #[arg(long, global = true, value_name = "NAME")]
     crs: Option<String>,
+    /// Format (a file extension: ply, obj, csv, geojson, nrrd, mha, …) of an output named `-`,
+    /// which goes to standard output.
+    #[arg(long, global = true, value_name = "EXT")]
+    format: Option<String>,
+    /// Format of an input named `-` (standard input); without it the format is recognised
+    /// from the first bytes.
+    #[arg(long, global = true, value_name = "EXT")]
+    input_format: Option<String>,
 }
 
 #[derive(Subcommand)]
@@ -134,6 +143,7 @@ fn remove_temporaries_on_signals() {
                 return;
             }
             morpho::io::guard::remove_temporaries();
+            stream::remove_staging();
             // SAFETY: ends the process at once, as the default action of the signal would.
             unsafe { libc::_exit(128 + sig) }
         });
@@ -204,7 +214,15 @@ fn main() -> ExitCode {
     }
     #[cfg(unix)]
     remove_temporaries_on_signals();
-    let cli = match Cli::try_parse() {
+    // `-` (standard input/output) is staged through a temporary folder (see stream.rs)
+    let staged = match stream::stage(std::env::args_os().collect()) {
+        Ok(s) => s,
+        Err(msg) => {
+            eprintln!("error: {}", printable(&msg));
+            return ExitCode::from(2);
+        }
+    };
+    let cli = match Cli::try_parse_from(&staged.args) {
         Ok(c) => c,
         Err(e) => {
             use clap::error::ErrorKind;
@@ -278,7 +296,7 @@ fn main() -> ExitCode {
     }
     if let Err(f) = paths.check() {
         // nothing is written, not even the report: its own path may be the problem
-        eprintln!("error: {}", printable(&f.msg));
+        eprintln!("error: {}", printable(&staged.unmap(&f.msg)));
         return ExitCode::from(f.code);
     }
     drop(paths);
@@ -318,15 +336,22 @@ fn main() -> ExitCode {
     let code = match result {
         Ok(code) => code,
         Err(f) => {
-            eprintln!("error: {}", printable(&f.msg));
-            report.set("error", f.msg.clone());
+            let msg = staged.unmap(&f.msg);
+            eprintln!("error: {}", printable(&msg));
+            report.set("error", msg);
             f.code
         }
     };
     if let Some(path) = &cli.report {
         if let Err(e) = report.save(path) {
-            eprintln!("error: {}", printable(&e.to_string()));
+            eprintln!("error: {}", printable(&staged.unmap(&e.to_string())));
             return ExitCode::from(if code == 0 { 1 } else { code });
+        }
+    }
+    if code == 0 {
+        if let Err(msg) = staged.finish() {
+            eprintln!("error: {}", printable(&msg));
+            return ExitCode::from(1);
         }
     }
     ExitCode::from(code)

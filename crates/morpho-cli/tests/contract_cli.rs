@@ -336,3 +336,107 @@ fn volume_conversion_keeps_the_orientation() {
     let o = morpho(dir.path(), &["convert", "mni.mhd", "-o", "back.nrrd"]);
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+/// `morpho` with `input` on its standard input.
+fn morpho_stdin(dir: &Path, args: &[&str], input: &[u8]) -> Output {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_morpho"))
+        .current_dir(dir)
+        .args(args)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run morpho");
+    child.stdin.take().unwrap().write_all(input).unwrap();
+    child.wait_with_output().unwrap()
+}
+
+/// Issue 17 item 4: `-` is standard input (format from `--input-format` or the first bytes)
+/// and standard output (`--format` required); the result equals the one through files; a
+/// failed command writes nothing to standard output; messages name `-`; nothing is left in
+/// the working folder.
+#[test]
+fn dash_is_standard_input_and_output() {
+    let dir = tempfile::tempdir().unwrap();
+    ring(dir.path());
+    let o = morpho(dir.path(), &["boundary", "p.csv", "-o", "file.csv"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let want = std::fs::read(dir.path().join("file.csv")).unwrap();
+    let csv = std::fs::read(dir.path().join("p.csv")).unwrap();
+    let o = morpho_stdin(
+        dir.path(),
+        &["boundary", "-", "-o", "-", "--format", "csv"],
+        &csv,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(o.stdout, want);
+    // the same rows as whitespace-separated XYZ, recognised without a flag
+    let xyz: String = String::from_utf8(csv.clone())
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.replace(',', " ") + "\n")
+        .collect();
+    let o = morpho_stdin(
+        dir.path(),
+        &["boundary", "-", "-o", "-", "--format", ".CSV"],
+        xyz.as_bytes(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(o.stdout, want);
+    // a mesh through a pipe: PLY in, OFF out, read back by info
+    let o = morpho(dir.path(), &["triangulate", "p.csv", "-o", "t.ply"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = morpho_stdin(
+        dir.path(),
+        &["convert", "-", "-o", "-", "--format", "off"],
+        &std::fs::read(dir.path().join("t.ply")).unwrap(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        o.stdout.starts_with(b"OFF"),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    // the report to standard output
+    let o = morpho(
+        dir.path(),
+        &["boundary", "p.csv", "-o", "r.csv", "--report", "-"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(r["command"], "boundary");
+    // failures: exit 2, `error:` naming `-`, nothing on standard output
+    let o = morpho_stdin(
+        dir.path(),
+        &["boundary", "-", "-o", "-", "--format", "csv"],
+        b"x,y\n1,nan\n",
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).starts_with("error: -:"), "{}", stderr(&o));
+    assert!(o.stdout.is_empty());
+    for args in [
+        &["boundary", "p.csv", "-o", "-"][..],
+        &["boundary", "p.csv", "-o", "x.csv", "--format", "csv"][..],
+        &["boundary", "p.csv", "-o", "-", "--format", "mhd"][..],
+        &[
+            "boundary", "p.csv", "-o", "-", "--report", "-", "--format", "csv",
+        ][..],
+    ] {
+        let o = morpho(dir.path(), args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert!(
+            stderr(&o).starts_with("error: "),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+        assert!(o.stdout.is_empty(), "{args:?}");
+    }
+    let mut left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["file.csv", "p.csv", "r.csv", "t.ply"]);
+}
