@@ -3,15 +3,19 @@
 
 The full dragon scan (437,645 points) is not in ../shared/data; this samples N points uniformly by
 area on the triangles of ../shared/data/meshes/dragon_vrip_res4.obj (seeded, no noise), which has
-the same thin parts. Measured on 2026-12-04 (2 cores, load ~1, main at fa19a6e):
+the same thin parts. Measured on 2026-12-04 (2 cores, main at fa19a6e):
 
-    N        triangulate   boundary   ratio   points off the boundary
-    100000   0.66 s        1.60 s     2.4x    0
-    437645   3.24 s        33.5 s     10.3x   13   (peak RSS 1.9 GB)
+    N        triangulate   boundary   ratio   points off   load
+    100000   0.66 s        1.60 s     2.4x    0            ~1
+    437645   3.24 s        33.5 s     10.3x   13           ~1   (another seed of the same sampler)
+    437645   3.92 s        169 s      43x     8            ~4.7 (this script; peak RSS 1.97 GB)
 
-At 437,645 points the Delaunay constriction locks, the local general engine (depth 4) does not
-free the 13 points, and the global general engine (3.3 M live faces) runs for ~74 s of CPU
-without freeing them either (regions of depth 8 and 16 were tried: 24 s and 33 s, still 13).
+At 437,645 points the Delaunay constriction locks, the local general engine (tetrahedra within 4
+steps of the points off the boundary) does not free them, and the global general engine (3.3 M
+live faces) runs for minutes without freeing them either (regions of depth 8 and 16 were tried:
+24 s and 33 s, no point freed). Profile (perf, DWARF): ~80 % in the general engine, chiefly
+push_all's per-face verdicts (best_plain, combinatorial, unchanged_lock, lock_box) and
+gamma_decide; 8 % page faults.
 
 usage: python3 bench/dragon_points.py N OUT.xyz
 """
