@@ -1071,3 +1071,46 @@ fn non_uniform_axes_are_not_written_and_leave_no_file() {
     let leftovers: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
     assert!(leftovers.is_empty(), "{leftovers:?}");
 }
+
+/// An output named `*.gz` is gzip-compressed (it was plain text under a `.gz` name, which no
+/// gzip tool reads), reads back identically, and volumes refuse `.gz` without writing anything.
+#[test]
+fn gz_outputs_are_compressed() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = morpho::mesh::TriMesh::new(
+        vec![
+            morpho::geom::Point3::new(0.0, 0.0, 0.0),
+            morpho::geom::Point3::new(1.0, 0.0, 0.0),
+            morpho::geom::Point3::new(0.0, 1.0, 0.0),
+            morpho::geom::Point3::new(0.0, 0.0, 1.0),
+        ],
+        vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+    );
+    for name in ["m.ply.gz", "m.OBJ.GZ", "m.off.gz", "m.stl.gz"] {
+        let p = dir.path().join(name);
+        io::write_mesh(&p, &mesh, io::Encoding::default()).unwrap();
+        let bytes = std::fs::read(&p).unwrap();
+        assert_eq!(&bytes[..2], &[0x1f, 0x8b], "{name}: not gzip");
+        let back = io::read_mesh(&p).unwrap();
+        if name.ends_with("stl.gz") {
+            // STL stores triangle corners; reading welds them in order of appearance
+            assert_eq!(back.triangles.len(), 4);
+            assert_eq!(back.signed_volume(), mesh.signed_volume());
+        } else {
+            assert_eq!(back.triangles, mesh.triangles, "{name}");
+            assert_eq!(back.positions, mesh.positions, "{name}");
+        }
+    }
+    let v = test_volume(DType::U8);
+    for name in ["v.nrrd.gz", "v.mhd.gz", "v.json.gz"] {
+        let p = dir.path().join(name);
+        let e = io::write_volume(&p, &v).unwrap_err().to_string();
+        assert!(e.contains("not written as .gz"), "{e}");
+    }
+    let mut left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["m.OBJ.GZ", "m.off.gz", "m.ply.gz", "m.stl.gz"]);
+}

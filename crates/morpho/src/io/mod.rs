@@ -231,7 +231,7 @@ fn write_atomic_inner(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<
                 .open(path)
                 .map_err(|e| Error::io(path, e))?;
             let mut w = std::io::BufWriter::new(f);
-            write(&mut w)?;
+            write_maybe_gzip(path, &mut w, write)?;
             w.flush().map_err(|e| Error::io(path, e))?;
             return Ok(());
         }
@@ -250,6 +250,25 @@ fn write_atomic_inner(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<
     Ok(())
 }
 
+/// Runs `write` onto `w`, through a gzip encoder when `path` ends in `.gz` (any case): what a
+/// reader gunzips by that name is written compressed (before, `x.ply.gz` was plain PLY).
+fn write_maybe_gzip(
+    path: &Path,
+    w: &mut dyn Write,
+    write: impl FnOnce(&mut dyn Write) -> Result<()>,
+) -> Result<()> {
+    let gz = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gz"));
+    if !gz {
+        return write(w);
+    }
+    let mut enc = flate2::write::GzEncoder::new(w, flate2::Compression::new(6));
+    write(&mut enc)?;
+    enc.finish().map_err(|e| Error::io(path, e))?;
+    Ok(())
+}
+
 /// The body of [`write_atomic`] once the temporary file exists: write, flush, sync, rename.
 fn fill_and_persist(
     mut tmp: tempfile::NamedTempFile,
@@ -259,7 +278,7 @@ fn fill_and_persist(
 ) -> Result<()> {
     {
         let mut w = std::io::BufWriter::new(tmp.as_file_mut());
-        write(&mut w)?;
+        write_maybe_gzip(path, &mut w, write)?;
         w.flush().map_err(|e| Error::io(path, e))?;
     }
     tmp.as_file().sync_all().ok();
@@ -690,6 +709,16 @@ pub fn read_volume(path: &Path) -> Result<Volume> {
 /// Writes a volume as NRRD (gzip-encoded, attached), MetaImage (`.mhd` + `.raw`) or JSON sidecar
 /// (`.json` + `.raw`).
 pub fn write_volume(path: &Path, v: &Volume) -> Result<()> {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gz"))
+    {
+        // volume headers are read as text; NRRD compresses its own data (gzip encoding)
+        return Err(Error::unsupported(
+            "a volume is not written as .gz: .nrrd is gzip-encoded already (or use .mhd/.json with a .raw file)",
+        )
+        .with_path(path));
+    }
     let fmt = Format::of(path)?;
     match fmt {
         Format::Nrrd => nrrd::write(path, v),
