@@ -440,3 +440,60 @@ fn dash_is_standard_input_and_output() {
     left.sort();
     assert_eq!(left, ["file.csv", "p.csv", "r.csv", "t.ply"]);
 }
+
+/// Tetrahedra are never written silently as something else: `triangulate --tets -o x.obj`
+/// (the hull was written) and `boundary --interior x.obj` (JSON was written whatever the
+/// extension) are refused; `--interior x.ply` is a tetrahedral PLY.
+#[test]
+fn tetrahedra_are_written_as_tetrahedra_or_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut s = String::new();
+    for i in 0..60 {
+        let (t, p) = (
+            i as f64 * 2.399963,
+            ((i as f64 + 0.5) / 60.0 * 2.0 - 1.0).acos(),
+        );
+        s.push_str(&format!(
+            "{} {} {}\n",
+            p.sin() * t.cos(),
+            p.sin() * t.sin(),
+            p.cos()
+        ));
+    }
+    s.push_str("0 0 0.1\n");
+    std::fs::write(dir.path().join("s.xyz"), s).unwrap();
+    for args in [
+        &["triangulate", "s.xyz", "--tets", "-o", "t.obj"][..],
+        &["triangulate", "s.xyz", "--tets", "-o", "t.stl"][..],
+        &["boundary", "s.xyz", "-o", "b.ply", "--interior", "i.obj"][..],
+    ] {
+        let o = morpho(dir.path(), args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(
+            stderr(&o).starts_with("error: "),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+    }
+    assert!(
+        !dir.path().join("b.ply").exists(),
+        "refused before anything was written"
+    );
+    let o = morpho(
+        dir.path(),
+        &[
+            "boundary",
+            "s.xyz",
+            "-o",
+            "b.ply",
+            "--interior",
+            "i.ply",
+            "--until",
+            "locked",
+        ],
+    );
+    assert!(o.status.code().is_some_and(|c| c < 2), "{}", stderr(&o));
+    let head = std::fs::read(dir.path().join("i.ply")).unwrap();
+    let head = String::from_utf8_lossy(&head[..head.len().min(400)]).into_owned();
+    assert!(head.contains("element tetra"), "{head}");
+}

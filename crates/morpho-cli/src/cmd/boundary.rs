@@ -7,7 +7,9 @@
 //! `volume`, `c_used`, `added_triangles`; `--c auto|C` as in 2D (auto: Delaunay constriction, then
 //! the general engine with γ([-1,1],[c,1]) triangles, c = −0.1 … −1, when it locks);
 //! `--interior FILE.json` writes `{"tetrahedra":[…],"volume":V}` (empty, with a `"note"` and a
-//! warning on stderr, when the general engine ran).
+//! warning on stderr, when the general engine ran); `.ply` (a `tetra` element), `.vtu`, `.vtk`
+//! write the same tetrahedra as a tetrahedral mesh; other extensions are refused before anything
+//! is computed.
 //! 3D methods: gamma and min-area-change (the key of the Delaunay constriction; the general
 //! engine after a lock always uses the γ-indicator) and voronoi-skeleton (the shortest tree of
 //! Delaunay tetrahedra grown from up to `--seeds` seeds, `--interior` = its tetrahedra, report
@@ -30,7 +32,7 @@ use morpho::io;
 use morpho::render;
 use morpho::Error;
 use serde_json::json;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -211,6 +213,15 @@ fn run_3d(
             args.output.display()
         )));
     }
+    let interior_ext = args.interior.as_deref().map(crate::cmd::extension);
+    if let Some(e) = &interior_ext {
+        if !matches!(e.as_str(), "json" | "ply" | "vtu" | "vtk") {
+            return Err(Failure::usage(format!(
+                "{}: the 3D interior is tetrahedra: write it as .json, .ply (tetra element), .vtu or .vtk",
+                args.interior.as_deref().unwrap_or(Path::new("")).display()
+            )));
+        }
+    }
     let b = report.time("compute", || boundary_3d(&pts, opts).map_err(Error::from))?;
     let vertices: std::collections::HashSet<u32> = b.triangles.iter().flatten().copied().collect();
     report.set("method", opts.method.name());
@@ -239,11 +250,19 @@ fn run_3d(
     report.time("write", || -> morpho::Result<()> {
         io::write_boundary_3d(&args.output, &pts, &b)?;
         if let Some(i) = &args.interior {
-            // JSON whatever the extension (`{"tetrahedra", "volume"}`, see the module docs)
             if let Some(note) = io::json::interior_3d_note(&b) {
                 eprintln!("warning: boundary: {note}");
             }
-            io::write_atomic(i, |w| io::json::write_interior_3d(w, &b))?;
+            if interior_ext.as_deref() == Some("json") {
+                // `{"tetrahedra", "volume"}`, see the module docs
+                io::write_atomic(i, |w| io::json::write_interior_3d(w, &b))?;
+            } else {
+                let tets = morpho::mesh::TetMesh {
+                    positions: pts.clone(),
+                    tets: b.interior.clone(),
+                };
+                io::write_tets(i, &tets, io::Encoding::BinaryLittleEndian)?;
+            }
         }
         Ok(())
     })?;

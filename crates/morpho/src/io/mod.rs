@@ -240,7 +240,24 @@ fn write_atomic_inner(path: &Path, write: impl FnOnce(&mut dyn Write) -> Result<
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let tmp = guard::create_temporary(dir).map_err(|e| Error::io(path, e))?;
+    let tmp = guard::create_temporary(dir).map_err(|e| {
+        // tempfile names its own random file in the message; say what the user can act on
+        let e = match e.kind() {
+            std::io::ErrorKind::NotFound => std::io::Error::new(
+                e.kind(),
+                format!("the folder {} does not exist", dir.display()),
+            ),
+            std::io::ErrorKind::PermissionDenied => std::io::Error::new(
+                e.kind(),
+                format!("no permission to create files in {}", dir.display()),
+            ),
+            _ => std::io::Error::new(
+                e.kind(),
+                format!("cannot create a file in {}", dir.display()),
+            ),
+        };
+        Error::io(path, e)
+    })?;
     let tmp_path = tmp.path().to_path_buf();
     let result = fill_and_persist(tmp, &target, path, write);
     // renamed onto the target, or removed by the temporary's drop on failure
@@ -519,6 +536,10 @@ pub fn write_triangulation_3d(path: &Path, t: &json::Triangulation3, tets: bool)
             },
             Encoding::BinaryLittleEndian,
         ),
+        f if tets && is_mesh_format(f) => Err(Error::unsupported(
+            "--tets writes tetrahedra: use .ply (tetra element), .vtu, .vtk or .json (this format holds triangles only)",
+        )
+        .with_path(path)),
         f if is_mesh_format(f) => write_mesh(
             path,
             &TriMesh::new(t.points.to_vec(), t.hull.to_vec()),
