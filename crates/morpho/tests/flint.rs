@@ -479,3 +479,32 @@ fn baselines_through_the_same_criteria() {
         }
     }
 }
+
+/// Throughput print (not an assertion; run with `--ignored --nocapture`): single-thread
+/// hierarchical point-in-polygon on the Great Britain coast, 10⁶ bbox queries.
+#[test]
+#[ignore]
+fn throughput_print() {
+    let Some(p) = ring("coast_great_britain_ne10m.csv") else {
+        return;
+    };
+    let t = FlintTree2::new(&p, true).unwrap();
+    let mut r = Rng::new(1);
+    let qs = queries(&p, &mut r, 1_000_000);
+    let t0 = std::time::Instant::now();
+    let mut inside = 0;
+    for q in &qs {
+        inside += (t.contains(*q).unwrap() == Containment::Inside) as usize;
+    }
+    let s = t0.elapsed().as_secs_f64();
+    let t1 = std::time::Instant::now();
+    let b = t.contains_batch(&qs).unwrap();
+    let sb = t1.elapsed().as_secs_f64();
+    println!(
+        "{} queries, {inside} inside: {:.2} M/s one thread, {:.2} M/s batch ({})",
+        qs.len(),
+        qs.len() as f64 / s / 1e6,
+        qs.len() as f64 / sb / 1e6,
+        b.len()
+    );
+}

@@ -138,8 +138,8 @@ impl FlintTree2 {
     /// let t = FlintTree2::new(&p, true).unwrap();
     /// let a = t.approximate(Target::Level(2)).unwrap();
     /// assert!(a.edges() <= 8 && a.simple == Some(true));
-    /// // e2 ≤ e5 (up to rounding: on a circle the width is the arc's sagitta ≥ e2)
-    /// assert!(a.errors.e2 <= a.errors.e1 && a.errors.e2 <= a.errors.e5 + 1e-12);
+    /// // e2 ≤ e1 and e2 ≤ e5, up to rounding (distances are constructed in f64)
+    /// assert!(a.errors.e2 <= a.errors.e1 + 1e-12 && a.errors.e2 <= a.errors.e5 + 1e-12);
     /// ```
     pub fn approximate(&self, target: Target) -> Result<Approximation, FlintError> {
         let pos = self.select(target)?;
