@@ -130,6 +130,15 @@ pub enum Error {
         #[source]
         source: crate::boundary::BoundaryError,
     },
+    /// A refusal of [`crate::flint`] (`path`: the input file when known).
+    #[error("{}{source}", prefix(path))]
+    Flint {
+        /// The input file, empty when unknown.
+        path: String,
+        /// The refusal.
+        #[source]
+        source: crate::flint::FlintError,
+    },
 }
 
 /// `From<FamilyError> for Error`: the family's variant with an empty path (filled by
@@ -154,6 +163,7 @@ from_family! {
     crate::mesh::MeshError => Mesh,
     crate::render::RenderError => Render,
     crate::boundary::BoundaryError => Boundary,
+    crate::flint::FlintError => Flint,
 }
 
 impl From<crate::contour::ContourError> for Error {
@@ -246,7 +256,8 @@ impl Error {
             | Error::Contour { path, .. }
             | Error::Mesh { path, .. }
             | Error::Render { path, .. }
-            | Error::Boundary { path, .. } => {
+            | Error::Boundary { path, .. }
+            | Error::Flint { path, .. } => {
                 if path.is_empty() {
                     *path = name;
                 }

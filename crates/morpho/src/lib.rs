@@ -30,6 +30,7 @@ pub mod boundary;
 pub mod contour;
 pub mod delaunay;
 pub mod error;
+pub mod flint;
 pub mod geom;
 pub mod graphs;
 pub mod io;

@@ -1,0 +1,96 @@
+//! Flintstones: hierarchical approximation and localization of polygons and polylines
+//! (Veltkamp 1992, ch. 6–7; paper §4; reading notes part A).
+//!
+//! - [`Flintstone`], [`SideDisc`], [`StoneKind`]: discs with signed radius, half-planes and the
+//!   ± operator (Defs. 7.1–7.4), exact membership;
+//! - [`Criteria`], [`edge_criteria`], [`approximation_criteria`]: the error criteria e1–e5 (§6.2);
+//! - [`FlintTree2`]: the 2D flintstone tree (Alg. 7.1) of a simple polygon or open polyline;
+//! - [`Target`], [`Approximation`]: level-ℓ, adaptive-ε and edge-count approximations (§7.2.3);
+//! - [`FlintTree2::contains`], [`intersect`]: hierarchical point-in-polygon and boundary
+//!   intersection (§7.4, Lemma 6.1), with the brute-force oracles [`contains_brute`] and
+//!   [`intersect_brute`];
+//! - [`Baseline`], [`baseline`]: Douglas–Peucker (iterative end-point fit), strip tree, BLG tree
+//!   and arc tree (§6.3) through the same criteria.
+//!
+//! Not built yet: the 3D tree of closed meshes (Alg. 7.2) and the 3D baselines.
+
+mod approx;
+mod baselines;
+mod criteria;
+mod disc;
+mod query;
+mod tree2;
+
+pub use approx::{Approximation, Target};
+pub use baselines::{baseline, Baseline};
+pub use criteria::{approximation_criteria, edge_criteria, Criteria};
+pub use disc::{Flintstone, SideDisc, StoneKind};
+pub use query::{contains_brute, intersect, intersect_brute, Containment, Crossing};
+pub use tree2::{FlintNode, FlintRoot, FlintTree2};
+
+/// A refusal of the flintstone constructions and queries, naming the offending input.
+///
+/// ```
+/// use morpho::flint::{FlintError, FlintTree2};
+/// use morpho::geom::Point2;
+/// let bow = [(0.0, 0.0), (1.0, 1.0), (1.0, 0.0), (0.0, 1.0)].map(|(x, y)| Point2::new(x, y));
+/// let e = FlintTree2::new(&bow, true).unwrap_err();
+/// assert!(matches!(e, FlintError::NotSimple { .. }));
+/// assert!(e.to_string().contains("edge 0 (vertices 0–1)"), "{e}");
+/// ```
+#[non_exhaustive]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FlintError {
+    /// Fewer than three vertices.
+    #[error("flint: {n} vertices, at least 3 are needed")]
+    TooFewVertices {
+        /// The number given.
+        n: usize,
+    },
+    /// A vertex with a NaN or infinite coordinate.
+    #[error("flint: vertex {index} has a non-finite coordinate")]
+    NonFinite {
+        /// Input index of the vertex.
+        index: usize,
+    },
+    /// All vertices coincide (no chord exists).
+    #[error("flint: all vertices coincide")]
+    AllCoincident,
+    /// The polygon is not simple: two vertices coincide or two edges meet (exact test).
+    #[error("flint: polygon is not simple: {}", not_simple(*first, *second, *repeated, *n))]
+    NotSimple {
+        /// First vertex / edge (edge k joins vertex k to k+1).
+        first: usize,
+        /// Second vertex / edge.
+        second: usize,
+        /// True when two vertices coincide, false when two edges meet.
+        repeated: bool,
+        /// Number of vertices (for naming the closing edge).
+        n: usize,
+    },
+    /// A query that needs a closed polygon on an open polyline.
+    #[error("flint: point-in-polygon needs a closed polygon, the input is an open polyline")]
+    NotClosed,
+    /// A query point with a NaN or infinite coordinate.
+    #[error("flint: a query point has a non-finite coordinate")]
+    NonFiniteQuery,
+    /// An approximation target out of range.
+    #[error("flint: invalid approximation target: {0}")]
+    BadTarget(String),
+}
+
+fn not_simple(i: usize, j: usize, repeated: bool, n: usize) -> String {
+    if repeated {
+        format!("vertices {i} and {j} coincide")
+    } else {
+        let e = |k: usize| format!("edge {k} (vertices {k}–{})", (k + 1) % n.max(1));
+        format!("{} meets {}", e(i), e(j))
+    }
+}
+
+impl FlintError {
+    /// Every refusal is caused by the input (CLI exit code 2).
+    pub fn is_input_error(&self) -> bool {
+        true
+    }
+}
