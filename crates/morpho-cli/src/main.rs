@@ -65,6 +65,8 @@ enum Command {
     Isosurface(cmd::isosurface::Args),
     /// External contour of thresholded samples (regions where a rating exceeds a threshold).
     Contour(cmd::contour::Args),
+    /// Flintstone trees of polygons and polylines: build, approximate, point-in-polygon.
+    Flint(cmd::flint::Args),
 }
 
 /// What a command returns on failure: the error and the exit code it deserves.
@@ -156,7 +158,7 @@ fn remove_temporaries_on_signals() {
     }
 }
 
-const SUBCOMMANDS: [&str; 9] = [
+const SUBCOMMANDS: [&str; 10] = [
     "demo",
     "info",
     "convert",
@@ -166,6 +168,7 @@ const SUBCOMMANDS: [&str; 9] = [
     "graph",
     "isosurface",
     "contour",
+    "flint",
 ];
 
 /// clap's usage error on one line: its first paragraph (without the `error: ` clap adds), the
@@ -251,6 +254,7 @@ fn main() -> ExitCode {
         Command::Graph(_) => "graph",
         Command::Boundary(_) => "boundary",
         Command::Contour(_) => "contour",
+        Command::Flint(_) => "flint",
     };
     // every path named on the command line, checked before anything is read or written
     let mut paths = cmd::Paths::default();
@@ -289,6 +293,11 @@ fn main() -> ExitCode {
         Command::Contour(a) => {
             paths.inputs.push(&a.input);
             paths.output(&a.output);
+        }
+        Command::Flint(a) => {
+            let (ins, out) = a.paths();
+            paths.inputs.extend(ins);
+            paths.output(out);
         }
     }
     if let Some(r) = &cli.report {
@@ -332,6 +341,7 @@ fn main() -> ExitCode {
         Command::Graph(a) => cmd::graph::run(a, &mut report),
         Command::Boundary(a) => cmd::boundary::run(a, &mut report),
         Command::Contour(a) => cmd::contour::run(a, &mut report),
+        Command::Flint(a) => cmd::flint::run(a, &mut report),
     };
     let code = match result {
         Ok(code) => code,

@@ -7,6 +7,7 @@ pub mod boundary;
 pub mod contour;
 pub mod convert;
 pub mod demo;
+pub mod flint;
 pub mod graph;
 pub mod info;
 pub mod isosurface;
