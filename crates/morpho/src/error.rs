@@ -139,6 +139,15 @@ pub enum Error {
         #[source]
         source: crate::flint::FlintError,
     },
+    /// A refusal of [`crate::curvature`] (`path`: the input file when known).
+    #[error("{}{source}", prefix(path))]
+    Curvature {
+        /// The input file, empty when unknown.
+        path: String,
+        /// The refusal.
+        #[source]
+        source: crate::curvature::CurvatureError,
+    },
 }
 
 /// `From<FamilyError> for Error`: the family's variant with an empty path (filled by
@@ -164,6 +173,7 @@ from_family! {
     crate::render::RenderError => Render,
     crate::boundary::BoundaryError => Boundary,
     crate::flint::FlintError => Flint,
+    crate::curvature::CurvatureError => Curvature,
 }
 
 impl From<crate::contour::ContourError> for Error {
@@ -257,7 +267,8 @@ impl Error {
             | Error::Mesh { path, .. }
             | Error::Render { path, .. }
             | Error::Boundary { path, .. }
-            | Error::Flint { path, .. } => {
+            | Error::Flint { path, .. }
+            | Error::Curvature { path, .. } => {
                 if path.is_empty() {
                     *path = name;
                 }

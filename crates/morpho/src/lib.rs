@@ -28,6 +28,7 @@
 
 pub mod boundary;
 pub mod contour;
+pub mod curvature;
 pub mod delaunay;
 pub mod error;
 pub mod flint;

@@ -1,0 +1,329 @@
+//! Principal curvatures of a triangle mesh by the osculating-paraboloid fit over the
+//! platelet, Hamann 1991, §4.2 steps (i)–(viii) (notes C.1, C.2).
+//!
+//! For each vertex `y₀` with unit normal `n` and platelet points `y₁..yₘ` (the 1-ring; the
+//! k-ring with [`SurfaceOptions::ring`] = k):
+//! 1. tangent plane through `y₀` with normal `n`, orthonormal tangent basis `b₁, b₂ = n × b₁`
+//!    (any basis gives the same curvatures, H Thm 4.2; we take `b₁ ∝ n × e_k` with `e_k` the
+//!    axis least aligned with `n`, the numerically stable choice, instead of the text's
+//!    division by `n^x`),
+//! 2. heights `d_j = n·(y_j − y₀)` and tangent coordinates `u_j, v_j` of the projections,
+//! 3. least squares `½(c20 u² + 2 c11 uv + c02 v²) = d_j` (H (4.28)–(4.30)). The matrix of
+//!    (4.28) is printed without the ½, so its literal solution must be doubled (notes C.2); we
+//!    use the rows `(u²/2, uv, v²/2)`, which give `c` directly,
+//! 4. κ₁ ≤ κ₂ are the eigenvalues of `[[c20, c11], [c11, c02]]` (H (4.31)); their
+//!    eigenvectors, mapped back through `b₁, b₂`, are the principal directions; `H = (κ₁+κ₂)/2`,
+//!    `K = κ₁κ₂`, and the absolute curvature `A = |κ₁| + |κ₂|` (H Def. 5.10).
+//!
+//! **Order and sign.** κ₁ is the algebraically smaller curvature (notes C.4: the column pattern
+//! of Table 4.1 matches this order; H (5.39) writes the opposite). Curvatures are measured
+//! along `n`: a surface bending towards its normal has positive curvature. With outward
+//! normals a sphere of radius R therefore has κ₁ = κ₂ = H = −1/R (the sign of the thesis's
+//! graph convention, H (4.15)); reversing the orientation (or the normals) flips κ₁, κ₂, H and
+//! the directions' roles, and keeps K.
+//!
+//! **Undetermined vertices** (NaN in every output, a [`VertexStatus`] other than `Ok`, and
+//! counted in [`SurfaceCurvature::undetermined`]): a vertex in no triangle, a vertex without a
+//! normal (zero or non-finite), a platelet of fewer than 3 points, and a platelet whose normal
+//! matrix has `cond(UᵀU) > 1e10` (notes C.2). The condition number is invariant under scaling,
+//! so the rule is scale-free. On the 51×51 grid of Table 4.1 exactly the two corners in one
+//! triangle are undetermined.
+//!
+//! **Other inputs.** Open boundaries are fine (one-sided platelets; larger errors there, as in
+//! Table 4.1). Zero-area triangles add their vertices to the platelet and nothing to estimated
+//! normals. Non-manifold vertices are fitted over all the triangles that contain them, as the
+//! platelet definition (H Def. 4.9) says; the result is meaningful only if the normal is. A
+//! non-finite coordinate is refused ([`CurvatureError::Mesh`]).
+//!
+//! Cost: O(V·m) for platelets of m points; vertices are evaluated in parallel (rayon); the
+//! result does not depend on the number of threads.
+
+use super::error::CurvatureError;
+use super::fit::Normal;
+use crate::geom::{vec, Vector3};
+use crate::mesh::{vertex_normals, NormalWeighting, TriMesh};
+use rayon::prelude::*;
+
+/// Where the vertex normals of the fit come from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NormalSource {
+    /// Estimated from the triangles with one of the weightings of V §9.4.
+    Estimated(NormalWeighting),
+    /// The mesh's own per-vertex normals ([`TriMesh::normals`], PLY `nx ny nz`).
+    File,
+    /// Normals given by the caller, one per vertex (need not be unit length).
+    Given(Vec<Vector3>),
+}
+
+impl Default for NormalSource {
+    fn default() -> Self {
+        NormalSource::Estimated(NormalWeighting::Area)
+    }
+}
+
+/// Options of [`surface_curvature`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceOptions {
+    /// The normals of the tangent planes.
+    pub normals: NormalSource,
+    /// The platelet: the vertices within this many edges (1 = the thesis's 1-ring).
+    pub ring: usize,
+}
+
+impl Default for SurfaceOptions {
+    fn default() -> Self {
+        SurfaceOptions {
+            normals: NormalSource::default(),
+            ring: 1,
+        }
+    }
+}
+
+/// Why a vertex has no curvature (or `Ok`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VertexStatus {
+    /// The fit is determined.
+    Ok,
+    /// The vertex is in no triangle.
+    Isolated,
+    /// The vertex has no usable normal (zero or non-finite).
+    NoNormal,
+    /// Fewer than 3 platelet points besides the vertex.
+    TooFewPoints,
+    /// `cond(UᵀU) > 1e10`: the platelet's projection cannot determine the paraboloid.
+    IllConditioned,
+}
+
+/// Per-vertex curvatures of a mesh (NaN where [`SurfaceCurvature::status`] is not `Ok`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SurfaceCurvature {
+    /// Smaller principal curvature κ₁.
+    pub k1: Vec<f64>,
+    /// Larger principal curvature κ₂ (κ₁ ≤ κ₂).
+    pub k2: Vec<f64>,
+    /// Mean curvature (κ₁+κ₂)/2.
+    pub h: Vec<f64>,
+    /// Gaussian curvature κ₁κ₂.
+    pub k: Vec<f64>,
+    /// Absolute curvature |κ₁|+|κ₂| (H Def. 5.10).
+    pub a: Vec<f64>,
+    /// Unit principal direction of κ₁ (tangent to the surface).
+    pub dir1: Vec<Vector3>,
+    /// Unit principal direction of κ₂ (`normal × dir1`).
+    pub dir2: Vec<Vector3>,
+    /// The unit normals the fit used (zero where there was none).
+    pub normals: Vec<Vector3>,
+    /// Why each vertex is (un)determined.
+    pub status: Vec<VertexStatus>,
+    /// Number of vertices whose status is not `Ok`.
+    pub undetermined: usize,
+}
+
+/// Condition-number bound of the 3×3 normal matrix (notes C.2).
+pub const SURFACE_MAX_COND: f64 = 1e10;
+
+/// Curvatures of every vertex of `mesh` (H §4.2; the module doc gives the conventions).
+///
+/// ```
+/// use morpho::curvature::{surface_curvature, SurfaceOptions};
+/// use morpho::mesh::generate;
+/// let sphere = generate::icosphere(4); // unit sphere, outward
+/// let c = surface_curvature(&sphere, &SurfaceOptions::default()).unwrap();
+/// assert_eq!(c.undetermined, 0);
+/// assert!(c.h.iter().all(|h| (h + 1.0).abs() < 0.05)); // H = −1/R with outward normals
+/// ```
+pub fn surface_curvature(
+    mesh: &TriMesh,
+    opts: &SurfaceOptions,
+) -> Result<SurfaceCurvature, CurvatureError> {
+    mesh.validate()?;
+    if opts.ring == 0 {
+        return Err(CurvatureError::ZeroRing);
+    }
+    let n = mesh.positions.len();
+    let normals: Vec<Vector3> = match &opts.normals {
+        NormalSource::Estimated(w) => vertex_normals(mesh, *w),
+        NormalSource::File => mesh.normals.clone().ok_or(CurvatureError::NoFileNormals)?,
+        NormalSource::Given(g) => g.clone(),
+    };
+    if normals.len() != n {
+        return Err(CurvatureError::NormalCount {
+            given: normals.len(),
+            vertices: n,
+        });
+    }
+    let adj = Adjacency::new(mesh);
+    let pos: Vec<[f64; 3]> = mesh.positions.iter().map(|p| (*p).into()).collect();
+    let per: Vec<Vertex> = (0..n)
+        .into_par_iter()
+        .map_init(Vec::new, |ring, v| {
+            adj.ring(v, opts.ring, ring);
+            fit_vertex(&pos, v, ring, normals[v].into())
+        })
+        .collect();
+    let mut out = SurfaceCurvature::default();
+    for r in per {
+        out.undetermined += usize::from(r.status != VertexStatus::Ok);
+        out.k1.push(r.k[0]);
+        out.k2.push(r.k[1]);
+        out.h.push(0.5 * (r.k[0] + r.k[1]));
+        out.k.push(r.k[0] * r.k[1]);
+        out.a.push(r.k[0].abs() + r.k[1].abs());
+        out.dir1.push(r.d[0].into());
+        out.dir2.push(r.d[1].into());
+        out.normals.push(r.n.into());
+        out.status.push(r.status);
+    }
+    Ok(out)
+}
+
+/// The result of one vertex.
+struct Vertex {
+    k: [f64; 2],
+    d: [[f64; 3]; 2],
+    n: [f64; 3],
+    status: VertexStatus,
+}
+
+impl Vertex {
+    fn undetermined(n: [f64; 3], status: VertexStatus) -> Self {
+        Vertex {
+            k: [f64::NAN; 2],
+            d: [[f64::NAN; 3]; 2],
+            n,
+            status,
+        }
+    }
+}
+
+/// Steps (i)–(viii) at vertex `v` with platelet `ring` (without `v`) and normal `nrm`.
+fn fit_vertex(pos: &[[f64; 3]], v: usize, ring: &[u32], nrm: [f64; 3]) -> Vertex {
+    let len = vec::norm(nrm);
+    if len.is_nan() || len <= 0.0 || len.is_infinite() {
+        let status = if ring.is_empty() {
+            VertexStatus::Isolated
+        } else {
+            VertexStatus::NoNormal
+        };
+        return Vertex::undetermined([0.0; 3], status);
+    }
+    let n = vec::scale(nrm, 1.0 / len);
+    if ring.is_empty() {
+        return Vertex::undetermined(n, VertexStatus::Isolated);
+    }
+    if ring.len() < 3 {
+        return Vertex::undetermined(n, VertexStatus::TooFewPoints);
+    }
+    let (b1, b2) = tangent_basis(n);
+    let y0 = pos[v];
+    let mut ne = Normal::<3>::new();
+    for &j in ring {
+        let w = vec::sub(pos[j as usize], y0);
+        let d = vec::dot(n, w);
+        // the projection's offset from y₀ is w − d n, orthogonal to n: its b-coordinates are
+        // those of w
+        let (u, t) = (vec::dot(w, b1), vec::dot(w, b2));
+        ne.add([0.5 * u * u, u * t, 0.5 * t * t], d);
+    }
+    let Some(c) = ne.solve(SURFACE_MAX_COND) else {
+        return Vertex::undetermined(n, VertexStatus::IllConditioned);
+    };
+    let (k, e) = sym2_eigen(c[0], c[1], c[2]);
+    let d1 = vec::add_scaled(vec::scale(b1, e[0]), e[1], b2);
+    let d2 = vec::cross(n, d1);
+    Vertex {
+        k,
+        d: [d1, d2],
+        n,
+        status: VertexStatus::Ok,
+    }
+}
+
+/// Orthonormal `b₁, b₂` with `(b₁, b₂, n)` right-handed, `b₁ ∝ n × e_k` for the axis `e_k`
+/// least aligned with `n`.
+pub(crate) fn tangent_basis(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
+    let a = n.map(f64::abs);
+    let k = if a[0] <= a[1] && a[0] <= a[2] {
+        0
+    } else if a[1] <= a[2] {
+        1
+    } else {
+        2
+    };
+    let mut e = [0.0; 3];
+    e[k] = 1.0;
+    let c = vec::cross(n, e);
+    let b1 = vec::scale(c, 1.0 / vec::norm(c));
+    (b1, vec::cross(n, b1))
+}
+
+/// Eigenvalues `λ₁ ≤ λ₂` of `[[a, b], [b, c]]` and the unit eigenvector of λ₁ (closed form).
+fn sym2_eigen(a: f64, b: f64, c: f64) -> ([f64; 2], [f64; 2]) {
+    let m = 0.5 * (a + c);
+    let r = (0.5 * (a - c)).hypot(b);
+    let (l1, l2) = (m - r, m + r);
+    // (A − λ₁I) has rows (a−λ₁, b) and (b, c−λ₁); an eigenvector is orthogonal to both: take
+    // the perpendicular of the longer row
+    let (p, q) = ([b, l1 - a], [l1 - c, b]);
+    let e = if vec::norm2(p) >= vec::norm2(q) { p } else { q };
+    let len = vec::norm(e);
+    let e = if len > 0.0 {
+        vec::scale(e, 1.0 / len)
+    } else {
+        [1.0, 0.0]
+    };
+    ([l1, l2], e)
+}
+
+/// Vertex adjacency (unique neighbours) in compressed rows.
+struct Adjacency {
+    start: Vec<usize>,
+    nb: Vec<u32>,
+}
+
+impl Adjacency {
+    fn new(mesh: &TriMesh) -> Self {
+        let n = mesh.positions.len();
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(mesh.triangles.len() * 6);
+        for &[a, b, c] in &mesh.triangles {
+            for (x, y) in [(a, b), (b, c), (c, a)] {
+                if x != y {
+                    pairs.push((x, y));
+                    pairs.push((y, x));
+                }
+            }
+        }
+        pairs.par_sort_unstable();
+        pairs.dedup();
+        let mut start = vec![0usize; n + 1];
+        for &(x, _) in &pairs {
+            start[x as usize + 1] += 1;
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let nb = pairs.into_iter().map(|(_, y)| y).collect();
+        Adjacency { start, nb }
+    }
+    fn of(&self, v: usize) -> &[u32] {
+        &self.nb[self.start[v]..self.start[v + 1]]
+    }
+    /// The vertices within `k` edges of `v`, without `v`, into `out` (breadth-first).
+    fn ring(&self, v: usize, k: usize, out: &mut Vec<u32>) {
+        out.clear();
+        out.extend_from_slice(self.of(v));
+        let mut level = 0..out.len();
+        for _ in 1..k {
+            let end = out.len();
+            for i in level.clone() {
+                let w = out[i] as usize;
+                for &x in self.of(w) {
+                    if x as usize != v && !out.contains(&x) {
+                        out.push(x);
+                    }
+                }
+            }
+            level = end..out.len();
+        }
+    }
+}
