@@ -67,6 +67,8 @@ enum Command {
     Contour(cmd::contour::Args),
     /// Flintstone trees of polygons and polylines: build, approximate, point-in-polygon.
     Flint(cmd::flint::Args),
+    /// Curvature of a triangle mesh (k1, k2, H, K, A per vertex) or of a volume's function.
+    Curvature(cmd::curvature::Args),
 }
 
 /// What a command returns on failure: the error and the exit code it deserves.
@@ -158,7 +160,7 @@ fn remove_temporaries_on_signals() {
     }
 }
 
-const SUBCOMMANDS: [&str; 10] = [
+const SUBCOMMANDS: [&str; 11] = [
     "demo",
     "info",
     "convert",
@@ -169,6 +171,7 @@ const SUBCOMMANDS: [&str; 10] = [
     "isosurface",
     "contour",
     "flint",
+    "curvature",
 ];
 
 /// clap's usage error on one line: its first paragraph (without the `error: ` clap adds), the
@@ -255,6 +258,7 @@ fn main() -> ExitCode {
         Command::Boundary(_) => "boundary",
         Command::Contour(_) => "contour",
         Command::Flint(_) => "flint",
+        Command::Curvature(_) => "curvature",
     };
     // every path named on the command line, checked before anything is read or written
     let mut paths = cmd::Paths::default();
@@ -293,6 +297,12 @@ fn main() -> ExitCode {
         Command::Contour(a) => {
             paths.inputs.push(&a.input);
             paths.output(&a.output);
+        }
+        Command::Curvature(a) => {
+            paths.inputs.push(&a.input);
+            if !a.output.is_dir() {
+                paths.output(&a.output);
+            }
         }
         Command::Flint(a) => {
             let (ins, out) = a.paths();
@@ -342,6 +352,7 @@ fn main() -> ExitCode {
         Command::Boundary(a) => cmd::boundary::run(a, &mut report),
         Command::Contour(a) => cmd::contour::run(a, &mut report),
         Command::Flint(a) => cmd::flint::run(a, &mut report),
+        Command::Curvature(a) => cmd::curvature::run(a, &mut report),
     };
     let code = match result {
         Ok(code) => code,

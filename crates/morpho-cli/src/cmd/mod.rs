@@ -6,6 +6,7 @@
 pub mod boundary;
 pub mod contour;
 pub mod convert;
+pub mod curvature;
 pub mod demo;
 pub mod flint;
 pub mod graph;

@@ -1,0 +1,154 @@
+//! `morpho curvature`: PLY/CSV columns k1,k2,H,K,A, a plane's zero curvature, a volume's five
+//! NRRD fields on the input grid, and bad input refused with `error:` and exit 2.
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn morpho(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_morpho"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("run morpho")
+}
+
+/// An n×n grid of the plane z = 0.3x − 0.2y + 1 (tilted, so no coordinate is special).
+fn plane(dir: &Path, n: usize) {
+    let mut s = String::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (i as f64 * 0.1, j as f64 * 0.1 + 0.013 * (i % 3) as f64);
+            s.push_str(&format!("v {x} {y} {}\n", 0.3 * x - 0.2 * y + 1.0));
+        }
+    }
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let a = j * n + i + 1;
+            s.push_str(&format!(
+                "f {} {} {}\nf {} {} {}\n",
+                a,
+                a + 1,
+                a + n + 1,
+                a,
+                a + n + 1,
+                a + n
+            ));
+        }
+    }
+    std::fs::write(dir.join("plane.obj"), s).unwrap();
+}
+
+#[test]
+fn a_plane_has_zero_curvature_in_every_column() {
+    let dir = tempfile::tempdir().unwrap();
+    plane(dir.path(), 12);
+    for ring in ["1", "2"] {
+        let o = morpho(
+            dir.path(),
+            &[
+                "curvature",
+                "plane.obj",
+                "-o",
+                "c.csv",
+                "--ring",
+                ring,
+                "--report",
+                "r.json",
+            ],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = std::fs::read_to_string(dir.path().join("c.csv")).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next().unwrap(), "x,y,z,index,k1,k2,H,K,A");
+        let mut determined = 0;
+        for l in lines {
+            for v in l.split(',').skip(4) {
+                if v.is_empty() {
+                    continue; // undetermined (NaN is an empty CSV cell)
+                }
+                let v: f64 = v.parse().unwrap();
+                if v.is_finite() {
+                    assert!(v.abs() < 1e-9, "ring {ring}: {l}");
+                    determined += 1;
+                }
+            }
+        }
+        assert!(determined >= 5 * 100, "ring {ring}: {determined}");
+        let r: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(dir.path().join("r.json")).unwrap()).unwrap();
+        assert_eq!(r["vertices"], 144);
+    }
+    let o = morpho(dir.path(), &["curvature", "plane.obj", "-o", "c.ply"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let ply = std::fs::read(dir.path().join("c.ply")).unwrap();
+    let head = String::from_utf8_lossy(&ply[..600.min(ply.len())]).into_owned();
+    for p in ["k1", "k2", "H", "K", "A"] {
+        assert!(head.contains(&format!(" {p}\n")), "{p}: {head}");
+    }
+}
+
+#[test]
+fn a_volume_gives_five_fields_on_its_grid() {
+    let dir = tempfile::tempdir().unwrap();
+    // f = x² + 2y² + 3z² on a 6×5×4 grid (raw + JSON sidecar)
+    let (nx, ny, nz) = (6usize, 5usize, 4usize);
+    let mut raw = Vec::new();
+    for k in 0..nz {
+        for j in 0..ny {
+            for i in 0..nx {
+                let (x, y, z) = (i as f32 * 0.5, j as f32 * 0.5, k as f32 * 0.5);
+                raw.extend_from_slice(&(x * x + 2.0 * y * y + 3.0 * z * z).to_le_bytes());
+            }
+        }
+    }
+    std::fs::write(dir.path().join("f.raw"), raw).unwrap();
+    std::fs::write(
+        dir.path().join("f.json"),
+        r#"{"data":"f.raw","dims":[6,5,4],"dtype":"float32","spacing":[0.5,0.5,0.5]}"#,
+    )
+    .unwrap();
+    let o = morpho(dir.path(), &["curvature", "f.json", "-o", "out"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in ["k1", "k2", "k3", "H", "K"] {
+        let o = morpho(dir.path(), &["info", &format!("out/{f}.nrrd")]);
+        let text = String::from_utf8_lossy(&o.stdout).into_owned();
+        assert!(text.contains("dims: 6 x 5 x 4"), "{f}: {text}");
+        assert!(text.contains("spacing: 0.5 x 0.5 x 0.5"), "{f}: {text}");
+    }
+    // a volume with one sample along an axis is refused
+    std::fs::write(dir.path().join("flat.raw"), vec![0u8; 6 * 5 * 4]).unwrap();
+    std::fs::write(
+        dir.path().join("flat.json"),
+        r#"{"data":"flat.raw","dims":[6,5,1],"dtype":"float32"}"#,
+    )
+    .unwrap();
+    let o = morpho(dir.path(), &["curvature", "flat.json", "-o", "out2"]);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+#[test]
+fn bad_input_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    plane(dir.path(), 4);
+    std::fs::write(
+        dir.path().join("nan.obj"),
+        "v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    for args in [
+        &["curvature", "plane.obj", "-o", "c.stl"][..],
+        &["curvature", "plane.obj", "-o", "c.ply", "--ring", "0"][..],
+        &["curvature", "plane.obj", "-o", "c.ply", "--normals", "file"][..],
+        &["curvature", "nan.obj", "-o", "c.ply"][..],
+        &["curvature", "plane.obj", "-o", "plane.obj"][..],
+    ] {
+        let o = morpho(dir.path(), args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.starts_with("error: "), "{args:?}: {err}");
+    }
+}
