@@ -130,6 +130,15 @@ pub enum Error {
         #[source]
         source: crate::boundary::BoundaryError,
     },
+    /// A refusal of [`crate::smooth`] (`path`: the input file when known).
+    #[error("{}{source}", prefix(path))]
+    Smooth {
+        /// The input file, empty when unknown.
+        path: String,
+        /// The refusal.
+        #[source]
+        source: crate::smooth::SmoothError,
+    },
 }
 
 /// `From<FamilyError> for Error`: the family's variant with an empty path (filled by
@@ -154,6 +163,7 @@ from_family! {
     crate::mesh::MeshError => Mesh,
     crate::render::RenderError => Render,
     crate::boundary::BoundaryError => Boundary,
+    crate::smooth::SmoothError => Smooth,
 }
 
 impl From<crate::contour::ContourError> for Error {
@@ -246,7 +256,8 @@ impl Error {
             | Error::Contour { path, .. }
             | Error::Mesh { path, .. }
             | Error::Render { path, .. }
-            | Error::Boundary { path, .. } => {
+            | Error::Boundary { path, .. }
+            | Error::Smooth { path, .. } => {
                 if path.is_empty() {
                     *path = name;
                 }

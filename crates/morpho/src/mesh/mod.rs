@@ -10,6 +10,8 @@ pub mod generate;
 pub(crate) mod topology;
 
 pub use error::MeshError;
+mod normals;
+pub use normals::{vertex_normals, NormalWeighting};
 pub use topology::{analyze_topology, orient_consistently, PartInfo, Topology};
 // The polygon and mesh validators (a namespace of its own: `mesh::validity::check_polygon`, …).
 pub mod validity;
