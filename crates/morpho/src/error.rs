@@ -148,6 +148,15 @@ pub enum Error {
         #[source]
         source: crate::curvature::CurvatureError,
     },
+    /// A refusal of [`crate::smooth`] (`path`: the input file when known).
+    #[error("{}{source}", prefix(path))]
+    Smooth {
+        /// The input file, empty when unknown.
+        path: String,
+        /// The refusal.
+        #[source]
+        source: crate::smooth::SmoothError,
+    },
 }
 
 /// `From<FamilyError> for Error`: the family's variant with an empty path (filled by
@@ -174,6 +183,7 @@ from_family! {
     crate::boundary::BoundaryError => Boundary,
     crate::flint::FlintError => Flint,
     crate::curvature::CurvatureError => Curvature,
+    crate::smooth::SmoothError => Smooth,
 }
 
 impl From<crate::contour::ContourError> for Error {
@@ -268,7 +278,8 @@ impl Error {
             | Error::Render { path, .. }
             | Error::Boundary { path, .. }
             | Error::Flint { path, .. }
-            | Error::Curvature { path, .. } => {
+            | Error::Curvature { path, .. }
+            | Error::Smooth { path, .. } => {
                 if path.is_empty() {
                     *path = name;
                 }

@@ -38,6 +38,7 @@ pub mod io;
 pub mod mesh;
 pub mod render;
 pub mod samples;
+pub mod smooth;
 pub mod util;
 pub mod volume;
 

@@ -1,0 +1,85 @@
+//! The independent continuity check of a split surface (Veltkamp 1992, Thm 8.1; NOTES B.9
+//! checks 2–3): every pair of patches sharing an edge (found by its corner positions, not by
+//! the construction's bookkeeping) is sampled at `samples` interior points of the edge; at
+//! each, both patches' unit normals (8.4) are evaluated from their own control points and
+//! compared, `angle = atan2(|n1×n2|, n1·n2)` (a fold, `n1·n2 ≤ 0`, gives an angle ≥ π/2),
+//! and the positions are compared (C⁰). O(patches · samples).
+
+use super::SplitSurface;
+use crate::geom::vec;
+use std::collections::HashMap;
+
+/// What [`continuity`] measured.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Continuity {
+    /// Largest normal angle over every macro and micro edge (radians).
+    pub max_normal_jump_rad: f64,
+    /// Largest normal angle over edges between different macro triangles.
+    pub max_macro_jump_rad: f64,
+    /// Largest normal angle over edges inside one macro triangle.
+    pub max_micro_jump_rad: f64,
+    /// Largest distance between the two patches' points along an edge (C⁰ gap).
+    pub max_position_gap: f64,
+    /// Samples where the normals point into opposite half-spaces (`n1·n2 ≤ 0`).
+    pub folds: usize,
+    /// Shared edges whose normal angle exceeds 1e-9 rad, as `(patch, patch)`.
+    pub non_g1_edges: Vec<(usize, usize)>,
+    /// Patch edges with no partner (0 on a closed surface).
+    pub open_edges: usize,
+    /// Shared edges examined.
+    pub edges: usize,
+}
+
+fn key(p: [f64; 3]) -> [u64; 3] {
+    p.map(|c| (c + 0.0).to_bits())
+}
+
+/// The continuity figures of `s` at `samples` (≥ 1) interior points per edge.
+pub fn continuity(s: &SplitSurface, samples: usize) -> Continuity {
+    let tris: Vec<_> = s.patches.iter().map(|p| p.triangle()).collect();
+    let unit = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut map: HashMap<([u64; 3], [u64; 3]), (usize, usize)> = HashMap::new();
+    for (p, t) in tris.iter().enumerate() {
+        let c = t.corners();
+        for i in 0..3 {
+            map.insert((key(c[i]), key(c[(i + 1) % 3])), (p, i));
+        }
+    }
+    let mut out = Continuity::default();
+    for (&(ka, kb), &(p, i)) in &map {
+        let Some(&(q, j)) = map.get(&(kb, ka)) else {
+            out.open_edges += 1;
+            continue;
+        };
+        if p > q {
+            continue;
+        }
+        out.edges += 1;
+        let mut worst: f64 = 0.0;
+        for k in 1..=samples.max(1) {
+            let t = k as f64 / (samples.max(1) + 1) as f64;
+            // p runs corner i → i+1; q runs j → j+1 the other way
+            let bp = vec::lerp(unit[i], unit[(i + 1) % 3], t);
+            let bq = vec::lerp(unit[j], unit[(j + 1) % 3], 1.0 - t);
+            let (x1, x2) = (tris[p].eval(bp), tris[q].eval(bq));
+            out.max_position_gap = out.max_position_gap.max(vec::dist(x1, x2));
+            let (n1, n2) = (tris[p].normal(bp), tris[q].normal(bq));
+            let d = vec::dot(n1, n2);
+            if d <= 0.0 {
+                out.folds += 1;
+            }
+            worst = worst.max(vec::norm(vec::cross(n1, n2)).atan2(d));
+        }
+        if s.patches[p].macro_tri == s.patches[q].macro_tri {
+            out.max_micro_jump_rad = out.max_micro_jump_rad.max(worst);
+        } else {
+            out.max_macro_jump_rad = out.max_macro_jump_rad.max(worst);
+        }
+        if worst > 1e-9 {
+            out.non_g1_edges.push((p, q));
+        }
+    }
+    out.non_g1_edges.sort_unstable();
+    out.max_normal_jump_rad = out.max_macro_jump_rad.max(out.max_micro_jump_rad);
+    out
+}

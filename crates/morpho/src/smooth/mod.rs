@@ -1,0 +1,28 @@
+//! Smooth shapes (Veltkamp 1992, ch. 8–9; NOTES part B): Bézier curves and triangles, the
+//! closed G¹ cubic curve through a polygon, and the cubic three-split G¹ surface through a
+//! closed triangle mesh with its vertex normals, with an independent continuity check and a
+//! tessellation.
+//!
+//! Deviations from the text (each documented in its file): the three-split's singular edges
+//! (mirror-symmetric sides, where (9.4) has no solution) are detected and reported, and
+//! repaired by rescaling that edge's tangent handles (see [`three_split`]); the 2D curve's
+//! failing vertices are repaired with the uniform weighting (NOTES B.2).
+
+mod bezier;
+mod check;
+mod curve;
+mod error;
+mod singular;
+mod split3;
+mod tessellate;
+mod triangle;
+
+pub use bezier::{bernstein, joint, BezierCurve, Joint};
+pub use check::{continuity, Continuity};
+pub use curve::{
+    curve_joints, g1_curve, tangent, CurveFailure, CurveWeighting, FailureKind, G1Curve,
+};
+pub use error::SmoothError;
+pub use split3::{three_split, MicroPatch, SplitSurface};
+pub use tessellate::tessellate;
+pub use triangle::{tri_index, BezierTriangle};

@@ -1,0 +1,362 @@
+//! The cubic three-split G¹ surface (Veltkamp 1992, §9.6, Thm 9.1; NOTES B.5) through the
+//! vertices and vertex normals of a closed, consistently oriented 2-manifold triangle mesh.
+//!
+//! Per macro triangle `(V0,V1,V2)`: (1) corners `p300,p030,p003`; (2) edge points a third of
+//! the way to the other end's projection onto the tangent plane; (3) Farin's
+//! `p111 = Σedge/4 − Σcorner/6`; (4) subdivision at the centroid `Z` into three cubic micro
+//! patches `(V_i, V_{i+1}, Z)`; (5) per macro edge, the linear-E,F,G conditions (9.3a), (9.3d)
+//! with `e0 = e1 = 1` give `f0,g0,f1,g1` (least squares in the tangent plane) and the pair
+//! (9.4) gives the two interior points `L1, R1`; (6) the C¹ Clough–Tocher interior:
+//! `Y_i = (W_i + X_a + X_b)/3`, `Z = (Y_0+Y_1+Y_2)/3` (the text's `Y_1..Y_3` is an index garble).
+//! O(triangles).
+//!
+//! **Deviation (the singular case, not in the text).** When the two sides of an edge are
+//! mirror images (octahedron, icosahedron with sphere normals, symmetric grids), `f0 g1 = g0 f1`
+//! and (9.4) is singular and inconsistent (NOTES B.5): the text's construction would leave a
+//! crease of 0.29 rad (octahedron). Such edges (`|f0 g1 − g0 f1| ≤ 1e-7 (|f0|+|g0|)(|f1|+|g1|)`)
+//! are **reported** in [`SplitSurface::singular_edges`] and completed by a constrained
+//! least-squares solve instead: `L1, R1` are moved as little as possible from their Step-4
+//! values such that `det[K−M, L−M, R−M](t) ≡ 0` (the tangent-plane condition (8.7) itself, a
+//! degree-6 polynomial whose end coefficients vanish by (9.3a, d)): Gauss–Newton with
+//! minimum-norm steps on its samples, which is bilinear in `(L1, R1)`. Edges where this does
+//! not converge are listed in [`SplitSurface::unresolved_edges`]; edges whose `f`, `g` differ
+//! in sign (a fold, NOTES B.1: the text's "opposite signs" is a garble) in
+//! [`SplitSurface::sign_warnings`]. Continuity is verified independently by
+//! [`super::continuity`].
+
+use super::triangle::{tri_index, BezierTriangle};
+use super::SmoothError;
+use crate::geom::vec;
+use crate::mesh::TriMesh;
+use std::collections::HashMap;
+
+type P3 = [f64; 3];
+/// The half-edge map and the unit normals of a checked mesh.
+type Checked = (HashMap<(u32, u32), usize>, Vec<P3>);
+
+/// One cubic micro patch of the split surface.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MicroPatch {
+    /// The macro triangle (index into the input's triangles) it belongs to.
+    pub macro_tri: u32,
+    /// Control points in [`tri_index`] order (b300 first = the first corner).
+    pub control: [P3; 10],
+}
+
+impl MicroPatch {
+    /// The patch as a [`BezierTriangle`].
+    pub fn triangle(&self) -> BezierTriangle {
+        BezierTriangle::new(3, self.control.to_vec())
+    }
+}
+
+/// A split surface: micro patches and what its construction found.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct SplitSurface {
+    /// Micro patches; for the three-split, patch `3t+i` has corners `(V_i, V_{i+1}, Z)` of
+    /// macro triangle t.
+    pub patches: Vec<MicroPatch>,
+    /// Macro edges `[a, b]` (a < b) where (9.4) is singular (reported, then completed by the
+    /// constrained solve of the module doc).
+    pub singular_edges: Vec<[u32; 2]>,
+    /// Singular edges where the constrained solve did not reach tangent-plane continuity.
+    pub unresolved_edges: Vec<[u32; 2]>,
+    /// Macro edges whose `f0,g0` or `f1,g1` differ in sign (a fold is likely).
+    pub sign_warnings: Vec<[u32; 2]>,
+    /// Max over edges of `|L1 − L1_step4| / |edge|` (large values: the "wild oscillation" of
+    /// near-singular edges, Fig. 9.5).
+    pub max_displacement: f64,
+}
+
+/// Checks that `mesh` is a closed, consistently oriented 2-manifold without zero-area
+/// triangles and that `normals` are finite unit-able vectors; returns the half-edge map
+/// `(a, b) → 3t + i` (edge i of triangle t runs from its vertex i to vertex i+1) and the unit
+/// normals.
+pub(crate) fn check_closed(
+    mesh: &TriMesh,
+    normals: &[crate::geom::Vector3],
+) -> Result<Checked, SmoothError> {
+    let nv = mesh.positions.len();
+    if nv < 4 || mesh.triangles.len() < 4 {
+        return Err(SmoothError::TooFew { got: nv, need: 4 });
+    }
+    if let Some(index) = mesh
+        .positions
+        .iter()
+        .position(|p| !p.iter().all(|c| c.is_finite()))
+    {
+        return Err(SmoothError::NonFinite { index });
+    }
+    let mut half = HashMap::with_capacity(mesh.triangles.len() * 3);
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if tri.iter().any(|&v| v as usize >= nv) {
+            return Err(SmoothError::BadIndex { triangle: t });
+        }
+        let p = |k: usize| -> P3 { mesh.positions[tri[k] as usize].into() };
+        let c = vec::cross(vec::sub(p(1), p(0)), vec::sub(p(2), p(0)));
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || vec::norm2(c) == 0.0 {
+            return Err(SmoothError::ZeroArea { triangle: t });
+        }
+        for i in 0..3 {
+            let (a, b) = (tri[i], tri[(i + 1) % 3]);
+            if half.insert((a, b), 3 * t + i).is_some() {
+                return Err(SmoothError::NonManifold { a, b });
+            }
+        }
+    }
+    for &(a, b) in half.keys() {
+        if !half.contains_key(&(b, a)) {
+            return Err(SmoothError::NotClosed { a, b });
+        }
+    }
+    if normals.len() != nv {
+        return Err(SmoothError::BadNormal {
+            vertex: normals.len().min(nv),
+        });
+    }
+    let mut unit = Vec::with_capacity(nv);
+    for (v, n) in normals.iter().enumerate() {
+        let l = n.norm();
+        if !(l > 0.0 && l.is_finite()) {
+            return Err(SmoothError::BadNormal { vertex: v });
+        }
+        unit.push([n.x / l, n.y / l, n.z / l]);
+    }
+    Ok((half, unit))
+}
+
+/// Step 2: the edge point from `a` towards `b`.
+fn edge_point(a: P3, na: P3, b: P3) -> P3 {
+    let d = vec::sub(b, a);
+    let proj = vec::add_scaled(d, -vec::dot(d, na), na);
+    vec::add_scaled(a, 1.0 / 3.0, proj)
+}
+
+/// Steps 1–4 for one macro triangle from its corners and edge points:
+/// `e[i] = [E(V_i → V_{i+1}), E(V_i → V_{i+2})]`.
+fn micro_patches(v: [P3; 3], ep: [[P3; 2]; 3]) -> [[P3; 10]; 3] {
+    let e = |i: usize, j: usize| if j == (i + 1) % 3 { ep[i][0] } else { ep[i][1] };
+    let mut c = [[0.0; 3]; 10];
+    c[tri_index(3, 3, 0)] = v[0];
+    c[tri_index(3, 0, 3)] = v[1];
+    c[tri_index(3, 0, 0)] = v[2];
+    c[tri_index(3, 2, 1)] = e(0, 1);
+    c[tri_index(3, 2, 0)] = e(0, 2);
+    c[tri_index(3, 1, 2)] = e(1, 0);
+    c[tri_index(3, 0, 2)] = e(1, 2);
+    c[tri_index(3, 1, 0)] = e(2, 0);
+    c[tri_index(3, 0, 1)] = e(2, 1);
+    let edges = [e(0, 1), e(0, 2), e(1, 0), e(1, 2), e(2, 0), e(2, 1)];
+    let se = edges.iter().fold([0.0; 3], |s, p| vec::add(s, *p));
+    let sv = vec::add(vec::add(v[0], v[1]), v[2]);
+    c[tri_index(3, 1, 1)] = vec::sub(vec::scale(se, 0.25), vec::scale(sv, 1.0 / 6.0));
+    let mac = BezierTriangle::new(3, c.to_vec());
+    let bary = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let z = [1.0 / 3.0; 3];
+    let mut out = [[[0.0; 3]; 10]; 3];
+    for i in 0..3 {
+        let s = mac.subdivide(bary[i], bary[(i + 1) % 3], z);
+        out[i].copy_from_slice(&s.control);
+    }
+    out
+}
+
+/// `min |d + f a + g b|²` over (f, g): the 2×2 normal equations.
+fn solve_fg(d: P3, a: P3, b: P3) -> (f64, f64) {
+    let (aa, ab, bb) = (vec::dot(a, a), vec::dot(a, b), vec::dot(b, b));
+    let (ad, bd) = (vec::dot(a, d), vec::dot(b, d));
+    let det = aa * bb - ab * ab;
+    ((-ad * bb + bd * ab) / det, (-bd * aa + ad * ab) / det)
+}
+
+/// The data of one macro edge in the notation of V 9.3 (Fig. 9.2).
+struct EdgeData {
+    m: [P3; 4],
+    l: [P3; 3],
+    r: [P3; 3],
+}
+
+/// The edge `a → b` (a < b) in the notation of V 9.3 and its `(f0, g0, f1, g1)` from (9.3a),
+/// (9.3d) with `e0 = e1 = 1`.
+fn edge_data(
+    patches: &[[P3; 10]],
+    half: &HashMap<(u32, u32), usize>,
+    a: u32,
+    b: u32,
+) -> (EdgeData, [f64; 4]) {
+    let (pp, qq) = (&patches[half[&(a, b)]], &patches[half[&(b, a)]]);
+    let e = EdgeData {
+        m: [pp[0], pp[1], pp[3], pp[6]],
+        l: [pp[2], pp[4], pp[7]],
+        r: [qq[7], qq[4], qq[2]],
+    };
+    let (m, l, r) = (e.m, e.l, e.r);
+    let (f0, g0) = solve_fg(
+        vec::sub(m[1], m[0]),
+        vec::sub(l[0], m[0]),
+        vec::sub(r[0], m[0]),
+    );
+    let (f1, g1) = solve_fg(
+        vec::sub(m[3], m[2]),
+        vec::sub(l[2], m[2]),
+        vec::sub(r[2], m[2]),
+    );
+    (e, [f0, g0, f1, g1])
+}
+
+/// `|f0 g1 − g0 f1| ≤ 1e-7 (|f0|+|g0|)(|f1|+|g1|)`: (9.4) is (nearly) dependent.
+fn is_singular([f0, g0, f1, g1]: [f64; 4]) -> bool {
+    let delta = f0 * g1 - g0 * f1;
+    delta.abs() <= 1e-7 * (f0.abs() + g0.abs()) * (f1.abs() + g1.abs()) || delta.is_nan()
+}
+
+/// The pair (9.4) solved for `(L1, R1)` with `e0 = e1 = 1`.
+fn solve_94(e: &EdgeData, [f0, g0, f1, g1]: [f64; 4]) -> (P3, P3) {
+    let (m, l, r) = (e.m, e.l, e.r);
+    let d = |x: P3, y: P3| vec::sub(x, y);
+    let mut r0 = vec::scale(m[1], 2.0 * (f0 + g0));
+    for (c, v) in [
+        (-1.0, d(m[1], m[0])),
+        (-2.0, d(m[2], m[1])),
+        (-f1, d(l[0], m[0])),
+        (-g1, d(r[0], m[0])),
+    ] {
+        r0 = vec::add_scaled(r0, c, v);
+    }
+    let mut r1 = vec::scale(m[1], 2.0 * (f1 + g1));
+    for (c, v) in [
+        (-2.0, d(m[2], m[1])),
+        (-1.0, d(m[3], m[2])),
+        (-f0, d(l[2], m[2])),
+        (-g0, d(r[2], m[2])),
+    ] {
+        r1 = vec::add_scaled(r1, c, v);
+    }
+    let big = 4.0 * (f0 * g1 - g0 * f1);
+    let l1 = vec::scale(
+        vec::sub(vec::scale(r0, 2.0 * g1), vec::scale(r1, 2.0 * g0)),
+        1.0 / big,
+    );
+    let r1 = vec::scale(
+        vec::sub(vec::scale(r1, 2.0 * f0), vec::scale(r0, 2.0 * f1)),
+        1.0 / big,
+    );
+    (l1, r1)
+}
+
+/// The cubic three-split G¹ surface (module doc).
+///
+/// ```
+/// use morpho::mesh::{generate, vertex_normals, NormalWeighting};
+/// use morpho::smooth::{continuity, three_split};
+/// let m = generate::icosphere(0);
+/// let n = vertex_normals(&m, NormalWeighting::Area);
+/// let s = three_split(&m, &n).unwrap();
+/// assert_eq!(s.patches.len(), 3 * m.triangles.len());
+/// // every icosahedron edge is mirror-symmetric: reported
+/// assert_eq!(s.singular_edges.len(), 30);
+/// let _ = continuity(&s, 20);
+/// ```
+pub fn three_split(
+    mesh: &TriMesh,
+    normals: &[crate::geom::Vector3],
+) -> Result<SplitSurface, SmoothError> {
+    let (half, nrm) = check_closed(mesh, normals)?;
+    let pos: Vec<P3> = mesh.positions.iter().map(|p| (*p).into()).collect();
+    let mut handles: HashMap<(u32, u32), P3> = half
+        .keys()
+        .map(|&(a, b)| {
+            (
+                (a, b),
+                edge_point(pos[a as usize], nrm[a as usize], pos[b as usize]),
+            )
+        })
+        .collect();
+    let build = |handles: &HashMap<(u32, u32), P3>| -> Vec<[P3; 10]> {
+        let mut patches = Vec::with_capacity(3 * mesh.triangles.len());
+        for t in &mesh.triangles {
+            let v = t.map(|i| pos[i as usize]);
+            let ep = [0, 1, 2].map(|i| {
+                let (a, b, c) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+                [handles[&(a, b)], handles[&(a, c)]]
+            });
+            patches.extend(micro_patches(v, ep));
+        }
+        patches
+    };
+    let mut edges: Vec<(u32, u32)> = half.keys().copied().filter(|&(a, b)| a < b).collect();
+    edges.sort_unstable();
+    let mut out = SplitSurface::default();
+    // pass 1: classify the edges on the Step-4 data
+    let step4 = build(&handles);
+    let mut start = Vec::new();
+    for &(a, b) in &edges {
+        let (e, [f0, g0, f1, g1]) = edge_data(&step4, &half, a, b);
+        if f0 * g0 <= 0.0 || f1 * g1 <= 0.0 {
+            out.sign_warnings.push([a, b]);
+        }
+        if is_singular([f0, g0, f1, g1]) {
+            out.singular_edges.push([a, b]);
+            start.push((e.l[1], e.r[1]));
+        }
+    }
+    // the deviation: complete the singular edges (moves their edge points)
+    let mut fixed: HashMap<(u32, u32), (P3, P3)> = HashMap::new();
+    if !out.singular_edges.is_empty() {
+        let ctx = super::singular::Ctx {
+            tris: &mesh.triangles,
+            half: &half,
+            pos: &pos,
+            nrm: &nrm,
+        };
+        let (sol, ok) = super::singular::complete(&ctx, &mut handles, &out.singular_edges, &start);
+        for (k, &[a, b]) in out.singular_edges.iter().enumerate() {
+            fixed.insert((a, b), sol[k]);
+            if !ok[k] {
+                out.unresolved_edges.push([a, b]);
+            }
+        }
+    }
+    // pass 2: Step 5 on the final edge points
+    let mut patches = build(&handles);
+    for &(a, b) in &edges {
+        let (p, q) = (half[&(a, b)], half[&(b, a)]);
+        let (e, fg) = edge_data(&patches, &half, a, b);
+        let old_l = step4[p][4];
+        let len = vec::dist(e.m[0], e.m[3]);
+        let (l1, r1) = match fixed.get(&(a, b)) {
+            Some(&lr) => lr,
+            None => solve_94(&e, fg),
+        };
+        out.max_displacement = out.max_displacement.max(vec::dist(l1, old_l) / len);
+        patches[p][4] = l1;
+        patches[q][4] = r1;
+    }
+    // Step 6: the C¹ interior of each macro triangle
+    for t in 0..mesh.triangles.len() {
+        let mut y = [[0.0; 3]; 3];
+        for i in 0..3 {
+            let (mi, mp) = (3 * t + i, 3 * t + (i + 2) % 3);
+            let w = patches[mi][2];
+            y[i] = vec::scale(
+                vec::add(vec::add(w, patches[mi][4]), patches[mp][4]),
+                1.0 / 3.0,
+            );
+            patches[mi][5] = y[i];
+            patches[mp][8] = y[i];
+        }
+        let z = vec::scale(vec::add(vec::add(y[0], y[1]), y[2]), 1.0 / 3.0);
+        for i in 0..3 {
+            patches[3 * t + i][9] = z;
+        }
+    }
+    out.patches = patches
+        .into_iter()
+        .enumerate()
+        .map(|(k, control)| MicroPatch {
+            macro_tri: (k / 3) as u32,
+            control,
+        })
+        .collect();
+    Ok(out)
+}
