@@ -806,3 +806,73 @@ fn info_check_on_a_face_with_a_repeated_vertex_reports_instead_of_panicking() {
         assert!(hits.iter().all(|h| h[1] == 12), "{hits:?}");
     }
 }
+
+/// Points convert to and from GeoJSON (one `Point` feature per point, columns as numeric
+/// properties) and keep their values; `--polygon` reads a CSV as a polygon instead; `--ascii`
+/// applies to point PLY files too (it used to be ignored: points were always binary).
+#[test]
+fn points_and_polygons_convert_through_geojson_and_ascii_ply() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let csv = write(d, "s.csv", b"x,y,value\n0,0,1.5\n1,0,-2\n1,1,3\n0,1,4\n");
+    let gj = d.join("s.geojson");
+    let o = morpho(&["convert", csv.to_str().unwrap(), "-o", gj.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&gj).unwrap()).unwrap();
+    let f = v["features"].as_array().unwrap();
+    assert_eq!(f.len(), 4);
+    assert_eq!(f[1]["geometry"]["type"], "Point");
+    assert_eq!(f[1]["properties"]["value"], -2.0);
+    let back = d.join("back.csv");
+    let o = morpho(&[
+        "convert",
+        gj.to_str().unwrap(),
+        "-o",
+        back.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&back).unwrap();
+    assert_eq!(text.lines().next(), Some("x,y,value"));
+    assert_eq!(text.lines().count(), 5);
+    assert!(text.contains("1,0,-2"), "{text}");
+
+    let poly = d.join("p.geojson");
+    let o = morpho(&[
+        "convert",
+        csv.to_str().unwrap(),
+        "-o",
+        poly.to_str().unwrap(),
+        "--polygon",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&poly).unwrap()).unwrap();
+    assert_eq!(v["features"][0]["geometry"]["type"], "Polygon");
+    assert_eq!(
+        v["features"][0]["geometry"]["coordinates"][0]
+            .as_array()
+            .unwrap()
+            .len(),
+        5
+    );
+    let o = morpho(&[
+        "convert",
+        gj.to_str().unwrap(),
+        "-o",
+        d.join("q.geojson").to_str().unwrap(),
+        "--polygon",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).starts_with("error: "), "{}", stderr(&o));
+
+    let ply = d.join("a.ply");
+    let o = morpho(&[
+        "convert",
+        csv.to_str().unwrap(),
+        "-o",
+        ply.to_str().unwrap(),
+        "--ascii",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let head = std::fs::read(&ply).unwrap();
+    assert!(head.starts_with(b"ply\nformat ascii 1.0\n"));
+}

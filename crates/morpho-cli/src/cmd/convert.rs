@@ -1,7 +1,9 @@
 //! `morpho convert IN -o OUT`: format conversion by extension. Meshes, points, polygons and
 //! volumes convert between the formats of their kind; a tetrahedral PLY (a `tetra` element, as
 //! `morpho triangulate --tets` writes it) converts to VTK (`.vtu`, `.vtk`), and so does a
-//! triangle mesh.
+//! triangle mesh. A CSV or XYZ file is a point set (to `.geojson`: one `Point` feature per
+//! point, columns as properties); `--polygon` reads a CSV as the ordered vertices of a polygon
+//! instead (to `.geojson`: a `Polygon`).
 
 use crate::report::Report;
 use crate::Failure;
@@ -21,6 +23,10 @@ pub struct Args {
     /// Write binary PLY (and .vtu) big endian.
     #[arg(long, conflicts_with = "ascii")]
     pub big_endian: bool,
+    /// Read a CSV input as the ordered vertices of a polygon (a repeated first vertex closes
+    /// it), not as a point set.
+    #[arg(long)]
+    pub polygon: bool,
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
@@ -42,10 +48,17 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             return Ok(0);
         }
     }
-    let data = report.time("read", || read_any(&args.input))?;
+    let data = if args.polygon {
+        if Format::of(&args.input)? != Format::Csv {
+            return Err(Failure::usage("--polygon reads a .csv input"));
+        }
+        report.time("read", || io::read_shapes2(&args.input).map(Data::Shapes))?
+    } else {
+        report.time("read", || read_any(&args.input))?
+    };
     report.time("write", || match &data {
         Data::Mesh(m) => io::write_mesh(out, m, enc),
-        Data::Points(p) => io::write_points(out, p),
+        Data::Points(p) => io::write_points_as(out, p, enc),
         Data::Shapes(s) => io::write_shapes2(out, s),
         Data::Volume(v) => io::write_volume(out, v),
     })?;

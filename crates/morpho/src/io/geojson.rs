@@ -3,7 +3,8 @@
 //! # Reading
 //! `Polygon`, `MultiPolygon`, `LineString`, `MultiLineString`, alone or inside `Feature`,
 //! `FeatureCollection` and `GeometryCollection` (any nesting serde_json accepts, ≤ 128 levels).
-//! `Point`/`MultiPoint` and null geometries are skipped; properties are ignored. Positions
+//! `Point`/`MultiPoint` and null geometries are skipped here (points are read by [`read_points`]);
+//! properties are ignored. Positions
 //! need at least 2 numbers (further numbers, e.g. z, are ignored). A ring's closing repeat is
 //! dropped; a ring needs at least 3 vertices after that. A `LineString` whose last position
 //! repeats its first (and that has ≥ 4 positions) becomes a closed [`Polyline`] without the
@@ -38,7 +39,7 @@ use crate::boundary::Boundary2;
 use crate::contour::PlaneContour;
 use crate::geom::expansion::grow;
 use crate::geom::Point2;
-use crate::mesh::{Polygon, Polyline, Shapes2};
+use crate::mesh::{Column, PointSet, Polygon, Polyline, Shapes2};
 use crate::{Error, Result};
 use serde_json::{json, Value};
 use std::io::Write;
@@ -597,4 +598,157 @@ mod tests {
         assert_eq!(ring_orientation(&back.polygons[0].rings[1]), -1);
         assert_eq!(back.polylines, sh.polylines);
     }
+}
+
+/// Reads the `Point` and `MultiPoint` geometries of a GeoJSON document (alone or inside
+/// features and collections; polygons and lines are skipped) as a point set: 3D when every
+/// position has a third number, else 2D (further numbers ignored). Numeric properties that
+/// every `Point` feature carries become columns (for example the `value` of rated samples);
+/// they are dropped when the document also has `MultiPoint`s, whose positions share one
+/// property set. Returns an empty set when the document holds no point.
+///
+/// ```
+/// let doc = br#"{"type":"FeatureCollection","features":[
+///   {"type":"Feature","properties":{"value":1.5},"geometry":{"type":"Point","coordinates":[0,1]}},
+///   {"type":"Feature","properties":{"value":2.0},"geometry":{"type":"Point","coordinates":[2,3]}}]}"#;
+/// let p = morpho::io::geojson::read_points(doc).unwrap();
+/// assert_eq!((p.len(), p.dim), (2, 2));
+/// assert_eq!(p.columns[0].name, "value");
+/// assert_eq!(p.columns[0].values, vec![1.5, 2.0]);
+/// ```
+pub fn read_points(bytes: &[u8]) -> Result<PointSet> {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    let v: Value = serde_json::from_slice(bytes)
+        .map_err(|e| Error::at_line(e.line() as u64, format!("bad JSON: {e}")))?;
+    let mut acc = PointAcc::default();
+    if !v.is_array() {
+        walk_points(&v, None, &mut acc)?;
+        note_input_crs(&v);
+    }
+    let dim = if !acc.pos.is_empty() && acc.pos.iter().all(|p| p.len() >= 3) {
+        3
+    } else {
+        2
+    };
+    let mut out = PointSet {
+        dim,
+        coords: Vec::with_capacity(acc.pos.len() * dim),
+        columns: Vec::new(),
+    };
+    for p in &acc.pos {
+        out.coords.extend_from_slice(&p[..dim]);
+    }
+    if !acc.multi && !acc.props.is_empty() {
+        let first = &acc.props[0];
+        for key in first.keys() {
+            let vals: Option<Vec<f64>> = acc
+                .props
+                .iter()
+                .map(|m| m.get(key).and_then(Value::as_f64).filter(|f| f.is_finite()))
+                .collect();
+            if let Some(values) = vals {
+                out.columns.push(Column {
+                    name: key.clone(),
+                    values,
+                });
+            }
+        }
+    }
+    Ok(out)
+}
+
+#[derive(Default)]
+struct PointAcc {
+    pos: Vec<Vec<f64>>,
+    props: Vec<serde_json::Map<String, Value>>,
+    multi: bool,
+}
+
+fn point_position(v: &Value, ctx: &str) -> Result<Vec<f64>> {
+    let p = position(v, ctx)?;
+    let mut out = vec![p.x, p.y];
+    if let Some(z) = v.as_array().and_then(|a| a.get(2)) {
+        let z = z
+            .as_f64()
+            .filter(|f| f.is_finite())
+            .ok_or_else(|| Error::format(format!("{ctx}: a coordinate is not a finite number")))?;
+        out.push(z);
+    }
+    Ok(out)
+}
+
+fn walk_points(
+    v: &Value,
+    props: Option<&serde_json::Map<String, Value>>,
+    acc: &mut PointAcc,
+) -> Result<()> {
+    let ty = v
+        .get("type")
+        .and_then(Value::as_str)
+        .ok_or_else(|| Error::format("a GeoJSON object needs a \"type\" string"))?;
+    let list = |key: &str| {
+        v.get(key)
+            .and_then(Value::as_array)
+            .ok_or_else(|| Error::format(format!("{ty} without a \"{key}\" array")))
+    };
+    match ty {
+        "FeatureCollection" => {
+            for f in list("features")? {
+                walk_points(f, None, acc)?;
+            }
+        }
+        "Feature" => {
+            if let Some(g) = v.get("geometry").filter(|g| !g.is_null()) {
+                walk_points(g, v.get("properties").and_then(Value::as_object), acc)?;
+            }
+        }
+        "GeometryCollection" => {
+            for g in list("geometries")? {
+                walk_points(g, None, acc)?;
+            }
+        }
+        "Point" => {
+            acc.pos.push(point_position(coords(v, ty)?, ty)?);
+            acc.props.push(props.cloned().unwrap_or_default());
+        }
+        "MultiPoint" => {
+            let ps = coords(v, ty)?
+                .as_array()
+                .ok_or_else(|| Error::format("MultiPoint: expected an array of positions"))?;
+            for p in ps {
+                acc.pos.push(point_position(p, ty)?);
+            }
+            acc.multi |= !ps.is_empty();
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+/// Writes a point set as a `FeatureCollection` of `Point` features, one per point, with the
+/// point set's columns as numeric properties (a non-finite value becomes `null`); 3D points
+/// keep their z as the third coordinate. The crs member follows [`set_crs`].
+pub fn write_points(w: &mut dyn Write, pts: &PointSet) -> Result<()> {
+    let mut features = Vec::with_capacity(pts.len());
+    for i in 0..pts.len() {
+        let p = pts.point(i);
+        if p.iter().any(|c| !c.is_finite()) {
+            return Err(Error::invalid("cannot write a non-finite coordinate"));
+        }
+        let mut props = serde_json::Map::new();
+        for c in &pts.columns {
+            let x = c.values[i];
+            props.insert(
+                c.name.clone(),
+                if x.is_finite() { json!(x) } else { Value::Null },
+            );
+        }
+        features.push(json!({
+            "type": "Feature",
+            "properties": props,
+            "geometry": {"type": "Point", "coordinates": p},
+        }));
+    }
+    let doc = json!({"type": "FeatureCollection", "features": features});
+    super::json::write_value(w, &with_crs(doc))
 }

@@ -13,7 +13,7 @@
 //!
 //! | result | dispatch | formats |
 //! |---|---|---|
-//! | points | [`write_points`] | `.csv .xyz .ply` |
+//! | points | [`write_points`], [`write_points_as`] | `.csv .xyz .ply .geojson` |
 //! | polygons, polylines | [`write_shapes2`] | `.csv .geojson .json` |
 //! | triangle meshes | [`write_mesh`] | `.ply .obj .off .stl .vtu .vtk` |
 //! | tetrahedral meshes | [`write_tets`] | `.vtu .vtk .ply` |
@@ -652,6 +652,7 @@ pub fn read_points(path: &Path) -> Result<PointSet> {
         Format::Xyz => xyz::read(&bytes),
         Format::Ply => ply::read_points(&bytes),
         Format::Json => json::read_points(&bytes),
+        Format::GeoJson => geojson::read_points(&bytes),
         Format::Obj | Format::Off | Format::Stl => {
             let m = match fmt {
                 Format::Obj => obj::read(&bytes)?,
@@ -661,7 +662,7 @@ pub fn read_points(path: &Path) -> Result<PointSet> {
             Ok(PointSet::from_points3(&m.positions))
         }
         _ => Err(Error::unsupported(
-            "not a point format (use .csv .xyz .ply .json)",
+            "not a point format (use .csv .xyz .ply .json .geojson)",
         )),
     }
     .map_err(|e| e.with_path(path))?;
@@ -672,15 +673,22 @@ pub fn read_points(path: &Path) -> Result<PointSet> {
     Ok(pts)
 }
 
-/// Writes a point set as CSV, XYZ or PLY.
+/// Writes a point set as CSV, XYZ, PLY (binary little endian) or GeoJSON (`Point` features).
 pub fn write_points(path: &Path, pts: &PointSet) -> Result<()> {
+    write_points_as(path, pts, Encoding::BinaryLittleEndian)
+}
+
+/// [`write_points`] with the PLY encoding chosen (`convert --ascii`, `--big-endian`); the
+/// encoding does not affect the text formats.
+pub fn write_points_as(path: &Path, pts: &PointSet, enc: Encoding) -> Result<()> {
     let fmt = Format::of(path)?;
     write_atomic(path, |w| match fmt {
         Format::Csv => csv::write_points(w, pts),
         Format::Xyz => xyz::write(w, pts),
-        Format::Ply => ply::write_points(w, pts, Encoding::BinaryLittleEndian),
+        Format::Ply => ply::write_points(w, pts, enc),
+        Format::GeoJson => geojson::write_points(w, pts),
         _ => Err(Error::unsupported(
-            "not a point format (use .csv .xyz .ply)",
+            "not a point format (use .csv .xyz .ply .geojson)",
         )),
     })
 }
@@ -792,7 +800,17 @@ pub fn read_any(path: &Path) -> Result<Data> {
             }
         }
         Format::Csv | Format::Xyz => Ok(Data::Points(read_points(path)?)),
-        Format::GeoJson => Ok(Data::Shapes(read_shapes2(path)?)),
+        Format::GeoJson => {
+            let shapes = read_shapes2(path)?;
+            if shapes.polygons.is_empty() && shapes.polylines.is_empty() {
+                let bytes = read_bytes(path)?;
+                let pts = geojson::read_points(&bytes).map_err(|e| e.with_path(path))?;
+                if !pts.is_empty() {
+                    return Ok(Data::Points(read_points(path)?));
+                }
+            }
+            Ok(Data::Shapes(shapes))
+        }
         Format::Nrrd | Format::Nhdr | Format::Mhd => Ok(Data::Volume(read_volume(path)?)),
         Format::Json => {
             let bytes = read_bytes(path)?;
