@@ -290,7 +290,14 @@ fn three_split_reports_singular_edges_and_the_fallback_is_g1() {
         let n: Vec<Vector3> = m.positions.iter().map(|p| p.coords.normalize()).collect();
         let s = three_split(&m, &n).unwrap();
         assert_eq!(s.singular_edges.len(), m.triangles.len() * 3 / 2);
-        check_surface(&m, &n, true);
+        let c = check_surface(&m, &n, true);
+        eprintln!(
+            "{} tris: macro {:.1e} micro {:.1e} rad, max displacement {:.3}",
+            m.triangles.len(),
+            c.max_macro_jump_rad,
+            c.max_micro_jump_rad,
+            s.max_displacement
+        );
     }
 }
 
