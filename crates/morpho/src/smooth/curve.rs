@@ -84,13 +84,24 @@ pub fn tangent(a: [f64; 2], b: [f64; 2], w: CurveWeighting) -> [f64; 2] {
     }
 }
 
-/// The G¹ test at a vertex: `None` when `(a·T)(b·T) < 0`, else the failure kind.
-fn g1_test(a: [f64; 2], b: [f64; 2], t: Option<[f64; 2]>) -> Option<FailureKind> {
+/// The G¹ test at a vertex `v`: `None` when `(a·T)(b·T) < 0`, else the failure kind. A
+/// handle `|a·T|/3` shorter than `1e-6 |v|` counts as zero: stored in absolute coordinates
+/// its direction would carry a rounding error above 1e-9 (see `Joint::rounding`), and one
+/// below `ε|v|` vanishes altogether (seen on Benelux 1:10m with weighting 3). `rel` is 3e-6
+/// for the requested weighting and 0 for the uniform repair (which has no better choice).
+fn g1_test(
+    v: [f64; 2],
+    a: [f64; 2],
+    b: [f64; 2],
+    t: Option<[f64; 2]>,
+    rel: f64,
+) -> Option<FailureKind> {
     let Some(t) = t else {
         return Some(FailureKind::ZeroHandle);
     };
     let (pa, pb) = (vec::dot(a, t), vec::dot(b, t));
-    if pa == 0.0 || pb == 0.0 {
+    let tiny = rel * vec::norm(v);
+    if pa.abs() <= tiny || pb.abs() <= tiny {
         Some(FailureKind::ZeroHandle)
     } else if (pa < 0.0) == (pb < 0.0) {
         Some(FailureKind::TangentLineOnly)
@@ -159,12 +170,12 @@ pub fn g1_curve(
         let a = vec::sub(v[(i + n - 1) % n], v[i]);
         let b = vec::sub(v[(i + 1) % n], v[i]);
         let t = unit(tangent(a, b, weighting));
-        match g1_test(a, b, t) {
+        match g1_test(v[i], a, b, t, 3e-6) {
             None => tangents.push(t.unwrap()),
             Some(kind) => {
                 failures.push(CurveFailure { vertex: i, kind });
                 let t2 = unit(tangent(a, b, CurveWeighting::Uniform));
-                if g1_test(a, b, t2).is_some() {
+                if g1_test(v[i], a, b, t2, 0.0).is_some() {
                     return Err(SmoothError::DoublesBack { index: i });
                 }
                 tangents.push(t2.unwrap());

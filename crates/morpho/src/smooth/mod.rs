@@ -5,8 +5,13 @@
 //!
 //! Deviations from the text (each documented in its file): the three-split's singular edges
 //! (mirror-symmetric sides, where (9.4) has no solution) are detected and reported, and
-//! repaired by rescaling that edge's tangent handles (see [`three_split`]); the 2D curve's
-//! failing vertices are repaired with the uniform weighting (NOTES B.2).
+//! built with a degree-elevated quadratic boundary and the ratio `e1/e0` that makes (9.3)
+//! consistent, in closed form (see [`three_split`]); the 2D curve's failing vertices are
+//! repaired with the uniform weighting (NOTES B.2), and its joint bound is relative to the
+//! rounding of the stored control points ([`Joint::rounding`]).
+//!
+//! Not yet built (issue 19): the two- and six-split, the side-vertex surface (H ch. 6),
+//! reflection lines, the `morpho smooth` CLI and benches.
 
 mod bezier;
 mod check;

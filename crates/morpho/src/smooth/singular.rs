@@ -1,197 +1,161 @@
-//! The completion of the three-split's singular edges (a deviation from Veltkamp 1992, §9.6;
-//! NOTES B.5): where (9.4) is singular — mirror-symmetric edge sides, `f0 g1 = g0 f1` — the
-//! text's pair has no solution, and even the exact tangent-plane condition
-//! `det[K−M, L−M, R−M](t) ≡ 0` (8.7) cannot be met by moving the interior points `L1, R1`
-//! alone (checked: the Gauss–Newton iterates run off to infinity on the octahedron). So the
-//! unknowns are widened, in the spirit of the constrained least-squares completion the notes
-//! recommend (B.7): per singular edge, `L1`, `R1` **and its two edge points `M1, M2`**, each
-//! kept in its vertex's tangent plane (2 parameters), so interpolation of positions and
-//! normals is untouched; the points `W = (V + E + E′)/3` next to the vertices follow the edge
-//! points, so the interior stays C¹ (Step 6 is run afterwards). The residuals are the det
-//! condition at 9 interior samples of every singular edge (its end coefficients vanish by
-//! construction); they are driven to zero by Gauss–Newton with minimum-norm (SVD) steps from
-//! the Step-4 values, i.e. the smallest move to first order, with step halving. Dense: used
-//! for up to [`MAX_GLOBAL`] singular edges at once; beyond that only `L1, R1` move.
-//! Nonsingular edges are then solved by (9.4) with the moved edge points.
+//! The three-split's singular macro edges (a deviation from Veltkamp 1992, §9.6, Step 5;
+//! NOTES B.5). The text solves the pair (9.4) for `L1, R1` and requires it to be independent
+//! ("If this pair of equations is independent, it uniquely determines L1 and R1"); it says
+//! nothing of the dependent case, which occurs whenever the two sides of an edge are mirror
+//! images (octahedron, icosahedron with sphere normals, symmetric grids): then `f0 = g0`,
+//! `f1 = g1` and (9.4) is singular **and inconsistent** for every ratio `e1/e0`.
+//!
+//! Why, and the fix (derived here, checked by the independent continuity test). On a mirror
+//! symmetric edge G¹ means `(L−M) + (R−M) = μ(t) (K−M)` along the edge (the symmetric part
+//! of the cross-boundary derivative lies along the boundary tangent). With the cubic boundary
+//! of Step 2, `K−M` is a genuine quadratic and `μ` would have to be rational: no cubic
+//! patches exist. If the boundary is a **degree-elevated quadratic** (the Farin-style boundary
+//! the text points to for the two-split, §9.7), `K−M` is a degree-elevated linear polynomial
+//! and `μ(t) = μ0 t + μ1 u` is linear: the linear-E,F,G conditions (9.3) are then consistent
+//! with `F = G` constant, i.e. with the ratio `ρ = e1/e0` chosen so that `f1 = f0`.
+//!
+//! So, for an edge detected as (near-)singular:
+//! 1. its two edge points become `M1 = (M0 + 2Q)/3`, `M2 = (M3 + 2Q)/3`, where `Q` is the
+//!    point nearest the edge midpoint in both vertex tangent planes and in the plane through
+//!    the edge spanned by the mean normal (the mirror plane of a symmetric edge), so positions
+//!    and normals are still interpolated ([`quadratic_handles`]);
+//! 2. Step 5 solves (9.3b), (9.3c) with `e0 = 1`, `e1 = ρ = (f0²+g0²)/(f0 f1 + g0 g1)`
+//!    (which makes `f1 = f0` exactly on symmetric edges) by the minimum-norm least-squares
+//!    correction of the current `(L1, R1)` (pseudo-inverse of the 2×2 coefficient matrix):
+//!    unique where the pair is independent, the smallest move where it is not
+//!    ([`solve_singular`]). The residual is returned; an edge whose residual does not vanish is
+//!    reported unresolved by the caller, never silently creased.
+//!
+//! No iteration: one closed-form step per edge. O(1) per edge.
 
 use crate::geom::vec;
-use std::collections::HashMap;
+use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
 type P3 = [f64; 3];
 
-/// Most singular edges solved together (dense SVD of a 9S × 10S Jacobian).
-pub const MAX_GLOBAL: usize = 150;
+/// Relative cut-off of the pseudo-inverses.
+const CUTOFF: f64 = 1e-9;
 
-const SAMPLES: usize = 9;
-
-/// What the completion needs of the mesh.
-pub(crate) struct Ctx<'a> {
-    pub tris: &'a [[u32; 3]],
-    pub half: &'a HashMap<(u32, u32), usize>,
-    pub pos: &'a [P3],
-    pub nrm: &'a [P3],
-}
-
-fn third(ctx: &Ctx, a: u32, b: u32) -> u32 {
-    let h = ctx.half[&(a, b)];
-    ctx.tris[h / 3][(h % 3 + 2) % 3]
-}
-
-fn tangent_basis(n: P3) -> (P3, P3) {
-    let pick = if n[0].abs() < 0.6 {
-        [1.0, 0.0, 0.0]
+/// The edge points `(M1, M2)` of the degree-elevated quadratic boundary from `a` (normal
+/// `na`) to `b` (normal `nb`), or `None` when no point lies in both tangent planes (parallel,
+/// offset planes) or the result is not finite.
+pub(crate) fn quadratic_handles(a: P3, na: P3, b: P3, nb: P3) -> Option<(P3, P3)> {
+    let e = vec::sub(b, a);
+    let len = vec::norm(e);
+    let mid = vec::lerp(a, b, 0.5);
+    let s = vec::add(na, nb);
+    let w = vec::cross(e, s);
+    let wl = vec::norm(w);
+    let w = if wl > 1e-12 * len * vec::norm(s) && wl > 0.0 {
+        vec::scale(w, 1.0 / wl)
     } else {
-        [0.0, 1.0, 0.0]
+        [0.0; 3]
     };
-    let u = vec::cross(n, pick);
-    let u = vec::scale(u, 1.0 / vec::norm(u));
-    (u, vec::cross(n, u))
+    let rows = [na, nb, w];
+    // right-hand sides relative to the midpoint
+    let rhs = [
+        vec::dot(na, vec::sub(a, mid)),
+        vec::dot(nb, vec::sub(b, mid)),
+        0.0,
+    ];
+    let m = Matrix3::from_fn(|i, j| rows[i][j]);
+    let svd = m.svd(true, true);
+    let cut = CUTOFF * svd.singular_values.max();
+    let x = svd.solve(&Vector3::from(rhs), cut).ok()?;
+    let q = vec::add(mid, [x[0], x[1], x[2]]);
+    let off = |p: P3, n: P3| vec::dot(vec::sub(q, p), n).abs();
+    if !q.iter().all(|c| c.is_finite()) || off(a, na) > 1e-12 * len || off(b, nb) > 1e-12 * len {
+        return None;
+    }
+    let m1 = vec::add_scaled(a, 2.0 / 3.0, vec::sub(q, a));
+    let m2 = vec::add_scaled(b, 2.0 / 3.0, vec::sub(q, b));
+    Some((m1, m2))
 }
 
-/// `det[K−M, L−M, R−M](t)` of an edge (`m` the 4 edge points, `l`, `r` the first rows).
-pub(crate) fn edge_det(m: &[P3; 4], l: &[P3; 3], r: &[P3; 3], t: f64) -> f64 {
-    let u = 1.0 - t;
-    let q = |p: [P3; 3]| {
-        vec::add(
-            vec::add(vec::scale(p[0], t * t), vec::scale(p[1], 2.0 * t * u)),
-            vec::scale(p[2], u * u),
+/// Step 5 on a (near-)singular edge (module doc): `m` the edge points, `l`, `r` the first rows
+/// of both sides, `[f0, g0, f1, g1]` from (9.3a), (9.3d) with `e = 1`, `old` the current
+/// `(L1, R1)`. Returns the new `(L1, R1)` and the relative residual of (9.3b), (9.3c).
+pub(crate) fn solve_singular(
+    m: &[P3; 4],
+    l: &[P3; 3],
+    r: &[P3; 3],
+    [f0, g0, f1, g1]: [f64; 4],
+    old: (P3, P3),
+) -> ((P3, P3), f64) {
+    let d = vec::sub;
+    let dot01 = f0 * f1 + g0 * g1;
+    let rho = if dot01.abs() > 0.0 && ((f0 * f0 + g0 * g0) / dot01).is_finite() {
+        (f0 * f0 + g0 * g0) / dot01
+    } else {
+        1.0
+    };
+    // A0 = (M1−M0) + f1(L0−M0) + g1(R0−M0); A1 = (M3−M2) + f0(L2−M2) + g0(R2−M2)
+    let mut a0 = d(m[1], m[0]);
+    a0 = vec::add_scaled(a0, f1, d(l[0], m[0]));
+    a0 = vec::add_scaled(a0, g1, d(r[0], m[0]));
+    let mut a1 = d(m[3], m[2]);
+    a1 = vec::add_scaled(a1, f0, d(l[2], m[2]));
+    a1 = vec::add_scaled(a1, g0, d(r[2], m[2]));
+    let m21 = d(m[2], m[1]);
+    // unknowns u = L1 − M1, v = R1 − M1:
+    //   2 f0 u + 2 g0 v         = −ρ A0 − 2 (M2−M1)        (9.3b)
+    //   2ρ f1 u + 2ρ g1 v       = −A1 − 2ρ (M2−M1)         (9.3c)
+    let b = Matrix2::new(2.0 * f0, 2.0 * g0, 2.0 * rho * f1, 2.0 * rho * g1);
+    let svd = b.svd(true, true);
+    let cut = CUTOFF * svd.singular_values.max();
+    let (u_old, v_old) = (d(old.0, m[1]), d(old.1, m[1]));
+    let mut u = [0.0; 3];
+    let mut v = [0.0; 3];
+    let mut res: f64 = 0.0;
+    for k in 0..3 {
+        let rhs = Vector2::new(-rho * a0[k] - 2.0 * m21[k], -a1[k] - 2.0 * rho * m21[k]);
+        let x_old = Vector2::new(u_old[k], v_old[k]);
+        let corr = svd
+            .solve(&(rhs - b * x_old), cut)
+            .unwrap_or_else(|_| Vector2::zeros());
+        let x = x_old + corr;
+        u[k] = x[0];
+        v[k] = x[1];
+        let rv = b * x - rhs;
+        res = res.max(rv[0].abs()).max(rv[1].abs());
+    }
+    let scale = vec::dist(m[0], m[3]) * (1.0 + f0.abs() + g0.abs()) * (1.0 + rho.abs());
+    let rel = if res.is_finite() {
+        res / scale
+    } else {
+        f64::INFINITY
+    };
+    ((vec::add(m[1], u), vec::add(m[1], v)), rel)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quadratic_boundary_of_the_octahedron_edge_is_the_corner_point() {
+        let (m1, m2) = quadratic_handles(
+            [1.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
         )
-    };
-    let mm = q([m[0], m[1], m[2]]);
-    let k = q([m[1], m[2], m[3]]);
-    let (a, b, c) = (vec::sub(k, mm), vec::sub(q(*l), mm), vec::sub(q(*r), mm));
-    vec::dot(vec::cross(a, b), c)
-}
-
-/// Completes the singular `edges` (a < b). `start[k]` holds edge k's Step-4 `(L1, R1)`.
-/// Moves the edge points of these edges in `handles` and returns the new `(L1, R1)` and,
-/// per edge, whether its residual vanished (≤ 1e-13 relative).
-pub(crate) fn complete(
-    ctx: &Ctx,
-    handles: &mut HashMap<(u32, u32), P3>,
-    edges: &[[u32; 2]],
-    start: &[(P3, P3)],
-) -> (Vec<(P3, P3)>, Vec<bool>) {
-    let s = edges.len();
-    if s > MAX_GLOBAL {
-        // too many for the dense solve: left as they are and reported unresolved
-        return (start.to_vec(), vec![false; s]);
+        .unwrap();
+        // Q = (1,1,0): M1 = (1, 2/3, 0), M2 = (2/3, 1, 0)
+        for (p, q) in [(m1, [1.0, 2.0 / 3.0, 0.0]), (m2, [2.0 / 3.0, 1.0, 0.0])] {
+            assert!(vec::dist(p, q) < 1e-15, "{p:?}");
+        }
+        // parallel offset tangent planes: no quadratic boundary
+        assert!(quadratic_handles(
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [0.0, 0.0, 1.0]
+        )
+        .is_none());
+        // one plane: the straight edge
+        let (m1, _) =
+            quadratic_handles([0.0; 3], [0.0, 0.0, 1.0], [3.0, 0.0, 0.0], [0.0, 0.0, 1.0]).unwrap();
+        assert!(vec::dist(m1, [1.0, 0.0, 0.0]) < 1e-15);
     }
-    let free_handles = s <= MAX_GLOBAL;
-    let per = if free_handles { 10 } else { 6 };
-    let base = handles.clone();
-    let slot: HashMap<(u32, u32), usize> = edges
-        .iter()
-        .enumerate()
-        .flat_map(|(k, &[a, b])| [((a, b), per * k + 6), ((b, a), per * k + 8)])
-        .collect();
-    let len: Vec<f64> = edges
-        .iter()
-        .map(|&[a, b]| vec::dist(ctx.pos[a as usize], ctx.pos[b as usize]))
-        .collect();
-    let basis: Vec<(P3, P3)> = ctx.nrm.iter().map(|&n| tangent_basis(n)).collect();
-    let handle = |x: &[f64], a: u32, b: u32| -> P3 {
-        let h = base[&(a, b)];
-        match slot.get(&(a, b)) {
-            Some(&o) if free_handles => {
-                let (u, v) = basis[a as usize];
-                let l = len[(o - 6) / per];
-                vec::add(
-                    h,
-                    vec::add(vec::scale(u, l * x[o]), vec::scale(v, l * x[o + 1])),
-                )
-            }
-            _ => h,
-        }
-    };
-    let interior = |x: &[f64], k: usize| -> (P3, P3) {
-        let (l1, r1) = start[k];
-        let o = per * k;
-        let sh = |p: P3, d: usize| {
-            vec::add(
-                p,
-                vec::scale([x[o + d], x[o + d + 1], x[o + d + 2]], len[k]),
-            )
-        };
-        (sh(l1, 0), sh(r1, 3))
-    };
-    let residuals = |x: &[f64], out: &mut Vec<f64>| {
-        out.clear();
-        for (k, &[a, b]) in edges.iter().enumerate() {
-            let (c, d) = (third(ctx, a, b), third(ctx, b, a));
-            let (pa, pb) = (ctx.pos[a as usize], ctx.pos[b as usize]);
-            let w = |v: P3, i: u32, j: u32, o: u32| {
-                vec::scale(
-                    vec::add(vec::add(v, handle(x, i, j)), handle(x, i, o)),
-                    1.0 / 3.0,
-                )
-            };
-            let m = [pa, handle(x, a, b), handle(x, b, a), pb];
-            let (l1, r1) = interior(x, k);
-            let l = [w(pa, a, b, c), l1, w(pb, b, a, c)];
-            let r = [w(pa, a, b, d), r1, w(pb, b, a, d)];
-            let n3 = len[k].powi(3);
-            for i in 1..=SAMPLES {
-                out.push(edge_det(&m, &l, &r, i as f64 / (SAMPLES + 1) as f64) / n3);
-            }
-        }
-    };
-    let n = per * s;
-    let mut x = vec![0.0; n];
-    let mut r = Vec::new();
-    residuals(&x, &mut r);
-    let amax = |r: &[f64]| r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let mut tmp = Vec::new();
-    for _ in 0..40 {
-        if amax(&r) <= 1e-15 {
-            break;
-        }
-        let h = 1e-5;
-        let mut j = nalgebra::DMatrix::zeros(r.len(), n);
-        for c in 0..n {
-            let keep = x[c];
-            x[c] = keep + h;
-            residuals(&x, &mut tmp);
-            let plus = tmp.clone();
-            x[c] = keep - h;
-            residuals(&x, &mut tmp);
-            x[c] = keep;
-            for (row, (p, m)) in plus.iter().zip(&tmp).enumerate() {
-                j[(row, c)] = (p - m) / (2.0 * h);
-            }
-        }
-        let svd = j.svd(true, true);
-        let rv = nalgebra::DVector::from_column_slice(&r);
-        let Ok(step) = svd.solve(&rv, 1e-10 * svd.singular_values.max()) else {
-            break;
-        };
-        let mut t = 1.0;
-        let before = r.iter().map(|v| v * v).sum::<f64>();
-        let mut improved = false;
-        for _ in 0..12 {
-            let trial: Vec<f64> = x.iter().zip(step.iter()).map(|(a, d)| a - t * d).collect();
-            residuals(&trial, &mut tmp);
-            if tmp.iter().map(|v| v * v).sum::<f64>() < before {
-                x = trial;
-                std::mem::swap(&mut r, &mut tmp);
-                improved = true;
-                break;
-            }
-            t *= 0.5;
-        }
-        if !improved {
-            break;
-        }
-    }
-    if free_handles {
-        for (&(a, b), _) in slot.iter() {
-            let p = handle(&x, a, b);
-            handles.insert((a, b), p);
-        }
-    }
-    let sol = (0..s).map(|k| interior(&x, k)).collect();
-    let ok = (0..s)
-        .map(|k| amax(&r[k * SAMPLES..(k + 1) * SAMPLES]) <= 1e-13)
-        .collect();
-    (sol, ok)
 }

@@ -11,18 +11,16 @@
 //! O(triangles).
 //!
 //! **Deviation (the singular case, not in the text).** When the two sides of an edge are
-//! mirror images (octahedron, icosahedron with sphere normals, symmetric grids), `f0 g1 = g0 f1`
-//! and (9.4) is singular and inconsistent (NOTES B.5): the text's construction would leave a
-//! crease of 0.29 rad (octahedron). Such edges (`|f0 g1 − g0 f1| ≤ 1e-7 (|f0|+|g0|)(|f1|+|g1|)`)
-//! are **reported** in [`SplitSurface::singular_edges`] and completed by a constrained
-//! least-squares solve instead: `L1, R1` are moved as little as possible from their Step-4
-//! values such that `det[K−M, L−M, R−M](t) ≡ 0` (the tangent-plane condition (8.7) itself, a
-//! degree-6 polynomial whose end coefficients vanish by (9.3a, d)): Gauss–Newton with
-//! minimum-norm steps on its samples, which is bilinear in `(L1, R1)`. Edges where this does
-//! not converge are listed in [`SplitSurface::unresolved_edges`]; edges whose `f`, `g` differ
-//! in sign (a fold, NOTES B.1: the text's "opposite signs" is a garble) in
-//! [`SplitSurface::sign_warnings`]. Continuity is verified independently by
-//! [`super::continuity`].
+//! (nearly) mirror images (octahedron, icosahedron with sphere normals, symmetric grids),
+//! `f0 g1 ≈ g0 f1` and (9.4) is singular and inconsistent (NOTES B.5): the text's construction
+//! would leave a crease of 0.29 rad (octahedron). Such edges
+//! (`|f0 g1 − g0 f1| ≤ 1e-7 (|f0|+|g0|)(|f1|+|g1|)`) are **reported** in
+//! [`SplitSurface::singular_edges`] and built with a degree-elevated quadratic boundary and the
+//! ratio `e1/e0` that makes (9.3) consistent, solved in closed form (the derivation is in
+//! `singular.rs`). Edges where that still leaves a residual are listed in
+//! [`SplitSurface::unresolved_edges`]; edges whose `f`, `g` differ in sign (a fold, NOTES B.1:
+//! the text's "opposite signs" is a garble) in [`SplitSurface::sign_warnings`]. Continuity is
+//! verified independently by [`super::continuity`].
 
 use super::triangle::{tri_index, BezierTriangle};
 use super::SmoothError;
@@ -31,6 +29,11 @@ use crate::mesh::TriMesh;
 use std::collections::HashMap;
 
 type P3 = [f64; 3];
+
+/// Relative threshold of `is_singular`.
+const SINGULAR: f64 = 1e-7;
+/// Largest relative residual of (9.3b, c) accepted on a singular edge.
+const RESOLVED: f64 = 1e-10;
 /// The half-edge map and the unit normals of a checked mesh.
 type Checked = (HashMap<(u32, u32), usize>, Vec<P3>);
 
@@ -56,10 +59,11 @@ pub struct SplitSurface {
     /// Micro patches; for the three-split, patch `3t+i` has corners `(V_i, V_{i+1}, Z)` of
     /// macro triangle t.
     pub patches: Vec<MicroPatch>,
-    /// Macro edges `[a, b]` (a < b) where (9.4) is singular (reported, then completed by the
-    /// constrained solve of the module doc).
+    /// Macro edges `[a, b]` (a < b) where (9.4) is (nearly) singular (reported, then built with
+    /// the quadratic boundary of the module doc).
     pub singular_edges: Vec<[u32; 2]>,
-    /// Singular edges where the constrained solve did not reach tangent-plane continuity.
+    /// Singular edges where that construction left a residual (no quadratic boundary, or
+    /// (9.3) inconsistent): not G¹.
     pub unresolved_edges: Vec<[u32; 2]>,
     /// Macro edges whose `f0,g0` or `f1,g1` differ in sign (a fold is likely).
     pub sign_warnings: Vec<[u32; 2]>,
@@ -207,7 +211,7 @@ fn edge_data(
 /// `|f0 g1 − g0 f1| ≤ 1e-7 (|f0|+|g0|)(|f1|+|g1|)`: (9.4) is (nearly) dependent.
 fn is_singular([f0, g0, f1, g1]: [f64; 4]) -> bool {
     let delta = f0 * g1 - g0 * f1;
-    delta.abs() <= 1e-7 * (f0.abs() + g0.abs()) * (f1.abs() + g1.abs()) || delta.is_nan()
+    delta.abs() <= SINGULAR * (f0.abs() + g0.abs()) * (f1.abs() + g1.abs()) || delta.is_nan()
 }
 
 /// The pair (9.4) solved for `(L1, R1)` with `e0 = e1 = 1`.
@@ -287,45 +291,61 @@ pub fn three_split(
     let mut edges: Vec<(u32, u32)> = half.keys().copied().filter(|&(a, b)| a < b).collect();
     edges.sort_unstable();
     let mut out = SplitSurface::default();
-    // pass 1: classify the edges on the Step-4 data
     let step4 = build(&handles);
-    let mut start = Vec::new();
+    // classify on the Step-4 data (once: re-classifying after the quadratic boundaries moved
+    // the neighbours' W points was tried and makes more edges fold on real meshes)
+    let mut singular: HashMap<(u32, u32), bool> = HashMap::new();
     for &(a, b) in &edges {
-        let (e, [f0, g0, f1, g1]) = edge_data(&step4, &half, a, b);
-        if f0 * g0 <= 0.0 || f1 * g1 <= 0.0 {
-            out.sign_warnings.push([a, b]);
-        }
-        if is_singular([f0, g0, f1, g1]) {
-            out.singular_edges.push([a, b]);
-            start.push((e.l[1], e.r[1]));
-        }
-    }
-    // the deviation: complete the singular edges (moves their edge points)
-    let mut fixed: HashMap<(u32, u32), (P3, P3)> = HashMap::new();
-    if !out.singular_edges.is_empty() {
-        let ctx = super::singular::Ctx {
-            tris: &mesh.triangles,
-            half: &half,
-            pos: &pos,
-            nrm: &nrm,
-        };
-        let (sol, ok) = super::singular::complete(&ctx, &mut handles, &out.singular_edges, &start);
-        for (k, &[a, b]) in out.singular_edges.iter().enumerate() {
-            fixed.insert((a, b), sol[k]);
-            if !ok[k] {
-                out.unresolved_edges.push([a, b]);
+        let (_, fg) = edge_data(&step4, &half, a, b);
+        if is_singular(fg) {
+            let (pa, pb) = (pos[a as usize], pos[b as usize]);
+            let q = super::singular::quadratic_handles(pa, nrm[a as usize], pb, nrm[b as usize]);
+            if let Some((m1, m2)) = q {
+                handles.insert((a, b), m1);
+                handles.insert((b, a), m2);
             }
+            singular.insert((a, b), q.is_some());
         }
     }
-    // pass 2: Step 5 on the final edge points
-    let mut patches = build(&handles);
+    let mut patches = if singular.is_empty() {
+        step4.clone()
+    } else {
+        build(&handles)
+    };
+    // Step 5 on the final edge points
     for &(a, b) in &edges {
         let (p, q) = (half[&(a, b)], half[&(b, a)]);
         let (e, fg) = edge_data(&patches, &half, a, b);
+        if fg[0] * fg[1] <= 0.0 || fg[2] * fg[3] <= 0.0 {
+            out.sign_warnings.push([a, b]);
+        }
         let old_l = step4[p][4];
         let len = vec::dist(e.m[0], e.m[3]);
-        let (l1, r1) = match fixed.get(&(a, b)) {
-            Some(&lr) => lr,
+        let (l1, r1) = match singular.get(&(a, b)) {
+            Some(&quadratic) => {
+                out.singular_edges.push([a, b]);
+                let (lr, res) = super::singular::solve_singular(
+                    &e.m,
+                    &e.l,
+                    &e.r,
+                    fg,
+                    (patches[p][4], patches[q][4]),
+                );
+                if !quadratic || (res > RESOLVED || res.is_nan()) {
+                    out.unresolved_edges.push([a, b]);
+                }
+                lr
+            }
+            // an edge made singular by its neighbours' new boundaries: the same solve
+            None if is_singular(fg) => {
+                out.singular_edges.push([a, b]);
+                let old = (patches[p][4], patches[q][4]);
+                let (lr, res) = super::singular::solve_singular(&e.m, &e.l, &e.r, fg, old);
+                if res > RESOLVED || res.is_nan() {
+                    out.unresolved_edges.push([a, b]);
+                }
+                lr
+            }
             None => solve_94(&e, fg),
         };
         out.max_displacement = out.max_displacement.max(vec::dist(l1, old_l) / len);
