@@ -157,6 +157,15 @@ pub enum Error {
         #[source]
         source: crate::smooth::SmoothError,
     },
+    /// A refusal of [`crate::reduce`] (`path`: the input file when known).
+    #[error("{}{source}", prefix(path))]
+    Reduce {
+        /// The input file, empty when unknown.
+        path: String,
+        /// The refusal.
+        #[source]
+        source: crate::reduce::ReduceError,
+    },
 }
 
 /// `From<FamilyError> for Error`: the family's variant with an empty path (filled by
@@ -184,6 +193,7 @@ from_family! {
     crate::flint::FlintError => Flint,
     crate::curvature::CurvatureError => Curvature,
     crate::smooth::SmoothError => Smooth,
+    crate::reduce::ReduceError => Reduce,
 }
 
 impl From<crate::contour::ContourError> for Error {
@@ -279,7 +289,8 @@ impl Error {
             | Error::Boundary { path, .. }
             | Error::Flint { path, .. }
             | Error::Curvature { path, .. }
-            | Error::Smooth { path, .. } => {
+            | Error::Smooth { path, .. }
+            | Error::Reduce { path, .. } => {
                 if path.is_empty() {
                     *path = name;
                 }

@@ -36,6 +36,7 @@ pub mod geom;
 pub mod graphs;
 pub mod io;
 pub mod mesh;
+pub mod reduce;
 pub mod render;
 pub mod samples;
 pub mod smooth;

@@ -216,3 +216,46 @@ mod examples {
         assert_eq!(norm(n) / 2.0, 3.0);
     }
 }
+
+/// The point of the closed triangle `abc` closest to `p` (Ericson, *Real-Time Collision
+/// Detection*, §5.1.5: Voronoi regions of the corners and edges). A construction in floating
+/// point, for distances (not for decisions).
+///
+/// ```ignore
+/// use morpho::geom::vec::closest_on_triangle;
+/// let (a, b, c) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+/// assert_eq!(closest_on_triangle([0.2, 0.2, 5.0], a, b, c), [0.2, 0.2, 0.0]);
+/// assert_eq!(closest_on_triangle([-1.0, -1.0, 0.0], a, b, c), a);
+/// ```
+pub fn closest_on_triangle(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f64; 3] {
+    let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
+    let (d1, d2) = (dot(ab, ap), dot(ac, ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = sub(p, b);
+    let (d3, d4) = (dot(ab, bp), dot(ac, bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return add_scaled(a, d1 / (d1 - d3), ab);
+    }
+    let cp = sub(p, c);
+    let (d5, d6) = (dot(ab, cp), dot(ac, cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return add_scaled(a, d2 / (d2 - d6), ac);
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return add_scaled(b, (d4 - d3) / ((d4 - d3) + (d5 - d6)), sub(c, b));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    let (v, w) = (vb * denom, vc * denom);
+    add_scaled(add_scaled(a, v, ab), w, ac)
+}

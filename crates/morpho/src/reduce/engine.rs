@@ -1,0 +1,625 @@
+//! Triangle reduction by iterative triangle removal (Hamann 1991, §5.2, Algorithm 5.1,
+//! Rems 5.7–5.11; notes D.3).
+//!
+//! Each step pops the removable triangle of smallest weight ω = σρ ([`super::weight`]) from a
+//! lazy heap, replaces it and the corona triangles at its corners by a fan from one new point
+//! ([`super::point`]), improves the fan by max-min angle-weight swaps ([`super::retri`]) and
+//! pushes the new triangles. Removable (Rem. 5.2 plus the guarantees below):
+//! 1. the corona is continuous and acyclic, and the link of the triangle is one simple
+//!    path/cycle ([`super::corona`]): χ, parts and boundary loops stay (Thm 5.4);
+//! 2. the half-plane test (5.18) passes, and every new triangle is counter-clockwise in the
+//!    projection onto the removed triangle's plane (exact `orient2d`), is not degenerate (exact)
+//!    and has angle weight > 1e-6;
+//! 3. no new triangle meets a nearby triangle beyond their shared vertices/edge (the exact
+//!    triangle–triangle test of [`crate::geom::intersect`], candidates from a [`BoxGrid`]), so no
+//!    self-intersection is created;
+//! 4. [`Domain::HeightField`]: every new triangle is counter-clockwise over xy (exact), the
+//!    new point of an open corona keeps the origin's (x, y) with its height from the fit in the
+//!    vertical frame, and the boundary polyline through the removed corners is replaced by one
+//!    covering the same segments (exact collinearity), so the domain stays covered, fold-free.
+//!
+//! **"New" triangles (Rem. 5.9, notes D.3.1).** Triangles created by the last removal are
+//! skipped by the next step while an older triangle is removable; they are tried only when no
+//! old triangle is. A triangle found not removable is parked and re-queued when a removal
+//! touches its platelet (a corner on the new ring). **Curvature of the old vertices is kept**
+//! (D.3.7); the new point gets its curvature from its fit. Undetermined vertex curvatures of
+//! the input (H ch. 4 fit) are replaced by the mean of their determined neighbours (0 if none).
+//!
+//! Stops: [`Stop::Keep`] (% of triangles kept, "while #triangles > p/100·N0"),
+//! [`Stop::Triangles`], and (Rem. 5.10) [`Stop::Rms`] / [`Stop::MaxError`]: the removal that
+//! would exceed the tolerance is not made, so the output satisfies it ([`super::track`]).
+//!
+//! Cost: O(n log n) time, O(n) memory (flat arrays, freed slots reused).
+
+use super::corona::{centroid, half_plane_2d, origin_of, ring_of, Frame, Origin, Ring, Scratch};
+use super::error::ReduceError;
+use super::heap::WeightHeap;
+use super::point::{bivariate_point, implicit_point, NewPoint};
+use super::retri::{fan, improve};
+use super::state::State;
+use super::track::Tracker;
+use super::weight::{angle_weight, triangle_weight};
+use crate::curvature::{surface_curvature, NormalSource, SurfaceOptions};
+use crate::geom::grid::BoxGrid;
+use crate::geom::intersect::{degenerate_triangle, triangles_meet_beyond_shared};
+use crate::geom::predicates::raw::orient2d;
+use crate::geom::vec::{dist, midpoint};
+use crate::geom::Point3;
+use crate::mesh::TriMesh;
+use crate::util::NONE;
+
+/// When the reduction stops.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Stop {
+    /// Keep this percentage of the input's triangles, in (0, 100] (Alg. 5.1).
+    Keep(f64),
+    /// Stop at this many triangles or fewer (at most the input's count).
+    Triangles(usize),
+    /// Stop before the RMS error (5.41) at the input's vertices would exceed this (Rem. 5.10).
+    Rms(f64),
+    /// Stop before the largest error at the input's vertices would exceed this.
+    MaxError(f64),
+}
+
+/// What kind of surface is reduced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Domain {
+    /// Any manifold, consistently oriented triangulation; errors are Euclidean distances.
+    #[default]
+    Surface,
+    /// The graph of a function over xy (every triangle counter-clockwise over xy): the domain
+    /// stays covered, the projection fold-free, errors are vertical (5.41).
+    HeightField,
+}
+
+/// Options of [`reduce`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReduceOptions {
+    /// When to stop.
+    pub stop: Stop,
+    /// How the new point is computed.
+    pub point: NewPoint,
+    /// Never remove a triangle with a corner on the boundary (Rem. 5.8).
+    pub freeze_boundary: bool,
+    /// Surface or height field.
+    pub domain: Domain,
+    /// The normals of the H ch. 4 curvature fit at the input's vertices.
+    pub normals: NormalSource,
+    /// Test each re-triangulation against nearby triangles (exact); off only for inputs known
+    /// to stay embedded (height fields are fold-free anyway).
+    pub check_intersections: bool,
+}
+
+impl Default for ReduceOptions {
+    fn default() -> Self {
+        ReduceOptions {
+            stop: Stop::Keep(50.0),
+            point: NewPoint::Bivariate,
+            freeze_boundary: false,
+            domain: Domain::Surface,
+            normals: NormalSource::default(),
+            check_intersections: true,
+        }
+    }
+}
+
+/// Why the reduction ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopReason {
+    /// The triangle target was reached.
+    Target,
+    /// One more removal would exceed the tolerance.
+    Tolerance,
+    /// No triangle is removable any more (Rem. 5.11).
+    NoRemovable,
+}
+
+/// The result of [`reduce`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reduced {
+    /// The reduced mesh (unreferenced vertices dropped).
+    pub mesh: TriMesh,
+    /// For each output vertex, the input vertex whose index it inherits (H (5.40): the new
+    /// point takes the index of the removed triangle's first corner).
+    pub source: Vec<u32>,
+    /// Triangles of the input.
+    pub triangles_in: usize,
+    /// Triangles removed (one step replaces one triangle and its neighbours).
+    pub removals: usize,
+    /// Why it stopped.
+    pub stop: StopReason,
+    /// The RMS error at the input's vertices, when tracked (tolerance stops, height fields).
+    pub rms: Option<f64>,
+    /// The largest error at the input's vertices (an upper bound), when tracked.
+    pub max_error: Option<f64>,
+}
+
+/// A removal ready to apply.
+struct Plan {
+    ring: Ring,
+    p: [f64; 3],
+    abs_curv: f64,
+    /// New triangles in local indices (0 = p, 1 + j = ring vertex j).
+    tris: Vec<[usize; 3]>,
+}
+
+struct Engine<'o> {
+    s: State,
+    curv: Vec<f64>,
+    w: Vec<f64>,
+    gen: Vec<u32>,
+    parked: Vec<bool>,
+    heap: WeightHeap,
+    grid: Option<BoxGrid<3>>,
+    sc: Scratch,
+    opts: &'o ReduceOptions,
+    removals: u32,
+    buf: Vec<u32>,
+}
+
+/// Reduces `mesh` by Hamann's triangle removal (Alg. 5.1); see the module documentation.
+///
+/// ```
+/// use morpho::mesh::{analyze_topology, generate};
+/// use morpho::reduce::{reduce, ReduceOptions, Stop};
+/// let torus = generate::torus(2.0, 0.7, 40, 20);
+/// let opts = ReduceOptions { stop: Stop::Keep(30.0), ..Default::default() };
+/// let r = reduce(&torus, &opts).unwrap();
+/// assert!(r.mesh.triangles.len() <= 480);
+/// let t = analyze_topology(&r.mesh);
+/// assert!(t.manifold && t.consistently_oriented && t.genus() == Some(1));
+/// ```
+pub fn reduce(mesh: &TriMesh, opts: &ReduceOptions) -> Result<Reduced, ReduceError> {
+    mesh.validate()?;
+    let n0 = mesh.triangles.len();
+    let target = match opts.stop {
+        Stop::Keep(p) => {
+            if !(p > 0.0 && p <= 100.0) {
+                return Err(ReduceError::BadPercentage { percent: p });
+            }
+            (p / 100.0 * n0 as f64).floor() as usize
+        }
+        Stop::Triangles(t) => {
+            if t > n0 {
+                return Err(ReduceError::CountAboveInput {
+                    target: t,
+                    input: n0,
+                });
+            }
+            t
+        }
+        Stop::Rms(e) | Stop::MaxError(e) => {
+            if !(e >= 0.0 && e.is_finite()) {
+                return Err(ReduceError::BadTolerance { tolerance: e });
+            }
+            0
+        }
+    };
+    let pos: Vec<[f64; 3]> = mesh.positions.iter().map(|p| p.coords.into()).collect();
+    let s = State::build(pos.clone(), &mesh.triangles)?;
+    let height = opts.domain == Domain::HeightField;
+    if height {
+        for (t, tr) in mesh.triangles.iter().enumerate() {
+            let q = |v: u32| [pos[v as usize][0], pos[v as usize][1]];
+            if orient2d(q(tr[0]), q(tr[1]), q(tr[2])) <= 0.0 {
+                return Err(ReduceError::NotAHeightField { triangle: t });
+            }
+        }
+    }
+    let curv = vertex_curvature(mesh, &s, opts)?;
+    let tolerance = matches!(opts.stop, Stop::Rms(_) | Stop::MaxError(_));
+    let mut tracker = (tolerance || height).then(|| Tracker::new(pos, &mesh.triangles, height));
+    let mut e = Engine::new(s, curv, opts);
+    let stop = loop {
+        if !tolerance && e.s.live_tris <= target {
+            break StopReason::Target;
+        }
+        let Some(plan) = e.next_plan() else {
+            break StopReason::NoRemovable;
+        };
+        let new: Vec<[[f64; 3]; 3]> = plan
+            .tris
+            .iter()
+            .map(|t| t.map(|i| e.local_pos(&plan, i)))
+            .collect();
+        let eval = tracker
+            .as_mut()
+            .map(|tr| (tr.evaluate(&plan.ring.removed, &new), tr));
+        let over = match (opts.stop, &eval) {
+            (Stop::Rms(eps), Some(((sse, _), _))) => (sse / n_knots(mesh)).sqrt() > eps,
+            (Stop::MaxError(eps), Some(((_, mx), _))) => *mx > eps,
+            _ => false,
+        };
+        if over {
+            break StopReason::Tolerance;
+        }
+        let slots = e.apply(&plan);
+        if let Some(((sse, mx), tr)) = eval {
+            tr.commit(&plan.ring.removed, &slots, sse, mx);
+        }
+    };
+    let (p, tris, map) = e.s.compact();
+    let mut source = vec![0u32; p.len()];
+    for (old, &m) in map.iter().enumerate() {
+        if m != NONE {
+            source[m as usize] = old as u32;
+        }
+    }
+    Ok(Reduced {
+        mesh: TriMesh::new(p.into_iter().map(Point3::from).collect(), tris),
+        source,
+        triangles_in: n0,
+        removals: e.removals as usize,
+        stop,
+        rms: tracker.as_ref().map(|t| t.rms()),
+        max_error: tracker.as_ref().map(|t| t.max),
+    })
+}
+
+fn n_knots(mesh: &TriMesh) -> f64 {
+    mesh.positions.len().max(1) as f64
+}
+
+/// Absolute curvature per vertex by the H ch. 4 fit, undetermined ones from their neighbours.
+fn vertex_curvature(
+    mesh: &TriMesh,
+    s: &State,
+    opts: &ReduceOptions,
+) -> Result<Vec<f64>, ReduceError> {
+    if let NormalSource::Given(n) = &opts.normals {
+        if n.len() != mesh.positions.len() {
+            return Err(ReduceError::NormalCount {
+                given: n.len(),
+                vertices: mesh.positions.len(),
+            });
+        }
+    }
+    let so = SurfaceOptions {
+        normals: opts.normals.clone(),
+        ring: 1,
+    };
+    let c = surface_curvature(mesh, &so)?;
+    let mut a = c.a;
+    let mut fanb = Vec::new();
+    let fixed: Vec<(usize, f64)> = (0..a.len())
+        .filter(|&v| !a[v].is_finite())
+        .map(|v| {
+            s.fan(v as u32, &mut fanb);
+            let (mut sum, mut k) = (0.0, 0);
+            for &h in &fanb {
+                for u in [s.to(h), s.from(super::state::prev(h))] {
+                    if a[u as usize].is_finite() {
+                        sum += a[u as usize];
+                        k += 1;
+                    }
+                }
+            }
+            (v, if k > 0 { sum / k as f64 } else { 0.0 })
+        })
+        .collect();
+    for (v, x) in fixed {
+        a[v] = x;
+    }
+    Ok(a)
+}
+
+impl<'o> Engine<'o> {
+    fn new(s: State, curv: Vec<f64>, opts: &'o ReduceOptions) -> Self {
+        let nt = s.tri.len();
+        let mut e = Engine {
+            curv,
+            w: vec![0.0; nt],
+            gen: vec![0; nt],
+            parked: vec![false; nt],
+            heap: WeightHeap::default(),
+            grid: None,
+            sc: Scratch::default(),
+            opts,
+            removals: 0,
+            buf: Vec::new(),
+            s,
+        };
+        if opts.check_intersections {
+            let mut len = 0.0;
+            for tr in &e.s.tri {
+                len += dist(e.s.p(tr[0]), e.s.p(tr[1]));
+            }
+            let cell = 2.0 * len / nt as f64;
+            let mut g = BoxGrid::new([0.0; 3], cell, true);
+            for t in 0..nt as u32 {
+                let (lo, hi) = e.bbox(t);
+                g.insert(t, lo, hi);
+            }
+            e.grid = Some(g);
+        }
+        for t in 0..nt as u32 {
+            let w = e.weight(t);
+            e.w[t as usize] = w;
+            e.heap.push(t, w);
+        }
+        e
+    }
+
+    fn bbox(&self, t: u32) -> ([f64; 3], [f64; 3]) {
+        let c = self.s.tri[t as usize].map(|v| self.s.p(v));
+        (
+            std::array::from_fn(|k| c[0][k].min(c[1][k]).min(c[2][k])),
+            std::array::from_fn(|k| c[0][k].max(c[1][k]).max(c[2][k])),
+        )
+    }
+
+    fn weight(&self, t: u32) -> f64 {
+        let tr = self.s.tri[t as usize];
+        triangle_weight(tr.map(|v| self.s.p(v)), tr.map(|v| self.curv[v as usize]))
+    }
+
+    fn local_pos(&self, plan: &Plan, i: usize) -> [f64; 3] {
+        if i == 0 {
+            plan.p
+        } else {
+            self.s.p(plan.ring.verts[i - 1])
+        }
+    }
+
+    /// The next removal of Alg. 5.1 (old triangles before the last step's new ones).
+    fn next_plan(&mut self) -> Option<Plan> {
+        let mut deferred = Vec::new();
+        let mut chosen = None;
+        while let Some((t, _)) = self.heap.pop() {
+            if !self.s.alive[t as usize] {
+                continue;
+            }
+            if self.removals > 0 && self.gen[t as usize] == self.removals {
+                deferred.push(t);
+                continue;
+            }
+            match self.plan(t) {
+                Some(p) => {
+                    chosen = Some(p);
+                    break;
+                }
+                None => self.parked[t as usize] = true,
+            }
+        }
+        let mut rest = deferred.into_iter();
+        if chosen.is_none() {
+            for t in rest.by_ref() {
+                if let Some(p) = self.plan(t) {
+                    chosen = Some(p);
+                    break;
+                }
+                self.parked[t as usize] = true;
+            }
+        }
+        for t in rest {
+            self.heap.push(t, self.w[t as usize]);
+        }
+        chosen
+    }
+
+    /// Decides whether `t` is removable and builds its re-triangulation.
+    fn plan(&mut self, t: u32) -> Option<Plan> {
+        let mut ring = Ring::default();
+        let class = ring_of(&self.s, t, &mut self.sc, &mut ring)?;
+        if !class.admits_removal() || (self.opts.freeze_boundary && ring.any_boundary) {
+            return None;
+        }
+        let a = self.s.tri[t as usize];
+        let ap = a.map(|v| self.s.p(v));
+        let cen = centroid(ap);
+        let f0 = Frame::of(ap, cen)?;
+        let m = ring.verts.len();
+        let mut p2: Vec<[f64; 2]> = Vec::with_capacity(m + 1);
+        p2.push([0.0, 0.0]);
+        p2.extend(ring.verts.iter().map(|&v| f0.uv(self.s.p(v))));
+        if !half_plane_2d(&p2[1..], [0.0, 0.0], ring.closed) {
+            return None;
+        }
+        let height = self.opts.domain == Domain::HeightField;
+        let origin = match origin_of(&ring, |v| {
+            self.s.fan(v, &mut self.buf);
+            self.buf.len()
+        }) {
+            Origin::Centroid => cen,
+            Origin::Vertex(v) => self.s.p(v),
+            Origin::Midpoint(u, v) => midpoint(self.s.p(u), self.s.p(v)),
+        };
+        let mut pts: Vec<[f64; 3]> = ap.to_vec();
+        pts.extend(ring.verts.iter().map(|&v| self.s.p(v)));
+        let fallback = a.iter().map(|&v| self.curv[v as usize]).sum::<f64>() / 3.0;
+        let fit = if height && !ring.closed {
+            let vf = Frame {
+                c: origin,
+                n: [0.0, 0.0, 1.0],
+                b1: [1.0, 0.0, 0.0],
+                b2: [0.0, 1.0, 0.0],
+            };
+            bivariate_point(&vf, &pts, fallback)
+        } else {
+            let f = Frame { c: origin, ..f0 };
+            match self.opts.point {
+                NewPoint::Implicit => {
+                    implicit_point(&f, &pts).unwrap_or_else(|| bivariate_point(&f, &pts, fallback))
+                }
+                NewPoint::Bivariate => bivariate_point(&f, &pts, fallback),
+            }
+        };
+        let p = fit.p;
+        if !p.iter().all(|x| x.is_finite()) {
+            return None;
+        }
+        p2[0] = f0.uv(p);
+        let xy: Option<Vec<[f64; 2]>> = height.then(|| {
+            std::iter::once([p[0], p[1]])
+                .chain(ring.verts.iter().map(|&v| {
+                    let q = self.s.p(v);
+                    [q[0], q[1]]
+                }))
+                .collect()
+        });
+        if height && !ring.closed && !self.domain_kept(&ring, p) {
+            return None;
+        }
+        let mut tris = Vec::new();
+        fan(m, ring.closed, &mut tris);
+        let mut p3: Vec<[f64; 3]> = vec![p];
+        p3.extend(ring.verts.iter().map(|&v| self.s.p(v)));
+        {
+            let (s, verts, buf) = (&self.s, &ring.verts, &mut self.buf);
+            improve(&mut tris, &p3, &p2, xy.as_deref(), |i, j| {
+                s.has_edge(verts[i - 1], verts[j - 1], buf)
+            });
+        }
+        for tr in &tris {
+            let [x, y, z] = *tr;
+            if orient2d(p2[x], p2[y], p2[z]) <= 0.0
+                || xy
+                    .as_ref()
+                    .is_some_and(|c| orient2d(c[x], c[y], c[z]) <= 0.0)
+                || degenerate_triangle(p3[x], p3[y], p3[z])
+                || angle_weight(p3[x], p3[y], p3[z]) <= 1e-6
+            {
+                return None;
+            }
+        }
+        let plan = Plan {
+            ring,
+            p,
+            abs_curv: fit.abs_curv,
+            tris,
+        };
+        if !self.embedded(&plan, a[0]) {
+            return None;
+        }
+        Some(plan)
+    }
+
+    /// Height fields, open corona: the boundary through the removed corners is replaced by
+    /// `e → p → s` covering the same segments (exact collinearity over xy).
+    fn domain_kept(&self, ring: &Ring, p: [f64; 3]) -> bool {
+        let xy = |q: [f64; 3]| [q[0], q[1]];
+        let e = xy(self.s.p(*ring.verts.last().unwrap()));
+        let s0 = xy(self.s.p(ring.verts[0]));
+        let pp = xy(p);
+        ring.chain.iter().all(|&c| {
+            let c = xy(self.s.p(c));
+            c == pp || orient2d(e, pp, c) == 0.0 || orient2d(pp, s0, c) == 0.0
+        })
+    }
+
+    /// No new triangle meets a triangle outside the platelet beyond shared vertices/edges.
+    fn embedded(&mut self, plan: &Plan, pid: u32) -> bool {
+        let Some(grid) = &self.grid else {
+            return true;
+        };
+        let ids = |i: usize| {
+            if i == 0 {
+                pid
+            } else {
+                plan.ring.verts[i - 1]
+            }
+        };
+        let mut cand = Vec::new();
+        for tr in &plan.tris {
+            let ti = tr.map(ids);
+            let tp = tr.map(|i| self.local_pos(plan, i));
+            let lo = std::array::from_fn(|k| tp[0][k].min(tp[1][k]).min(tp[2][k]));
+            let hi = std::array::from_fn(|k| tp[0][k].max(tp[1][k]).max(tp[2][k]));
+            grid.query(lo, hi, &mut cand);
+            for &u in &cand {
+                if (u as usize) >= self.s.tri.len()
+                    || !self.s.alive[u as usize]
+                    || plan.ring.removed.contains(&u)
+                {
+                    continue;
+                }
+                let ut = self.s.tri[u as usize];
+                if triangles_meet_beyond_shared(ti, tp, ut, ut.map(|v| self.s.p(v))) {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// Applies a plan; returns the slots of the new triangles (in plan order).
+    fn apply(&mut self, plan: &Plan) -> Vec<u32> {
+        let t0 = plan.ring.removed[0];
+        let a = self.s.tri[t0 as usize];
+        for &u in &plan.ring.removed {
+            self.heap.invalidate(u);
+            self.s.kill_triangle(u);
+        }
+        let pid = a[0];
+        self.s.pos[pid as usize] = plan.p;
+        self.curv[pid as usize] = plan.abs_curv;
+        self.s.vhe[a[1] as usize] = NONE;
+        self.s.vhe[a[2] as usize] = NONE;
+        let verts = &plan.ring.verts;
+        let m = verts.len();
+        let gid = |i: usize| if i == 0 { pid } else { verts[i - 1] };
+        let slots: Vec<u32> = plan
+            .tris
+            .iter()
+            .map(|tr| self.s.add_triangle(tr.map(gid)))
+            .collect();
+        self.removals += 1;
+        let nt = self.s.tri.len();
+        self.w.resize(nt, 0.0);
+        self.gen.resize(nt, 0);
+        self.parked.resize(nt, false);
+        // opposites: ring edges to the outside, the rest among the new triangles
+        for (k, tr) in plan.tris.iter().enumerate() {
+            for i in 0..3 {
+                let (x, y) = (tr[i], tr[(i + 1) % 3]);
+                let h = 3 * slots[k] + i as u32;
+                let ring_edge = x >= 1 && y >= 1 && (y == x % m + 1) && (plan.ring.closed || x < m);
+                let o = if ring_edge {
+                    plan.ring.outer[x - 1]
+                } else {
+                    plan.tris
+                        .iter()
+                        .enumerate()
+                        .find_map(|(l, u)| {
+                            (0..3)
+                                .find(|&j| u[j] == y && u[(j + 1) % 3] == x)
+                                .map(|j| 3 * slots[l] + j as u32)
+                        })
+                        .unwrap_or(NONE)
+                };
+                self.s.opp[h as usize] = o;
+                if o != NONE {
+                    self.s.opp[o as usize] = h;
+                }
+                self.s.vhe[gid(x) as usize] = h;
+            }
+        }
+        for &sl in &slots {
+            let w = self.weight(sl);
+            self.w[sl as usize] = w;
+            self.gen[sl as usize] = self.removals;
+            self.parked[sl as usize] = false;
+            self.heap.push(sl, w);
+            if self.grid.is_some() {
+                let (lo, hi) = self.bbox(sl);
+                if let Some(g) = self.grid.as_mut() {
+                    g.insert(sl, lo, hi);
+                }
+            }
+        }
+        // re-queue parked triangles whose platelet changed
+        let mut fanb = std::mem::take(&mut self.buf);
+        for &v in verts {
+            self.s.fan(v, &mut fanb);
+            for &h in &fanb {
+                let u = h / 3;
+                if self.parked[u as usize] {
+                    self.parked[u as usize] = false;
+                    self.heap.push(u, self.w[u as usize]);
+                }
+            }
+        }
+        self.buf = fanb;
+        slots
+    }
+}

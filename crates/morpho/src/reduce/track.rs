@@ -1,0 +1,122 @@
+//! The error of the reduced surface against the original, kept up to date removal by removal
+//! (Hamann 1991, Rem. 5.10, (5.41); notes D.3 "Stopping").
+//!
+//! Every original vertex (knot) is assigned to one current triangle. When a removal replaces a
+//! platelet, the knots of its triangles are re-assigned among the new triangles:
+//! - height fields: the new triangle whose xy projection contains the knot (exact
+//!   `point_in_triangle`); the error is the vertical distance `|f − f̂|` of (5.41);
+//! - surfaces: the nearest new triangle; the error is that Euclidean distance, an upper bound
+//!   of the knot's distance to the reduced surface.
+//!
+//! The RMS is `sqrt(Σ err² / knots)`; the maximum is kept as a running maximum (an upper
+//! bound, never decreasing). Flat arrays: per triangle slot the head of a linked list of knots.
+//! O(knots in the platelet × new triangles) per removal.
+
+use crate::geom::intersect::point_in_triangle;
+use crate::geom::vec::{closest_on_triangle, dist};
+use crate::util::NONE;
+
+pub(crate) struct Tracker {
+    knots: Vec<[f64; 3]>,
+    vertical: bool,
+    err: Vec<f64>,
+    head: Vec<u32>,
+    nxt: Vec<u32>,
+    pub sse: f64,
+    pub max: f64,
+    /// Scratch of the last evaluation: (knot, local new triangle, error).
+    pending: Vec<(u32, usize, f64)>,
+}
+
+impl Tracker {
+    pub fn new(knots: Vec<[f64; 3]>, tris: &[[u32; 3]], vertical: bool) -> Tracker {
+        let n = knots.len();
+        let mut t = Tracker {
+            knots,
+            vertical,
+            err: vec![0.0; n],
+            head: vec![NONE; tris.len()],
+            nxt: vec![NONE; n],
+            sse: 0.0,
+            max: 0.0,
+            pending: Vec::new(),
+        };
+        let mut done = vec![false; n];
+        for (i, tr) in tris.iter().enumerate() {
+            for &v in tr {
+                if !done[v as usize] {
+                    done[v as usize] = true;
+                    t.nxt[v as usize] = t.head[i];
+                    t.head[i] = v;
+                }
+            }
+        }
+        t
+    }
+
+    pub fn rms(&self) -> f64 {
+        (self.sse / self.knots.len().max(1) as f64).sqrt()
+    }
+
+    fn error(&self, k: [f64; 3], t: [[f64; 3]; 3]) -> (bool, f64) {
+        if self.vertical {
+            let (a, b, c) = (t[0], t[1], t[2]);
+            let inside = point_in_triangle([k[0], k[1]], [a[0], a[1]], [b[0], b[1]], [c[0], c[1]]);
+            let det = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+            let l1 = ((k[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (k[1] - a[1])) / det;
+            let l2 = ((b[0] - a[0]) * (k[1] - a[1]) - (k[0] - a[0]) * (b[1] - a[1])) / det;
+            let z = a[2] + l1 * (b[2] - a[2]) + l2 * (c[2] - a[2]);
+            (inside, (k[2] - z).abs())
+        } else {
+            (true, dist(k, closest_on_triangle(k, t[0], t[1], t[2])))
+        }
+    }
+
+    /// The (sse, max) after replacing the triangles `removed` by `new` (corner positions);
+    /// remembers the assignment for [`Tracker::commit`].
+    pub fn evaluate(&mut self, removed: &[u32], new: &[[[f64; 3]; 3]]) -> (f64, f64) {
+        self.pending.clear();
+        let (mut sse, mut max) = (self.sse, self.max);
+        for &t in removed {
+            let mut k = self.head.get(t as usize).copied().unwrap_or(NONE);
+            while k != NONE {
+                let x = self.knots[k as usize];
+                let mut best = (false, f64::INFINITY, 0usize);
+                for (j, nt) in new.iter().enumerate() {
+                    let (inside, e) = self.error(x, *nt);
+                    // prefer containing triangles; among them (or none) the smallest error
+                    if (inside && !best.0) || (inside == best.0 && e < best.1) {
+                        best = (inside, e, j);
+                    }
+                }
+                let old = self.err[k as usize];
+                sse += best.1 * best.1 - old * old;
+                max = max.max(best.1);
+                self.pending.push((k, best.2, best.1));
+                k = self.nxt[k as usize];
+            }
+        }
+        (sse.max(0.0), max)
+    }
+
+    /// Applies the last [`Tracker::evaluate`] with the slots of the new triangles.
+    pub fn commit(&mut self, removed: &[u32], slots: &[u32], sse: f64, max: f64) {
+        for &t in removed {
+            if let Some(h) = self.head.get_mut(t as usize) {
+                *h = NONE;
+            }
+        }
+        let top = slots.iter().copied().max().unwrap_or(0) as usize;
+        if self.head.len() <= top {
+            self.head.resize(top + 1, NONE);
+        }
+        for &(k, j, e) in &self.pending {
+            let s = slots[j] as usize;
+            self.err[k as usize] = e;
+            self.nxt[k as usize] = self.head[s];
+            self.head[s] = k;
+        }
+        self.sse = sse;
+        self.max = max;
+    }
+}
