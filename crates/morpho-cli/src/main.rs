@@ -69,6 +69,8 @@ enum Command {
     Flint(cmd::flint::Args),
     /// Curvature of a triangle mesh (k1, k2, H, K, A per vertex) or of a volume's function.
     Curvature(cmd::curvature::Args),
+    /// An interactive page (WebGL 2, offline) showing meshes, points, shapes and volumes.
+    View(cmd::view::Args),
 }
 
 /// What a command returns on failure: the error and the exit code it deserves.
@@ -160,7 +162,7 @@ fn remove_temporaries_on_signals() {
     }
 }
 
-const SUBCOMMANDS: [&str; 11] = [
+const SUBCOMMANDS: [&str; 12] = [
     "demo",
     "info",
     "convert",
@@ -172,6 +174,7 @@ const SUBCOMMANDS: [&str; 11] = [
     "contour",
     "flint",
     "curvature",
+    "view",
 ];
 
 /// clap's usage error on one line: its first paragraph (without the `error: ` clap adds), the
@@ -259,6 +262,7 @@ fn main() -> ExitCode {
         Command::Contour(_) => "contour",
         Command::Flint(_) => "flint",
         Command::Curvature(_) => "curvature",
+        Command::View(_) => "view",
     };
     // every path named on the command line, checked before anything is read or written
     let mut paths = cmd::Paths::default();
@@ -303,6 +307,11 @@ fn main() -> ExitCode {
             if !a.output.is_dir() {
                 paths.output(&a.output);
             }
+        }
+        Command::View(a) => {
+            paths.inputs.extend(a.inputs.iter().map(|p| p.as_path()));
+            paths.inputs.extend(a.figures.as_deref());
+            paths.output(&a.output);
         }
         Command::Flint(a) => {
             let (ins, out) = a.paths();
@@ -353,6 +362,7 @@ fn main() -> ExitCode {
         Command::Contour(a) => cmd::contour::run(a, &mut report),
         Command::Flint(a) => cmd::flint::run(a, &mut report),
         Command::Curvature(a) => cmd::curvature::run(a, &mut report),
+        Command::View(a) => cmd::view::run(a, &mut report),
     };
     let code = match result {
         Ok(code) => code,

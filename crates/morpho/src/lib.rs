@@ -41,6 +41,7 @@ pub mod render;
 pub mod samples;
 pub mod smooth;
 pub mod util;
+pub mod viewer;
 pub mod volume;
 
 pub use error::{Error, Location, Result};

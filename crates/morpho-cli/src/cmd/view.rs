@@ -1,0 +1,105 @@
+//! `morpho view FILE… -o page.html [--figures REPORT.json] [--level L]`: one self-contained
+//! interactive page (WebGL 2, offline, `file://`) showing every input (issue 22, part 2; see
+//! `morpho::viewer`). Meshes with their vertex properties as colour maps, point sets, 2D
+//! shapes; a volume is shown by its contour surface at `--level` (default: the midpoint of its
+//! range). Inputs are read through `morpho::io`; the page is written with `io::write_text`
+//! (atomic, never over an input).
+
+use crate::report::Report;
+use crate::Failure;
+use morpho::io::{self, Data};
+use morpho::viewer::{page_html, Layer, Page};
+use std::path::PathBuf;
+
+/// `morpho view` arguments.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Files to show: meshes, point sets, 2D shapes, volumes.
+    #[arg(required = true)]
+    pub inputs: Vec<PathBuf>,
+    /// Output page (.html).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// A report JSON of an earlier run, shown as the figure panel.
+    #[arg(long)]
+    pub figures: Option<PathBuf>,
+    /// Contour level for volumes (default: midpoint of the value range).
+    #[arg(long)]
+    pub level: Option<f64>,
+}
+
+/// Runs `morpho view`.
+pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
+    if crate::cmd::extension(&args.output) != "html" {
+        return Err(Failure::usage(format!(
+            "{}: the viewer writes an .html page",
+            args.output.display()
+        )));
+    }
+    let mut layers = Vec::new();
+    for p in &args.inputs {
+        let name = p
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string())
+            .unwrap_or_default();
+        let data = report.time("read", || io::read_any(p))?;
+        let layer = match data {
+            Data::Mesh(m) => Layer::mesh(&name, &m),
+            Data::Points(ps) => Layer::points(&name, &ps),
+            Data::Shapes(s) => Layer::shapes(&name, &s),
+            Data::Volume(v) => {
+                let fin = v.data.iter().copied().filter(|x| x.is_finite());
+                let (lo, hi) = fin.fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), x| {
+                    (a.min(x), b.max(x))
+                });
+                if lo >= hi {
+                    return Err(Failure::usage(format!(
+                        "{}: the volume is constant or has no finite sample; no contour to show",
+                        p.display()
+                    )));
+                }
+                let level = args.level.unwrap_or(0.5 * (lo as f64 + hi as f64));
+                let r = morpho::volume::isosurface(
+                    &v,
+                    &morpho::volume::IsoOptions {
+                        level,
+                        ..Default::default()
+                    },
+                )
+                .map_err(|e| Failure::from(morpho::Error::from(e).with_path(p)))?;
+                Layer::mesh(&format!("{name} (contour f = {level})"), &r.mesh)
+            }
+        };
+        if layer.is_empty() {
+            return Err(Failure::usage(format!("{}: nothing to show", p.display())));
+        }
+        layers.push(layer);
+    }
+    let figures = match &args.figures {
+        Some(f) => {
+            let b = io::read_bytes(f)?;
+            Some(
+                serde_json::from_slice(&b)
+                    .map_err(|e| Failure::usage(format!("{}: bad JSON: {e}", f.display())))?,
+            )
+        }
+        None => None,
+    };
+    let title = args
+        .inputs
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let html = report.time("compute", || {
+        page_html(&Page {
+            title,
+            layers,
+            figures,
+        })
+    });
+    report.time("write", || io::write_text(&args.output, &html))?;
+    report.set("bytes", html.len());
+    eprintln!("wrote {} ({} bytes)", args.output.display(), html.len());
+    Ok(0)
+}

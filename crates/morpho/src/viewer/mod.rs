@@ -1,0 +1,286 @@
+//! The interactive browser viewer (issue 22, part 2): one self-contained HTML page (WebGL 2,
+//! a small hand-written renderer in `viewer.js`, shaders `mesh.vert`/`mesh.frag`, all included
+//! with `include_str!`) that loads from `file://` and works offline.
+//!
+//! Data are embedded compactly as base64 blobs: positions quantized to 16 bits per axis over
+//! each layer's bounding box (error ≤ extent/131070), indices as plain little-endian `u32`,
+//! vertex properties as `f32` (exact enough for picking). Per triangle that is ≈ 16 + 8·V/T
+//! bytes of base64 against 13 + 12·V/T bytes of a binary PLY (float32 positions, int32
+//! indices): for a closed surface (V ≈ T/2) the page is ≈ 1.05× the PLY.
+//!
+//! Layers: meshes (shaded, per-vertex colour maps from PLY properties such as `H`, `K`),
+//! point sets (first columns as properties), 2D shapes (polygons and polylines as lines at
+//! z = 0). Volumes are shown by the CLI as their contour surface (a mesh layer).
+//! The page has a test hook: `page.html#selftest=orbit,pick:123,bench:60` runs those steps
+//! and writes a JSON result into `<pre id="morpho-selftest">` (see the browser tests).
+//!
+//! ```
+//! use morpho::viewer::{page_html, Layer, Page};
+//! use morpho::mesh::TriMesh;
+//! let m = TriMesh::new(
+//!     vec![[0.0, 0.0, 0.0].into(), [1.0, 0.0, 0.0].into(), [0.0, 1.0, 0.0].into()],
+//!     vec![[0, 1, 2]],
+//! );
+//! let page = Page { title: "t".into(), layers: vec![Layer::mesh("tri", &m)], figures: None };
+//! let html = page_html(&page);
+//! assert!(html.starts_with("<!DOCTYPE html>") && html.contains("morpho-selftest"));
+//! ```
+
+use crate::mesh::{PointSet, Shapes2, TriMesh};
+use serde_json::{json, Value};
+
+/// One thing drawn in the page.
+#[derive(Debug, Clone)]
+pub struct Layer {
+    /// Name shown in the panel.
+    pub name: String,
+    /// `mesh`, `points` or `lines`.
+    kind: &'static str,
+    positions: Vec<[f64; 3]>,
+    indices: Vec<u32>,
+    props: Vec<(String, Vec<f64>)>,
+}
+
+impl Layer {
+    /// A triangle mesh with its vertex properties.
+    pub fn mesh(name: &str, m: &TriMesh) -> Layer {
+        Layer {
+            name: name.into(),
+            kind: "mesh",
+            positions: m.positions.iter().map(|p| [p.x, p.y, p.z]).collect(),
+            indices: m.triangles.iter().flatten().copied().collect(),
+            props: m
+                .vertex_props
+                .iter()
+                .map(|p| (p.name.clone(), p.values.clone()))
+                .collect(),
+        }
+    }
+    /// A 2D or 3D point set with its columns.
+    pub fn points(name: &str, p: &PointSet) -> Layer {
+        let d = p.dim.max(1);
+        let positions = p
+            .coords
+            .chunks(d)
+            .map(|c| {
+                [
+                    c[0],
+                    *c.get(1).unwrap_or(&0.0),
+                    if d > 2 { c[2] } else { 0.0 },
+                ]
+            })
+            .collect();
+        Layer {
+            name: name.into(),
+            kind: "points",
+            positions,
+            indices: Vec::new(),
+            props: p
+                .columns
+                .iter()
+                .map(|c| (c.name.clone(), c.values.clone()))
+                .collect(),
+        }
+    }
+    /// 2D polygons and polylines, as line segments at z = 0.
+    pub fn shapes(name: &str, s: &Shapes2) -> Layer {
+        let mut positions = Vec::new();
+        let mut indices = Vec::new();
+        let mut ring = |pts: &[crate::geom::Point2], closed: bool| {
+            let b = positions.len() as u32;
+            positions.extend(pts.iter().map(|p| [p.x, p.y, 0.0]));
+            let n = pts.len() as u32;
+            for i in 0..n.saturating_sub(1) {
+                indices.extend([b + i, b + i + 1]);
+            }
+            if closed && n > 2 {
+                indices.extend([b + n - 1, b]);
+            }
+        };
+        for p in &s.polygons {
+            for r in &p.rings {
+                ring(r, true);
+            }
+        }
+        for l in &s.polylines {
+            ring(&l.points, l.closed);
+        }
+        Layer {
+            name: name.into(),
+            kind: "lines",
+            positions,
+            indices,
+            props: Vec::new(),
+        }
+    }
+    /// True when the layer has nothing to draw.
+    pub fn is_empty(&self) -> bool {
+        self.positions.is_empty()
+    }
+}
+
+/// A page: title, layers, and an optional figure panel (a `--report` JSON of an earlier run).
+#[derive(Debug, Clone)]
+pub struct Page {
+    /// The page's title.
+    pub title: String,
+    /// What is drawn.
+    pub layers: Vec<Layer>,
+    /// Figures shown in the side panel (flattened key/value pairs of this JSON).
+    pub figures: Option<Value>,
+}
+
+const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+/// Standard base64 with padding.
+fn base64(bytes: &[u8]) -> String {
+    let mut s = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for c in bytes.chunks(3) {
+        let n = (c[0] as u32) << 16
+            | (*c.get(1).unwrap_or(&0) as u32) << 8
+            | *c.get(2).unwrap_or(&0) as u32;
+        for k in 0..4 {
+            if k <= c.len() {
+                s.push(B64[(n >> (18 - 6 * k) & 63) as usize] as char);
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    s
+}
+
+/// Flattens a JSON report into rows of (key, value).
+fn figure_rows(v: &Value, prefix: &str, out: &mut Vec<(String, String)>) {
+    match v {
+        Value::Object(m) => {
+            for (k, x) in m {
+                let key = if prefix.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{prefix}.{k}")
+                };
+                figure_rows(x, &key, out);
+            }
+        }
+        other => out.push((prefix.to_string(), other.to_string())),
+    }
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// The layer's descriptor, its blobs appended to `blobs`.
+fn encode(l: &Layer, blobs: &mut Vec<String>) -> Value {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &l.positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let ext: Vec<f64> = (0..3)
+        .map(|k| if hi[k] > lo[k] { hi[k] - lo[k] } else { 1.0 })
+        .collect();
+    let mut q = Vec::with_capacity(6 * l.positions.len());
+    for p in &l.positions {
+        for k in 0..3 {
+            let t = ((p[k] - lo[k]) / ext[k] * 65535.0)
+                .round()
+                .clamp(0.0, 65535.0) as u16;
+            q.extend(t.to_le_bytes());
+        }
+    }
+    let mut push = |b: &[u8]| {
+        blobs.push(base64(b));
+        blobs.len() - 1
+    };
+    let pos = push(&q);
+    let mut d = json!({"kind": l.kind, "name": l.name, "min": lo, "ext": ext, "pos": pos});
+    if !l.indices.is_empty() {
+        let b: Vec<u8> = l.indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+        d["idx"] = json!(push(&b));
+    }
+    let mut props = Vec::new();
+    for (name, v) in &l.props {
+        let fin = v.iter().copied().filter(|x| x.is_finite());
+        let (mn, mx) = fin.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        });
+        let b: Vec<u8> = v
+            .iter()
+            .flat_map(|&x| (if x.is_finite() { x as f32 } else { -1e30 }).to_le_bytes())
+            .collect();
+        let (mn, mx) = if mn <= mx { (mn, mx) } else { (0.0, 1.0) };
+        props.push(json!({"name": name, "min": mn, "max": mx, "blob": push(&b)}));
+    }
+    d["props"] = json!(props);
+    d
+}
+
+/// The self-contained HTML page.
+pub fn page_html(page: &Page) -> String {
+    let mut blobs = Vec::new();
+    let layers: Vec<Value> = page.layers.iter().map(|l| encode(l, &mut blobs)).collect();
+    let flat = page
+        .layers
+        .iter()
+        .all(|l| l.positions.iter().all(|p| p[2] == 0.0));
+    let scene = json!({"layers": layers, "flat": flat})
+        .to_string()
+        .replace("</", "<\\/");
+    let shaders = json!({"vert": include_str!("mesh.vert"), "frag": include_str!("mesh.frag")});
+    let mut rows = Vec::new();
+    if let Some(f) = &page.figures {
+        figure_rows(f, "", &mut rows);
+    }
+    let table: String = rows
+        .iter()
+        .map(|(k, v)| format!("<tr><td>{}</td><td>{}</td></tr>", esc(k), esc(v)))
+        .collect();
+    let mut h = String::with_capacity(blobs.iter().map(|b| b.len() + 64).sum::<usize>() + 40_000);
+    h.push_str("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>");
+    h.push_str(&esc(&page.title));
+    h.push_str("</title><style>html,body{margin:0;height:100%;overflow:hidden;font:13px system-ui,sans-serif}\
+#c{display:block;width:100vw;height:100vh}#panel{position:absolute;top:8px;right:8px;width:260px;max-height:95vh;overflow:auto;\
+background:rgba(255,255,255,.85);padding:8px;border:1px solid #ccc}#legend{margin-top:8px}td{padding:1px 6px}\
+#morpho-selftest{display:none}</style></head><body><canvas id=\"c\"></canvas><div id=\"panel\"><b>");
+    h.push_str(&esc(&page.title));
+    h.push_str("</b><div id=\"layers\"></div><div id=\"legend\"></div><div id=\"pick\">click a surface to pick a vertex</div>\
+<div style=\"color:#666\">drag: orbit · shift-drag: pan · wheel: zoom</div><table>");
+    h.push_str(&table);
+    h.push_str("</table></div><pre id=\"morpho-selftest\"></pre>\n<script type=\"application/json\" id=\"morpho-scene\">");
+    h.push_str(&scene);
+    h.push_str("</script>\n");
+    for (i, b) in blobs.iter().enumerate() {
+        h.push_str(&format!(
+            "<script type=\"application/octet-stream\" id=\"b{i}\">"
+        ));
+        h.push_str(b);
+        h.push_str("</script>\n");
+    }
+    h.push_str("<script>const SHADERS = ");
+    h.push_str(&shaders.to_string().replace("</", "<\\/"));
+    h.push_str(";\n");
+    h.push_str(include_str!("viewer.js"));
+    h.push_str("</script></body></html>\n");
+    h
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn base64_matches_rfc4648_vectors() {
+        assert_eq!(base64(b""), "");
+        assert_eq!(base64(b"f"), "Zg==");
+        assert_eq!(base64(b"fo"), "Zm8=");
+        assert_eq!(base64(b"foo"), "Zm9v");
+        assert_eq!(base64(b"foobar"), "Zm9vYmFy");
+    }
+}

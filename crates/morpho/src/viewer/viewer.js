@@ -1,0 +1,192 @@
+"use strict";
+// morpho viewer: a small WebGL 2 renderer for the scene embedded in this page (no network).
+(function () {
+  const errors = [];
+  const oe = console.error;
+  console.error = function (...a) { errors.push(a.join(" ")); oe.apply(console, a); };
+  window.addEventListener("error", (e) => errors.push(String(e.message)));
+  const scene = JSON.parse(document.getElementById("morpho-scene").textContent);
+  function blob(id) {
+    const s = document.getElementById("b" + id).textContent.trim();
+    if (Uint8Array.fromBase64) return Uint8Array.fromBase64(s);
+    const b = atob(s), u = new Uint8Array(b.length);
+    for (let i = 0; i < b.length; i++) u[i] = b.charCodeAt(i);
+    return u;
+  }
+  const canvas = document.getElementById("c");
+  canvas.width = window.innerWidth; canvas.height = window.innerHeight;
+  const gl = canvas.getContext("webgl2", { antialias: false });
+  if (!gl) { errors.push("WebGL 2 is not available"); report(); return; }
+  function prog(vs, fs) {
+    const p = gl.createProgram();
+    for (const [t, s] of [[gl.VERTEX_SHADER, vs], [gl.FRAGMENT_SHADER, fs]]) {
+      const sh = gl.createShader(t); gl.shaderSource(sh, s); gl.compileShader(sh);
+      if (!gl.getShaderParameter(sh, gl.COMPILE_STATUS)) errors.push(gl.getShaderInfoLog(sh));
+      gl.attachShader(p, sh);
+    }
+    gl.linkProgram(p);
+    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) errors.push(gl.getProgramInfoLog(p));
+    return p;
+  }
+  const P = prog(SHADERS.vert, SHADERS.frag);
+  const U = {};
+  for (const n of ["uMVP", "uOff", "uScl", "uEye", "uColor", "uMode", "uRange", "uLit", "uPS"]) U[n] = gl.getUniformLocation(P, n);
+  // colour map: blue - white - red for signed values, viridis-like ramp otherwise
+  function cmap(t, signed) {
+    if (signed) return t < 0.5 ? [2 * t, 2 * t, 1] : [1, 2 - 2 * t, 2 - 2 * t];
+    return [0.27 + t * 0.72, 0.0 + t * 0.9, 0.33 + (t < 0.5 ? t * 0.4 : 0.53 - (t - 0.5) * 0.9)];
+  }
+  const layers = [];
+  let lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (const L of scene.layers) {
+    const q = new Uint16Array(blob(L.pos).buffer), n = q.length / 3;
+    const pos = new Float32Array(3 * n);
+    for (let i = 0; i < 3 * n; i++) pos[i] = L.min[i % 3] + q[i] / 65535 * L.ext[i % 3];
+    for (let k = 0; k < 3; k++) { lo[k] = Math.min(lo[k], L.min[k]); hi[k] = Math.max(hi[k], L.min[k] + L.ext[k]); }
+    const idx = L.idx !== undefined ? new Uint32Array(blob(L.idx).buffer) : null;
+    const nrm = new Float32Array(3 * n);
+    if (L.kind === "mesh") {
+      for (let t = 0; t < idx.length; t += 3) {
+        const a = 3 * idx[t], b = 3 * idx[t + 1], c = 3 * idx[t + 2];
+        const ux = pos[b] - pos[a], uy = pos[b + 1] - pos[a + 1], uz = pos[b + 2] - pos[a + 2];
+        const vx = pos[c] - pos[a], vy = pos[c + 1] - pos[a + 1], vz = pos[c + 2] - pos[a + 2];
+        const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+        for (const v of [a, b, c]) { nrm[v] += nx; nrm[v + 1] += ny; nrm[v + 2] += nz; }
+      }
+    } else nrm.fill(1);
+    const props = (L.props || []).map((p) => ({ name: p.name, min: p.min, max: p.max, v: new Float32Array(blob(p.blob).buffer) }));
+    const vao = gl.createVertexArray(); gl.bindVertexArray(vao);
+    const buf = (data, loc, size, type, norm) => { const b = gl.createBuffer(); gl.bindBuffer(gl.ARRAY_BUFFER, b); gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW); gl.enableVertexAttribArray(loc); gl.vertexAttribPointer(loc, size, type, norm, 0, 0); return b; };
+    buf(q, 0, 3, gl.UNSIGNED_SHORT, true);
+    buf(nrm, 1, 3, gl.FLOAT, false);
+    const vbuf = buf(props.length ? props[0].v : new Float32Array(n), 2, 1, gl.FLOAT, false);
+    let nidx = 0;
+    if (idx) { const b = gl.createBuffer(); gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, b); gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, idx, gl.STATIC_DRAW); nidx = idx.length; }
+    layers.push({ L, pos, idx, props, vao, vbuf, nidx, n, prop: props.length ? 0 : -1, visible: true });
+  }
+  const cam = { az: 0.5, el: 0.35, dist: 1, target: [0, 0, 0] };
+  const diag = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
+  cam.target = [0, 1, 2].map((k) => (lo[k] + hi[k]) / 2); cam.dist = 1.6 * diag;
+  if (scene.flat) cam.el = Math.PI / 2 - 1e-3;
+  function eye() { const c = Math.cos(cam.el); return [0, 1, 2].map((k) => cam.target[k] + cam.dist * [c * Math.cos(cam.az), c * Math.sin(cam.az), Math.sin(cam.el)][k]); }
+  function mvp() {
+    const e = eye(), f = [0, 1, 2].map((k) => (cam.target[k] - e[k]) / cam.dist);
+    const up = [-Math.sin(cam.el) * Math.cos(cam.az), -Math.sin(cam.el) * Math.sin(cam.az), Math.cos(cam.el)];
+    const r = [f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]];
+    const a = canvas.width / canvas.height, th = 1 / Math.tan(0.35), near = cam.dist * 0.01, far = cam.dist + 2 * diag;
+    const V = [r, up, [-f[0], -f[1], -f[2]]], t = V.map((row) => -(row[0] * e[0] + row[1] * e[1] + row[2] * e[2]));
+    const Pm = [th / a, th, -(far + near) / (far - near), -2 * far * near / (far - near)];
+    const M = new Float32Array(16);
+    for (let c = 0; c < 4; c++) {
+      const col = c < 3 ? [V[0][c], V[1][c], V[2][c]] : t;
+      M[4 * c] = Pm[0] * col[0]; M[4 * c + 1] = Pm[1] * col[1]; M[4 * c + 2] = Pm[2] * col[2] + (c === 3 ? Pm[3] : 0); M[4 * c + 3] = -col[2];
+    }
+    return { M, e, r, up, f };
+  }
+  function draw() {
+    gl.viewport(0, 0, canvas.width, canvas.height);
+    gl.clearColor(0.96, 0.96, 0.96, 1); gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+    gl.enable(gl.DEPTH_TEST); gl.useProgram(P);
+    const m = mvp(); gl.uniformMatrix4fv(U.uMVP, false, m.M); gl.uniform3fv(U.uEye, m.e); gl.uniform1f(U.uPS, 4);
+    for (const l of layers) {
+      if (!l.visible) continue;
+      gl.bindVertexArray(l.vao);
+      gl.uniform3fv(U.uOff, l.L.min); gl.uniform3fv(U.uScl, l.L.ext); gl.uniform3fv(U.uColor, [0.8, 0.75, 0.6]);
+      const p = l.prop >= 0 ? l.props[l.prop] : null;
+      gl.uniform1i(U.uMode, p ? 1 : 0);
+      if (p) { const s = Math.min(p.min, 0) < 0 && p.max > 0; const mm = s ? Math.max(-p.min, p.max) : 0; gl.uniform2fv(U.uRange, s ? [-mm, mm] : [p.min, p.max]); }
+      gl.uniform1i(U.uLit, l.L.kind === "mesh" ? 1 : 0);
+      if (l.L.kind === "mesh") gl.drawElements(gl.TRIANGLES, l.nidx, gl.UNSIGNED_INT, 0);
+      else if (l.L.kind === "lines") gl.drawElements(gl.LINES, l.nidx, gl.UNSIGNED_INT, 0);
+      else gl.drawArrays(gl.POINTS, 0, l.n);
+    }
+    legend();
+  }
+  function legend() {
+    const l = layers.find((l) => l.prop >= 0), el = document.getElementById("legend");
+    if (!l) { el.style.display = "none"; return; }
+    const p = l.props[l.prop], s = p.min < 0 && p.max > 0, mm = Math.max(-p.min, p.max);
+    const a = s ? -mm : p.min, b = s ? mm : p.max, stops = [];
+    for (let i = 0; i <= 8; i++) stops.push("rgb(" + cmap(i / 8, s).map((x) => Math.round(255 * Math.min(1, Math.max(0, x)))).join(",") + ")");
+    el.innerHTML = "<b>" + p.name + "</b><div style='height:12px;background:linear-gradient(to right," + stops.join(",") + ")'></div><span>" + a.toPrecision(3) + "</span><span style='float:right'>" + b.toPrecision(3) + "</span>";
+  }
+  // the colour-map shader uses the same ramp as the legend (uploaded as a uniform-free formula)
+  function pixels() { const w = canvas.width, h = canvas.height, px = new Uint8Array(4 * w * h); gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px); return px; }
+  function stats(px) { let fg = 0, s = 0; for (let i = 0; i < px.length; i += 4) { if (Math.abs(px[i] - 245) > 6 || Math.abs(px[i + 2] - 245) > 6) fg++; s += px[i]; } return { foreground: fg / (px.length / 4), mean: s / (px.length / 4) }; }
+  function pick(cx, cy) {
+    const m = mvp(), a = canvas.width / canvas.height, t = Math.tan(0.35);
+    const dx = (2 * cx / canvas.width - 1) * t * a, dy = (1 - 2 * cy / canvas.height) * t;
+    const d = [0, 1, 2].map((k) => m.f[k] + dx * m.r[k] + dy * m.up[k]), o = m.e;
+    let best = { t: Infinity };
+    layers.forEach((l, li) => {
+      if (!l.visible || l.L.kind !== "mesh") return;
+      const P = l.pos, I = l.idx;
+      for (let i = 0; i < I.length; i += 3) {
+        const a = 3 * I[i], b = 3 * I[i + 1], c = 3 * I[i + 2];
+        const e1 = [P[b] - P[a], P[b + 1] - P[a + 1], P[b + 2] - P[a + 2]], e2 = [P[c] - P[a], P[c + 1] - P[a + 1], P[c + 2] - P[a + 2]];
+        const h = [d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2], d[0] * e2[1] - d[1] * e2[0]];
+        const det = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2]; if (Math.abs(det) < 1e-20) continue;
+        const s = [o[0] - P[a], o[1] - P[a + 1], o[2] - P[a + 2]], u = (s[0] * h[0] + s[1] * h[1] + s[2] * h[2]) / det; if (u < 0 || u > 1) continue;
+        const qv = [s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2], s[0] * e1[1] - s[1] * e1[0]];
+        const v = (d[0] * qv[0] + d[1] * qv[1] + d[2] * qv[2]) / det; if (v < 0 || u + v > 1) continue;
+        const tt = (e2[0] * qv[0] + e2[1] * qv[1] + e2[2] * qv[2]) / det;
+        if (tt > 0 && tt < best.t) { const w = [1 - u - v, u, v], k = w.indexOf(Math.max(...w)); best = { t: tt, layer: li, vertex: I[i + k] }; }
+      }
+    });
+    if (best.layer === undefined) return null;
+    const l = layers[best.layer], out = { layer: best.layer, vertex: best.vertex, values: {} };
+    for (const p of l.props) out.values[p.name] = p.v[best.vertex];
+    document.getElementById("pick").textContent = "vertex " + best.vertex + " " + JSON.stringify(out.values);
+    return out;
+  }
+  // interaction: drag orbits, shift-drag pans, wheel zooms, click picks
+  let drag = null;
+  canvas.addEventListener("mousedown", (e) => { drag = { x: e.clientX, y: e.clientY, moved: false }; });
+  window.addEventListener("mouseup", (e) => { if (drag && !drag.moved) pick(e.clientX, e.clientY); drag = null; });
+  window.addEventListener("mousemove", (e) => {
+    if (!drag) return; const dx = e.clientX - drag.x, dy = e.clientY - drag.y; drag.x = e.clientX; drag.y = e.clientY; drag.moved = true;
+    if (e.shiftKey) { const m = mvp(), s = cam.dist / canvas.height; for (let k = 0; k < 3; k++) cam.target[k] += s * (-dx * m.r[k] + dy * m.up[k]); }
+    else { cam.az -= dx * 0.01; cam.el = Math.max(-1.57, Math.min(1.57, cam.el + dy * 0.01)); }
+    requestAnimationFrame(draw);
+  });
+  canvas.addEventListener("wheel", (e) => { cam.dist *= Math.exp(e.deltaY * 0.001); e.preventDefault(); requestAnimationFrame(draw); }, { passive: false });
+  // panel: layers, colour property, figures
+  const panel = document.getElementById("layers");
+  layers.forEach((l) => {
+    const d = document.createElement("div"), cb = document.createElement("input"); cb.type = "checkbox"; cb.checked = true;
+    cb.onchange = () => { l.visible = cb.checked; draw(); }; d.append(cb, " " + l.L.name + " ");
+    if (l.props.length) {
+      const s = document.createElement("select");
+      s.innerHTML = "<option value='-1'>plain</option>" + l.props.map((p, i) => "<option value='" + i + "'>" + p.name + "</option>").join("");
+      s.value = String(l.prop);
+      s.onchange = () => { l.prop = +s.value; if (l.prop >= 0) { gl.bindBuffer(gl.ARRAY_BUFFER, l.vbuf); gl.bufferData(gl.ARRAY_BUFFER, l.props[l.prop].v, gl.STATIC_DRAW); } draw(); };
+      d.append(s);
+    }
+    panel.append(d);
+  });
+  draw();
+  pixels.one = () => { const px = new Uint8Array(4); gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px); };
+  pixels.one();
+  const ready = performance.now();
+  function report(extra) {
+    const r = Object.assign({ ready_ms: typeof ready === "number" ? ready : null, errors }, extra || {});
+    document.getElementById("morpho-selftest").textContent = JSON.stringify(r);
+  }
+  // test hook: page.html#selftest=orbit,pick:123,bench:60
+  const m = /selftest=([^&]*)/.exec(location.hash);
+  if (m) {
+    const res = {};
+    for (const step of m[1].split(",")) {
+      const [what, arg] = step.split(":");
+      if (what === "orbit") { const a = pixels(); res.before = stats(a); cam.az += 0.7; draw(); const b = pixels(); let ch = 0; for (let i = 0; i < a.length; i += 4) if (a[i] !== b[i] || a[i + 1] !== b[i + 1] || a[i + 2] !== b[i + 2]) ch++; res.after = stats(b); res.changed = ch / (a.length / 4); }
+      if (what === "pick") {
+        const l = layers[0], v = +arg, n = [0, 0, 0];
+        const I = l.idx; for (let t = 0; t < I.length; t += 3) if (I[t] === v || I[t + 1] === v || I[t + 2] === v) { const P = l.pos, A = 3 * I[t], B = 3 * I[t + 1], C = 3 * I[t + 2]; const u = [0, 1, 2].map((k) => P[B + k] - P[A + k]), w = [0, 1, 2].map((k) => P[C + k] - P[A + k]); n[0] += u[1] * w[2] - u[2] * w[1]; n[1] += u[2] * w[0] - u[0] * w[2]; n[2] += u[0] * w[1] - u[1] * w[0]; }
+        const len = Math.hypot(...n) || 1; cam.target = [0, 1, 2].map((k) => l.pos[3 * v + k]); cam.az = Math.atan2(n[1], n[0]); cam.el = Math.asin(Math.max(-1, Math.min(1, n[2] / len))); cam.dist = 0.8 * diag;
+        draw(); res.pick = pick(canvas.width / 2, canvas.height / 2);
+      }
+      if (what === "bench") { const N = +arg || 30, t0 = performance.now(); for (let i = 0; i < N; i++) { cam.az += 0.05; draw(); pixels.one(); } res.fps = N / ((performance.now() - t0) / 1000); }
+    }
+    report(res);
+  } else report();
+})();
