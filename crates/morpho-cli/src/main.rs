@@ -270,7 +270,7 @@ fn main() -> ExitCode {
             paths.output(&a.output);
         }
         Command::Render(a) => {
-            paths.inputs.push(&a.input);
+            paths.inputs.extend(a.input.as_deref());
             paths.output(&a.output);
         }
         Command::Triangulate(a) => {

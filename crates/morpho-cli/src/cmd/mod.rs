@@ -14,6 +14,7 @@ pub mod info;
 pub mod isosurface;
 pub mod render;
 pub mod triangulate;
+pub mod views;
 
 use crate::Failure;
 use std::path::Path;
