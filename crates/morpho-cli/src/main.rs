@@ -46,6 +46,8 @@ struct Cli {
 }
 
 #[derive(Subcommand)]
+// Parsed once per process; boxing the large argument structs would buy nothing.
+#[allow(clippy::large_enum_variant)]
 enum Command {
     /// Run every pipeline on generated sample data and write a gallery (index.html + images).
     Demo(cmd::demo::Args),
@@ -274,7 +276,7 @@ fn main() -> ExitCode {
             paths.output(&a.output);
         }
         Command::Render(a) => {
-            paths.inputs.push(&a.input);
+            paths.inputs.extend(a.input.as_deref());
             paths.output(&a.output);
         }
         Command::Triangulate(a) => {

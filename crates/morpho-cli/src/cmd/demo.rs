@@ -53,6 +53,7 @@ const SECTIONS: &[(&str, Builder)] = &[
     ("non-Hamiltonian Delaunay", dillencourt_section),
     ("meshes", mesh_section),
     ("volumes", volume_section),
+    ("volume views", crate::cmd::views::demo_section),
     ("contour surfaces", isosurface_section),
     ("contours of rated samples", contour_section),
 ];

@@ -15,6 +15,7 @@ pub mod isosurface;
 pub mod render;
 pub mod triangulate;
 pub mod view;
+pub mod views;
 
 use crate::Failure;
 use std::path::Path;

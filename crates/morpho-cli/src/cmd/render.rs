@@ -20,8 +20,9 @@ use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Input file (points, polygons, mesh or volume).
-    pub input: PathBuf,
+    /// Input file (points, polygons, mesh or volume); omitted with --function.
+    #[arg(required_unless_present = "function")]
+    pub input: Option<PathBuf>,
     /// Output picture: .svg for points and polygons, .png for meshes and volumes.
     #[arg(short, long)]
     pub output: PathBuf,
@@ -44,12 +45,14 @@ pub struct Args {
     #[arg(long)]
     pub ortho: bool,
     /// Colour by a vertex/face property or point column, or by the coordinate x, y or z.
-    #[arg(long, value_name = "PROPERTY")]
+    /// (`--color` is the same; a signed property gets a symmetric range by default.)
+    #[arg(long, alias = "color", value_name = "PROPERTY")]
     pub color_by: Option<String>,
     /// Colour map: viridis, coolwarm or grey.
     #[arg(long, default_value = "viridis")]
     pub colormap: String,
-    /// Value range mapped to the colour map ends, `LO,HI` (default: the data's range).
+    /// Value range mapped to the colour map ends, `LO,HI` or `LO:HI` (default: the data's
+    /// range).
     #[arg(long, value_name = "LO,HI", allow_hyphen_values = true)]
     pub range: Option<String>,
     /// Image width in pixels.
@@ -82,6 +85,9 @@ pub struct Args {
     /// Supersampling factor per axis for meshes (1 = no anti-aliasing).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=4))]
     pub supersample: u32,
+    /// Hamann's volume views (`--view …`, `--function …`).
+    #[command(flatten)]
+    pub views: super::views::ViewArgs,
 }
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
@@ -110,8 +116,25 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         None => None,
         Some(s) => Some(parse_range(s)?),
     };
-    let data = report.time("read", || read_any(&args.input))?;
-    report.set("input", args.input.display().to_string());
+    if args.views.function.is_some() {
+        if args.input.is_some() {
+            return Err(Failure::usage(
+                "give an input file or --function NAME, not both",
+            ));
+        }
+        if out_fmt != Format::Png {
+            return Err(Failure::usage(
+                "volume views are PNG: use an output ending in .png",
+            ));
+        }
+        let camera = view_options(&args, UpAxis::Z);
+        return super::views::run_function(&args, colormap, range, camera, report);
+    }
+    let Some(input) = args.input.as_deref() else {
+        return Err(Failure::usage("give an input file or --function NAME"));
+    };
+    let data = report.time("read", || read_any(input))?;
+    report.set("input", input.display().to_string());
     report.set("output", args.output.display().to_string());
     match (&data, out_fmt) {
         (Data::Points(p), Format::Svg) => points(&args, p, colormap, range, report)?,
@@ -151,6 +174,10 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                 },
                 labels: true,
             };
+            if args.views.view.is_some() && args.boxes.is_none() && args.planes.is_none() {
+                let camera = view_options(&args, UpAxis::Z);
+                return super::views::run_volume(&args, v, colormap, range, camera, report);
+            }
             if args.boxes.is_some() || args.planes.is_some() {
                 volume_view(&args, v, colormap, range, report)?;
                 return Ok(0);
@@ -186,7 +213,10 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
 
 fn parse_range(s: &str) -> Result<(f64, f64), Failure> {
     let bad = || Failure::usage(format!("--range {s:?}: expected LO,HI with LO < HI"));
-    let (a, b) = s.split_once(',').ok_or_else(bad)?;
+    let (a, b) = s
+        .split_once(',')
+        .or_else(|| s.split_once(':'))
+        .ok_or_else(bad)?;
     let lo: f64 = a.trim().parse().map_err(|_| bad())?;
     let hi: f64 = b.trim().parse().map_err(|_| bad())?;
     if lo.is_finite() && hi.is_finite() && lo < hi {
@@ -312,6 +342,15 @@ fn mesh_scalars(
             }
         )));
     };
+    // A signed property (both signs present, such as H or K) is centred on zero.
+    let is_prop = m.vertex_prop(name).is_some() || m.face_prop(name).is_some();
+    let range = range.or_else(|| match render::finite_range(values.iter().copied()) {
+        Some((lo, hi)) if is_prop && lo < 0.0 && hi > 0.0 => {
+            let a = lo.abs().max(hi);
+            Some((-a, a))
+        }
+        _ => None,
+    });
     Ok(Scalars {
         values,
         per_face,

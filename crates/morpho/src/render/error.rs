@@ -67,6 +67,36 @@ pub enum RenderError {
         /// Triangles the planes would have.
         triangles: usize,
     },
+    /// A function name that is not one of [`crate::render::Formula::ALL`].
+    #[error("unknown function {name:?} (use hamann-exp or hamann-cos)")]
+    UnknownFunction {
+        /// The name given.
+        name: String,
+    },
+    /// A sampling grid with no cell or too many (1 ≤ n ≤ 1024 cells per axis).
+    #[error("grid of {n} cells per axis: need 1 to 1024")]
+    GridSize {
+        /// Cells per axis asked for.
+        n: usize,
+    },
+    /// A volume whose samples are all NaN or infinite.
+    #[error("volume has no finite value ({samples} samples)")]
+    NoFiniteValues {
+        /// Number of samples.
+        samples: usize,
+    },
+    /// A 3D view of a volume with a single sample (or no extent) along an axis.
+    #[error("volume has one sample (no extent) along {axis}: a 3D view needs at least two; use --view slices")]
+    FlatVolume {
+        /// The axis name.
+        axis: &'static str,
+    },
+    /// A view parameter out of its range.
+    #[error("{what}")]
+    ViewParameter {
+        /// What is wrong, naming the parameter.
+        what: String,
+    },
     /// The PNG encoder refused the image (not a write failure).
     #[error("PNG: {reason}")]
     Png {

@@ -8,11 +8,13 @@ mod colormap;
 mod error;
 mod figures;
 mod font;
+mod formula;
 mod legend;
 mod raster;
 mod slice;
 mod subdivision;
 mod svg;
+mod views;
 
 pub use colormap::{finite_range, luminance, normalize, Colormap, MISSING};
 pub use error::RenderError;
@@ -20,6 +22,7 @@ pub use figures::{
     boundary_svg, cdt_svg, constriction_svg, contour_svg, cycle_svg, delaunay_svg, graph_svg,
     point_set_svg, PointLabel, PointsView, CONTOUR_SVG_MAX_TRIANGLES,
 };
+pub use formula::Formula;
 pub use legend::with_colorbar;
 pub use raster::{
     render_mesh, render_mesh_stats, Projection, RenderOptions, RenderStats, Scalars, Shading,
@@ -28,9 +31,14 @@ pub use raster::{
 pub use slice::{
     middle, orthogonal_slices, slice_height_mesh, slice_image, Axis, SliceOptions, Upsample,
 };
-pub use subdivision::{domain_subdivision_mesh, grid_planes_mesh};
+pub use subdivision::{domain_subdivision_mesh, grid_planes_mesh, subbox_starts, trilinear};
 pub use svg::{
     colored_triangulation_svg, points_svg, polygon_svg, triangulation_svg, Fill, Rgb, Stroke, Svg,
+};
+pub use views::{
+    height_surface_mesh, heights_view_mesh, render_view, subdivision_view_mesh,
+    transparency_rectangle_count, transparency_view_mesh, HeightStyle, Source, View, ViewOptions,
+    ViewPicture,
 };
 
 use crate::{Error, Result};

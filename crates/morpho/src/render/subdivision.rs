@@ -95,11 +95,47 @@ pub fn domain_subdivision_mesh(
         .ok_or(RenderError::TooManyBoxTriangles { max: MAX_TRIANGLES })?;
     let lo: [f64; 3] = std::array::from_fn(|a| vol.coord(a, 0));
     let hi: [f64; 3] = std::array::from_fn(|a| vol.coord(a, vol.dims[a] - 1));
-    let delta: [f64; 3] =
-        std::array::from_fn(|a| (hi[a] - lo[a]) / (q[a] as f64 + alpha[a] * (q[a] as f64 - 1.0)));
-    let mut positions = Vec::with_capacity(boxes / 2 + 8);
-    let mut values = Vec::with_capacity(boxes / 2 + 8);
-    let mut triangles = Vec::with_capacity(boxes);
+    let mut m = subdivision_mesh_with(lo, hi, q, alpha, k, boxes, |p| {
+        (Point3::new(p[0], p[1], p[2]), trilinear(vol, p))
+    });
+    m.vertex_props[0].name = "value".into();
+    Ok(m)
+}
+
+/// The lower corners and edge lengths of Hamann's sub-boxes along one axis (§2.2):
+/// `Δ = (hi − lo) / (q + α (q − 1))`, `x_r = lo + r (1 + α) Δ`, `r = 0 … q − 1`. The last box's
+/// far face `x_{q−1} + Δ` is `hi` up to rounding.
+///
+/// ```
+/// let (starts, d) = morpho::render::subbox_starts(0.0, 39.0, 5, 1.0);
+/// assert_eq!(starts.len(), 5);
+/// assert!((starts[4] + d - 39.0).abs() < 1e-12);
+/// ```
+pub fn subbox_starts(lo: f64, hi: f64, q: usize, alpha: f64) -> (Vec<f64>, f64) {
+    let d = (hi - lo) / (q as f64 + alpha * (q as f64 - 1.0));
+    (
+        (0..q).map(|r| lo + r as f64 * (1.0 + alpha) * d).collect(),
+        d,
+    )
+}
+
+/// The sub-box mesh over the parameter box `[lo, hi]` (uvw-space for curvilinear volumes,
+/// Hamann §2.2): `eval(uvw)` gives the mapped position and the value. `cap` reserves triangles.
+pub(super) fn subdivision_mesh_with(
+    lo: [f64; 3],
+    hi: [f64; 3],
+    q: [usize; 3],
+    alpha: [f64; 3],
+    k: usize,
+    cap: usize,
+    eval: impl Fn([f64; 3]) -> (Point3, f64),
+) -> TriMesh {
+    let axes: [(Vec<f64>, f64); 3] =
+        std::array::from_fn(|a| subbox_starts(lo[a], hi[a], q[a], alpha[a]));
+    let delta: [f64; 3] = std::array::from_fn(|a| axes[a].1);
+    let mut positions = Vec::with_capacity(cap / 2 + 8);
+    let mut values = Vec::with_capacity(cap / 2 + 8);
+    let mut triangles = Vec::with_capacity(cap);
     // The six faces of the unit cube: fixed axis, its side, and the two in-face axes ordered so
     // that (u × v) points outwards.
     const FACES: [(usize, f64, usize, usize); 6] = [
@@ -114,18 +150,22 @@ pub fn domain_subdivision_mesh(
         for s in 0..q[1] {
             for r in 0..q[0] {
                 let idx = [r, s, t];
-                let corner: [f64; 3] =
-                    std::array::from_fn(|a| lo[a] + idx[a] as f64 * (1.0 + alpha[a]) * delta[a]);
+                let corner: [f64; 3] = std::array::from_fn(|a| axes[a].0[idx[a]]);
                 for &(fa, side, ua, va) in &FACES {
                     let base = positions.len() as u32;
                     for j in 0..=k {
                         for i in 0..=k {
                             let mut p = [0.0; 3];
-                            p[fa] = corner[fa] + side * delta[fa];
+                            p[fa] = if side > 0.0 {
+                                corner[fa] + delta[fa]
+                            } else {
+                                corner[fa]
+                            };
                             p[ua] = corner[ua] + i as f64 / k as f64 * delta[ua];
                             p[va] = corner[va] + j as f64 / k as f64 * delta[va];
-                            positions.push(Point3::new(p[0], p[1], p[2]));
-                            values.push(trilinear(vol, p));
+                            let (x, f) = eval(p);
+                            positions.push(x);
+                            values.push(f);
                         }
                     }
                     let id = |i: usize, j: usize| base + (j * (k + 1) + i) as u32;
@@ -145,7 +185,7 @@ pub fn domain_subdivision_mesh(
         kind: ScalarKind::F64,
         values,
     });
-    Ok(m)
+    m
 }
 
 /// Hamann's three sets of rectangles (§2.2, transparency): every grid cell of the planes
