@@ -100,6 +100,32 @@ pub fn flatten<T: Copy, const K: usize>(v: Vec<[T; K]>) -> Vec<T> {
     unsafe { Vec::from_raw_parts(ptr as *mut T, len * K, cap * K) }
 }
 
+const _: () = assert!(
+    std::mem::size_of::<Point3>() == 24 && std::mem::align_of::<Point3>() == 8,
+    "Point3 is [f64; 3]"
+);
+const _: () = assert!(
+    std::mem::size_of::<morpho::geom::Vector3>() == 24
+        && std::mem::align_of::<morpho::geom::Vector3>() == 8,
+    "Vector3 is [f64; 3]"
+);
+
+/// `Vec<Point3>` as `Vec<[f64; 3]>` on the same buffer (no copy).
+pub fn point_rows(v: Vec<Point3>) -> Vec<[f64; 3]> {
+    let mut v = std::mem::ManuallyDrop::new(v);
+    let (ptr, len, cap) = (v.as_mut_ptr(), v.len(), v.capacity());
+    // SAFETY: Point3<f64> is repr(C) over [f64; 3] (checked above: same size and alignment).
+    unsafe { Vec::from_raw_parts(ptr as *mut [f64; 3], len, cap) }
+}
+
+/// `Vec<Vector3>` as `Vec<[f64; 3]>` on the same buffer (no copy).
+pub fn vector_rows(v: Vec<morpho::geom::Vector3>) -> Vec<[f64; 3]> {
+    let mut v = std::mem::ManuallyDrop::new(v);
+    let (ptr, len, cap) = (v.as_mut_ptr(), v.len(), v.capacity());
+    // SAFETY: Vector3<f64> is a repr(C) matrix over [[f64; 3]; 1] (same size and alignment).
+    unsafe { Vec::from_raw_parts(ptr as *mut [f64; 3], len, cap) }
+}
+
 /// A `Vec` of index rows as an `(m, K)` array that owns the vector's buffer (no copy).
 pub fn rows<'py, const K: usize>(py: Python<'py>, v: Vec<[u32; K]>) -> Bound<'py, PyArray2<u32>> {
     let m = v.len();
@@ -114,11 +140,6 @@ pub fn frows<'py, const K: usize>(py: Python<'py>, v: Vec<[f64; K]>) -> Bound<'p
     let flat = flatten(v);
     let a = Array2::from_shape_vec((m, K), flat).expect("shape matches");
     PyArray2::from_owned_array(py, a)
-}
-
-/// Points as an `(n, 3)` float64 array.
-pub fn points3<'py>(py: Python<'py>, p: &[Point3]) -> Bound<'py, PyArray2<f64>> {
-    frows(py, p.iter().map(|q| [q.x, q.y, q.z]).collect())
 }
 
 /// A `Vec<u32>` as a one-dimensional array (no copy).

@@ -45,11 +45,13 @@ pub fn read(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
         }
         Data::Mesh(m) => {
             d.set_item("kind", "mesh")?;
-            d.set_item("vertices", crate::convert::points3(py, &m.positions))?;
+            d.set_item(
+                "vertices",
+                frows(py, crate::convert::point_rows(m.positions)),
+            )?;
             d.set_item("faces", rows(py, m.triangles))?;
             if let Some(n) = m.normals {
-                let v: Vec<[f64; 3]> = n.iter().map(|n| [n.x, n.y, n.z]).collect();
-                d.set_item("normals", frows(py, v))?;
+                d.set_item("normals", frows(py, crate::convert::vector_rows(n)))?;
             }
             let props = |ps: Vec<morpho::mesh::Property>| -> PyResult<Bound<'_, PyDict>> {
                 let p = PyDict::new(py);

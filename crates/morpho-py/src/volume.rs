@@ -15,6 +15,7 @@ use numpy::ndarray::ArrayView3;
 use numpy::{Element, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
+use rayon::prelude::*;
 
 /// Samples of a typed array as the library's `f32` samples, x fastest; `true` when x is the
 /// array's axis 2 (C order).
@@ -24,13 +25,19 @@ fn samples<T: Element + Copy + Sync>(
     transpose: bool,
     cast: fn(T) -> f32,
 ) -> Vec<f32> {
+    let contiguous = if f_order {
+        a.as_slice_memory_order()
+    } else {
+        a.as_slice()
+    };
     if transpose {
         a.reversed_axes().iter().map(|&v| cast(v)).collect()
-    } else if f_order {
-        let s = a.as_slice_memory_order().expect("contiguous");
-        s.iter().map(|&v| cast(v)).collect()
-    } else if let Some(s) = a.as_slice() {
-        s.iter().map(|&v| cast(v)).collect()
+    } else if let Some(s) = contiguous {
+        // the one copy the library's owned volume needs, on every core
+        s.par_iter()
+            .with_min_len(1 << 16)
+            .map(|&v| cast(v))
+            .collect()
     } else {
         a.iter().map(|&v| cast(v)).collect()
     }
@@ -144,17 +151,18 @@ pub fn isosurface<'py>(
     let r = compute(py, || iso(&vol, &opts))?.map_err(py_err)?;
     drop(vol);
     let m = r.mesh;
+    // In place and without a copy: points and vectors are `[f64; 3]` (see `convert`).
     let (pos, tri, nor) = compute(py, || {
-        let perm = |p: [f64; 3]| if reversed { [p[2], p[1], p[0]] } else { p };
-        let pos: Vec<[f64; 3]> = m.positions.iter().map(|p| perm([p.x, p.y, p.z])).collect();
-        let tri: Vec<[u32; 3]> = if reversed {
-            m.triangles.iter().map(|t| [t[0], t[2], t[1]]).collect()
-        } else {
-            m.triangles
-        };
-        let nor: Option<Vec<[f64; 3]>> = m
-            .normals
-            .map(|ns| ns.iter().map(|n| perm([n.x, n.y, n.z])).collect());
+        let mut pos = crate::convert::point_rows(m.positions);
+        let mut tri = m.triangles;
+        let mut nor = m.normals.map(crate::convert::vector_rows);
+        if reversed {
+            pos.par_iter_mut().for_each(|p| p.swap(0, 2));
+            tri.par_iter_mut().for_each(|t| t.swap(1, 2));
+            if let Some(n) = nor.as_mut() {
+                n.par_iter_mut().for_each(|v| v.swap(0, 2));
+            }
+        }
         (pos, tri, nor)
     })?;
     let verts = frows(py, pos).into_any();
