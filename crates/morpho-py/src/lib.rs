@@ -17,6 +17,12 @@ mod volume;
 
 use pyo3::prelude::*;
 
+/// Panics inside a computation (for the tests: it must be a `RuntimeError`, not an abort).
+#[pyfunction]
+fn _panic_for_tests(py: Python<'_>) -> PyResult<()> {
+    convert::compute(py, || -> () { panic!("deliberate test panic") })
+}
+
 /// The native part of the `morpho` package (use `import morpho`).
 #[pymodule]
 fn _morpho(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -31,5 +37,6 @@ fn _morpho(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(io::read, m)?)?;
     m.add_function(wrap_pyfunction!(io::write, m)?)?;
     m.add_class::<flint::FlintTree>()?;
+    m.add_function(wrap_pyfunction!(_panic_for_tests, m)?)?;
     Ok(())
 }

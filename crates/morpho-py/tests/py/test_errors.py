@@ -147,3 +147,9 @@ def test_gil_released_threads_agree():
     for t in ts:
         t.join()
     assert all(np.array_equal(o, ref) for o in out)
+
+
+def test_panic_is_an_exception_not_an_abort():
+    with pytest.raises(RuntimeError, match="internal error \\(panic\\): deliberate test panic"):
+        _morpho._panic_for_tests()
+    assert len(morpho.triangulate(P)) > 0  # the interpreter goes on
