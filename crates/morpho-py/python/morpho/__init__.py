@@ -1,0 +1,263 @@
+"""morpho — computational morphology from Python (the Rust library ``morpho`` through PyO3).
+
+Shapes from scattered points, samples and volumes: Delaunay triangulations, geometric graphs
+(γ-graph, α-shapes, β-skeletons, …), boundaries through all points (γ-constriction), contour
+surfaces of volumes (marching cubes with the asymptotic decider, consistent), region contours of
+rated samples, flintstone trees, curvature of meshes, and every morpho file format.
+
+Arrays
+------
+* Coordinates are ``(n, 2)`` or ``(n, 3)`` arrays. A C-contiguous ``float64`` array is passed to
+  Rust **without a copy**; any other real dtype (ints, float32) or layout (Fortran order,
+  slices with strides) is **copied** once into a C-contiguous ``float64`` array. Non-numeric
+  dtypes (complex, object, str, bool), a wrong number of dimensions or columns, and NaN/inf
+  coordinates raise ``ValueError``.
+* Index results (triangles, edges, rings) are ``uint32`` arrays that own the library's buffers
+  (no copy); coordinates are ``float64``.
+* Volumes: ``volume[i, j, k]`` is the sample at index ``(i, j, k)`` and a vertex is
+  ``origin + (i, j, k) * spacing`` in that column order, as in ``skimage.measure.marching_cubes``.
+  Any integer or float dtype, any layout; the samples are converted to ``float32`` (the
+  library's sample type) in one pass.
+
+The GIL is released while Rust computes (``threading`` gives real parallelism); errors are
+``ValueError`` for bad input, ``OSError`` for files, ``RuntimeError`` otherwise, with the
+library's message; an internal panic is a ``RuntimeError``, never an abort.
+"""
+
+from __future__ import annotations
+
+import numpy as _np
+
+from . import _morpho
+from ._morpho import FlintTree, __version__
+
+__all__ = [
+    "triangulate",
+    "graph",
+    "boundary",
+    "isosurface",
+    "contour",
+    "info",
+    "curvature",
+    "read",
+    "write",
+    "FlintTree",
+    "flint",
+    "__version__",
+]
+
+
+def _coords(a, what="points", dims=(2, 3)):
+    """``a`` as a C-contiguous float64 ``(n, d)`` array (no copy when it already is one)."""
+    if not isinstance(a, _np.ndarray):
+        try:
+            a = _np.asarray(a)
+        except (ValueError, TypeError) as e:  # ragged lists
+            raise ValueError(f"{what}: not an array of coordinates ({e})") from None
+    if a.dtype.kind not in "iuf":
+        raise ValueError(f"{what}: expected real numbers, got an array of dtype {a.dtype}")
+    if a.ndim != 2 or a.shape[1] not in dims:
+        want = " or ".join(f"(n, {d})" for d in dims)
+        raise ValueError(f"{what}: expected an array of shape {want}, got {a.shape}")
+    return _np.ascontiguousarray(a, dtype=_np.float64)
+
+
+def _values(a, n, what="values"):
+    a = _np.asarray(a)
+    if a.dtype.kind not in "iuf":
+        raise ValueError(f"{what}: expected real numbers, got an array of dtype {a.dtype}")
+    if a.ndim != 1 or a.shape[0] != n:
+        raise ValueError(f"{what}: expected an array of shape ({n},), got {a.shape}")
+    return _np.ascontiguousarray(a, dtype=_np.float64)
+
+
+def _faces(f, what="faces"):
+    f = _np.asarray(f)
+    if f.dtype.kind not in "iu":
+        raise ValueError(f"{what}: expected integer indices, got an array of dtype {f.dtype}")
+    if f.ndim != 2 or f.shape[1] != 3:
+        raise ValueError(f"{what}: expected an array of shape (m, 3), got {f.shape}")
+    return _np.ascontiguousarray(f, dtype=_np.int64)
+
+
+def _mesh(vertices, faces):
+    """(vertices, faces) from arrays or from a mesh object with ``.vertices``/``.faces``."""
+    if faces is None:
+        if hasattr(vertices, "vertices") and hasattr(vertices, "faces"):
+            vertices, faces = vertices.vertices, vertices.faces
+        else:
+            raise ValueError("a mesh is (vertices, faces) or an object with .vertices and .faces")
+    return _coords(vertices, "vertices", (3,)), _faces(faces)
+
+
+def triangulate(points):
+    """Delaunay triangulation of 2D or 3D points.
+
+    ``points``: ``(n, 2)`` or ``(n, 3)``. Returns ``(m, 3)`` triangles (2D, counter-clockwise)
+    or ``(m, 4)`` tetrahedra (3D) as ``uint32`` indices into ``points``; a duplicate point is
+    represented by its first occurrence. Exact predicates with symbolic perturbation: the result
+    does not depend on the input order. Collinear (coplanar) input gives no simplices.
+    """
+    return _morpho.triangulate(_coords(points))
+
+
+def graph(points, kind, **params):
+    """A geometric graph of the points (Veltkamp 1992, ch. 2–3): ``(k, 2)`` uint32 edges.
+
+    ``kind``: ``closest-pairs``, ``nng``, ``emst``, ``strip``, ``sig``, ``rng``, ``gabriel``,
+    ``hull``, ``delaunay``, ``alpha`` (``a=``), ``beta-circle``/``beta-lune`` (``b=``),
+    ``gamma`` (``c0=``, ``c1=``), ``gamma-range`` (``range=(c0, c1, c2, c3)``).
+    """
+    unknown = set(params) - {"a", "b", "c0", "c1", "range"}
+    if unknown:
+        raise ValueError(f"graph: unknown parameter(s) {sorted(unknown)}")
+    r = params.get("range")
+    if r is not None:
+        r = tuple(float(x) for x in r)
+        if len(r) != 4:
+            raise ValueError("graph: range must be four numbers (c0, c1, c2, c3)")
+    return _morpho.graph(
+        _coords(points), str(kind), params.get("a"), params.get("b"),
+        params.get("c0"), params.get("c1"), r,
+    )
+
+
+def boundary(points, method="gamma", c="auto", seeds=200):
+    """The boundary through all scattered points (Veltkamp 1992, ch. 4–5).
+
+    2D: a simple polygon, ``(n,)`` uint32 indices in boundary order. 3D: a closed genus-0 mesh,
+    ``(m, 3)`` uint32 triangles (vertices are the input points). ``method``: ``gamma``
+    (γ-constriction), ``min-area-change``, ``voronoi-skeleton`` (``seeds`` tried); ``c``:
+    ``"auto"`` or a number in [−1, 0]. When not every point could be put on the boundary the
+    best valid result is returned with a ``RuntimeWarning``.
+    """
+    return _morpho.boundary(_coords(points), str(method), c, int(seeds))
+
+
+def isosurface(volume, level=None, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0),
+               method="decider", normals="zucker", flip=False, return_report=False):
+    """The contour surface ``volume == level`` (Hamann 1991, §3.2–3.4).
+
+    A drop-in for ``skimage.measure.marching_cubes(volume, level, spacing=…)``: ``volume[i, j, k]``,
+    vertices ``origin + (i, j, k) * spacing``, ``level=None`` is the middle of the data range.
+    Returns ``(vertices (n, 3) float64, faces (m, 3) uint32, normals (n, 3) float64 or None)``
+    (and a dict of figures — parts, boundary edges, holes — with ``return_report=True``).
+    ``method``: ``decider`` (marching cubes with the asymptotic decider: consistent, no holes),
+    ``tetra`` (six tetrahedra per cell), ``lorensen`` (the original table; may leave holes).
+    ``normals``: ``zucker`` (Zucker–Hummel gradient), ``central``, ``mesh``, ``none``.
+    Triangles are counter-clockwise seen from the side below the level (outside of the region
+    above it) and normals point there; ``flip=True`` reverses both. NaN samples: their cells are
+    skipped. A level outside the data range gives an empty mesh.
+    """
+    if not isinstance(volume, _np.ndarray):
+        volume = _np.asarray(volume)
+    if volume.ndim != 3:
+        raise ValueError(f"volume: expected a 3D array, got shape {volume.shape}")
+    if volume.dtype == _np.bool_:
+        volume = volume.view(_np.uint8)
+    if level is None:
+        if volume.dtype.kind not in "iuf":
+            raise ValueError(f"volume: expected integers or floats, got dtype {volume.dtype}")
+        level = (float(_np.nanmin(volume)) + float(_np.nanmax(volume))) / 2.0
+    sp = tuple(float(s) for s in _np.broadcast_to(_np.asarray(spacing, dtype=float), (3,)))
+    org = tuple(float(s) for s in _np.broadcast_to(_np.asarray(origin, dtype=float), (3,)))
+    return _morpho.isosurface(volume, float(level), sp, org, str(method), str(normals),
+                              bool(flip), bool(return_report))
+
+
+def contour(samples_xy, values, threshold, rating="mean", below=False, holes=False,
+            min_area=0.0):
+    """Regions where the rated samples are above (``below=True``: below) ``threshold``.
+
+    The samples are triangulated (Delaunay), each triangle rated from its corner values
+    (``rating``: ``mean``, ``min``, ``max``, ``median``, ``area-mean``), and the external
+    contour of the black triangles traced (Dorgerloh et al.). 2D samples: a list of rings, each a
+    ``(k,)`` uint32 array of sample indices (outer rings counter-clockwise; with ``holes=True``
+    the holes too, clockwise); ``min_area`` drops small regions. 3D samples: ``(m, 3)``
+    triangles of the external surfaces. NaN values: those samples are skipped.
+    """
+    pts = _coords(samples_xy, "samples")
+    return _morpho.contour(pts, _values(values, pts.shape[0]), float(threshold), str(rating),
+                           bool(below), bool(holes), float(min_area))
+
+
+def info(vertices, faces=None):
+    """Topology and figures of a triangle mesh, the keys of ``morpho info``'s report.
+
+    ``info(vertices, faces)`` or ``info(mesh)`` for an object with ``.vertices``/``.faces``
+    (e.g. a ``trimesh.Trimesh``). Keys: vertices, used_vertices, triangles, edges, parts,
+    boundary_loops, boundary_edges, euler_characteristic, genus (None unless an orientable
+    manifold), manifold, orientable, consistently_oriented, closed, non_manifold_edges,
+    non_manifold_vertices, bbox, area, signed_volume.
+    """
+    v, f = _mesh(vertices, faces)
+    return _morpho.info(v, f)
+
+
+def curvature(vertices, faces=None, normals="area", ring=1):
+    """Per-vertex curvature by the osculating-paraboloid fit (Hamann 1991, §4.2).
+
+    ``normals``: ``area``/``uniform``/``inverse`` (estimated, V §9.4 weightings) or an
+    ``(n, 3)`` array. ``ring``: neighbourhood size. Returns a dict of arrays ``k1, k2, H, K, A``,
+    ``dir1, dir2, normals``, ``status`` (0 ok; otherwise the curvatures are NaN) and
+    ``undetermined`` (count). ``curvature(mesh)`` takes a mesh object too.
+    """
+    v, f = _mesh(vertices, faces)
+    if not isinstance(normals, str):
+        normals = _coords(normals, "normals", (3,))
+    return _morpho.curvature(v, f, normals, int(ring))
+
+
+def read(path):
+    """Reads any file morpho reads (format by extension) into a dict of arrays.
+
+    ``kind`` is ``points`` (``points``, ``columns``), ``mesh`` (``vertices``, ``faces``,
+    ``normals`` when present, ``vertex_properties``, ``face_properties``), ``volume``
+    (``volume`` float32 indexed ``[x, y, z]`` — Fortran order, the file's buffer without a copy —
+    ``spacing``, ``origin``; so ``isosurface(d["volume"], level, spacing=d["spacing"],
+    origin=d["origin"])`` equals ``morpho isosurface``) or ``shapes`` (``polygons``,
+    ``polylines``).
+    """
+    import os
+
+    return _morpho.read(os.fspath(path))
+
+
+def write(path, data=None, ascii=False, **arrays):
+    """Writes points, a mesh, a volume or polygons (format by extension), atomically.
+
+    ``write(path, read(other))`` converts; or by keywords: ``write("m.ply", vertices=v,
+    faces=f, normals=n)``, ``write("p.csv", points=p, columns={"value": z})``,
+    ``write("v.nrrd", volume=vol, spacing=(…), origin=(…))`` (``vol[x, y, z]``, any layout),
+    ``write("p.geojson", polygons=[[ring, …], …])``.
+    """
+    import os
+
+    d = dict(data or {})
+    d.update(arrays)
+    d.pop("kind", None)
+    out = {}
+    for k, v in d.items():
+        if k in ("points", "vertices", "normals") and v is not None:
+            v = _coords(v, k, (2, 3) if k == "points" else (3,))
+        elif k == "faces":
+            v = _faces(v)
+        elif k == "columns":
+            v = {str(c): _values(x, len(x), c) for c, x in v.items()}
+        elif k in ("polygons",):
+            v = [[_coords(r, "ring", (2,)) for r in poly] for poly in v]
+        elif k in ("polylines",):
+            v = [_coords(r, "polyline", (2,)) for r in v]
+        elif k == "volume":
+            v = _np.asarray(v)
+            if v.ndim != 3:
+                raise ValueError(f"volume: expected a 3D array, got shape {v.shape}")
+        out[k] = v
+    return _morpho.write(os.fspath(path), out, bool(ascii))
+
+
+def flint(points, closed=True):
+    """The flintstone tree of a polygon (``closed=True``) or polyline, ``(n, 2)`` vertices
+    (Veltkamp 1992, ch. 6–7, Alg. 7.1): a :class:`FlintTree` with ``approx(level=|error=|count=,
+    method=)`` and ``contains(queries)``."""
+    return FlintTree(_coords(points, "points", (2,)), bool(closed))

@@ -1,0 +1,188 @@
+//! `isosurface`: the contour surface of a volume given as a 3D numpy array (Hamann 1991
+//! §3.2–3.4 through `morpho::volume::isosurface`), with the conventions of
+//! `skimage.measure.marching_cubes`: `volume[i, j, k]` is the sample at index `(i, j, k)`,
+//! vertices are `origin + (i, j, k) * spacing` in that column order.
+//!
+//! Layout: the library's volume is x-fastest (`data[x + nx (y + ny z)]`). A Fortran-ordered
+//! array already is (x = axis 0); a C-ordered or strided one is read in its logical order with
+//! x = axis 2, and the result's columns are reversed (and the winding flipped, since reversing
+//! the axes mirrors space) so that the output is in axis order either way. The samples are
+//! converted to `float32` (the library's sample type) in one pass, without the GIL.
+
+use crate::convert::{bad, compute, frows, py_err, rows};
+use morpho::volume::{isosurface as iso, IsoMethod, IsoOptions, NormalMethod, Volume};
+use numpy::ndarray::ArrayView3;
+use numpy::{Element, PyReadonlyArray3, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+use rayon::prelude::*;
+
+/// Samples of a typed array as the library's `f32` samples, x fastest; `true` when x is the
+/// array's axis 2 (C order).
+fn samples<T: Element + Copy + Sync>(
+    a: ArrayView3<'_, T>,
+    f_order: bool,
+    transpose: bool,
+    cast: fn(T) -> f32,
+) -> Vec<f32> {
+    let contiguous = if f_order {
+        a.as_slice_memory_order()
+    } else {
+        a.as_slice()
+    };
+    if transpose {
+        a.reversed_axes().iter().map(|&v| cast(v)).collect()
+    } else if let Some(s) = contiguous {
+        // the one copy the library's owned volume needs, on every core
+        s.par_iter()
+            .with_min_len(1 << 16)
+            .map(|&v| cast(v))
+            .collect()
+    } else {
+        a.iter().map(|&v| cast(v)).collect()
+    }
+}
+
+/// Reads the array (any of the supported dtypes) into a [`Volume`]; the flag tells whether the
+/// volume's x is the array's axis 2 (C order, read without reordering). With `keep_axes`, x is
+/// always axis 0 (a C-ordered array is then transposed while it is converted).
+pub fn to_volume(
+    py: Python<'_>,
+    a: &Bound<'_, PyAny>,
+    spacing: [f64; 3],
+    origin: [f64; 3],
+    keep_axes: bool,
+) -> PyResult<(Volume, bool)> {
+    macro_rules! try_dtype {
+        ($t:ty, $cast:expr) => {
+            if let Ok(arr) = a.extract::<PyReadonlyArray3<'_, $t>>() {
+                let shape = arr.shape().to_vec();
+                let f_order = arr.is_fortran_contiguous() && !arr.is_c_contiguous();
+                let transpose = keep_axes && !f_order;
+                let view = arr.as_array();
+                let data = compute(py, || samples(view, f_order, transpose, $cast))?;
+                let (dims, sp, or) = if f_order || transpose {
+                    ([shape[0], shape[1], shape[2]], spacing, origin)
+                } else {
+                    let r = |v: [f64; 3]| [v[2], v[1], v[0]];
+                    ([shape[2], shape[1], shape[0]], r(spacing), r(origin))
+                };
+                let v = Volume::new(dims, or, sp, data).map_err(py_err)?;
+                return Ok((v, !(f_order || transpose)));
+            }
+        };
+    }
+    try_dtype!(f32, |v| v);
+    try_dtype!(f64, |v| v as f32);
+    try_dtype!(u8, |v| v as f32);
+    try_dtype!(i8, |v| v as f32);
+    try_dtype!(u16, |v| v as f32);
+    try_dtype!(i16, |v| v as f32);
+    try_dtype!(u32, |v| v as f32);
+    try_dtype!(i32, |v| v as f32);
+    try_dtype!(i64, |v| v as f32);
+    try_dtype!(u64, |v| v as f32);
+    let desc = match a.getattr("dtype") {
+        Ok(d) => format!("an array of dtype {d} and ndim {}", a.getattr("ndim")?),
+        Err(_) => format!("a {}", a.get_type().name()?),
+    };
+    Err(bad(format!(
+        "volume: expected a 3D array of integers or floats, got {desc}"
+    )))
+}
+
+/// The contour surface `f = level`: `(vertices (n, 3) float64, faces (m, 3) uint32,
+/// normals (n, 3) float64 or None)`, and with `return_report` a fourth item, a dict of figures.
+#[pyfunction]
+#[pyo3(signature = (volume, level, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), method="decider", normals="zucker", flip=false, return_report=false))]
+#[allow(clippy::too_many_arguments)]
+pub fn isosurface<'py>(
+    py: Python<'py>,
+    volume: &Bound<'py, PyAny>,
+    level: f64,
+    spacing: (f64, f64, f64),
+    origin: (f64, f64, f64),
+    method: &str,
+    normals: &str,
+    flip: bool,
+    return_report: bool,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let method = match method {
+        "decider" => IsoMethod::Decider,
+        "tetra" => IsoMethod::Tetra,
+        "lorensen" => IsoMethod::Lorensen,
+        m => {
+            return Err(bad(format!(
+                "unknown isosurface method '{m}': use decider, tetra or lorensen"
+            )))
+        }
+    };
+    let normal_method = match normals {
+        "zucker" => NormalMethod::ZuckerHummel,
+        "central" => NormalMethod::Central,
+        "mesh" => NormalMethod::Mesh,
+        "none" => NormalMethod::None,
+        n => {
+            return Err(bad(format!(
+                "unknown normals '{n}': use zucker, central, mesh or none"
+            )))
+        }
+    };
+    if !level.is_finite() {
+        return Err(bad(format!("level must be a finite number, got {level}")));
+    }
+    let sp = [spacing.0, spacing.1, spacing.2];
+    let or = [origin.0, origin.1, origin.2];
+    if sp.iter().any(|s| !(s.is_finite() && *s > 0.0)) || or.iter().any(|o| !o.is_finite()) {
+        return Err(bad(format!(
+            "spacing must be three positive finite numbers and origin three finite numbers, \
+             got spacing {sp:?}, origin {or:?}"
+        )));
+    }
+    let (vol, reversed) = to_volume(py, volume, sp, or, false)?;
+    let opts = IsoOptions {
+        level,
+        method,
+        normals: normal_method,
+        flip,
+        parallel: true,
+        topology: return_report,
+    };
+    let r = compute(py, || iso(&vol, &opts))?.map_err(py_err)?;
+    drop(vol);
+    let m = r.mesh;
+    // In place and without a copy: points and vectors are `[f64; 3]` (see `convert`).
+    let (pos, tri, nor) = compute(py, || {
+        let mut pos = crate::convert::point_rows(m.positions);
+        let mut tri = m.triangles;
+        let mut nor = m.normals.map(crate::convert::vector_rows);
+        if reversed {
+            pos.par_iter_mut().for_each(|p| p.swap(0, 2));
+            tri.par_iter_mut().for_each(|t| t.swap(1, 2));
+            if let Some(n) = nor.as_mut() {
+                n.par_iter_mut().for_each(|v| v.swap(0, 2));
+            }
+        }
+        (pos, tri, nor)
+    })?;
+    let verts = frows(py, pos).into_any();
+    let faces = rows(py, tri).into_any();
+    let nor = match nor {
+        Some(n) => frows(py, n).into_any(),
+        None => py.None().into_bound(py),
+    };
+    if !return_report {
+        return PyTuple::new(py, [verts, faces, nor]);
+    }
+    let d = PyDict::new(py);
+    d.set_item("parts", r.parts)?;
+    d.set_item("boundary_edges", r.boundary_edges)?;
+    d.set_item("interior_boundary_edges", r.interior_boundary_edges)?;
+    d.set_item("interior_holes", r.interior_holes)?;
+    d.set_item("non_manifold_edges", r.non_manifold_edges)?;
+    d.set_item("fan_points", r.fan_points)?;
+    d.set_item("centroid_fallbacks", r.centroid_fallbacks)?;
+    d.set_item("skipped_cells", r.skipped_cells)?;
+    d.set_item("note", r.note)?;
+    PyTuple::new(py, [verts, faces, nor, d.into_any()])
+}
