@@ -71,6 +71,8 @@ enum Command {
     Flint(cmd::flint::Args),
     /// Curvature of a triangle mesh (k1, k2, H, K, A per vertex) or of a volume's function.
     Curvature(cmd::curvature::Args),
+    /// G¹ smooth curve through a polygon or G¹ surface through a closed mesh (cubic Bézier).
+    Smooth(cmd::smooth::Args),
     /// An interactive page (WebGL 2, offline) showing meshes, points, shapes and volumes.
     View(cmd::view::Args),
 }
@@ -164,7 +166,7 @@ fn remove_temporaries_on_signals() {
     }
 }
 
-const SUBCOMMANDS: [&str; 12] = [
+const SUBCOMMANDS: [&str; 13] = [
     "demo",
     "info",
     "convert",
@@ -176,6 +178,7 @@ const SUBCOMMANDS: [&str; 12] = [
     "contour",
     "flint",
     "curvature",
+    "smooth",
     "view",
 ];
 
@@ -264,6 +267,7 @@ fn main() -> ExitCode {
         Command::Contour(_) => "contour",
         Command::Flint(_) => "flint",
         Command::Curvature(_) => "curvature",
+        Command::Smooth(_) => "smooth",
         Command::View(_) => "view",
     };
     // every path named on the command line, checked before anything is read or written
@@ -309,6 +313,10 @@ fn main() -> ExitCode {
             if !a.output.is_dir() {
                 paths.output(&a.output);
             }
+        }
+        Command::Smooth(a) => {
+            paths.inputs.push(&a.input);
+            paths.output(&a.output);
         }
         Command::View(a) => {
             paths.inputs.extend(a.inputs.iter().map(|p| p.as_path()));
@@ -364,6 +372,7 @@ fn main() -> ExitCode {
         Command::Contour(a) => cmd::contour::run(a, &mut report),
         Command::Flint(a) => cmd::flint::run(a, &mut report),
         Command::Curvature(a) => cmd::curvature::run(a, &mut report),
+        Command::Smooth(a) => cmd::smooth::run(a, &mut report),
         Command::View(a) => cmd::view::run(a, &mut report),
     };
     let code = match result {

@@ -13,6 +13,7 @@ pub mod graph;
 pub mod info;
 pub mod isosurface;
 pub mod render;
+pub mod smooth;
 pub mod triangulate;
 pub mod view;
 pub mod views;

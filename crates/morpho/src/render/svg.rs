@@ -282,6 +282,37 @@ impl Svg {
         self.body.push_str("/>\n");
     }
 
+    /// A chain of cubic Bézier segments `[p0, p1, p2, p3]` as one `<path>` of `C` commands (a
+    /// true curve, not a sampled one); each segment starts where the one before ends (a segment
+    /// whose `p0` differs starts a new subpath). `closed` appends `Z`.
+    pub fn cubics(&mut self, segs: &[[Point2; 4]], closed: bool, stroke: &Stroke) {
+        if segs.is_empty() || !segs.iter().all(|s| self.ok(s)) {
+            return;
+        }
+        self.body.push_str("<path d=\"");
+        for (k, s) in segs.iter().enumerate() {
+            if k == 0 || segs[k - 1][3] != s[0] {
+                self.body.push('M');
+                let q = self.to_px(s[0]);
+                pair(&mut self.body, q);
+            }
+            self.body.push('C');
+            for (i, &p) in s[1..].iter().enumerate() {
+                if i > 0 {
+                    self.body.push(' ');
+                }
+                let q = self.to_px(p);
+                pair(&mut self.body, q);
+            }
+        }
+        if closed {
+            self.body.push('Z');
+        }
+        self.body.push_str("\" fill=\"none\"");
+        stroke_attrs(&mut self.body, stroke);
+        self.body.push_str("/>\n");
+    }
+
     /// A polygon with holes: ring 0 outer, the others holes, filled with `fill-rule="evenodd"`
     /// so that holes stay empty whatever their orientation. One `<path>`.
     pub fn polygon(&mut self, poly: &Polygon, fill: Option<Fill>, stroke: Option<&Stroke>) {

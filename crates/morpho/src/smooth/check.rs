@@ -22,6 +22,8 @@ pub struct Continuity {
     pub max_position_gap: f64,
     /// Samples where the normals point into opposite half-spaces (`n1·n2 ≤ 0`).
     pub folds: usize,
+    /// Shared edges with at least one fold sample.
+    pub fold_edges: usize,
     /// Shared edges whose normal angle exceeds 1e-9 rad, as `(patch, patch)`.
     pub non_g1_edges: Vec<(usize, usize)>,
     /// Patch edges with no partner (0 on a closed surface).
@@ -56,6 +58,7 @@ pub fn continuity(s: &SplitSurface, samples: usize) -> Continuity {
         }
         out.edges += 1;
         let mut worst: f64 = 0.0;
+        let mut folded = false;
         for k in 1..=samples.max(1) {
             let t = k as f64 / (samples.max(1) + 1) as f64;
             // p runs corner i → i+1; q runs j → j+1 the other way
@@ -67,9 +70,11 @@ pub fn continuity(s: &SplitSurface, samples: usize) -> Continuity {
             let d = vec::dot(n1, n2);
             if d <= 0.0 {
                 out.folds += 1;
+                folded = true;
             }
             worst = worst.max(vec::norm(vec::cross(n1, n2)).atan2(d));
         }
+        out.fold_edges += usize::from(folded);
         if s.patches[p].macro_tri == s.patches[q].macro_tri {
             out.max_micro_jump_rad = out.max_micro_jump_rad.max(worst);
         } else {
@@ -82,4 +87,38 @@ pub fn continuity(s: &SplitSurface, samples: usize) -> Continuity {
     out.non_g1_edges.sort_unstable();
     out.max_normal_jump_rad = out.max_macro_jump_rad.max(out.max_micro_jump_rad);
     out
+}
+
+/// The largest distance between the three-split surface `s` of `mesh` and the flat mesh,
+/// measured at the same parameter: micro patch `3t+i` (corners `V_i, V_{i+1}, Z` of macro
+/// triangle t) at barycentric `(a, b, c)` against `a V_i + b V_{i+1} + c·centroid`, on the
+/// grid with `samples` (≥ 1) steps per micro edge. An upper bound of the distance from the
+/// surface to the input mesh. O(patches · samples²).
+pub fn max_deviation(s: &SplitSurface, mesh: &crate::mesh::TriMesh, samples: usize) -> f64 {
+    let n = samples.max(1);
+    let mut worst: f64 = 0.0;
+    for (k, patch) in s.patches.iter().enumerate() {
+        let Some(t) = mesh.triangles.get(patch.macro_tri as usize) else {
+            continue;
+        };
+        let v = t.map(|i| -> [f64; 3] { mesh.positions[i as usize].into() });
+        let z = vec::scale(vec::add(vec::add(v[0], v[1]), v[2]), 1.0 / 3.0);
+        let (a, b) = (v[k % 3], v[(k + 1) % 3]);
+        let tri = patch.triangle();
+        for i in 0..=n {
+            for j in 0..=n - i {
+                let w = [
+                    (n - i - j) as f64 / n as f64,
+                    j as f64 / n as f64,
+                    i as f64 / n as f64,
+                ];
+                let flat = vec::add(
+                    vec::add(vec::scale(a, w[0]), vec::scale(b, w[1])),
+                    vec::scale(z, w[2]),
+                );
+                worst = worst.max(vec::dist(tri.eval(w), flat));
+            }
+        }
+    }
+    worst
 }

@@ -11,7 +11,7 @@
 //! rounding of the stored control points ([`Joint::rounding`]).
 //!
 //! Not yet built (issue 19): the two- and six-split, the side-vertex surface (H ch. 6),
-//! reflection lines, the `morpho smooth` CLI and benches.
+//! reflection lines and benches. The CLI is `morpho smooth` (curve and three-split).
 
 mod bezier;
 mod check;
@@ -23,7 +23,7 @@ mod tessellate;
 mod triangle;
 
 pub use bezier::{bernstein, joint, BezierCurve, Joint};
-pub use check::{continuity, Continuity};
+pub use check::{continuity, max_deviation, Continuity};
 pub use curve::{
     curve_joints, g1_curve, tangent, CurveFailure, CurveWeighting, FailureKind, G1Curve,
 };

@@ -1,0 +1,364 @@
+//! `morpho smooth IN -o OUT [--scheme curve|split3] [--weights length|uniform|inverse]
+//! [--normals area|uniform|inverse|file] [--density N]`: the G¹ curve through a polygon
+//! (Veltkamp 1992, §9.2; NOTES B.2) or the cubic three-split G¹ surface through a closed mesh
+//! (V §9.6; NOTES B.5); see `morpho::smooth`.
+//!
+//! - 2D input (`.csv`, `.geojson`: polygons with holes and polylines; every ring and polyline
+//!   becomes one curve) → `.svg` (the true cubic path), `.json`
+//!   `{"closed":true,"segments":[[[x,y]×4],…]}` (one curve) or `{"curves":[…]}` (several),
+//!   `.geojson`/`.csv` (the curve sampled at `--density` points per segment, default 16).
+//!   `--weights` is the tangent weighting (default `length`, the thesis's); a vertex where it
+//!   fails G¹ is repaired with the uniform weighting and counted in `g1_failures`.
+//! - Closed mesh (`.ply .obj .off .stl`) → the surface tessellated with `--density` steps per
+//!   micro-patch edge (default 8; PLY carries the surface normals) or `.json`
+//!   `{"degree":3,"patches":[{"macro":t,"control":[[x,y,z]×10]},…]}` (control points b300, b210,
+//!   b201, b120, b111, b102, b030, b021, b012, b003). `--normals` as in `morpho curvature`.
+//!
+//! Report keys (3D): `max_normal_jump_rad` (every macro and micro edge, 20 samples per edge,
+//! measured independently of the construction), `max_macro_jump_rad`, `max_micro_jump_rad`,
+//! `non_g1_edges` (edges above 1e-9 rad), `folds` (samples with `n₁·n₂ ≤ 0`), `fold_edges`,
+//! `singular_edges`, `unresolved_edges`, `sign_warnings`, `max_displacement`,
+//! `max_deviation` (surface vs flat mesh at the same parameter), `patches`, `triangles`;
+//! (2D) `curves`, `segments`, `g1_failures`, `zero_handles`, `max_joint_sine`; timings.
+//! Open, non-manifold or inconsistently oriented meshes, zero-area triangles, NaN, polygons
+//! with repeated consecutive vertices or too few vertices: `error:` and exit 2.
+
+use crate::report::Report;
+use crate::Failure;
+use morpho::geom::{Point2, Vector3};
+use morpho::io::{self, Format};
+use morpho::mesh::{NormalWeighting, Polygon, Polyline, Shapes2, TriMesh};
+use morpho::smooth::{
+    continuity, curve_joints, g1_curve, max_deviation, tessellate, three_split, CurveWeighting,
+    FailureKind, G1Curve,
+};
+use serde_json::json;
+use std::path::{Path, PathBuf};
+
+/// `morpho smooth` arguments.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Polygon or polyline (.csv .geojson) or closed triangle mesh (.ply .obj .off .stl).
+    pub input: PathBuf,
+    /// Output: .svg .json .geojson .csv for a curve; .ply .obj .off .stl .json for a surface.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// The construction (default: `curve` for 2D input, `split3` for a mesh). The two- and
+    /// six-split and the side-vertex surface are not built yet.
+    #[arg(long, value_parser = ["curve", "split3"])]
+    pub scheme: Option<String>,
+    /// Tangent weighting of the curve (V §9.2).
+    #[arg(long, default_value = "length", value_parser = ["length", "uniform", "inverse"])]
+    pub weights: String,
+    /// Vertex normals of the surface: estimated (V §9.4) or the file's.
+    #[arg(long, default_value = "area", value_parser = ["area", "uniform", "inverse", "file"])]
+    pub normals: String,
+    /// Samples per curve segment (2D sampled outputs, default 16) or steps per micro-patch
+    /// edge of the tessellation (3D, default 8).
+    #[arg(long)]
+    pub density: Option<usize>,
+}
+
+fn is_mesh_input(p: &Path) -> bool {
+    matches!(
+        crate::cmd::extension(p).as_str(),
+        "ply" | "obj" | "off" | "stl"
+    )
+}
+
+/// Runs `morpho smooth`.
+pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
+    let mesh_in = is_mesh_input(&args.input);
+    match (args.scheme.as_deref(), mesh_in) {
+        (Some("curve"), true) => {
+            return Err(Failure::usage(format!(
+                "{}: --scheme curve smooths polygons (.csv .geojson); a mesh takes split3",
+                args.input.display()
+            )))
+        }
+        (Some("split3"), false) => {
+            return Err(Failure::usage(format!(
+                "{}: --scheme split3 smooths closed meshes (.ply .obj .off .stl)",
+                args.input.display()
+            )))
+        }
+        _ => {}
+    }
+    if let Some(d) = args.density {
+        let max = if mesh_in { 64 } else { 4096 };
+        if d == 0 || d > max {
+            return Err(Failure::usage(format!(
+                "--density must be in 1..={max} here, not {d}"
+            )));
+        }
+    }
+    if mesh_in {
+        run_surface(&args, report)
+    } else {
+        run_curve(&args, report)
+    }
+}
+
+fn weighting(s: &str) -> CurveWeighting {
+    match s {
+        "uniform" => CurveWeighting::Uniform,
+        "inverse" => CurveWeighting::InverseLength,
+        _ => CurveWeighting::Length,
+    }
+}
+
+fn curve_json(c: &G1Curve) -> serde_json::Value {
+    json!({"closed": c.closed, "segments": c.segments})
+}
+
+/// The curve sampled at `n` points per segment (the segment's end is the next one's start;
+/// an open curve adds its last vertex).
+fn sampled(c: &G1Curve, n: usize) -> Vec<Point2> {
+    let mut out = Vec::with_capacity(c.segments.len() * n + 1);
+    for s in &c.segments {
+        let b = morpho::smooth::BezierCurve {
+            control: s.to_vec(),
+        };
+        for k in 0..n {
+            let p = b.eval(k as f64 / n as f64);
+            out.push(Point2::new(p[0], p[1]));
+        }
+    }
+    if !c.closed {
+        if let Some(s) = c.segments.last() {
+            out.push(Point2::new(s[3][0], s[3][1]));
+        }
+    }
+    out
+}
+
+fn run_curve(args: &Args, report: &mut Report) -> Result<u8, Failure> {
+    let fmt = Format::of(&args.output)?;
+    if !matches!(
+        fmt,
+        Format::Svg | Format::Json | Format::GeoJson | Format::Csv
+    ) {
+        return Err(Failure::usage(format!(
+            "{}: a smooth curve is written as .svg, .json, .geojson or .csv",
+            args.output.display()
+        )));
+    }
+    let shapes = report.time("read", || io::read_shapes2(&args.input))?;
+    let w = weighting(&args.weights);
+    let fail = |e: morpho::smooth::SmoothError| {
+        Failure::from(morpho::Error::from(e).with_path(&args.input))
+    };
+    // (curve, polygon index or None for a polyline)
+    let mut curves: Vec<(G1Curve, Option<usize>)> = Vec::new();
+    report.time("compute", || -> Result<(), Failure> {
+        for (k, poly) in shapes.polygons.iter().enumerate() {
+            for ring in &poly.rings {
+                curves.push((g1_curve(ring, true, w).map_err(fail)?, Some(k)));
+            }
+        }
+        for pl in &shapes.polylines {
+            curves.push((g1_curve(&pl.points, pl.closed, w).map_err(fail)?, None));
+        }
+        Ok(())
+    })?;
+    if curves.is_empty() {
+        return Err(Failure::usage(format!(
+            "{}: no polygon or polyline to smooth",
+            args.input.display()
+        )));
+    }
+    let (mut fails, mut zero, mut segs, mut sine) = (0, 0, 0, 0.0f64);
+    let mut cusps = 0;
+    for (c, _) in &curves {
+        fails += c.failures.len();
+        zero += c
+            .failures
+            .iter()
+            .filter(|f| f.kind == FailureKind::ZeroHandle)
+            .count();
+        segs += c.segments.len();
+        for j in curve_joints(c) {
+            sine = sine.max(j.sine);
+            cusps += usize::from(j.dot <= 0.0);
+        }
+    }
+    report.set("curves", curves.len());
+    report.set("segments", segs);
+    report.set("weights", args.weights.as_str());
+    report.set("g1_failures", fails);
+    report.set("zero_handles", zero);
+    report.set("max_joint_sine", sine);
+    report.set("cusps", cusps);
+    let n = args.density.unwrap_or(16);
+    let out = &args.output;
+    report.time("write", || -> Result<(), Failure> {
+        match fmt {
+            Format::Svg => {
+                let all: Vec<Point2> = curves
+                    .iter()
+                    .flat_map(|(c, _)| c.segments.iter().flatten())
+                    .map(|p| Point2::new(p[0], p[1]))
+                    .collect();
+                let mut svg = morpho::render::Svg::fit(&all, 800.0);
+                let stroke = morpho::render::Stroke::solid([40, 40, 40], 1.4);
+                for (c, _) in &curves {
+                    let s: Vec<[Point2; 4]> = c
+                        .segments
+                        .iter()
+                        .map(|s| s.map(|p| Point2::new(p[0], p[1])))
+                        .collect();
+                    svg.cubics(&s, c.closed, &stroke);
+                }
+                io::write_text(out, &svg.finish())?;
+            }
+            Format::Json => {
+                let v = if curves.len() == 1 {
+                    curve_json(&curves[0].0)
+                } else {
+                    json!({"curves": curves.iter().map(|(c, _)| curve_json(c)).collect::<Vec<_>>()})
+                };
+                let mut text = serde_json::to_string(&v).map_err(|e| Failure {
+                    code: 1,
+                    msg: e.to_string(),
+                })?;
+                text.push('\n');
+                io::write_text(out, &text)?;
+            }
+            _ => {
+                let mut sh = Shapes2::default();
+                for (c, poly) in &curves {
+                    let pts = sampled(c, n);
+                    match poly {
+                        Some(k) => {
+                            if sh.polygons.len() <= *k {
+                                sh.polygons.resize(k + 1, Polygon::default());
+                            }
+                            sh.polygons[*k].rings.push(pts);
+                        }
+                        None => sh.polylines.push(Polyline {
+                            points: pts,
+                            closed: c.closed,
+                        }),
+                    }
+                }
+                io::write_shapes2(out, &sh)?;
+            }
+        }
+        Ok(())
+    })?;
+    eprintln!(
+        "wrote {} ({} curve{}, {} segments, {} G1 failure{} repaired)",
+        out.display(),
+        curves.len(),
+        if curves.len() == 1 { "" } else { "s" },
+        segs,
+        fails,
+        if fails == 1 { "" } else { "s" }
+    );
+    Ok(0)
+}
+
+/// The vertex normals `--normals` asks for.
+fn normals(mesh: &TriMesh, which: &str, input: &Path) -> Result<Vec<Vector3>, Failure> {
+    let w = match which {
+        "file" => {
+            return mesh.normals.clone().ok_or_else(|| {
+                Failure::usage(format!(
+                    "{}: --normals file, but the file has no vertex normals (nx, ny, nz)",
+                    input.display()
+                ))
+            })
+        }
+        "uniform" => NormalWeighting::Uniform,
+        "inverse" => NormalWeighting::InverseArea,
+        _ => NormalWeighting::Area,
+    };
+    Ok(morpho::mesh::vertex_normals(mesh, w))
+}
+
+fn run_surface(args: &Args, report: &mut Report) -> Result<u8, Failure> {
+    let fmt = Format::of(&args.output)?;
+    if !io::is_mesh_format(fmt) && fmt != Format::Json {
+        return Err(Failure::usage(format!(
+            "{}: a smooth surface is written as .ply, .obj, .off, .stl (tessellated) or .json (patches)",
+            args.output.display()
+        )));
+    }
+    let mesh = report.time("read", || io::read_mesh(&args.input))?;
+    let n = normals(&mesh, &args.normals, &args.input)?;
+    let s = report.time("compute", || {
+        three_split(&mesh, &n)
+            .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
+    })?;
+    let c = report.time("check", || continuity(&s, 20));
+    // default: 8 steps, fewer on big meshes (at most ~4M triangles); an explicit density is
+    // refused beyond 32M triangles (no runaway allocation)
+    let per = |d: usize| s.patches.len().saturating_mul(d * d);
+    let density = match args.density {
+        Some(d) if per(d) > 32_000_000 => {
+            return Err(Failure::usage(format!(
+                "--density {d} would give {} triangles over {} patches; choose a smaller density",
+                per(d),
+                s.patches.len()
+            )))
+        }
+        Some(d) => d,
+        None => (1..=8).rev().find(|&d| per(d) <= 4_000_000).unwrap_or(1),
+    };
+    let dev = report.time("deviation", || max_deviation(&s, &mesh, density.min(16)));
+    report.set("scheme", "split3");
+    report.set("normals", args.normals.as_str());
+    report.set("vertices", mesh.positions.len());
+    report.set("macro_triangles", mesh.triangles.len());
+    report.set("patches", s.patches.len());
+    report.set("max_normal_jump_rad", c.max_normal_jump_rad);
+    report.set("max_macro_jump_rad", c.max_macro_jump_rad);
+    report.set("max_micro_jump_rad", c.max_micro_jump_rad);
+    report.set("max_position_gap", c.max_position_gap);
+    report.set("non_g1_edges", c.non_g1_edges.len());
+    report.set("edges_checked", c.edges);
+    report.set("folds", c.folds);
+    report.set("fold_edges", c.fold_edges);
+    report.set("singular_edges", s.singular_edges.len());
+    report.set("unresolved_edges", s.unresolved_edges.len());
+    report.set("sign_warnings", s.sign_warnings.len());
+    report.set("max_displacement", s.max_displacement);
+    report.set("max_deviation", dev);
+    let out = &args.output;
+    if fmt == Format::Json {
+        let patches: Vec<_> = s
+            .patches
+            .iter()
+            .map(|p| json!({"macro": p.macro_tri, "control": p.control}))
+            .collect();
+        let mut text =
+            serde_json::to_string(&json!({"degree": 3, "patches": patches})).map_err(|e| {
+                Failure {
+                    code: 1,
+                    msg: e.to_string(),
+                }
+            })?;
+        text.push('\n');
+        report.time("write", || io::write_text(out, &text))?;
+    } else {
+        let t = report.time("tessellate", || {
+            tessellate(&s, density)
+                .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
+        })?;
+        report.set("density", density);
+        report.set("triangles", t.triangles.len());
+        report.time("write", || {
+            io::write_mesh(out, &t, io::Encoding::BinaryLittleEndian)
+        })?;
+    }
+    eprintln!(
+        "wrote {} ({} patches; max normal jump {:.1e} rad, {} non-G1 edges, {} fold edges, {} singular edges)",
+        out.display(),
+        s.patches.len(),
+        c.max_normal_jump_rad,
+        c.non_g1_edges.len(),
+        c.fold_edges,
+        s.singular_edges.len()
+    );
+    Ok(0)
+}
