@@ -393,6 +393,54 @@ fn point_in_polygon_equals_brute_force() {
     }
 }
 
+/// The baseline walks (capsule, strip, ellipse regions; V §6.3 with Lemma 6.1) and the counted
+/// flintstone walk answer exactly as brute-force crossing parity, on random polygons (with
+/// points on vertices and edges) and the Benelux border; visits are ≥ 1 inside the root disc.
+#[test]
+fn baseline_walks_equal_brute_force() {
+    let methods = [
+        Baseline::DouglasPeucker,
+        Baseline::Strip,
+        Baseline::Blg,
+        Baseline::Arc,
+    ];
+    let mut r = Rng::new(29);
+    let mut polys: Vec<Vec<Point2>> = (0..8)
+        .map(|k| star(&mut r, 20 + 40 * k, k % 2 == 0))
+        .filter(|p| simple(p))
+        .collect();
+    polys.extend(ring("benelux_mainland_ne50m.csv"));
+    let mut total = 0;
+    let mut visits = [0usize; 5];
+    for p in &polys {
+        let t = FlintTree2::new(p, true).unwrap();
+        let bs: Vec<BaselineTree> = methods
+            .iter()
+            .map(|&m| BaselineTree::new(p, m).unwrap())
+            .collect();
+        for q in queries(p, &mut r, 3000) {
+            let want = contains_brute(t.points(), [q.x, q.y]);
+            let (c, v) = t.locate_counted(q).unwrap();
+            assert_eq!(c, want, "flintstone at {q:?}");
+            // each of the N − 2 nodes and N edges at most once
+            assert!(v <= 2 * p.len());
+            visits[0] += v;
+            for (k, b) in bs.iter().enumerate() {
+                let (c, v) = b.locate_counted(q).unwrap();
+                assert_eq!(c, want, "{:?} at {q:?}", b.method());
+                assert!(v <= 2 * p.len());
+                visits[k + 1] += v;
+            }
+            total += 1;
+        }
+    }
+    assert!(total > 20_000, "{total}");
+    // the BLG tree holds the Douglas–Peucker vertices and the same capsules
+    assert_eq!(visits[1], visits[3]);
+    let b = BaselineTree::new(&polys[0], Baseline::Arc).unwrap();
+    assert!(b.locate_counted(Point2::new(f64::NAN, 0.0)).is_err());
+}
+
 fn moved(p: &[Point2], dx: f64, dy: f64, rot: f64) -> Vec<Point2> {
     let (s, c) = rot.sin_cos();
     p.iter()

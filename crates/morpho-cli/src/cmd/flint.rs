@@ -413,3 +413,225 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         }
     }
 }
+
+/// The outline of a flintstone for drawing (V Figs 7.5–7.6): the left side's disc arc from the
+/// chord's first end to its last through the defining vertex, then the right side's arc back
+/// (the chord where a side is empty), sampled. `None` for segment and unbounded stones.
+fn stone_outline(p: &[[f64; 2]], s: &morpho::flint::Flintstone) -> Option<Vec<Point2>> {
+    use morpho::flint::StoneKind;
+    if matches!(s.kind, StoneKind::Segment | StoneKind::Unbounded) {
+        return None;
+    }
+    let n = p.len();
+    let (a, b) = (p[s.lo % n], p[s.hi % n]);
+    let tau = std::f64::consts::TAU;
+    let arc = |d: &morpho::flint::SideDisc, from: [f64; 2], to: [f64; 2], out: &mut Vec<Point2>| {
+        let c = d.center;
+        let r = d.radius.abs();
+        let ang = |x: [f64; 2]| (x[1] - c[1]).atan2(x[0] - c[0]);
+        let (t0, t1, tv) = (ang(from), ang(to), ang(p[d.pos % n]));
+        let span = (t1 - t0).rem_euclid(tau);
+        let via = (tv - t0).rem_euclid(tau);
+        let sweep = if via <= span { span } else { span - tau };
+        let k = 48;
+        for i in 1..k {
+            let t = t0 + sweep * i as f64 / k as f64;
+            out.push(Point2::new(c[0] + r * t.cos(), c[1] + r * t.sin()));
+        }
+    };
+    let mut out = vec![Point2::new(a[0], a[1])];
+    if let Some(d) = &s.left {
+        arc(d, a, b, &mut out);
+    }
+    out.push(Point2::new(b[0], b[1]));
+    if let Some(d) = &s.right {
+        arc(d, b, a, &mut out);
+    }
+    Some(out)
+}
+
+/// The stones of the level-ℓ approximation's edges drawn over the input and the approximation.
+fn level_svg(t: &FlintTree2, pts: &[Point2], level: u32, width: f64) -> (String, usize, f64) {
+    use morpho::render::{Fill, Stroke, Svg};
+    let a = t
+        .approximate(Target::Level(level))
+        .expect("a level is a valid target");
+    let mut svg = Svg::fit(pts, width);
+    let p = t.points();
+    for nd in t.nodes.iter().filter(|n| n.level == level + 1) {
+        if let Some(o) = stone_outline(p, &nd.stone) {
+            svg.polygon(
+                &Polygon { rings: vec![o] },
+                Some(Fill {
+                    color: [240, 150, 40],
+                    opacity: 0.25,
+                }),
+                Some(&Stroke::solid([200, 110, 20], 0.7)),
+            );
+        }
+    }
+    svg.polyline(pts, true, &Stroke::solid([120, 120, 120], 0.6));
+    let kept: Vec<Point2> = a.vertices.iter().map(|&i| pts[i]).collect();
+    svg.polyline(&kept, true, &Stroke::solid([30, 70, 200], 1.4));
+    svg.points(&kept, 1.8, [30, 70, 200]);
+    svg.title(&format!(
+        "level {level}: {} edges, e5 {:.3}",
+        a.edges(),
+        a.errors.e5
+    ));
+    (svg.finish(), a.edges(), a.errors.e5)
+}
+
+/// `morpho demo` section: the flintstone hierarchy of the Benelux border (V Figs 7.5–7.6), an
+/// adaptive approximation against a level at the same edge count, point-in-polygon answers and
+/// the meeting points of the border with a moved copy (V §7.4).
+pub fn demo_section(ctx: &super::demo::Ctx) -> morpho::Result<Vec<morpho::io::html::Section>> {
+    use morpho::io::html::Section;
+    use morpho::render::{Stroke, Svg};
+    let Some(path) = ctx.data_file("polygons/benelux_mainland_ne50m.csv") else {
+        return Ok(vec![Section::new(
+            "Flintstones",
+            "The real data (polygons/benelux_mainland_ne50m.csv) is absent; section skipped.",
+        )]);
+    };
+    let pts = io::read_shapes2(&path)?.polygons[0].rings[0].clone();
+    let t0 = std::time::Instant::now();
+    let t = FlintTree2::new(&pts, true)?;
+    let build = t0.elapsed().as_secs_f64();
+    let mut s = Section::new(
+        "Flintstone hierarchy of the Benelux border (V Figs 7.5–7.6)",
+        "Level ℓ keeps the split vertices of tree levels 0..ℓ (blue, at most 2^(ℓ+1) edges); \
+         orange: the flintstones of its edges — each the union of the two side caps of the \
+         discs through the chord ends and the vertex that Alg. 7.1 picks (V Defs. 7.1–7.2). \
+         Every vertex of an edge's piece of border lies in its stone; coarse levels need not \
+         be simple polygons.",
+    );
+    s.fig("vertices", pts.len());
+    s.fig("nodes", t.node_count());
+    s.fig("depth", t.depth());
+    s.fig("build", format!("{:.2} ms", build * 1e3));
+    for level in 0..6 {
+        let (svg, edges, e5) = level_svg(&t, &pts, level, 320.0);
+        let name = format!("flint_level{level}.svg");
+        morpho::io::write_text(&ctx.path(&name), &svg)?;
+        s.img(&name, &format!("level {level}: {edges} edges, e5 {e5:.3}°"));
+    }
+    let mut out = vec![s];
+
+    // adaptive (worst stone first) against the level at the same count
+    let lv = t.approximate(Target::Level(4))?;
+    let ad = t.approximate(Target::Count(lv.edges()))?;
+    let mut s = Section::new(
+        "Flintstones: adaptive against level at the same edge count (V §7.2.3)",
+        "Blue: level 4 of the tree. Red: the same number of edges, refining the edge with the \
+         widest flintstone first. Criteria e1–e5 of Veltkamp §6.2 in degrees.",
+    );
+    for (name, a, color) in [
+        ("flint_level4_only.svg", &lv, [30, 70, 200]),
+        ("flint_adaptive.svg", &ad, [200, 40, 40]),
+    ] {
+        let mut svg = Svg::fit(&pts, 420.0);
+        svg.polyline(&pts, true, &Stroke::solid([150, 150, 150], 0.6));
+        let kept: Vec<Point2> = a.vertices.iter().map(|&i| pts[i]).collect();
+        svg.polyline(&kept, true, &Stroke::solid(color, 1.4));
+        svg.points(&kept, 2.0, color);
+        morpho::io::write_text(&ctx.path(name), &svg.finish())?;
+        let e = a.errors;
+        s.img(
+            name,
+            &format!(
+                "{} edges: e1 {:.3} e2 {:.4} e3 {:.3} e4 {:.3} e5 {:.3}; simple: {}",
+                a.edges(),
+                e.e1,
+                e.e2,
+                e.e3,
+                e.e4,
+                e.e5,
+                a.simple.map_or("-", |b| if b { "yes" } else { "no" })
+            ),
+        );
+    }
+    out.push(s);
+
+    // point-in-polygon answers and intersection with a moved copy
+    let mut s = Section::new(
+        "Flintstones: point-in-polygon and intersection (V §7.4, Lemma 6.1)",
+        "Left: 6 000 random points in the border's box, inside (green) and outside (grey), \
+         answered by descending only into stones that contain the point (exact predicates). \
+         Right: the border and a copy moved by (0.05°, −0.03°) and turned by 0.01 rad; red: \
+         their meetings, found by descending both trees where their stones' discs meet.",
+    );
+    let (lo, hi) = pts.iter().fold(
+        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+        |(lo, hi), q| {
+            (
+                [lo[0].min(q.x), lo[1].min(q.y)],
+                [hi[0].max(q.x), hi[1].max(q.y)],
+            )
+        },
+    );
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut unit = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let qs: Vec<Point2> = (0..6000)
+        .map(|_| {
+            Point2::new(
+                lo[0] + (hi[0] - lo[0]) * unit(),
+                lo[1] + (hi[1] - lo[1]) * unit(),
+            )
+        })
+        .collect();
+    let t1 = std::time::Instant::now();
+    let ans = t.contains_batch(&qs)?;
+    let qt = t1.elapsed().as_secs_f64();
+    let mut svg = Svg::fit(&pts, 420.0);
+    let pick = |c: Containment| -> Vec<Point2> {
+        qs.iter()
+            .zip(&ans)
+            .filter(|(_, &a)| a == c)
+            .map(|(q, _)| *q)
+            .collect()
+    };
+    svg.points(&pick(Containment::Outside), 1.2, [170, 170, 170]);
+    svg.points(&pick(Containment::Inside), 1.2, [40, 150, 60]);
+    svg.polyline(&pts, true, &Stroke::solid([30, 30, 30], 0.8));
+    morpho::io::write_text(&ctx.path("flint_contains.svg"), &svg.finish())?;
+    let inside = ans.iter().filter(|&&a| a == Containment::Inside).count();
+    s.img(
+        "flint_contains.svg",
+        &format!("{inside} of {} inside", qs.len()),
+    );
+    s.fig("queries", qs.len());
+    s.fig("query time", format!("{:.2} ms (all cores)", qt * 1e3));
+    let (sn, cs) = (0.01f64.sin(), 0.01f64.cos());
+    let moved: Vec<Point2> = pts
+        .iter()
+        .map(|q| Point2::new(cs * q.x - sn * q.y + 0.05, sn * q.x + cs * q.y - 0.03))
+        .collect();
+    let tm = FlintTree2::new(&moved, true)?;
+    let (m, st) = morpho::flint::intersect_counted(&t, &tm, false);
+    let mut svg = Svg::fit(&pts, 420.0);
+    svg.polyline(&pts, true, &Stroke::solid([30, 70, 200], 0.8));
+    svg.polyline(&moved, true, &Stroke::solid([40, 150, 60], 0.8));
+    let hits: Vec<Point2> = m
+        .iter()
+        .map(|c| Point2::new(c.point[0], c.point[1]))
+        .collect();
+    svg.points(&hits, 2.4, [210, 30, 30]);
+    morpho::io::write_text(&ctx.path("flint_intersect.svg"), &svg.finish())?;
+    s.img(
+        "flint_intersect.svg",
+        &format!("{} meetings of the two borders", m.len()),
+    );
+    s.fig("meetings", m.len());
+    s.fig(
+        "pairs visited / brute-force edge pairs",
+        format!("{} / {}", st.pairs_visited, st.brute_pairs),
+    );
+    out.push(s);
+    Ok(out)
+}

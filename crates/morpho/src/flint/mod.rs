@@ -11,12 +11,15 @@
 //!   collinear overlaps, with the pairs visited), with the brute-force oracles
 //!   [`contains_brute`] and [`intersect_brute`];
 //! - [`Baseline`], [`baseline`]: Douglas–Peucker (iterative end-point fit), strip tree, BLG tree
-//!   and arc tree (§6.3) through the same criteria.
+//!   and arc tree (§6.3) through the same criteria; [`BaselineTree`]: their point-in-polygon
+//!   walk (capsule, strip, ellipse regions), with visits counted like
+//!   [`FlintTree2::locate_counted`].
 //!
 //! Not built yet: the 3D tree of closed meshes (Alg. 7.2) and the 3D baselines.
 
 mod approx;
 mod baselines;
+mod bquery;
 mod criteria;
 mod disc;
 mod query;
@@ -24,6 +27,7 @@ mod tree2;
 
 pub use approx::{Approximation, Target};
 pub use baselines::{baseline, Baseline};
+pub use bquery::BaselineTree;
 pub use criteria::{approximation_criteria, edge_criteria, Criteria};
 pub use disc::{Flintstone, SideDisc, StoneKind};
 pub use query::{

@@ -42,7 +42,7 @@ pub enum Containment {
 
 /// Does the ray from `x` towards +x cross edge `a b`? (half-open rule, exact).
 #[inline]
-fn crosses(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> bool {
+pub(crate) fn crosses(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> bool {
     if (a[1] > x[1]) == (b[1] > x[1]) {
         return false;
     }
@@ -56,7 +56,7 @@ fn crosses(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> bool {
 
 /// On the closed edge `a b`? (exact)
 #[inline]
-fn on_edge(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> bool {
+pub(crate) fn on_edge(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> bool {
     orient2d(a, b, x) == 0.0 && on_segment(a, b, x)
 }
 
@@ -111,27 +111,45 @@ impl FlintTree2 {
         Ok(xs.par_iter().map(|x| self.locate([x.x, x.y])).collect())
     }
 
+    /// [`Self::contains`] and the number of pieces (nodes and leaf edges) the walk examined
+    /// (0 outside the root disc): the measure compared with the baselines'
+    /// [`super::BaselineTree::locate_counted`].
+    pub fn locate_counted(&self, x: Point2) -> Result<(Containment, usize), FlintError> {
+        if !self.closed {
+            return Err(FlintError::NotClosed);
+        }
+        if !(x.x.is_finite() && x.y.is_finite()) {
+            return Err(FlintError::NonFiniteQuery);
+        }
+        Ok(self.walk([x.x, x.y]))
+    }
+
     /// The hierarchical walk (closed polygon, finite `x`).
     pub(crate) fn locate(&self, x: [f64; 2]) -> Containment {
+        self.walk(x).0
+    }
+
+    fn walk(&self, x: [f64; 2]) -> (Containment, usize) {
         let r = &self.root;
         // outside the root disc (with slack: the disc is constructed in f64) ⇒ outside
         let slack = 1e-12 * (r.radius + r.center[0].abs() + r.center[1].abs());
         if dist(x, r.center) > r.radius + slack {
-            return Containment::Outside;
+            return (Containment::Outside, 0);
         }
         let n = self.len();
         let p = &self.points;
-        let mut inside = false;
+        let (mut inside, mut visits) = (false, 0);
         // (lo, hi, node): the polyline lo..=hi, node NONE for one edge
         let mut stack: Vec<(usize, usize, u32)> = Vec::with_capacity(64);
         let [i, j] = r.chord;
         stack.push((i, j, r.children[0]));
         stack.push((j, i + n, r.children[1]));
         while let Some((lo, hi, id)) = stack.pop() {
+            visits += 1;
             let (a, b) = (at(p, lo), at(p, hi));
             if id == NONE {
                 if on_edge(a, b, x) {
-                    return Containment::Boundary;
+                    return (Containment::Boundary, visits);
                 }
                 inside ^= crosses(a, b, x);
                 continue;
@@ -148,11 +166,12 @@ impl FlintTree2 {
             stack.push((nd.vertex, hi, nd.children[1]));
             stack.push((lo, nd.vertex, nd.children[0]));
         }
-        if inside {
+        let c = if inside {
             Containment::Inside
         } else {
             Containment::Outside
-        }
+        };
+        (c, visits)
     }
 }
 
