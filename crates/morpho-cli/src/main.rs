@@ -67,7 +67,8 @@ enum Command {
     Isosurface(cmd::isosurface::Args),
     /// External contour of thresholded samples (regions where a rating exceeds a threshold).
     Contour(cmd::contour::Args),
-    /// Flintstone trees of polygons and polylines: build, approximate, point-in-polygon.
+    /// Flintstone trees of polygons and polylines: build, approximate, point-in-polygon,
+    /// intersection.
     Flint(cmd::flint::Args),
     /// Curvature of a triangle mesh (k1, k2, H, K, A per vertex) or of a volume's function.
     Curvature(cmd::curvature::Args),

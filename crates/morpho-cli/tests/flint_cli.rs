@@ -1,4 +1,4 @@
-//! `morpho flint build|approx|contains`: outputs, the notes' numbers (A.6) through the CLI,
+//! `morpho flint build|approx|contains|intersect`: outputs, the notes' numbers (A.6) through the CLI,
 //! answers equal to brute-force crossing parity, and bad input refused with `error:`/exit 2.
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -155,6 +155,150 @@ fn build_and_approx_reproduce_the_notes() {
     }
 }
 
+/// The test's own all-pairs oracle on integer polygons (exact in i64): the meeting edge pairs
+/// and whether each is a collinear overlap of positive length.
+fn meetings(a: &[[i64; 2]], b: &[[i64; 2]]) -> Vec<(usize, usize, bool)> {
+    let cr = |o: [i64; 2], p: [i64; 2], q: [i64; 2]| {
+        ((p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0])).signum()
+    };
+    let within = |p: [i64; 2], q: [i64; 2], x: [i64; 2]| {
+        p[0].min(q[0]) <= x[0]
+            && x[0] <= p[0].max(q[0])
+            && p[1].min(q[1]) <= x[1]
+            && x[1] <= p[1].max(q[1])
+    };
+    let mut out = Vec::new();
+    for i in 0..a.len() {
+        let (p, q) = (a[i], a[(i + 1) % a.len()]);
+        for k in 0..b.len() {
+            let (r, t) = (b[k], b[(k + 1) % b.len()]);
+            let (d1, d2, d3, d4) = (cr(p, q, r), cr(p, q, t), cr(r, t, p), cr(r, t, q));
+            let on = |u, v, x, d: i64| d == 0 && within(u, v, x);
+            let meet = (d1 * d2 < 0 && d3 * d4 < 0)
+                || on(p, q, r, d1)
+                || on(p, q, t, d2)
+                || on(r, t, p, d3)
+                || on(r, t, q, d4);
+            if meet {
+                let mut ends: Vec<[i64; 2]> = Vec::new();
+                for (x, ok) in [
+                    (r, on(p, q, r, d1)),
+                    (t, on(p, q, t, d2)),
+                    (p, on(r, t, p, d3)),
+                    (q, on(r, t, q, d4)),
+                ] {
+                    if ok && !ends.contains(&x) {
+                        ends.push(x);
+                    }
+                }
+                out.push((i, k, d1 == 0 && d2 == 0 && ends.len() >= 2));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn intersect_equals_all_pairs_and_reports_the_visits() {
+    let dir = tempfile::tempdir().unwrap();
+    // a comb and its copy moved by two units right: crossings, touchings, overlaps
+    let mut comb: Vec<[i64; 2]> = vec![[0, 0], [20, 0], [20, 10]];
+    for k in (0..5).rev() {
+        comb.extend([[4 * k + 3, 10], [4 * k + 2, 3], [4 * k, 10]]);
+    }
+    comb.dedup();
+    let moved: Vec<[i64; 2]> = comb.iter().map(|p| [p[0] + 2, p[1]]).collect();
+    let write = |name: &str, p: &[[i64; 2]]| {
+        let mut s = String::from("x,y\n");
+        for q in p {
+            s.push_str(&format!("{},{}\n", q[0], q[1]));
+        }
+        std::fs::write(dir.path().join(name), s).unwrap();
+    };
+    write("a.csv", &comb);
+    write("b.csv", &moved);
+    let mut want = meetings(&comb, &moved);
+    want.sort();
+    assert!(want.iter().any(|m| m.2) && want.len() > 10, "{want:?}");
+    let o = morpho(
+        dir.path(),
+        &[
+            "flint",
+            "intersect",
+            "a.csv",
+            "b.csv",
+            "-o",
+            "m.csv",
+            "--report",
+            "r.json",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(dir.path().join("m.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("x,y,x2,y2,edge_a,edge_b,overlap"));
+    let mut got: Vec<(usize, usize, bool)> = lines
+        .map(|l| {
+            let v: Vec<&str> = l.split(',').collect();
+            (v[4].parse().unwrap(), v[5].parse().unwrap(), v[6] == "1")
+        })
+        .collect();
+    got.sort();
+    assert_eq!(got, want);
+    let r = report(dir.path(), "r.json");
+    assert_eq!(r["pairs"], want.len());
+    assert_eq!(r["intersects"], true);
+    assert_eq!(r["overlaps"], want.iter().filter(|m| m.2).count());
+    assert_eq!(r["brute_pairs"], comb.len() * moved.len());
+    assert!(
+        r["visited"].as_u64().unwrap() > 0
+            && r["leaf_tests"].as_u64().unwrap() >= want.len() as u64
+    );
+    // detection: one meeting at most, and one of the above
+    let o = morpho(
+        dir.path(),
+        &[
+            "flint",
+            "intersect",
+            "a.csv",
+            "b.csv",
+            "--first",
+            "-o",
+            "f.geojson",
+            "--report",
+            "rf.json",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = report(dir.path(), "rf.json");
+    assert_eq!(
+        (r["pairs"].clone(), r["intersects"].clone()),
+        (1.into(), true.into())
+    );
+    // disjoint: nothing, and only the root pair visited
+    let far: Vec<[i64; 2]> = comb.iter().map(|p| [p[0] + 100, p[1]]).collect();
+    write("far.csv", &far);
+    let o = morpho(
+        dir.path(),
+        &[
+            "flint",
+            "intersect",
+            "a.csv",
+            "far.csv",
+            "-o",
+            "n.ply",
+            "--report",
+            "rn.json",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = report(dir.path(), "rn.json");
+    assert_eq!(
+        (r["pairs"].clone(), r["visited"].clone()),
+        (0.into(), 1.into())
+    );
+}
+
 #[test]
 fn bad_input_is_refused() {
     let dir = tempfile::tempdir().unwrap();
@@ -174,6 +318,10 @@ fn bad_input_is_refused() {
         &["flint", "approx", "sq.csv", "--count", "0", "-o", "a.csv"][..],
         &["flint", "contains", "sq.csv", "q.csv", "-o", "a.csv"][..],
         &["flint", "contains", "sq.csv", "sq.csv", "-o", "sq.csv"][..],
+        &["flint", "intersect", "sq.csv", "bow.csv", "-o", "m.csv"][..],
+        &["flint", "intersect", "two.csv", "sq.csv", "-o", "m.csv"][..],
+        &["flint", "intersect", "sq.csv", "sq.csv", "-o", "m.png"][..],
+        &["flint", "intersect", "sq.csv", "sq.csv", "-o", "sq.csv"][..],
     ] {
         let o = morpho(dir.path(), args);
         let err = String::from_utf8_lossy(&o.stderr);

@@ -393,6 +393,54 @@ fn point_in_polygon_equals_brute_force() {
     }
 }
 
+/// The baseline walks (capsule, strip, ellipse regions; V §6.3 with Lemma 6.1) and the counted
+/// flintstone walk answer exactly as brute-force crossing parity, on random polygons (with
+/// points on vertices and edges) and the Benelux border; visits are ≥ 1 inside the root disc.
+#[test]
+fn baseline_walks_equal_brute_force() {
+    let methods = [
+        Baseline::DouglasPeucker,
+        Baseline::Strip,
+        Baseline::Blg,
+        Baseline::Arc,
+    ];
+    let mut r = Rng::new(29);
+    let mut polys: Vec<Vec<Point2>> = (0..8)
+        .map(|k| star(&mut r, 20 + 40 * k, k % 2 == 0))
+        .filter(|p| simple(p))
+        .collect();
+    polys.extend(ring("benelux_mainland_ne50m.csv"));
+    let mut total = 0;
+    let mut visits = [0usize; 5];
+    for p in &polys {
+        let t = FlintTree2::new(p, true).unwrap();
+        let bs: Vec<BaselineTree> = methods
+            .iter()
+            .map(|&m| BaselineTree::new(p, m).unwrap())
+            .collect();
+        for q in queries(p, &mut r, 3000) {
+            let want = contains_brute(t.points(), [q.x, q.y]);
+            let (c, v) = t.locate_counted(q).unwrap();
+            assert_eq!(c, want, "flintstone at {q:?}");
+            // each of the N − 2 nodes and N edges at most once
+            assert!(v <= 2 * p.len());
+            visits[0] += v;
+            for (k, b) in bs.iter().enumerate() {
+                let (c, v) = b.locate_counted(q).unwrap();
+                assert_eq!(c, want, "{:?} at {q:?}", b.method());
+                assert!(v <= 2 * p.len());
+                visits[k + 1] += v;
+            }
+            total += 1;
+        }
+    }
+    assert!(total > 20_000, "{total}");
+    // the BLG tree holds the Douglas–Peucker vertices and the same capsules
+    assert_eq!(visits[1], visits[3]);
+    let b = BaselineTree::new(&polys[0], Baseline::Arc).unwrap();
+    assert!(b.locate_counted(Point2::new(f64::NAN, 0.0)).is_err());
+}
+
 fn moved(p: &[Point2], dx: f64, dy: f64, rot: f64) -> Vec<Point2> {
     let (s, c) = rot.sin_cos();
     p.iter()
@@ -444,6 +492,174 @@ fn intersection_equals_brute_force() {
         }
     }
     assert!(met > 1000, "{met}");
+}
+
+/// Exact checks of one reported meeting against its two edges: a touching point or overlap end
+/// lies exactly on both closed edges and is an input vertex; a proper crossing point lies
+/// within rounding of both.
+fn check_meeting(ta: &FlintTree2, tb: &FlintTree2, c: &Crossing) {
+    use morpho::geom::intersect::{on_segment, segments_cross_properly};
+    use morpho::geom::predicates::raw::orient2d;
+    let edge = |t: &FlintTree2, i: usize| (t.points()[i], t.points()[(i + 1) % t.len()]);
+    let ((a0, a1), (b0, b1)) = (edge(ta, c.a), edge(tb, c.b));
+    let on =
+        |(u, v): ([f64; 2], [f64; 2]), q: [f64; 2]| orient2d(u, v, q) == 0.0 && on_segment(u, v, q);
+    let vertex = |q: [f64; 2]| [a0, a1, b0, b1].contains(&q);
+    if segments_cross_properly(a0, a1, b0, b1) {
+        assert!(c.overlap.is_none());
+        let near = |(u, v): ([f64; 2], [f64; 2])| {
+            let d = [v[0] - u[0], v[1] - u[1]];
+            let l = d[0].hypot(d[1]);
+            let off = ((c.point[0] - u[0]) * d[1] - (c.point[1] - u[1]) * d[0]).abs() / l;
+            off <= 1e-9 * (1.0 + u[0].abs() + u[1].abs() + l)
+        };
+        assert!(near((a0, a1)) && near((b0, b1)), "{c:?}");
+    } else {
+        for q in std::iter::once(c.point).chain(c.overlap) {
+            assert!(vertex(q) && on((a0, a1), q) && on((b0, b1), q), "{c:?}");
+        }
+        // an overlap is reported iff the edges are collinear and share more than one point
+        let collinear = orient2d(a0, a1, b0) == 0.0 && orient2d(a0, a1, b1) == 0.0;
+        let shared = [a0, a1]
+            .into_iter()
+            .filter(|&q| on((b0, b1), q))
+            .chain([b0, b1].into_iter().filter(|&q| on((a0, a1), q)))
+            .fold(Vec::new(), |mut v, q| {
+                if !v.contains(&q) {
+                    v.push(q);
+                }
+                v
+            });
+        assert_eq!(c.overlap.is_some(), collinear && shared.len() >= 2, "{c:?}");
+    }
+}
+
+/// Hierarchical = brute force, each meeting checked exactly, detection finds one of them.
+fn check_intersection(a: &[Point2], b: &[Point2], closed: bool) -> (Vec<Crossing>, IntersectStats) {
+    let ta = FlintTree2::new(a, closed).unwrap();
+    let tb = FlintTree2::new(b, closed).unwrap();
+    let mut want = intersect_brute(&ta, &tb);
+    want.sort_by_key(|c| (c.a, c.b));
+    let (got, st) = intersect_counted(&ta, &tb, false);
+    assert_eq!(got, want);
+    for c in &got {
+        check_meeting(&ta, &tb, c);
+    }
+    let first = intersect(&ta, &tb, true);
+    assert_eq!(first.len(), want.len().min(1));
+    assert!(first.iter().all(|c| want.contains(c)));
+    assert!(st.leaf_tests <= st.brute_pairs && st.leaf_tests >= got.len());
+    (got, st)
+}
+
+fn pts(v: &[(f64, f64)]) -> Vec<Point2> {
+    v.iter().map(|&(x, y)| Point2::new(x, y)).collect()
+}
+
+fn square(x: f64, y: f64, s: f64) -> Vec<Point2> {
+    pts(&[(x, y), (x + s, y), (x + s, y + s), (x, y + s)])
+}
+
+/// Degenerate meetings (notes A.8): a shared side, a shared corner, a partial collinear
+/// overlap, a vertex on an edge, identical, nested and disjoint polygons, with the meetings
+/// counted by hand; then integer polygons against their exact translates and quarter turns
+/// (many shared vertices and collinear overlaps) and random float pairs (general position:
+/// an even number of proper crossings).
+#[test]
+fn intersection_degenerate_cases_equal_brute_force() {
+    let a = square(0.0, 0.0, 2.0);
+    // (B, meetings, overlaps), counted by hand
+    let cases = [
+        (square(2.0, 0.0, 2.0), 7, 1),
+        (square(2.0, 2.0, 2.0), 4, 0),
+        (square(2.0, 1.0, 2.0), 3, 1),
+        (pts(&[(2.0, 1.0), (3.0, 0.0), (3.0, 2.0)]), 2, 0),
+        (a.clone(), 12, 4),
+        (square(0.5, 0.5, 1.0), 0, 0),
+        (square(5.0, 5.0, 1.0), 0, 0),
+    ];
+    for (k, (b, n, o)) in cases.iter().enumerate() {
+        let (m, _) = check_intersection(&a, b, true);
+        let overlaps = m.iter().filter(|c| c.overlap.is_some()).count();
+        assert_eq!((m.len(), overlaps), (*n, *o), "case {k}: {m:?}");
+        check_intersection(&a, b, false);
+    }
+    let mut r = Rng::new(23);
+    let (mut overlaps, mut touches, mut proper) = (0, 0, 0);
+    for k in 0..40 {
+        // a coarse integer star: many collinear edges between the copies
+        let p: Vec<Point2> = star(&mut r, 8 + k, false)
+            .iter()
+            .map(|q| Point2::new((q.x * 6.0).round(), (q.y * 6.0).round()))
+            .collect();
+        let mut p = p;
+        p.dedup();
+        if p.len() < 3 || p.first() == p.last() || !simple(&p) {
+            continue;
+        }
+        let dx = (k % 3) as f64;
+        let dy = (k % 2) as f64;
+        let b: Vec<Point2> = if k % 4 == 3 {
+            p.iter().map(|q| Point2::new(-q.y + dx, q.x)).collect()
+        } else {
+            p.iter().map(|q| Point2::new(q.x + dx, q.y + dy)).collect()
+        };
+        for closed in [true, false] {
+            let (m, _) = check_intersection(&p, &b, closed);
+            let ta = FlintTree2::new(&p, closed).unwrap();
+            let tb = FlintTree2::new(&b, closed).unwrap();
+            for c in &m {
+                let e = |t: &FlintTree2, i: usize| (t.points()[i], t.points()[(i + 1) % t.len()]);
+                let ((a0, a1), (b0, b1)) = (e(&ta, c.a), e(&tb, c.b));
+                if c.overlap.is_some() {
+                    overlaps += 1;
+                } else if morpho::geom::intersect::segments_cross_properly(a0, a1, b0, b1) {
+                    proper += 1;
+                } else {
+                    touches += 1;
+                }
+            }
+        }
+    }
+    assert!(
+        overlaps > 50 && touches > 50 && proper > 50,
+        "{overlaps} {touches} {proper}"
+    );
+    // general position: closed curves cross an even number of times
+    for k in 0..20 {
+        let p = star(&mut r, 30 + 5 * k, false);
+        let q = moved(
+            &star(&mut r, 40, false),
+            0.5 * unit(&mut r),
+            0.3,
+            unit(&mut r),
+        );
+        if !simple(&p) || !simple(&q) {
+            continue;
+        }
+        let (m, _) = check_intersection(&p, &q, true);
+        assert_eq!(m.len() % 2, 0, "{} crossings", m.len());
+    }
+}
+
+/// The descent localizes: on the Benelux border against a slightly moved copy, it visits far
+/// fewer piece pairs than brute force tests edge pairs (a count, not a time).
+#[test]
+fn intersection_visits_fewer_pairs_than_brute_force() {
+    let Some(p) = ring("benelux_mainland_ne50m.csv") else {
+        return;
+    };
+    let q = moved(&p, 0.05, -0.03, 0.01);
+    let (m, st) = check_intersection(&p, &q, true);
+    assert!(!m.is_empty());
+    assert!(
+        st.pairs_visited * 10 < st.brute_pairs,
+        "{st:?} for {} meetings",
+        m.len()
+    );
+    let far = moved(&p, 30.0, 0.0, 0.0);
+    let (m, st) = check_intersection(&p, &far, true);
+    assert!(m.is_empty() && st.pairs_visited == 1, "{st:?}");
 }
 
 #[test]

@@ -51,6 +51,7 @@ const SECTIONS: &[(&str, Builder)] = &[
     ("gamma graphs", gamma_section),
     ("boundary", boundary_section),
     ("non-Hamiltonian Delaunay", dillencourt_section),
+    ("flintstones", crate::cmd::flint::demo_section),
     ("meshes", mesh_section),
     ("volumes", volume_section),
     ("volume views", crate::cmd::views::demo_section),

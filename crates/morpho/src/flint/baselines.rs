@@ -52,7 +52,7 @@ struct Hnode {
 }
 
 /// The split vertex and key of the polyline `lo..=hi` (`hi ≥ lo + 2`).
-fn split_key(p: &[[f64; 2]], lo: usize, hi: usize, m: Baseline) -> (usize, f64) {
+pub(crate) fn split_key(p: &[[f64; 2]], lo: usize, hi: usize, m: Baseline) -> (usize, f64) {
     let (a, b) = (at(p, lo), at(p, hi));
     if m == Baseline::Arc {
         let q = lo + (hi - lo).div_ceil(2);

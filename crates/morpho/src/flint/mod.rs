@@ -6,16 +6,20 @@
 //! - [`Criteria`], [`edge_criteria`], [`approximation_criteria`]: the error criteria e1–e5 (§6.2);
 //! - [`FlintTree2`]: the 2D flintstone tree (Alg. 7.1) of a simple polygon or open polyline;
 //! - [`Target`], [`Approximation`]: level-ℓ, adaptive-ε and edge-count approximations (§7.2.3);
-//! - [`FlintTree2::contains`], [`intersect`]: hierarchical point-in-polygon and boundary
-//!   intersection (§7.4, Lemma 6.1), with the brute-force oracles [`contains_brute`] and
-//!   [`intersect_brute`];
+//! - [`FlintTree2::contains`], [`intersect`], [`intersect_counted`]: hierarchical
+//!   point-in-polygon and boundary intersection (§7.4, Lemma 6.1; crossings, touchings and
+//!   collinear overlaps, with the pairs visited), with the brute-force oracles
+//!   [`contains_brute`] and [`intersect_brute`];
 //! - [`Baseline`], [`baseline`]: Douglas–Peucker (iterative end-point fit), strip tree, BLG tree
-//!   and arc tree (§6.3) through the same criteria.
+//!   and arc tree (§6.3) through the same criteria; [`BaselineTree`]: their point-in-polygon
+//!   walk (capsule, strip, ellipse regions), with visits counted like
+//!   [`FlintTree2::locate_counted`].
 //!
 //! Not built yet: the 3D tree of closed meshes (Alg. 7.2) and the 3D baselines.
 
 mod approx;
 mod baselines;
+mod bquery;
 mod criteria;
 mod disc;
 mod query;
@@ -23,9 +27,13 @@ mod tree2;
 
 pub use approx::{Approximation, Target};
 pub use baselines::{baseline, Baseline};
+pub use bquery::BaselineTree;
 pub use criteria::{approximation_criteria, edge_criteria, Criteria};
 pub use disc::{Flintstone, SideDisc, StoneKind};
-pub use query::{contains_brute, intersect, intersect_brute, Containment, Crossing};
+pub use query::{
+    contains_brute, intersect, intersect_brute, intersect_counted, Containment, Crossing,
+    IntersectStats,
+};
 pub use tree2::{FlintNode, FlintRoot, FlintTree2};
 
 /// A refusal of the flintstone constructions and queries, naming the offending input.

@@ -13,8 +13,11 @@
 //! **Intersection.** Pairs of pieces (node subtrees or single edges) are filtered by their
 //! conservative discs (every disc of one must meet every disc of the other, notes A.8 case 1,
 //! in `f64` with slack: never a false negative); the piece with more vertices is opened; two
-//! edges are tested exactly ([`crate::geom::intersect::segments_intersect`]).
-//! [`intersect_brute`] is the all-pairs oracle.
+//! edges are tested exactly ([`crate::geom::intersect::segments_intersect`]). A meeting is
+//! reported per edge pair: a proper crossing (its point constructed in `f64`), a touching (an
+//! input vertex on the other edge, exact) or a collinear overlap (both ends, input vertices).
+//! [`intersect_counted`] also returns the pairs visited, against the `edges(A) · edges(B)`
+//! pairs of brute force. [`intersect_brute`] is the all-pairs oracle.
 
 use super::disc::{at, discs_meet};
 use super::tree2::FlintTree2;
@@ -39,7 +42,7 @@ pub enum Containment {
 
 /// Does the ray from `x` towards +x cross edge `a b`? (half-open rule, exact).
 #[inline]
-fn crosses(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> bool {
+pub(crate) fn crosses(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> bool {
     if (a[1] > x[1]) == (b[1] > x[1]) {
         return false;
     }
@@ -53,7 +56,7 @@ fn crosses(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> bool {
 
 /// On the closed edge `a b`? (exact)
 #[inline]
-fn on_edge(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> bool {
+pub(crate) fn on_edge(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> bool {
     orient2d(a, b, x) == 0.0 && on_segment(a, b, x)
 }
 
@@ -108,27 +111,45 @@ impl FlintTree2 {
         Ok(xs.par_iter().map(|x| self.locate([x.x, x.y])).collect())
     }
 
+    /// [`Self::contains`] and the number of pieces (nodes and leaf edges) the walk examined
+    /// (0 outside the root disc): the measure compared with the baselines'
+    /// [`super::BaselineTree::locate_counted`].
+    pub fn locate_counted(&self, x: Point2) -> Result<(Containment, usize), FlintError> {
+        if !self.closed {
+            return Err(FlintError::NotClosed);
+        }
+        if !(x.x.is_finite() && x.y.is_finite()) {
+            return Err(FlintError::NonFiniteQuery);
+        }
+        Ok(self.walk([x.x, x.y]))
+    }
+
     /// The hierarchical walk (closed polygon, finite `x`).
     pub(crate) fn locate(&self, x: [f64; 2]) -> Containment {
+        self.walk(x).0
+    }
+
+    fn walk(&self, x: [f64; 2]) -> (Containment, usize) {
         let r = &self.root;
         // outside the root disc (with slack: the disc is constructed in f64) ⇒ outside
         let slack = 1e-12 * (r.radius + r.center[0].abs() + r.center[1].abs());
         if dist(x, r.center) > r.radius + slack {
-            return Containment::Outside;
+            return (Containment::Outside, 0);
         }
         let n = self.len();
         let p = &self.points;
-        let mut inside = false;
+        let (mut inside, mut visits) = (false, 0);
         // (lo, hi, node): the polyline lo..=hi, node NONE for one edge
         let mut stack: Vec<(usize, usize, u32)> = Vec::with_capacity(64);
         let [i, j] = r.chord;
         stack.push((i, j, r.children[0]));
         stack.push((j, i + n, r.children[1]));
         while let Some((lo, hi, id)) = stack.pop() {
+            visits += 1;
             let (a, b) = (at(p, lo), at(p, hi));
             if id == NONE {
                 if on_edge(a, b, x) {
-                    return Containment::Boundary;
+                    return (Containment::Boundary, visits);
                 }
                 inside ^= crosses(a, b, x);
                 continue;
@@ -145,11 +166,12 @@ impl FlintTree2 {
             stack.push((nd.vertex, hi, nd.children[1]));
             stack.push((lo, nd.vertex, nd.children[0]));
         }
-        if inside {
+        let c = if inside {
             Containment::Inside
         } else {
             Containment::Outside
-        }
+        };
+        (c, visits)
     }
 }
 
@@ -160,9 +182,45 @@ pub struct Crossing {
     pub a: usize,
     /// Input index of the first vertex of B's edge.
     pub b: usize,
-    /// A common point (the crossing for a proper crossing, else an end point that lies on the
-    /// other edge), constructed in `f64`.
+    /// A common point: the crossing for a proper crossing (constructed in `f64`), else an end
+    /// point that lies on the other edge (an input vertex, exact).
     pub point: [f64; 2],
+    /// For two collinear edges that overlap in a segment of positive length: its other end
+    /// (an input vertex; the overlap is `point`–`overlap`). `None` for a single common point.
+    pub overlap: Option<[f64; 2]>,
+}
+
+/// What the intersection descent did, against the `edges_a × edges_b` pairs of brute force.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct IntersectStats {
+    /// Pairs of pieces (node subtrees or edges) whose filter was evaluated.
+    pub pairs_visited: usize,
+    /// Pairs that passed the filter and were opened or tested exactly.
+    pub pairs_passed: usize,
+    /// Edge–edge pairs tested exactly at the leaves.
+    pub leaf_tests: usize,
+    /// The edge pairs brute force tests (`edges(A) · edges(B)`).
+    pub brute_pairs: usize,
+}
+
+/// The meeting of two edges that intersect (exact decisions): the common point, and for a
+/// collinear overlap of positive length its other end. The ends of an overlap are the end
+/// points of either edge that lie on the other (at most two distinct ones).
+fn meeting(a0: [f64; 2], a1: [f64; 2], b0: [f64; 2], b1: [f64; 2]) -> ([f64; 2], Option<[f64; 2]>) {
+    let p = meet_point(a0, a1, b0, b1);
+    if orient2d(a0, a1, b0) != 0.0 || orient2d(a0, a1, b1) != 0.0 {
+        return (p, None);
+    }
+    let other = [
+        (a0, (b0, b1)),
+        (a1, (b0, b1)),
+        (b0, (a0, a1)),
+        (b1, (a0, a1)),
+    ]
+    .into_iter()
+    .find(|&(q, (u, v))| q != p && on_edge(u, v, q))
+    .map(|(q, _)| q);
+    (p, other)
 }
 
 fn meet_point(a0: [f64; 2], a1: [f64; 2], b0: [f64; 2], b1: [f64; 2]) -> [f64; 2] {
@@ -202,10 +260,12 @@ pub fn intersect_brute(a: &FlintTree2, b: &FlintTree2) -> Vec<Crossing> {
     for (i, a0, a1) in edges_of(a) {
         for (k, b0, b1) in edges_of(b) {
             if segments_intersect(a0, a1, b0, b1) {
+                let (point, overlap) = meeting(a0, a1, b0, b1);
                 out.push(Crossing {
                     a: i,
                     b: k,
-                    point: meet_point(a0, a1, b0, b1),
+                    point,
+                    overlap,
                 });
             }
         }
@@ -267,13 +327,40 @@ fn children(t: &FlintTree2, pc: Piece) -> [Piece; 2] {
 
 /// Every meeting of the boundaries of `a` and `b` (hierarchical; equal to [`intersect_brute`]),
 /// sorted by `(a, b)`; with `first_only`, stops at the first one found (detection).
+///
+/// ```
+/// use morpho::flint::{intersect, FlintTree2};
+/// use morpho::geom::Point2;
+/// let sq = |x: f64| [(x, 0.0), (x + 2.0, 0.0), (x + 2.0, 2.0), (x, 2.0)].map(|(x, y)| Point2::new(x, y));
+/// let (a, b) = (FlintTree2::new(&sq(0.0), true).unwrap(), FlintTree2::new(&sq(2.0), true).unwrap());
+/// let m = intersect(&a, &b, false);
+/// // the shared side x = 2: one collinear overlap, and touchings at its two ends
+/// assert!(m.iter().any(|c| c.overlap.is_some()));
+/// assert!(m.iter().all(|c| c.point[0] == 2.0));
+/// ```
 pub fn intersect(a: &FlintTree2, b: &FlintTree2, first_only: bool) -> Vec<Crossing> {
+    intersect_counted(a, b, first_only).0
+}
+
+/// [`intersect`] with the counts of what the descent visited.
+pub fn intersect_counted(
+    a: &FlintTree2,
+    b: &FlintTree2,
+    first_only: bool,
+) -> (Vec<Crossing>, IntersectStats) {
+    let edges = |t: &FlintTree2| t.len() - usize::from(!t.closed);
+    let mut st = IntersectStats {
+        brute_pairs: edges(a) * edges(b),
+        ..Default::default()
+    };
     let root_a = (a.root.center, a.root.radius);
     let root_b = (b.root.center, b.root.radius);
     let mut out = Vec::new();
+    st.pairs_visited += 1;
     if !discs_meet(root_a, root_b) {
-        return out;
+        return (out, st);
     }
+    st.pairs_passed += 1;
     let mut stack: Vec<(Piece, Piece)> = Vec::new();
     for &(lo, hi, node) in &tops(a) {
         for &(lo2, hi2, node2) in &tops(b) {
@@ -288,17 +375,22 @@ pub fn intersect(a: &FlintTree2, b: &FlintTree2, first_only: bool) -> Vec<Crossi
         }
     }
     while let Some((pa, pb)) = stack.pop() {
+        st.pairs_visited += 1;
         if !may_meet(a, pa, b, pb) {
             continue;
         }
+        st.pairs_passed += 1;
         if pa.node == NONE && pb.node == NONE {
             let (a0, a1) = (at(&a.points, pa.lo), at(&a.points, pa.hi));
             let (b0, b1) = (at(&b.points, pb.lo), at(&b.points, pb.hi));
+            st.leaf_tests += 1;
             if segments_intersect(a0, a1, b0, b1) {
+                let (point, overlap) = meeting(a0, a1, b0, b1);
                 out.push(Crossing {
                     a: pa.lo % a.len(),
                     b: pb.lo % b.len(),
-                    point: meet_point(a0, a1, b0, b1),
+                    point,
+                    overlap,
                 });
                 if first_only {
                     break;
@@ -318,7 +410,7 @@ pub fn intersect(a: &FlintTree2, b: &FlintTree2, first_only: bool) -> Vec<Crossi
         }
     }
     out.sort_by_key(|c| (c.a, c.b));
-    out
+    (out, st)
 }
 
 #[cfg(test)]
