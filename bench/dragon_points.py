@@ -27,7 +27,10 @@ from pathlib import Path
 
 def main():
     n, out = int(sys.argv[1]), sys.argv[2]
-    src = Path(__file__).resolve().parent.parent.parent / "shared/data/meshes/dragon_vrip_res4.obj"
+    here = Path(__file__).resolve().parent
+    rel = "shared/data/meshes/dragon_vrip_res4.obj"
+    # the repository may be a worktree one or two levels below the folder holding shared/
+    src = next((d / rel for d in here.parents if (d / rel).is_file()), here.parent.parent / rel)
     v, f = [], []
     for line in open(src):
         s = line.split()
