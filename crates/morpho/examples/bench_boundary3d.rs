@@ -18,6 +18,9 @@
 //! The history of these numbers (82× in the morning) and the phase breakdown are in
 //! `bench/README.md` ("3D (`bench_boundary3d`)").
 //!
+//! `... --example bench_boundary3d file PATH [phases]` runs (or phases) the points of a file, e.g.
+//! those of `bench/dragon_points.py`.
+//!
 //! `... --example bench_boundary3d phases [bunny|horse|horse100k]` prints the time of every
 //! step of the general engine (as `boundary_3d_with` runs it); `... check [horse100k]` times
 //! the exact self-intersection check of every pair alone (three runs); `... constrict
@@ -353,6 +356,19 @@ fn phases(name: &str, pts: &[Point3]) {
         );
         step += 1;
     }
+    if !g.done() {
+        let t = Watch::start();
+        let n = g.insert_left_out();
+        if n > 0 {
+            g.run();
+        }
+        println!(
+            "  insert_left_out: {} ({n} put on the boundary), bv {}/{}",
+            t.show(),
+            g.boundary_vertices,
+            pos.len()
+        );
+    }
     let t = Watch::start();
     let b = g.boundary();
     let delaunay_face = validity::faces_of_tetrahedra(&d.tets, &b);
@@ -372,6 +388,24 @@ fn main() {
     };
     let args: Vec<String> = std::env::args().skip(1).collect();
     let want = |s: &str| args.is_empty() || args.iter().any(|a| a == s);
+    if let Some(i) = args.iter().position(|a| a == "file") {
+        // `file PATH [phases]`: a point file (e.g. of bench/dragon_points.py)
+        let path = std::path::Path::new(args.get(i + 1).expect("file PATH"));
+        let ps = morpho::io::read_points(path).expect("points");
+        assert_eq!(ps.dim, 3, "3D points");
+        let pts: Vec<Point3> = ps
+            .coords
+            .chunks_exact(3)
+            .map(|c| Point3::new(c[0], c[1], c[2]))
+            .collect();
+        let name = path.display().to_string();
+        if want("phases") {
+            phases(&name, &pts);
+        } else {
+            run(&name, &pts);
+        }
+        return;
+    }
     if args.iter().any(|a| a == "keys") {
         for f in ["bunny_npm.obj", "spot.obj"] {
             let m = morpho::io::read_mesh(&dir.join("meshes").join(f)).expect("mesh");

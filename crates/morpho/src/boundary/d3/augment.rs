@@ -501,7 +501,9 @@ pub(super) const BEYOND_ALL_MAX: usize = 400;
 
 /// Runs `g` and, while locked, augments it with the γ(\[-1,1\],\[c,1\]) triangles at the vertices
 /// off the boundary ([`General3::local_gamma`], their 16 nearest vertices) for
-/// c = from − 0.1, … −1. Returns the last c used.
+/// c = from − 0.1, … −1; vertices still off the boundary then are put on it through the nearest
+/// boundary face that sees them ([`General3::insert_left_out`], c = −1 with a wider search).
+/// Returns the last c used.
 pub(super) fn augment_until_done_3d(g: &mut General3<'_>, from: f64) -> f64 {
     g.run();
     let mut c = from;
@@ -513,6 +515,9 @@ pub(super) fn augment_until_done_3d(g: &mut General3<'_>, from: f64) -> f64 {
             g.run();
         }
         step += 1;
+    }
+    if !g.done() && c <= -1.0 && g.insert_left_out() > 0 {
+        g.run();
     }
     c
 }

@@ -3,7 +3,9 @@
 //! (ideally) every point; when that constriction locks with points inside, the general engine
 //! ([`general`], [`removal`]) continues with γ(\[-1,1\],\[c,1\]) triangles, c = −0.1 … −1, added
 //! where needed (V §5.4, [`augment`]) — first on the live tetrahedra within four neighbour steps
-//! of the vertices off the boundary, on the whole object when that does not free every vertex;
+//! of the vertices off the boundary, on the whole object when that does not free every vertex
+//! (after c = −1 the vertices still off are put on it through a boundary face that sees them,
+//! [`insert`]);
 //! keep triangles (V §5.7, [`keep`]) that are not Delaunay faces are constricted by the general
 //! engine from the hull. The engine state of one run and its final checks are in [`engine`].
 
@@ -11,6 +13,7 @@ mod augment;
 pub(crate) mod constrict;
 mod engine;
 pub(crate) mod general;
+mod insert;
 mod keep;
 mod removal;
 
