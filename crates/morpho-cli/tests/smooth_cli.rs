@@ -304,6 +304,26 @@ fn smooth_report_on_a_real_mesh_is_consistent() {
     assert_eq!(u("non_g1_edges") == 0, f("max_normal_jump_rad") <= 1e-9);
     assert!(u("unresolved_edges") <= u("singular_edges"));
     assert!(f("max_position_gap") <= 1e-9);
+    // the fold guard (default) removes spot's 277 fold samples (26 edges) of `--folds keep`
+    assert_eq!(u("folds"), 0);
+    assert!(u("fold_guarded_edges") <= u("unresolved_edges"));
+    let rep2 = dir.path().join("r2.json");
+    ok(&morpho(&[
+        "smooth",
+        input.to_str().unwrap(),
+        "-o",
+        out.with_extension("obj").to_str().unwrap(),
+        "--density",
+        "1",
+        "--folds",
+        "keep",
+        "--report",
+        rep2.to_str().unwrap(),
+    ]));
+    let r2 = json(&rep2);
+    eprintln!("spot --folds keep: {r2}");
+    assert!(r2["folds"].as_u64().unwrap() > 0);
+    assert_eq!(r2["fold_guarded_edges"].as_u64(), Some(0));
 }
 
 #[test]

@@ -17,7 +17,9 @@
 //! Report keys (3D): `max_normal_jump_rad` (every macro and micro edge, 20 samples per edge,
 //! measured independently of the construction), `max_macro_jump_rad`, `max_micro_jump_rad`,
 //! `non_g1_edges` (edges above 1e-9 rad), `folds` (samples with `n₁·n₂ ≤ 0`), `fold_edges`,
-//! `singular_edges`, `unresolved_edges`, `sign_warnings`, `max_displacement`,
+//! `singular_edges`, `unresolved_edges`, `sign_warnings`, `fold_guarded_edges`,
+//! `adjusted_normals` (with `--folds guard`, the default; see `morpho::smooth::visible_normals`
+//! and `SplitOptions::fold_guard`), `max_displacement`,
 //! `max_deviation` (surface vs flat mesh at the same parameter), `patches`, `triangles`;
 //! (2D) `curves`, `segments`, `g1_failures`, `zero_handles`, `max_joint_sine`; timings.
 //! Open, non-manifold or inconsistently oriented meshes, zero-area triangles, NaN, polygons
@@ -29,8 +31,8 @@ use morpho::geom::{Point2, Vector3};
 use morpho::io::{self, Format};
 use morpho::mesh::{NormalWeighting, Polygon, Polyline, Shapes2, TriMesh};
 use morpho::smooth::{
-    continuity, curve_joints, g1_curve, max_deviation, tessellate, three_split, CurveWeighting,
-    FailureKind, G1Curve,
+    continuity, curve_joints, g1_curve, max_deviation, tessellate, three_split_with,
+    visible_normals, CurveWeighting, FailureKind, G1Curve, SplitOptions,
 };
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -53,6 +55,11 @@ pub struct Args {
     /// Vertex normals of the surface: estimated (V §9.4) or the file's.
     #[arg(long, default_value = "area", value_parser = ["area", "uniform", "inverse", "file"])]
     pub normals: String,
+    /// Folds of the surface: `guard` (default) replaces vertex normals that do not see all
+    /// their triangles and keeps a singular edge's cubic boundary where the quadratic one would
+    /// fold a neighbour (reported as a crease); `keep` builds the text's construction as is.
+    #[arg(long, default_value = "guard", value_parser = ["guard", "keep"])]
+    pub folds: String,
     /// Samples per curve segment (2D sampled outputs, default 16) or steps per micro-patch
     /// edge of the tessellation (3D, default 8).
     #[arg(long)]
@@ -285,9 +292,18 @@ fn run_surface(args: &Args, report: &mut Report) -> Result<u8, Failure> {
         )));
     }
     let mesh = report.time("read", || io::read_mesh(&args.input))?;
-    let n = normals(&mesh, &args.normals, &args.input)?;
+    let mut n = normals(&mesh, &args.normals, &args.input)?;
+    let guard = args.folds == "guard";
+    if guard {
+        let a = report.time("normals", || visible_normals(&mesh, &n, 0.05));
+        report.set("adjusted_normals", a.adjusted.len());
+        report.set("adjusted_normals_infeasible", a.infeasible.len());
+        report.set("max_normal_change_rad", a.max_change_rad);
+        n = a.normals;
+    }
+    let opts = SplitOptions { fold_guard: guard };
     let s = report.time("compute", || {
-        three_split(&mesh, &n)
+        three_split_with(&mesh, &n, &opts)
             .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
     })?;
     let c = report.time("check", || continuity(&s, 20));
@@ -322,6 +338,8 @@ fn run_surface(args: &Args, report: &mut Report) -> Result<u8, Failure> {
     report.set("singular_edges", s.singular_edges.len());
     report.set("unresolved_edges", s.unresolved_edges.len());
     report.set("sign_warnings", s.sign_warnings.len());
+    report.set("folds_mode", args.folds.as_str());
+    report.set("fold_guarded_edges", s.fold_guarded.len());
     report.set("max_displacement", s.max_displacement);
     report.set("max_deviation", dev);
     let out = &args.output;

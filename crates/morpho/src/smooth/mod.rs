@@ -17,6 +17,7 @@ mod bezier;
 mod check;
 mod curve;
 mod error;
+mod normals;
 mod singular;
 mod split3;
 mod tessellate;
@@ -28,6 +29,7 @@ pub use curve::{
     curve_joints, g1_curve, tangent, CurveFailure, CurveWeighting, FailureKind, G1Curve,
 };
 pub use error::SmoothError;
-pub use split3::{three_split, MicroPatch, SplitSurface};
+pub use normals::{visible_normals, AdjustedNormals};
+pub use split3::{three_split, three_split_with, MicroPatch, SplitOptions, SplitSurface};
 pub use tessellate::tessellate;
 pub use triangle::{tri_index, BezierTriangle};

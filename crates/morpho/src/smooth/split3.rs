@@ -21,6 +21,20 @@
 //! [`SplitSurface::unresolved_edges`]; edges whose `f`, `g` differ in sign (a fold, NOTES B.1:
 //! the text's "opposite signs" is a garble) in [`SplitSurface::sign_warnings`]. Continuity is
 //! verified independently by [`super::continuity`].
+//!
+//! **Folds (derived here; the text only says "the normal at a vertex should be altered").**
+//! The sign rule `f, g < 0` at an edge end holds exactly when the edge point lies strictly
+//! inside the cone of its two `W` neighbours in the tangent plane, which holds when the edge
+//! points around the vertex form a fan (every corner turns counter-clockwise about the vertex
+//! normal, see `fan_ok`). Step 2's projected edge points do, wherever the vertex normal sees
+//! its triangles ([`super::visible_normals`] repairs the vertices where it does not). On real
+//! meshes almost every fold came from the singular-edge boundaries instead: a quadratic edge
+//! point rotates within the tangent plane and can turn a neighbouring corner over (spot: all
+//! 28 sign warnings touch a singular edge). A quadratic boundary is therefore accepted only if
+//! the fans at both ends stay valid ([`SplitOptions::fold_guard`], off by default: see
+//! there for its cost); otherwise the edge keeps its cubic boundary, is listed in
+//! [`SplitSurface::fold_guarded`] and (not G¹ there) in `unresolved_edges`: a reported crease
+//! instead of a fold.
 
 use super::triangle::{tri_index, BezierTriangle};
 use super::SmoothError;
@@ -67,6 +81,9 @@ pub struct SplitSurface {
     pub unresolved_edges: Vec<[u32; 2]>,
     /// Macro edges whose `f0,g0` or `f1,g1` differ in sign (a fold is likely).
     pub sign_warnings: Vec<[u32; 2]>,
+    /// Singular edges that keep the cubic boundary because the quadratic one would have
+    /// turned a neighbouring corner over (module doc, "folds"); they are also unresolved.
+    pub fold_guarded: Vec<[u32; 2]>,
     /// Max over edges of `|L1 − L1_step4| / |edge|` (large values: the "wild oscillation" of
     /// near-singular edges, Fig. 9.5).
     pub max_displacement: f64,
@@ -248,6 +265,25 @@ fn solve_94(e: &EdgeData, [f0, g0, f1, g1]: [f64; 4]) -> (P3, P3) {
     (l1, r1)
 }
 
+/// Whether the edge points around vertex `a` still form a fan: for every corner `(a, b, c)`
+/// (counter-clockwise), `h_ab, h_ac` turn counter-clockwise about `a`'s normal, by the exact
+/// `orient3d(a, h_ab, h_ac, a + n_a) < 0`. Then every projected corner angle is in (0, π) and
+/// each edge point lies strictly inside the cone of its two neighbouring `W` points, which is
+/// the orientation rule `f, g < 0` of NOTES B.1 at `a` (module doc, "folds").
+fn fan_ok(
+    pos: &[P3],
+    nrm: &[P3],
+    corners: &[Vec<(u32, u32)>],
+    handles: &HashMap<(u32, u32), P3>,
+    a: u32,
+) -> bool {
+    let pa = pos[a as usize];
+    let up = vec::add(pa, nrm[a as usize]);
+    corners[a as usize].iter().all(|&(b, c)| {
+        crate::geom::predicates::raw::orient3d(pa, handles[&(a, b)], handles[&(a, c)], up) < 0.0
+    })
+}
+
 /// The cubic three-split G¹ surface (module doc).
 ///
 /// ```
@@ -264,6 +300,25 @@ fn solve_94(e: &EdgeData, [f0, g0, f1, g1]: [f64; 4]) -> (P3, P3) {
 pub fn three_split(
     mesh: &TriMesh,
     normals: &[crate::geom::Vector3],
+) -> Result<SplitSurface, SmoothError> {
+    three_split_with(mesh, normals, &SplitOptions::default())
+}
+
+/// Options of [`three_split_with`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SplitOptions {
+    /// Accept a singular edge's quadratic boundary only where it keeps the fans at both ends
+    /// (module doc, "folds"). Off by default: it removes folds on real meshes (spot: 277 fold
+    /// samples → 0) but a guarded edge is a crease, and next to a sharp rim it breaks the linear
+    /// precision of a flat region (the regular flat box of the tests: 5e-3 off the plane).
+    pub fold_guard: bool,
+}
+
+/// [`three_split`] with options.
+pub fn three_split_with(
+    mesh: &TriMesh,
+    normals: &[crate::geom::Vector3],
+    opts: &SplitOptions,
 ) -> Result<SplitSurface, SmoothError> {
     let (half, nrm) = check_closed(mesh, normals)?;
     let pos: Vec<P3> = mesh.positions.iter().map(|p| (*p).into()).collect();
@@ -288,6 +343,12 @@ pub fn three_split(
         }
         patches
     };
+    let mut corners: Vec<Vec<(u32, u32)>> = vec![Vec::new(); pos.len()];
+    for t in &mesh.triangles {
+        for i in 0..3 {
+            corners[t[i] as usize].push((t[(i + 1) % 3], t[(i + 2) % 3]));
+        }
+    }
     let mut edges: Vec<(u32, u32)> = half.keys().copied().filter(|&(a, b)| a < b).collect();
     edges.sort_unstable();
     let mut out = SplitSurface::default();
@@ -300,11 +361,22 @@ pub fn three_split(
         if is_singular(fg) {
             let (pa, pb) = (pos[a as usize], pos[b as usize]);
             let q = super::singular::quadratic_handles(pa, nrm[a as usize], pb, nrm[b as usize]);
+            let mut quadratic = false;
             if let Some((m1, m2)) = q {
+                let old = (handles[&(a, b)], handles[&(b, a)]);
                 handles.insert((a, b), m1);
                 handles.insert((b, a), m2);
+                quadratic = !opts.fold_guard
+                    || (fan_ok(&pos, &nrm, &corners, &handles, a)
+                        && fan_ok(&pos, &nrm, &corners, &handles, b));
+                if !quadratic {
+                    // the new boundary would turn a neighbour's projected angle over (a fold)
+                    handles.insert((a, b), old.0);
+                    handles.insert((b, a), old.1);
+                    out.fold_guarded.push([a, b]);
+                }
             }
-            singular.insert((a, b), q.is_some());
+            singular.insert((a, b), quadratic);
         }
     }
     let mut patches = if singular.is_empty() {
