@@ -389,3 +389,60 @@ fn bad_input_is_a_typed_error() {
     assert_eq!(r.stop, StopReason::NoRemovable);
     assert_eq!(r.mesh.triangles.len(), 4);
 }
+
+/// Table 5.1 (H p. 122, notes D.4) reproduced: every cell within 1.25× of the thesis's value
+/// (plane ≤ 1e-12), measured from scratch by (5.41) at the 2601 knots (independent of the
+/// incremental tracker, which must agree), the square [-1, 1]² covered (area 4, no knot
+/// outside, no projected fold) and the triangle count at most the target. Fails at 2×; the
+/// narrow reading of Rem. 5.9 ([`NewTriangles::LastStep`]) gives 18–157× and fails too.
+#[test]
+fn table_5_1_within_1_25_of_the_thesis() {
+    let mut worst: f64 = 0.0;
+    for (k, (name, f, _)) in table51::functions().iter().enumerate() {
+        for (c, keep) in [50.0, 20.0, 10.0].into_iter().enumerate() {
+            let r = table51::reduce_function(k, keep).unwrap();
+            assert!(r.mesh.triangles.len() <= (keep / 100.0 * 5000.0) as usize);
+            let (rms, _, miss) = table51::knot_rms(&r.mesh, *f);
+            assert_eq!(miss, 0, "{name} {keep}: knots outside the reduced domain");
+            let tracked = r.rms.unwrap();
+            assert!(
+                (tracked - rms).abs() <= 1e-9 * rms + 1e-15,
+                "{name} {keep}: tracked {tracked} vs measured {rms}"
+            );
+            let pos = p3(&r.mesh);
+            let mut area = 0.0;
+            for t in &r.mesh.triangles {
+                let q = t.map(|v| [pos[v as usize][0], pos[v as usize][1]]);
+                let a = orient2d(q[0], q[1], q[2]);
+                assert!(a > 0.0, "{name} {keep}: projected fold");
+                area += a / 2.0;
+            }
+            assert!((area - 4.0).abs() < 1e-12, "{name} {keep}: area {area}");
+            let th = table51::THESIS[k][c];
+            if th == 0.0 {
+                assert!(rms <= 1e-12, "{name} {keep}: {rms}");
+            } else {
+                let ratio = rms / th;
+                worst = worst.max(ratio);
+                assert!(
+                    ratio <= 1.25,
+                    "{name} {keep}: {rms} = {ratio:.2}× the thesis's {th}"
+                );
+            }
+        }
+    }
+    eprintln!("Table 5.1: worst ratio to the thesis {worst:.3}");
+    // the narrow reading of Rem. 5.9 is what made the table 15–150× off
+    let (_, f, g) = table51::functions()[3];
+    let (mesh, nor) = table51::grid_mesh(f, g);
+    let o = ReduceOptions {
+        stop: Stop::Keep(50.0),
+        domain: Domain::HeightField,
+        normals: NormalSource::Given(nor),
+        check_intersections: false,
+        new_triangles: NewTriangles::LastStep,
+        ..Default::default()
+    };
+    let r = reduce(&mesh, &o).unwrap();
+    assert!(table51::knot_rms(&r.mesh, f).0 > 10.0 * table51::THESIS[3][0]);
+}

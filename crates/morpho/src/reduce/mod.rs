@@ -26,7 +26,7 @@ mod track;
 mod weight;
 
 pub use corona::{classify_corona, half_plane_test, CoronaClass};
-pub use engine::{reduce, Domain, ReduceOptions, Reduced, Stop, StopReason};
+pub use engine::{reduce, Domain, NewTriangles, ReduceOptions, Reduced, Stop, StopReason};
 pub use error::ReduceError;
 pub use point::{
     graph_quadratic_curvature, line_intersection, quadric_curvature, NewPoint, Quadric,
