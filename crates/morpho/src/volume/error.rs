@@ -66,6 +66,21 @@ pub enum VolumeError {
         /// The dimensions of the volume.
         dims: [usize; 3],
     },
+    /// A block given to [`crate::volume::isosurface_block`] that does not fit its grid (outside
+    /// it, missing the samples its cells or their gradients need, too large a grid).
+    #[error("block: {reason}")]
+    BadBlock {
+        /// What is wrong with the block.
+        reason: String,
+    },
+    /// Blocks given to [`crate::volume::stitch_blocks`] that disagree: two blocks own the same
+    /// cell, or give different positions or normals to the contour point of one grid entity
+    /// (blocks of different volumes, levels or options).
+    #[error("blocks disagree: {reason}")]
+    BlocksDisagree {
+        /// Where they disagree.
+        reason: String,
+    },
     /// The contour surface would have more than 2³¹ − 1 vertices.
     #[error("contour has {vertices} vertices, more than 2^31 - 1")]
     TooManyVertices {

@@ -8,7 +8,8 @@ pub use error::VolumeError;
 // `Orientation` is defined below, beside `Volume`.
 pub use gradient::{axis_coords, gradient_at, mesh_normals, GradientOperator};
 pub use isosurface::{
-    extract_part, isosurface, largest_part, IsoMethod, IsoOptions, IsoResult, NormalMethod,
+    extract_part, isosurface, isosurface_block, largest_part, stitch_blocks, IsoBlock, IsoMethod,
+    IsoOptions, IsoResult, NormalMethod, VolumeGrid,
 };
 
 /// Data type of the samples as stored in a file.

@@ -154,8 +154,19 @@ pub(super) struct Ctx<'a> {
     /// Record grid keys of vertices (needed for the topology analysis only).
     pub keys: bool,
     /// Offset and span tables for central-difference normals (`Some` iff `normals` is
-    /// `Central`).
+    /// `Central`), built for `gvol`.
     pub central: Option<&'a CentralTable>,
+    /// The samples gradients are taken from: `vol` itself, or (for a block of a larger grid,
+    /// see `block`) `vol` with a one-sample halo, so that a grid point's stencil is the one it
+    /// has in the whole grid. Grid point `p` of `vol` is `p + goff` of `gvol`.
+    pub gvol: &'a Volume,
+    /// Plane coordinates of `gvol`.
+    pub gaxes: &'a [Vec<f64>; 3],
+    /// Offset of `vol` in `gvol`.
+    pub goff: [usize; 3],
+    /// Record the cell of every triangle, of every interior point and of every skipped cell
+    /// (needed to stitch blocks only).
+    pub cells: bool,
 }
 
 #[derive(Default)]
@@ -166,6 +177,11 @@ pub(super) struct ChunkOut {
     pub ipos: Vec<Point3>,
     pub inrm: Vec<Vector3>,
     pub tris: Vec<[u32; 3]>,
+    /// With [`Ctx::cells`]: the cell of each triangle, of each interior point, and the cells
+    /// skipped for a NaN corner.
+    pub tcell: Vec<[usize; 3]>,
+    pub icell: Vec<[usize; 3]>,
+    pub nan_cells: Vec<[usize; 3]>,
     pub last_plane_start: usize,
     pub fans: usize,
     pub centroids: usize,
@@ -207,20 +223,35 @@ impl Ctx<'_> {
         };
         if let Some(tab) = self.central {
             // six samples: recomputing is as cheap as the cache lookup
-            let [nx, ny, _] = self.vol.dims;
-            let g = tab.at(&self.vol.data, p[0] + nx * (p[1] + ny * p[2]), p);
+            let q = self.gpoint(p);
+            let g = tab.at(&self.gvol.data, self.gindex(q), q);
             return Vector3::new(g[0], g[1], g[2]);
         }
         let (slot, i, stamp) = (p[2] % 2, p[0] + self.vol.dims[0] * p[1], p[2] as u32 + 1);
         let g = if out.gstamp[slot][i] == stamp {
             out.gcache[slot][i]
         } else {
-            let g = gradient_at(self.vol, self.axes, p, op);
+            let g = gradient_at(self.gvol, self.gaxes, self.gpoint(p), op);
             out.gcache[slot][i] = g;
             out.gstamp[slot][i] = stamp;
             g
         };
         Vector3::new(g[0], g[1], g[2])
+    }
+    /// Grid point `p` of `vol` as a grid point of `gvol`.
+    #[inline]
+    fn gpoint(&self, p: [usize; 3]) -> [usize; 3] {
+        [
+            p[0] + self.goff[0],
+            p[1] + self.goff[1],
+            p[2] + self.goff[2],
+        ]
+    }
+    /// Linear index of grid point `q` of `gvol`.
+    #[inline]
+    fn gindex(&self, q: [usize; 3]) -> usize {
+        let [nx, ny, _] = self.gvol.dims;
+        q[0] + nx * (q[1] + ny * q[2])
     }
     /// Oriented unit normal from a gradient (zero when undefined).
     #[inline]
@@ -314,8 +345,8 @@ impl Ctx<'_> {
         let (pa, pb) = (self.point(a), self.point(b));
         out.pos.push(pa + (pb - pa) * t);
         if let Some(tab) = self.central {
-            let data = &self.vol.data;
-            let [na, nb] = tab.at2(data, ia, a, ib, b);
+            let (qa, qb) = (self.gpoint(a), self.gpoint(b));
+            let [na, nb] = tab.at2(&self.gvol.data, self.gindex(qa), qa, self.gindex(qb), qb);
             let u = 1.0 - t;
             // normalised later in a batch (`orient_from`)
             out.nrm.push(Vector3::new(
@@ -549,6 +580,9 @@ impl Ctx<'_> {
                     }
                     if any & 2 != 0 {
                         out.skipped_cells += 1;
+                        if self.cells {
+                            out.nan_cells.push([x, y, z]);
+                        }
                     } else if cfg != 0 && cfg != 255 {
                         self.cell([x, y, z], cfg, ix, out);
                     }
@@ -584,7 +618,15 @@ impl Ctx<'_> {
     }
 
     /// Triangulates one cell crossed by the contour (`cfg` not 0 or 255, no NaN corner).
+    #[inline]
     fn cell(&self, p: [usize; 3], cfg: u8, ix: &Index, out: &mut ChunkOut) {
+        self.cell_triangles(p, cfg, ix, out);
+        if self.cells {
+            out.tcell.resize(out.tris.len(), p);
+        }
+    }
+
+    fn cell_triangles(&self, p: [usize; 3], cfg: u8, ix: &Index, out: &mut ChunkOut) {
         let [x, y, z] = p;
         let [nx, ny, _] = self.vol.dims;
         let (plo, phi, lay) = (ix.plo, ix.phi, ix.lay);
@@ -753,6 +795,9 @@ impl Ctx<'_> {
             }
         }
         out.ipos.push(p);
+        if self.cells {
+            out.icell.push(cell);
+        }
         if self.op().is_some() {
             // Eq. 3.19: trilinear interpolation of the eight corner gradients
             let mut gsum = Vector3::zeros();

@@ -45,8 +45,11 @@
 //! so a parallel run may hold up to about twice the output briefly. With `topology`, per-vertex
 //! grid keys (8 bytes) and a transient edge table (≈ 40 bytes per triangle) are added.
 
+mod block;
 mod extract;
 mod tables;
+
+pub use block::{isosurface_block, stitch_blocks, IsoBlock, VolumeGrid};
 
 use crate::geom::Vector3;
 use crate::mesh::{Property, ScalarKind, TriMesh};
@@ -165,33 +168,21 @@ pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeEr
     if vol.dims.iter().any(|&d| d >= 1 << 20) {
         return Err(VolumeError::AxisTooLong { dims: vol.dims });
     }
-    let empty = |note: String| IsoResult {
-        note: Some(note),
-        ..Default::default()
-    };
-    if vol.dims.iter().any(|&d| d < 2) {
-        return Ok(empty(format!(
-            "volume {:?} has no cells (needs at least 2 samples per axis)",
-            vol.dims
-        )));
-    }
-    let Some((lo, hi)) = fast_range(&vol.data).or_else(|| vol.value_range()) else {
-        return Ok(empty("volume has no finite sample".into()));
-    };
-    let (lo, hi) = (lo as f64, hi as f64);
-    if opts.level < lo || opts.level > hi {
-        return Ok(empty(format!(
-            "level {} is outside the data range [{lo}, {hi}]: empty surface",
-            opts.level
-        )));
-    }
-    let axes = axis_coords(vol);
-    let range = hi - lo;
-    let eps = if range > 0.0 {
-        range * 1e-9
+    let range = if vol.dims.iter().any(|&d| d < 2) {
+        None
     } else {
-        1e-9 * opts.level.abs().max(1.0)
+        fast_range(&vol.data).or_else(|| vol.value_range())
     };
+    let eps = match perturbation(vol.dims, range, opts.level) {
+        Ok(eps) => eps,
+        Err(note) => {
+            return Ok(IsoResult {
+                note: Some(note),
+                ..Default::default()
+            })
+        }
+    };
+    let axes = axis_coords(vol);
     let central = (opts.normals == NormalMethod::Central).then(|| CentralTable::new(vol, &axes));
     let ctx = Ctx {
         vol,
@@ -203,6 +194,10 @@ pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeEr
         flip: opts.flip,
         keys: opts.topology,
         central: central.as_ref(),
+        gvol: vol,
+        gaxes: &axes,
+        goff: [0; 3],
+        cells: false,
     };
     let layers = vol.dims[2] - 1;
     let threads = rayon::current_num_threads().max(1);
@@ -221,9 +216,64 @@ pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeEr
         ranges.iter().map(|&(a, b)| ctx.chunk(a, b)).collect()
     };
     let zero_normals = chunks.iter().any(|c| c.zero_normals);
-    let mut res = assemble(chunks, opts)?;
-    let mut keys = std::mem::take(&mut res.1);
-    let mut r = res.0;
+    let (r, keys) = assemble(chunks, opts)?;
+    let nan_cell = |c: [usize; 3]| {
+        (0..8).any(|k| {
+            vol.at(c[0] + (k & 1), c[1] + (k >> 1 & 1), c[2] + (k >> 2 & 1))
+                .is_nan()
+        })
+    };
+    let grid = (vol.dims, &vol.axes, &vol.orientation);
+    Ok(finish(r, keys, zero_normals, grid, nan_cell, opts))
+}
+
+/// The perturbation ε of Rem. 3.8 for samples of finite range `range` (`None`: no finite
+/// sample) and the level; or, when the surface is empty for want of cells or of a crossing,
+/// the note saying so.
+fn perturbation(dims: [usize; 3], range: Option<(f32, f32)>, level: f64) -> Result<f64, String> {
+    if dims.iter().any(|&d| d < 2) {
+        return Err(format!(
+            "volume {dims:?} has no cells (needs at least 2 samples per axis)"
+        ));
+    }
+    let Some((lo, hi)) = range else {
+        return Err("volume has no finite sample".into());
+    };
+    let (lo, hi) = (lo as f64, hi as f64);
+    if level < lo || level > hi {
+        return Err(format!(
+            "level {level} is outside the data range [{lo}, {hi}]: empty surface"
+        ));
+    }
+    let range = hi - lo;
+    Ok(if range > 0.0 {
+        range * 1e-9
+    } else {
+        1e-9 * level.abs().max(1.0)
+    })
+}
+
+/// The grid a surface was extracted from: dimensions, axes and orientation.
+type GridRef<'a> = (
+    [usize; 3],
+    &'a crate::volume::Axes,
+    &'a crate::volume::Orientation,
+);
+
+/// Everything after the extraction proper, shared by [`isosurface`] and the stitching of
+/// blocks: unreferenced vertices dropped (after NaN cells), normal fallbacks, the topology
+/// analysis, notes and the world transform. `keys` are the grid keys of the vertices (empty
+/// without topology), `nan_cell(c)` tells whether cell `c` has a NaN corner (asked only when
+/// cells were skipped).
+fn finish(
+    mut r: IsoResult,
+    mut keys: Vec<u64>,
+    zero_normals: bool,
+    grid: GridRef<'_>,
+    nan_cell: impl Fn([usize; 3]) -> bool,
+    opts: &IsoOptions,
+) -> IsoResult {
+    let (dims, axes, orientation) = grid;
     if r.skipped_cells > 0 {
         drop_unreferenced(&mut r.mesh, &mut keys);
         r.note = Some(format!(
@@ -262,18 +312,11 @@ pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeEr
         let skipped = r.skipped_cells > 0;
         let valid_cell = |c: [i64; 3]| -> bool {
             for k in 0..3 {
-                if c[k] < 0 || c[k] + 1 >= vol.dims[k] as i64 {
+                if c[k] < 0 || c[k] + 1 >= dims[k] as i64 {
                     return false;
                 }
             }
-            if !skipped {
-                return true;
-            }
-            let (x, y, z) = (c[0] as usize, c[1] as usize, c[2] as usize);
-            (0..8).all(|k| {
-                !vol.at(x + (k & 1), y + (k >> 1 & 1), z + (k >> 2 & 1))
-                    .is_nan()
-            })
+            !skipped || !nan_cell([c[0] as usize, c[1] as usize, c[2] as usize])
         };
         let a = analyze(&r.mesh, &keys, valid_cell);
         r.parts = a.parts;
@@ -290,17 +333,16 @@ pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeEr
     if r.mesh.triangles.is_empty() && r.note.is_none() {
         r.note = Some(format!("no contour at level {}", opts.level));
     }
-    to_world(vol, &mut r.mesh);
-    Ok(r)
+    to_world(axes, orientation, &mut r.mesh);
+    r
 }
 
 /// Places the surface in the volume's world space ([`crate::volume::Orientation`]): positions
 /// by the axis directions about the origin, normals by the inverse transpose, and triangle
 /// windings reversed when the directions mirror (so that normals and windings keep pointing to
 /// the same side). A no-op for axis-aligned volumes.
-fn to_world(vol: &Volume, mesh: &mut TriMesh) {
-    let o = &vol.orientation;
-    let crate::volume::Axes::Uniform { origin, .. } = vol.axes else {
+fn to_world(axes: &crate::volume::Axes, o: &crate::volume::Orientation, mesh: &mut TriMesh) {
+    let crate::volume::Axes::Uniform { origin, .. } = *axes else {
         return;
     };
     if o.is_axis_aligned() {
