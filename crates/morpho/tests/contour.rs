@@ -1265,3 +1265,138 @@ fn pipeline_and_geojson_on_meuse() {
         }
     }
 }
+
+/// `contour_samples` trusts the Delaunay triangulation it makes (no re-validation, no copies):
+/// its result must equal the checked path — the same triangulation handed to
+/// `contour_triangulated_2d/3d`, with and without its neighbour array — on inputs with
+/// duplicates, skipped samples, cocircular / cospherical grids and both colourings.
+#[test]
+fn trusted_delaunay_path_equals_the_checked_path() {
+    use morpho::contour::{
+        contour_samples, contour_triangulated_2d, contour_triangulated_3d, select_samples,
+        SampleContour, SampleOptions, SampleTriangulation2, SampleTriangulation3,
+    };
+    use morpho::delaunay::{triangulate_2d, triangulate_3d};
+    use morpho::mesh::{Column, PointSet};
+    let mut rng = ChaCha8Rng::seed_from_u64(23);
+    let mut cases_2d: Vec<Vec<Point2>> = Vec::new();
+    // uniform, with exact duplicates
+    let mut p: Vec<Point2> = (0..3000)
+        .map(|_| Point2::new(rng.gen(), rng.gen()))
+        .collect();
+    for k in 0..200 {
+        p.push(p[k * 7]);
+    }
+    cases_2d.push(p);
+    // integer grid (every cell cocircular)
+    cases_2d.push(
+        (0..40 * 40)
+            .map(|k| Point2::new((k % 40) as f64, (k / 40) as f64))
+            .collect(),
+    );
+    for (c, pts) in cases_2d.iter().enumerate() {
+        let mut ps = PointSet::from_points2(pts);
+        let values: Vec<f64> = pts
+            .iter()
+            .enumerate()
+            .map(|(i, q)| {
+                if i % 97 == 5 {
+                    f64::NAN // skipped
+                } else if i % 101 == 7 {
+                    -0.0 // the vertex value keeps its sign bit on both paths
+                } else {
+                    (q.x * 0.37).sin() + (q.y * 0.23).cos() + (i % 3) as f64 * 0.1
+                }
+            })
+            .collect();
+        ps.columns.push(Column {
+            name: "value".into(),
+            values,
+        });
+        for (holes, below) in [(false, false), (true, false), (false, true), (true, true)] {
+            let opts = SampleOptions {
+                threshold: 1.0,
+                holes,
+                below,
+                ..Default::default()
+            };
+            let SampleContour::Plane(fast) = contour_samples(&ps, &opts).unwrap() else {
+                panic!("2D samples")
+            };
+            let sel = select_samples(&ps, None).unwrap();
+            let kept: Vec<Point2> = sel.input.iter().map(|&i| pts[i as usize]).collect();
+            let d = triangulate_2d(&kept).unwrap();
+            for nb in [Some(&d.neighbors[..]), None] {
+                let t = SampleTriangulation2 {
+                    points: &d.points,
+                    vertex_of_input: &d.vertex_of_input,
+                    input_of_vertex: &d.input_of_vertex,
+                    triangles: &d.triangles,
+                    neighbors: nb,
+                };
+                let slow = contour_triangulated_2d(sel.clone(), t, &opts).unwrap();
+                assert_eq!(fast, slow, "case {c}, holes {holes}, below {below}");
+                // bit for bit, −0 included
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&fast.values), bits(&slow.values));
+                assert_eq!(bits(&fast.ratings), bits(&slow.ratings));
+            }
+            assert!(
+                !fast.contour.cycles.is_empty(),
+                "case {c}: nothing to compare"
+            );
+        }
+    }
+    // 3D: uniform with duplicates, and an integer grid (cospherical cubes)
+    let mut p3: Vec<Point3> = (0..1500)
+        .map(|_| Point3::new(rng.gen(), rng.gen(), rng.gen()))
+        .collect();
+    for k in 0..100 {
+        p3.push(p3[k * 5]);
+    }
+    let g3: Vec<Point3> = (0..8 * 8 * 8)
+        .map(|k| Point3::new((k % 8) as f64, ((k / 8) % 8) as f64, (k / 64) as f64))
+        .collect();
+    for (c, pts) in [p3, g3].iter().enumerate() {
+        let mut ps = PointSet::from_points3(pts);
+        ps.columns.push(Column {
+            name: "value".into(),
+            values: pts
+                .iter()
+                .enumerate()
+                .map(|(i, q)| {
+                    if i % 89 == 3 {
+                        f64::NAN
+                    } else {
+                        (q.x * 0.9).sin() + (q.y * 0.7).cos() * (q.z * 0.5).sin()
+                    }
+                })
+                .collect(),
+        });
+        let opts = SampleOptions {
+            threshold: 0.5,
+            ..Default::default()
+        };
+        let SampleContour::Space(fast) = contour_samples(&ps, &opts).unwrap() else {
+            panic!("3D samples")
+        };
+        let sel = select_samples(&ps, None).unwrap();
+        let kept: Vec<Point3> = sel.input.iter().map(|&i| pts[i as usize]).collect();
+        let d = triangulate_3d(&kept).unwrap();
+        for nb in [Some(&d.neighbors[..]), None] {
+            let t = SampleTriangulation3 {
+                points: &d.points,
+                vertex_of_input: &d.vertex_of_input,
+                input_of_vertex: &d.input_of_vertex,
+                tets: &d.tets,
+                neighbors: nb,
+            };
+            let slow = contour_triangulated_3d(sel.clone(), t, &opts).unwrap();
+            assert_eq!(fast, slow, "3D case {c}");
+        }
+        assert!(
+            !fast.surface.triangles.is_empty(),
+            "3D case {c}: nothing to compare"
+        );
+    }
+}

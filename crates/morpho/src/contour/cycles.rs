@@ -37,7 +37,7 @@
 //! at most two triangles, the triangles around each vertex form one fan), with distinct vertex
 //! positions. Triangles may be given in either orientation; zero-area triangles are refused.
 
-use super::dual::{check_indices, check_neighbors, simplex_neighbors, Dual};
+use super::dual::{check_indices, check_neighbors, simplex_neighbors, Dual, Valid};
 use super::ContourError;
 use super::{ring_area, Contour2, ContourOptions, Region2};
 use crate::geom::{orient2d, Point2};
@@ -57,17 +57,27 @@ struct Prepared<'a> {
     nb: Cow<'a, [[u32; 3]]>,
 }
 
+/// The triangles made counter-clockwise and their neighbours, after checking them — unless
+/// `valid` vouches for both (a fresh Delaunay triangulation), in which case they are borrowed
+/// as they are and only the colours are counted.
 fn prepare<'a>(
     tri: &'a [[u32; 3]],
     neighbors: Option<&'a [[u32; 3]]>,
     points: &[Point2],
     black: &[bool],
+    valid: Option<Valid>,
 ) -> Result<Prepared<'a>, ContourError> {
     if black.len() != tri.len() {
         return Err(ContourError::ColourCount {
             colours: black.len(),
             simplices: tri.len(),
             kind: "triangles",
+        });
+    }
+    if let (Some(_), Some(nb)) = (valid, neighbors) {
+        return Ok(Prepared {
+            tri: Cow::Borrowed(tri),
+            nb: Cow::Borrowed(nb),
         });
     }
     check_indices(tri, points.len())?;
@@ -144,7 +154,30 @@ pub fn external_contour_with(
     black: &[bool],
     opts: &ContourOptions,
 ) -> Result<Contour2, ContourError> {
-    let p = prepare(tri, neighbors, points, black)?;
+    external_contour_impl(tri, neighbors, points, black, opts, None)
+}
+
+/// [`external_contour_with`] on a triangulation `valid` vouches for (no re-validation).
+pub(crate) fn external_contour_valid(
+    tri: &[[u32; 3]],
+    neighbors: &[[u32; 3]],
+    points: &[Point2],
+    black: &[bool],
+    opts: &ContourOptions,
+    valid: Valid,
+) -> Result<Contour2, ContourError> {
+    external_contour_impl(tri, Some(neighbors), points, black, opts, Some(valid))
+}
+
+fn external_contour_impl(
+    tri: &[[u32; 3]],
+    neighbors: Option<&[[u32; 3]]>,
+    points: &[Point2],
+    black: &[bool],
+    opts: &ContourOptions,
+    valid: Option<Valid>,
+) -> Result<Contour2, ContourError> {
+    let p = prepare(tri, neighbors, points, black, valid)?;
     // §3.1–3.4.
     let g = Dual::<3>::run(&p.nb, black);
     let (comp, ncomp) = g.black_components();
@@ -262,7 +295,30 @@ pub fn boundary_regions(
     black: &[bool],
     opts: &ContourOptions,
 ) -> Result<Contour2, ContourError> {
-    let p = prepare(tri, neighbors, points, black)?;
+    boundary_regions_impl(tri, neighbors, points, black, opts, None)
+}
+
+/// [`boundary_regions`] on a triangulation `valid` vouches for (no re-validation).
+pub(crate) fn boundary_regions_valid(
+    tri: &[[u32; 3]],
+    neighbors: &[[u32; 3]],
+    points: &[Point2],
+    black: &[bool],
+    opts: &ContourOptions,
+    valid: Valid,
+) -> Result<Contour2, ContourError> {
+    boundary_regions_impl(tri, Some(neighbors), points, black, opts, Some(valid))
+}
+
+fn boundary_regions_impl(
+    tri: &[[u32; 3]],
+    neighbors: Option<&[[u32; 3]]>,
+    points: &[Point2],
+    black: &[bool],
+    opts: &ContourOptions,
+    valid: Option<Valid>,
+) -> Result<Contour2, ContourError> {
+    let p = prepare(tri, neighbors, points, black, valid)?;
     let (tri, nb) = (&*p.tri, &*p.nb);
     let n = tri.len();
     let g = Dual::<3>::run(nb, black);

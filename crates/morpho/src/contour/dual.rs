@@ -24,6 +24,32 @@ use super::ContourError;
 use crate::util::NONE;
 use crate::Result;
 
+/// Witness that a triangulation needs no checking: its simplices have distinct in-range
+/// vertices, are counter-clockwise (triangles) or positively oriented (tetrahedra) with non-zero
+/// area (volume), and its neighbour array matches them. It is made only by
+/// [`Valid::delaunay2`] and [`Valid::delaunay3`] from a triangulation that `delaunay::d2/d3` has
+/// just returned and that nothing has touched since — the one use is `contour_samples`, which
+/// triangulates the samples itself — so the contour functions skip the O(n) re-validation
+/// (indices, orientations, neighbour symmetry) that they run on triangulations given by a caller
+/// or read from a file. The private field keeps it from being made anywhere else.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Valid(());
+
+impl Valid {
+    /// The triangulation was returned by [`crate::delaunay::triangulate_2d`] this instant: its
+    /// triangles are counter-clockwise (exact `orient2d` > 0) and `neighbors` is its adjacency
+    /// across the edge opposite each corner.
+    pub(crate) fn delaunay2(_fresh: &crate::delaunay::Delaunay2) -> Self {
+        Valid(())
+    }
+    /// The tetrahedralization was returned by [`crate::delaunay::triangulate_3d`] this instant:
+    /// its tetrahedra are positively oriented (exact `orient3d` > 0) and `neighbors` is its
+    /// adjacency across the face opposite each corner.
+    pub(crate) fn delaunay3(_fresh: &crate::delaunay::Delaunay3) -> Self {
+        Valid(())
+    }
+}
+
 /// Checks that every index of `simplices` is below `n`.
 pub fn check_indices<const K: usize>(simplices: &[[u32; K]], n: usize) -> Result<(), ContourError> {
     if simplices.len() >= NONE as usize {
@@ -201,6 +227,7 @@ pub fn check_neighbors<const K: usize>(
 const EXT: u8 = 1;
 const REMOVED: u8 = 2;
 const MARKED: u8 = 4;
+const BLACK: u8 = 8;
 
 /// The coloured dual graph G of a triangulation (tetrahedrization), with the state of the graph
 /// steps of the contour algorithm.
@@ -212,23 +239,29 @@ const MARKED: u8 = 4;
 pub struct Dual<'a, const K: usize> {
     /// G_init: the dual as built by `construct_dual` (kept for `contour_of_component`).
     pub init: &'a [[u32; K]],
-    /// Colour of each vertex (`true` = black).
-    pub black: &'a [bool],
+    /// Flags of each vertex, its colour (`BLACK`) among them.
     state: Vec<u8>,
+    /// The vertices joined to `v_ext`: `extend` fills it with the hull simplices, `hollow_out`
+    /// starts its set S from it and leaves in it the marked vertices (the only ones still
+    /// joined), on which `remove_v_ext` clears the flag.
+    joined: Vec<u32>,
 }
 
 impl<'a, const K: usize> Dual<'a, K> {
-    /// §3.1: one vertex per simplex with its colour, one edge per shared facet.
-    pub fn construct_dual(neighbors: &'a [[u32; K]], black: &'a [bool]) -> Self {
+    /// §3.1: one vertex per simplex with its colour, one edge per shared facet. The callers
+    /// have checked that there is one colour per simplex.
+    pub fn construct_dual(neighbors: &'a [[u32; K]], black: &[bool]) -> Self {
+        debug_assert_eq!(neighbors.len(), black.len());
         Dual {
             init: neighbors,
-            black,
-            state: vec![0; neighbors.len()],
+            state: black.iter().map(|&b| if b { BLACK } else { 0 }).collect(),
+            joined: Vec::new(),
         }
     }
 
     /// The edge `{u, v_ext}` is in G.
     #[inline]
+    #[cfg(test)]
     pub fn ext(&self, u: usize) -> bool {
         self.state[u] & EXT != 0
     }
@@ -254,33 +287,35 @@ impl<'a, const K: usize> Dual<'a, K> {
 
     /// §3.2, Fig. 1: adds `v_ext` and joins it to every vertex of degree < K.
     pub fn extend(&mut self) {
-        for u in 0..self.init.len() {
-            if self.init[u].contains(&NONE) {
-                self.state[u] |= EXT;
+        for (u, (nb, st)) in self.init.iter().zip(self.state.iter_mut()).enumerate() {
+            if nb.contains(&NONE) {
+                *st |= EXT;
+                self.joined.push(u as u32);
             }
         }
     }
 
     /// §3.3, Fig. 2: hollows out the white region connected to the exterior and marks the black
-    /// simplices that touch it. S is a FIFO queue; each vertex enters it at most once (when it
-    /// is joined to `v_ext`).
+    /// simplices that touch it. Each vertex enters S at most once (when it is joined to
+    /// `v_ext`).
     pub fn hollow_out(&mut self) {
-        let mut s: Vec<u32> = (0..self.init.len() as u32)
-            .filter(|&u| self.ext(u as usize))
-            .collect();
-        let mut head = 0;
-        while head < s.len() {
-            let u = s[head] as usize;
-            head += 1;
-            if !self.black[u] {
+        // S as a stack: the deleted and marked sets do not depend on the order in which S is
+        // worked off (a white vertex is deleted iff it is reachable from `v_ext` through white
+        // vertices; a black one is marked iff it is joined to `v_ext` at some point), and the
+        // last-in-first-out order stays near the simplices just visited in memory.
+        let mut s = std::mem::take(&mut self.joined);
+        let mut marked = Vec::new();
+        while let Some(u) = s.pop() {
+            let u = u as usize;
+            if self.state[u] & BLACK == 0 {
                 for &v in &self.init[u] {
                     // for each v ∈ N(u) − {v_ext} (edges to deleted vertices are gone)
-                    if v == NONE || self.removed(v as usize) {
+                    if v == NONE {
                         continue;
                     }
                     let v = v as usize;
                     // if v_ext ∉ N(v): E := E ∪ {v, v_ext}, S := S ∪ {v}
-                    if !self.ext(v) {
+                    if self.state[v] & (REMOVED | EXT) == 0 {
                         self.state[v] |= EXT;
                         s.push(v as u32);
                     }
@@ -289,13 +324,19 @@ impl<'a, const K: usize> Dual<'a, K> {
                 self.state[u] = (self.state[u] & !EXT) | REMOVED;
             } else {
                 self.state[u] |= MARKED;
+                marked.push(u as u32);
             }
         }
+        // The edges {u, v_ext} left are those of the marked vertices.
+        self.joined = marked;
     }
 
     /// §3.4, Fig. 3: removes `v_ext` and its edges.
     pub fn remove_v_ext(&mut self) {
-        self.state.iter_mut().for_each(|e| *e &= !EXT);
+        for &u in &self.joined {
+            self.state[u as usize] &= !EXT;
+        }
+        self.joined = Vec::new();
     }
 
     /// §3.4: the connected components of the remaining graph (black simplices and the white ones
@@ -304,17 +345,22 @@ impl<'a, const K: usize> Dual<'a, K> {
     pub fn black_components(&self) -> (Vec<u32>, usize) {
         let n = self.init.len();
         let mut comp = vec![NONE; n];
+        // One byte per vertex says "removed or already in a component", so the search reads a
+        // single small array per neighbour.
+        let mut done: Vec<bool> = self.state.iter().map(|&e| e & REMOVED != 0).collect();
         let mut count = 0u32;
         let mut stack = Vec::new();
         for start in 0..n {
-            if self.removed(start) || comp[start] != NONE {
+            if done[start] {
                 continue;
             }
+            done[start] = true;
             comp[start] = count;
             stack.push(start as u32);
             while let Some(u) = stack.pop() {
                 for &v in &self.init[u as usize] {
-                    if v != NONE && comp[v as usize] == NONE && !self.removed(v as usize) {
+                    if v != NONE && !done[v as usize] {
+                        done[v as usize] = true;
                         comp[v as usize] = count;
                         stack.push(v);
                     }
@@ -326,7 +372,7 @@ impl<'a, const K: usize> Dual<'a, K> {
     }
 
     /// Runs §3.1–§3.4 (`construct_dual`, `extend`, `hollow_out`, `remove_v_ext`).
-    pub fn run(neighbors: &'a [[u32; K]], black: &'a [bool]) -> Self {
+    pub fn run(neighbors: &'a [[u32; K]], black: &[bool]) -> Self {
         let mut g = Self::construct_dual(neighbors, black);
         g.extend();
         g.hollow_out();

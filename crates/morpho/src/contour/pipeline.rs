@@ -2,13 +2,20 @@
 //! itself: choose the value column, drop samples without a value, give each triangulation
 //! vertex a value (the mean over samples at the same position), rate the simplices, colour them
 //! and compute the contour. The thin `contour_samples` (file `samples.rs`) adds the Delaunay
-//! triangulation in front. O(n) after the triangulation.
+//! triangulation in front, through `contour_delaunay_2d/3d`, which trust the triangulation they
+//! are handed (see `dual::Valid`) instead of re-validating it as the public entry points do for
+//! a triangulation from a caller or a file. O(n) after the triangulation.
 
+use super::cycles::{boundary_regions_valid, external_contour_valid};
+use super::dual::Valid;
+use super::rating::{rate_tetrahedra_valid, rate_triangles_valid};
+use super::tet::external_surface_valid;
 use super::ContourError;
 use super::{
     boundary_regions, classify, external_contour_with, external_surface_with, rate_tetrahedra,
     rate_triangles, Contour2, ContourOptions, Rating, Surface3,
 };
+use crate::delaunay::{Delaunay2, Delaunay3};
 use crate::geom::{Point2, Point3};
 use crate::mesh::{Column, PointSet};
 use crate::Result;
@@ -145,6 +152,31 @@ pub fn vertex_values(
         .collect())
 }
 
+/// [`vertex_values`] of a Delaunay triangulation: without merged duplicates every vertex holds
+/// exactly one sample, so its mean is that sample's value (`0.0 + x`, as the sum computes it,
+/// which keeps the bits, −0 included) and one gather replaces the two summing passes.
+fn delaunay_vertex_values(
+    duplicates: usize,
+    vertex_of_input: &[u32],
+    input_of_vertex: &[u32],
+    values: &[f64],
+) -> Result<Vec<f64>, ContourError> {
+    if duplicates != 0 || vertex_of_input.len() != input_of_vertex.len() {
+        return vertex_values(input_of_vertex.len(), vertex_of_input, values);
+    }
+    input_of_vertex
+        .iter()
+        .map(|&i| {
+            values
+                .get(i as usize)
+                .map(|&x| 0.0 + x)
+                .ok_or(ContourError::BadVertexMap {
+                    reason: "vertex refers to a missing sample",
+                })
+        })
+        .collect()
+}
+
 /// A triangulation of the kept samples, as produced by a Delaunay triangulator.
 #[derive(Debug, Clone, Copy)]
 pub struct SampleTriangulation2<'a> {
@@ -248,26 +280,101 @@ pub fn contour_triangulated_2d(
     opts: &SampleOptions,
 ) -> Result<PlaneContour, ContourError> {
     let values = vertex_values(tri.points.len(), tri.vertex_of_input, &selected.values)?;
-    let ratings = rate_triangles(tri.triangles, tri.points, &values, opts.rating)?;
+    let r = plane_phases(&selected, tri, values, opts, None)?;
+    Ok(r.into_contour(selected, tri.points.to_vec(), tri.triangles.to_vec()))
+}
+
+/// [`contour_triangulated_2d`] on the Delaunay triangulation of the selected samples that
+/// `delaunay::triangulate_2d` has just returned: the triangulation is not re-validated, and its
+/// points and triangles move into the result instead of being copied.
+pub(crate) fn contour_delaunay_2d(
+    selected: SelectedSamples,
+    d: Delaunay2,
+    opts: &SampleOptions,
+) -> Result<PlaneContour, ContourError> {
+    let valid = Valid::delaunay2(&d);
+    let tri = SampleTriangulation2 {
+        points: &d.points,
+        vertex_of_input: &d.vertex_of_input,
+        input_of_vertex: &d.input_of_vertex,
+        triangles: &d.triangles,
+        neighbors: Some(&d.neighbors),
+    };
+    let values = delaunay_vertex_values(
+        d.duplicates,
+        &d.vertex_of_input,
+        &d.input_of_vertex,
+        &selected.values,
+    )?;
+    let r = plane_phases(&selected, tri, values, opts, Some(valid))?;
+    Ok(r.into_contour(selected, d.points, d.triangles))
+}
+
+/// What the plane pipeline computes besides the triangulation itself.
+struct PlanePhases {
+    sample_of_vertex: Vec<u32>,
+    values: Vec<f64>,
+    ratings: Vec<f64>,
+    black: Vec<bool>,
+    contour: Contour2,
+}
+
+impl PlanePhases {
+    fn into_contour(
+        self,
+        selected: SelectedSamples,
+        points: Vec<Point2>,
+        triangles: Vec<[u32; 3]>,
+    ) -> PlaneContour {
+        PlaneContour {
+            selected,
+            points,
+            sample_of_vertex: self.sample_of_vertex,
+            triangles,
+            values: self.values,
+            ratings: self.ratings,
+            black: self.black,
+            contour: self.contour,
+        }
+    }
+}
+
+/// Rating, colouring and contour; the triangulation is checked unless `valid` vouches for it
+/// (then `tri.neighbors` is `Some`).
+fn plane_phases(
+    selected: &SelectedSamples,
+    tri: SampleTriangulation2<'_>,
+    values: Vec<f64>,
+    opts: &SampleOptions,
+    valid: Option<Valid>,
+) -> Result<PlanePhases, ContourError> {
+    let ratings = match valid {
+        Some(v) => rate_triangles_valid(tri.triangles, tri.points, &values, opts.rating, v)?,
+        None => rate_triangles(tri.triangles, tri.points, &values, opts.rating)?,
+    };
     let black = classify(&ratings, opts.threshold, opts.below);
     let copts = ContourOptions {
         min_area: opts.min_area,
     };
-    let contour = if opts.holes {
-        boundary_regions(tri.triangles, tri.neighbors, tri.points, &black, &copts)?
-    } else {
-        external_contour_with(tri.triangles, tri.neighbors, tri.points, &black, &copts)?
+    let contour = match (valid, tri.neighbors) {
+        (Some(v), Some(nb)) if opts.holes => {
+            boundary_regions_valid(tri.triangles, nb, tri.points, &black, &copts, v)?
+        }
+        (Some(v), Some(nb)) => {
+            external_contour_valid(tri.triangles, nb, tri.points, &black, &copts, v)?
+        }
+        _ if opts.holes => {
+            boundary_regions(tri.triangles, tri.neighbors, tri.points, &black, &copts)?
+        }
+        _ => external_contour_with(tri.triangles, tri.neighbors, tri.points, &black, &copts)?,
     };
     let sample_of_vertex = map_vertices(tri.input_of_vertex, &selected.input)?;
-    Ok(PlaneContour {
-        points: tri.points.to_vec(),
+    Ok(PlanePhases {
         sample_of_vertex,
-        triangles: tri.triangles.to_vec(),
         values,
         ratings,
         black,
         contour,
-        selected,
     })
 }
 
@@ -278,23 +385,100 @@ pub fn contour_triangulated_3d(
     opts: &SampleOptions,
 ) -> Result<SpaceContour, ContourError> {
     let values = vertex_values(tri.points.len(), tri.vertex_of_input, &selected.values)?;
-    let ratings = rate_tetrahedra(tri.tets, tri.points, &values, opts.rating)?;
+    let r = space_phases(&selected, tri, values, opts, None)?;
+    Ok(r.into_contour(selected, tri.points.to_vec(), tri.tets.to_vec()))
+}
+
+/// [`contour_triangulated_3d`] on the Delaunay tetrahedrization of the selected samples that
+/// `delaunay::triangulate_3d` has just returned: not re-validated, points and tetrahedra moved
+/// into the result.
+pub(crate) fn contour_delaunay_3d(
+    selected: SelectedSamples,
+    d: Delaunay3,
+    opts: &SampleOptions,
+) -> Result<SpaceContour, ContourError> {
+    let valid = Valid::delaunay3(&d);
+    let tri = SampleTriangulation3 {
+        points: &d.points,
+        vertex_of_input: &d.vertex_of_input,
+        input_of_vertex: &d.input_of_vertex,
+        tets: &d.tets,
+        neighbors: Some(&d.neighbors),
+    };
+    let values = delaunay_vertex_values(
+        d.duplicates,
+        &d.vertex_of_input,
+        &d.input_of_vertex,
+        &selected.values,
+    )?;
+    let r = space_phases(&selected, tri, values, opts, Some(valid))?;
+    Ok(r.into_contour(selected, d.points, d.tets))
+}
+
+/// What the space pipeline computes besides the tetrahedrization itself.
+struct SpacePhases {
+    sample_of_vertex: Vec<u32>,
+    values: Vec<f64>,
+    ratings: Vec<f64>,
+    black: Vec<bool>,
+    surface: Surface3,
+}
+
+impl SpacePhases {
+    fn into_contour(
+        self,
+        selected: SelectedSamples,
+        points: Vec<Point3>,
+        tets: Vec<[u32; 4]>,
+    ) -> SpaceContour {
+        SpaceContour {
+            selected,
+            points,
+            sample_of_vertex: self.sample_of_vertex,
+            tets,
+            values: self.values,
+            ratings: self.ratings,
+            black: self.black,
+            surface: self.surface,
+        }
+    }
+}
+
+/// Rating, colouring and the external surface; checked unless `valid` vouches for the
+/// tetrahedrization.
+fn space_phases(
+    selected: &SelectedSamples,
+    tri: SampleTriangulation3<'_>,
+    values: Vec<f64>,
+    opts: &SampleOptions,
+    valid: Option<Valid>,
+) -> Result<SpacePhases, ContourError> {
+    let ratings = match valid {
+        Some(v) => rate_tetrahedra_valid(tri.tets, tri.points, &values, opts.rating, v)?,
+        None => rate_tetrahedra(tri.tets, tri.points, &values, opts.rating)?,
+    };
     let black = classify(&ratings, opts.threshold, opts.below);
-    let surface = external_surface_with(tri.tets, tri.neighbors, tri.points, &black)?;
+    let surface = match (valid, tri.neighbors) {
+        (Some(v), Some(nb)) => external_surface_valid(tri.tets, nb, tri.points, &black, v)?,
+        _ => external_surface_with(tri.tets, tri.neighbors, tri.points, &black)?,
+    };
     let sample_of_vertex = map_vertices(tri.input_of_vertex, &selected.input)?;
-    Ok(SpaceContour {
-        points: tri.points.to_vec(),
+    Ok(SpacePhases {
         sample_of_vertex,
-        tets: tri.tets.to_vec(),
         values,
         ratings,
         black,
         surface,
-        selected,
     })
 }
 
 fn map_vertices(input_of_vertex: &[u32], input: &[u32]) -> Result<Vec<u32>, ContourError> {
+    // Nothing skipped (the usual case): `input` is the identity and one sequential copy replaces
+    // a gather in vertex order.
+    let identity = input.iter().enumerate().all(|(i, &k)| k as usize == i);
+    if identity && input_of_vertex.iter().all(|&i| (i as usize) < input.len()) {
+        return Ok(input_of_vertex.to_vec());
+    }
     input_of_vertex
         .iter()
         .map(|&i| {

@@ -7,6 +7,7 @@
 //! of the volume of its incident tetrahedra), so that an isolated sample counts more than one in
 //! a dense cluster. O(n) time.
 
+use super::dual::Valid;
 use super::ContourError;
 use crate::geom::{Point2, Point3};
 use crate::Result;
@@ -106,8 +107,29 @@ pub fn rate_triangles(
     values: &[f64],
     rating: Rating,
 ) -> Result<Vec<f64>, ContourError> {
-    check_values(values, points.len())?;
     crate::contour::dual::check_indices(tri, points.len())?;
+    rate_triangles_in_range(tri, points, values, rating)
+}
+
+/// [`rate_triangles`] on a triangulation `valid` vouches for (indices not re-checked).
+pub(crate) fn rate_triangles_valid(
+    tri: &[[u32; 3]],
+    points: &[Point2],
+    values: &[f64],
+    rating: Rating,
+    _valid: Valid,
+) -> Result<Vec<f64>, ContourError> {
+    rate_triangles_in_range(tri, points, values, rating)
+}
+
+/// [`rate_triangles`] once the indices are known to be in range.
+fn rate_triangles_in_range(
+    tri: &[[u32; 3]],
+    points: &[Point2],
+    values: &[f64],
+    rating: Rating,
+) -> Result<Vec<f64>, ContourError> {
+    check_values(values, points.len())?;
     Ok(rate_simplices(tri, points.len(), values, rating, |t| {
         let [a, b, c] = t.map(|v| points[v as usize]);
         0.5 * ((b - a).perp(&(c - a))).abs()
@@ -121,8 +143,29 @@ pub fn rate_tetrahedra(
     values: &[f64],
     rating: Rating,
 ) -> Result<Vec<f64>, ContourError> {
-    check_values(values, points.len())?;
     crate::contour::dual::check_indices(tets, points.len())?;
+    rate_tetrahedra_in_range(tets, points, values, rating)
+}
+
+/// [`rate_tetrahedra`] on a triangulation `valid` vouches for (indices not re-checked).
+pub(crate) fn rate_tetrahedra_valid(
+    tets: &[[u32; 4]],
+    points: &[Point3],
+    values: &[f64],
+    rating: Rating,
+    _valid: Valid,
+) -> Result<Vec<f64>, ContourError> {
+    rate_tetrahedra_in_range(tets, points, values, rating)
+}
+
+/// [`rate_tetrahedra`] once the indices are known to be in range.
+fn rate_tetrahedra_in_range(
+    tets: &[[u32; 4]],
+    points: &[Point3],
+    values: &[f64],
+    rating: Rating,
+) -> Result<Vec<f64>, ContourError> {
+    check_values(values, points.len())?;
     Ok(rate_simplices(tets, points.len(), values, rating, |t| {
         let [a, b, c, d] = t.map(|v| points[v as usize]);
         ((b - a).cross(&(c - a)).dot(&(d - a)) / 6.0).abs()

@@ -2,8 +2,7 @@
 //! Delaunay triangulation (2D, or 3D for x, y, z samples, §3.7), rating and colouring, contour.
 
 use super::pipeline::{
-    contour_triangulated_2d, contour_triangulated_3d, select_samples, SampleContour, SampleOptions,
-    SampleTriangulation2, SampleTriangulation3,
+    contour_delaunay_2d, contour_delaunay_3d, select_samples, SampleContour, SampleOptions,
 };
 use super::ContourError;
 use crate::delaunay::{d2, d3};
@@ -18,7 +17,8 @@ fn lower(e: impl Into<crate::Error>) -> ContourError {
 
 /// Triangulates the samples (2D or 3D by `samples.dim`) and computes their contour. Samples
 /// without a value are skipped; samples at the same position share a vertex whose value is
-/// their mean. O(n log n) for the triangulation, O(n) after it.
+/// their mean. O(n log n) for the triangulation, O(n) after it; the triangulation, made here,
+/// is not re-validated by the contour phase (a given one is: [`super::contour_triangulated_2d`]).
 ///
 /// ```
 /// use morpho::contour::{contour_samples, SampleContour, SampleOptions};
@@ -51,16 +51,8 @@ pub fn contour_samples(
             })
             .collect();
         let d = d2::triangulate(&pts).map_err(lower)?;
-        let tri = SampleTriangulation2 {
-            points: &d.points,
-            vertex_of_input: &d.vertex_of_input,
-            input_of_vertex: &d.input_of_vertex,
-            triangles: &d.triangles,
-            neighbors: Some(&d.neighbors),
-        };
-        Ok(SampleContour::Plane(contour_triangulated_2d(
-            sel, tri, opts,
-        )?))
+        drop(pts);
+        Ok(SampleContour::Plane(contour_delaunay_2d(sel, d, opts)?))
     } else {
         let pts: Vec<Point3> = sel
             .input
@@ -71,15 +63,7 @@ pub fn contour_samples(
             })
             .collect();
         let d = d3::triangulate(&pts).map_err(lower)?;
-        let tri = SampleTriangulation3 {
-            points: &d.points,
-            vertex_of_input: &d.vertex_of_input,
-            input_of_vertex: &d.input_of_vertex,
-            tets: &d.tets,
-            neighbors: Some(&d.neighbors),
-        };
-        Ok(SampleContour::Space(contour_triangulated_3d(
-            sel, tri, opts,
-        )?))
+        drop(pts);
+        Ok(SampleContour::Space(contour_delaunay_3d(sel, d, opts)?))
     }
 }

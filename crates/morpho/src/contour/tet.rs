@@ -16,7 +16,7 @@
 //! Preconditions: the tetrahedra form a tetrahedrization (no overlaps; each face shared by at most
 //! two); either orientation is accepted, zero-volume tetrahedra are refused.
 
-use super::dual::{check_indices, check_neighbors, facet, simplex_neighbors, Dual};
+use super::dual::{check_indices, check_neighbors, facet, simplex_neighbors, Dual, Valid};
 use super::ContourError;
 use crate::geom::{orient3d, Point3};
 use crate::mesh::{Property, ScalarKind, TriMesh};
@@ -98,12 +98,36 @@ pub fn external_surface_with(
     points: &[Point3],
     black: &[bool],
 ) -> Result<Surface3, ContourError> {
+    external_surface_impl(tets, neighbors, points, black, None)
+}
+
+/// [`external_surface_with`] on a tetrahedrization `valid` vouches for (no re-validation).
+pub(crate) fn external_surface_valid(
+    tets: &[[u32; 4]],
+    neighbors: &[[u32; 4]],
+    points: &[Point3],
+    black: &[bool],
+    valid: Valid,
+) -> Result<Surface3, ContourError> {
+    external_surface_impl(tets, Some(neighbors), points, black, Some(valid))
+}
+
+fn external_surface_impl(
+    tets: &[[u32; 4]],
+    neighbors: Option<&[[u32; 4]]>,
+    points: &[Point3],
+    black: &[bool],
+    valid: Option<Valid>,
+) -> Result<Surface3, ContourError> {
     if black.len() != tets.len() {
         return Err(ContourError::ColourCount {
             colours: black.len(),
             simplices: tets.len(),
             kind: "tetrahedra",
         });
+    }
+    if let (Some(_), Some(nb)) = (valid, neighbors) {
+        return Ok(surface_of(tets, nb, black));
     }
     check_indices(tets, points.len())?;
     if let Some(i) = points
@@ -146,7 +170,13 @@ pub fn external_surface_with(
         }
         None => Cow::Owned(simplex_neighbors(&tets, points.len())?),
     };
-    let g = Dual::<4>::run(&nb, black);
+    Ok(surface_of(&tets, &nb, black))
+}
+
+/// §3.1–§3.4 and the faces of the marked tetrahedra on positively oriented tetrahedra with
+/// their neighbours.
+fn surface_of(tets: &[[u32; 4]], nb: &[[u32; 4]], black: &[bool]) -> Surface3 {
+    let g = Dual::<4>::run(nb, black);
     let (comp, ncomp) = g.black_components();
     let mut out = Surface3 {
         black: black.iter().filter(|&&b| b).count(),
@@ -165,7 +195,7 @@ pub fn external_surface_with(
             }
         }
     }
-    Ok(out)
+    out
 }
 
 #[cfg(test)]
