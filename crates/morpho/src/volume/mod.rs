@@ -331,36 +331,44 @@ impl Volume {
                 needed: n,
             });
         }
-        match &self.axes {
-            Axes::Uniform { origin, spacing } => {
-                if origin.iter().chain(spacing).any(|v| !v.is_finite())
-                    || spacing.iter().any(|&s| s <= 0.0)
-                {
-                    return Err(VolumeError::BadSpacing {
-                        origin: *origin,
-                        spacing: *spacing,
+        validate_axes(&self.axes, self.dims)?;
+        Ok(())
+    }
+}
+
+/// The check of [`Volume::validate`] on the axes of a grid of `dims` samples: finite origin and
+/// positive finite spacing, or per-axis coordinates of the right length, finite and strictly
+/// increasing.
+pub(crate) fn validate_axes(axes: &Axes, dims: [usize; 3]) -> Result<(), VolumeError> {
+    match axes {
+        Axes::Uniform { origin, spacing } => {
+            if origin.iter().chain(spacing).any(|v| !v.is_finite())
+                || spacing.iter().any(|&s| s <= 0.0)
+            {
+                return Err(VolumeError::BadSpacing {
+                    origin: *origin,
+                    spacing: *spacing,
+                });
+            }
+        }
+        Axes::Coords(c) => {
+            for k in 0..3 {
+                if c[k].len() != dims[k] {
+                    return Err(VolumeError::AxisLength {
+                        axis: k,
+                        found: c[k].len(),
+                        needed: dims[k],
                     });
                 }
-            }
-            Axes::Coords(c) => {
-                for k in 0..3 {
-                    if c[k].len() != self.dims[k] {
-                        return Err(VolumeError::AxisLength {
-                            axis: k,
-                            found: c[k].len(),
-                            needed: self.dims[k],
-                        });
-                    }
-                    if c[k]
-                        .windows(2)
-                        .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
-                        || c[k].iter().any(|v| !v.is_finite())
-                    {
-                        return Err(VolumeError::AxisNotIncreasing { axis: k });
-                    }
+                if c[k]
+                    .windows(2)
+                    .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+                    || c[k].iter().any(|v| !v.is_finite())
+                {
+                    return Err(VolumeError::AxisNotIncreasing { axis: k });
                 }
             }
         }
-        Ok(())
     }
+    Ok(())
 }

@@ -39,7 +39,7 @@ use super::{finish, perturbation, IsoOptions, IsoResult, NormalMethod};
 use crate::geom::{Point3, Vector3};
 use crate::mesh::TriMesh;
 use crate::volume::gradient::{axis_coords, CentralTable};
-use crate::volume::{Axes, DType, Orientation, Volume, VolumeError};
+use crate::volume::{validate_axes, Axes, DType, Orientation, Volume, VolumeError};
 
 /// The geometry of the whole grid blocks are cut from: dimensions, axes, orientation.
 #[derive(Debug, Clone, PartialEq)]
@@ -94,36 +94,7 @@ impl VolumeGrid {
                 self.dims
             )));
         }
-        match &self.axes {
-            Axes::Uniform { origin, spacing } => {
-                if origin.iter().chain(spacing).any(|v| !v.is_finite())
-                    || spacing.iter().any(|&s| s <= 0.0)
-                {
-                    return Err(VolumeError::BadSpacing {
-                        origin: *origin,
-                        spacing: *spacing,
-                    });
-                }
-            }
-            Axes::Coords(c) => {
-                for k in 0..3 {
-                    if c[k].len() != self.dims[k] {
-                        return Err(VolumeError::AxisLength {
-                            axis: k,
-                            found: c[k].len(),
-                            needed: self.dims[k],
-                        });
-                    }
-                    if c[k]
-                        .windows(2)
-                        .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
-                        || c[k].iter().any(|v| !v.is_finite())
-                    {
-                        return Err(VolumeError::AxisNotIncreasing { axis: k });
-                    }
-                }
-            }
-        }
+        validate_axes(&self.axes, self.dims)?;
         Ok(n)
     }
 }
