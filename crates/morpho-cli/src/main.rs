@@ -74,6 +74,8 @@ enum Command {
     Curvature(cmd::curvature::Args),
     /// G¹ smooth curve through a polygon or G¹ surface through a closed mesh (cubic Bézier).
     Smooth(cmd::smooth::Args),
+    /// Fewer triangles, same shape and genus: curvature-driven triangle reduction.
+    Reduce(cmd::reduce::Args),
     /// An interactive page (WebGL 2, offline) showing meshes, points, shapes and volumes.
     View(cmd::view::Args),
 }
@@ -167,7 +169,7 @@ fn remove_temporaries_on_signals() {
     }
 }
 
-const SUBCOMMANDS: [&str; 13] = [
+const SUBCOMMANDS: [&str; 14] = [
     "demo",
     "info",
     "convert",
@@ -180,6 +182,7 @@ const SUBCOMMANDS: [&str; 13] = [
     "flint",
     "curvature",
     "smooth",
+    "reduce",
     "view",
 ];
 
@@ -269,6 +272,7 @@ fn main() -> ExitCode {
         Command::Flint(_) => "flint",
         Command::Curvature(_) => "curvature",
         Command::Smooth(_) => "smooth",
+        Command::Reduce(_) => "reduce",
         Command::View(_) => "view",
     };
     // every path named on the command line, checked before anything is read or written
@@ -316,6 +320,10 @@ fn main() -> ExitCode {
             }
         }
         Command::Smooth(a) => {
+            paths.inputs.push(&a.input);
+            paths.output(&a.output);
+        }
+        Command::Reduce(a) => {
             paths.inputs.push(&a.input);
             paths.output(&a.output);
         }
@@ -374,6 +382,7 @@ fn main() -> ExitCode {
         Command::Flint(a) => cmd::flint::run(a, &mut report),
         Command::Curvature(a) => cmd::curvature::run(a, &mut report),
         Command::Smooth(a) => cmd::smooth::run(a, &mut report),
+        Command::Reduce(a) => cmd::reduce::run(a, &mut report),
         Command::View(a) => cmd::view::run(a, &mut report),
     };
     let code = match result {

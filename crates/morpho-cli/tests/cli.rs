@@ -876,3 +876,288 @@ fn points_and_polygons_convert_through_geojson_and_ascii_ply() {
     let head = std::fs::read(&ply).unwrap();
     assert!(head.starts_with(b"ply\nformat ascii 1.0\n"));
 }
+
+// ---- morpho reduce (issue 21) ----
+
+fn json(p: &Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(p).unwrap()).unwrap()
+}
+
+/// An n×n grid over [-1, 1]² as an ASCII PLY height field z = f(x, y), with vertex
+/// properties `red green blue` (uchar, from the grid index) and `quality` (float, = z).
+fn grid_ply(n: usize, f: impl Fn(f64, f64) -> f64) -> String {
+    let mut s = format!(
+        "ply\nformat ascii 1.0\nelement vertex {}\nproperty double x\nproperty double y\nproperty double z\n\
+property uchar red\nproperty uchar green\nproperty uchar blue\nproperty float quality\n\
+element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+        n * n,
+        2 * (n - 1) * (n - 1)
+    );
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (
+                -1.0 + 2.0 * i as f64 / (n - 1) as f64,
+                -1.0 + 2.0 * j as f64 / (n - 1) as f64,
+            );
+            let z = f(x, y);
+            s += &format!(
+                "{x} {y} {z} {} {} {} {z}\n",
+                i % 256,
+                j % 256,
+                (i + j) % 256
+            );
+        }
+    }
+    let id = |i: usize, j: usize| j * n + i;
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            s += &format!("3 {} {} {}\n", id(i, j), id(i + 1, j), id(i + 1, j + 1));
+            s += &format!("3 {} {} {}\n", id(i, j), id(i + 1, j + 1), id(i, j + 1));
+        }
+    }
+    s
+}
+
+#[test]
+fn reduce_real_scan_keeps_topology_and_reports() {
+    // MORPHO_SHARED_DATA names the data folder from a worktree elsewhere
+    let Some(data) = std::env::var_os("MORPHO_SHARED_DATA")
+        .map(PathBuf::from)
+        .or_else(data_dir)
+    else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    for (name, chi, loops) in [("bunny_npm.obj", 2, 0), ("stanford-bunny.obj.gz", -3, 5)] {
+        let input = data.join("meshes").join(name);
+        let out = dir.path().join("out.ply");
+        let rep = dir.path().join("r.json");
+        let o = morpho(&[
+            "reduce",
+            input.to_str().unwrap(),
+            "--keep",
+            "25",
+            "-o",
+            out.to_str().unwrap(),
+            "--check",
+            "--report",
+            rep.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{name}: {}", stderr(&o));
+        let r = json(&rep);
+        let tin = r["triangles_in"].as_u64().unwrap();
+        let tout = r["triangles_out"].as_u64().unwrap();
+        assert!(tout <= tin / 4 && tout > tin / 5, "{name}: {tin} → {tout}");
+        assert_eq!(r["euler_characteristic"], chi, "{name}");
+        assert_eq!(r["boundary_loops"], loops, "{name}");
+        assert_eq!(r["parts"], 1, "{name}");
+        assert_eq!(r["manifold"], true, "{name}");
+        assert_eq!(r["consistently_oriented"], true, "{name}");
+        assert_eq!(r["self_intersections"], 0, "{name}");
+        assert_eq!(r["no_removable_left"], false, "{name}");
+        assert_eq!(r["stop"], "target", "{name}");
+        let (rms, h) = (r["rms"].as_f64().unwrap(), r["hausdorff"].as_f64().unwrap());
+        assert!(rms > 0.0 && rms <= h, "{name}: rms {rms} hausdorff {h}");
+        for k in ["read", "compute", "measure", "write"] {
+            assert!(r["timings"][k].as_f64().is_some(), "{name}: timing {k}");
+        }
+        assert!(r["triangles_per_second"].as_f64().unwrap() > 0.0);
+        // the written mesh is what the report says
+        let m = morpho::io::read_mesh(&out).unwrap();
+        assert_eq!(m.triangles.len() as u64, tout);
+        let t = morpho::mesh::analyze_topology(&m);
+        assert_eq!(t.euler_characteristic, chi);
+        if chi == 2 {
+            assert_eq!(t.genus(), Some(0));
+            assert_eq!(r["genus"], 0);
+        }
+    }
+}
+
+#[test]
+fn reduce_keeps_ply_vertex_properties_of_surviving_vertices() {
+    let dir = tempfile::tempdir().unwrap();
+    // a plane: new points stay on it, so the interpolated `quality` (= z) stays exact
+    let f = write(
+        dir.path(),
+        "plane.ply",
+        grid_ply(21, |x, y| 0.2 * x + 0.3 * y).as_bytes(),
+    );
+    let out = dir.path().join("out.ply");
+    let rep = dir.path().join("r.json");
+    let o = morpho(&[
+        "reduce",
+        f.to_str().unwrap(),
+        "--keep",
+        "30",
+        "--height-field",
+        "-o",
+        out.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let input = morpho::io::read_mesh(&f).unwrap();
+    let m = morpho::io::read_mesh(&out).unwrap();
+    assert!(m.triangles.len() <= 240);
+    let names: Vec<&str> = m.vertex_props.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(names, ["red", "green", "blue", "quality"]);
+    let prop = |mesh: &morpho::mesh::TriMesh, name: &str| {
+        mesh.vertex_props
+            .iter()
+            .find(|p| p.name == name)
+            .unwrap()
+            .values
+            .clone()
+    };
+    let (q, red, green) = (prop(&m, "quality"), prop(&m, "red"), prop(&m, "green"));
+    let (red_in, green_in) = (prop(&input, "red"), prop(&input, "green"));
+    let mut kept = 0;
+    for (i, p) in m.positions.iter().enumerate() {
+        assert!((q[i] - p.z).abs() < 1e-6, "quality {} at z {}", q[i], p.z);
+        assert!((p.z - (0.2 * p.x + 0.3 * p.y)).abs() < 1e-12);
+        assert_eq!(red[i].fract(), 0.0);
+        if let Some(s) = input.positions.iter().position(|x| x == p) {
+            assert_eq!((red[i], green[i]), (red_in[s], green_in[s]), "vertex {i}");
+            kept += 1;
+        }
+    }
+    let r = json(&rep);
+    assert!(kept > 0);
+    // a new point may land on an input vertex (a domain corner of the plane): it is
+    // interpolated there, to the same values
+    let interpolated = r["vertices_interpolated"].as_u64().unwrap() as usize;
+    assert!(interpolated >= m.positions.len() - kept && interpolated < m.positions.len());
+    assert!(r["rms"].as_f64().unwrap() < 1e-12);
+}
+
+#[test]
+fn reduce_tolerance_and_open_boundaries() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = write(
+        dir.path(),
+        "bowl.ply",
+        grid_ply(31, |x, y| 0.4 * (x * x + y * y)).as_bytes(),
+    );
+    let out = dir.path().join("out.ply");
+    let rep = dir.path().join("r.json");
+    let run = |extra: &[&str]| {
+        let mut a = vec!["reduce", f.to_str().unwrap(), "-o", out.to_str().unwrap()];
+        a.extend_from_slice(extra);
+        a.extend_from_slice(&["--report", rep.to_str().unwrap()]);
+        let o = morpho(&a);
+        assert_eq!(o.status.code(), Some(0), "{extra:?}: {}", stderr(&o));
+        json(&rep)
+    };
+    // (5.41)-style vertical RMS tolerance on the height field
+    let r = run(&["--rms", "0.002", "--height-field"]);
+    assert_eq!(r["stop"], "tolerance");
+    assert!(r["rms"].as_f64().unwrap() <= 0.002);
+    assert!(r["triangles_out"].as_u64().unwrap() < 1800);
+    // the same tolerance as a surface (distance to the reduced surface)
+    let r = run(&["--tolerance", "0.002"]);
+    assert_eq!(r["stop"], "tolerance");
+    assert!(r["rms"].as_f64().unwrap() <= 0.002);
+    assert_eq!(r["boundary_loops"], 1);
+    assert_eq!(r["euler_characteristic"], 1);
+    // frozen boundary: all 120 boundary vertices stay where they were
+    let r = run(&["--triangles", "400", "--freeze-boundary"]);
+    assert_eq!(r["boundary_loops"], 1);
+    let m = morpho::io::read_mesh(&out).unwrap();
+    let t = morpho::mesh::analyze_topology(&m);
+    assert_eq!(t.boundary_loops[0].len(), 120);
+    for &v in &t.boundary_loops[0] {
+        let p = m.positions[v as usize];
+        assert!(
+            p.x.abs() == 1.0 || p.y.abs() == 1.0,
+            "{p:?} left the boundary"
+        );
+    }
+}
+
+#[test]
+fn reduce_stops_early_when_nothing_is_removable() {
+    let dir = tempfile::tempdir().unwrap();
+    let tet = write(
+        dir.path(),
+        "tet.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n",
+    );
+    let out = dir.path().join("out.obj");
+    let rep = dir.path().join("r.json");
+    let o = morpho(&[
+        "reduce",
+        tet.to_str().unwrap(),
+        "--triangles",
+        "2",
+        "-o",
+        out.to_str().unwrap(),
+        "--report",
+        rep.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stderr(&o).contains("note: no removable triangle left"));
+    let r = json(&rep);
+    assert_eq!(r["no_removable_left"], true);
+    assert_eq!(r["stop"], "no_removable_left");
+    assert_eq!(r["triangles_out"], 4);
+}
+
+#[test]
+fn reduce_bad_input_exits_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let out = d.join("out.ply");
+    let o_ = out.to_str().unwrap();
+    let cube = write(d, "cube.obj", CUBE_OBJ.as_bytes());
+    let fin = write(
+        d,
+        "fin.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n",
+    );
+    let flip = write(
+        d,
+        "flip.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nf 1 2 3\nf 1 2 4\n",
+    );
+    let nan = write(d, "nan.obj", b"v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n");
+    let empty = write(d, "empty.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    for (file, extra) in [
+        (&fin, vec!["--keep", "50"]),
+        (&flip, vec!["--keep", "50"]),
+        (&nan, vec!["--keep", "50"]),
+        (&empty, vec!["--keep", "50"]),
+        (&cube, vec!["--keep", "0"]),
+        (&cube, vec!["--keep", "100.5"]),
+        (&cube, vec!["--keep", "-5"]),
+        (&cube, vec!["--triangles", "13"]),
+        (&cube, vec!["--rms", "-1"]),
+        (&cube, vec!["--keep", "50", "--height-field"]),
+    ] {
+        let mut a = vec!["reduce", file.to_str().unwrap(), "-o", o_];
+        a.extend(extra.iter().copied());
+        let o = morpho(&a);
+        assert_input_error(&o, file);
+        assert!(!out.exists(), "{extra:?}: output written");
+    }
+    // usage: no stop, two stops, an output that is not a mesh
+    for extra in [
+        vec![],
+        vec!["--keep", "50", "--triangles", "4"],
+        vec!["--keep", "50", "-o", "x.csv"],
+    ] {
+        let mut a = vec!["reduce", cube.to_str().unwrap()];
+        if !extra.contains(&"-o") {
+            a.extend(["-o", o_]);
+        }
+        a.extend(extra.iter().copied());
+        let o = morpho(&a);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {}", stderr(&o));
+        assert!(stderr(&o).starts_with("error: "), "{}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"));
+    }
+    assert_only(
+        d,
+        &["cube.obj", "fin.obj", "flip.obj", "nan.obj", "empty.obj"],
+    );
+}

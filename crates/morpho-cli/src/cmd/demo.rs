@@ -56,6 +56,7 @@ const SECTIONS: &[(&str, Builder)] = &[
     ("volumes", volume_section),
     ("volume views", crate::cmd::views::demo_section),
     ("contour surfaces", isosurface_section),
+    ("triangle reduction", crate::cmd::reduce::demo_section),
     ("contours of rated samples", contour_section),
 ];
 

@@ -12,6 +12,7 @@ pub mod flint;
 pub mod graph;
 pub mod info;
 pub mod isosurface;
+pub mod reduce;
 pub mod render;
 pub mod smooth;
 pub mod triangulate;

@@ -12,9 +12,12 @@
 //!   ((5.18)), [`angle_weight`] / [`triangle_weight`] (Defs 5.11–5.13),
 //!   [`graph_quadratic_curvature`] (Thm 5.5, corrected) and [`quadric_curvature`] (Thm 5.6,
 //!   corrected), [`line_intersection`] ((5.33)).
+//! * [`mesh_distance`] (RMS at the input's vertices, sampled symmetric Hausdorff) and
+//!   [`carry_vertex_data`] for reports and outputs.
 //! * [`table51`]: the Table 5.1 protocol (9 functions on the 51×51 grid).
 
 mod corona;
+mod distance;
 mod engine;
 mod error;
 mod heap;
@@ -26,6 +29,7 @@ mod track;
 mod weight;
 
 pub use corona::{classify_corona, half_plane_test, CoronaClass};
+pub use distance::{carry_vertex_data, mesh_distance, MeshDistance, SurfaceIndex};
 pub use engine::{reduce, Domain, NewTriangles, ReduceOptions, Reduced, Stop, StopReason};
 pub use error::ReduceError;
 pub use point::{
