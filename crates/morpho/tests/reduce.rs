@@ -117,7 +117,9 @@ fn euler_characteristic_after_every_removal_torus_and_double_torus() {
 }
 
 fn scan(name: &str) -> TriMesh {
-    let p = std::path::Path::new("/work/shared/data/meshes").join(name);
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data/meshes")
+        .join(name);
     morpho::io::read_mesh(&p).unwrap()
 }
 
@@ -445,4 +447,114 @@ fn table_5_1_within_1_25_of_the_thesis() {
     };
     let r = reduce(&mesh, &o).unwrap();
     assert!(table51::knot_rms(&r.mesh, f).0 > 10.0 * table51::THESIS[3][0]);
+}
+
+/// The surface of the box [0, n]³ as a closed mesh with n × n squares per face (two
+/// triangles each), outward oriented.
+fn grid_box(n: u32) -> TriMesh {
+    use std::collections::HashMap;
+    let mut ids: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut pos = Vec::new();
+    let mut tris = Vec::new();
+    let mut id = |p: [u32; 3], pos: &mut Vec<Point3>| {
+        *ids.entry(p).or_insert_with(|| {
+            pos.push(Point3::new(p[0] as f64, p[1] as f64, p[2] as f64));
+            (pos.len() - 1) as u32
+        })
+    };
+    for a in 0..3 {
+        let (u, v) = ((a + 1) % 3, (a + 2) % 3);
+        for s in [0, n] {
+            for i in 0..n {
+                for j in 0..n {
+                    let mut q = |di: u32, dj: u32| {
+                        let mut p = [0; 3];
+                        p[a] = s;
+                        p[u] = i + di;
+                        p[v] = j + dj;
+                        id(p, &mut pos)
+                    };
+                    let (p00, p10, p11, p01) = (q(0, 0), q(1, 0), q(1, 1), q(0, 1));
+                    if s == n {
+                        tris.push([p00, p10, p11]);
+                        tris.push([p00, p11, p01]);
+                    } else {
+                        tris.push([p00, p11, p10]);
+                        tris.push([p00, p01, p11]);
+                    }
+                }
+            }
+        }
+    }
+    TriMesh::new(pos, tris)
+}
+
+#[test]
+fn error_levels_keep_a_box_exact_where_the_weight_order_rounds_it() {
+    let b = grid_box(8);
+    assert_eq!(analyze_topology(&b).euler_characteristic, 2);
+    let run = |order: Order| {
+        let o = ReduceOptions {
+            stop: Stop::Keep(30.0),
+            order,
+            ..Default::default()
+        };
+        let r = reduce(&b, &o).unwrap();
+        assert_valid(&b, &r.mesh, "box");
+        no_self_intersection(&r.mesh, "box");
+        mesh_distance(&b, &r.mesh)
+    };
+    let levels = run(Order::ErrorLevels);
+    let hamann = run(Order::Hamann);
+    // flat removals first, creases and corners kept: every input vertex stays on the output
+    assert!(levels.hausdorff < 1e-9, "levels: {levels:?}");
+    // the thesis's order alone takes flat triangles beside the creases and rounds them
+    assert!(hamann.hausdorff > 1e-3, "hamann: {hamann:?}");
+}
+
+#[test]
+fn error_levels_beat_the_weight_order_on_curved_scans_and_keep_the_guarantees() {
+    for name in ["bunny_npm.obj", "spot.obj"] {
+        let m = scan(name);
+        let mut rms = Vec::new();
+        for order in [Order::ErrorLevels, Order::Hamann] {
+            let o = ReduceOptions {
+                stop: Stop::Keep(20.0),
+                order,
+                ..Default::default()
+            };
+            let r = reduce(&m, &o).unwrap();
+            assert_valid(&m, &r.mesh, name);
+            no_self_intersection(&r.mesh, name);
+            assert!(r.mesh.triangles.len() <= m.triangles.len() / 5, "{name}");
+            rms.push(mesh_distance(&m, &r.mesh).rms);
+        }
+        assert!(
+            rms[0] < 0.8 * rms[1],
+            "{name}: levels {} vs hamann {}",
+            rms[0],
+            rms[1]
+        );
+    }
+}
+
+#[test]
+fn error_levels_with_a_tolerance_stop_within_it() {
+    let m = generate::torus(2.0, 0.7, 48, 24);
+    let tol = 0.05;
+    let o = ReduceOptions {
+        stop: Stop::MaxError(tol),
+        order: Order::ErrorLevels,
+        ..Default::default()
+    };
+    let r = reduce(&m, &o).unwrap();
+    assert_eq!(r.stop, StopReason::Tolerance);
+    assert!(r.max_error.unwrap() <= tol);
+    assert!(mesh_distance(&m, &r.mesh).max_input_to_output <= tol * (1.0 + 1e-9));
+    assert!(
+        r.mesh.triangles.len() < m.triangles.len() / 2,
+        "{}",
+        r.mesh.triangles.len()
+    );
+    assert_valid(&m, &r.mesh, "torus");
 }

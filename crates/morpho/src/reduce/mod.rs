@@ -30,7 +30,7 @@ mod weight;
 
 pub use corona::{classify_corona, half_plane_test, CoronaClass};
 pub use distance::{carry_vertex_data, mesh_distance, MeshDistance, SurfaceIndex};
-pub use engine::{reduce, Domain, NewTriangles, ReduceOptions, Reduced, Stop, StopReason};
+pub use engine::{reduce, Domain, NewTriangles, Order, ReduceOptions, Reduced, Stop, StopReason};
 pub use error::ReduceError;
 pub use point::{
     graph_quadratic_curvature, line_intersection, quadric_curvature, NewPoint, Quadric,

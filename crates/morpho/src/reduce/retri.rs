@@ -43,6 +43,7 @@ pub(crate) fn improve(
     let convex = |q: [usize; 4], c: &[[f64; 2]]| {
         (0..4).all(|i| orient2d(c[q[i]], c[q[(i + 1) % 4]], c[q[(i + 2) % 4]]) > 0.0)
     };
+    let mut w: Vec<f64> = tris.iter().map(|&t| sigma(t)).collect();
     let mut swaps = 0;
     for _pass in 0..64 {
         let mut changed = false;
@@ -67,8 +68,9 @@ pub(crate) fn improve(
                         continue;
                     }
                     let (n1, n2) = ([a, x, b], [b, y, a]);
-                    let old = sigma(tris[i]).min(sigma(tris[j]));
-                    let new = sigma(n1).min(sigma(n2));
+                    let old = w[i].min(w[j]);
+                    let (w1, w2) = (sigma(n1), sigma(n2));
+                    let new = w1.min(w2);
                     if new.partial_cmp(&(old + 1e-12)) != Some(std::cmp::Ordering::Greater) {
                         continue;
                     }
@@ -77,6 +79,7 @@ pub(crate) fn improve(
                     }
                     tris[i] = n1;
                     tris[j] = n2;
+                    (w[i], w[j]) = (w1, w2);
                     swaps += 1;
                     changed = true;
                     break;

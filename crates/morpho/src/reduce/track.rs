@@ -99,6 +99,11 @@ impl Tracker {
         (sse.max(0.0), max)
     }
 
+    /// The largest error of the knots re-assigned by the last [`Tracker::evaluate`].
+    pub fn last_local_max(&self) -> f64 {
+        self.pending.iter().fold(0.0, |m, x| m.max(x.2))
+    }
+
     /// Applies the last [`Tracker::evaluate`] with the slots of the new triangles.
     pub fn commit(&mut self, removed: &[u32], slots: &[u32], sse: f64, max: f64) {
         for &t in removed {
