@@ -4,6 +4,7 @@ Shapes from scattered points, samples and volumes: Delaunay triangulations, geom
 (γ-graph, α-shapes, β-skeletons, …), boundaries through all points (γ-constriction), contour
 surfaces of volumes (marching cubes with the asymptotic decider, consistent), region contours of
 rated samples, flintstone trees, curvature of meshes, and every morpho file format.
+Contour surfaces of chunked volumes larger than memory, on Dask: ``morpho.dask.isosurface``.
 
 Arrays
 ------
@@ -229,7 +230,9 @@ def write(path, data=None, ascii=False, **arrays):
     ``write(path, read(other))`` converts; or by keywords: ``write("m.ply", vertices=v,
     faces=f, normals=n)``, ``write("p.csv", points=p, columns={"value": z})``,
     ``write("v.nrrd", volume=vol, spacing=(…), origin=(…))`` (``vol[x, y, z]``, any layout),
-    ``write("p.geojson", polygons=[[ring, …], …])``.
+    ``write("p.geojson", polygons=[[ring, …], …])``. Meshes may carry extra columns,
+    ``vertex_properties={name: (n,) array}`` and ``face_properties={name: (m,) array}`` (PLY:
+    written with their dtype when PLY has it — (u)int8/16/32, float32 — else as float64).
     """
     import os
 
@@ -248,12 +251,34 @@ def write(path, data=None, ascii=False, **arrays):
             v = [[_coords(r, "ring", (2,)) for r in poly] for poly in v]
         elif k in ("polylines",):
             v = [_coords(r, "polyline", (2,)) for r in v]
+        elif k in ("vertex_properties", "face_properties") and v is not None:
+            v = {str(name): _prop(x, f"{k[:-11]} property {name}") for name, x in v.items()}
         elif k == "volume":
             v = _np.asarray(v)
             if v.ndim != 3:
                 raise ValueError(f"volume: expected a 3D array, got shape {v.shape}")
         out[k] = v
     return _morpho.write(os.fspath(path), out, bool(ascii))
+
+
+def _prop(a, what):
+    """A property column: 1D, its own dtype when PLY has it, else float64."""
+    a = _np.asarray(a)
+    if a.ndim != 1 or a.dtype.kind not in "iuf":
+        raise ValueError(f"{what}: expected a 1D array of numbers, got {a.dtype} {a.shape}")
+    if a.dtype not in (_np.uint8, _np.int8, _np.uint16, _np.int16, _np.uint32, _np.int32,
+                       _np.float32, _np.float64):
+        a = a.astype(_np.float64)
+    return _np.ascontiguousarray(a)
+
+
+def __getattr__(name):
+    # ``morpho.dask`` (chunked contour surfaces) is imported on first use: it needs dask.
+    if name == "dask":
+        import importlib
+
+        return importlib.import_module(".dask", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def flint(points, closed=True):
