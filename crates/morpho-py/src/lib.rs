@@ -14,6 +14,7 @@ mod flint;
 mod io;
 mod mesh;
 mod points;
+mod reduce;
 mod volume;
 
 use pyo3::prelude::*;
@@ -38,6 +39,8 @@ fn _morpho(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(blocks::_stitch_blocks, m)?)?;
     m.add_function(wrap_pyfunction!(mesh::info, m)?)?;
     m.add_function(wrap_pyfunction!(mesh::curvature, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::reduce, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::smooth, m)?)?;
     m.add_function(wrap_pyfunction!(io::read, m)?)?;
     m.add_function(wrap_pyfunction!(io::write, m)?)?;
     m.add_class::<flint::FlintTree>()?;
