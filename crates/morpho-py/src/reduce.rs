@@ -158,11 +158,13 @@ pub fn smooth<'py>(
     let s = s.map_err(py_err)?;
     let per = |d: usize| s.patches.len().saturating_mul(d * d);
     let density = match density {
-        Some(d) if per(d) > 32_000_000 => return Err(bad(format!(
+        Some(d) if per(d) > 32_000_000 => {
+            return Err(bad(format!(
             "smooth: density {d} would give {} triangles over {} patches; choose a smaller density",
             per(d),
             s.patches.len()
-        ))),
+        )))
+        }
         Some(d) => d,
         None => (1..=8).rev().find(|&d| per(d) <= 4_000_000).unwrap_or(1),
     };

@@ -39,7 +39,7 @@ import numpy as _np
 
 from . import _morpho
 
-__all__ = ["isosurface", "read_chunked"]
+__all__ = ["isosurface", "read_chunked", "from_raw"]
 
 _METHODS = ("decider", "tetra", "lorensen")
 _NORMALS = ("zucker", "central", "mesh", "none")
@@ -289,6 +289,33 @@ def isosurface(darr, level=None, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0)
         json.dump(index, fh, indent=1)
     os.replace(tmp, out)
     return index
+
+
+def _raw_block(block, path, dtype, shape, offset, block_info=None):
+    loc = block_info[None]["array-location"]
+    mm = _np.memmap(path, dtype=dtype, mode="r", shape=shape, offset=offset)
+    return _np.array(mm[tuple(slice(a, b) for a, b in loc)])
+
+
+def from_raw(path, shape, dtype, chunks="auto", offset=0):
+    """A headerless raw file (C order: the last axis varies fastest — a volume stored x fastest
+    is ``shape=(nz, ny, nx)``) as a Dask array whose chunks are read by memory-mapping the file
+    **in the worker**: nothing but the path travels, so it suits ``dask.distributed``
+    (``da.from_array(np.memmap(…))`` would ship the whole map to the workers). ``offset``: bytes
+    to skip (e.g. an attached NRRD header with raw encoding); ``dtype`` e.g. ``"<u2"``."""
+    import dask.array as da
+
+    path = os.path.abspath(os.fspath(path))
+    dtype = _np.dtype(dtype)
+    shape = tuple(int(n) for n in shape)
+    need = offset + dtype.itemsize * int(_np.prod(shape))
+    size = os.path.getsize(path)
+    if size < need:
+        raise ValueError(f"{path}: {size} bytes, a {shape} {dtype} volume needs {need}")
+    tmpl = da.empty(shape, dtype=dtype, chunks=chunks)
+    # the file's dtype goes positionally: map_blocks' own ``dtype`` is the result's
+    return tmpl.map_blocks(_raw_block, path, dtype, shape, int(offset), dtype=dtype,
+                           meta=_np.empty((0,) * len(shape), dtype))
 
 
 def read_chunked(index, return_report=False):

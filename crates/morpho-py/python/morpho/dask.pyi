@@ -56,3 +56,10 @@ def isosurface(
 def read_chunked(
     index: _Path, return_report: bool = False
 ) -> Union[Tuple[_F64, _U32, Optional[_F64]], Tuple[_F64, _U32, Optional[_F64], Dict[str, Any]]]: ...
+def from_raw(
+    path: _Path,
+    shape: Sequence[int],
+    dtype: npt.DTypeLike,
+    chunks: Any = "auto",
+    offset: int = 0,
+) -> Any: ...

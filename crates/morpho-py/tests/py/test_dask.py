@@ -174,7 +174,15 @@ def test_memory_mapped_raw_file(tmp_path):
     vol.tofile(tmp_path / "v.raw")
     mm = np.memmap(tmp_path / "v.raw", dtype="<f4", mode="r", shape=vol.shape)
     d = da.from_array(mm, chunks=(7, 9, 6))
-    assert_identical(mdask.isosurface(d, 0.2), morpho.isosurface(vol, 0.2))
+    ref = morpho.isosurface(vol, 0.2)
+    assert_identical(mdask.isosurface(d, 0.2), ref)
+    # mapped in the tasks (what a cluster needs), after a 100-byte header
+    with open(tmp_path / "h.raw", "wb") as fh:
+        fh.write(b"\0" * 100 + vol.tobytes())
+    d = mdask.from_raw(tmp_path / "h.raw", vol.shape, "<f4", chunks=(6, 10, 8), offset=100)
+    assert_identical(mdask.isosurface(d, 0.2), ref)
+    with pytest.raises(ValueError, match="needs"):
+        mdask.from_raw(tmp_path / "v.raw", (20, 24, 20), "<f4")
 
 
 def test_chunked_mesh_output(tmp_path):
@@ -197,7 +205,8 @@ def test_distributed_local_cluster(tmp_path):
     distributed = pytest.importorskip("distributed")
     vol = pm_volume((17, 15, 16), seed=11)
     ref = morpho.isosurface(vol, 0.0, return_report=True)
-    d = da.from_array(vol, chunks=(6, 8, 5))
+    vol.tofile(tmp_path / "v.raw")  # each worker maps the file itself
+    d = mdask.from_raw(tmp_path / "v.raw", vol.shape, vol.dtype, chunks=(6, 8, 5))
     with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
                                   dashboard_address=None, silence_logs=50) as cluster, \
             distributed.Client(cluster, timeout=60) as client:
