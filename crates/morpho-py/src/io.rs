@@ -142,8 +142,13 @@ fn properties(d: Option<Bound<'_, PyAny>>, n: usize, what: &str) -> PyResult<Vec
             ))
         })?;
         if values.len() != n {
+            let plural = if what == "vertex" {
+                "vertices"
+            } else {
+                "faces"
+            };
             return Err(bad(format!(
-                "{what} property {name}: {} values for {n} {what}s",
+                "{what} property {name}: {} values for {n} {plural}",
                 values.len()
             )));
         }

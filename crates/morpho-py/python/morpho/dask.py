@@ -66,7 +66,10 @@ def _as_dask(darr):
 
 
 def _three(v, what):
-    t = _np.broadcast_to(_np.asarray(v, dtype=float), (3,))
+    try:
+        t = _np.broadcast_to(_np.asarray(v, dtype=float), (3,))
+    except (ValueError, TypeError):
+        raise ValueError(f"{what}: expected a number or three numbers, got {v!r}") from None
     return tuple(float(s) for s in t)
 
 
@@ -221,10 +224,10 @@ def isosurface(darr, level=None, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0)
     Returns ``(vertices, faces, normals)`` (and the report dict with ``return_report=True``),
     identical to ``morpho.isosurface(np.asarray(darr), level, …)``. With ``out="dir/mesh.json"``
     the surface is written as a chunked mesh instead — one PLY part per chunk
-    (``dir/mesh.part-I-J-K.ply``, I, J, K the chunk's first cell, written by the workers, so ``dir`` must be visible to them;
-    vertex properties ``id_hi``/``id_lo`` are the global vertex id, face properties
-    ``cell_hi``/``cell_lo`` the cell) and the JSON index — and the index (a dict) is returned;
-    :func:`read_chunked` stitches it.
+    (``dir/mesh.part-I-J-K.ply``, I, J, K the chunk's first cell; written by the workers, so
+    ``dir`` must be visible to them; vertex properties ``id_hi``/``id_lo`` are the global
+    vertex id, face properties ``cell_hi``/``cell_lo`` the cell) and the JSON index — and the
+    index (a dict) is returned; :func:`read_chunked` stitches it.
     """
     import dask
 

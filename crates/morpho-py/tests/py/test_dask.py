@@ -158,7 +158,7 @@ def test_level_none_integers_plateaus_and_nan():
 
 
 def test_zarr_store(tmp_path):
-    zarr = pytest.importorskip("zarr")
+    import zarr
     vol = (sphere((25, 22, 27)) * 1000).astype(np.uint16)
     z = zarr.open_array(str(tmp_path / "v.zarr"), mode="w", shape=vol.shape, chunks=(8, 8, 8),
                         dtype="u2")
@@ -202,7 +202,7 @@ def test_chunked_mesh_output(tmp_path):
 
 
 def test_distributed_local_cluster(tmp_path):
-    distributed = pytest.importorskip("distributed")
+    import distributed
     vol = pm_volume((17, 15, 16), seed=11)
     ref = morpho.isosurface(vol, 0.0, return_report=True)
     vol.tofile(tmp_path / "v.raw")  # each worker maps the file itself
@@ -234,6 +234,8 @@ def test_bad_input_raises_value_error():
         mdask.isosurface(good, float("nan"))
     with pytest.raises(ValueError, match="spacing"):
         mdask.isosurface(good, 0.0, spacing=(1, 0, 1))
+    with pytest.raises(ValueError, match="spacing"):
+        mdask.isosurface(good, 0.0, spacing=(1, 2))
     with pytest.raises(ValueError, match="method"):
         mdask.isosurface(good, 0.0, method="nope")
     with pytest.raises(ValueError, match="normals"):
