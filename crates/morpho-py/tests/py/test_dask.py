@@ -5,7 +5,9 @@ after a canonical sort), the same parts and χ — for several chunkings (uneven
 on a two-process ``dask.distributed`` cluster; as a chunked mesh (PLY parts + JSON index).
 Negative controls show that a missing chunk, a missing halo or a wrong id break the checks."""
 
+import contextlib
 import json
+import signal
 
 import numpy as np
 import pytest
@@ -201,14 +203,30 @@ def test_chunked_mesh_output(tmp_path):
     assert got[3] == ref[3]
 
 
+@contextlib.contextmanager
+def time_limit(seconds):
+    """Fails (instead of hanging) when the block takes longer than `seconds`."""
+    def expire(*_):
+        raise TimeoutError(f"took more than {seconds} s")
+
+    old = signal.signal(signal.SIGALRM, expire)
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+
+
 def test_distributed_local_cluster(tmp_path):
     import distributed
     vol = pm_volume((17, 15, 16), seed=11)
     ref = morpho.isosurface(vol, 0.0, return_report=True)
     vol.tofile(tmp_path / "v.raw")  # each worker maps the file itself
     d = mdask.from_raw(tmp_path / "v.raw", vol.shape, vol.dtype, chunks=(6, 8, 5))
-    with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
-                                  dashboard_address=None, silence_logs=50) as cluster, \
+    with time_limit(120), \
+            distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
+                                     dashboard_address=None, silence_logs=50) as cluster, \
             distributed.Client(cluster, timeout=60) as client:
         got = mdask.isosurface(d, 0.0, return_report=True)
         ix = mdask.isosurface(d, 0.0, out=tmp_path / "m.json")
