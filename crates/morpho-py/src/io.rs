@@ -13,7 +13,7 @@ use crate::convert::{as_points3, bad, compute, coords, frows, py_err, rows};
 use crate::mesh::trimesh;
 use morpho::geom::{Point2, Vector3};
 use morpho::io::{self, Data, Encoding};
-use morpho::mesh::{Column, PointSet, Polygon, Polyline, Shapes2};
+use morpho::mesh::{Column, PointSet, Polygon, Polyline, Property, ScalarKind, Shapes2};
 use morpho::volume::Axes;
 use numpy::ndarray::{Array2, Array3, ShapeBuilder};
 use numpy::{PyArray1, PyArray2, PyArray3, PyReadonlyArray1, PyReadonlyArray2};
@@ -115,6 +115,48 @@ fn ring(a: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<Point2>> {
     Ok(crate::convert::as_points2(s).to_vec())
 }
 
+/// Extra per-vertex or per-face columns (`{name: (n,) array}`), each written with the kind of
+/// its dtype (8/16/32-bit integers, float32; anything else as float64 by the caller).
+fn properties(d: Option<Bound<'_, PyAny>>, n: usize, what: &str) -> PyResult<Vec<Property>> {
+    let Some(d) = d.filter(|d| !d.is_none()) else {
+        return Ok(Vec::new());
+    };
+    let d = d
+        .downcast::<PyDict>()
+        .map_err(|_| bad(format!("{what}_properties: expected a dict of arrays")))?;
+    let mut out = Vec::new();
+    for (k, v) in d.iter() {
+        let name: String = k.extract()?;
+        macro_rules! kind {
+            ($($t:ty => $kind:ident),*) => {{
+                $(if let Ok(a) = v.extract::<PyReadonlyArray1<'_, $t>>() {
+                    Some((ScalarKind::$kind, a.as_array().iter().map(|&x| x as f64).collect::<Vec<f64>>()))
+                } else)* { None }
+            }};
+        }
+        let (kind, values) = kind!(u8 => U8, i8 => I8, u16 => U16, i16 => I16, u32 => U32,
+            i32 => I32, f32 => F32, f64 => F64)
+        .ok_or_else(|| {
+            bad(format!(
+                "{what} property {name}: expected a 1D array of (u)int8/16/32, float32 or float64"
+            ))
+        })?;
+        if values.len() != n {
+            let plural = if what == "vertex" {
+                "vertices"
+            } else {
+                "faces"
+            };
+            return Err(bad(format!(
+                "{what} property {name}: {} values for {n} {plural}",
+                values.len()
+            )));
+        }
+        out.push(Property { name, kind, values });
+    }
+    Ok(out)
+}
+
 /// Writes a dict like those `read` returns (the kind from its keys: `faces` → mesh, `volume` →
 /// volume, `polygons`/`polylines` → shapes, `points` → points), atomically; the format by the
 /// extension. `ascii=True` writes ASCII PLY/VTK.
@@ -150,6 +192,8 @@ pub fn write(py: Python<'_>, path: PathBuf, data: &Bound<'_, PyDict>, ascii: boo
                 );
             }
         }
+        m.vertex_props = properties(get("vertex_properties")?, m.positions.len(), "vertex")?;
+        m.face_props = properties(get("face_properties")?, m.triangles.len(), "face")?;
         return compute(py, || io::write_mesh(&path, &m, enc))?.map_err(py_err);
     }
     if let Some(vol) = get("volume")? {

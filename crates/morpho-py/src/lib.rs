@@ -8,11 +8,13 @@
 //! `RuntimeError`, never an abort) and turns library errors into `ValueError` (bad input),
 //! `OSError` (files) or `RuntimeError`, with the library's message.
 
+mod blocks;
 mod convert;
 mod flint;
 mod io;
 mod mesh;
 mod points;
+mod reduce;
 mod volume;
 
 use pyo3::prelude::*;
@@ -32,8 +34,13 @@ fn _morpho(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(points::boundary, m)?)?;
     m.add_function(wrap_pyfunction!(points::contour, m)?)?;
     m.add_function(wrap_pyfunction!(volume::isosurface, m)?)?;
+    m.add_function(wrap_pyfunction!(blocks::_block_range, m)?)?;
+    m.add_function(wrap_pyfunction!(blocks::_isosurface_block, m)?)?;
+    m.add_function(wrap_pyfunction!(blocks::_stitch_blocks, m)?)?;
     m.add_function(wrap_pyfunction!(mesh::info, m)?)?;
     m.add_function(wrap_pyfunction!(mesh::curvature, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::reduce, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::smooth, m)?)?;
     m.add_function(wrap_pyfunction!(io::read, m)?)?;
     m.add_function(wrap_pyfunction!(io::write, m)?)?;
     m.add_class::<flint::FlintTree>()?;

@@ -59,20 +59,10 @@ pub fn info<'py>(
     Ok(d)
 }
 
-/// Per-vertex curvature of a triangle mesh: a dict of `(n,)` arrays `k1, k2, H, K, A`, `(n, 3)`
-/// arrays `dir1, dir2, normals`, `status` (0 ok, 1 isolated, 2 no normal, 3 too few points,
-/// 4 ill-conditioned; the curvatures of such vertices are NaN) and `undetermined`.
-#[pyfunction]
-#[pyo3(signature = (vertices, faces, normals=None, ring=1))]
-pub fn curvature<'py>(
-    py: Python<'py>,
-    vertices: PyReadonlyArray2<'py, f64>,
-    faces: &Bound<'py, PyAny>,
-    normals: Option<&Bound<'py, PyAny>>,
-    ring: usize,
-) -> PyResult<Bound<'py, PyDict>> {
-    let m = trimesh(&vertices, faces)?;
-    let source = match normals {
+/// Vertex normals from Python: `None` (area weighting), a weighting name (`area`, `uniform`,
+/// `inverse`) or an `(n, 3)` float64 array (the caller's normals).
+pub fn normal_source(normals: Option<&Bound<'_, PyAny>>) -> PyResult<NormalSource> {
+    Ok(match normals {
         None => NormalSource::Estimated(NormalWeighting::Area),
         Some(n) => {
             if let Ok(s) = n.extract::<String>() {
@@ -99,7 +89,23 @@ pub fn curvature<'py>(
                 )
             }
         }
-    };
+    })
+}
+
+/// Per-vertex curvature of a triangle mesh: a dict of `(n,)` arrays `k1, k2, H, K, A`, `(n, 3)`
+/// arrays `dir1, dir2, normals`, `status` (0 ok, 1 isolated, 2 no normal, 3 too few points,
+/// 4 ill-conditioned; the curvatures of such vertices are NaN) and `undetermined`.
+#[pyfunction]
+#[pyo3(signature = (vertices, faces, normals=None, ring=1))]
+pub fn curvature<'py>(
+    py: Python<'py>,
+    vertices: PyReadonlyArray2<'py, f64>,
+    faces: &Bound<'py, PyAny>,
+    normals: Option<&Bound<'py, PyAny>>,
+    ring: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let m = trimesh(&vertices, faces)?;
+    let source = normal_source(normals)?;
     let opts = SurfaceOptions {
         normals: source,
         ring,

@@ -10,7 +10,7 @@
 //! converted to `float32` (the library's sample type) in one pass, without the GIL.
 
 use crate::convert::{bad, compute, frows, py_err, rows};
-use morpho::volume::{isosurface as iso, IsoMethod, IsoOptions, NormalMethod, Volume};
+use morpho::volume::{isosurface as iso, IsoMethod, IsoOptions, IsoResult, NormalMethod, Volume};
 use numpy::ndarray::ArrayView3;
 use numpy::{Element, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -82,13 +82,48 @@ pub fn to_volume(
     try_dtype!(i32, |v| v as f32);
     try_dtype!(i64, |v| v as f32);
     try_dtype!(u64, |v| v as f32);
-    let desc = match a.getattr("dtype") {
-        Ok(d) => format!("an array of dtype {d} and ndim {}", a.getattr("ndim")?),
-        Err(_) => format!("a {}", a.get_type().name()?),
+    Err(unsupported(a))
+}
+
+/// The samples of a 3D array of any supported dtype in its logical order (the last axis
+/// fastest: the library's x is the array's axis 2), as `f32`, with the array's shape; one pass
+/// without the GIL, whatever the layout.
+pub fn c_samples(py: Python<'_>, a: &Bound<'_, PyAny>) -> PyResult<(Vec<f32>, [usize; 3])> {
+    macro_rules! try_dtype {
+        ($t:ty, $cast:expr) => {
+            if let Ok(arr) = a.extract::<PyReadonlyArray3<'_, $t>>() {
+                let s = arr.shape();
+                let shape = [s[0], s[1], s[2]];
+                let view = arr.as_array();
+                let data = compute(py, || samples(view, false, false, $cast))?;
+                return Ok((data, shape));
+            }
+        };
+    }
+    try_dtype!(f32, |v| v);
+    try_dtype!(f64, |v| v as f32);
+    try_dtype!(u8, |v| v as f32);
+    try_dtype!(i8, |v| v as f32);
+    try_dtype!(u16, |v| v as f32);
+    try_dtype!(i16, |v| v as f32);
+    try_dtype!(u32, |v| v as f32);
+    try_dtype!(i32, |v| v as f32);
+    try_dtype!(i64, |v| v as f32);
+    try_dtype!(u64, |v| v as f32);
+    Err(unsupported(a))
+}
+
+fn unsupported(a: &Bound<'_, PyAny>) -> PyErr {
+    let desc = match (a.getattr("dtype"), a.getattr("ndim")) {
+        (Ok(d), Ok(n)) => format!("an array of dtype {d} and ndim {n}"),
+        _ => match a.get_type().name() {
+            Ok(n) => format!("a {n}"),
+            Err(_) => "an object".to_string(),
+        },
     };
-    Err(bad(format!(
+    bad(format!(
         "volume: expected a 3D array of integers or floats, got {desc}"
-    )))
+    ))
 }
 
 /// The contour surface `f = level`: `(vertices (n, 3) float64, faces (m, 3) uint32,
@@ -107,6 +142,22 @@ pub fn isosurface<'py>(
     flip: bool,
     return_report: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
+    let opts = iso_options(level, method, normals, flip, return_report)?;
+    let (sp, or) = grid_frame(spacing, origin)?;
+    let (vol, reversed) = to_volume(py, volume, sp, or, false)?;
+    let r = compute(py, || iso(&vol, &opts))?.map_err(py_err)?;
+    drop(vol);
+    result(py, r, reversed, return_report)
+}
+
+/// The options of `isosurface` (and of the chunked contour of `blocks`) from the Python names.
+pub fn iso_options(
+    level: f64,
+    method: &str,
+    normals: &str,
+    flip: bool,
+    topology: bool,
+) -> PyResult<IsoOptions> {
     let method = match method {
         "decider" => IsoMethod::Decider,
         "tetra" => IsoMethod::Tetra,
@@ -131,6 +182,21 @@ pub fn isosurface<'py>(
     if !level.is_finite() {
         return Err(bad(format!("level must be a finite number, got {level}")));
     }
+    Ok(IsoOptions {
+        level,
+        method,
+        normals: normal_method,
+        flip,
+        parallel: true,
+        topology,
+    })
+}
+
+/// Spacing and origin as arrays, checked (positive finite spacing, finite origin).
+pub fn grid_frame(
+    spacing: (f64, f64, f64),
+    origin: (f64, f64, f64),
+) -> PyResult<([f64; 3], [f64; 3])> {
     let sp = [spacing.0, spacing.1, spacing.2];
     let or = [origin.0, origin.1, origin.2];
     if sp.iter().any(|s| !(s.is_finite() && *s > 0.0)) || or.iter().any(|o| !o.is_finite()) {
@@ -139,17 +205,17 @@ pub fn isosurface<'py>(
              got spacing {sp:?}, origin {or:?}"
         )));
     }
-    let (vol, reversed) = to_volume(py, volume, sp, or, false)?;
-    let opts = IsoOptions {
-        level,
-        method,
-        normals: normal_method,
-        flip,
-        parallel: true,
-        topology: return_report,
-    };
-    let r = compute(py, || iso(&vol, &opts))?.map_err(py_err)?;
-    drop(vol);
+    Ok((sp, or))
+}
+
+/// A library result as `isosurface`'s tuple; `reversed`: the library's x is the array's axis
+/// 2, so the columns are put back in axis order and the windings flipped.
+pub fn result<'py>(
+    py: Python<'py>,
+    r: IsoResult,
+    reversed: bool,
+    return_report: bool,
+) -> PyResult<Bound<'py, PyTuple>> {
     let m = r.mesh;
     // In place and without a copy: points and vectors are `[f64; 3]` (see `convert`).
     let (pos, tri, nor) = compute(py, || {

@@ -1,7 +1,9 @@
 //! Runs the Python tests (`tests/py`, pytest) of the `morpho` package from `cargo test`:
 //!
 //! 1. a virtual environment `target/pyenv` (created when missing: `python3 -m venv`, then
-//!    `pip install maturin numpy pytest scikit-image trimesh`; `.ci/run` creates it beforehand),
+//!    `pip install maturin numpy pytest scikit-image trimesh dask distributed zarr`; `.ci/run`
+//!    creates it beforehand; both use the marker `.morpho-ready-2`, renumbered whenever the list
+//!    grows so that an existing venv gets the new packages),
 //! 2. the `morpho` command (`cargo build --release -p morpho-cli`, which the tests compare with),
 //! 3. the wheel (`maturin build --release`, into `target/wheels`) installed into the venv,
 //! 4. `python -m pytest tests/py`; the test fails when pytest fails.
@@ -35,7 +37,7 @@ fn target_dir() -> PathBuf {
 fn venv() -> PathBuf {
     let venv = target_dir().join("pyenv");
     let py = venv.join("bin/python");
-    let ready = venv.join(".morpho-ready");
+    let ready = venv.join(".morpho-ready-2");
     if !ready.exists() {
         let python = std::env::var("MORPHO_PYTHON").unwrap_or_else(|_| "python3".into());
         run(
@@ -54,6 +56,9 @@ fn venv() -> PathBuf {
                 "pytest",
                 "scikit-image",
                 "trimesh",
+                "dask",
+                "distributed",
+                "zarr",
             ]),
             "pip install",
         );

@@ -3,7 +3,9 @@
 Shapes from scattered points, samples and volumes: Delaunay triangulations, geometric graphs
 (γ-graph, α-shapes, β-skeletons, …), boundaries through all points (γ-constriction), contour
 surfaces of volumes (marching cubes with the asymptotic decider, consistent), region contours of
-rated samples, flintstone trees, curvature of meshes, and every morpho file format.
+rated samples, flintstone trees, curvature of meshes, triangle reduction, smooth G¹ surfaces,
+and every morpho file format.
+Contour surfaces of chunked volumes larger than memory, on Dask: ``morpho.dask.isosurface``.
 
 Arrays
 ------
@@ -39,6 +41,8 @@ __all__ = [
     "contour",
     "info",
     "curvature",
+    "reduce",
+    "smooth",
     "read",
     "write",
     "FlintTree",
@@ -208,6 +212,57 @@ def curvature(vertices, faces=None, normals="area", ring=1):
     return _morpho.curvature(v, f, normals, int(ring))
 
 
+def reduce(vertices, faces=None, keep=None, triangles=None, rms=None, max_error=None,
+           point="bivariate", freeze_boundary=False, normals="area", height_field=False,
+           new_triangles="generations", return_report=False):
+    """Triangle reduction (Hamann 1991 ch. 5, Alg. 5.1), as ``morpho reduce``.
+
+    Give exactly one stop: ``keep`` (percent of the triangles), ``triangles`` (a count),
+    ``rms`` or ``max_error`` (tolerances at the input's vertices). ``point``: ``bivariate``
+    (H (5.29)) or ``implicit`` (H (5.33)); ``freeze_boundary``: never remove a triangle with a
+    corner on the boundary; ``normals``: ``area``/``uniform``/``inverse`` or an ``(n, 3)``
+    array (the curvature fit's normals); ``height_field``: the mesh is z = f(x, y) (errors are
+    vertical). Returns ``(vertices, faces)`` — the command's output bit for bit — and with
+    ``return_report=True`` a dict (``source``: the input vertex each output vertex inherits,
+    ``removals``, ``stop``, ``rms``, ``max_error``). ``reduce(mesh, keep=…)`` takes a mesh
+    object too.
+    """
+    v, f = _mesh(vertices, faces)
+    if not isinstance(normals, str):
+        normals = _coords(normals, "normals", (3,))
+    if triangles is not None:
+        triangles = int(triangles)
+        if triangles < 0:
+            raise ValueError(f"reduce: triangles must be a count, got {triangles}")
+    num = lambda x: None if x is None else float(x)
+    return _morpho.reduce(v, f, num(keep), triangles, num(rms), num(max_error), str(point),
+                          bool(freeze_boundary), normals, bool(height_field),
+                          str(new_triangles), bool(return_report))
+
+
+def smooth(vertices, faces=None, normals="area", folds="guard", density=None,
+           return_report=False):
+    """The cubic three-split G¹ surface through a closed mesh (Veltkamp 1992, §9.6),
+    tessellated, as ``morpho smooth --scheme split3``.
+
+    The mesh must be a closed, consistently oriented 2-manifold. ``normals``: the vertex
+    normals the surface interpolates, ``area``/``uniform``/``inverse`` or an ``(n, 3)`` array;
+    ``folds="guard"`` repairs normals that do not see all their triangles and keeps a cubic
+    boundary where a quadratic one would fold (``"keep"``: the text's construction as is);
+    ``density``: steps per micro-patch edge (``None``: 8, fewer on big meshes). Returns
+    ``(vertices, faces, normals)`` of the tessellation (surface normals), and with
+    ``return_report=True`` a dict (patches, singular and unresolved edges, max normal jump, …).
+    """
+    v, f = _mesh(vertices, faces)
+    if not isinstance(normals, str):
+        normals = _coords(normals, "normals", (3,))
+    if density is not None:
+        density = int(density)
+        if density < 1:
+            raise ValueError(f"smooth: density must be at least 1, got {density}")
+    return _morpho.smooth(v, f, normals, str(folds), density, bool(return_report))
+
+
 def read(path):
     """Reads any file morpho reads (format by extension) into a dict of arrays.
 
@@ -229,7 +284,9 @@ def write(path, data=None, ascii=False, **arrays):
     ``write(path, read(other))`` converts; or by keywords: ``write("m.ply", vertices=v,
     faces=f, normals=n)``, ``write("p.csv", points=p, columns={"value": z})``,
     ``write("v.nrrd", volume=vol, spacing=(…), origin=(…))`` (``vol[x, y, z]``, any layout),
-    ``write("p.geojson", polygons=[[ring, …], …])``.
+    ``write("p.geojson", polygons=[[ring, …], …])``. Meshes may carry extra columns,
+    ``vertex_properties={name: (n,) array}`` and ``face_properties={name: (m,) array}`` (PLY:
+    written with their dtype when PLY has it — (u)int8/16/32, float32 — else as float64).
     """
     import os
 
@@ -248,12 +305,34 @@ def write(path, data=None, ascii=False, **arrays):
             v = [[_coords(r, "ring", (2,)) for r in poly] for poly in v]
         elif k in ("polylines",):
             v = [_coords(r, "polyline", (2,)) for r in v]
+        elif k in ("vertex_properties", "face_properties") and v is not None:
+            v = {str(name): _prop(x, f"{k[:-11]} property {name}") for name, x in v.items()}
         elif k == "volume":
             v = _np.asarray(v)
             if v.ndim != 3:
                 raise ValueError(f"volume: expected a 3D array, got shape {v.shape}")
         out[k] = v
     return _morpho.write(os.fspath(path), out, bool(ascii))
+
+
+def _prop(a, what):
+    """A property column: 1D, its own dtype when PLY has it, else float64."""
+    a = _np.asarray(a)
+    if a.ndim != 1 or a.dtype.kind not in "iuf":
+        raise ValueError(f"{what}: expected a 1D array of numbers, got {a.dtype} {a.shape}")
+    if a.dtype not in (_np.uint8, _np.int8, _np.uint16, _np.int16, _np.uint32, _np.int32,
+                       _np.float32, _np.float64):
+        a = a.astype(_np.float64)
+    return _np.ascontiguousarray(a)
+
+
+def __getattr__(name):
+    # ``morpho.dask`` (chunked contour surfaces) is imported on first use: it needs dask.
+    if name == "dask":
+        import importlib
+
+        return importlib.import_module(".dask", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def flint(points, closed=True):

@@ -74,6 +74,56 @@ def curvature(
     normals: Union[Literal["area", "uniform", "inverse"], npt.ArrayLike] = "area",
     ring: int = 1,
 ) -> Dict[str, Any]: ...
+@overload
+def reduce(
+    vertices: Any,
+    faces: Optional[npt.ArrayLike] = None,
+    keep: Optional[float] = None,
+    triangles: Optional[int] = None,
+    rms: Optional[float] = None,
+    max_error: Optional[float] = None,
+    point: Literal["bivariate", "implicit"] = "bivariate",
+    freeze_boundary: bool = False,
+    normals: Union[Literal["area", "uniform", "inverse"], npt.ArrayLike] = "area",
+    height_field: bool = False,
+    new_triangles: Literal["generations", "last-step"] = "generations",
+    return_report: Literal[False] = False,
+) -> Tuple[_F64, _U32]: ...
+@overload
+def reduce(
+    vertices: Any,
+    faces: Optional[npt.ArrayLike] = None,
+    keep: Optional[float] = None,
+    triangles: Optional[int] = None,
+    rms: Optional[float] = None,
+    max_error: Optional[float] = None,
+    point: Literal["bivariate", "implicit"] = "bivariate",
+    freeze_boundary: bool = False,
+    normals: Union[Literal["area", "uniform", "inverse"], npt.ArrayLike] = "area",
+    height_field: bool = False,
+    new_triangles: Literal["generations", "last-step"] = "generations",
+    *,
+    return_report: Literal[True],
+) -> Tuple[_F64, _U32, Dict[str, Any]]: ...
+@overload
+def smooth(
+    vertices: Any,
+    faces: Optional[npt.ArrayLike] = None,
+    normals: Union[Literal["area", "uniform", "inverse"], npt.ArrayLike] = "area",
+    folds: Literal["guard", "keep"] = "guard",
+    density: Optional[int] = None,
+    return_report: Literal[False] = False,
+) -> Tuple[_F64, _U32, _F64]: ...
+@overload
+def smooth(
+    vertices: Any,
+    faces: Optional[npt.ArrayLike] = None,
+    normals: Union[Literal["area", "uniform", "inverse"], npt.ArrayLike] = "area",
+    folds: Literal["guard", "keep"] = "guard",
+    density: Optional[int] = None,
+    *,
+    return_report: Literal[True],
+) -> Tuple[_F64, _U32, _F64, Dict[str, Any]]: ...
 def read(path: _Path) -> Dict[str, Any]: ...
 def write(
     path: _Path, data: Optional[Mapping[str, Any]] = None, ascii: bool = False, **arrays: Any
@@ -100,3 +150,4 @@ class FlintTree:
     def contains(self, queries: npt.NDArray[np.float64]) -> npt.NDArray[np.int8]: ...
 
 def flint(points: _Coords, closed: bool = True) -> FlintTree: ...
+from . import dask as dask

@@ -138,3 +138,25 @@ def test_flint_errors():
         t.contains(np.zeros((1, 2)))
     with pytest.raises(ValueError, match="exactly one"):
         t.approx(level=1, count=3)
+
+
+def test_write_mesh_properties_round_trip(tmp_path):
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1.0]])
+    f = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    vp = {"id": np.array([4000000000, 1, 2, 3], dtype=np.uint32),
+          "w": np.array([0.5, -1, 2, 3], dtype=np.float32), "big": np.arange(4, dtype=np.int64)}
+    fp = {"label": np.array([-3, 0, 7, 9], dtype=np.int16)}
+    for ascii in (False, True):
+        morpho.write(tmp_path / "p.ply", vertices=v, faces=f, vertex_properties=vp,
+                     face_properties=fp, ascii=ascii)
+        m = morpho.read(tmp_path / "p.ply")
+        assert m["vertex_properties"]["id"].tolist() == vp["id"].tolist()
+        assert m["vertex_properties"]["w"].tolist() == vp["w"].tolist()
+        assert m["vertex_properties"]["big"].tolist() == [0, 1, 2, 3]
+        assert m["face_properties"]["label"].tolist() == fp["label"].tolist()
+    with pytest.raises(ValueError, match="3 values for 4 vertices"):
+        morpho.write(tmp_path / "q.ply", vertices=v, faces=f,
+                     vertex_properties={"x2": np.zeros(3, np.float32)})
+    with pytest.raises(ValueError, match="1D"):
+        morpho.write(tmp_path / "q.ply", vertices=v, faces=f,
+                     face_properties={"c": np.zeros((4, 2))})
