@@ -40,8 +40,11 @@ import numpy as np
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 DATA = os.environ.get("MORPHO_SHARED_DATA", os.path.join(ROOT, "..", "shared", "data"))
-MORPHO = os.path.join(ROOT, "target", "release", "morpho")
-COMPARE = os.path.join(ROOT, "target", "release", "examples", "mesh_compare")
+# MORPHO_BIN: a folder holding copies of both binaries (so a rebuild cannot change them mid-run)
+BIN = os.environ.get("MORPHO_BIN")
+MORPHO = os.path.join(BIN, "morpho") if BIN else os.path.join(ROOT, "target", "release", "morpho")
+COMPARE = (os.path.join(BIN, "mesh_compare") if BIN
+           else os.path.join(ROOT, "target", "release", "examples", "mesh_compare"))
 
 
 def read_mesh(path):

@@ -9,7 +9,8 @@ use crate::mesh::{normal_source, trimesh};
 use morpho::curvature::NormalSource;
 use morpho::mesh::vertex_normals;
 use morpho::reduce::{
-    reduce as reduce_mesh, Domain, NewPoint, NewTriangles, ReduceOptions, Stop, StopReason,
+    reduce as reduce_mesh, Domain, NewPoint, NewTriangles, Order, ReduceOptions, Stop,
+    StopReason,
 };
 use morpho::smooth::{continuity, tessellate, three_split_with, visible_normals, SplitOptions};
 use numpy::{PyArray1, PyReadonlyArray2};
@@ -21,7 +22,7 @@ use pyo3::types::{PyDict, PyTuple};
 /// Returns `(vertices, faces)` and with `return_report` a dict (`source`: the input vertex each
 /// output vertex inherits, `removals`, `stop`, `rms`, `max_error`).
 #[pyfunction]
-#[pyo3(signature = (vertices, faces, keep=None, triangles=None, rms=None, max_error=None, point="bivariate", freeze_boundary=false, normals=None, height_field=false, new_triangles="generations", return_report=false))]
+#[pyo3(signature = (vertices, faces, keep=None, triangles=None, rms=None, max_error=None, point="bivariate", freeze_boundary=false, normals=None, height_field=false, new_triangles="generations", order="levels", return_report=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn reduce<'py>(
     py: Python<'py>,
@@ -36,6 +37,7 @@ pub fn reduce<'py>(
     normals: Option<&Bound<'py, PyAny>>,
     height_field: bool,
     new_triangles: &str,
+    order: &str,
     return_report: bool,
 ) -> PyResult<Bound<'py, PyTuple>> {
     let stop = match (keep, triangles, rms, max_error) {
@@ -67,6 +69,15 @@ pub fn reduce<'py>(
             )))
         }
     };
+    let order = match order {
+        "levels" => Order::ErrorLevels,
+        "hamann" => Order::Hamann,
+        o => {
+            return Err(bad(format!(
+                "reduce: unknown order '{o}': use levels or hamann"
+            )))
+        }
+    };
     let mesh = trimesh(&vertices, faces)?;
     let normals = normal_source(normals)?;
     if let NormalSource::Given(n) = &normals {
@@ -86,6 +97,7 @@ pub fn reduce<'py>(
         normals,
         check_intersections: !height_field,
         new_triangles,
+        order,
     };
     let r = compute(py, || reduce_mesh(&mesh, &opts))?.map_err(py_err)?;
     let v = frows(py, point_rows(r.mesh.positions)).into_any();

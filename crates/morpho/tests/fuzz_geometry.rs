@@ -23,7 +23,11 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicIsize, Ordering::Relaxed};
 use std::time::Instant;
 
-const CASE_SECONDS: f64 = 5.0;
+/// The issue's definition of a hang (issue 17, "Done when": > 20 s on inputs under 1 MB).
+/// The slowest case measured is 3D `gamma-range` with c = −1 on 40 near-cospherical points at
+/// 1e±150/1e-300 (O(n⁴) exact `insphere` in the brute force of `beyond_dt_3d`): 2.9–3.7 s
+/// alone, 5.5–6.4 s on a loaded machine — a 5 s bound made CI depend on the load.
+const CASE_SECONDS: f64 = 20.0;
 const CASE_BYTES: isize = 256 << 20;
 
 struct Counting;

@@ -214,7 +214,7 @@ def curvature(vertices, faces=None, normals="area", ring=1):
 
 def reduce(vertices, faces=None, keep=None, triangles=None, rms=None, max_error=None,
            point="bivariate", freeze_boundary=False, normals="area", height_field=False,
-           new_triangles="generations", return_report=False):
+           new_triangles="generations", order="levels", return_report=False):
     """Triangle reduction (Hamann 1991 ch. 5, Alg. 5.1), as ``morpho reduce``.
 
     Give exactly one stop: ``keep`` (percent of the triangles), ``triangles`` (a count),
@@ -222,7 +222,8 @@ def reduce(vertices, faces=None, keep=None, triangles=None, rms=None, max_error=
     (H (5.29)) or ``implicit`` (H (5.33)); ``freeze_boundary``: never remove a triangle with a
     corner on the boundary; ``normals``: ``area``/``uniform``/``inverse`` or an ``(n, 3)``
     array (the curvature fit's normals); ``height_field``: the mesh is z = f(x, y) (errors are
-    vertical). Returns ``(vertices, faces)`` — the command's output bit for bit — and with
+    vertical); ``order``: ``levels`` (Hamann's weight order within doubling error levels, the
+    command's default) or ``hamann`` (Alg. 5.1's order alone). Returns ``(vertices, faces)`` — the command's output bit for bit — and with
     ``return_report=True`` a dict (``source``: the input vertex each output vertex inherits,
     ``removals``, ``stop``, ``rms``, ``max_error``). ``reduce(mesh, keep=…)`` takes a mesh
     object too.
@@ -237,7 +238,7 @@ def reduce(vertices, faces=None, keep=None, triangles=None, rms=None, max_error=
     num = lambda x: None if x is None else float(x)
     return _morpho.reduce(v, f, num(keep), triangles, num(rms), num(max_error), str(point),
                           bool(freeze_boundary), normals, bool(height_field),
-                          str(new_triangles), bool(return_report))
+                          str(new_triangles), str(order), bool(return_report))
 
 
 def smooth(vertices, faces=None, normals="area", folds="guard", density=None,

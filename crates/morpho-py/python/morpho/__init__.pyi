@@ -87,6 +87,7 @@ def reduce(
     normals: Union[Literal["area", "uniform", "inverse"], npt.ArrayLike] = "area",
     height_field: bool = False,
     new_triangles: Literal["generations", "last-step"] = "generations",
+    order: Literal["levels", "hamann"] = "levels",
     return_report: Literal[False] = False,
 ) -> Tuple[_F64, _U32]: ...
 @overload
@@ -102,6 +103,7 @@ def reduce(
     normals: Union[Literal["area", "uniform", "inverse"], npt.ArrayLike] = "area",
     height_field: bool = False,
     new_triangles: Literal["generations", "last-step"] = "generations",
+    order: Literal["levels", "hamann"] = "levels",
     *,
     return_report: Literal[True],
 ) -> Tuple[_F64, _U32, Dict[str, Any]]: ...

@@ -66,6 +66,7 @@ def same_bits(a, b):
     (["--triangles", "700"], dict(triangles=700)),
     (["--rms", "0.004", "--point", "implicit"], dict(rms=0.004, point="implicit")),
     (["--max-error", "0.1", "--normals", "uniform"], dict(max_error=0.1, normals="uniform")),
+    (["--keep", "30", "--order", "hamann"], dict(keep=30, order="hamann")),
 ])
 def test_reduce_matches_cli(tmp_path, cli, cli_args, kw):
     v, f = bumpy_ellipsoid()
