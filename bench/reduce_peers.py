@@ -153,7 +153,7 @@ def run_meshopt(v, f, target, tmp):
 def skull(tmp):
     """The CT head's bone surface (level 120), as `morpho isosurface` makes it."""
     vol = os.path.join(DATA, "volumes", "cthead_8bit_256x256x99.json")
-    out = os.path.join(tmp, "skull.ply")
+    out = os.path.join(tmp, "skull_iso.ply")
     subprocess.run([MORPHO, "isosurface", vol, "--level", "120", "-o", out], check=True,
                    capture_output=True)
     return out

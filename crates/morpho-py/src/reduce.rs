@@ -9,8 +9,7 @@ use crate::mesh::{normal_source, trimesh};
 use morpho::curvature::NormalSource;
 use morpho::mesh::vertex_normals;
 use morpho::reduce::{
-    reduce as reduce_mesh, Domain, NewPoint, NewTriangles, Order, ReduceOptions, Stop,
-    StopReason,
+    reduce as reduce_mesh, Domain, NewPoint, NewTriangles, Order, ReduceOptions, Stop, StopReason,
 };
 use morpho::smooth::{continuity, tessellate, three_split_with, visible_normals, SplitOptions};
 use numpy::{PyArray1, PyReadonlyArray2};

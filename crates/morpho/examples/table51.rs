@@ -1,11 +1,17 @@
 //! Hamann 1991, Table 5.1 (notes D.4): RMS (5.41) at the 2601 knots after keeping 50/20/10 %
 //! of the 5000 triangles, beside the thesis's values and their ratio.
 //! `cargo run --release --example table51 -p morpho [-- --last-step]`: `--last-step` uses the
-//! narrow reading of Rem. 5.9 (only the last step's triangles are "new") for comparison.
+//! narrow reading of Rem. 5.9 (only the last step's triangles are "new") for comparison;
+//! `--levels` removes in the error-levels order (`Order::ErrorLevels`, the CLI's default).
 use morpho::reduce::table51;
 
 fn main() {
     let last = std::env::args().any(|a| a == "--last-step");
+    let order = if std::env::args().any(|a| a == "--levels") {
+        morpho::reduce::Order::ErrorLevels
+    } else {
+        morpho::reduce::Order::Hamann
+    };
     println!("| # | function | 50 % removed | thesis | ratio | 80 % | thesis | ratio | 90 % | thesis | ratio |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     let t0 = std::time::Instant::now();
@@ -13,12 +19,12 @@ fn main() {
     for (k, (name, f, _)) in table51::functions().iter().enumerate() {
         let mut row = format!("| {} | {name} |", k + 1);
         for (c, keep) in [50.0, 20.0, 10.0].into_iter().enumerate() {
-            let r = if last {
-                table51::reduce_function_with(k, keep, morpho::reduce::NewTriangles::LastStep)
+            let new = if last {
+                morpho::reduce::NewTriangles::LastStep
             } else {
-                table51::reduce_function(k, keep)
-            }
-            .expect("reduce");
+                morpho::reduce::NewTriangles::Generations
+            };
+            let r = table51::reduce_function_ordered(k, keep, new, order).expect("reduce");
             let (rms, _, miss) = table51::knot_rms(&r.mesh, *f);
             assert_eq!(miss, 0, "domain not covered");
             let th = table51::THESIS[k][c];

@@ -3,7 +3,7 @@
 //! bivariate new point and exact normals to 50 %, 20 % and 10 % of the triangles, and the RMS
 //! (5.41) of the piecewise-linear reduced surface at the 2601 knots.
 
-use super::engine::{reduce, Domain, NewTriangles, ReduceOptions, Reduced, Stop};
+use super::engine::{reduce, Domain, NewTriangles, Order, ReduceOptions, Reduced, Stop};
 use super::error::ReduceError;
 use crate::curvature::NormalSource;
 use crate::geom::{Point3, Vector3};
@@ -119,6 +119,16 @@ pub fn reduce_function_with(
     keep: f64,
     new_triangles: NewTriangles,
 ) -> Result<Reduced, ReduceError> {
+    reduce_function_ordered(k, keep, new_triangles, Order::Hamann)
+}
+
+/// [`reduce_function_with`] in a chosen [`Order`] (the thesis: [`Order::Hamann`]).
+pub fn reduce_function_ordered(
+    k: usize,
+    keep: f64,
+    new_triangles: NewTriangles,
+    order: Order,
+) -> Result<Reduced, ReduceError> {
     let (_, f, g) = functions()[k];
     let (mesh, nor) = grid_mesh(f, g);
     let opts = ReduceOptions {
@@ -127,6 +137,7 @@ pub fn reduce_function_with(
         normals: NormalSource::Given(nor),
         check_intersections: false,
         new_triangles,
+        order,
         ..Default::default()
     };
     reduce(&mesh, &opts)
