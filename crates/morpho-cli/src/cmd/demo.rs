@@ -22,6 +22,11 @@ pub struct Args {
     /// Folder with the real data (default: ../shared/data from the repository, if it exists).
     #[arg(long)]
     pub data: Option<PathBuf>,
+    /// Build only the steps whose name contains this text (repeatable; the steps are
+    /// "sample points", "delaunay", "gamma graphs", "boundary", "flintstones", "meshes",
+    /// "volumes", "volume views", "contour surfaces", "triangle reduction", …).
+    #[arg(long, value_name = "STEP")]
+    pub only: Vec<String>,
 }
 
 /// Everything a section builder needs.
@@ -71,6 +76,9 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let mut failed = 0;
     let t0 = Instant::now();
     for (name, build) in SECTIONS {
+        if !args.only.is_empty() && !args.only.iter().any(|o| name.contains(o.as_str())) {
+            continue;
+        }
         let t = Instant::now();
         match build(&ctx) {
             Ok(secs) => {
