@@ -32,6 +32,7 @@ use crate::geom::intersect::{ray_crosses_triangle, segment_meets_triangle};
 use crate::geom::vec::dist2;
 use crate::geom::Point3;
 use rayon::prelude::*;
+use smallvec::SmallVec;
 
 /// The ray axis of the hierarchical walk (+x).
 const AXIS: usize = 0;
@@ -120,14 +121,17 @@ impl FlintTree3 {
         let p = |v: u32| self.pos[v as usize];
         let mut inside = false;
         let mut visits = 0;
-        let mut stack: Vec<u32> = Vec::with_capacity(64);
-        stack.extend(self.root.children.iter().rev());
+        let mut stack: SmallVec<[u32; 128]> = SmallVec::new();
+        stack.extend(self.root.children.iter().rev().copied());
         while let Some(id) = stack.pop() {
             visits += 1;
             let nd = &self.nodes[id as usize];
             if nd.is_leaf() {
                 let [a, b, c] = nd.corners.map(p);
-                if segment_meets_triangle(x, x, a, b, c) {
+                // on the triangle only inside its box (exact comparisons)
+                let in_box = (0..3)
+                    .all(|k| a[k].min(b[k]).min(c[k]) <= x[k] && x[k] <= a[k].max(b[k]).max(c[k]));
+                if in_box && segment_meets_triangle(x, x, a, b, c) {
                     return (Containment::Boundary, visits);
                 }
                 inside ^= ray_crosses_triangle(x, AXIS, a, b, c);
@@ -142,7 +146,7 @@ impl FlintTree3 {
                 }
                 continue;
             }
-            stack.extend(nd.children.iter().rev());
+            stack.extend(nd.children.iter().rev().copied());
         }
         let c = if inside {
             Containment::Inside
@@ -155,7 +159,8 @@ impl FlintTree3 {
     /// Crossing parity of the ray with the fill of side `s` (see the module doc).
     fn fill_parity(&self, s: u32, x: [f64; 3]) -> bool {
         let mut par = false;
-        let mut stack = vec![s];
+        let mut stack: SmallVec<[u32; 32]> = SmallVec::new();
+        stack.push(s);
         let p = |v: u32| self.pos[v as usize];
         while let Some(s) = stack.pop() {
             let sd = &self.sides[s as usize];

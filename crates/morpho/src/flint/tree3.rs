@@ -433,6 +433,12 @@ fn root_corners(pos: &[[f64; 3]], used: &[u32], support: &[u32], c: [f64; 3]) ->
     Some([i, j, k])
 }
 
+/// A way to split a node: 3-split at a vertex, or side splits at the listed sides.
+enum Split {
+    Vertex(u32),
+    Sides(Vec<usize>),
+}
+
 /// A child to be made: corners and directed sides.
 type Spec = ([u32; 3], [(u32, bool); 3]);
 
@@ -641,28 +647,55 @@ impl Builder<'_> {
             let sd = &b.sides[sides[k].0 as usize];
             (sd.mark || sd.split.is_some()) && sd.path.len() >= 3
         };
-        let mut m: Vec<usize> = (0..3).filter(|&k| marked(self, k)).collect();
-        let mut q = None;
-        if m.is_empty() {
-            let interior = self.s.interior(&it.region, &pr);
-            if interior.is_empty() {
-                m = (0..3).filter(|&k| self.splittable(sides[k].0)).collect();
-            } else {
-                let st = Flintstone3::of(self.s.pos, corners, &interior, false);
-                q = Some(st.split().unwrap_or(interior[0]));
+        let marked: Vec<usize> = (0..3).filter(|&k| marked(self, k)).collect();
+        let splittable: Vec<usize> = (0..3).filter(|&k| self.splittable(sides[k].0)).collect();
+        let interior = self.s.interior(&it.region, &pr);
+        // candidate splits, in order: V's choice, then the alternatives when a division fails
+        // (a part would keep every triangle, or its boundary is not its paths)
+        let mut tries: Vec<Split> = Vec::new();
+        let mut qs: Vec<u32> = Vec::new();
+        if !interior.is_empty() {
+            let st = Flintstone3::of(self.s.pos, corners, &interior, false);
+            qs.extend(st.split());
+            for d in [st.below, st.above].into_iter().flatten() {
+                if !qs.contains(&d.vertex) {
+                    qs.push(d.vertex);
+                }
+            }
+            if qs.is_empty() {
+                qs.push(interior[0]);
             }
         }
-        let planned = match (q, m.len()) {
-            (Some(q), _) => self.three_split(&it.region, corners, sides, q),
-            (None, 0) => None,
-            (None, 1) => self.side_split1(&it.region, corners, sides, m[0]),
-            (None, 2) => {
-                // rotate so that the unsplit side is side 1: the split ones meet at corner r
-                let unsplit = (0..3).find(|k| !m.contains(k)).unwrap_or(1);
-                self.side_split2(&it.region, corners, sides, (unsplit + 2) % 3)
+        if !marked.is_empty() {
+            tries.push(Split::Sides(marked.clone()));
+        }
+        tries.extend(qs.iter().map(|&q| Split::Vertex(q)));
+        if splittable != marked && !splittable.is_empty() {
+            tries.push(Split::Sides(splittable.clone()));
+        }
+        for &k in &splittable {
+            if marked != [k] {
+                tries.push(Split::Sides(vec![k]));
             }
-            (None, _) => self.side_split3(&it.region, corners, sides),
-        };
+        }
+        let mut planned = None;
+        for t in tries {
+            planned = match t {
+                Split::Vertex(q) => self.three_split(&it.region, corners, sides, q),
+                Split::Sides(m) => match m.len() {
+                    1 => self.side_split1(&it.region, corners, sides, m[0]),
+                    2 => {
+                        // the split sides meet at corner r (the unsplit one is r + 1)
+                        let unsplit = (0..3).find(|k| !m.contains(k)).unwrap_or(1);
+                        self.side_split2(&it.region, corners, sides, (unsplit + 2) % 3)
+                    }
+                    _ => self.side_split3(&it.region, corners, sides),
+                },
+            };
+            if planned.is_some() {
+                break;
+            }
+        }
         let children = match planned {
             Some((specs, regions)) => {
                 let mut ch = Vec::new();
