@@ -133,11 +133,12 @@ fn generated_meshes_structure_and_invariants() {
         let t = FlintTree3::from_mesh(&m).unwrap_or_else(|e| panic!("{name}: {e}"));
         check_structure(name, &m, &t);
         eprintln!(
-            "{name}: {} triangles, {} nodes, depth {}, fallbacks {}, kinds {:?}",
+            "{name}: {} triangles, {} nodes, depth {}, fallbacks {} (root {}), kinds {:?}",
             m.triangles.len(),
             t.node_count(),
             t.depth(),
             t.fallbacks(),
+            t.root.patched,
             t.kind_counts()
         );
     }
@@ -222,8 +223,19 @@ fn real_meshes_structure_and_queries() {
         check_structure(name, &m, &t);
         let q = queries(&m, n, &mut rng);
         let c = compare(name, &m, &t, &q);
+        // the walk descends only where flintstones do not decide: far fewer pieces than
+        // the brute force's triangles
+        let visits: usize = q
+            .iter()
+            .map(|x| t.locate_counted(Point3::new(x[0], x[1], x[2])).unwrap().1)
+            .sum();
+        let mean = visits as f64 / q.len() as f64;
+        assert!(
+            mean < 0.05 * m.triangles.len() as f64,
+            "{name}: {mean} nodes per query"
+        );
         eprintln!(
-            "{name}: {} triangles, build {build:?}, {} nodes, depth {}, fallbacks {}, kinds {:?}; {} queries {c:?}",
+            "{name}: {} triangles, build {build:?}, {} nodes, depth {}, fallbacks {}, kinds {:?}; {} queries {c:?}, mean visits {mean:.1}",
             m.triangles.len(),
             t.node_count(),
             t.depth(),
@@ -249,12 +261,31 @@ fn approximations() {
     b.sort_unstable();
     assert_eq!(a, b);
     assert_eq!(full.e5, 0.0);
-    // level counts grow, adaptive counts shrink with ε and meet their bound
+    // level counts grow, adaptive counts shrink with ε and meet their bound; cracks (edges
+    // of odd multiplicity) are counted: none at level 0, few where a side was split on one
+    // side only
     let mut last = 0;
-    for l in 0..8 {
+    for l in 0..14 {
         let ap = t.approximate(Target::Level(l)).unwrap();
         assert!(ap.triangles.len() + ap.dropped >= last);
         last = ap.triangles.len() + ap.dropped;
+        let mut mult: HashMap<(u32, u32), u32> = HashMap::new();
+        for &[a, b, c] in &ap.triangles {
+            for (x, y) in [(a, b), (b, c), (c, a)] {
+                *mult.entry((x.min(y), x.max(y))).or_default() += 1;
+            }
+        }
+        let odd = mult.values().filter(|&&k| k % 2 == 1).count();
+        eprintln!(
+            "level {l}: {} triangles ({} dropped), {odd} crack edges of {}, e5 {:.4}",
+            ap.triangles.len(),
+            ap.dropped,
+            mult.len(),
+            ap.e5
+        );
+        if l == 0 {
+            assert_eq!(odd, 0);
+        }
     }
     let mut last = usize::MAX;
     for eps in [0.0, 0.01, 0.03, 0.1, 0.3, 1.0, 3.0] {

@@ -79,6 +79,15 @@ pub(crate) struct Filter {
 }
 
 impl Filter {
+    /// The filter that excludes nothing.
+    pub fn none() -> Filter {
+        Filter {
+            balls: [([0.0; 3], f64::INFINITY); 3],
+            count: 0,
+            empty_side: 0,
+        }
+    }
+
     /// A filter of one ball about `center` holding `verts` (never excludes when `prune` is off).
     pub fn hull(pos: &[[f64; 3]], verts: &[u32], prune: bool) -> Filter {
         let mut f = Filter {
@@ -103,16 +112,18 @@ impl Filter {
         }
     }
 
-    /// True when `x` is certainly outside the flintstone (outside one convex superset).
+    /// True when `x` is certainly outside the flintstone (outside one convex superset);
+    /// `corners` (the corners' positions) is read only for a cap's empty side.
     #[inline]
-    pub fn excludes(&self, x: [f64; 3], corners: [[f64; 3]; 3]) -> bool {
+    pub fn excludes(&self, x: [f64; 3], corners: impl FnOnce() -> [[f64; 3]; 3]) -> bool {
         for &(c, r2) in &self.balls[..self.count as usize] {
             if dist2(x, c) > r2 {
                 return true;
             }
         }
         if self.empty_side != 0 {
-            let o = orient3d(corners[0], corners[1], corners[2], x);
+            let [a, b, c] = corners();
+            let o = orient3d(a, b, c, x);
             if (self.empty_side > 0 && o > 0.0) || (self.empty_side < 0 && o < 0.0) {
                 return true;
             }
@@ -340,12 +351,12 @@ mod tests {
         assert_eq!(f.split(), Some(3));
         for p in pos {
             assert!(f.contains(&pos, p));
-            assert!(!f.filter.excludes(p, [pos[0], pos[1], pos[2]]));
+            assert!(!f.filter.excludes(p, || [pos[0], pos[1], pos[2]]));
         }
         assert!(!f.contains(&pos, [0.5, 0.5, -0.01]));
         assert!(f
             .filter
-            .excludes([0.5, 0.5, -0.01], [pos[0], pos[1], pos[2]]));
+            .excludes([0.5, 0.5, -0.01], || [pos[0], pos[1], pos[2]]));
         // a vertex on each side: intersection
         let mut q = pos.to_vec();
         q[4] = [0.3, 0.3, -0.2];

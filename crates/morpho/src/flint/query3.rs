@@ -25,12 +25,14 @@
 //! different axis from the walk's, so the two do not share their degenerate cases).
 //! Cost: O(nodes whose flintstone holds X + their children + fills the ray meets).
 
+use super::ball::Filter;
 use super::query::Containment;
 use super::tree3::FlintTree3;
 use super::FlintError;
 use crate::geom::intersect::{ray_crosses_triangle, segment_meets_triangle};
 use crate::geom::vec::dist2;
 use crate::geom::Point3;
+use crate::util::NONE;
 use rayon::prelude::*;
 use smallvec::SmallVec;
 
@@ -118,15 +120,16 @@ impl FlintTree3 {
         if dist2(x, self.root.center) > self.root.reach2 {
             return (Containment::Outside, 0);
         }
+        let q = &self.q;
         let p = |v: u32| self.pos[v as usize];
         let mut inside = false;
         let mut visits = 0;
         let mut stack: SmallVec<[u32; 128]> = SmallVec::new();
-        stack.extend(self.root.children.iter().rev().copied());
+        stack.extend((0..q.top).rev());
         while let Some(id) = stack.pop() {
             visits += 1;
-            let nd = &self.nodes[id as usize];
-            if nd.is_leaf() {
+            let nd = &q.nodes[id as usize];
+            if nd.leaf {
                 let [a, b, c] = nd.corners.map(p);
                 // on the triangle only inside its box (exact comparisons)
                 let in_box = (0..3)
@@ -137,16 +140,15 @@ impl FlintTree3 {
                 inside ^= ray_crosses_triangle(x, AXIS, a, b, c);
                 continue;
             }
-            let cs = nd.corners.map(p);
-            let excluded = nd.stone.as_ref().is_some_and(|s| s.filter.excludes(x, cs));
-            if excluded {
+            if nd.filter.excludes(x, || nd.corners.map(p)) {
+                let cs = nd.corners.map(p);
                 inside ^= ray_crosses_triangle(x, AXIS, cs[0], cs[1], cs[2]);
-                for &(s, _) in &nd.sides {
+                for &s in &nd.sides {
                     inside ^= self.fill_parity(s, x);
                 }
                 continue;
             }
-            stack.extend(nd.children.iter().rev().copied());
+            stack.extend((nd.first_child..nd.first_child + nd.n_children).rev());
         }
         let c = if inside {
             Containment::Inside
@@ -158,29 +160,115 @@ impl FlintTree3 {
 
     /// Crossing parity of the ray with the fill of side `s` (see the module doc).
     fn fill_parity(&self, s: u32, x: [f64; 3]) -> bool {
+        let q = &self.q;
         let mut par = false;
         let mut stack: SmallVec<[u32; 32]> = SmallVec::new();
         stack.push(s);
         let p = |v: u32| self.pos[v as usize];
         while let Some(s) = stack.pop() {
-            let sd = &self.sides[s as usize];
-            if sd.path.len() < 3 || ray_misses(x, sd.ball) {
+            let sd = &q.sides[s as usize];
+            if sd.len < 3 || ray_misses(x, sd.ball) {
                 continue;
             }
-            let (u, v) = (sd.path[0], sd.path[sd.path.len() - 1]);
-            match sd.split {
-                Some((m, a, b)) => {
-                    par ^= ray_crosses_triangle(x, AXIS, p(u), p(m), p(v));
-                    stack.push(a);
-                    stack.push(b);
-                }
-                None => {
-                    for w in sd.path[1..].windows(2) {
-                        par ^= ray_crosses_triangle(x, AXIS, p(u), p(w[0]), p(w[1]));
-                    }
+            let path = &q.paths[sd.start as usize..(sd.start + sd.len) as usize];
+            let (u, v) = (path[0], path[path.len() - 1]);
+            if sd.m != NONE {
+                par ^= ray_crosses_triangle(x, AXIS, p(u), p(sd.m), p(v));
+                stack.push(sd.a);
+                stack.push(sd.b);
+            } else {
+                for w in path[1..].windows(2) {
+                    par ^= ray_crosses_triangle(x, AXIS, p(u), p(w[0]), p(w[1]));
                 }
             }
         }
         par
+    }
+}
+
+/// A node as the walk reads it: filter, corners, sides, children (contiguous).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct QNode {
+    filter: Filter,
+    leaf: bool,
+    corners: [u32; 3],
+    sides: [u32; 3],
+    first_child: u32,
+    n_children: u32,
+}
+
+/// A side as the fills read it: ball, path range in `paths`, split (`m = NONE` if none).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct QSide {
+    ball: ([f64; 3], f64),
+    start: u32,
+    len: u32,
+    m: u32,
+    a: u32,
+    b: u32,
+}
+
+/// The compact, breadth-first copy of a tree for the point queries: the children of a node
+/// are consecutive (the root's are `0..top`), so the filters the walk reads lie together.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub(crate) struct QueryIndex {
+    nodes: Vec<QNode>,
+    top: u32,
+    sides: Vec<QSide>,
+    paths: Vec<u32>,
+}
+
+impl QueryIndex {
+    pub(crate) fn of(t: &FlintTree3) -> QueryIndex {
+        let mut order: Vec<u32> = t.root.children.clone();
+        let mut i = 0;
+        while i < order.len() {
+            let id = order[i] as usize;
+            order.extend(t.nodes[id].children.iter().copied());
+            i += 1;
+        }
+        let mut new_of = vec![NONE; t.nodes.len()];
+        for (k, &id) in order.iter().enumerate() {
+            new_of[id as usize] = k as u32;
+        }
+        let nodes = order
+            .iter()
+            .map(|&id| {
+                let nd = &t.nodes[id as usize];
+                QNode {
+                    // a leaf is never excluded (it has no stone)
+                    filter: nd.stone.as_ref().map_or(Filter::none(), |s| s.filter),
+                    leaf: nd.is_leaf(),
+                    corners: nd.corners,
+                    sides: nd.sides.map(|s| s.0),
+                    first_child: nd.children.first().map_or(0, |&c| new_of[c as usize]),
+                    n_children: nd.children.len() as u32,
+                }
+            })
+            .collect();
+        let mut paths = Vec::new();
+        let sides = t
+            .sides
+            .iter()
+            .map(|sd| {
+                let start = paths.len() as u32;
+                paths.extend_from_slice(&sd.path);
+                let (m, a, b) = sd.split.unwrap_or((NONE, NONE, NONE));
+                QSide {
+                    ball: sd.ball,
+                    start,
+                    len: sd.path.len() as u32,
+                    m,
+                    a,
+                    b,
+                }
+            })
+            .collect();
+        QueryIndex {
+            nodes,
+            top: t.root.children.len() as u32,
+            sides,
+            paths,
+        }
     }
 }

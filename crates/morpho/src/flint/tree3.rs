@@ -29,6 +29,12 @@
 //! - *Split vertex of a 3-split* is chosen by V's rule among the vertices *not on* the three
 //!   paths (a vertex on a path is split at by a side split instead); with none, every side
 //!   whose path has an inner vertex is split (progress, V's last refinement steps).
+//! - *Retries.* When the division for V's choice fails the check of `region.rs` (a part
+//!   would keep every triangle, a component has no owner, or a part's boundary is not its
+//!   paths), the alternatives are tried in order: 3-split at the other ball's vertex, side
+//!   splits at every side with an inner path vertex, at each such side alone. A node that
+//!   splits otherwise than a neighbour forced leaves a crack in the level approximation (the
+//!   queries stay exact, see `query3.rs`).
 //! - *Fallback (genus > 0, several parts, coinciding paths).* V's text is for genus-0
 //!   polyhedra. Wherever a division does not give parts whose boundary equals their three paths
 //!   mod 2 (`region.rs`), or would not shrink every part, the node's open polyhedron is cut into
@@ -36,7 +42,9 @@
 //!   boundary loop and whose paths are the loop's arcs (not shortest paths); patches of one
 //!   triangle are leaves. The root of a torus is divided this way; [`FlintTree3::fallbacks`]
 //!   counts the nodes. If even the patches failed the check, the node's triangles become its
-//!   leaves (never observed; kept so that the tree is always valid).
+//!   leaves (never observed; kept so that the tree is always valid). Measured: the horse
+//!   (96 966 triangles, genus 0) has 6 130 fallback nodes among ≈ 65 000 inner nodes, 4 929 of
+//!   them with ≤ 3 triangles (the last refinements); the torus's root is divided this way.
 //! - *Union and unbounded stones* (a vertex in the corners' plane outside their circumcircle,
 //!   or corners that coalesce or are collinear) are represented, never pruned by (see
 //!   `ball.rs`); their error is their hull's (∪) or ∞ (unbounded).
@@ -138,6 +146,8 @@ pub struct FlintTree3 {
     /// Input triangles in depth-first leaf order: node `n` covers `leaf_order[n.range]`.
     pub leaf_order: Vec<u32>,
     pub(crate) prune: bool,
+    /// The compact copy the point queries walk (`query3.rs`).
+    pub(crate) q: super::query3::QueryIndex,
 }
 
 /// The default smallest angle that is still split (degrees).
@@ -303,8 +313,10 @@ impl FlintTree3 {
             sides,
             leaf_order: Vec::new(),
             prune,
+            q: Default::default(),
         };
         t.number_leaves();
+        t.q = super::query3::QueryIndex::of(&t);
         Ok(t)
     }
 
