@@ -4,6 +4,14 @@
 //!
 //! `cargo run --release -p morpho --example bench_flint3 [mesh file name] [queries]`
 //! (default: horse.obj.gz, 1 000 000).
+//!
+//! Measured 2026-12-06 (release, 2 cores shared with other jobs, load average 4–6, so times
+//! ±50 %): horse (96 966 triangles) build 1.65 s, 162 372 nodes, depth 40, 6 130 fallback
+//! nodes (4 929 of them ≤ 3 triangles); 10⁶ queries (111 521 inside): one thread 165 000–
+//! 200 000 queries/s, two threads no faster under that load; 57.4 nodes visited per query on
+//! average. The target (≥ 10⁶ queries/s per core) is **not** met: the walk is exact
+//! (orient3d/insphere-free filters, but exact ray–triangle tests for each replaced node and
+//! the fills of its three paths), and ∪ stones (9 551 here) prune only by their hull ball.
 
 use morpho::flint::{Containment, FlintTree3};
 use morpho::geom::Point3;
