@@ -333,3 +333,154 @@ fn bad_input_is_refused() {
         "x,y\n0,0\n1,0\n1,1\n0,1\n"
     );
 }
+
+/// A closed mesh written as OFF with its generator's integer coordinates.
+fn write_off(path: &Path, m: &morpho::mesh::TriMesh) {
+    let mut s = format!("OFF\n{} {} 0\n", m.positions.len(), m.triangles.len());
+    for p in &m.positions {
+        s.push_str(&format!("{} {} {}\n", p.x, p.y, p.z));
+    }
+    for t in &m.triangles {
+        s.push_str(&format!("3 {} {} {}\n", t[0], t[1], t[2]));
+    }
+    std::fs::write(path, s).unwrap();
+}
+
+#[test]
+fn mesh_contains_equals_brute_force() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = morpho::mesh::generate::multi_torus(2); // genus 2, integer corners
+    write_off(&dir.path().join("m.off"), &m);
+    let b = m.bbox();
+    let mut q = String::from("x,y,z\n");
+    let mut qs = Vec::new();
+    for i in 0..((b.max[0] - b.min[0]) * 4.0 + 5.0) as i32 {
+        for j in 0..((b.max[1] - b.min[1]) * 4.0 + 5.0) as i32 {
+            for k in 0..((b.max[2] - b.min[2]) * 4.0 + 5.0) as i32 {
+                // quarter steps: on faces, edges and vertices, inside and outside
+                let p = [
+                    b.min[0] - 0.5 + 0.25 * f64::from(i),
+                    b.min[1] - 0.5 + 0.25 * f64::from(j),
+                    b.min[2] - 0.5 + 0.25 * f64::from(k),
+                ];
+                qs.push(p);
+                q.push_str(&format!("{},{},{}\n", p[0], p[1], p[2]));
+            }
+        }
+    }
+    std::fs::write(dir.path().join("q.csv"), q).unwrap();
+    let o = morpho(
+        dir.path(),
+        &[
+            "flint", "contains", "m.off", "q.csv", "-o", "a.csv", "--report", "r.json",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let pos: Vec<[f64; 3]> = m.positions.iter().map(|p| [p.x, p.y, p.z]).collect();
+    let text = std::fs::read_to_string(dir.path().join("a.csv")).unwrap();
+    let rows: Vec<&str> = text.lines().skip(1).collect();
+    assert_eq!(rows.len(), qs.len());
+    let mut counts = [0; 3];
+    for (row, p) in rows.iter().zip(&qs) {
+        let got: u8 = row.rsplit(',').next().unwrap().trim().parse().unwrap();
+        let want = morpho::flint::contains_brute3(&pos, &m.triangles, *p) as u8;
+        assert_eq!(got, want, "{p:?}");
+        counts[want as usize] += 1;
+    }
+    assert!(counts.iter().all(|&c| c > 0), "{counts:?}");
+    let r = report(dir.path(), "r.json");
+    assert_eq!(r["queries"], qs.len());
+    assert_eq!(r["boundary"], counts[2]);
+}
+
+#[test]
+fn mesh_build_and_approx() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = morpho::mesh::generate::icosphere(3);
+    morpho::io::write_mesh(
+        &dir.path().join("s.ply"),
+        &m,
+        morpho::io::Encoding::BinaryLittleEndian,
+    )
+    .unwrap();
+    let o = morpho(
+        dir.path(),
+        &[
+            "flint", "build", "s.ply", "-o", "t.json", "--report", "r.json",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = report(dir.path(), "r.json");
+    assert_eq!(r["leaves"], m.triangles.len());
+    assert_eq!(r["triangles"], m.triangles.len());
+    let t = report(dir.path(), "t.json");
+    let nodes = t["nodes"].as_array().unwrap();
+    assert_eq!(nodes.len() + 1, r["nodes"].as_u64().unwrap() as usize);
+    assert_eq!(
+        nodes.iter().filter(|n| n.get("triangle").is_some()).count(),
+        m.triangles.len()
+    );
+    // level 0 is the root triangle both ways; adaptive ε meets its bound
+    let o = morpho(
+        dir.path(),
+        &[
+            "flint", "approx", "s.ply", "--level", "0", "-o", "a.off", "--report", "a.json",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(report(dir.path(), "a.json")["triangles"], 2);
+    let mut last = 0;
+    for eps in ["0.3", "0.1", "0.03", "0"] {
+        let o = morpho(
+            dir.path(),
+            &[
+                "flint", "approx", "s.ply", "--error", eps, "-o", "e.obj", "--report", "e.json",
+            ],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let r = report(dir.path(), "e.json");
+        let n = r["triangles"].as_u64().unwrap() + r["dropped"].as_u64().unwrap();
+        assert!(n >= last, "ε {eps}: {n} < {last}");
+        last = n;
+        assert!(r["e5"].as_f64().unwrap() <= eps.parse::<f64>().unwrap());
+        let out = morpho::io::read_mesh(&dir.path().join("e.obj")).unwrap();
+        assert_eq!(out.triangles.len() as u64, r["triangles"].as_u64().unwrap());
+        // every output vertex is an input vertex
+        for p in &out.positions {
+            assert!(m.positions.iter().any(|q| q == p));
+        }
+    }
+    assert_eq!(last as usize, m.triangles.len());
+}
+
+#[test]
+fn bad_mesh_input_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let cube = morpho::mesh::generate::cube();
+    write_off(&dir.path().join("cube.off"), &cube);
+    let mut open = cube.clone();
+    open.triangles.pop();
+    write_off(&dir.path().join("open.off"), &open);
+    let mut flip = cube.clone();
+    flip.triangles[0].swap(1, 2);
+    write_off(&dir.path().join("flip.off"), &flip);
+    std::fs::write(dir.path().join("q2.csv"), "x,y\n0.5,0.5\n").unwrap();
+    std::fs::write(dir.path().join("qn.csv"), "x,y,z\n0.5,nan,0.5\n").unwrap();
+    for args in [
+        &["flint", "build", "open.off", "-o", "t.json"][..],
+        &["flint", "build", "flip.off", "-o", "t.json"][..],
+        &["flint", "approx", "cube.off", "--level", "1", "-o", "a.csv"][..],
+        &[
+            "flint", "approx", "cube.off", "--level", "1", "--method", "dp", "-o", "a.off",
+        ][..],
+        &["flint", "approx", "cube.off", "--error=-1", "-o", "a.off"][..],
+        &["flint", "contains", "open.off", "qn.csv", "-o", "a.csv"][..],
+        &["flint", "contains", "cube.off", "q2.csv", "-o", "a.csv"][..],
+        &["flint", "contains", "cube.off", "qn.csv", "-o", "a.csv"][..],
+    ] {
+        let o = morpho(dir.path(), args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.starts_with("error: "), "{args:?}: {err}");
+    }
+}

@@ -19,7 +19,9 @@
 //!   `intersects`, `pairs`, `overlaps`, `visited` (piece pairs the descent filtered) against
 //!   `brute_pairs` (edge pairs of brute force), timings.
 //!
-//! Not built yet: the 3D tree.
+//! A closed mesh (.ply/.obj/.off/.stl, also gzipped) as IN of `build`, `approx` and
+//! `contains` uses the 3D tree instead (`cmd/flint3.rs`; queries `x,y,z`). Not built yet:
+//! `intersect` of meshes and the 3D baselines.
 
 use crate::report::Report;
 use crate::Failure;
@@ -43,7 +45,7 @@ pub struct Args {
 pub enum Sub {
     /// Build the flintstone tree and write it as JSON.
     Build {
-        /// Polygon or polyline (.csv in order, .geojson).
+        /// Polygon or polyline (.csv in order, .geojson), or a closed mesh (.ply/.obj/.off/.stl).
         input: PathBuf,
         /// Output tree (.json).
         #[arg(short, long)]
@@ -54,9 +56,9 @@ pub enum Sub {
     },
     /// Approximate the polygon by a level, an error bound or an edge count.
     Approx {
-        /// Polygon or polyline (.csv in order, .geojson).
+        /// Polygon or polyline (.csv in order, .geojson), or a closed mesh (.ply/.obj/.off/.stl).
         input: PathBuf,
-        /// Output polygon/polyline (.csv, .geojson).
+        /// Output polygon/polyline (.csv, .geojson), or mesh (.ply/.obj/.off/.stl).
         #[arg(short, long)]
         output: PathBuf,
         /// All vertices of tree levels 0..=L.
@@ -75,11 +77,12 @@ pub enum Sub {
         #[arg(long)]
         open: bool,
     },
-    /// Point-in-polygon for every row of QUERIES (x,y): adds an `inside` column.
+    /// Point-in-polygon (x,y) or point-in-mesh (x,y,z) for every row of QUERIES: adds an
+    /// `inside` column.
     Contains {
-        /// Closed polygon (.csv in order, .geojson).
+        /// Closed polygon (.csv in order, .geojson) or closed mesh (.ply/.obj/.off/.stl).
         input: PathBuf,
-        /// Query points (.csv or .xyz with x, y).
+        /// Query points (.csv or .xyz with x, y, or x, y, z for a mesh).
         queries: PathBuf,
         /// Output (.csv): the queries plus `inside` (1 inside, 0 outside, 2 on the boundary).
         #[arg(short, long)]
@@ -164,6 +167,9 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                     output.display()
                 )));
             }
+            if super::flint3::is_mesh(&input) {
+                return super::flint3::build(&input, &output, report);
+            }
             let (pts, closed) = report.time("read", || read_curve(&input, open))?;
             let t = report.time("build", || tree(&input, &pts, closed))?;
             let k = t.kind_counts();
@@ -233,6 +239,9 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                     ))
                 }
             };
+            if super::flint3::is_mesh(&input) {
+                return super::flint3::approx(&input, &output, target, &method, report);
+            }
             let ext = crate::cmd::extension(&output);
             if !matches!(ext.as_str(), "csv" | "geojson" | "json") {
                 return Err(Failure::usage(format!(
@@ -308,6 +317,9 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                     "{}: the answers are written as .csv",
                     output.display()
                 )));
+            }
+            if super::flint3::is_mesh(&input) {
+                return super::flint3::contains(&input, &queries, &output, report);
             }
             let (pts, closed) = report.time("read", || read_curve(&input, false))?;
             if !closed {

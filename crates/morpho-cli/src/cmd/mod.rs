@@ -9,6 +9,7 @@ pub mod convert;
 pub mod curvature;
 pub mod demo;
 pub mod flint;
+pub mod flint3;
 pub mod graph;
 pub mod info;
 pub mod isosurface;

@@ -14,18 +14,31 @@
 //!   and arc tree (§6.3) through the same criteria; [`BaselineTree`]: their point-in-polygon
 //!   walk (capsule, strip, ellipse regions), with visits counted like
 //!   [`FlintTree2::locate_counted`].
+//! - [`FlintTree3`]: the 3D flintstone tree of a closed triangle mesh (Alg. 7.2, §7.3) with
+//!   [`Flintstone3`] balls of signed radius (Defs. 7.5–7.6), its point-in-polyhedron walk
+//!   [`FlintTree3::contains`] (Lemma 6.1, exact; crack-safe through path fills, see
+//!   `query3.rs`) with the oracle [`contains_brute3`], and its approximations
+//!   [`Approximation3`] (level ℓ, adaptive ε, triangle count; §7.3.3).
 //!
-//! Not built yet: the 3D tree of closed meshes (Alg. 7.2) and the 3D baselines.
+//! Not built yet: the 3D baselines (IEPF, prism tree) and tree–tree intersection in 3D.
 
 mod approx;
+mod approx3;
+mod ball;
 mod baselines;
 mod bquery;
 mod criteria;
 mod disc;
+mod patch3;
 mod query;
+mod query3;
+mod region;
 mod tree2;
+mod tree3;
 
 pub use approx::{Approximation, Target};
+pub use approx3::Approximation3;
+pub use ball::{Flintstone3, SideBall};
 pub use baselines::{baseline, Baseline};
 pub use bquery::BaselineTree;
 pub use criteria::{approximation_criteria, edge_criteria, Criteria};
@@ -34,7 +47,9 @@ pub use query::{
     contains_brute, intersect, intersect_brute, intersect_counted, Containment, Crossing,
     IntersectStats,
 };
+pub use query3::contains_brute3;
 pub use tree2::{FlintNode, FlintRoot, FlintTree2};
+pub use tree3::{FlintNode3, FlintRoot3, FlintTree3, Side3, DEFAULT_MIN_ANGLE};
 
 /// A refusal of the flintstone constructions and queries, naming the offending input.
 ///
@@ -82,6 +97,48 @@ pub enum FlintError {
     /// A query point with a NaN or infinite coordinate.
     #[error("flint: a query point has a non-finite coordinate")]
     NonFiniteQuery,
+    /// A mesh without triangles.
+    #[error("flint: the mesh has no triangles")]
+    EmptyMesh,
+    /// A triangle naming a vertex that does not exist.
+    #[error("flint: triangle {triangle} refers to vertex {vertex}, but there are only {vertices} vertices")]
+    VertexOutOfRange {
+        /// Index of the triangle.
+        triangle: usize,
+        /// The vertex it names.
+        vertex: u32,
+        /// Number of vertices.
+        vertices: usize,
+    },
+    /// A triangle with a repeated vertex or collinear corners (exact test).
+    #[error("flint: triangle {triangle} is degenerate (repeated vertex or collinear corners)")]
+    DegenerateTriangle {
+        /// Index of the triangle.
+        triangle: usize,
+    },
+    /// An edge shared by more than two triangles.
+    #[error("flint: the mesh is not a 2-manifold: edge {a}–{b} has more than two triangles")]
+    NonManifoldEdge {
+        /// First vertex of the edge.
+        a: u32,
+        /// Second vertex of the edge.
+        b: u32,
+    },
+    /// A vertex whose triangles do not form one fan.
+    #[error("flint: the mesh is not a 2-manifold at vertex {vertex}")]
+    NonManifoldVertex {
+        /// The vertex.
+        vertex: u32,
+    },
+    /// A mesh with boundary edges where a closed one is needed.
+    #[error("flint: the mesh is not closed ({boundary_edges} boundary edges); the 3D tree needs a closed mesh")]
+    OpenMesh {
+        /// Number of boundary edges.
+        boundary_edges: usize,
+    },
+    /// Two triangles traverse a shared edge in the same direction.
+    #[error("flint: the mesh is not consistently oriented (orient it first)")]
+    InconsistentOrientation,
     /// An approximation target out of range.
     #[error("flint: invalid approximation target: {0}")]
     BadTarget(String),
