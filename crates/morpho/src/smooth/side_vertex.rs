@@ -23,6 +23,22 @@
 //! block passes through the vertex. The independent check is
 //! [`super::side_vertex_continuity`].
 //!
+//! **Where the text's scheme is only C⁰ or nearly degenerate (measured, not repaired).**
+//! (a) A conic's handle at one end is `∝ sin` of the tangent angle at the *other* end
+//! ((6.9)); when a radial conic's end tangent at the boundary lies along its chord (β → 0,
+//! the chord from `v_i` lies in the tangent plane at the boundary point) the handle at `v_i`
+//! collapses, and where β passes 0 (convex ↔ generalized conic, Def. 6.3) the unsigned angle
+//! has a kink: the block, and so the patch, is only C⁰ along that curve *inside* the
+//! triangle, and can fold there (spot, area normals, density 8: 315 of 187 394 tessellation
+//! vertices, 0.17 %, have a surface normal more than 37° from their faces' mean, some
+//! reversed; they show as dark specks). (b) Where a radial
+//! conic's end handle at the boundary nearly collapses (α → 0, `|b3 − b2| ≈ 1e-4 |b3 − b0|`
+//! on spot), the tangent plane is continuous at the edge but turns within 1e-4 of it, and
+//! finite differences resolve the edge's normal jump only to about 1e-5 rad
+//! ([`super::side_vertex_continuity`]). On sphere-like data (every conic convex, angles away
+//! from 0) neither occurs: jumps ≤ 1e-9 rad. A smooth recipe for the generalized conics (the
+//! text's Fig. 6.6 is lost) would remove (a); it is not built.
+//!
 //! **Normals.** [`SideVertexSurface::normal`] returns the input normal at a vertex, the
 //! boundary normal `n^S` on an edge (Thm 6.2) and inside the triangle the unit cross product
 //! of two one-sided derivatives by the five-point difference formula (error O(h⁴), `h` ≤ 1e-3
