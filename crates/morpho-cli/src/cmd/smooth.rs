@@ -16,11 +16,14 @@
 //!   b201, b120, b111, b102, b030, b021, b012, b003). `--normals` as in `morpho curvature`.
 //! - `--scheme side-vertex`: the rational side-vertex surface tessellated with `--density`
 //!   steps per triangle edge (default 8, fewer on big meshes; PLY carries the surface normals);
-//!   `--tension T` (default 1, the automatic weights of Thm 6.3) scales every conic weight.
+//!   `--tension T` (default 1, the automatic weights of Thm 6.3) scales every conic weight;
+//!   `--handle-floor K` (default 0.1, 0 = the text's conics) keeps conic handles from collapsing.
 //!   No `.json` (the patches are not polynomial). Report: `max_normal_jump_rad` (20 samples per
 //!   edge, finite-difference normals of both patches, `morpho::smooth::side_vertex_continuity`),
 //!   `non_g1_edges`, `folds`, `fold_edges`, `inflected_edges` (generalized conics),
-//!   `max_deviation` (surface vs flat mesh at the same parameter), `adjusted_normals`.
+//!   `max_deviation` (surface vs flat mesh at the same parameter), `adjusted_normals`,
+//!   `reversed_normals` (tessellation vertices whose surface normal points away from their
+//!   triangles: folds inside a patch, see `morpho::smooth::side_vertex`).
 //!
 //! Report keys (3D): `max_normal_jump_rad` (every macro and micro edge, 20 samples per edge,
 //! measured independently of the construction), `max_macro_jump_rad`, `max_micro_jump_rad`,
@@ -39,9 +42,9 @@ use morpho::geom::{Point2, Vector3};
 use morpho::io::{self, Format};
 use morpho::mesh::{NormalWeighting, Polygon, Polyline, Shapes2, TriMesh};
 use morpho::smooth::{
-    continuity, curve_joints, g1_curve, max_deviation, side_vertex, side_vertex_continuity,
-    tessellate, three_split_with, visible_normals, CurveWeighting, FailureKind, G1Curve,
-    SideVertexOptions, SplitOptions,
+    continuity, curve_joints, g1_curve, max_deviation, reversed_normals, side_vertex,
+    side_vertex_continuity, tessellate, three_split_with, visible_normals, CurveWeighting,
+    FailureKind, G1Curve, SideVertexOptions, SplitOptions,
 };
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -62,6 +65,10 @@ pub struct Args {
     /// values pull the surface towards the mesh).
     #[arg(long)]
     pub tension: Option<f64>,
+    /// Side-vertex surface: the conics' handle floor κ in [0, 0.5] (default 0.1; 0 = the
+    /// text's conics, whose handles can collapse; see `morpho::smooth::Conic`).
+    #[arg(long)]
+    pub handle_floor: Option<f64>,
     /// Tangent weighting of the curve (V §9.2).
     #[arg(long, default_value = "length", value_parser = ["length", "uniform", "inverse"])]
     pub weights: String,
@@ -105,6 +112,18 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         _ => {}
     }
     let side = args.scheme.as_deref() == Some("side-vertex");
+    if let Some(k) = args.handle_floor {
+        if !side {
+            return Err(Failure::usage(
+                "--handle-floor applies to --scheme side-vertex only".to_string(),
+            ));
+        }
+        if !(0.0..=0.5).contains(&k) {
+            return Err(Failure::usage(format!(
+                "--handle-floor must be in [0, 0.5], not {k}"
+            )));
+        }
+    }
     if let Some(t) = args.tension {
         if !side {
             return Err(Failure::usage(
@@ -428,8 +447,13 @@ fn run_side_vertex(args: &Args, report: &mut Report) -> Result<u8, Failure> {
         n = a.normals;
     }
     let tension = args.tension.unwrap_or(1.0);
+    let handle_floor = args.handle_floor.unwrap_or(0.1);
+    let opts = SideVertexOptions {
+        tension,
+        handle_floor,
+    };
     let s = report.time("compute", || {
-        side_vertex(&mesh, &n, &SideVertexOptions { tension })
+        side_vertex(&mesh, &n, &opts)
             .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
     })?;
     let c = report.time("check", || side_vertex_continuity(&s, 20, 1e-9));
@@ -451,6 +475,7 @@ fn run_side_vertex(args: &Args, report: &mut Report) -> Result<u8, Failure> {
     let inflected = s.inflected_edges().len();
     report.set("scheme", "side-vertex");
     report.set("tension", tension);
+    report.set("handle_floor", handle_floor);
     report.set("normals", args.normals.as_str());
     report.set("folds_mode", args.folds.as_str());
     report.set("vertices", mesh.positions.len());
@@ -471,6 +496,7 @@ fn run_side_vertex(args: &Args, report: &mut Report) -> Result<u8, Failure> {
     })?;
     report.set("density", density);
     report.set("triangles", t.triangles.len());
+    report.set("reversed_normals", reversed_normals(&t));
     report.time("write", || {
         io::write_mesh(out, &t, io::Encoding::BinaryLittleEndian)
     })?;

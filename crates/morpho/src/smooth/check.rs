@@ -200,3 +200,18 @@ pub fn side_vertex_continuity(s: &SideVertexSurface, samples: usize, tol: f64) -
     out.max_normal_jump_rad = out.max_macro_jump_rad;
     out
 }
+
+/// Vertices of a tessellated surface whose stored normal points away from the mean of its
+/// triangles (area-weighted facet normal · surface normal ≤ 0): where the surface folds
+/// inside a patch (see the side-vertex module doc, case (a)). 0 without stored normals. O(V + T).
+pub fn reversed_normals(mesh: &crate::mesh::TriMesh) -> usize {
+    let Some(stored) = mesh.normals.as_ref() else {
+        return 0;
+    };
+    let facet = crate::mesh::vertex_normals(mesh, crate::mesh::NormalWeighting::Area);
+    facet
+        .iter()
+        .zip(stored)
+        .filter(|(f, s)| f.norm() > 0.0 && f.dot(s) <= 0.0)
+        .count()
+}

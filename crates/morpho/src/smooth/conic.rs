@@ -35,6 +35,15 @@
 //! text's formula depends on how α, β → 0, so rounding would otherwise pick the handles).
 //! `b0 = b3`: the constant curve.
 //!
+//! **Collapsing handles (deviation, optional).** The handle at `b0` is `∝ sin β`: when the
+//! tangent at `b3` lies along the chord (β → 0, α not) the conic degenerates to its chord
+//! with a zero handle at `b0`, whose tangent is then no longer honoured in the limit, and
+//! where β changes side (convex ↔ generalized conic) the unsigned angle makes the handle,
+//! and every surface built from it, only C⁰ (a fold on real meshes). With a **handle floor**
+//! κ > 0 the shape ratios `r = sin β / cos(γ/2)` (1 for an isosceles configuration) below
+//! `2κ` are replaced by `κ + r²/(4κ)` (C¹, even in β, never below κ): circles (r = 1) and
+//! every configuration with `r ≥ 2κ` keep the text's conic exactly. κ = 0 is the text.
+//!
 //! **The boundary normal.** Along a curve the surface normal `n^S(t)` must be perpendicular to
 //! `ċ(t)` (6.13) and make a prescribed angle with the conic's in-plane normal `n^C(t)`; the text
 //! interpolates the cosine linearly (6.16). Because P contains `n0+n3`, the out-of-plane parts of
@@ -126,11 +135,35 @@ impl Conic {
             n[vertex] = vec::scale(*v, 1.0 / l);
         }
         check_tension(tension)?;
-        Ok(Conic::build(b0, n[0], b3, n[1], tension))
+        Ok(Conic::build(b0, n[0], b3, n[1], tension, 0.0))
+    }
+
+    /// [`Conic::new`] with the handle floor κ of the module doc ("collapsing handles"):
+    /// shape ratios below `2κ` are replaced by `κ + r²/(4κ)`; `floor = 0` is the text's conic.
+    /// Errors as [`Conic::new`], and a floor outside [0, 0.5] ([`SmoothError::Parameter`]).
+    pub fn with_floor(
+        b0: P3,
+        n0: P3,
+        b3: P3,
+        n3: P3,
+        tension: f64,
+        floor: f64,
+    ) -> Result<Conic, SmoothError> {
+        check_floor(floor)?;
+        let c = Conic::new(b0, n0, b3, n3, tension)?;
+        let [n0, n3] = [n0, n3].map(|v| vec::scale(v, 1.0 / vec::norm(v)));
+        Ok(Conic::build(
+            c.control[0],
+            n0,
+            c.control[3],
+            n3,
+            tension,
+            floor,
+        ))
     }
 
     /// The construction of the module doc for unit normals and a valid tension.
-    pub(crate) fn build(b0: P3, n0: P3, b3: P3, n3: P3, tension: f64) -> Conic {
+    pub(crate) fn build(b0: P3, n0: P3, b3: P3, n3: P3, tension: f64, floor: f64) -> Conic {
         let chord = vec::sub(b3, b0);
         let len = vec::norm(chord);
         let Some(d) = unit(chord).filter(|_| len > 0.0) else {
@@ -180,6 +213,14 @@ impl Conic {
         } else {
             (alpha.sin() / half.sin(), beta.sin() / half.sin())
         };
+        let soft = |r: f64| {
+            if floor > 0.0 && r < 2.0 * floor {
+                floor + r * r / (4.0 * floor)
+            } else {
+                r
+            }
+        };
+        let (ra, rb) = (soft(ra), soft(rb));
         let l01 = tension * rb / (1.0 + 2.0 * omega) * len;
         let l32 = tension * ra / (1.0 + 2.0 * omega) * len;
         let w = (1.0 + 2.0 * omega) / 3.0;
@@ -261,6 +302,17 @@ impl Conic {
         } else {
             vec::scale(self.tangents[1], -1.0)
         }
+    }
+}
+
+/// `Err(Parameter)` unless `0 ≤ floor ≤ 0.5`.
+pub(crate) fn check_floor(floor: f64) -> Result<(), SmoothError> {
+    if (0.0..=0.5).contains(&floor) {
+        Ok(())
+    } else {
+        Err(SmoothError::Parameter {
+            what: format!("handle floor {floor} is not in [0, 0.5]"),
+        })
     }
 }
 
@@ -390,7 +442,7 @@ mod tests {
     #[test]
     fn straight_data_gives_the_uniform_segment() {
         let n = [0.0, 0.0, 1.0];
-        let c = Conic::build([0.0; 3], n, [3.0, 0.0, 0.0], n, 1.0);
+        let c = Conic::build([0.0; 3], n, [3.0, 0.0, 0.0], n, 1.0, 0.0);
         assert_eq!(c.weights, [1.0; 4]);
         for k in 0..=6 {
             let t = k as f64 / 6.0;
@@ -407,9 +459,17 @@ mod tests {
             [1.0, 0.0, 0.0],
             [0.0, 0.0, -1.0],
             1.0,
+            0.0,
         );
         assert!(c.eval(0.5).iter().all(|x| x.is_finite()));
-        let c = Conic::build([1.0; 3], [0.0, 0.0, 1.0], [1.0; 3], [0.0, 1.0, 0.0], 1.0);
+        let c = Conic::build(
+            [1.0; 3],
+            [0.0, 0.0, 1.0],
+            [1.0; 3],
+            [0.0, 1.0, 0.0],
+            1.0,
+            0.0,
+        );
         assert_eq!(c.eval(0.5), [1.0; 3]);
         let c = Conic::build(
             [0.0; 3],
@@ -417,6 +477,7 @@ mod tests {
             [1.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],
             1.0,
+            0.0,
         );
         assert!(c.eval(0.5).iter().all(|x| x.is_finite()));
     }
@@ -429,6 +490,7 @@ mod tests {
             [-1.0, 0.0, 0.0],
             [-1.0, 0.0, 0.0],
             1.0,
+            0.0,
         );
         for k in 1..10 {
             let p = c.eval(k as f64 / 10.0);
@@ -439,7 +501,14 @@ mod tests {
     #[test]
     fn inflection_when_the_tangents_point_to_different_sides() {
         let s = 0.5f64.sqrt();
-        let c = Conic::build([0.0; 3], [-s, s, 0.0], [1.0, 0.0, 0.0], [-s, s, 0.0], 1.0);
+        let c = Conic::build(
+            [0.0; 3],
+            [-s, s, 0.0],
+            [1.0, 0.0, 0.0],
+            [-s, s, 0.0],
+            1.0,
+            0.0,
+        );
         assert!(!c.convex);
         // the curve crosses its chord: an S
         let (a, b) = (c.eval(0.25)[1], c.eval(0.75)[1]);

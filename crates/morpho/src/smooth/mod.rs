@@ -30,7 +30,7 @@ mod tessellate;
 mod triangle;
 
 pub use bezier::{bernstein, joint, BezierCurve, Joint};
-pub use check::{continuity, max_deviation, side_vertex_continuity, Continuity};
+pub use check::{continuity, max_deviation, reversed_normals, side_vertex_continuity, Continuity};
 pub use conic::{side_vertex_weights, Conic, ConicEdge};
 pub use curve::{
     curve_joints, g1_curve, tangent, CurveFailure, CurveWeighting, FailureKind, G1Curve,
