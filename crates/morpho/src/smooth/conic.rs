@@ -43,6 +43,11 @@
 //! κ > 0 the shape ratios `r = sin β / cos(γ/2)` (1 for an isosceles configuration) below
 //! `2κ` are replaced by `κ + r²/(4κ)` (C¹, even in β, never below κ): circles (r = 1) and
 //! every configuration with `r ≥ 2κ` keep the text's conic exactly. κ = 0 is the text.
+//! The floor alone leaves a kink: the *other* handle `∝ sin α / cos(γ/2)` and the weight
+//! depend on the unsigned β, and change slope by O(1/α) where β changes side. So with κ > 0
+//! an angle x below `c = 0.25` times the larger angle M is also softened to
+//! `(x² + c²M²)/(2cM)` (C¹, even, at least cM/2): isosceles configurations (circles, sphere
+//! data) and every configuration with both angles within a factor 4 are untouched.
 //!
 //! **The boundary normal.** Along a curve the surface normal `n^S(t)` must be perpendicular to
 //! `ċ(t)` (6.13) and make a prescribed angle with the conic's in-plane normal `n^C(t)`; the text
@@ -63,6 +68,8 @@ type P3 = [f64; 3];
 
 /// Below this `|x|`, a cross product counts as zero (inputs are unit vectors).
 const TINY: f64 = 1e-12;
+/// With a handle floor, angles below this fraction of the larger one are softened.
+const SOFT_ANGLE: f64 = 0.25;
 /// `α + β` at or below this: both tangents along the chord (module doc).
 const STRAIGHT: f64 = 1e-9;
 
@@ -205,6 +212,17 @@ impl Conic {
         let mut beta = s3.abs().atan2(-vec::dot(t3, d));
         if alpha + beta <= STRAIGHT {
             (alpha, beta) = (0.0, 0.0);
+        } else if floor > 0.0 {
+            // the unsigned angle has a kink where a tangent crosses the chord (module doc)
+            let m = alpha.max(beta) * SOFT_ANGLE;
+            let soft = |x: f64| {
+                if x >= m {
+                    x
+                } else {
+                    (x * x + m * m) / (2.0 * m)
+                }
+            };
+            (alpha, beta) = (soft(alpha), soft(beta));
         }
         let half = 0.5 * (alpha + beta); // (π − γ)/2: cos(γ/2) = sin(half)
         let omega = tension * half.cos();

@@ -32,12 +32,13 @@
 //! on spot) the tangent plane is continuous at the edge but turns within 1e-4 of it. With the
 //! text's conics (`handle_floor: 0`) spot's edges measure normal jumps up to 1.2e-5 rad and
 //! fandisk's up to π (handles of 1e-10 in its flat parts). **Deviation:** the default
-//! [`SideVertexOptions::handle_floor`] 0.1 keeps every handle's shape ratio ≥ 0.1 with a C¹
-//! softening below 0.2 (`conic.rs`), leaving circular arcs and sphere data exactly as in the
-//! text: jumps ≤ 3e-8 rad on spot and bunny, ≤ 1.7e-6 on fandisk, no edge fold. What remains
-//! of (a) is the kink of the weight `ω = cos((α+|β|)/2)` where β changes side: a few
-//! tessellation vertices (spot, density 8: 172 of 187 394) have a surface normal pointing
-//! away from their triangles (reported by [`super::reversed_normals`]; dark specks). On
+//! [`SideVertexOptions::handle_floor`] 0.1 keeps every handle's shape ratio ≥ 0.1 and softens
+//! an angle below a quarter of the other one, both C¹ (`conic.rs`), leaving circular arcs and
+//! sphere data exactly as in the text: jumps ≤ 1.6e-8 rad on spot, ≤ 3.6e-7 on fandisk, no
+//! edge fold. What remains of (a) is not smooth yet: a few tessellation vertices (spot,
+//! density 8: 95 of 187 394; fandisk 19) have a surface normal pointing away from their
+//! triangles, almost all where a radial conic's angle is near 0 (reported by
+//! [`super::reversed_normals`]; dark specks in a picture). On
 //! sphere-like data (every conic convex, angles away from 0) none of this occurs: jumps
 //! ≤ 1e-9 rad.
 //!
