@@ -376,3 +376,148 @@ fn smooth_refuses_bad_input_with_exit_2() {
     assert_eq!(std::fs::read_to_string(&good).unwrap(), oct);
     assert!(!out.exists());
 }
+
+/// The regular tetrahedron inscribed in the unit sphere, with the sphere's normals, as PLY.
+fn unit_tetrahedron_ply() -> String {
+    let s = 1.0 / 3f64.sqrt();
+    let v = [[s, s, s], [s, -s, -s], [-s, s, -s], [-s, -s, s]];
+    let f = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]];
+    let mut out = String::from(
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\n\
+         property double z\nproperty double nx\nproperty double ny\nproperty double nz\n\
+         element face 4\nproperty list uchar int vertex_indices\nend_header\n",
+    );
+    for p in v {
+        out += &format!("{} {} {} {} {} {}\n", p[0], p[1], p[2], p[0], p[1], p[2]);
+    }
+    for t in f {
+        out += &format!("3 {} {} {}\n", t[0], t[1], t[2]);
+    }
+    out
+}
+
+#[test]
+fn side_vertex_surface_of_the_tetrahedron_and_a_real_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let tet = d.join("tet.ply");
+    std::fs::write(&tet, unit_tetrahedron_ply()).unwrap();
+    let (out, rep) = (d.join("s.ply"), d.join("r.json"));
+    let run = |extra: &[&str]| {
+        let mut a = vec![
+            "smooth",
+            tet.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--scheme",
+            "side-vertex",
+            "--normals",
+            "file",
+            "--report",
+            rep.to_str().unwrap(),
+        ];
+        a.extend_from_slice(extra);
+        morpho(&a)
+    };
+    ok(&run(&["--density", "48"]));
+    let r = json(&rep);
+    assert_eq!(r["scheme"], "side-vertex");
+    assert_eq!(r["patches"], 4);
+    assert_eq!(r["triangles"], 4 * 48 * 48);
+    assert_eq!(
+        (r["non_g1_edges"].as_u64(), r["folds"].as_u64()),
+        (Some(0), Some(0))
+    );
+    assert!(r["max_normal_jump_rad"].as_f64().unwrap() <= 1e-9, "{r}");
+    assert_eq!(r["inflected_edges"], 0);
+    // Hamann's sphere test from the written mesh: 0.03422 at the face centroids
+    let m = morpho::io::read_mesh(&out).unwrap();
+    let dev = m
+        .positions
+        .iter()
+        .map(|p| (p.coords.norm() - 1.0).abs())
+        .fold(0.0, f64::max);
+    assert!((0.03420..=0.03424).contains(&dev), "{dev}");
+    let normals = m.normals.as_ref().expect("PLY with surface normals");
+    for (p, n) in m.positions.iter().zip(normals) {
+        assert!((n.norm() - 1.0).abs() < 1e-6 && n.dot(&p.coords.normalize()) > 0.99);
+    }
+    let topo = morpho::mesh::analyze_topology(&m);
+    assert!(topo.is_closed() && topo.consistently_oriented);
+    // a lower tension pulls the surface towards the tetrahedron
+    let flat_dev = r["max_deviation"].as_f64().unwrap();
+    ok(&run(&["--density", "12", "--tension", "0.5"]));
+    let r2 = json(&rep);
+    assert_eq!(r2["tension"], 0.5);
+    assert!(r2["max_deviation"].as_f64().unwrap() < flat_dev);
+    // refused: tension 0, tension with split3, JSON output, 2D input
+    assert_input_error(&run(&["--tension", "0"]), None);
+    let o = morpho(&[
+        "smooth",
+        tet.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--tension",
+        "0.5",
+    ]);
+    assert_input_error(&o, None);
+    let o = morpho(&[
+        "smooth",
+        tet.to_str().unwrap(),
+        "-o",
+        d.join("s.json").to_str().unwrap(),
+        "--scheme",
+        "side-vertex",
+    ]);
+    assert_input_error(&o, None);
+    let csv = d.join("p.csv");
+    std::fs::write(&csv, "x,y\n0,0\n1,0\n0,1\n").unwrap();
+    let o = morpho(&[
+        "smooth",
+        csv.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--scheme",
+        "side-vertex",
+    ]);
+    assert_input_error(&o, None);
+    // an open mesh names the file
+    let open = d.join("open.obj");
+    let oct = octahedron_obj();
+    std::fs::write(&open, oct.lines().take(13).collect::<Vec<_>>().join("\n")).unwrap();
+    let o = morpho(&[
+        "smooth",
+        open.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--scheme",
+        "side-vertex",
+    ]);
+    assert_input_error(&o, Some(&open));
+    // a real mesh (default handle floor 0.1): no fold at the edges, C⁰, jumps ≤ 1e-7
+    let Some(spot) = data("meshes/spot.obj") else {
+        return;
+    };
+    let o = morpho(&[
+        "smooth",
+        spot.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+        "--scheme",
+        "side-vertex",
+        "--density",
+        "2",
+        "--report",
+        rep.to_str().unwrap(),
+    ]);
+    ok(&o);
+    let r = json(&rep);
+    assert_eq!(r["folds"], 0);
+    assert!(r["max_position_gap"].as_f64().unwrap() <= 1e-14);
+    assert!(r["max_normal_jump_rad"].as_f64().unwrap() <= 1e-7, "{r}");
+    assert!(r["inflected_edges"].as_u64().unwrap() > 0);
+    assert_eq!(r["edges_checked"], 8784);
+    let m = morpho::io::read_mesh(&out).unwrap();
+    assert_eq!(m.triangles.len(), 5856 * 4);
+    assert!(morpho::mesh::analyze_topology(&m).is_closed());
+}

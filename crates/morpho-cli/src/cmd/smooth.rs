@@ -1,7 +1,8 @@
-//! `morpho smooth IN -o OUT [--scheme curve|split3] [--weights length|uniform|inverse]
-//! [--normals area|uniform|inverse|file] [--density N]`: the G¹ curve through a polygon
-//! (Veltkamp 1992, §9.2; NOTES B.2) or the cubic three-split G¹ surface through a closed mesh
-//! (V §9.6; NOTES B.5); see `morpho::smooth`.
+//! `morpho smooth IN -o OUT [--scheme curve|split3|side-vertex] [--weights length|uniform|inverse]
+//! [--normals area|uniform|inverse|file] [--density N] [--tension T]`: the G¹ curve through a
+//! polygon (Veltkamp 1992, §9.2; NOTES B.2), the cubic three-split G¹ surface through a closed
+//! mesh (V §9.6; NOTES B.5) or Hamann's side-vertex surface of degree-elevated conics (Hamann
+//! 1991, ch. 6; NOTES E); see `morpho::smooth`.
 //!
 //! - 2D input (`.csv`, `.geojson`: polygons with holes and polylines; every ring and polyline
 //!   becomes one curve) → `.svg` (the true cubic path), `.json`
@@ -13,6 +14,16 @@
 //!   micro-patch edge (default 8; PLY carries the surface normals) or `.json`
 //!   `{"degree":3,"patches":[{"macro":t,"control":[[x,y,z]×10]},…]}` (control points b300, b210,
 //!   b201, b120, b111, b102, b030, b021, b012, b003). `--normals` as in `morpho curvature`.
+//! - `--scheme side-vertex`: the rational side-vertex surface tessellated with `--density`
+//!   steps per triangle edge (default 8, fewer on big meshes; PLY carries the surface normals);
+//!   `--tension T` (default 1, the automatic weights of Thm 6.3) scales every conic weight;
+//!   `--handle-floor K` (default 0.1, 0 = the text's conics) keeps conic handles from collapsing.
+//!   No `.json` (the patches are not polynomial). Report: `max_normal_jump_rad` (20 samples per
+//!   edge, finite-difference normals of both patches, `morpho::smooth::side_vertex_continuity`),
+//!   `non_g1_edges`, `folds`, `fold_edges`, `inflected_edges` (generalized conics),
+//!   `max_deviation` (surface vs flat mesh at the same parameter), `adjusted_normals`,
+//!   `reversed_normals` (tessellation vertices whose surface normal points away from their
+//!   triangles: folds inside a patch, see `morpho::smooth::side_vertex`).
 //!
 //! Report keys (3D): `max_normal_jump_rad` (every macro and micro edge, 20 samples per edge,
 //! measured independently of the construction), `max_macro_jump_rad`, `max_micro_jump_rad`,
@@ -31,8 +42,9 @@ use morpho::geom::{Point2, Vector3};
 use morpho::io::{self, Format};
 use morpho::mesh::{NormalWeighting, Polygon, Polyline, Shapes2, TriMesh};
 use morpho::smooth::{
-    continuity, curve_joints, g1_curve, max_deviation, tessellate, three_split_with,
-    visible_normals, CurveWeighting, FailureKind, G1Curve, SplitOptions,
+    continuity, curve_joints, g1_curve, max_deviation, reversed_normals, side_vertex,
+    side_vertex_continuity, tessellate, three_split_with, visible_normals, CurveWeighting,
+    FailureKind, G1Curve, SideVertexOptions, SplitOptions,
 };
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -45,10 +57,18 @@ pub struct Args {
     /// Output: .svg .json .geojson .csv for a curve; .ply .obj .off .stl .json for a surface.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// The construction (default: `curve` for 2D input, `split3` for a mesh). The two- and
-    /// six-split and the side-vertex surface are not built yet.
-    #[arg(long, value_parser = ["curve", "split3"])]
+    /// The construction (default: `curve` for 2D input, `split3` for a mesh; `side-vertex`:
+    /// Hamann's conic surface). The two- and six-split are not built yet.
+    #[arg(long, value_parser = ["curve", "split3", "side-vertex"])]
     pub scheme: Option<String>,
+    /// Side-vertex surface: scales every conic's automatic weight (1 = Thm 6.3; smaller
+    /// values pull the surface towards the mesh).
+    #[arg(long)]
+    pub tension: Option<f64>,
+    /// Side-vertex surface: the conics' handle floor κ in [0, 0.5] (default 0.1; 0 = the
+    /// text's conics, whose handles can collapse; see `morpho::smooth::Conic`).
+    #[arg(long)]
+    pub handle_floor: Option<f64>,
     /// Tangent weighting of the curve (V §9.2).
     #[arg(long, default_value = "length", value_parser = ["length", "uniform", "inverse"])]
     pub weights: String,
@@ -83,13 +103,38 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                 args.input.display()
             )))
         }
-        (Some("split3"), false) => {
+        (Some(s @ ("split3" | "side-vertex")), false) => {
             return Err(Failure::usage(format!(
-                "{}: --scheme split3 smooths closed meshes (.ply .obj .off .stl)",
+                "{}: --scheme {s} smooths closed meshes (.ply .obj .off .stl)",
                 args.input.display()
             )))
         }
         _ => {}
+    }
+    let side = args.scheme.as_deref() == Some("side-vertex");
+    if let Some(k) = args.handle_floor {
+        if !side {
+            return Err(Failure::usage(
+                "--handle-floor applies to --scheme side-vertex only".to_string(),
+            ));
+        }
+        if !(0.0..=0.5).contains(&k) {
+            return Err(Failure::usage(format!(
+                "--handle-floor must be in [0, 0.5], not {k}"
+            )));
+        }
+    }
+    if let Some(t) = args.tension {
+        if !side {
+            return Err(Failure::usage(
+                "--tension applies to --scheme side-vertex only".to_string(),
+            ));
+        }
+        if !(t > 0.0 && t <= 1e6) {
+            return Err(Failure::usage(format!(
+                "--tension must be in (0, 1e6], not {t}"
+            )));
+        }
     }
     if let Some(d) = args.density {
         let max = if mesh_in { 64 } else { 4096 };
@@ -99,7 +144,9 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             )));
         }
     }
-    if mesh_in {
+    if side {
+        run_side_vertex(&args, report)
+    } else if mesh_in {
         run_surface(&args, report)
     } else {
         run_curve(&args, report)
@@ -377,6 +424,89 @@ fn run_surface(args: &Args, report: &mut Report) -> Result<u8, Failure> {
         c.non_g1_edges.len(),
         c.fold_edges,
         s.singular_edges.len()
+    );
+    Ok(0)
+}
+
+/// `--scheme side-vertex`: Hamann's surface, tessellated (module doc).
+fn run_side_vertex(args: &Args, report: &mut Report) -> Result<u8, Failure> {
+    let fmt = Format::of(&args.output)?;
+    if !io::is_mesh_format(fmt) {
+        return Err(Failure::usage(format!(
+            "{}: the side-vertex surface is written tessellated: .ply, .obj, .off or .stl",
+            args.output.display()
+        )));
+    }
+    let mesh = report.time("read", || io::read_mesh(&args.input))?;
+    let mut n = normals(&mesh, &args.normals, &args.input)?;
+    if args.folds == "guard" {
+        let a = report.time("normals", || visible_normals(&mesh, &n, 0.05));
+        report.set("adjusted_normals", a.adjusted.len());
+        report.set("adjusted_normals_infeasible", a.infeasible.len());
+        report.set("max_normal_change_rad", a.max_change_rad);
+        n = a.normals;
+    }
+    let tension = args.tension.unwrap_or(1.0);
+    let handle_floor = args.handle_floor.unwrap_or(0.1);
+    let opts = SideVertexOptions {
+        tension,
+        handle_floor,
+    };
+    let s = report.time("compute", || {
+        side_vertex(&mesh, &n, &opts)
+            .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
+    })?;
+    let c = report.time("check", || side_vertex_continuity(&s, 20, 1e-9));
+    // default: 8 steps, fewer on big meshes (at most ~1M triangles: every point costs a few
+    // dozen conic constructions); an explicit density is refused beyond 32M triangles
+    let per = |d: usize| s.triangles.len().saturating_mul(d * d);
+    let density = match args.density {
+        Some(d) if per(d) > 32_000_000 => {
+            return Err(Failure::usage(format!(
+                "--density {d} would give {} triangles over {} patches; choose a smaller density",
+                per(d),
+                s.triangles.len()
+            )))
+        }
+        Some(d) => d,
+        None => (1..=8).rev().find(|&d| per(d) <= 1_000_000).unwrap_or(1),
+    };
+    let dev = report.time("deviation", || s.max_deviation(density.min(8)));
+    let inflected = s.inflected_edges().len();
+    report.set("scheme", "side-vertex");
+    report.set("tension", tension);
+    report.set("handle_floor", handle_floor);
+    report.set("normals", args.normals.as_str());
+    report.set("folds_mode", args.folds.as_str());
+    report.set("vertices", mesh.positions.len());
+    report.set("macro_triangles", mesh.triangles.len());
+    report.set("patches", s.triangles.len());
+    report.set("max_normal_jump_rad", c.max_normal_jump_rad);
+    report.set("max_position_gap", c.max_position_gap);
+    report.set("non_g1_edges", c.non_g1_edges.len());
+    report.set("edges_checked", c.edges);
+    report.set("folds", c.folds);
+    report.set("fold_edges", c.fold_edges);
+    report.set("inflected_edges", inflected);
+    report.set("max_deviation", dev);
+    let out = &args.output;
+    let t = report.time("tessellate", || {
+        s.tessellate(density)
+            .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
+    })?;
+    report.set("density", density);
+    report.set("triangles", t.triangles.len());
+    report.set("reversed_normals", reversed_normals(&t));
+    report.time("write", || {
+        io::write_mesh(out, &t, io::Encoding::BinaryLittleEndian)
+    })?;
+    eprintln!(
+        "wrote {} (side-vertex, {} patches, {} triangles; max normal jump {:.1e} rad, {} inflected edges)",
+        out.display(),
+        s.triangles.len(),
+        t.triangles.len(),
+        c.max_normal_jump_rad,
+        inflected
     );
     Ok(0)
 }

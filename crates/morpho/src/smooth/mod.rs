@@ -1,35 +1,43 @@
-//! Smooth shapes (Veltkamp 1992, ch. 8–9; NOTES part B): Bézier curves and triangles, the
-//! closed G¹ cubic curve through a polygon, and the cubic three-split G¹ surface through a
-//! closed triangle mesh with its vertex normals, with an independent continuity check and a
-//! tessellation.
+//! Smooth shapes (Veltkamp 1992, ch. 8–9; Hamann 1991, ch. 6; NOTES parts B and E): Bézier
+//! curves and triangles, the closed G¹ cubic curve through a polygon, the cubic three-split G¹
+//! surface and Hamann's side-vertex surface through a closed triangle mesh with its vertex
+//! normals, with independent continuity checks and a tessellation.
 //!
 //! Deviations from the text (each documented in its file): the three-split's singular edges
 //! (mirror-symmetric sides, where (9.4) has no solution) are detected and reported, and
 //! built with a degree-elevated quadratic boundary and the ratio `e1/e0` that makes (9.3)
 //! consistent, in closed form (see [`three_split`]); the 2D curve's failing vertices are
 //! repaired with the uniform weighting (NOTES B.2), and its joint bound is relative to the
-//! rounding of the stored control points ([`Joint::rounding`]).
+//! rounding of the stored control points ([`Joint::rounding`]). The side-vertex surface
+//! ([`side_vertex`]) uses the corrections of NOTES E: squared blending weights
+//! ([`side_vertex_weights`]), elevated conic weights `(1+2ω)/3` ([`Conic`]), the boundary normal
+//! by an interpolated rotation angle ([`ConicEdge`]), and a stated recipe for the generalized
+//! (inflected) conics the text leaves open.
 //!
-//! Not yet built (issue 19): the two- and six-split, the side-vertex surface (H ch. 6),
-//! reflection lines and benches. The CLI is `morpho smooth` (curve and three-split).
+//! Not yet built (issue 19): the two- and six-split, reflection lines and benches. The CLI is
+//! `morpho smooth` (curve, three-split, side-vertex).
 
 mod bezier;
 mod check;
+mod conic;
 mod curve;
 mod error;
 mod normals;
+mod side_vertex;
 mod singular;
 mod split3;
 mod tessellate;
 mod triangle;
 
 pub use bezier::{bernstein, joint, BezierCurve, Joint};
-pub use check::{continuity, max_deviation, Continuity};
+pub use check::{continuity, max_deviation, reversed_normals, side_vertex_continuity, Continuity};
+pub use conic::{side_vertex_weights, Conic, ConicEdge};
 pub use curve::{
     curve_joints, g1_curve, tangent, CurveFailure, CurveWeighting, FailureKind, G1Curve,
 };
 pub use error::SmoothError;
 pub use normals::{visible_normals, AdjustedNormals};
+pub use side_vertex::{side_vertex, SideVertexOptions, SideVertexSurface};
 pub use split3::{three_split, three_split_with, MicroPatch, SplitOptions, SplitSurface};
 pub use tessellate::tessellate;
 pub use triangle::{tri_index, BezierTriangle};
