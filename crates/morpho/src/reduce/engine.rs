@@ -308,11 +308,14 @@ pub fn reduce(mesh: &TriMesh, opts: &ReduceOptions) -> Result<Reduced, ReduceErr
             if best > e.eps {
                 for k in 0..3 {
                     if let Some(alt) = e.plan_with(t, Some(k)) {
-                        tr.evaluate(&alt.ring.removed, &e.new_corners(&alt));
-                        let err = tr.last_local_max();
-                        if err < best {
-                            best = err;
-                            plan = alt;
+                        // (a corner worse than the best so far is abandoned early)
+                        let new = e.new_corners(&alt);
+                        if tr.evaluate_within(&alt.ring.removed, &new, best).is_some() {
+                            let err = tr.last_local_max();
+                            if err < best {
+                                best = err;
+                                plan = alt;
+                            }
                         }
                     }
                 }

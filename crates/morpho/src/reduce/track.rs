@@ -75,19 +75,52 @@ impl Tracker {
     /// The (sse, max) after replacing the triangles `removed` by `new` (corner positions);
     /// remembers the assignment for [`Tracker::commit`].
     pub fn evaluate(&mut self, removed: &[u32], new: &[[[f64; 3]; 3]]) -> (f64, f64) {
+        self.evaluate_within(removed, new, f64::INFINITY)
+            .expect("an unbounded evaluation completes")
+    }
+
+    /// [`Tracker::evaluate`], abandoned (`None`, nothing to commit) as soon as one knot's error
+    /// exceeds `bound`.
+    pub fn evaluate_within(
+        &mut self,
+        removed: &[u32],
+        new: &[[[f64; 3]; 3]],
+        bound: f64,
+    ) -> Option<(f64, f64)> {
         self.pending.clear();
         let (mut sse, mut max) = (self.sse, self.max);
+        // surfaces: a triangle farther than |x − c| − r from a knot x (c its centroid, r its
+        // farthest corner from c) cannot beat the best one found
+        let balls: Vec<([f64; 3], f64)> = if self.vertical {
+            Vec::new()
+        } else {
+            new.iter()
+                .map(|t| {
+                    let c = std::array::from_fn(|i| (t[0][i] + t[1][i] + t[2][i]) / 3.0);
+                    (c, dist(c, t[0]).max(dist(c, t[1])).max(dist(c, t[2])))
+                })
+                .collect()
+        };
         for &t in removed {
             let mut k = self.head.get(t as usize).copied().unwrap_or(NONE);
             while k != NONE {
                 let x = self.knots[k as usize];
                 let mut best = (false, f64::INFINITY, 0usize);
                 for (j, nt) in new.iter().enumerate() {
+                    if let Some(&(c, r)) = balls.get(j) {
+                        if dist(x, c) - r > best.1 {
+                            continue;
+                        }
+                    }
                     let (inside, e) = self.error(x, *nt);
                     // prefer containing triangles; among them (or none) the smallest error
                     if (inside && !best.0) || (inside == best.0 && e < best.1) {
                         best = (inside, e, j);
                     }
+                }
+                if best.1 > bound {
+                    self.pending.clear();
+                    return None;
                 }
                 let old = self.err[k as usize];
                 sse += best.1 * best.1 - old * old;
@@ -96,7 +129,7 @@ impl Tracker {
                 k = self.nxt[k as usize];
             }
         }
-        (sse.max(0.0), max)
+        Some((sse.max(0.0), max))
     }
 
     /// The largest error of the knots re-assigned by the last [`Tracker::evaluate`].
