@@ -509,7 +509,8 @@ impl<'o> Engine<'o> {
     }
 
     /// [`Order::ErrorLevels`]: `t` is removable but its removal would move an input vertex
-    /// by `err` > ε; it waits (parked: a change of its platelet re-queues it as usual).
+    /// by `err` > ε; it waits in `over` until ε reaches `err` (a change of its platelet does
+    /// not re-queue it, unlike a triangle parked as not removable; it is planned anew then).
     fn park_over(&mut self, t: u32, err: f64) {
         self.waiting[t as usize] = true;
         self.over.push(t, err);
