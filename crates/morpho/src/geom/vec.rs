@@ -132,7 +132,6 @@ pub fn triangle_area2(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
 /// The componentwise minimum and maximum of the points: their bounding box `(lo, hi)`
 /// (`lo > hi` everywhere for no points).
 #[inline]
-#[allow(dead_code)] // kernel API without a caller yet
 pub fn bounds<const D: usize>(points: &[[f64; D]]) -> ([f64; D], [f64; D]) {
     let mut lo = [f64::INFINITY; D];
     let mut hi = [f64::NEG_INFINITY; D];

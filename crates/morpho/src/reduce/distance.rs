@@ -14,7 +14,7 @@
 //! O(samples × candidates per query); queries run in parallel (rayon).
 
 use crate::geom::grid::BoxGrid;
-use crate::geom::vec::{closest_on_triangle, dist, norm, sub};
+use crate::geom::vec::{bounds, closest_on_triangle, dist, norm, sub};
 use crate::mesh::TriMesh;
 use rayon::prelude::*;
 
@@ -42,7 +42,7 @@ impl SurfaceIndex {
         };
         let mut grid = BoxGrid::new([0.0; 3], cell, true);
         for (i, t) in tris.iter().enumerate() {
-            let (lo, hi) = bbox(t.map(|v| pos[v as usize]));
+            let (lo, hi) = bounds(&t.map(|v| pos[v as usize]));
             grid.insert(i as u32, lo, hi);
         }
         SurfaceIndex {
@@ -91,13 +91,6 @@ impl SurfaceIndex {
             }
         }
     }
-}
-
-fn bbox(c: [[f64; 3]; 3]) -> ([f64; 3], [f64; 3]) {
-    (
-        std::array::from_fn(|k| c[0][k].min(c[1][k]).min(c[2][k])),
-        std::array::from_fn(|k| c[0][k].max(c[1][k]).max(c[2][k])),
-    )
 }
 
 /// Distances between an input mesh and its reduction (see the module documentation).

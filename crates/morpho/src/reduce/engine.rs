@@ -70,7 +70,7 @@ use crate::curvature::{surface_curvature, NormalSource, SurfaceOptions};
 use crate::geom::grid::BoxGrid;
 use crate::geom::intersect::{degenerate_triangle, triangles_meet_beyond_shared};
 use crate::geom::predicates::raw::orient2d;
-use crate::geom::vec::{dist, midpoint};
+use crate::geom::vec::{bounds, dist, midpoint};
 use crate::geom::Point3;
 use crate::mesh::TriMesh;
 use crate::util::NONE;
@@ -286,9 +286,6 @@ pub fn reduce(mesh: &TriMesh, opts: &ReduceOptions) -> Result<Reduced, ReduceErr
     let mut tracker =
         (tolerance || height || levels).then(|| Tracker::new(pos, &mesh.triangles, height));
     let mut e = Engine::new(s, curv, opts);
-    if levels {
-        e.eps = first_level(&e.s);
-    }
     let stop = loop {
         if !tolerance && e.s.live_tris <= target {
             break StopReason::Target;
@@ -300,22 +297,24 @@ pub fn reduce(mesh: &TriMesh, opts: &ReduceOptions) -> Result<Reduced, ReduceErr
             break StopReason::NoRemovable;
         };
         let t = plan.ring.removed[0];
+        // the tracker's last evaluation, while it is that of `plan` (then not repeated)
+        let mut evaluated = None;
         if let (true, Some(tr)) = (levels, tracker.as_mut()) {
             // the fitted point, or a corner of the triangle if that moves the input's
             // vertices less (creases and corners stay where the fit would round them)
-            tr.evaluate(&plan.ring.removed, &e.new_corners(&plan));
+            evaluated = Some(tr.evaluate(&plan.ring.removed, &e.new_corners(&plan)));
             let mut best = tr.last_local_max();
             if best > e.eps {
                 for k in 0..3 {
                     if let Some(alt) = e.plan_with(t, Some(k)) {
                         // (a corner worse than the best so far is abandoned early)
                         let new = e.new_corners(&alt);
-                        if tr.evaluate_within(&alt.ring.removed, &new, best).is_some() {
-                            let err = tr.last_local_max();
-                            if err < best {
-                                best = err;
-                                plan = alt;
-                            }
+                        let ev = tr.evaluate_within(&alt.ring.removed, &new, best);
+                        evaluated = None;
+                        if ev.is_some() && tr.last_local_max() < best {
+                            best = tr.last_local_max();
+                            plan = alt;
+                            evaluated = ev;
                         }
                     }
                 }
@@ -325,10 +324,11 @@ pub fn reduce(mesh: &TriMesh, opts: &ReduceOptions) -> Result<Reduced, ReduceErr
                 continue;
             }
         }
-        let new = e.new_corners(&plan);
-        let eval = tracker
-            .as_mut()
-            .map(|tr| (tr.evaluate(&plan.ring.removed, &new), tr));
+        let eval = tracker.as_mut().map(|tr| {
+            let ev =
+                evaluated.unwrap_or_else(|| tr.evaluate(&plan.ring.removed, &e.new_corners(&plan)));
+            (ev, tr)
+        });
         // the costliest test last: no self-intersection (exact, against nearby triangles)
         if !e.embedded(&plan, e.s.tri[t as usize][0]) {
             e.parked[t as usize] = true;
@@ -363,20 +363,6 @@ pub fn reduce(mesh: &TriMesh, opts: &ReduceOptions) -> Result<Reduced, ReduceErr
         rms: tracker.as_ref().map(|t| t.rms()),
         max_error: tracker.as_ref().map(|t| t.max),
     })
-}
-
-/// The first error level of [`Order::ErrorLevels`]: 1e-6 of the mean edge length (planar
-/// regions, whose fits are exact to rounding, go first).
-fn first_level(s: &State) -> f64 {
-    let (mut len, mut k) = (0.0, 0usize);
-    for (t, tr) in s.tri.iter().enumerate() {
-        if s.alive[t] {
-            len += dist(s.p(tr[0]), s.p(tr[1]));
-            k += 1;
-        }
-    }
-    let mean = if k > 0 { len / k as f64 } else { 1.0 };
-    (1e-6 * mean).max(f64::MIN_POSITIVE)
 }
 
 fn n_knots(mesh: &TriMesh) -> f64 {
@@ -447,11 +433,18 @@ impl<'o> Engine<'o> {
             waiting: vec![false; nt],
             s,
         };
+        // the mean length of one edge per triangle sizes the grid's cells and the first error
+        // level of [`Order::ErrorLevels`]: 1e-6 of it (planar regions, whose fits are exact to
+        // rounding, go first)
+        let mut len = 0.0;
+        for tr in &e.s.tri {
+            len += dist(e.s.p(tr[0]), e.s.p(tr[1]));
+        }
+        if opts.order == Order::ErrorLevels {
+            let mean = if nt > 0 { len / nt as f64 } else { 1.0 };
+            e.eps = (1e-6 * mean).max(f64::MIN_POSITIVE);
+        }
         if opts.check_intersections {
-            let mut len = 0.0;
-            for tr in &e.s.tri {
-                len += dist(e.s.p(tr[0]), e.s.p(tr[1]));
-            }
             let cell = 2.0 * len / nt as f64;
             let mut g = BoxGrid::new([0.0; 3], cell, true);
             for t in 0..nt as u32 {
@@ -469,11 +462,7 @@ impl<'o> Engine<'o> {
     }
 
     fn bbox(&self, t: u32) -> ([f64; 3], [f64; 3]) {
-        let c = self.s.tri[t as usize].map(|v| self.s.p(v));
-        (
-            std::array::from_fn(|k| c[0][k].min(c[1][k]).min(c[2][k])),
-            std::array::from_fn(|k| c[0][k].max(c[1][k]).max(c[2][k])),
-        )
+        bounds(&self.s.tri[t as usize].map(|v| self.s.p(v)))
     }
 
     fn weight(&self, t: u32) -> f64 {
@@ -718,8 +707,7 @@ impl<'o> Engine<'o> {
         for tr in &plan.tris {
             let ti = tr.map(ids);
             let tp = tr.map(|i| self.local_pos(plan, i));
-            let lo = std::array::from_fn(|k| tp[0][k].min(tp[1][k]).min(tp[2][k]));
-            let hi = std::array::from_fn(|k| tp[0][k].max(tp[1][k]).max(tp[2][k]));
+            let (lo, hi) = bounds(&tp);
             grid.query(lo, hi, &mut cand);
             for &u in &cand {
                 if (u as usize) >= self.s.tri.len()
