@@ -29,15 +29,7 @@ fn main() {
     };
     let input = read(&args[0]);
     let output = read(&args[1]);
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in &input.positions {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let diag = ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt();
+    let diag = input.bbox().diagonal();
     let t = analyze_topology(&output);
     let d = mesh_distance(&input, &output);
     let genus = t.genus().map_or("null".to_string(), |g| g.to_string());

@@ -49,6 +49,17 @@ impl Ctx {
 
 type Builder = fn(&Ctx) -> Result<Vec<Section>>;
 
+/// The CT head's contour surface for pictures: its slices run from the top of the skull
+/// (z = 0) down, so z is mirrored and the head stands upright (every triangle reversed alike:
+/// still consistently oriented); the normals, which the mirror would contradict, are dropped.
+pub fn upright_head(mut m: morpho::mesh::TriMesh) -> morpho::mesh::TriMesh {
+    for p in m.positions.iter_mut() {
+        p.z = -p.z;
+    }
+    m.normals = None;
+    m
+}
+
 /// The pipeline steps, in gallery order.
 const SECTIONS: &[(&str, Builder)] = &[
     ("sample points", points_section),
@@ -489,12 +500,7 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
             },
         )?;
         let dt = t.elapsed().as_secs_f64();
-        // slices run from the top of the skull (z = 0) down: mirror z so the head stands upright
-        let mut m = r.mesh.clone();
-        for p in m.positions.iter_mut() {
-            p.z = -p.z;
-        }
-        m.normals = None;
+        let m = upright_head(r.mesh.clone());
         let opts = RenderOptions {
             up: UpAxis::Z,
             azimuth_deg: 25.0,

@@ -322,6 +322,30 @@ fn hstack(images: &[morpho::render::Image]) -> morpho::render::Image {
     out
 }
 
+/// The demo's two views of a mesh, 420 px square: flat shaded (as in H Fig. 5.11) and the same
+/// with its edges drawn.
+fn flat_and_wire(
+    up: morpho::render::UpAxis,
+    azimuth_deg: f64,
+    elevation_deg: f64,
+) -> (morpho::render::RenderOptions, morpho::render::RenderOptions) {
+    let shaded = morpho::render::RenderOptions {
+        width: 420,
+        height: 420,
+        up,
+        azimuth_deg,
+        elevation_deg,
+        shading: morpho::render::Shading::Flat,
+        ..Default::default()
+    };
+    let wire = morpho::render::RenderOptions {
+        wireframe: true,
+        wire_color: [40, 50, 70],
+        ..shaded.clone()
+    };
+    (shaded, wire)
+}
+
 /// The gallery sections of `morpho demo`: a real scan reduced to 25 % and 10 % beside the
 /// original (flat shaded, H Fig. 5.11 style), and Table 5.1 with the pictures of Figs
 /// 5.7–5.9 (original, 50/80/90 % removed).
@@ -361,19 +385,7 @@ pub fn demo_section(ctx: &super::demo::Ctx) -> morpho::Result<Vec<morpho::io::ht
                  first, curved ones keep their triangles."
             ),
         );
-        let shaded = RenderOptions {
-            width: 420,
-            height: 420,
-            azimuth_deg: az,
-            elevation_deg: el,
-            shading: Shading::Flat,
-            ..Default::default()
-        };
-        let wire = RenderOptions {
-            wireframe: true,
-            wire_color: [40, 50, 70],
-            ..shaded.clone()
-        };
+        let (shaded, wire) = flat_and_wire(UpAxis::Y, az, el);
         let mut row = vec![render_mesh(&m, &shaded)];
         let mut edges = Vec::new();
         let t = morpho::mesh::analyze_topology(&m);
@@ -505,7 +517,7 @@ fn skull_section(
     path: &std::path::Path,
 ) -> morpho::Result<morpho::io::html::Section> {
     use morpho::io::html::Section;
-    use morpho::render::{render_mesh, RenderOptions, Shading, UpAxis};
+    use morpho::render::{render_mesh, UpAxis};
     use morpho::volume::{isosurface, IsoOptions};
     let v = morpho::io::read_volume(path)?;
     let iso = isosurface(
@@ -515,13 +527,7 @@ fn skull_section(
             ..Default::default()
         },
     )?;
-    // slices run from the top of the skull (z = 0) down: mirror z so the head stands upright
-    // (every triangle reversed alike: still consistently oriented)
-    let mut m = iso.mesh;
-    for p in m.positions.iter_mut() {
-        p.z = -p.z;
-    }
-    m.normals = None;
+    let m = super::demo::upright_head(iso.mesh);
     let mut s = Section::new(
         "Triangle reduction: the CT head's bone surface, 90 % removed (H Fig. 5.11)",
         "The contour surface of volumes/cthead_8bit_256x256x99 at level 120 (as `morpho \
@@ -542,20 +548,7 @@ fn skull_section(
     let secs = t0.elapsed().as_secs_f64();
     let d = mesh_distance(&m, &r.mesh);
     let (a, b) = (analyze_topology(&m), analyze_topology(&r.mesh));
-    let shaded = RenderOptions {
-        width: 420,
-        height: 420,
-        up: UpAxis::Z,
-        azimuth_deg: 25.0,
-        elevation_deg: 5.0,
-        shading: Shading::Flat,
-        ..Default::default()
-    };
-    let wire = RenderOptions {
-        wireframe: true,
-        wire_color: [40, 50, 70],
-        ..shaded.clone()
-    };
+    let (shaded, wire) = flat_and_wire(UpAxis::Z, 25.0, 5.0);
     hstack(&[
         render_mesh(&m, &shaded),
         render_mesh(&r.mesh, &shaded),
