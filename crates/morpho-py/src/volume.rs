@@ -43,6 +43,22 @@ fn samples<T: Element + Copy + Sync>(
     }
 }
 
+/// Expands `$m!(type, cast to f32)` for every dtype a volume may have, in the order tried.
+macro_rules! each_volume_dtype {
+    ($m:ident) => {
+        $m!(f32, |v| v);
+        $m!(f64, |v| v as f32);
+        $m!(u8, |v| v as f32);
+        $m!(i8, |v| v as f32);
+        $m!(u16, |v| v as f32);
+        $m!(i16, |v| v as f32);
+        $m!(u32, |v| v as f32);
+        $m!(i32, |v| v as f32);
+        $m!(i64, |v| v as f32);
+        $m!(u64, |v| v as f32);
+    };
+}
+
 /// Reads the array (any of the supported dtypes) into a [`Volume`]; the flag tells whether the
 /// volume's x is the array's axis 2 (C order, read without reordering). With `keep_axes`, x is
 /// always axis 0 (a C-ordered array is then transposed while it is converted).
@@ -72,16 +88,7 @@ pub fn to_volume(
             }
         };
     }
-    try_dtype!(f32, |v| v);
-    try_dtype!(f64, |v| v as f32);
-    try_dtype!(u8, |v| v as f32);
-    try_dtype!(i8, |v| v as f32);
-    try_dtype!(u16, |v| v as f32);
-    try_dtype!(i16, |v| v as f32);
-    try_dtype!(u32, |v| v as f32);
-    try_dtype!(i32, |v| v as f32);
-    try_dtype!(i64, |v| v as f32);
-    try_dtype!(u64, |v| v as f32);
+    each_volume_dtype!(try_dtype);
     Err(unsupported(a))
 }
 
@@ -100,16 +107,7 @@ pub fn c_samples(py: Python<'_>, a: &Bound<'_, PyAny>) -> PyResult<(Vec<f32>, [u
             }
         };
     }
-    try_dtype!(f32, |v| v);
-    try_dtype!(f64, |v| v as f32);
-    try_dtype!(u8, |v| v as f32);
-    try_dtype!(i8, |v| v as f32);
-    try_dtype!(u16, |v| v as f32);
-    try_dtype!(i16, |v| v as f32);
-    try_dtype!(u32, |v| v as f32);
-    try_dtype!(i32, |v| v as f32);
-    try_dtype!(i64, |v| v as f32);
-    try_dtype!(u64, |v| v as f32);
+    each_volume_dtype!(try_dtype);
     Err(unsupported(a))
 }
 
