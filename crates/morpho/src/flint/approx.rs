@@ -57,7 +57,9 @@ impl Approximation {
     }
 }
 
-struct ByError(f64, u32);
+/// A node in the refinement heap of the approximations (2D and 3D): by error, ties by the
+/// smaller node id.
+pub(super) struct ByError(pub(super) f64, pub(super) u32);
 impl PartialEq for ByError {
     fn eq(&self, o: &Self) -> bool {
         self.cmp(o) == Ordering::Equal

@@ -24,13 +24,12 @@
 //! degenerate triangles e1 uses the nearest corner segment and e2 is e1.
 //! Cost: O(output) to select the cut plus O(N) for e1/e2.
 
-use super::approx::Target;
+use super::approx::{ByError, Target};
 use super::tree3::FlintTree3;
 use super::FlintError;
 use crate::geom::vec::{closest_on_triangle, cross, dist, dot, norm, sub};
 use crate::geom::Point3;
 use crate::mesh::TriMesh;
-use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 /// An approximation by input vertices.
@@ -79,24 +78,6 @@ impl Approximation3 {
             .map(|t| t.map(|v| new_of[v as usize]))
             .collect();
         (TriMesh::new(pos, tris), map)
-    }
-}
-
-struct ByError(f64, u32);
-impl PartialEq for ByError {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
-    }
-}
-impl Eq for ByError {}
-impl PartialOrd for ByError {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl Ord for ByError {
-    fn cmp(&self, o: &Self) -> Ordering {
-        self.0.total_cmp(&o.0).then(o.1.cmp(&self.1))
     }
 }
 
