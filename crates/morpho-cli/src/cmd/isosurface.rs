@@ -63,16 +63,28 @@ pub struct Args {
     /// Write PLY as ASCII.
     #[arg(long)]
     pub ascii: bool,
+    /// Read the volume slab by slab and write the mesh as it is made, for volumes larger than
+    /// memory (raw, gzip or zlib data; PLY output; the same file as without).
+    #[arg(long)]
+    pub stream: bool,
+    /// With --stream: memory for the samples of one slab, in MiB (at least one z-slice is
+    /// read whatever the value).
+    #[arg(long, default_value_t = 256.0, value_name = "MIB", requires = "stream")]
+    pub slab_mib: f64,
 }
 
 /// Refuses a volume whose sample coordinates overflow (a header's spacing of 1e308 over a few
 /// samples): the surface's vertices would be infinite. The input is blamed, not the output
 /// (issue 17 item 12).
-fn finite_extent(vol: &morpho::volume::Volume, input: &std::path::Path) -> Result<(), Failure> {
-    let ends: Vec<f64> = match &vol.axes {
+pub fn finite_extent(
+    axes: &morpho::volume::Axes,
+    dims: [usize; 3],
+    input: &std::path::Path,
+) -> Result<(), Failure> {
+    let ends: Vec<f64> = match axes {
         morpho::volume::Axes::Uniform { origin, spacing } => (0..3)
             .flat_map(|k| {
-                let last = vol.dims[k].saturating_sub(1) as f64;
+                let last = dims[k].saturating_sub(1) as f64;
                 [origin[k], origin[k] + last * spacing[k]]
             })
             .collect(),
@@ -90,8 +102,11 @@ fn finite_extent(vol: &morpho::volume::Volume, input: &std::path::Path) -> Resul
 
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     io::Format::of(&args.output)?;
+    if args.stream {
+        return super::isostream::run(&args, report);
+    }
     let vol = report.time("read", || io::read_volume(&args.input))?;
-    finite_extent(&vol, &args.input)?;
+    finite_extent(&vol.axes, vol.dims, &args.input)?;
     let t = std::time::Instant::now();
     let mesh = process(&vol, &args, report)?;
     report.add_time("compute", t.elapsed().as_secs_f64());
@@ -127,9 +142,8 @@ pub fn options(args: &Args) -> IsoOptions {
     }
 }
 
-/// Extracts the surface, fills the report, applies `--largest-part`.
-pub fn process(vol: &Volume, args: &Args, report: &mut Report) -> Result<TriMesh, Failure> {
-    let r = isosurface(vol, &options(args))?;
+/// The report's names of the method and the normals.
+pub fn names(args: &Args) -> (&'static str, &'static str) {
     let method = match args.method {
         MethodArg::Decider => "decider",
         MethodArg::Tetra => "tetra",
@@ -141,6 +155,13 @@ pub fn process(vol: &Volume, args: &Args, report: &mut Report) -> Result<TriMesh
         NormalsArg::Mesh => "mesh",
         NormalsArg::None => "none",
     };
+    (method, normals)
+}
+
+/// Extracts the surface, fills the report, applies `--largest-part`.
+pub fn process(vol: &Volume, args: &Args, report: &mut Report) -> Result<TriMesh, Failure> {
+    let r = isosurface(vol, &options(args))?;
+    let (method, normals) = names(args);
     report.set("method", method);
     report.set("normals", normals);
     report.set("level", args.level);
@@ -182,6 +203,8 @@ mod tests {
             flip: false,
             serial: false,
             ascii: false,
+            stream: false,
+            slab_mib: 256.0,
         }
     }
 

@@ -12,6 +12,7 @@ pub mod flint;
 pub mod flint3;
 pub mod graph;
 pub mod info;
+pub mod isostream;
 pub mod isosurface;
 pub mod reduce;
 pub mod render;

@@ -35,14 +35,15 @@
 //! Complexity: linear in the data size.
 
 use super::rawjson::{
-    beside, data_size, decode, encode, header_line, open_data, output_type, read_data, uniform,
-    Codec, Sample,
+    beside, data_size, decode, encode, header_line, memory_for, open_data, output_type, read_data,
+    uniform, Codec, Sample,
 };
+use super::volstream::{Data, Head, VolumeStream};
 use crate::volume::{Axes, Orientation, Volume};
 use crate::{Error, Result};
 use std::collections::HashMap;
 use std::io::{BufReader, Read};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 fn met_type(s: &str) -> Result<Sample> {
     Ok(match s.trim().to_ascii_uppercase().as_str() {
@@ -87,8 +88,8 @@ fn boolean(v: &str, line: u64) -> Result<bool> {
     }
 }
 
-/// Reads a volume (detached data is found relative to `path`).
-pub fn read(path: &Path) -> Result<Volume> {
+/// The header parsed, and its data opened (a detached file is found relative to `path`).
+fn source(path: &Path) -> Result<(Head, Data)> {
     let (f, file_len) = open_data(path)?;
     let mut r = BufReader::new(f);
     let mut consumed = 0u64;
@@ -249,9 +250,13 @@ pub fn read(path: &Path) -> Result<Volume> {
     };
     let (dl, dv) = data_file;
     let first = dv.split_whitespace().next().unwrap_or("");
-    let (mut reader, mut available): (Box<dyn std::io::BufRead>, u64) =
+    let (mut reader, mut available, data_path): (Box<dyn std::io::BufRead>, u64, PathBuf) =
         if dv.eq_ignore_ascii_case("LOCAL") {
-            (Box::new(r), file_len.saturating_sub(consumed))
+            (
+                Box::new(r),
+                file_len.saturating_sub(consumed),
+                path.to_path_buf(),
+            )
         } else if dv.is_empty() || first.eq_ignore_ascii_case("LIST") || dv.contains('%') {
             return Err(Error::unsupported(format!(
                 "line {dl}: ElementDataFile '{dv}' (lists and series are not supported)"
@@ -259,7 +264,7 @@ pub fn read(path: &Path) -> Result<Volume> {
         } else {
             let dpath = beside(path, &dv)?;
             let (df, dlen) = open_data(&dpath)?;
-            (Box::new(BufReader::new(df)), dlen)
+            (Box::new(BufReader::new(df)), dlen, dpath)
         };
     let skip = match header_size {
         -1 => {
@@ -295,18 +300,48 @@ pub fn read(path: &Path) -> Result<Volume> {
             available = c;
         }
     }
-    let raw = if compressed {
-        read_data(&mut reader, available, Codec::Zlib, 0, nbytes)?
+    let (codec, skip) = if compressed {
+        (Codec::Zlib, 0)
     } else {
-        read_data(&mut reader, available, Codec::Raw, skip, nbytes)?
+        (Codec::Raw, skip)
     };
+    Ok((
+        Head {
+            dims,
+            axes: Axes::Uniform { origin, spacing },
+            orientation,
+            ty,
+            big,
+        },
+        Data {
+            reader,
+            available,
+            codec,
+            skip,
+            path: data_path,
+        },
+    ))
+}
+
+/// Reads a volume (the data file is found relative to `path`).
+pub fn read(path: &Path) -> Result<Volume> {
+    let (h, d) = source(path)?;
+    memory_for(h.dims, h.ty)?;
+    let (_, nbytes) = data_size(h.dims, h.ty)?;
+    let raw = read_data(d.reader, d.available, d.codec, d.skip, nbytes)?;
     Ok(Volume {
-        dims,
-        axes: Axes::Uniform { origin, spacing },
-        data: decode(&raw, ty, big),
-        source_dtype: ty.source_dtype(),
-        orientation,
+        dims: h.dims,
+        axes: h.axes,
+        data: decode(&raw, h.ty, h.big),
+        source_dtype: h.ty.source_dtype(),
+        orientation: h.orientation,
     })
+}
+
+/// Opens the samples for reading slice by slice ([`super::open_volume_stream`]).
+pub(crate) fn open_stream(path: &Path) -> Result<VolumeStream> {
+    let (h, d) = source(path)?;
+    VolumeStream::new(h, d)
 }
 
 fn header(v: &Volume, ty: Sample, data_file: &str) -> Result<String> {

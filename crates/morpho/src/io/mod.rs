@@ -42,8 +42,11 @@ pub mod off;
 pub mod ply;
 pub mod rawjson;
 pub mod stl;
+mod volstream;
 pub mod vtk;
 pub mod xyz;
+
+pub use volstream::VolumeStream;
 
 use crate::boundary::{Boundary2, Boundary3};
 use crate::contour::PlaneContour;
@@ -733,6 +736,25 @@ pub fn read_volume(path: &Path) -> Result<Volume> {
     .map_err(|e| e.with_path(path))?;
     v.validate().map_err(|e| Error::from(e).with_path(path))?;
     Ok(v)
+}
+
+/// Opens a volume file for reading its samples a few z-slices at a time ([`VolumeStream`]):
+/// NRRD (raw or gzip), MetaImage (raw or zlib) or a JSON sidecar. The header is checked as by
+/// [`read_volume`]; the samples are not read.
+pub fn open_volume_stream(path: &Path) -> Result<VolumeStream> {
+    let fmt = Format::of(path)?;
+    let s = match fmt {
+        Format::Nrrd | Format::Nhdr => nrrd::open_stream(path),
+        Format::Mhd => mhd::open_stream(path),
+        Format::Json => rawjson::open_stream(path),
+        _ => Err(Error::unsupported(
+            "not a volume format (use .nrrd .nhdr .mhd or a .json sidecar)",
+        )),
+    }
+    .map_err(|e| e.with_path(path))?;
+    crate::volume::validate_axes(&s.grid().axes, s.dims())
+        .map_err(|e| Error::from(e).with_path(path))?;
+    Ok(s)
 }
 
 /// Writes a volume as NRRD (gzip-encoded, attached), MetaImage (`.mhd` + `.raw`) or JSON sidecar

@@ -36,9 +36,10 @@
 //! Complexity: linear in the data size.
 
 use super::rawjson::{
-    beside, data_size, decode, encode, header_line, open_data, output_type, read_data, uniform,
-    Codec, Sample,
+    beside, data_size, decode, encode, header_line, memory_for, open_data, output_type, read_data,
+    uniform, Codec, Sample,
 };
+use super::volstream::{Data, Head, VolumeStream};
 use crate::volume::{Axes, Orientation, Volume};
 use crate::{Error, Result};
 use std::collections::HashMap;
@@ -198,13 +199,77 @@ struct Header {
 
 /// Reads a volume (detached data is found relative to `path`).
 pub fn read(path: &Path) -> Result<Volume> {
+    let (h, mut data_r, available, _) = source(path)?;
+    memory_for(h.dims, h.ty)?;
+    let data = read_samples(&h, &mut data_r, available)?;
+    Ok(Volume {
+        dims: h.dims,
+        axes: Axes::Uniform {
+            origin: h.origin,
+            spacing: h.spacing,
+        },
+        data,
+        source_dtype: h.ty.source_dtype(),
+        orientation: h.orientation,
+    })
+}
+
+/// Opens the samples for reading slice by slice ([`super::open_volume_stream`]); raw and gzip
+/// encodings only.
+pub(crate) fn open_stream(path: &Path) -> Result<VolumeStream> {
+    let (h, data_r, available, dpath) = source(path)?;
+    let (codec, skip) = match h.enc {
+        Enc::Raw if h.byte_skip == -1 => (
+            Codec::Raw,
+            available.checked_sub(h.nbytes as u64).ok_or_else(|| {
+                Error::format(format!(
+                    "data has {available} bytes, the header needs {}",
+                    h.nbytes
+                ))
+            })?,
+        ),
+        Enc::Raw => (Codec::Raw, h.byte_skip as u64),
+        Enc::Gzip if h.byte_skip < 0 => {
+            return Err(Error::format("byte skip -1 needs raw encoding"))
+        }
+        Enc::Gzip => (Codec::Gzip, h.byte_skip as u64),
+        Enc::Text => {
+            return Err(Error::unsupported(
+                "NRRD text data cannot be read slice by slice (use raw or gzip encoding)",
+            ))
+        }
+    };
+    let head = Head {
+        dims: h.dims,
+        axes: Axes::Uniform {
+            origin: h.origin,
+            spacing: h.spacing,
+        },
+        orientation: h.orientation,
+        ty: h.ty,
+        big: h.big,
+    };
+    VolumeStream::new(
+        head,
+        Data {
+            reader: Box::new(data_r),
+            available,
+            codec,
+            skip,
+            path: dpath,
+        },
+    )
+}
+
+/// The header and the data stream with its length (the detached data file, or the rest of
+/// the header file after the line skip), and the path of the file the data is in.
+fn source(path: &Path) -> Result<(Header, Box<dyn BufRead>, u64, std::path::PathBuf)> {
     let (f, file_len) = open_data(path)?;
     let mut r = BufReader::new(f);
     let mut consumed = 0u64;
     let fields = read_fields(&mut r, &mut consumed)?;
     let h = parse_header(&fields)?;
-    // the data stream
-    let (mut data_r, available): (Box<dyn BufRead>, u64) = match fields.get("data file") {
+    match fields.get("data file") {
         Some((l, v)) => {
             let first = v.split_whitespace().next().unwrap_or("");
             if first.eq_ignore_ascii_case("LIST") || v.contains('%') {
@@ -217,24 +282,18 @@ pub fn read(path: &Path) -> Result<Volume> {
             let mut dr = BufReader::new(df);
             let mut c = 0;
             skip_lines(&mut dr, h.line_skip, &mut c).map_err(|e| e.with_path(&dpath))?;
-            (Box::new(dr), dlen.saturating_sub(c))
+            Ok((h, Box::new(dr), dlen.saturating_sub(c), dpath))
         }
         None => {
             skip_lines(&mut r, h.line_skip, &mut consumed)?;
-            (Box::new(r), file_len.saturating_sub(consumed))
+            Ok((
+                h,
+                Box::new(r),
+                file_len.saturating_sub(consumed),
+                path.to_path_buf(),
+            ))
         }
-    };
-    let data = read_samples(&h, &mut data_r, available)?;
-    Ok(Volume {
-        dims: h.dims,
-        axes: Axes::Uniform {
-            origin: h.origin,
-            spacing: h.spacing,
-        },
-        data,
-        source_dtype: h.ty.source_dtype(),
-        orientation: h.orientation,
-    })
+    }
 }
 
 /// The magic line and the header fields up to the blank line (or the end of the file);

@@ -1334,26 +1334,14 @@ pub fn write_mesh(w: &mut dyn Write, mesh: &TriMesh, enc: Encoding) -> Result<()
         ));
     }
     let mut e = Enc::new(enc);
-    let mut h = format!(
-        "ply\nformat {} 1.0\ncomment written by morpho\nelement vertex {}\n\
-         property double x\nproperty double y\nproperty double z\n",
-        e.format_line(),
-        mesh.positions.len()
+    let h = mesh_header(
+        &e,
+        mesh.positions.len() as u64,
+        has_normals,
+        &mesh.vertex_props,
+        mesh.triangles.len() as u64,
+        &mesh.face_props,
     );
-    if has_normals {
-        h.push_str("property double nx\nproperty double ny\nproperty double nz\n");
-    }
-    for p in &mesh.vertex_props {
-        h.push_str(&format!("property {} {}\n", kind_name(p.kind), p.name));
-    }
-    h.push_str(&format!(
-        "element face {}\nproperty list uchar int vertex_indices\n",
-        mesh.triangles.len()
-    ));
-    for p in &mesh.face_props {
-        h.push_str(&format!("property {} {}\n", kind_name(p.kind), p.name));
-    }
-    h.push_str("end_header\n");
     e.buf.extend_from_slice(h.as_bytes());
     for (i, p) in mesh.positions.iter().enumerate() {
         for c in [p.x, p.y, p.z] {
@@ -1380,6 +1368,190 @@ pub fn write_mesh(w: &mut dyn Write, mesh: &TriMesh, enc: Encoding) -> Result<()
         e.end_record(w)?;
     }
     e.flush(w)
+}
+
+/// The header [`write_mesh`] writes (the properties' values are not looked at).
+fn mesh_header(
+    e: &Enc,
+    nv: u64,
+    normals: bool,
+    vprops: &[Property],
+    nf: u64,
+    fprops: &[Property],
+) -> String {
+    let mut h = format!(
+        "ply\nformat {} 1.0\ncomment written by morpho\nelement vertex {nv}\n\
+         property double x\nproperty double y\nproperty double z\n",
+        e.format_line(),
+    );
+    if normals {
+        h.push_str("property double nx\nproperty double ny\nproperty double nz\n");
+    }
+    for p in vprops {
+        h.push_str(&format!("property {} {}\n", kind_name(p.kind), p.name));
+    }
+    h.push_str(&format!(
+        "element face {nf}\nproperty list uchar int vertex_indices\n"
+    ));
+    for p in fprops {
+        h.push_str(&format!("property {} {}\n", kind_name(p.kind), p.name));
+    }
+    h.push_str("end_header\n");
+    h
+}
+
+/// A triangle mesh written as it is produced, when it is too large to hold (the streaming
+/// contour surface): vertex records are encoded into one temporary file, a second run of
+/// vertices (appended after the first) into another, triangles into a third as raw indices;
+/// [`MeshSpool::finish`] writes the PLY — header with the final counts, the vertices, the
+/// faces with their indices resolved and an optional `part` property — atomically onto the
+/// output, byte for byte what [`write_mesh`] writes for the same mesh. The temporary files
+/// live in the output's folder and are removed on drop and on signals
+/// ([`super::guard::remove_temporaries`]).
+pub struct MeshSpool {
+    enc: Encoding,
+    normals: bool,
+    files: [std::io::BufWriter<tempfile::NamedTempFile>; 3],
+    counts: [u64; 3],
+    e: Enc,
+}
+
+impl MeshSpool {
+    /// Spools in `dir` (the output's folder) a mesh with or without vertex normals.
+    pub fn new(dir: &std::path::Path, enc: Encoding, normals: bool) -> Result<MeshSpool> {
+        let tmp = || -> Result<std::io::BufWriter<tempfile::NamedTempFile>> {
+            let f = super::guard::create_temporary(dir).map_err(|e| Error::io(dir, e))?;
+            Ok(std::io::BufWriter::with_capacity(1 << 20, f))
+        };
+        Ok(MeshSpool {
+            enc,
+            normals,
+            files: [tmp()?, tmp()?, tmp()?],
+            counts: [0; 3],
+            e: Enc::new(enc),
+        })
+    }
+
+    fn put_vertices(&mut self, k: usize, p: &[Point3], n: &[Vector3]) -> Result<()> {
+        let mut sink: Vec<u8> = Vec::new();
+        for (i, q) in p.iter().enumerate() {
+            for c in [q.x, q.y, q.z] {
+                self.e.put(ScalarKind::F64, c);
+            }
+            if self.normals {
+                let m = n.get(i).copied().unwrap_or_else(Vector3::zeros);
+                for c in [m.x, m.y, m.z] {
+                    self.e.put(ScalarKind::F64, c);
+                }
+            }
+            self.e.end_record(&mut sink)?;
+            if !sink.is_empty() {
+                self.files[k].write_all(&sink).map_err(super::werr)?;
+                sink.clear();
+            }
+        }
+        self.e.flush(&mut sink)?;
+        self.files[k].write_all(&sink).map_err(super::werr)?;
+        self.counts[k] += p.len() as u64;
+        Ok(())
+    }
+
+    /// Appends vertices (with their normals when the mesh has normals).
+    pub fn vertices(&mut self, p: &[Point3], n: &[Vector3]) -> Result<()> {
+        self.put_vertices(0, p, n)
+    }
+
+    /// Appends vertices of the second run (written after every vertex of the first).
+    pub fn late_vertices(&mut self, p: &[Point3], n: &[Vector3]) -> Result<()> {
+        self.put_vertices(1, p, n)
+    }
+
+    /// Appends triangles; their corners are resolved by [`finish`](Self::finish).
+    pub fn triangles(&mut self, t: &[[u32; 3]]) -> Result<()> {
+        let mut b = Vec::with_capacity(12 * t.len());
+        for tri in t {
+            for v in tri {
+                b.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+        self.files[2].write_all(&b).map_err(super::werr)?;
+        self.counts[2] += t.len() as u64;
+        Ok(())
+    }
+
+    /// Vertices of the first run, of the second, and triangles so far.
+    pub fn counts(&self) -> [u64; 3] {
+        self.counts
+    }
+
+    /// Writes the PLY onto `path`: `resolve` maps a spooled corner to its vertex number,
+    /// `part` (when given) labels triangle t (a `uint part` face property).
+    pub fn finish(
+        self,
+        path: &std::path::Path,
+        resolve: impl Fn(u32) -> u32,
+        part: Option<&dyn Fn(usize) -> u32>,
+    ) -> Result<()> {
+        use std::io::{Read, Seek};
+        let nv = self.counts[0] + self.counts[1];
+        if nv > i32::MAX as u64 {
+            return Err(Error::invalid(
+                "more than 2^31-1 vertices cannot be indexed by PLY 'int' indices",
+            ));
+        }
+        let mut files = Vec::new();
+        for f in self.files {
+            let mut f = f
+                .into_inner()
+                .map_err(|e| Error::io(path, e.into_error()))?;
+            f.as_file_mut()
+                .seek(std::io::SeekFrom::Start(0))
+                .map_err(|e| Error::io(path, e))?;
+            files.push(f);
+        }
+        let fprops: Vec<Property> = part
+            .is_some()
+            .then(|| Property {
+                name: "part".into(),
+                kind: ScalarKind::U32,
+                values: Vec::new(),
+            })
+            .into_iter()
+            .collect();
+        let (enc, normals, nf) = (self.enc, self.normals, self.counts[2]);
+        super::write_atomic(path, |w| {
+            let mut e = Enc::new(enc);
+            let h = mesh_header(&e, nv, normals, &[], nf, &fprops);
+            w.write_all(h.as_bytes()).map_err(super::werr)?;
+            for f in files.iter_mut().take(2) {
+                std::io::copy(f.as_file_mut(), w).map_err(super::werr)?;
+            }
+            let mut r = std::io::BufReader::with_capacity(1 << 20, files[2].as_file_mut());
+            let mut rec = [0u8; 12];
+            for t in 0..nf as usize {
+                r.read_exact(&mut rec).map_err(super::werr)?;
+                e.put(ScalarKind::U8, 3.0);
+                for k in 0..3 {
+                    let c = u32::from_le_bytes([
+                        rec[4 * k],
+                        rec[4 * k + 1],
+                        rec[4 * k + 2],
+                        rec[4 * k + 3],
+                    ]);
+                    e.put(ScalarKind::I32, resolve(c) as f64);
+                }
+                if let Some(p) = part {
+                    e.put(ScalarKind::U32, p(t) as f64);
+                }
+                e.end_record(w)?;
+            }
+            e.flush(w)
+        })?;
+        for f in &files {
+            super::guard::temporary_gone(f.path());
+        }
+        Ok(())
+    }
 }
 
 /// Writes points (with their columns as `double` vertex properties).

@@ -34,6 +34,7 @@
 //! type when every value converts back exactly, else as `f32`; always little endian. Volumes
 //! with per-index axis coordinates cannot be written (these formats have uniform axes only).
 
+use super::volstream::{Data, Head, VolumeStream};
 use crate::volume::{Axes, DType, Volume};
 use crate::{Error, Result};
 use serde_json::{json, Map, Value};
@@ -122,7 +123,9 @@ impl Sample {
     }
 }
 
-/// Number of samples and of data bytes for `dims`, refusing empty or oversized volumes.
+/// Number of samples and of data bytes for `dims`, refusing empty volumes and sizes that
+/// overflow. Whether they fit in memory is [`memory_for`]'s question (a streamed volume
+/// never is in memory whole).
 pub(crate) fn data_size(dims: [usize; 3], ty: Sample) -> Result<(usize, usize)> {
     if dims.contains(&0) {
         return Err(Error::format(format!("volume sizes {dims:?} contain 0")));
@@ -131,18 +134,28 @@ pub(crate) fn data_size(dims: [usize; 3], ty: Sample) -> Result<(usize, usize)> 
         .checked_mul(dims[1])
         .and_then(|v| v.checked_mul(dims[2]));
     let bytes = n.and_then(|n| n.checked_mul(ty.size()));
-    if let (Some(n), Some(b)) = (n, bytes) {
-        // samples as f32 plus the file's sample bytes while decoding
-        let need = (n as u64).saturating_mul(4).saturating_add(b as u64);
-        super::memory::check(need, &format!("a {dims:?} volume of {}", ty.name()))?;
-    }
     match (n, bytes) {
-        (Some(n), Some(b)) if b as u64 <= super::MAX_FILE_BYTES => Ok((n, b)),
+        (Some(n), Some(b)) if b as u64 <= u64::MAX / 8 => Ok((n, b)),
         _ => Err(Error::invalid(format!(
-            "volume sizes {dims:?} of {} need more memory than morpho reads",
+            "volume sizes {dims:?} of {} overflow",
             ty.name()
         ))),
     }
+}
+
+/// Refuses to read a whole volume of `dims` samples of `ty` into memory when its samples (as
+/// f32, plus the file's bytes while decoding) pass the memory limit or [`super::MAX_FILE_BYTES`].
+pub(crate) fn memory_for(dims: [usize; 3], ty: Sample) -> Result<()> {
+    let (n, b) = data_size(dims, ty)?;
+    let need = (n as u64).saturating_mul(4).saturating_add(b as u64);
+    super::memory::check(need, &format!("a {dims:?} volume of {}", ty.name()))?;
+    if b as u64 > super::MAX_FILE_BYTES {
+        return Err(Error::invalid(format!(
+            "volume sizes {dims:?} of {} need more memory than morpho reads",
+            ty.name()
+        )));
+    }
+    Ok(())
 }
 
 /// Converts exactly `n` samples from `bytes` (whose length must be `n * size`).
@@ -473,8 +486,8 @@ pub(crate) fn is_sidecar(v: &Value) -> bool {
         .is_some_and(|o| get(o, &["dims", "dims_xyz", "sizes"]).is_some())
 }
 
-/// Reads a volume (detached data is found relative to `path`).
-pub fn read(path: &Path) -> Result<Volume> {
+/// The sidecar parsed, and its data file opened (found relative to `path`).
+fn source(path: &Path) -> Result<(Head, Data)> {
     let mut bytes = Vec::new();
     let (f, _) = open_data(path)?;
     f.take(MAX_HEADER_BYTES + 1)
@@ -590,11 +603,6 @@ pub fn read(path: &Path) -> Result<Volume> {
         None if data.to_ascii_lowercase().ends_with(".gz") || has_gzip_magic(&dpath) => Codec::Gzip,
         None => Codec::Raw,
     };
-    let (f, len) = open_data(&dpath)?;
-    let raw = read_data(std::io::BufReader::new(f), len, codec, skip, nbytes)
-        .map_err(|e| e.with_path(&dpath))?;
-    let samples = decode(&raw, ty, big);
-    debug_assert_eq!(samples.len(), n);
     let text = |k: &str| o.get(k).and_then(|v| v.as_str()).map(str::to_string);
     // explicit `space`/`directions` keys win over what an affine implies
     let mut orientation = crate::volume::Orientation {
@@ -621,13 +629,48 @@ pub fn read(path: &Path) -> Result<Volume> {
             crate::volume::Orientation::unit_directions([rows[0], rows[1], rows[2]])
                 .map_err(|e| Error::format(format!("\"directions\": {e}")))?;
     }
+    let _ = (n, nbytes);
+    let (f, len) = open_data(&dpath)?;
+    Ok((
+        Head {
+            dims,
+            axes: Axes::Uniform { origin, spacing },
+            orientation,
+            ty,
+            big,
+        },
+        Data {
+            reader: Box::new(std::io::BufReader::new(f)),
+            available: len,
+            codec,
+            skip,
+            path: dpath,
+        },
+    ))
+}
+
+/// Reads a volume from its sidecar (the data file is found relative to `path`).
+pub fn read(path: &Path) -> Result<Volume> {
+    let (h, d) = source(path)?;
+    memory_for(h.dims, h.ty)?;
+    let (n, nbytes) = data_size(h.dims, h.ty)?;
+    let raw = read_data(d.reader, d.available, d.codec, d.skip, nbytes)
+        .map_err(|e| e.with_path(&d.path))?;
+    let samples = decode(&raw, h.ty, h.big);
+    debug_assert_eq!(samples.len(), n);
     Ok(Volume {
-        dims,
-        axes: Axes::Uniform { origin, spacing },
+        dims: h.dims,
+        axes: h.axes,
         data: samples,
-        source_dtype: ty.source_dtype(),
-        orientation,
+        source_dtype: h.ty.source_dtype(),
+        orientation: h.orientation,
     })
+}
+
+/// Opens the samples for reading slice by slice ([`super::open_volume_stream`]).
+pub(crate) fn open_stream(path: &Path) -> Result<VolumeStream> {
+    let (h, d) = source(path)?;
+    VolumeStream::new(h, d)
 }
 
 /// Writes a volume (with its data file beside it where the format has one), atomically.
@@ -712,7 +755,7 @@ mod tests {
 
     #[test]
     fn sizes_are_checked_before_allocation() {
-        assert!(data_size([100000, 100000, 100000], Sample::U8).is_err());
+        assert!(memory_for([100000, 100000, 100000], Sample::U8).is_err());
         assert!(data_size([usize::MAX, 2, 2], Sample::F64).is_err());
         assert!(data_size([0, 2, 2], Sample::U8).is_err());
         assert_eq!(data_size([2, 3, 4], Sample::I16).unwrap(), (24, 48));

@@ -9,7 +9,8 @@ pub use error::VolumeError;
 pub use gradient::{axis_coords, gradient_at, mesh_normals, GradientOperator};
 pub use isosurface::{
     extract_part, isosurface, isosurface_block, largest_part, stitch_blocks, IsoBlock, IsoMethod,
-    IsoOptions, IsoResult, NormalMethod, VolumeGrid,
+    IsoOptions, IsoResult, IsoStream, NormalMethod, StreamPiece, StreamSummary, VolumeGrid,
+    INTERIOR_REF,
 };
 
 /// Data type of the samples as stored in a file.

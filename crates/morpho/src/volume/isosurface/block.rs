@@ -80,7 +80,7 @@ impl VolumeGrid {
     }
 
     /// Checks the axes and the limits; returns the number of samples.
-    fn validate(&self) -> Result<usize, VolumeError> {
+    pub(super) fn validate(&self) -> Result<usize, VolumeError> {
         let n = self.dims[0]
             .checked_mul(self.dims[1])
             .and_then(|v| v.checked_mul(self.dims[2]))
@@ -143,7 +143,7 @@ fn entity_id(kind: usize, p: [usize; 3], d: [usize; 3]) -> u64 {
 
 /// The grid key (`extract::key`, global coordinates) of a global id; `KEY_INTERIOR` for
 /// cell-interior points.
-fn key_of_id(id: u64, d: [usize; 3]) -> u64 {
+pub(super) fn key_of_id(id: u64, d: [usize; 3]) -> u64 {
     let [nx, ny, nz] = d.map(|v| v as u64);
     if id >= 16 * nx * ny * nz {
         return KEY_INTERIOR;

@@ -47,9 +47,11 @@
 
 mod block;
 mod extract;
+mod stream;
 mod tables;
 
 pub use block::{isosurface_block, stitch_blocks, IsoBlock, VolumeGrid};
+pub use stream::{IsoStream, StreamPiece, StreamSummary, INTERIOR_REF};
 
 use crate::geom::Vector3;
 use crate::mesh::{Property, ScalarKind, TriMesh};
