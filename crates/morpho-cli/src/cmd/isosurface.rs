@@ -69,7 +69,7 @@ pub struct Args {
     pub stream: bool,
     /// With --stream: memory for the samples of one slab, in MiB (at least one z-slice is
     /// read whatever the value).
-    #[arg(long, default_value_t = 256.0, value_name = "MIB", requires = "stream")]
+    #[arg(long, default_value_t = 64.0, value_name = "MIB", requires = "stream")]
     pub slab_mib: f64,
 }
 
