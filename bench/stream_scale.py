@@ -100,7 +100,7 @@ def main():
             wall = time.perf_counter() - t
             peaks = cl.run(lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024)
             idx = json.load(open(index))
-            tris = idx.get("triangles", "?")
+            tris = idx.get("faces", "?")
             print(f"Dask LocalCluster(2, 1.5GB) {a.n}³  wall {wall:7.1f} s  worker peak RSS "
                   f"{', '.join(f'{v:.0f}' for v in peaks.values())} MiB  triangles {tris}  "
                   f"{a.n**3 / wall / 1e6:6.1f} M samples/s")
