@@ -251,3 +251,47 @@ fn bad_input_is_refused_without_output() {
     assert!(left.is_empty(), "{left:?}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_volume_over_the_memory_limit_is_streamed() {
+    let dir = tmpdir("limit");
+    let vols = volumes(&dir);
+    let v = vols[0].to_str().unwrap();
+    let (a, b) = (dir.join("a.ply"), dir.join("b.ply"));
+    run_ok(&["isosurface", v, "--level", "0", "-o", a.to_str().unwrap()]);
+    // 23·19·17 samples need ~59 KiB in memory: over a 40 KiB limit the whole read is refused
+    // and says how to go on; the stream reads one slice at a time and gives the same file
+    let limited = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_morpho"))
+            .args(args)
+            .env("MORPHO_MEMORY_LIMIT", "40K")
+            .output()
+            .expect("run morpho")
+    };
+    let o = limited(&["isosurface", v, "--level", "0", "-o", b.to_str().unwrap()]);
+    assert_refused(&o, "over the limit");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("memory limit") && err.contains("--stream"),
+        "{err}"
+    );
+    let o = limited(&[
+        "isosurface",
+        v,
+        "--level",
+        "0",
+        "-o",
+        b.to_str().unwrap(),
+        "--stream",
+        "--slab-mib",
+        "0.001",
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(std::fs::read(&a).unwrap() == std::fs::read(&b).unwrap());
+    let _ = std::fs::remove_dir_all(&dir);
+}

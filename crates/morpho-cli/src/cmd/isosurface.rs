@@ -105,7 +105,15 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     if args.stream {
         return super::isostream::run(&args, report);
     }
-    let vol = report.time("read", || io::read_volume(&args.input))?;
+    let vol = report
+        .time("read", || io::read_volume(&args.input))
+        .map_err(|e| {
+            let mut f = Failure::from(e);
+            if f.msg.contains("memory limit") {
+                f.msg.push_str("; --stream reads the volume slab by slab");
+            }
+            f
+        })?;
     finite_extent(&vol.axes, vol.dims, &args.input)?;
     let t = std::time::Instant::now();
     let mesh = process(&vol, &args, report)?;
