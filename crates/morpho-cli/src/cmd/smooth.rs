@@ -86,11 +86,16 @@ pub struct Args {
     pub density: Option<usize>,
 }
 
+/// A mesh file by its extension, gzipped too (`horse.obj.gz`).
 fn is_mesh_input(p: &Path) -> bool {
-    matches!(
-        crate::cmd::extension(p).as_str(),
-        "ply" | "obj" | "off" | "stl"
-    )
+    let mut e = crate::cmd::extension(p);
+    if e == "gz" {
+        e = p
+            .file_stem()
+            .map(|s| crate::cmd::extension(Path::new(s)))
+            .unwrap_or_default();
+    }
+    matches!(e.as_str(), "ply" | "obj" | "off" | "stl")
 }
 
 /// Runs `morpho smooth`.

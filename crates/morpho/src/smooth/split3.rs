@@ -333,17 +333,19 @@ pub fn three_split_with(
         })
         .collect();
     // Steps 1–4 per macro triangle, in parallel (the patch order is the triangle order)
+    let tri_patches = |handles: &HashMap<(u32, u32), P3>, t: &[u32; 3]| {
+        let v = t.map(|i| pos[i as usize]);
+        let ep = [0, 1, 2].map(|i| {
+            let (a, b, c) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+            [handles[&(a, b)], handles[&(a, c)]]
+        });
+        micro_patches(v, ep)
+    };
+    // Steps 1–4 per macro triangle, in parallel (the patch order is the triangle order)
     let build = |handles: &HashMap<(u32, u32), P3>| -> Vec<[P3; 10]> {
         mesh.triangles
             .par_iter()
-            .flat_map_iter(|t| {
-                let v = t.map(|i| pos[i as usize]);
-                let ep = [0, 1, 2].map(|i| {
-                    let (a, b, c) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
-                    [handles[&(a, b)], handles[&(a, c)]]
-                });
-                micro_patches(v, ep)
-            })
+            .flat_map_iter(|t| tri_patches(handles, t))
             .collect()
     };
     let mut corners: Vec<Vec<(u32, u32)>> = vec![Vec::new(); pos.len()];
@@ -382,11 +384,17 @@ pub fn three_split_with(
             singular.insert((a, b), quadratic);
         }
     }
-    let mut patches = if singular.is_empty() {
-        step4.clone()
-    } else {
-        build(&handles)
-    };
+    // only the two triangles of an edge read its edge points (Steps 2–3): rebuild those
+    let mut patches = step4.clone();
+    let mut touched: Vec<usize> = singular
+        .keys()
+        .flat_map(|&(a, b)| [half[&(a, b)] / 3, half[&(b, a)] / 3])
+        .collect();
+    touched.sort_unstable();
+    touched.dedup();
+    for t in touched {
+        patches[3 * t..3 * t + 3].copy_from_slice(&tri_patches(&handles, &mesh.triangles[t]));
+    }
     // Step 5 on the final edge points: each edge reads only its own two patches' boundary
     // rows and writes only their 111 points, so the edges are solved in parallel and applied
     // in edge order.
