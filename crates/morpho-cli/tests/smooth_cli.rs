@@ -521,3 +521,51 @@ fn side_vertex_surface_of_the_tetrahedron_and_a_real_mesh() {
     assert_eq!(m.triangles.len(), 5856 * 4);
     assert!(morpho::mesh::analyze_topology(&m).is_closed());
 }
+
+#[test]
+fn reflection_lines_beside_the_input_mesh() {
+    // the octahedron's side-vertex surface, rendered with reflection lines beside the octahedron
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("oct.obj");
+    std::fs::write(&input, octahedron_obj()).unwrap();
+    let surf = dir.path().join("s.ply");
+    ok(&morpho(&[
+        "smooth",
+        input.to_str().unwrap(),
+        "-o",
+        surf.to_str().unwrap(),
+        "--scheme",
+        "side-vertex",
+    ]));
+    let png = dir.path().join("r.png");
+    let rep = dir.path().join("r.json");
+    ok(&morpho(&[
+        "render",
+        surf.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--reflection-lines",
+        "--beside",
+        input.to_str().unwrap(),
+        "--width",
+        "120",
+        "--height",
+        "100",
+        "--report",
+        rep.to_str().unwrap(),
+    ]));
+    let r = json(&rep);
+    // two pictures side by side with an 8-pixel gap
+    assert_eq!(r["width"].as_u64(), Some(248));
+    assert_eq!(r["beside_triangles"].as_u64(), Some(8));
+    // bad line count: exit 2
+    let o = morpho(&[
+        "render",
+        surf.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--reflection-lines",
+        "0",
+    ]);
+    assert_input_error(&o, None);
+}

@@ -10,7 +10,8 @@ use morpho::render::{
     middle, orthogonal_slices, slice_height_mesh, slice_image, Axis, SliceOptions, Upsample,
 };
 use morpho::render::{
-    render_mesh, render_mesh_stats, Projection, RenderOptions, Scalars, Shading, UpAxis,
+    reflection_coordinate, render_mesh, render_mesh_stats, Projection, ReflectionLines,
+    RenderOptions, Scalars, Shading, UpAxis,
 };
 use morpho::volume::Volume;
 use std::f64::consts::PI;
@@ -365,6 +366,56 @@ fn mesh_normals_are_used_when_present() {
     m.normals = Some(m.positions.iter().map(|p| -p.coords.normalize()).collect());
     let c = render_mesh(&m, &o);
     assert_ne!(b, c);
+}
+
+#[test]
+fn reflection_lines_on_a_sphere_follow_the_reflected_ray() {
+    // Normal facing the eye: the ray comes straight back, angle 0; tilted by α about x: 2α.
+    assert_eq!(
+        reflection_coordinate([0.0, 0.0, -1.0], [0.0, 0.0, 1.0]),
+        0.0
+    );
+    let a = 0.3f64;
+    let t = reflection_coordinate([0.0, 0.0, -1.0], [0.0, a.sin(), a.cos()]);
+    assert!((t - 2.0 * a).abs() < 1e-15, "{t}");
+    // Exact sphere normals, orthographic front view: the stripes along the vertical centre
+    // line are where |θ·lines/π − round| < width/2 with θ = 2 asin(y).
+    let mut m = uv_sphere([0.0; 3], 1.0, 96, 48);
+    m.normals = Some(m.positions.iter().map(|p| p.coords.normalize()).collect());
+    let rl = ReflectionLines::default();
+    let o = RenderOptions {
+        shading: Shading::Smooth,
+        reflection_lines: Some(rl),
+        ..ortho_front(201, 201)
+    };
+    let img = render_mesh(&m, &o);
+    let (mut agree, mut total, mut dark) = (0, 0, 0);
+    for py in 10..191u32 {
+        let y = 1.0 - (py as f64 + 0.5) / 100.5;
+        let th = 2.0 * y.asin();
+        let u = th * rl.lines as f64 / PI;
+        let predicted = (u - u.round()).abs() < 0.5 * rl.width;
+        // skip samples next to a stripe border
+        if ((u - u.round()).abs() - 0.5 * rl.width).abs() < 0.05 {
+            continue;
+        }
+        let px = img.get(100, py);
+        let is_dark = px[0] == rl.color[0] && px[1] == rl.color[1] && px[2] == rl.color[2];
+        total += 1;
+        dark += usize::from(is_dark);
+        agree += usize::from(is_dark == predicted);
+    }
+    assert!(dark > 20 && dark < total - 20, "{dark} of {total}");
+    assert!(agree as f64 >= 0.97 * total as f64, "{agree} of {total}");
+    // Without reflection lines no sample has the stripe colour.
+    let plain = render_mesh(
+        &m,
+        &RenderOptions {
+            reflection_lines: None,
+            ..o
+        },
+    );
+    assert!(!plain.rgba.chunks(4).any(|p| p[..3] == rl.color));
 }
 
 #[test]

@@ -305,7 +305,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
 }
 
 /// Images side by side (top-aligned, white gaps of 8 px).
-fn hstack(images: &[morpho::render::Image]) -> morpho::render::Image {
+pub(crate) fn hstack(images: &[morpho::render::Image]) -> morpho::render::Image {
     let gap = 8;
     let w = images.iter().map(|i| i.width).sum::<u32>() + gap * (images.len() as u32 - 1);
     let h = images.iter().map(|i| i.height).max().unwrap_or(1);

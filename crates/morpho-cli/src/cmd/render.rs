@@ -5,7 +5,9 @@
 //!   farther ones;
 //! - polygons/polylines → SVG;
 //! - triangle meshes → PNG by the software rasterizer (`--flat|--smooth`, `--wireframe`,
-//!   `--color-by` a vertex or face property or `x`/`y`/`z`);
+//!   `--color-by` a vertex or face property or `x`/`y`/`z`; `--reflection-lines [N]`, the
+//!   visual continuity check of Veltkamp 1992, §8.4, with `--beside MESH` drawn flat shaded to
+//!   the left in the same view, e.g. a smooth surface beside its input mesh);
 //! - volumes → PNG of the three orthogonal middle slices, or of one slice with `--slice z,10`.
 
 use crate::report::Report;
@@ -15,7 +17,9 @@ use morpho::mesh::{PointSet, TriMesh};
 use morpho::render::Colormap;
 use morpho::render::{self, Axis, SliceOptions, Upsample};
 use morpho::render::{point_set_svg, PointsView};
-use morpho::render::{render_mesh_stats, Projection, RenderOptions, Scalars, Shading, UpAxis};
+use morpho::render::{
+    render_mesh_stats, Projection, ReflectionLines, RenderOptions, Scalars, Shading, UpAxis,
+};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -79,6 +83,15 @@ pub struct Args {
     /// Draw triangle edges (for small meshes).
     #[arg(long)]
     pub wireframe: bool,
+    /// Reflection lines (Veltkamp 1992, §8.4): N parallel light lines per π of the reflected
+    /// view ray's angle, drawn as dark stripes from the (vertex or facet) normals; continuous
+    /// stripes show a G¹ surface.
+    #[arg(long, value_name = "N", num_args = 0..=1, default_missing_value = "4")]
+    pub reflection_lines: Option<u32>,
+    /// A second mesh (e.g. the input of `morpho smooth`) drawn flat shaded to the left of the
+    /// picture, in the same view and with the same reflection lines.
+    #[arg(long, value_name = "MESH")]
+    pub beside: Option<PathBuf>,
     /// No colour bar below meshes coloured with --color-by.
     #[arg(long)]
     pub no_legend: bool,
@@ -373,6 +386,18 @@ fn mesh(
         Some(name) => Some(mesh_scalars(m, name, colormap, range)?),
         None => None,
     };
+    let reflection_lines = match args.reflection_lines {
+        None => None,
+        Some(n) if (1..=1000).contains(&n) => Some(ReflectionLines {
+            lines: n,
+            ..Default::default()
+        }),
+        Some(n) => {
+            return Err(Failure::usage(format!(
+                "--reflection-lines {n}: give 1 to 1000 lines"
+            )))
+        }
+    };
     let opts = RenderOptions {
         shading: if args.flat {
             Shading::Flat
@@ -381,10 +406,31 @@ fn mesh(
         },
         scalars,
         wireframe: args.wireframe,
+        reflection_lines,
         ..view_options(args, UpAxis::Y)
+    };
+    let beside = match &args.beside {
+        None => None,
+        Some(p) => {
+            let b = report.time("read", || morpho::io::read_mesh(p))?;
+            report.set("beside", p.display().to_string());
+            report.set("beside_triangles", b.num_triangles());
+            Some(b)
+        }
     };
     let (img, st) = report.time("compute", || {
         let (img, st) = render_mesh_stats(m, &opts);
+        let img = match &beside {
+            None => img,
+            Some(b) => {
+                let flat = RenderOptions {
+                    shading: Shading::Flat,
+                    scalars: None,
+                    ..opts.clone()
+                };
+                super::reduce::hstack(&[render_mesh_stats(b, &flat).0, img])
+            }
+        };
         // A colour bar below the picture when a property is shown.
         match (st.range, &args.color_by) {
             (Some((lo, hi)), Some(name)) if !args.no_legend => (

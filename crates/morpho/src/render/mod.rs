@@ -25,8 +25,8 @@ pub use figures::{
 pub use formula::Formula;
 pub use legend::with_colorbar;
 pub use raster::{
-    render_mesh, render_mesh_stats, Projection, RenderOptions, RenderStats, Scalars, Shading,
-    UpAxis,
+    reflection_coordinate, render_mesh, render_mesh_stats, Projection, ReflectionLines,
+    RenderOptions, RenderStats, Scalars, Shading, UpAxis,
 };
 pub use slice::{
     middle, orthogonal_slices, slice_height_mesh, slice_image, Axis, SliceOptions, Upsample,

@@ -17,6 +17,8 @@
 //!    depend on the thread count;
 //! 5. per sample: perspective-correct interpolation of normals and scalars, Blinn–Phong
 //!    lighting with a headlight and a key light, normals flipped on back faces (two-sided);
+//!    optionally reflection lines (Veltkamp 1992, §8.4) from the same normals
+//!    ([`ReflectionLines`]);
 //! 6. the samples of each pixel are averaged (box filter).
 //!
 //! With [`RenderOptions::transparency`] the z-buffer is replaced by Hamann's alpha blending
@@ -138,6 +140,48 @@ pub struct RenderOptions {
     /// front, unlit, each sample becoming
     /// `(1 − t) c_triangle + t c_old`; `t` is clamped to [0, 1] (0: opaque painter's order).
     pub transparency: Option<f64>,
+    /// Reflection lines (Veltkamp 1992, §8.4) over the shading: see [`ReflectionLines`].
+    /// Ignored with `transparency`.
+    pub reflection_lines: Option<ReflectionLines>,
+}
+
+/// Reflection lines, the visual continuity check of Veltkamp (1992, §8.4; NOTES B.8): a family
+/// of parallel line lights, parallel to the screen's horizontal axis and far away around the
+/// object (the limit of (8.11) for a distant light, so the reflection depends on the direction
+/// of the reflected view ray only). Per sample, the view ray is reflected about the
+/// interpolated unit normal, `r = d − 2(d·n)n`, and its angle about the lines' axis,
+/// `θ = atan2(r_y, r_z)` in camera space ([`reflection_coordinate`]), decides: a sample whose
+/// `θ·lines/π` lies within `width/2` of an integer sees a light line and is drawn dark.
+/// The stripes are continuous where the normals are (G¹), and kink across patch edges unless
+/// the surface is G² (Veltkamp 1992, §8.4); on a flat-shaded mesh they break at every edge.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReflectionLines {
+    /// Light lines per π of the reflected ray's angle (clamped to 1…1000).
+    pub lines: u32,
+    /// Fraction of each period drawn dark (clamped to 0.02…0.98).
+    pub width: f64,
+    /// Colour of the stripes.
+    pub color: [u8; 3],
+}
+
+impl Default for ReflectionLines {
+    fn default() -> Self {
+        ReflectionLines {
+            lines: 4,
+            width: 0.4,
+            color: [20, 24, 36],
+        }
+    }
+}
+
+/// The stripe coordinate of [`ReflectionLines`]: for the unit view direction `d` (from the eye
+/// to the surface) and the unit normal `n` (both in camera coordinates, x right, y up, z
+/// towards the eye), the angle `atan2(r_y, r_z)` of the reflected ray `r = d − 2(d·n)n` about
+/// the camera's x axis, in (−π, π]. A normal facing the eye gives 0.
+pub fn reflection_coordinate(d: [f64; 3], n: [f64; 3]) -> f64 {
+    let dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+    let r = [d[1] - 2.0 * dn * n[1], d[2] - 2.0 * dn * n[2]];
+    r[0].atan2(r[1])
 }
 
 impl Default for RenderOptions {
@@ -159,6 +203,7 @@ impl Default for RenderOptions {
             supersample: 2,
             margin: 0.05,
             transparency: None,
+            reflection_lines: None,
         }
     }
 }
@@ -260,6 +305,7 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
 
     // 2.–3. Normalisation, camera, projection fitted to the image; normals, scalars, lights.
     let camera = Camera::new(opts);
+    let eye_dist = camera.persp;
     let cam = camera_space(mesh, &used, &camera);
     let verts = fit_to_image(&cam, &used, &camera, opts, &frame);
     let vnormals = if opts.shading == Shading::Smooth {
@@ -278,6 +324,7 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
         vnormals,
         colours,
         lights: Lights::new(),
+        eye_dist,
         translucent: opts.transparency.map(|t| {
             if t.is_finite() {
                 t.clamp(0.0, 1.0)
@@ -649,6 +696,8 @@ struct Scene<'a> {
     vnormals: Vec<Vector3>,
     colours: Colours<'a>,
     lights: Lights,
+    /// Distance of the eye from the origin in camera space (perspective), `None`: orthographic.
+    eye_dist: Option<f64>,
     /// Transparency t of alpha blending, `None` for the z-buffer.
     translucent: Option<f64>,
 }
@@ -779,6 +828,43 @@ impl Scene<'_> {
         }
     }
 
+    /// [`ReflectionLines`] over the lit colour `col` of a sample with unit normal `nn` at
+    /// perspective-correct weights `b` of `t`.
+    #[inline]
+    fn stripe(
+        &self,
+        rl: &ReflectionLines,
+        t: &Tri,
+        b: [f64; 3],
+        nn: Vector3,
+        col: [u8; 4],
+    ) -> [u8; 4] {
+        let d = match self.eye_dist {
+            None => Vector3::new(0.0, 0.0, -1.0),
+            Some(e) => {
+                let ids = t.ids;
+                let p = b[0] * self.cam[ids[0] as usize]
+                    + b[1] * self.cam[ids[1] as usize]
+                    + b[2] * self.cam[ids[2] as usize];
+                let v = p - Vector3::new(0.0, 0.0, e);
+                let l = v.norm();
+                if l > 0.0 && l.is_finite() {
+                    v / l
+                } else {
+                    Vector3::new(0.0, 0.0, -1.0)
+                }
+            }
+        };
+        let theta = reflection_coordinate([d.x, d.y, d.z], [nn.x, nn.y, nn.z]);
+        let u = theta * rl.lines.clamp(1, 1000) as f64 / std::f64::consts::PI;
+        let frac = (u - u.round()).abs();
+        if frac < 0.5 * rl.width.clamp(0.02, 0.98) {
+            [rl.color[0], rl.color[1], rl.color[2], 255]
+        } else {
+            col
+        }
+    }
+
     /// Scan conversion of one triangle within a band.
     fn draw_triangle(
         &self,
@@ -888,13 +974,13 @@ impl Scene<'_> {
     #[inline]
     fn lit_colour(&self, t: &Tri, b: [f64; 3], base: [u8; 3], w: [f64; 3]) -> [u8; 4] {
         let opts = self.opts;
-        let mut col = if opts.shading == Shading::Smooth {
+        let smooth_n = (opts.shading == Shading::Smooth).then(|| {
             let (vn, ids) = (&self.vnormals, t.ids);
             let nn = b[0] * vn[ids[0] as usize]
                 + b[1] * vn[ids[1] as usize]
                 + b[2] * vn[ids[2] as usize];
             let l = nn.norm();
-            let nn = if l > 1e-12 {
+            if l > 1e-12 {
                 let nn = nn / l;
                 if t.back {
                     -nn
@@ -903,13 +989,18 @@ impl Scene<'_> {
                 }
             } else {
                 t.face_n
-            };
+            }
+        });
+        let mut col = if let Some(nn) = smooth_n {
             self.lights.shade(nn, base)
         } else if self.colours.per_vertex().is_some() {
             self.lights.shade(t.face_n, base)
         } else {
             t.flat_col
         };
+        if let Some(rl) = &opts.reflection_lines {
+            col = self.stripe(rl, t, b, smooth_n.unwrap_or(t.face_n), col);
+        }
         if opts.wireframe {
             let wire_half = 0.55 * self.frame.ss as f64;
             let lens = t.lens;

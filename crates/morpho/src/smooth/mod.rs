@@ -14,8 +14,10 @@
 //! by an interpolated rotation angle ([`ConicEdge`]), and a stated recipe for the generalized
 //! (inflected) conics the text leaves open.
 //!
-//! Not yet built (issue 19): the two- and six-split, reflection lines and benches. The CLI is
-//! `morpho smooth` (curve, three-split, side-vertex).
+//! Reflection lines (V §8.4), the visual continuity check, are drawn by the rasterizer
+//! ([`crate::render::ReflectionLines`]); the bench is `examples/bench_smooth.rs`. Not yet built
+//! (issue 19): the two- and six-split (V §9.7, §9.8). The CLI is `morpho smooth` (curve,
+//! three-split, side-vertex).
 
 mod bezier;
 mod check;

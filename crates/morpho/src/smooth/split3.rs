@@ -40,6 +40,7 @@ use super::triangle::{tri_index, BezierTriangle};
 use super::SmoothError;
 use crate::geom::vec;
 use crate::mesh::TriMesh;
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 type P3 = [f64; 3];
@@ -331,17 +332,21 @@ pub fn three_split_with(
             )
         })
         .collect();
+    // Steps 1–4 per macro triangle, in parallel (the patch order is the triangle order)
+    let tri_patches = |handles: &HashMap<(u32, u32), P3>, t: &[u32; 3]| {
+        let v = t.map(|i| pos[i as usize]);
+        let ep = [0, 1, 2].map(|i| {
+            let (a, b, c) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+            [handles[&(a, b)], handles[&(a, c)]]
+        });
+        micro_patches(v, ep)
+    };
+    // Steps 1–4 per macro triangle, in parallel (the patch order is the triangle order)
     let build = |handles: &HashMap<(u32, u32), P3>| -> Vec<[P3; 10]> {
-        let mut patches = Vec::with_capacity(3 * mesh.triangles.len());
-        for t in &mesh.triangles {
-            let v = t.map(|i| pos[i as usize]);
-            let ep = [0, 1, 2].map(|i| {
-                let (a, b, c) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
-                [handles[&(a, b)], handles[&(a, c)]]
-            });
-            patches.extend(micro_patches(v, ep));
-        }
-        patches
+        mesh.triangles
+            .par_iter()
+            .flat_map_iter(|t| tri_patches(handles, t))
+            .collect()
     };
     let mut corners: Vec<Vec<(u32, u32)>> = vec![Vec::new(); pos.len()];
     for t in &mesh.triangles {
@@ -379,69 +384,101 @@ pub fn three_split_with(
             singular.insert((a, b), quadratic);
         }
     }
-    let mut patches = if singular.is_empty() {
-        step4.clone()
-    } else {
-        build(&handles)
-    };
-    // Step 5 on the final edge points
-    for &(a, b) in &edges {
-        let (p, q) = (half[&(a, b)], half[&(b, a)]);
-        let (e, fg) = edge_data(&patches, &half, a, b);
-        if fg[0] * fg[1] <= 0.0 || fg[2] * fg[3] <= 0.0 {
+    // only the two triangles of an edge read its edge points (Steps 2–3): rebuild those
+    let mut patches = step4.clone();
+    let mut touched: Vec<usize> = singular
+        .keys()
+        .flat_map(|&(a, b)| [half[&(a, b)] / 3, half[&(b, a)] / 3])
+        .collect();
+    touched.sort_unstable();
+    touched.dedup();
+    for t in touched {
+        patches[3 * t..3 * t + 3].copy_from_slice(&tri_patches(&handles, &mesh.triangles[t]));
+    }
+    // Step 5 on the final edge points: each edge reads only its own two patches' boundary
+    // rows and writes only their 111 points, so the edges are solved in parallel and applied
+    // in edge order.
+    struct Solved {
+        p: usize,
+        q: usize,
+        lr: (P3, P3),
+        sign_warning: bool,
+        singular: bool,
+        unresolved: bool,
+        displacement: f64,
+    }
+    let solved: Vec<Solved> = edges
+        .par_iter()
+        .map(|&(a, b)| {
+            let (p, q) = (half[&(a, b)], half[&(b, a)]);
+            let (e, fg) = edge_data(&patches, &half, a, b);
+            let sign_warning = fg[0] * fg[1] <= 0.0 || fg[2] * fg[3] <= 0.0;
+            let old_l = step4[p][4];
+            let len = vec::dist(e.m[0], e.m[3]);
+            let (mut singular_edge, mut unresolved) = (false, false);
+            let lr = match singular.get(&(a, b)) {
+                Some(&quadratic) => {
+                    singular_edge = true;
+                    let (lr, res) = super::singular::solve_singular(
+                        &e.m,
+                        &e.l,
+                        &e.r,
+                        fg,
+                        (patches[p][4], patches[q][4]),
+                    );
+                    unresolved = !quadratic || (res > RESOLVED || res.is_nan());
+                    lr
+                }
+                // an edge made singular by its neighbours' new boundaries: the same solve
+                None if is_singular(fg) => {
+                    singular_edge = true;
+                    let old = (patches[p][4], patches[q][4]);
+                    let (lr, res) = super::singular::solve_singular(&e.m, &e.l, &e.r, fg, old);
+                    unresolved = res > RESOLVED || res.is_nan();
+                    lr
+                }
+                None => solve_94(&e, fg),
+            };
+            Solved {
+                p,
+                q,
+                lr,
+                sign_warning,
+                singular: singular_edge,
+                unresolved,
+                displacement: vec::dist(lr.0, old_l) / len,
+            }
+        })
+        .collect();
+    for (&(a, b), r) in edges.iter().zip(&solved) {
+        if r.sign_warning {
             out.sign_warnings.push([a, b]);
         }
-        let old_l = step4[p][4];
-        let len = vec::dist(e.m[0], e.m[3]);
-        let (l1, r1) = match singular.get(&(a, b)) {
-            Some(&quadratic) => {
-                out.singular_edges.push([a, b]);
-                let (lr, res) = super::singular::solve_singular(
-                    &e.m,
-                    &e.l,
-                    &e.r,
-                    fg,
-                    (patches[p][4], patches[q][4]),
-                );
-                if !quadratic || (res > RESOLVED || res.is_nan()) {
-                    out.unresolved_edges.push([a, b]);
-                }
-                lr
-            }
-            // an edge made singular by its neighbours' new boundaries: the same solve
-            None if is_singular(fg) => {
-                out.singular_edges.push([a, b]);
-                let old = (patches[p][4], patches[q][4]);
-                let (lr, res) = super::singular::solve_singular(&e.m, &e.l, &e.r, fg, old);
-                if res > RESOLVED || res.is_nan() {
-                    out.unresolved_edges.push([a, b]);
-                }
-                lr
-            }
-            None => solve_94(&e, fg),
-        };
-        out.max_displacement = out.max_displacement.max(vec::dist(l1, old_l) / len);
-        patches[p][4] = l1;
-        patches[q][4] = r1;
+        if r.singular {
+            out.singular_edges.push([a, b]);
+        }
+        if r.unresolved {
+            out.unresolved_edges.push([a, b]);
+        }
+        out.max_displacement = out.max_displacement.max(r.displacement);
+        patches[r.p][4] = r.lr.0;
+        patches[r.q][4] = r.lr.1;
     }
-    // Step 6: the C¹ interior of each macro triangle
-    for t in 0..mesh.triangles.len() {
+    // Step 6: the C¹ interior of each macro triangle (in parallel: a triangle's three patches)
+    patches.par_chunks_mut(3).for_each(|tp| {
         let mut y = [[0.0; 3]; 3];
         for i in 0..3 {
-            let (mi, mp) = (3 * t + i, 3 * t + (i + 2) % 3);
-            let w = patches[mi][2];
-            y[i] = vec::scale(
-                vec::add(vec::add(w, patches[mi][4]), patches[mp][4]),
-                1.0 / 3.0,
-            );
-            patches[mi][5] = y[i];
-            patches[mp][8] = y[i];
+            let (mi, mp) = (i, (i + 2) % 3);
+            let w = tp[mi][2];
+            y[i] = vec::scale(vec::add(vec::add(w, tp[mi][4]), tp[mp][4]), 1.0 / 3.0);
+            tp[mi][5] = y[i];
+            tp[mp][8] = y[i];
         }
         let z = vec::scale(vec::add(vec::add(y[0], y[1]), y[2]), 1.0 / 3.0);
-        for i in 0..3 {
-            patches[3 * t + i][9] = z;
+        for p in tp.iter_mut() {
+            p[9] = z;
         }
-    }
+    });
     out.patches = patches
         .into_iter()
         .enumerate()

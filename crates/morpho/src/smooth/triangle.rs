@@ -44,9 +44,12 @@ impl BezierTriangle {
         self.control[tri_index(self.degree, i, j)]
     }
 
-    /// One de Casteljau step: the degree-(m−1) net `t p_{i+1,j,k} + u p_{i,j+1,k} + w p_{i,j,k+1}`.
-    fn step(net: &[[f64; 3]], m: usize, b: [f64; 3]) -> Vec<[f64; 3]> {
-        let mut out = vec![[0.0; 3]; m * (m + 1) / 2];
+    /// One de Casteljau step in place: the degree-(m−1) net
+    /// `t p_{i+1,j,k} + u p_{i,j+1,k} + w p_{i,j,k+1}` over the first `m(m+1)/2` entries. The
+    /// output `(i, j)` lands on the index of its `p_{i+1,j,k}` and reads the next block only,
+    /// so writing in increasing index order overwrites nothing still needed.
+    #[inline]
+    fn step_in_place(net: &mut [[f64; 3]], m: usize, b: [f64; 3]) {
         for i in (0..m).rev() {
             for j in (0..m - i).rev() {
                 let p = net[tri_index(m, i + 1, j)];
@@ -56,26 +59,41 @@ impl BezierTriangle {
                     vec::add(vec::scale(p, b[0]), vec::scale(q, b[1])),
                     vec::scale(r, b[2]),
                 );
-                out[tri_index(m - 1, i, j)] = s;
+                net[tri_index(m - 1, i, j)] = s;
             }
         }
-        out
+    }
+
+    /// The blossom with `steps` arguments `arg(0), arg(1), …` (no allocation up to degree 4).
+    #[inline]
+    fn blossom_with(&self, steps: usize, arg: impl Fn(usize) -> [f64; 3]) -> [f64; 3] {
+        let n = self.degree;
+        let run = |net: &mut [[f64; 3]]| {
+            let mut m = n;
+            for s in 0..steps.min(n) {
+                Self::step_in_place(net, m, arg(s));
+                m -= 1;
+            }
+            net[0]
+        };
+        let len = self.control.len();
+        if len <= 15 {
+            let mut buf = [[0.0; 3]; 15];
+            buf[..len].copy_from_slice(&self.control);
+            run(&mut buf[..len])
+        } else {
+            run(&mut self.control.clone())
+        }
     }
 
     /// The blossom `b(a_1, …, a_n)` (symmetric, multi-affine; `args.len()` = n).
     pub fn blossom(&self, args: &[[f64; 3]]) -> [f64; 3] {
-        let mut net = self.control.clone();
-        let mut m = self.degree;
-        for a in args.iter().take(self.degree) {
-            net = Self::step(&net, m, *a);
-            m -= 1;
-        }
-        net[0]
+        self.blossom_with(args.len(), |s| args[s])
     }
 
     /// `P(b)` for barycentric `b = (t,u,w)`.
     pub fn eval(&self, b: [f64; 3]) -> [f64; 3] {
-        self.blossom(&vec![b; self.degree])
+        self.blossom_with(self.degree, |_| b)
     }
 
     /// The directional derivative (8.6) along `d` (with Σd = 0) at `b`:
@@ -84,9 +102,8 @@ impl BezierTriangle {
         if self.degree == 0 {
             return [0.0; 3];
         }
-        let mut args = vec![b; self.degree];
-        args[0] = d;
-        vec::scale(self.blossom(&args), self.degree as f64)
+        let arg = |s: usize| if s == 0 { d } else { b };
+        vec::scale(self.blossom_with(self.degree, arg), self.degree as f64)
     }
 
     /// The unit normal (8.4) `∇_{(−1,1,0)} P × ∇_{(−1,0,1)} P`, normalised (zero where the
@@ -110,12 +127,16 @@ impl BezierTriangle {
         let mut control = vec![[0.0; 3]; (n + 1) * (n + 2) / 2];
         for i in (0..=n).rev() {
             for j in (0..=n - i).rev() {
-                let k = n - i - j;
-                let mut args = Vec::with_capacity(n);
-                args.extend(std::iter::repeat(a).take(i));
-                args.extend(std::iter::repeat(b).take(j));
-                args.extend(std::iter::repeat(c).take(k));
-                control[tri_index(n, i, j)] = self.blossom(&args);
+                let arg = |s: usize| {
+                    if s < i {
+                        a
+                    } else if s < i + j {
+                        b
+                    } else {
+                        c
+                    }
+                };
+                control[tri_index(n, i, j)] = self.blossom_with(n, arg);
             }
         }
         BezierTriangle { degree: n, control }
