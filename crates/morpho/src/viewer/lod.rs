@@ -184,7 +184,7 @@ pub fn cluster_proxy(
     let mut g = ((tris as f64).sqrt() * (target as f64 / tris as f64).sqrt()).max(2.0);
     // the finest grid found with at most `target` triangles, and the coarsest with more
     let mut under: Option<(f64, Proxy)> = None;
-    let mut over = f64::INFINITY;
+    let mut over: Option<(f64, Proxy)> = None;
     for _ in 0..8 {
         let gi = g.round().clamp(2.0, 4096.0);
         let p = cluster_pass(positions, indices, props, lo, ext, gi as u32);
@@ -196,27 +196,30 @@ pub fn cluster_proxy(
             if under.as_ref().map_or(true, |(ug, _)| gi > *ug) {
                 under = Some((gi, p));
             }
-        } else {
-            over = over.min(gi);
+        } else if over.as_ref().map_or(true, |(og, _)| gi < *og) {
+            over = Some((gi, p));
         }
         let lo_g = under.as_ref().map_or(1.0, |(ug, _)| *ug);
-        let mut next = gi * (target as f64 / got.max(1) as f64).sqrt();
-        if !(next > lo_g && next < over) {
-            next = if over.is_finite() {
-                (lo_g * over).sqrt()
+        let hi_g = over.as_ref().map_or(f64::INFINITY, |(og, _)| *og);
+        let mut next = (gi * (target as f64 / got.max(1) as f64).sqrt()).round();
+        if next == gi {
+            // the estimate rounds to this grid: one cell more or less
+            next = if got > target { gi - 1.0 } else { gi + 1.0 };
+        }
+        if !(next > lo_g && next < hi_g) {
+            next = if hi_g.is_finite() {
+                (0.5 * (lo_g + hi_g)).floor()
             } else {
                 2.0 * gi
             };
         }
-        if next.round() == gi || next.round() <= lo_g || next.round() >= over || gi >= 4096.0 {
+        if next <= lo_g || next >= hi_g || gi >= 4096.0 || next < 2.0 {
             break;
         }
         g = next;
     }
-    match under {
-        Some((_, p)) => Some(p),
-        None => Some(cluster_pass(positions, indices, props, lo, ext, 2)),
-    }
+    // at most the target when such a grid was found, else the smallest proxy above it
+    under.or(over).map(|(_, p)| p)
 }
 
 #[cfg(test)]
@@ -273,6 +276,21 @@ mod tests {
         for c in q.indices.chunks_exact(3) {
             assert!(c[0] != c[1] && c[1] != c[2] && c[0] != c[2]);
             assert!(seen.insert(sorted3([c[0], c[1], c[2]])));
+        }
+    }
+
+    /// The search ends near the target for many targets (a regression: an estimate that
+    /// rounded to the grid just tried once stopped the search and fell back to a 2-cell grid).
+    #[test]
+    fn proxy_size_tracks_the_target() {
+        let (p, t) = sphere(150);
+        for target in [500, 1000, 2000, 3000, 7000, 10_000, 20_000] {
+            let q = cluster_proxy(&p, &t, &[], target).unwrap();
+            let n = q.indices.len() / 3;
+            assert!(
+                n <= target && 2 * n >= target,
+                "target {target}: {n} triangles"
+            );
         }
     }
 
