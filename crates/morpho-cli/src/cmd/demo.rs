@@ -95,7 +95,11 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         match build(&ctx) {
             Ok(secs) => {
                 let dt = t.elapsed().as_secs_f64() / secs.len().max(1) as f64;
-                for section in secs {
+                for mut section in secs {
+                    if let Err(e) = add_views(&ctx, &mut section) {
+                        eprintln!("error: demo step '{name}': interactive view: {e}");
+                        failed += 1;
+                    }
                     done.push(Entry {
                         section,
                         seconds: dt,
@@ -129,6 +133,41 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         failed
     );
     Ok(if failed > 0 { 1 } else { 0 })
+}
+
+/// Issue 22: the interactive page (`morpho view`'s page) of a 3D result, written beside the
+/// gallery as `NAME.view.html` and listed with the section's files, so the gallery links it.
+pub fn view_page(ctx: &Ctx, s: &mut Section, name: &str, m: &morpho::mesh::TriMesh) -> Result<()> {
+    use morpho::viewer::{page_html, Layer, Page, DEFAULT_LOD};
+    let page = Page {
+        title: name.to_string(),
+        layers: vec![Layer::mesh(name, m)],
+        figures: None,
+        lod: DEFAULT_LOD,
+    };
+    let file = format!("{name}.view.html");
+    morpho::io::write_text(&ctx.path(&file), &page_html(&page))?;
+    s.files.push(file);
+    Ok(())
+}
+
+/// Every mesh file of a section gets its interactive page ([`view_page`]).
+fn add_views(ctx: &Ctx, s: &mut Section) -> Result<()> {
+    let meshes: Vec<String> = s
+        .files
+        .iter()
+        .filter(|f| {
+            let e = crate::cmd::extension(Path::new(f.as_str()));
+            matches!(e.as_str(), "ply" | "obj" | "off" | "stl")
+                && !s.files.contains(&format!("{f}.view.html"))
+        })
+        .cloned()
+        .collect();
+    for f in meshes {
+        let m = morpho::io::read_mesh(&ctx.path(&f))?;
+        view_page(ctx, s, &f, &m)?;
+    }
+    Ok(())
 }
 
 /// `../shared/data` relative to the repository this binary was built from, or to the
@@ -302,6 +341,7 @@ fn mesh_section(ctx: &Ctx) -> Result<Vec<Section>> {
     };
     render_mesh(&m, &opts).save_png(&ctx.path("double_torus.png"))?;
     s.img("double_torus.png", "double torus (flat shading)");
+    view_page(ctx, &mut s, "double_torus", &m)?;
     mesh_figures(&mut s, &m);
     out.push(s);
     for (file, title, az) in [
@@ -510,6 +550,7 @@ fn isosurface_section(ctx: &Ctx) -> Result<Vec<Section>> {
         };
         render_mesh(&m, &opts).save_png(&ctx.path("cthead_bone.png"))?;
         s.img("cthead_bone.png", "decider method, level 120");
+        view_page(ctx, &mut s, "cthead_bone", &m)?;
         iso_figures(&mut s, &r, dt);
         let lor = isosurface(
             &v,

@@ -1,4 +1,4 @@
-//! `morpho view FILE… -o page.html [--figures REPORT.json] [--level L]`: one self-contained
+//! `morpho view FILE… -o page.html [--figures REPORT.json] [--level L] [--lod TRIANGLES]`: one self-contained
 //! interactive page (WebGL 2, offline, `file://`) showing every input (issue 22, part 2; see
 //! `morpho::viewer`). Meshes with their vertex properties as colour maps, point sets, 2D
 //! shapes; a volume is shown by its contour surface at `--level` (default: the midpoint of its
@@ -26,6 +26,10 @@ pub struct Args {
     /// Contour level for volumes (default: midpoint of the value range).
     #[arg(long)]
     pub level: Option<f64>,
+    /// Meshes with more triangles get an interaction proxy of about this many triangles
+    /// (vertex clustering), drawn while the camera moves; 0 turns it off.
+    #[arg(long, default_value_t = morpho::viewer::DEFAULT_LOD)]
+    pub lod: usize,
 }
 
 /// Runs `morpho view`.
@@ -96,6 +100,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             title,
             layers,
             figures,
+            lod: args.lod,
         })
     });
     report.time("write", || io::write_text(&args.output, &html))?;

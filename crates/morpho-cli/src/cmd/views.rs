@@ -290,6 +290,7 @@ pub fn demo_section(ctx: &super::demo::Ctx) -> morpho::Result<Vec<morpho::io::ht
         use morpho::curvature::{surface_curvature, SurfaceOptions};
         let m = morpho::io::read_mesh(&p)?;
         let h = surface_curvature(&m, &SurfaceOptions::default())?.h;
+        let h_values = h.clone();
         let r = morpho::render::finite_range(h.iter().copied()).unwrap_or((-1.0, 1.0));
         let a = r.0.abs().max(r.1.abs()).min(20.0);
         let ro = RenderOptions {
@@ -315,6 +316,13 @@ pub fn demo_section(ctx: &super::demo::Ctx) -> morpho::Result<Vec<morpho::io::ht
             "morpho render MESH.ply --color H: H from the osculating-paraboloid fit (H §4.2).",
         );
         s.img("views_spot_H.png", "mean curvature H, symmetric range");
+        let mut mh = m.clone();
+        mh.vertex_props.push(morpho::mesh::Property {
+            name: "H".into(),
+            kind: morpho::mesh::ScalarKind::F64,
+            values: h_values,
+        });
+        super::demo::view_page(ctx, &mut s, "spot_H", &mh)?;
         out.push(s);
     }
     Ok(out)

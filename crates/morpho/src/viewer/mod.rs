@@ -11,8 +11,16 @@
 //! Layers: meshes (shaded, per-vertex colour maps from PLY properties such as `H`, `K`),
 //! point sets (first columns as properties), 2D shapes (polygons and polylines as lines at
 //! z = 0). Volumes are shown by the CLI as their contour surface (a mesh layer).
+//! A mesh with more than [`Page::lod`] triangles also carries an interaction proxy of about that
+//! many triangles ([`cluster_proxy`], vertex clustering, computed here at page-generation time,
+//! indices as `u16` when they fit): the page draws the proxy, at half resolution, while the
+//! camera moves, and the full mesh, progressively in chunks, when it rests.
 //! The page has a test hook: `page.html#selftest=orbit,pick:123,bench:60` runs those steps
-//! and writes a JSON result into `<pre id="morpho-selftest">` (see the browser tests).
+//! and writes a JSON result into `<pre id="morpho-selftest">` (see the browser tests); the
+//! steps `fps:SECONDS` (a scripted orbit timed by `requestAnimationFrame`, drawing what an
+//! interaction draws), `fpsfull:SECONDS` (the same with the full mesh) and `full` (wait for the
+//! full-detail frame) are asynchronous: `window.morphoSelftest` is then a promise of the result
+//! (`bench/viewer_fps.py` drives them over the DevTools protocol).
 //!
 //! ```
 //! use morpho::viewer::{page_html, Layer, Page};
@@ -21,13 +29,26 @@
 //!     vec![[0.0, 0.0, 0.0].into(), [1.0, 0.0, 0.0].into(), [0.0, 1.0, 0.0].into()],
 //!     vec![[0, 1, 2]],
 //! );
-//! let page = Page { title: "t".into(), layers: vec![Layer::mesh("tri", &m)], figures: None };
+//! let page = Page {
+//!     title: "t".into(),
+//!     layers: vec![Layer::mesh("tri", &m)],
+//!     figures: None,
+//!     lod: morpho::viewer::DEFAULT_LOD,
+//! };
 //! let html = page_html(&page);
 //! assert!(html.starts_with("<!DOCTYPE html>") && html.contains("morpho-selftest"));
 //! ```
 
 use crate::mesh::{PointSet, Shapes2, TriMesh};
 use serde_json::{json, Value};
+
+mod lod;
+pub use lod::{cluster_proxy, Proxy};
+
+/// The default size of a mesh's interaction proxy (triangles). Measured with SwiftShader on two
+/// cores at load average ≈ 8 (`bench/viewer_fps.py`, 1024×768, the proxy drawn at half
+/// resolution while moving): 10 000 triangles orbit at 60 frames/s, 20 000 at 33, 60 000 at 17.
+pub const DEFAULT_LOD: usize = 10_000;
 
 /// One thing drawn in the page.
 #[derive(Debug, Clone)]
@@ -128,6 +149,9 @@ pub struct Page {
     pub layers: Vec<Layer>,
     /// Figures shown in the side panel (flattened key/value pairs of this JSON).
     pub figures: Option<Value>,
+    /// Meshes with more triangles than this get an interaction proxy of about this many
+    /// triangles (0: never). See [`DEFAULT_LOD`].
+    pub lod: usize,
 }
 
 const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -174,8 +198,33 @@ fn esc(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
+/// Positions quantized to 16 bits per axis over the box `lo`..`lo+ext`, little-endian.
+fn quantize(positions: &[[f64; 3]], lo: &[f64; 3], ext: &[f64]) -> Vec<u8> {
+    let mut q = Vec::with_capacity(6 * positions.len());
+    for p in positions {
+        for k in 0..3 {
+            let t = ((p[k] - lo[k]) / ext[k] * 65535.0).round();
+            // NaN coordinates go to the box's corner (as casts do, but said out loud)
+            let t = if t.is_finite() {
+                t.clamp(0.0, 65535.0) as u16
+            } else {
+                0
+            };
+            q.extend(t.to_le_bytes());
+        }
+    }
+    q
+}
+
+/// Vertex values as `f32` bytes, non-finite values as the sentinel −1e30 (drawn grey).
+fn prop_bytes(v: &[f64]) -> Vec<u8> {
+    v.iter()
+        .flat_map(|&x| (if x.is_finite() { x as f32 } else { -1e30 }).to_le_bytes())
+        .collect()
+}
+
 /// The layer's descriptor, its blobs appended to `blobs`.
-fn encode(l: &Layer, blobs: &mut Vec<String>) -> Value {
+fn encode(l: &Layer, lod: usize, blobs: &mut Vec<String>) -> Value {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in &l.positions {
@@ -187,20 +236,16 @@ fn encode(l: &Layer, blobs: &mut Vec<String>) -> Value {
     let ext: Vec<f64> = (0..3)
         .map(|k| if hi[k] > lo[k] { hi[k] - lo[k] } else { 1.0 })
         .collect();
-    let mut q = Vec::with_capacity(6 * l.positions.len());
-    for p in &l.positions {
-        for k in 0..3 {
-            let t = ((p[k] - lo[k]) / ext[k] * 65535.0)
-                .round()
-                .clamp(0.0, 65535.0) as u16;
-            q.extend(t.to_le_bytes());
+    for k in 0..3 {
+        if !lo[k].is_finite() {
+            lo[k] = 0.0;
         }
     }
     let mut push = |b: &[u8]| {
         blobs.push(base64(b));
         blobs.len() - 1
     };
-    let pos = push(&q);
+    let pos = push(&quantize(&l.positions, &lo, &ext));
     let mut d = json!({"kind": l.kind, "name": l.name, "min": lo, "ext": ext, "pos": pos});
     if !l.indices.is_empty() {
         let b: Vec<u8> = l.indices.iter().flat_map(|i| i.to_le_bytes()).collect();
@@ -212,21 +257,40 @@ fn encode(l: &Layer, blobs: &mut Vec<String>) -> Value {
         let (mn, mx) = fin.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
             (a.min(x), b.max(x))
         });
-        let b: Vec<u8> = v
-            .iter()
-            .flat_map(|&x| (if x.is_finite() { x as f32 } else { -1e30 }).to_le_bytes())
-            .collect();
         let (mn, mx) = if mn <= mx { (mn, mx) } else { (0.0, 1.0) };
-        props.push(json!({"name": name, "min": mn, "max": mx, "blob": push(&b)}));
+        props.push(json!({"name": name, "min": mn, "max": mx, "blob": push(&prop_bytes(v))}));
     }
     d["props"] = json!(props);
+    if l.kind == "mesh" {
+        let pv: Vec<&[f64]> = l.props.iter().map(|(_, v)| v.as_slice()).collect();
+        if let Some(p) = cluster_proxy(&l.positions, &l.indices, &pv, lod) {
+            let pos = push(&quantize(&p.positions, &lo, &ext));
+            let wide = p.positions.len() > 65536;
+            let idx: Vec<u8> = if wide {
+                p.indices.iter().flat_map(|i| i.to_le_bytes()).collect()
+            } else {
+                p.indices
+                    .iter()
+                    .flat_map(|&i| (i as u16).to_le_bytes())
+                    .collect()
+            };
+            let idx = push(&idx);
+            let props: Vec<usize> = p.props.iter().map(|v| push(&prop_bytes(v))).collect();
+            d["lod"] = json!({"pos": pos, "idx": idx, "wide": wide, "props": props,
+                "triangles": p.indices.len() / 3});
+        }
+    }
     d
 }
 
 /// The self-contained HTML page.
 pub fn page_html(page: &Page) -> String {
     let mut blobs = Vec::new();
-    let layers: Vec<Value> = page.layers.iter().map(|l| encode(l, &mut blobs)).collect();
+    let layers: Vec<Value> = page
+        .layers
+        .iter()
+        .map(|l| encode(l, page.lod, &mut blobs))
+        .collect();
     let flat = page
         .layers
         .iter()

@@ -14,9 +14,22 @@
     return u;
   }
   const canvas = document.getElementById("c");
-  canvas.width = window.innerWidth; canvas.height = window.innerHeight;
+  // the drawing buffer: full size at rest; while the camera moves, the proxies are drawn at
+  // MOVING_SCALE of it (the CSS size stays, the browser scales the picture up): with software
+  // GL the pixel count costs as much as the triangles
+  const W = window.innerWidth, H = window.innerHeight, MOVING_SCALE = 0.5;
+  canvas.width = W; canvas.height = H;
+  function resolution(scale) {
+    const w = Math.max(1, Math.round(W * scale)), h = Math.max(1, Math.round(H * scale));
+    if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
+  }
   const gl = canvas.getContext("webgl2", { antialias: false });
-  if (!gl) { errors.push("WebGL 2 is not available"); report(); return; }
+  if (!gl) {
+    errors.push("WebGL 2 is not available");
+    document.getElementById("morpho-selftest").textContent = JSON.stringify({ errors });
+    window.morphoSelftest = Promise.resolve({ errors });
+    return;
+  }
   function prog(vs, fs) {
     const p = gl.createProgram();
     for (const [t, s] of [[gl.VERTEX_SHADER, vs], [gl.FRAGMENT_SHADER, fs]]) {
@@ -36,33 +49,57 @@
     if (signed) return t < 0.5 ? [2 * t, 2 * t, 1] : [1, 2 - 2 * t, 2 - 2 * t];
     return [0.27 + t * 0.72, 0.0 + t * 0.9, 0.33 + (t < 0.5 ? t * 0.4 : 0.53 - (t - 0.5) * 0.9)];
   }
+  // vertex normals (area-weighted) packed as normalized bytes
+  function normals(pos, idx, n) {
+    const acc = new Float32Array(3 * n);
+    for (let t = 0; t < idx.length; t += 3) {
+      const a = 3 * idx[t], b = 3 * idx[t + 1], c = 3 * idx[t + 2];
+      const ux = pos[b] - pos[a], uy = pos[b + 1] - pos[a + 1], uz = pos[b + 2] - pos[a + 2];
+      const vx = pos[c] - pos[a], vy = pos[c + 1] - pos[a + 1], vz = pos[c + 2] - pos[a + 2];
+      const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+      acc[a] += nx; acc[a + 1] += ny; acc[a + 2] += nz;
+      acc[b] += nx; acc[b + 1] += ny; acc[b + 2] += nz;
+      acc[c] += nx; acc[c + 1] += ny; acc[c + 2] += nz;
+    }
+    const out = new Int8Array(4 * n);
+    for (let i = 0; i < n; i++) {
+      const x = acc[3 * i], y = acc[3 * i + 1], z = acc[3 * i + 2], l = Math.hypot(x, y, z) || 1;
+      out[4 * i] = Math.round(127 * x / l); out[4 * i + 1] = Math.round(127 * y / l); out[4 * i + 2] = Math.round(127 * z / l);
+    }
+    return out;
+  }
+  // one drawable: quantized positions, indices (u16 or u32), vertex values of the first property
+  function geometry(L, q, idx, vals, mesh) {
+    const n = q.length / 3, pos = new Float32Array(3 * n);
+    for (let i = 0; i < 3 * n; i += 3) for (let k = 0; k < 3; k++) pos[i + k] = L.min[k] + q[i + k] / 65535 * L.ext[k];
+    let nrm;
+    if (mesh) nrm = normals(pos, idx, n); else { nrm = new Int8Array(4 * n); nrm.fill(127); }
+    const vao = gl.createVertexArray(); gl.bindVertexArray(vao);
+    const buf = (data, loc, size, type, norm, stride) => { const b = gl.createBuffer(); gl.bindBuffer(gl.ARRAY_BUFFER, b); gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW); gl.enableVertexAttribArray(loc); gl.vertexAttribPointer(loc, size, type, norm, stride || 0, 0); return b; };
+    buf(q, 0, 3, gl.UNSIGNED_SHORT, true);
+    buf(nrm, 1, 3, gl.BYTE, true, 4);
+    const vbuf = buf(vals || new Float32Array(n), 2, 1, gl.FLOAT, false);
+    let nidx = 0, itype = gl.UNSIGNED_INT;
+    if (idx) { const b = gl.createBuffer(); gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, b); gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, idx, gl.STATIC_DRAW); nidx = idx.length; itype = idx instanceof Uint16Array ? gl.UNSIGNED_SHORT : gl.UNSIGNED_INT; }
+    gl.bindVertexArray(null);
+    return { pos, idx, vao, vbuf, nidx, itype, n };
+  }
   const layers = [];
   let lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
   for (const L of scene.layers) {
-    const q = new Uint16Array(blob(L.pos).buffer), n = q.length / 3;
-    const pos = new Float32Array(3 * n);
-    for (let i = 0; i < 3 * n; i++) pos[i] = L.min[i % 3] + q[i] / 65535 * L.ext[i % 3];
+    const q = new Uint16Array(blob(L.pos).buffer);
     for (let k = 0; k < 3; k++) { lo[k] = Math.min(lo[k], L.min[k]); hi[k] = Math.max(hi[k], L.min[k] + L.ext[k]); }
     const idx = L.idx !== undefined ? new Uint32Array(blob(L.idx).buffer) : null;
-    const nrm = new Float32Array(3 * n);
-    if (L.kind === "mesh") {
-      for (let t = 0; t < idx.length; t += 3) {
-        const a = 3 * idx[t], b = 3 * idx[t + 1], c = 3 * idx[t + 2];
-        const ux = pos[b] - pos[a], uy = pos[b + 1] - pos[a + 1], uz = pos[b + 2] - pos[a + 2];
-        const vx = pos[c] - pos[a], vy = pos[c + 1] - pos[a + 1], vz = pos[c + 2] - pos[a + 2];
-        const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-        for (const v of [a, b, c]) { nrm[v] += nx; nrm[v + 1] += ny; nrm[v + 2] += nz; }
-      }
-    } else nrm.fill(1);
     const props = (L.props || []).map((p) => ({ name: p.name, min: p.min, max: p.max, v: new Float32Array(blob(p.blob).buffer) }));
-    const vao = gl.createVertexArray(); gl.bindVertexArray(vao);
-    const buf = (data, loc, size, type, norm) => { const b = gl.createBuffer(); gl.bindBuffer(gl.ARRAY_BUFFER, b); gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW); gl.enableVertexAttribArray(loc); gl.vertexAttribPointer(loc, size, type, norm, 0, 0); return b; };
-    buf(q, 0, 3, gl.UNSIGNED_SHORT, true);
-    buf(nrm, 1, 3, gl.FLOAT, false);
-    const vbuf = buf(props.length ? props[0].v : new Float32Array(n), 2, 1, gl.FLOAT, false);
-    let nidx = 0;
-    if (idx) { const b = gl.createBuffer(); gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, b); gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, idx, gl.STATIC_DRAW); nidx = idx.length; }
-    layers.push({ L, pos, idx, props, vao, vbuf, nidx, n, prop: props.length ? 0 : -1, visible: true });
+    const full = geometry(L, q, idx, props.length ? props[0].v : null, L.kind === "mesh");
+    let proxy = null;
+    if (L.lod) {
+      const pi = L.lod.wide ? new Uint32Array(blob(L.lod.idx).buffer) : new Uint16Array(blob(L.lod.idx).buffer);
+      const pv = L.lod.props.map((b) => new Float32Array(blob(b).buffer));
+      proxy = geometry(L, new Uint16Array(blob(L.lod.pos).buffer), pi, pv.length ? pv[0] : null, true);
+      proxy.vals = pv;
+    }
+    layers.push({ L, pos: full.pos, idx, props, full, proxy, n: full.n, prop: props.length ? 0 : -1, visible: true });
   }
   const cam = { az: 0.5, el: 0.35, dist: 1, target: [0, 0, 0] };
   const diag = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
@@ -73,7 +110,7 @@
     const e = eye(), f = [0, 1, 2].map((k) => (cam.target[k] - e[k]) / cam.dist);
     const up = [-Math.sin(cam.el) * Math.cos(cam.az), -Math.sin(cam.el) * Math.sin(cam.az), Math.cos(cam.el)];
     const r = [f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]];
-    const a = canvas.width / canvas.height, th = 1 / Math.tan(0.35), near = cam.dist * 0.01, far = cam.dist + 2 * diag;
+    const a = W / H, th = 1 / Math.tan(0.35), near = cam.dist * 0.01, far = cam.dist + 2 * diag;
     const V = [r, up, [-f[0], -f[1], -f[2]]], t = V.map((row) => -(row[0] * e[0] + row[1] * e[1] + row[2] * e[2]));
     const Pm = [th / a, th, -(far + near) / (far - near), -2 * far * near / (far - near)];
     const M = new Float32Array(16);
@@ -83,24 +120,82 @@
     }
     return { M, e, r, up, f };
   }
-  function draw() {
-    gl.viewport(0, 0, canvas.width, canvas.height);
+  function setup(m, w, h) {
+    gl.viewport(0, 0, w, h);
     gl.clearColor(0.96, 0.96, 0.96, 1); gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     gl.enable(gl.DEPTH_TEST); gl.useProgram(P);
-    const m = mvp(); gl.uniformMatrix4fv(U.uMVP, false, m.M); gl.uniform3fv(U.uEye, m.e); gl.uniform1f(U.uPS, 4);
+    gl.uniformMatrix4fv(U.uMVP, false, m.M); gl.uniform3fv(U.uEye, m.e); gl.uniform1f(U.uPS, 4 * w / W);
+  }
+  // draws triangles [t0, t1) of the layer's geometry g (all of a non-mesh layer)
+  function drawLayer(l, g, t0, t1) {
+    gl.bindVertexArray(g.vao);
+    gl.uniform3fv(U.uOff, l.L.min); gl.uniform3fv(U.uScl, l.L.ext); gl.uniform3fv(U.uColor, [0.8, 0.75, 0.6]);
+    const p = l.prop >= 0 ? l.props[l.prop] : null;
+    gl.uniform1i(U.uMode, p ? 1 : 0);
+    if (p) { const s = Math.min(p.min, 0) < 0 && p.max > 0; const mm = s ? Math.max(-p.min, p.max) : 0; gl.uniform2fv(U.uRange, s ? [-mm, mm] : [p.min, p.max]); }
+    gl.uniform1i(U.uLit, l.L.kind === "mesh" ? 1 : 0);
+    const size = g.itype === gl.UNSIGNED_SHORT ? 2 : 4;
+    if (l.L.kind === "mesh") { const a = 3 * t0, b = Math.min(3 * t1, g.nidx); if (b > a) gl.drawElements(gl.TRIANGLES, b - a, g.itype, a * size); }
+    else if (l.L.kind === "lines") gl.drawElements(gl.LINES, g.nidx, g.itype, 0);
+    else gl.drawArrays(gl.POINTS, 0, g.n);
+  }
+  // one frame on the screen: the proxies when `lod` (the camera moves), else every triangle
+  function frame(lod, scale) {
+    refine = null;
+    resolution(lod ? (scale === undefined ? MOVING_SCALE : scale) : 1);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    setup(mvp(), canvas.width, canvas.height);
+    for (const l of layers) if (l.visible) drawLayer(l, lod && l.proxy ? l.proxy : l.full, 0, Infinity);
+    shown = lod && layers.some((l) => l.visible && l.proxy) ? "proxy" : "full";
+  }
+  function draw() { frame(false); legend(); }
+  // refinement at rest: the full meshes drawn CHUNK triangles per animation frame into an
+  // offscreen framebuffer, copied to the screen when complete; any camera move cancels it
+  const CHUNK = 150000;
+  let refine = null, fbo = null, shown = "full", fullAt = null, idle = null;
+  function offscreen() {
+    if (fbo) return fbo.f;
+    const f = gl.createFramebuffer(); gl.bindFramebuffer(gl.FRAMEBUFFER, f);
+    for (const [fmt, at] of [[gl.RGBA8, gl.COLOR_ATTACHMENT0], [gl.DEPTH_COMPONENT24, gl.DEPTH_ATTACHMENT]]) {
+      const r = gl.createRenderbuffer(); gl.bindRenderbuffer(gl.RENDERBUFFER, r);
+      gl.renderbufferStorage(gl.RENDERBUFFER, fmt, W, H); gl.framebufferRenderbuffer(gl.FRAMEBUFFER, at, gl.RENDERBUFFER, r);
+    }
+    fbo = { f };
+    return f;
+  }
+  function refineStep() {
+    const job = refine;
+    if (!job) return;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, offscreen());
+    if (job.t === 0) setup(job.m, W, H);
+    else { gl.viewport(0, 0, W, H); gl.enable(gl.DEPTH_TEST); gl.useProgram(P); }
+    let more = false;
     for (const l of layers) {
       if (!l.visible) continue;
-      gl.bindVertexArray(l.vao);
-      gl.uniform3fv(U.uOff, l.L.min); gl.uniform3fv(U.uScl, l.L.ext); gl.uniform3fv(U.uColor, [0.8, 0.75, 0.6]);
-      const p = l.prop >= 0 ? l.props[l.prop] : null;
-      gl.uniform1i(U.uMode, p ? 1 : 0);
-      if (p) { const s = Math.min(p.min, 0) < 0 && p.max > 0; const mm = s ? Math.max(-p.min, p.max) : 0; gl.uniform2fv(U.uRange, s ? [-mm, mm] : [p.min, p.max]); }
-      gl.uniform1i(U.uLit, l.L.kind === "mesh" ? 1 : 0);
-      if (l.L.kind === "mesh") gl.drawElements(gl.TRIANGLES, l.nidx, gl.UNSIGNED_INT, 0);
-      else if (l.L.kind === "lines") gl.drawElements(gl.LINES, l.nidx, gl.UNSIGNED_INT, 0);
-      else gl.drawArrays(gl.POINTS, 0, l.n);
+      if (!l.proxy) { if (job.t === 0) drawLayer(l, l.full, 0, Infinity); continue; }
+      drawLayer(l, l.full, job.t, job.t + CHUNK);
+      if (3 * (job.t + CHUNK) < l.full.nidx) more = true;
     }
-    legend();
+    job.t += CHUNK;
+    if (more) { requestAnimationFrame(refineStep); return; }
+    resolution(1); // in the same task as the copy: no blank frame reaches the screen
+    gl.bindFramebuffer(gl.READ_FRAMEBUFFER, fbo.f); gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
+    gl.blitFramebuffer(0, 0, W, H, 0, 0, W, H, gl.COLOR_BUFFER_BIT, gl.NEAREST);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    refine = null; shown = "full"; fullAt = performance.now();
+    for (const w of waiters.splice(0)) w(fullAt);
+  }
+  const waiters = [];
+  function rest() {
+    if (!layers.some((l) => l.visible && l.proxy)) return;
+    refine = { t: 0, m: mvp() };
+    requestAnimationFrame(refineStep);
+  }
+  // a camera move: the proxy now, the full meshes once the camera rests for 250 ms
+  let pending = false;
+  function moved() {
+    if (!pending) { pending = true; requestAnimationFrame(() => { pending = false; frame(true); }); }
+    clearTimeout(idle); idle = setTimeout(rest, 250);
   }
   function legend() {
     const l = layers.find((l) => l.prop >= 0), el = document.getElementById("legend");
@@ -114,8 +209,8 @@
   function pixels() { const w = canvas.width, h = canvas.height, px = new Uint8Array(4 * w * h); gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px); return px; }
   function stats(px) { let fg = 0, s = 0; for (let i = 0; i < px.length; i += 4) { if (Math.abs(px[i] - 245) > 6 || Math.abs(px[i + 2] - 245) > 6) fg++; s += px[i]; } return { foreground: fg / (px.length / 4), mean: s / (px.length / 4) }; }
   function pick(cx, cy) {
-    const m = mvp(), a = canvas.width / canvas.height, t = Math.tan(0.35);
-    const dx = (2 * cx / canvas.width - 1) * t * a, dy = (1 - 2 * cy / canvas.height) * t;
+    const m = mvp(), a = W / H, t = Math.tan(0.35);
+    const dx = (2 * cx / W - 1) * t * a, dy = (1 - 2 * cy / H) * t;
     const d = [0, 1, 2].map((k) => m.f[k] + dx * m.r[k] + dy * m.up[k]), o = m.e;
     let best = { t: Infinity };
     layers.forEach((l, li) => {
@@ -145,48 +240,91 @@
   window.addEventListener("mouseup", (e) => { if (drag && !drag.moved) pick(e.clientX, e.clientY); drag = null; });
   window.addEventListener("mousemove", (e) => {
     if (!drag) return; const dx = e.clientX - drag.x, dy = e.clientY - drag.y; drag.x = e.clientX; drag.y = e.clientY; drag.moved = true;
-    if (e.shiftKey) { const m = mvp(), s = cam.dist / canvas.height; for (let k = 0; k < 3; k++) cam.target[k] += s * (-dx * m.r[k] + dy * m.up[k]); }
+    if (e.shiftKey) { const m = mvp(), s = cam.dist / H; for (let k = 0; k < 3; k++) cam.target[k] += s * (-dx * m.r[k] + dy * m.up[k]); }
     else { cam.az -= dx * 0.01; cam.el = Math.max(-1.57, Math.min(1.57, cam.el + dy * 0.01)); }
-    requestAnimationFrame(draw);
+    moved();
   });
-  canvas.addEventListener("wheel", (e) => { cam.dist *= Math.exp(e.deltaY * 0.001); e.preventDefault(); requestAnimationFrame(draw); }, { passive: false });
+  canvas.addEventListener("wheel", (e) => { cam.dist *= Math.exp(e.deltaY * 0.001); e.preventDefault(); moved(); }, { passive: false });
   // panel: layers, colour property, figures
   const panel = document.getElementById("layers");
   layers.forEach((l) => {
     const d = document.createElement("div"), cb = document.createElement("input"); cb.type = "checkbox"; cb.checked = true;
-    cb.onchange = () => { l.visible = cb.checked; draw(); }; d.append(cb, " " + l.L.name + " ");
+    cb.onchange = () => { l.visible = cb.checked; legend(); moved(); }; d.append(cb, " " + l.L.name + " ");
     if (l.props.length) {
       const s = document.createElement("select");
       s.innerHTML = "<option value='-1'>plain</option>" + l.props.map((p, i) => "<option value='" + i + "'>" + p.name + "</option>").join("");
       s.value = String(l.prop);
-      s.onchange = () => { l.prop = +s.value; if (l.prop >= 0) { gl.bindBuffer(gl.ARRAY_BUFFER, l.vbuf); gl.bufferData(gl.ARRAY_BUFFER, l.props[l.prop].v, gl.STATIC_DRAW); } draw(); };
+      s.onchange = () => {
+        l.prop = +s.value;
+        if (l.prop >= 0) {
+          gl.bindBuffer(gl.ARRAY_BUFFER, l.full.vbuf); gl.bufferData(gl.ARRAY_BUFFER, l.props[l.prop].v, gl.STATIC_DRAW);
+          if (l.proxy) { gl.bindBuffer(gl.ARRAY_BUFFER, l.proxy.vbuf); gl.bufferData(gl.ARRAY_BUFFER, l.proxy.vals[l.prop], gl.STATIC_DRAW); }
+        }
+        legend(); moved();
+      };
       d.append(s);
     }
     panel.append(d);
   });
-  draw();
+  // first frame: the proxies (fast), then the full meshes chunk by chunk
   pixels.one = () => { const px = new Uint8Array(4); gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px); };
+  frame(true, 1); legend();
   pixels.one();
   const ready = performance.now();
+  if (shown === "proxy") rest(); else fullAt = ready;
+  let renderer = gl.getParameter(gl.RENDERER);
+  const dbg = gl.getExtension("WEBGL_debug_renderer_info");
+  if (dbg) renderer = gl.getParameter(dbg.UNMASKED_RENDERER_WEBGL);
   function report(extra) {
-    const r = Object.assign({ ready_ms: typeof ready === "number" ? ready : null, errors }, extra || {});
+    const r = Object.assign({ ready_ms: typeof ready === "number" ? ready : null, full_ms: fullAt, renderer, shown, errors }, extra || {});
     document.getElementById("morpho-selftest").textContent = JSON.stringify(r);
+    return r;
   }
-  // test hook: page.html#selftest=orbit,pick:123,bench:60
-  const m = /selftest=([^&]*)/.exec(location.hash);
-  if (m) {
+  // a scripted orbit timed by requestAnimationFrame for `sec` seconds, drawing the proxies
+  // (`lod`, what a drag draws) or every triangle
+  function orbitFps(sec, lod, scale) {
+    clearTimeout(idle); refine = null;
+    return new Promise((done) => {
+      const t = [];
+      function step() {
+        const now = performance.now();
+        t.push(now);
+        if (now - t[0] >= 1000 * sec) {
+          const d = []; for (let i = 1; i < t.length; i++) d.push(t[i] - t[i - 1]);
+          d.sort((a, b) => a - b);
+          done({ scale: lod ? scale : 1, fps: (t.length - 1) / ((now - t[0]) / 1000), frames: t.length - 1, seconds: (now - t[0]) / 1000, median_ms: d[d.length >> 1], p95_ms: d[Math.floor(0.95 * (d.length - 1))], max_ms: d[d.length - 1] });
+          return;
+        }
+        cam.az += 0.03; frame(lod, scale);
+        requestAnimationFrame(step);
+      }
+      requestAnimationFrame(step);
+    });
+  }
+  // test hook: page.html#selftest=orbit,pick:123,bench:60 (synchronous: the result is in the
+  // DOM when the load ends) and fps:SECONDS, fpsfullres:SECONDS, fpsfull:SECONDS, full
+  // (asynchronous: see
+  // window.morphoSelftest)
+  async function selftest(steps) {
     const res = {};
-    for (const step of m[1].split(",")) {
+    for (const step of steps) {
       const [what, arg] = step.split(":");
-      if (what === "orbit") { const a = pixels(); res.before = stats(a); cam.az += 0.7; draw(); const b = pixels(); let ch = 0; for (let i = 0; i < a.length; i += 4) if (a[i] !== b[i] || a[i + 1] !== b[i + 1] || a[i + 2] !== b[i + 2]) ch++; res.after = stats(b); res.changed = ch / (a.length / 4); }
+      if (what === "orbit") { draw(); const a = pixels(); res.before = stats(a); cam.az += 0.7; draw(); const b = pixels(); let ch = 0; for (let i = 0; i < a.length; i += 4) if (a[i] !== b[i] || a[i + 1] !== b[i + 1] || a[i + 2] !== b[i + 2]) ch++; res.after = stats(b); res.changed = ch / (a.length / 4); }
       if (what === "pick") {
         const l = layers[0], v = +arg, n = [0, 0, 0];
         const I = l.idx; for (let t = 0; t < I.length; t += 3) if (I[t] === v || I[t + 1] === v || I[t + 2] === v) { const P = l.pos, A = 3 * I[t], B = 3 * I[t + 1], C = 3 * I[t + 2]; const u = [0, 1, 2].map((k) => P[B + k] - P[A + k]), w = [0, 1, 2].map((k) => P[C + k] - P[A + k]); n[0] += u[1] * w[2] - u[2] * w[1]; n[1] += u[2] * w[0] - u[0] * w[2]; n[2] += u[0] * w[1] - u[1] * w[0]; }
         const len = Math.hypot(...n) || 1; cam.target = [0, 1, 2].map((k) => l.pos[3 * v + k]); cam.az = Math.atan2(n[1], n[0]); cam.el = Math.asin(Math.max(-1, Math.min(1, n[2] / len))); cam.dist = 0.8 * diag;
-        draw(); res.pick = pick(canvas.width / 2, canvas.height / 2);
+        draw(); res.pick = pick(W / 2, H / 2);
       }
-      if (what === "bench") { const N = +arg || 30, t0 = performance.now(); for (let i = 0; i < N; i++) { cam.az += 0.05; draw(); pixels.one(); } res.fps = N / ((performance.now() - t0) / 1000); }
+      // frames drawn back to back, each waited for (readPixels of one pixel)
+      if (what === "bench") { const N = +arg || 30, t0 = performance.now(); for (let i = 0; i < N; i++) { cam.az += 0.05; frame(true); pixels.one(); } res.fps = N / ((performance.now() - t0) / 1000); }
+      if (what === "full") { if (fullAt === null) await new Promise((w) => waiters.push(w)); res.full_ms = fullAt; res.full_stats = stats(pixels()); }
+      if (what === "fps") res.orbit = await orbitFps(+arg || 3, true, MOVING_SCALE);
+      if (what === "fpsfullres") res.orbit_fullres = await orbitFps(+arg || 3, true, 1);
+      if (what === "fpsfull") res.orbit_full = await orbitFps(+arg || 3, false);
     }
-    report(res);
-  } else report();
+    return report(res);
+  }
+  const m = /selftest=([^&]*)/.exec(location.hash);
+  window.morphoSelftest = m ? selftest(m[1].split(",")) : Promise.resolve(report());
 })();
