@@ -79,6 +79,7 @@ fn quadratic_forms_are_exact_on_any_one_ring() {
         let opts = SurfaceOptions {
             normals: NormalSource::Given(normals),
             ring: 1,
+            ..Default::default()
         };
         let c = surface_curvature(&mesh, &opts).unwrap();
         assert_eq!(c.status[0], VertexStatus::Ok, "case {case}");
@@ -156,6 +157,7 @@ fn sphere_errors(subdiv: u32, r: f64) -> (f64, f64) {
         &SurfaceOptions {
             normals: NormalSource::Given(normals),
             ring: 1,
+            ..Default::default()
         },
     )
     .unwrap();
@@ -205,6 +207,7 @@ fn planes_give_zero() {
                 &SurfaceOptions {
                     normals: NormalSource::Estimated(w),
                     ring,
+                    ..Default::default()
                 },
             )
             .unwrap();
@@ -296,6 +299,7 @@ fn bad_input_is_refused_or_flagged() {
     let given = SurfaceOptions {
         normals: NormalSource::Given(vec![Vector3::z(); 3]),
         ring: 1,
+        ..Default::default()
     };
     assert!(matches!(
         surface_curvature(&m, &given),

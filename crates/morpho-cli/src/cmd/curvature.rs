@@ -3,11 +3,17 @@
 //! (H §4.3, the 6-tetrahedra platelet); see `morpho::curvature`.
 //!
 //! - Meshes → `.ply` (the mesh with vertex properties `k1,k2,H,K,A`, κ₁ ≤ κ₂, NaN where the fit
-//!   is undetermined) or `.csv` (`x,y,z,index,k1,k2,H,K,A` per vertex; an undetermined value is an empty cell). `--normals area|uniform|
-//!   inverse` estimates vertex normals by that weighting of V §9.4 (default area), `file` uses
-//!   the file's (PLY `nx,ny,nz`; refused when absent); `--ring K` fits over the K-ring (default 1,
-//!   the thesis's platelet). Curvature is measured along the normal: an outward-oriented sphere
-//!   of radius R has H = −1/R.
+//!   is undetermined) or `.csv` (`x,y,z,index,k1,k2,H,K,A` per vertex; an undetermined value is
+//!   an empty cell). Normals: `--normals jet` (default) estimates them by area weighting and
+//!   corrects each by a cubic fit over its 2-ring; `area` (= `mesh`), `uniform`, `inverse` are
+//!   the weightings of V §9.4 alone; `file` uses the file's (PLY `nx,ny,nz`; refused when
+//!   absent). `--fit paraboloid` (default) is the thesis's osculating paraboloid (H §4.2) over
+//!   the `--ring K` platelet (default 1); `--fit quadric` adds linear terms (default ring 2).
+//!   **The thesis's method** is `--normals area --fit paraboloid --ring 1` (or `--normals file`
+//!   with exact normals, as in H Table 4.1). The default's jet normals are an extension: with
+//!   area normals alone the 1-ring paraboloid loses to libigl and VTK on irregular meshes
+//!   (`bench/curvature_peers.py`, `bench/README.md`). Curvature is measured along the normal:
+//!   an outward-oriented sphere of radius R has H = −1/R.
 //! - Volumes → `-o DIR`: `DIR/k1.nrrd k2.nrrd k3.nrrd H.nrrd K.nrrd` on the input grid (same
 //!   dims, spacing, origin, orientation), f32, NaN where undetermined; gradients by central
 //!   differences.
@@ -18,7 +24,7 @@
 use crate::report::Report;
 use crate::Failure;
 use morpho::curvature::{
-    surface_curvature, volume_curvature, Gradients, NormalSource, SurfaceOptions,
+    surface_curvature, volume_curvature, Gradients, NormalSource, SurfaceFit, SurfaceOptions,
 };
 use morpho::io;
 use morpho::mesh::{NormalWeighting, Property, ScalarKind};
@@ -33,13 +39,20 @@ pub struct Args {
     /// Output: .ply or .csv for a mesh; a folder for a volume.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Vertex normals: estimated by area (default), uniform or inverse(-area) weighting, or
-    /// the file's.
-    #[arg(long, default_value = "area", value_parser = ["mesh", "area", "uniform", "inverse", "file"])]
+    /// Vertex normals: `jet` = area-weighted, corrected by a cubic fit over the 2-ring
+    /// (default; not in the thesis); `area` (= `mesh`), `uniform`, `inverse` = that weighting
+    /// alone (V §9.4); `file` = the file's. The thesis's method: `--normals area` (or `file`)
+    /// with the default fit and ring.
+    #[arg(long, default_value = "jet", value_parser = ["jet", "mesh", "area", "uniform", "inverse", "file"])]
     pub normals: String,
-    /// Fit over the K-ring of each vertex (1 = the thesis's platelet).
-    #[arg(long, default_value_t = 1)]
-    pub ring: usize,
+    /// The fitted surface: `paraboloid` (the thesis's, H §4.2) or `quadric` (with linear
+    /// terms: corrects a tilted normal, needs ≥ 5 points).
+    #[arg(long, default_value = "paraboloid", value_parser = ["paraboloid", "quadric"])]
+    pub fit: String,
+    /// Fit over the K-ring of each vertex (default: 1 for the paraboloid = the thesis's
+    /// platelet, 2 for the quadric).
+    #[arg(long)]
+    pub ring: Option<usize>,
 }
 
 /// min, max, median of the finite values (None when there are none).
@@ -58,7 +71,7 @@ fn is_volume(ext: &str) -> bool {
 
 /// Runs `morpho curvature`.
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    if args.ring == 0 {
+    if args.ring == Some(0) {
         return Err(Failure::usage("--ring must be at least 1"));
     }
     let ext = crate::cmd::extension(&args.input);
@@ -79,9 +92,20 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         "inverse" => NormalSource::Estimated(NormalWeighting::InverseArea),
         _ => NormalSource::Estimated(NormalWeighting::Area),
     };
+    let fit = match args.fit.as_str() {
+        "quadric" => SurfaceFit::Quadric,
+        _ => SurfaceFit::Paraboloid,
+    };
+    let jet_normals = args.normals == "jet";
+    let ring = args.ring.unwrap_or(match fit {
+        SurfaceFit::Quadric => 2,
+        _ => 1,
+    });
     let opts = SurfaceOptions {
         normals,
-        ring: args.ring,
+        ring,
+        fit,
+        jet_normals,
     };
     let c = report.time("compute", || {
         surface_curvature(&mesh, &opts)
@@ -89,7 +113,17 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     })?;
     report.set("vertices", mesh.positions.len());
     report.set("undetermined", c.undetermined);
-    report.set("ring", args.ring);
+    if jet_normals {
+        report.set("jet_fallbacks", c.jet_fallbacks);
+    }
+    report.set("ring", ring);
+    report.set(
+        "fit",
+        match fit {
+            SurfaceFit::Quadric => "quadric",
+            _ => "paraboloid",
+        },
+    );
     report.set("normals", args.normals.as_str());
     let columns = [
         ("k1", &c.k1),

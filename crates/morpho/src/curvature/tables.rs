@@ -188,6 +188,7 @@ pub fn table_4_1(m: usize) -> Vec<TableRow> {
             let opts = SurfaceOptions {
                 normals: NormalSource::File,
                 ring: 1,
+                ..Default::default()
             };
             let c = surface_curvature(&mesh, &opts).expect("a valid grid mesh");
             let (mut all, mut inner) = ([0.0; 4], [0.0; 4]);
