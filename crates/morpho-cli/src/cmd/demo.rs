@@ -24,7 +24,7 @@ pub struct Args {
     pub data: Option<PathBuf>,
     /// Build only the steps whose name contains this text (repeatable; the steps are
     /// "sample points", "delaunay", "gamma graphs", "boundary", "flintstones", "meshes",
-    /// "volumes", "volume views", "contour surfaces", "triangle reduction", …).
+    /// "volumes", "volume views", "contour surfaces", "triangle reduction", "curvature", …).
     #[arg(long, value_name = "STEP")]
     pub only: Vec<String>,
 }
@@ -73,6 +73,7 @@ const SECTIONS: &[(&str, Builder)] = &[
     ("volume views", crate::cmd::views::demo_section),
     ("contour surfaces", isosurface_section),
     ("triangle reduction", crate::cmd::reduce::demo_section),
+    ("curvature", crate::cmd::curvature::demo_section),
     ("contours of rated samples", contour_section),
 ];
 

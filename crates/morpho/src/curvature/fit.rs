@@ -52,9 +52,9 @@ impl<const N: usize> Normal<N> {
         if !(lmax.is_finite() && lmin > 0.0 && lmin * max_cond >= lmax) {
             return None;
         }
-        // the solution by Cholesky (the eigenvectors of nearly repeated eigenvalues are not
+        // the solution by LDLᵀ (the eigenvectors of nearly repeated eigenvalues are not
         // accurate enough to solve with)
-        Some(m.cholesky()?.solve(&self.atd))
+        self.solve_ldl(f64::INFINITY).map(SVector::from)
     }
 }
 
@@ -134,8 +134,10 @@ fn sym_eigenvalues<const N: usize>(mut a: [[f64; N]; N]) -> [f64; N] {
                     continue;
                 }
                 let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-                let t = theta.signum() / (theta.abs() + theta.hypot(1.0));
-                let c = 1.0 / t.hypot(1.0);
+                // (θ² may overflow to ∞: then t = 0, no rotation; libm's hypot was a fifth of
+                // the whole computation)
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let c = 1.0 / (t * t + 1.0).sqrt();
                 let s = t * c;
                 for row in a.iter_mut() {
                     let (kp, kq) = (row[p], row[q]);

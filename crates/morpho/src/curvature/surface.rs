@@ -22,6 +22,25 @@
 //! graph convention, H (4.15)); reversing the orientation (or the normals) flips κ₁, κ₂, H and
 //! the directions' roles, and keeps K.
 //!
+//! **Estimated normals** (not in the thesis; issue 20). The thesis's tables used exact normals
+//! (notes C.4). With area-weighted normals the 1-ring paraboloid is fine on regular grids, but
+//! on irregular meshes the normal's error tilts the tangent plane and the fit turns it into
+//! curvature: on a randomly tessellated unit sphere (4000 points, convex hull) its interior
+//! RMS of H is 1.5 and of K 1.8e3, against libigl's 0.026 / 0.053.
+//! [`SurfaceOptions::estimated_normals`] (the CLI's default) therefore first replaces each
+//! normal by the normal of a cubic jet `a u + b v + ½(c20 u² + 2c11 uv + c02 v²) + cubic terms`
+//! fitted over the 2-ring ([`SurfaceOptions::jet_normals`]; the cubic terms keep the
+//! surface's third-order part out of the slopes, which a quadric's slopes carry), then runs
+//! the thesis's steps unchanged. On the meshes of `bench/curvature_peers.py` (torus regular and
+//! jittered, ellipsoid, random sphere, the 8 curved surfaces of Table 4.1 on its grid, all with
+//! estimated normals) its interior RMS and median relative error of H and K are below
+//! libigl's `principal_curvature` in every case (0.02–0.6×), and below `vtkCurvatures` by
+//! 10–100× on the irregular meshes; on regular grids VTK's discrete operators are
+//! super-convergent and stay ahead on some surfaces (up to 3.6× in RMS on the torus grid, 6× on
+//! the cylinder, where VTK's K is exactly 0): `bench/README.md` has the tables. The quadric
+//! with linear terms ([`SurfaceFit::Quadric`], 2-ring) is the other extension measured: better
+//! than the thesis's method on irregular meshes, worse than the jet normals on grids.
+//!
 //! **Undetermined vertices** (NaN in every output, a [`VertexStatus`] other than `Ok`, and
 //! counted in [`SurfaceCurvature::undetermined`]): a vertex in no triangle, a vertex without a
 //! normal (zero or non-finite), a platelet of fewer than 3 points, and a platelet whose normal
@@ -86,8 +105,9 @@ pub struct SurfaceOptions {
     /// The fitted surface (default: the thesis's paraboloid).
     pub fit: SurfaceFit,
     /// Replace each normal by that of a cubic fit over the vertex's 2-ring before the fit
-    /// (not in the thesis; see the module doc). Where the cubic is undetermined (fewer than
-    /// 9 points, pivot ratio above 1e10) the normal is kept and counted in
+    /// (not in the thesis; see the module doc). Where the cubic is undetermined on the 2-ring
+    /// (fewer than 9 points, pivot ratio above 1e10) the 3-ring is tried; where it is
+    /// undetermined there too, the normal is kept and counted in
     /// [`SurfaceCurvature::jet_fallbacks`].
     pub jet_normals: bool,
 }
@@ -205,15 +225,29 @@ pub fn surface_curvature(
                 let mut fallback = false;
                 if opts.jet_normals {
                     adj.ring(v, 2, ring2);
-                    match jet_normal(&pos, v, ring2, nrm) {
+                    // a 2-ring too small or too flat for the cubic (a valence-3 vertex among
+                    // valence-3 neighbours has 8 points): the 3-ring
+                    let jet = jet_normal(&pos, v, ring2, nrm).or_else(|| {
+                        adj.ring(v, 3, ring);
+                        jet_normal(&pos, v, ring, nrm)
+                    });
+                    match jet {
                         Some(j) => nrm = j,
                         None => fallback = true,
                     }
                 }
-                adj.ring(v, opts.ring, ring);
+                // the breadth-first ring lists the 1-ring first: reuse the 2-ring's prefix
+                let platelet: &[u32] = match (opts.jet_normals, opts.ring) {
+                    (true, 1) => &ring2[..adj.of(v).len()],
+                    (true, 2) => ring2,
+                    _ => {
+                        adj.ring(v, opts.ring, ring);
+                        ring
+                    }
+                };
                 let r = match opts.fit {
-                    SurfaceFit::Paraboloid => fit_vertex(&pos, v, ring, nrm),
-                    SurfaceFit::Quadric => fit_quadric(&pos, v, ring, nrm),
+                    SurfaceFit::Paraboloid => fit_vertex(&pos, v, platelet, nrm),
+                    SurfaceFit::Quadric => fit_quadric(&pos, v, platelet, nrm),
                 };
                 (r, fallback)
             },
