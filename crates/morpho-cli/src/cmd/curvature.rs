@@ -297,7 +297,7 @@ pub fn demo_section(ctx: &super::demo::Ctx) -> morpho::Result<Vec<morpho::io::ht
          centred on H = 0: blue H < 0 (bending away from the outward normal: convex), red \
          H > 0 (concave), grey flat or saddle-balanced. The skull's contour surface carries \
          voxel-scale steps (slices 2 voxels apart), so it is fitted over the 3-ring \
-         (`--ring 3`) and shown over ±6 × its median |H| (the vault, radius ≈ 75 voxels, is \
+         (`--ring 3`) and shown over ±1.5 × the median of |H| (the vault, radius ≈ 75 voxels, is \
          blue); the bunny over the 1-ring, range ±(95th percentile of |H|).",
     );
     if let Some(path) = ctx.data_file("volumes/cthead_8bit_256x256x99.json") {
@@ -319,7 +319,7 @@ pub fn demo_section(ctx: &super::demo::Ctx) -> morpho::Result<Vec<morpho::io::ht
             },
         )?;
         let dt = t.elapsed().as_secs_f64();
-        let a = 6.0 * symmetric_range(&c.h, 50);
+        let a = 1.5 * symmetric_range(&c.h, 50);
         // curvature on the surface as extracted (outward normals), pictures upright
         let m = super::demo::upright_head(r.mesh);
         let view = RenderOptions {

@@ -44,6 +44,15 @@ impl<const N: usize> Normal<N> {
             return None;
         }
         let m = SMatrix::<f64, N, N>::from_fn(|i, j| self.ata[(i.min(j), i.max(j))]);
+        // cond ≤ trace^N / det (λ_max ≤ trace, λ_min ≥ det / λ_max^{N−1}): when that bound
+        // already passes, the eigenvalues are not needed (the decision is the same; the
+        // eigenvalues were a third of the whole computation)
+        if let Some((c, det)) = self.ldl(f64::INFINITY) {
+            let tr: f64 = (0..N).map(|i| m[(i, i)]).sum();
+            if det > 0.0 && tr.powi(N as i32) <= max_cond * det {
+                return Some(SVector::from(c));
+            }
+        }
         let a: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]));
         let eig = sym_eigenvalues(a);
         let lmax = eig.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -64,6 +73,11 @@ impl<const N: usize> Normal<N> {
     /// ratio is a cheap lower bound of `cond(UᵀU)`, also scale-free); for fits whose refusal
     /// only selects a fallback (the jet normals).
     pub(crate) fn solve_ldl(&self, max_ratio: f64) -> Option<[f64; N]> {
+        self.ldl(max_ratio).map(|(c, _)| c)
+    }
+
+    /// [`Normal::solve_ldl`] and the determinant of `UᵀU` (the product of the pivots).
+    fn ldl(&self, max_ratio: f64) -> Option<([f64; N], f64)> {
         if self.rows < N {
             return None;
         }
@@ -107,7 +121,8 @@ impl<const N: usize> Normal<N> {
             }
             c[i] = x;
         }
-        c.iter().all(|x| x.is_finite()).then_some(c)
+        let det = d.iter().product::<f64>();
+        c.iter().all(|x| x.is_finite()).then_some((c, det))
     }
 }
 
