@@ -139,8 +139,7 @@ fn sym_eigenvalues<const N: usize>(mut a: [[f64; N]; N]) -> [f64; N] {
                 off += a[i][j] * a[i][j];
             }
         }
-        // written so that NaN stops too
-        if !(off > 1e-34 * diag) {
+        if off.is_nan() || diag.is_nan() || off <= 1e-34 * diag {
             break;
         }
         for p in 0..N {
