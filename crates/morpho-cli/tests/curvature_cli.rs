@@ -152,3 +152,104 @@ fn bad_input_is_refused() {
         assert!(err.starts_with("error: "), "{args:?}: {err}");
     }
 }
+
+fn report(dir: &Path, name: &str) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(dir.join(name)).unwrap()).unwrap()
+}
+
+/// The default (jet normals + 1-ring paraboloid) and the thesis's method by flag, named in the
+/// report; `--fit quadric` defaults to the 2-ring.
+#[test]
+fn default_thesis_and_quadric_are_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    plane(dir.path(), 8);
+    for (args, normals, fit, ring) in [
+        (&[][..], "jet", "paraboloid", 1),
+        (&["--normals", "area"][..], "area", "paraboloid", 1),
+        (&["--fit", "quadric"][..], "jet", "quadric", 2),
+        (
+            &["--fit", "quadric", "--ring", "3"][..],
+            "jet",
+            "quadric",
+            3,
+        ),
+    ] {
+        let mut a = vec![
+            "curvature",
+            "plane.obj",
+            "-o",
+            "c.csv",
+            "--report",
+            "r.json",
+        ];
+        a.extend_from_slice(args);
+        let o = morpho(dir.path(), &a);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let r = report(dir.path(), "r.json");
+        assert_eq!(r["normals"], normals, "{args:?}");
+        assert_eq!(r["fit"], fit, "{args:?}");
+        assert_eq!(r["ring"], ring, "{args:?}");
+        assert_eq!(r.get("jet_fallbacks").is_some(), normals == "jet");
+        // a plane: every determined value is 0
+        for q in ["k1", "k2", "H", "K"] {
+            for k in ["min", "max"] {
+                assert!(r[q][k].as_f64().unwrap().abs() < 1e-9, "{args:?} {q} {k}");
+            }
+        }
+    }
+}
+
+/// Non-manifold vertices, isolated vertices and zero-area triangles are a documented result
+/// (exit 0, undetermined vertices counted and NaN/empty), not an error.
+#[test]
+fn non_manifold_isolated_and_zero_area_are_counted() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut s = String::from("v 0 0 0\n");
+    for fan in 0..2 {
+        for i in 0..8 {
+            let t = i as f64 * std::f64::consts::TAU / 8.0;
+            s.push_str(&format!(
+                "v {} {} {}\n",
+                t.cos(),
+                t.sin(),
+                0.2 * fan as f64 - 0.1
+            ));
+        }
+    }
+    s.push_str("v 5 5 5\nv 7 0 0\nv 8 0 0\nv 9 0 0\n");
+    for fan in 0..2 {
+        for i in 0..8 {
+            let b = 2 + 8 * fan;
+            s.push_str(&format!("f 1 {} {}\n", b + i, b + (i + 1) % 8));
+        }
+    }
+    s.push_str("f 19 20 21\n");
+    std::fs::write(dir.path().join("bad.obj"), s).unwrap();
+    for normals in ["jet", "area"] {
+        let o = morpho(
+            dir.path(),
+            &[
+                "curvature",
+                "bad.obj",
+                "-o",
+                "c.csv",
+                "--normals",
+                normals,
+                "--report",
+                "r.json",
+            ],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let r = report(dir.path(), "r.json");
+        assert_eq!(r["vertices"], 21);
+        // the isolated vertex and the three of the zero-area triangle at least
+        assert!(r["undetermined"].as_u64().unwrap() >= 4, "{r}");
+        let csv = std::fs::read_to_string(dir.path().join("c.csv")).unwrap();
+        let empty = csv
+            .lines()
+            .skip(1)
+            .filter(|l| l.split(',').nth(6) == Some(""))
+            .count() as u64;
+        assert_eq!(empty, r["undetermined"].as_u64().unwrap(), "{csv}");
+    }
+}

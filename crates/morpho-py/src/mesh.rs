@@ -109,6 +109,7 @@ pub fn curvature<'py>(
     let opts = SurfaceOptions {
         normals: source,
         ring,
+        ..Default::default()
     };
     let c = compute(py, || surface_curvature(&m, &opts))?.map_err(py_err)?;
     let v3 = |v: &[Vector3]| v.iter().map(|n| [n.x, n.y, n.z]).collect::<Vec<_>>();

@@ -79,6 +79,7 @@ fn quadratic_forms_are_exact_on_any_one_ring() {
         let opts = SurfaceOptions {
             normals: NormalSource::Given(normals),
             ring: 1,
+            ..Default::default()
         };
         let c = surface_curvature(&mesh, &opts).unwrap();
         assert_eq!(c.status[0], VertexStatus::Ok, "case {case}");
@@ -156,6 +157,7 @@ fn sphere_errors(subdiv: u32, r: f64) -> (f64, f64) {
         &SurfaceOptions {
             normals: NormalSource::Given(normals),
             ring: 1,
+            ..Default::default()
         },
     )
     .unwrap();
@@ -205,6 +207,7 @@ fn planes_give_zero() {
                 &SurfaceOptions {
                     normals: NormalSource::Estimated(w),
                     ring,
+                    ..Default::default()
                 },
             )
             .unwrap();
@@ -296,6 +299,7 @@ fn bad_input_is_refused_or_flagged() {
     let given = SurfaceOptions {
         normals: NormalSource::Given(vec![Vector3::z(); 3]),
         ring: 1,
+        ..Default::default()
     };
     assert!(matches!(
         surface_curvature(&m, &given),
@@ -401,4 +405,220 @@ fn table_4_2_reproduced() {
         }
     }
     assert!(t[0].rms.iter().all(|x| *x < 1e-12));
+}
+
+/// A jittered (2k+1)² grid around the origin of the graph of `f` (value, ∂x, ∂y), vertex 0 at
+/// the origin (issue 20: the extensions for estimated normals).
+fn graph_patch(k: i32, h: f64, seed: u64, f: impl Fn(f64, f64) -> f64) -> TriMesh {
+    let mut rng = Rng::seed_from_u64(seed);
+    let n = 2 * k + 1;
+    let mut idx = vec![0u32; (n * n) as usize];
+    let mut pos = vec![Point3::new(0.0, 0.0, f(0.0, 0.0))];
+    for j in -k..=k {
+        for i in -k..=k {
+            let id = ((j + k) * n + (i + k)) as usize;
+            if i == 0 && j == 0 {
+                idx[id] = 0;
+                continue;
+            }
+            let (x, y) = (
+                h * (i as f64 + 0.3 * (unif(&mut rng) - 0.5)),
+                h * (j as f64 + 0.3 * (unif(&mut rng) - 0.5)),
+            );
+            idx[id] = pos.len() as u32;
+            pos.push(Point3::new(x, y, f(x, y)));
+        }
+    }
+    let at = |i: i32, j: i32| idx[(j * n + i) as usize];
+    let mut tris = Vec::new();
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            // alternate diagonals: not centrally symmetric
+            if (i + j) % 2 == 0 {
+                tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            } else {
+                tris.push([at(i, j), at(i + 1, j), at(i, j + 1)]);
+                tris.push([at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+    }
+    TriMesh::new(pos, tris)
+}
+
+/// `SurfaceFit::Quadric` with a wrong (vertical) normal on a tilted quadratic graph gives the
+/// graph's exact curvatures at the vertex (H (4.15)), for any tilt and scale.
+#[test]
+fn quadric_fit_is_exact_with_a_tilted_normal() {
+    use morpho::curvature::tables::graph_curvatures;
+    use morpho::curvature::SurfaceFit;
+    let mut rng = Rng::seed_from_u64(21);
+    for case in 0..100 {
+        let r: Vec<f64> = (0..5).map(|_| 4.0 * unif(&mut rng) - 2.0).collect();
+        let (a, b, al, be, ga) = (r[0], r[1], r[2], r[3], r[4]);
+        let h = 10f64.powi(rng.below(4) as i32 - 3);
+        let m = graph_patch(1, h, case, |x, y| {
+            a * x + b * y + 0.5 * (al * x * x + 2.0 * be * x * y + ga * y * y)
+        });
+        let opts = SurfaceOptions {
+            normals: NormalSource::Given(vec![Vector3::z(); m.positions.len()]),
+            ring: 1,
+            fit: SurfaceFit::Quadric,
+            ..Default::default()
+        };
+        let c = surface_curvature(&m, &opts).unwrap();
+        let ex = graph_curvatures([0.0, a, b, al, be, ga]);
+        let tol = 1e-8 * (1.0 + ex[0].abs().max(ex[1].abs()));
+        assert_eq!(c.status[0], VertexStatus::Ok, "case {case}");
+        assert!(
+            (c.k1[0] - ex[0]).abs() < tol && (c.k2[0] - ex[1]).abs() < tol,
+            "case {case}: {:?} vs {ex:?}",
+            [c.k1[0], c.k2[0]]
+        );
+        // the fitted normal is the graph's
+        let n = Vector3::new(-a, -b, 1.0).normalize();
+        assert!((c.normals[0] - n).norm() < 1e-8, "case {case}");
+    }
+}
+
+/// Jet normals (the cubic over the 2-ring) are the exact normals of any cubic graph sampled
+/// irregularly, starting from the (wrong) vertical normal: the cubic is exact in that frame.
+#[test]
+fn jet_normals_are_exact_on_cubics() {
+    let mut rng = Rng::seed_from_u64(22);
+    for case in 0..50 {
+        let c: Vec<f64> = (0..9).map(|_| 2.0 * unif(&mut rng) - 1.0).collect();
+        let m = graph_patch(2, 0.1, 100 + case, |x, y| {
+            c[0] * x
+                + c[1] * y
+                + c[2] * x * x
+                + c[3] * x * y
+                + c[4] * y * y
+                + c[5] * x * x * x
+                + c[6] * x * x * y
+                + c[7] * x * y * y
+                + c[8] * y * y * y
+        });
+        let opts = SurfaceOptions {
+            normals: NormalSource::Given(vec![Vector3::z(); m.positions.len()]),
+            jet_normals: true,
+            ..Default::default()
+        };
+        let r = surface_curvature(&m, &opts).unwrap();
+        let n = Vector3::new(-c[0], -c[1], 1.0).normalize();
+        assert!(
+            (r.normals[0] - n).norm() < 1e-9,
+            "case {case}: {:?} vs {n:?}",
+            r.normals[0]
+        );
+    }
+}
+
+/// The default for estimated normals: spheres converge quadratically (max error against the
+/// edge length: slope ≥ 1.4 between any two levels, ≥ 1.8 from level 2 to 6), planes give 0, H flips with the orientation, the thread count does not
+/// matter.
+#[test]
+fn estimated_normals_default_converges_flips_and_is_deterministic() {
+    let opts = SurfaceOptions::estimated_normals();
+    let mut e = Vec::new();
+    for s in 2..=6 {
+        let m = generate::icosphere(s);
+        let h = (m.positions[m.triangles[0][0] as usize] - m.positions[m.triangles[0][1] as usize])
+            .norm();
+        let c = surface_curvature(&m, &opts).unwrap();
+        assert_eq!(c.undetermined, 0);
+        assert_eq!(c.jet_fallbacks, 0);
+        let err =
+            c.k1.iter()
+                .chain(&c.k2)
+                .map(|k| (k + 1.0).abs())
+                .fold(0.0, f64::max);
+        e.push((h, err));
+    }
+    let slope = |a: (f64, f64), b: (f64, f64)| (a.1 / b.1).ln() / (a.0 / b.0).ln();
+    let s: Vec<f64> = e.windows(2).map(|w| slope(w[0], w[1])).collect();
+    let all = slope(e[0], e[4]);
+    println!("max |κ+1| {e:?}, slopes {s:?}, level 2 → 6: {all:.2}");
+    assert!(s.iter().all(|&x| x > 1.4) && all > 1.8, "{s:?} {all}");
+    // a tilted plane: zero
+    let mut p = graph_patch(4, 0.2, 5, |x, y| 0.3 * x - 0.7 * y + 2.0);
+    for q in &mut p.positions {
+        *q = Point3::from(Rotation3::from_euler_angles(0.4, 0.2, -1.0) * q.coords);
+    }
+    let c = surface_curvature(&p, &opts).unwrap();
+    for v in 0..p.positions.len() {
+        if c.status[v] == VertexStatus::Ok {
+            assert!(c.a[v] < 1e-9, "vertex {v}: {}", c.a[v]);
+        }
+    }
+    // orientation
+    let t = generate::torus(2.0, 1.0, 48, 24);
+    let a = surface_curvature(&t, &opts).unwrap();
+    let mut f = t.clone();
+    f.triangles.iter_mut().for_each(|t| t.swap(1, 2));
+    let b = surface_curvature(&f, &opts).unwrap();
+    for v in 0..t.positions.len() {
+        assert!((a.h[v] + b.h[v]).abs() < 1e-9 * (1.0 + a.h[v].abs()));
+        assert!((a.k[v] - b.k[v]).abs() < 1e-9);
+    }
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    assert_eq!(one.install(|| surface_curvature(&t, &opts).unwrap()), a);
+}
+
+/// Non-manifold vertices (two fans sharing their apex), isolated vertices and zero-area
+/// triangles: no panic, the documented status per vertex, NaN exactly where undetermined.
+#[test]
+fn non_manifold_isolated_and_degenerate_inputs_are_documented() {
+    let mut pos = vec![Point3::origin()];
+    let mut tris = Vec::new();
+    for (fan, tilt) in [(0, 1.0), (1, -1.0)] {
+        let base = pos.len() as u32;
+        for i in 0..8 {
+            let t = i as f64 * std::f64::consts::TAU / 8.0;
+            // the second fan lies in a tilted plane below the first
+            pos.push(Point3::new(
+                t.cos(),
+                t.sin(),
+                0.1 * tilt + 0.05 * fan as f64,
+            ));
+        }
+        for i in 0..8u32 {
+            tris.push([0, base + i, base + (i + 1) % 8]);
+        }
+    }
+    pos.push(Point3::new(5.0, 5.0, 5.0)); // isolated
+    let b = pos.len() as u32;
+    pos.extend([
+        Point3::new(7.0, 0.0, 0.0),
+        Point3::new(8.0, 0.0, 0.0),
+        Point3::new(9.0, 0.0, 0.0),
+    ]);
+    tris.push([b, b + 1, b + 2]); // zero area
+    let m = TriMesh::new(pos, tris);
+    for opts in [
+        SurfaceOptions::default(),
+        SurfaceOptions::estimated_normals(),
+    ] {
+        let c = surface_curvature(&m, &opts).unwrap();
+        assert_eq!(c.status[b as usize - 1], VertexStatus::Isolated);
+        for v in b as usize..b as usize + 3 {
+            assert_eq!(c.status[v], VertexStatus::NoNormal);
+        }
+        for v in 0..m.positions.len() {
+            assert_eq!(
+                c.h[v].is_nan(),
+                c.status[v] != VertexStatus::Ok,
+                "vertex {v}: {:?} {}",
+                c.status[v],
+                c.h[v]
+            );
+        }
+        assert_eq!(
+            c.undetermined,
+            c.status.iter().filter(|s| **s != VertexStatus::Ok).count()
+        );
+    }
 }

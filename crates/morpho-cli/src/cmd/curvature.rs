@@ -3,11 +3,17 @@
 //! (H §4.3, the 6-tetrahedra platelet); see `morpho::curvature`.
 //!
 //! - Meshes → `.ply` (the mesh with vertex properties `k1,k2,H,K,A`, κ₁ ≤ κ₂, NaN where the fit
-//!   is undetermined) or `.csv` (`x,y,z,index,k1,k2,H,K,A` per vertex; an undetermined value is an empty cell). `--normals area|uniform|
-//!   inverse` estimates vertex normals by that weighting of V §9.4 (default area), `file` uses
-//!   the file's (PLY `nx,ny,nz`; refused when absent); `--ring K` fits over the K-ring (default 1,
-//!   the thesis's platelet). Curvature is measured along the normal: an outward-oriented sphere
-//!   of radius R has H = −1/R.
+//!   is undetermined) or `.csv` (`x,y,z,index,k1,k2,H,K,A` per vertex; an undetermined value is
+//!   an empty cell). Normals: `--normals jet` (default) estimates them by area weighting and
+//!   corrects each by a cubic fit over its 2-ring; `area` (= `mesh`), `uniform`, `inverse` are
+//!   the weightings of V §9.4 alone; `file` uses the file's (PLY `nx,ny,nz`; refused when
+//!   absent). `--fit paraboloid` (default) is the thesis's osculating paraboloid (H §4.2) over
+//!   the `--ring K` platelet (default 1); `--fit quadric` adds linear terms (default ring 2).
+//!   **The thesis's method** is `--normals area --fit paraboloid --ring 1` (or `--normals file`
+//!   with exact normals, as in H Table 4.1). The default's jet normals are an extension: with
+//!   area normals alone the 1-ring paraboloid loses to libigl and VTK on irregular meshes
+//!   (`bench/curvature_peers.py`, `bench/README.md`). Curvature is measured along the normal:
+//!   an outward-oriented sphere of radius R has H = −1/R.
 //! - Volumes → `-o DIR`: `DIR/k1.nrrd k2.nrrd k3.nrrd H.nrrd K.nrrd` on the input grid (same
 //!   dims, spacing, origin, orientation), f32, NaN where undetermined; gradients by central
 //!   differences.
@@ -18,7 +24,7 @@
 use crate::report::Report;
 use crate::Failure;
 use morpho::curvature::{
-    surface_curvature, volume_curvature, Gradients, NormalSource, SurfaceOptions,
+    surface_curvature, volume_curvature, Gradients, NormalSource, SurfaceFit, SurfaceOptions,
 };
 use morpho::io;
 use morpho::mesh::{NormalWeighting, Property, ScalarKind};
@@ -33,13 +39,20 @@ pub struct Args {
     /// Output: .ply or .csv for a mesh; a folder for a volume.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Vertex normals: estimated by area (default), uniform or inverse(-area) weighting, or
-    /// the file's.
-    #[arg(long, default_value = "area", value_parser = ["mesh", "area", "uniform", "inverse", "file"])]
+    /// Vertex normals: `jet` = area-weighted, corrected by a cubic fit over the 2-ring
+    /// (default; not in the thesis); `area` (= `mesh`), `uniform`, `inverse` = that weighting
+    /// alone (V §9.4); `file` = the file's. The thesis's method: `--normals area` (or `file`)
+    /// with the default fit and ring.
+    #[arg(long, default_value = "jet", value_parser = ["jet", "mesh", "area", "uniform", "inverse", "file"])]
     pub normals: String,
-    /// Fit over the K-ring of each vertex (1 = the thesis's platelet).
-    #[arg(long, default_value_t = 1)]
-    pub ring: usize,
+    /// The fitted surface: `paraboloid` (the thesis's, H §4.2) or `quadric` (with linear
+    /// terms: corrects a tilted normal, needs ≥ 5 points).
+    #[arg(long, default_value = "paraboloid", value_parser = ["paraboloid", "quadric"])]
+    pub fit: String,
+    /// Fit over the K-ring of each vertex (default: 1 for the paraboloid = the thesis's
+    /// platelet, 2 for the quadric).
+    #[arg(long)]
+    pub ring: Option<usize>,
 }
 
 /// min, max, median of the finite values (None when there are none).
@@ -58,7 +71,7 @@ fn is_volume(ext: &str) -> bool {
 
 /// Runs `morpho curvature`.
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
-    if args.ring == 0 {
+    if args.ring == Some(0) {
         return Err(Failure::usage("--ring must be at least 1"));
     }
     let ext = crate::cmd::extension(&args.input);
@@ -79,9 +92,20 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         "inverse" => NormalSource::Estimated(NormalWeighting::InverseArea),
         _ => NormalSource::Estimated(NormalWeighting::Area),
     };
+    let fit = match args.fit.as_str() {
+        "quadric" => SurfaceFit::Quadric,
+        _ => SurfaceFit::Paraboloid,
+    };
+    let jet_normals = args.normals == "jet";
+    let ring = args.ring.unwrap_or(match fit {
+        SurfaceFit::Quadric => 2,
+        _ => 1,
+    });
     let opts = SurfaceOptions {
         normals,
-        ring: args.ring,
+        ring,
+        fit,
+        jet_normals,
     };
     let c = report.time("compute", || {
         surface_curvature(&mesh, &opts)
@@ -89,7 +113,17 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     })?;
     report.set("vertices", mesh.positions.len());
     report.set("undetermined", c.undetermined);
-    report.set("ring", args.ring);
+    if jet_normals {
+        report.set("jet_fallbacks", c.jet_fallbacks);
+    }
+    report.set("ring", ring);
+    report.set(
+        "fit",
+        match fit {
+            SurfaceFit::Quadric => "quadric",
+            _ => "paraboloid",
+        },
+    );
     report.set("normals", args.normals.as_str());
     let columns = [
         ("k1", &c.k1),
@@ -188,4 +222,197 @@ fn run_volume(args: &Args, report: &mut Report) -> Result<u8, Failure> {
         c.undetermined
     );
     Ok(0)
+}
+
+/// The median of the finite values (NaN when there are none).
+fn summary_median(v: &[f64]) -> f64 {
+    let mut f: Vec<f64> = v.iter().copied().filter(|x| x.is_finite()).collect();
+    if f.is_empty() {
+        return f64::NAN;
+    }
+    f.sort_by(f64::total_cmp);
+    f[f.len() / 2]
+}
+
+/// A symmetric colour range `±a` for signed curvature: `a` is the `pct`-th percentile of `|x|`
+/// over the finite values (curvature of scans is heavy-tailed: the maximum would wash
+/// everything else out to grey).
+fn symmetric_range(v: &[f64], pct: usize) -> f64 {
+    let mut a: Vec<f64> = v
+        .iter()
+        .filter(|x| x.is_finite())
+        .map(|x| x.abs())
+        .collect();
+    if a.is_empty() {
+        return 1.0;
+    }
+    a.sort_by(f64::total_cmp);
+    let q = a[(a.len() * pct / 100).min(a.len() - 1)];
+    if q > 0.0 {
+        q
+    } else {
+        1.0
+    }
+}
+
+/// A mesh coloured by its mean curvature over `±a` (diverging map centred on 0) with a
+/// colour bar.
+fn h_picture(
+    m: &morpho::mesh::TriMesh,
+    h: &[f64],
+    a: f64,
+    view: &morpho::render::RenderOptions,
+) -> morpho::render::Image {
+    use morpho::render::{render_mesh, with_colorbar, Colormap, Scalars};
+    let img = render_mesh(
+        m,
+        &morpho::render::RenderOptions {
+            scalars: Some(Scalars {
+                values: h.to_vec(),
+                per_face: false,
+                colormap: Colormap::Coolwarm,
+                range: Some((-a, a)),
+            }),
+            ..view.clone()
+        },
+    );
+    with_colorbar(&img, Colormap::Coolwarm, -a, a, Some("H"))
+}
+
+/// `morpho demo` section "curvature" (issue 20): the CT skull and the Stanford bunny coloured
+/// by mean curvature (the default for estimated normals), and the Table 4.2 slices of
+/// H Figs 4.9–4.12 (exact beside approximated H).
+pub fn demo_section(ctx: &super::demo::Ctx) -> morpho::Result<Vec<morpho::io::html::Section>> {
+    use morpho::curvature::tables::{table_4_2_fields, table_4_2_name};
+    use morpho::io::html::Section;
+    use morpho::render::{orthogonal_slices, Colormap, RenderOptions, SliceOptions, UpAxis};
+    use std::time::Instant;
+    let mut out = Vec::new();
+    let opts = SurfaceOptions::estimated_normals();
+    let mut s = Section::new(
+        "Mean curvature of a contour surface and of a scan",
+        "Hamann ch. 4: H per vertex by the osculating-paraboloid fit over the 1-ring (H §4.2), \
+         with area-weighted normals corrected by a cubic fit over the 2-ring (morpho's default \
+         for estimated normals; `--normals area` is the thesis's method). Diverging colour map \
+         centred on H = 0: blue H < 0 (bending away from the outward normal: convex), red \
+         H > 0 (concave), grey flat or saddle-balanced. The skull's contour surface carries \
+         voxel-scale steps (slices 2 voxels apart), so it is fitted over the 3-ring \
+         (`--ring 3`) and shown over ±1.5 × the median of |H| (the vault, radius ≈ 75 voxels, is \
+         blue); the bunny over the 1-ring, range ±(95th percentile of |H|).",
+    );
+    if let Some(path) = ctx.data_file("volumes/cthead_8bit_256x256x99.json") {
+        use morpho::volume::{isosurface, IsoOptions};
+        let v = morpho::io::read_volume(&path)?;
+        let r = isosurface(
+            &v,
+            &IsoOptions {
+                level: 120.0,
+                ..Default::default()
+            },
+        )?;
+        let t = Instant::now();
+        let c = surface_curvature(
+            &r.mesh,
+            &SurfaceOptions {
+                ring: 3,
+                ..opts.clone()
+            },
+        )?;
+        let dt = t.elapsed().as_secs_f64();
+        let a = 1.5 * symmetric_range(&c.h, 50);
+        // curvature on the surface as extracted (outward normals), pictures upright
+        let m = super::demo::upright_head(r.mesh);
+        let view = RenderOptions {
+            up: UpAxis::Z,
+            azimuth_deg: 25.0,
+            elevation_deg: 5.0,
+            ..Default::default()
+        };
+        h_picture(&m, &c.h, a, &view).save_png(&ctx.path("curvature_skull_H.png"))?;
+        s.img(
+            "curvature_skull_H.png",
+            "CT head bone surface (level 120), mean curvature over the 3-ring",
+        );
+        s.fig(
+            "skull: vertices / undetermined",
+            format!("{} / {}", m.positions.len(), c.undetermined),
+        );
+        s.fig("skull: seconds (3-ring)", format!("{dt:.2}"));
+        s.fig("skull: median H", format!("{:.4}", summary_median(&c.h)));
+    }
+    if let Some(path) = ctx.data_file("meshes/stanford-bunny.obj.gz") {
+        let m = morpho::io::read_mesh(&path)?;
+        let t = Instant::now();
+        let c = surface_curvature(&m, &opts)?;
+        let dt = t.elapsed().as_secs_f64();
+        let view = RenderOptions {
+            up: UpAxis::Y,
+            azimuth_deg: 20.0,
+            elevation_deg: 20.0,
+            ..Default::default()
+        };
+        h_picture(&m, &c.h, symmetric_range(&c.h, 95), &view)
+            .save_png(&ctx.path("curvature_bunny_H.png"))?;
+        s.img(
+            "curvature_bunny_H.png",
+            "Stanford bunny (range scan), mean curvature",
+        );
+        s.fig(
+            "bunny: vertices / undetermined",
+            format!("{} / {}", m.positions.len(), c.undetermined),
+        );
+        s.fig("bunny: seconds", format!("{dt:.2}"));
+    }
+    out.push(s);
+    let mut s = Section::new(
+        "Curvature of trivariate graphs: Table 4.2 slices (H Figs 4.9–4.12)",
+        "Hamann §4.3: mean curvature H of the graph (x, y, z, f) in R⁴ on the 26³ grid over \
+         [-1,1]³, fitted over the 6-tetrahedra platelet with exact gradients. Each row: the \
+         exact H (top) and the approximated H (below) on the three middle slices x = 0, y = 0, \
+         z = 0, one symmetric colour range per function; grey: undetermined face points (102 \
+         on this grid).",
+    );
+    let m = 26;
+    for (row, fig) in [(2, "4.9"), (3, "4.10"), (4, "4.11"), (6, "4.12")] {
+        let (Some([hx, ha, _, _]), Some(name)) = (table_4_2_fields(row, m), table_4_2_name(row))
+        else {
+            continue;
+        };
+        let a = hx
+            .iter()
+            .chain(&ha)
+            .filter(|x| x.is_finite())
+            .fold(0.0f64, |a, x| a.max(x.abs()));
+        let a = if a > 0.0 { a } else { 1.0 };
+        let so = SliceOptions {
+            colormap: Colormap::Coolwarm,
+            range: Some((-a, a)),
+            size: Some(200),
+            ..Default::default()
+        };
+        for (field, which) in [(&hx, "exact"), (&ha, "approx")] {
+            let vol = morpho::volume::Volume::from_fn([m; 3], [-1.0; 3], [1.0; 3], |x, y, z| {
+                let q = |c: f64| ((c + 1.0) * 0.5 * (m - 1) as f64).round() as usize;
+                field[q(x) + m * q(y) + m * m * q(z)]
+            });
+            let img = orthogonal_slices(&vol, [m / 2; 3], &so)?;
+            let file = format!("curvature_t42_{row}_{which}.png");
+            img.save_png(&ctx.path(&file))?;
+            s.img(
+                &file,
+                &format!("Fig. {fig}: {name}, {which} H (middle slices)"),
+            );
+        }
+    }
+    for r in morpho::curvature::tables::table_4_2(m) {
+        s.fig(
+            &format!("Table 4.2 row {}: RMS H / K (thesis)", r.row),
+            format!(
+                "{:.6} / {:.6} ({:.6} / {:.6}); interior {:.6} / {:.6}",
+                r.rms[0], r.rms[1], r.thesis[0], r.thesis[1], r.rms_interior[0], r.rms_interior[1]
+            ),
+        );
+    }
+    out.push(s);
+    Ok(out)
 }

@@ -24,7 +24,7 @@ pub struct Args {
     pub data: Option<PathBuf>,
     /// Build only the steps whose name contains this text (repeatable; the steps are
     /// "sample points", "delaunay", "gamma graphs", "boundary", "flintstones", "meshes",
-    /// "volumes", "volume views", "contour surfaces", "triangle reduction", "smooth", …).
+    /// "volumes", "volume views", "contour surfaces", "triangle reduction", "smooth", "curvature", …).
     #[arg(long, value_name = "STEP")]
     pub only: Vec<String>,
 }
@@ -74,6 +74,7 @@ const SECTIONS: &[(&str, Builder)] = &[
     ("contour surfaces", isosurface_section),
     ("triangle reduction", crate::cmd::reduce::demo_section),
     ("smooth", crate::cmd::smooth::demo_section),
+    ("curvature", crate::cmd::curvature::demo_section),
     ("contours of rated samples", contour_section),
 ];
 

@@ -1,8 +1,8 @@
 //! The least-squares core shared by the surface and the trivariate fits (H §4.2 step (iv),
 //! H §4.3): normal equations `UᵀU c = Uᵀd` (H (4.29)) solved by Cholesky, refused when the
-//! condition number of `UᵀU` (from its symmetric eigenvalues) exceeds a bound. (Solving
-//! through nalgebra's eigenvectors instead lost up to 10 % on nearly repeated eigenvalues —
-//! the 5-valent vertices of an icosphere.)
+//! condition number of `UᵀU` (from its symmetric eigenvalues, by Jacobi rotations on the
+//! stack: no allocation per vertex) exceeds a bound. (Solving through eigenvectors instead lost
+//! up to 10 % on nearly repeated eigenvalues — the 5-valent vertices of an icosphere.)
 //!
 //! The condition number `λ_max/λ_min` of `UᵀU` does not change when the platelet is scaled
 //! (all entries scale like h⁴), so the "undetermined" rule is scale-free (notes C.2, C.3);
@@ -43,22 +43,132 @@ impl<const N: usize> Normal<N> {
         if self.rows < N {
             return None;
         }
-        // (const-generic matrices have no eigen-solver in nalgebra: a dynamic copy)
-        let m = nalgebra::DMatrix::from_fn(N, N, |i, j| self.ata[(i.min(j), i.max(j))]);
-        let eig = m.clone().symmetric_eigenvalues();
-        let lmax = eig.max();
-        let lmin = eig.min();
+        let m = SMatrix::<f64, N, N>::from_fn(|i, j| self.ata[(i.min(j), i.max(j))]);
+        // cond ≤ trace^N / det (λ_max ≤ trace, λ_min ≥ det / λ_max^{N−1}): when that bound
+        // already passes, the eigenvalues are not needed (the decision is the same; the
+        // eigenvalues were a third of the whole computation)
+        if let Some((c, det)) = self.ldl(f64::INFINITY) {
+            let tr: f64 = (0..N).map(|i| m[(i, i)]).sum();
+            if det > 0.0 && tr.powi(N as i32) <= max_cond * det {
+                return Some(SVector::from(c));
+            }
+        }
+        let a: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]));
+        let eig = sym_eigenvalues(a);
+        let lmax = eig.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let lmin = eig.iter().copied().fold(f64::INFINITY, f64::min);
         // written so that NaN refuses too
         if !(lmax.is_finite() && lmin > 0.0 && lmin * max_cond >= lmax) {
             return None;
         }
-        // the solution by Cholesky (the eigenvectors of nearly repeated eigenvalues are not
+        // the solution by LDLᵀ (the eigenvectors of nearly repeated eigenvalues are not
         // accurate enough to solve with)
-        let c = m
-            .cholesky()?
-            .solve(&nalgebra::DVector::from_column_slice(self.atd.as_slice()));
-        Some(SVector::from_fn(|i, _| c[i]))
+        self.solve_ldl(f64::INFINITY).map(SVector::from)
     }
+}
+
+impl<const N: usize> Normal<N> {
+    /// The least-squares solution by an LDLᵀ factorisation on the stack, or `None` when fewer
+    /// than N rows were added or a pivot is at most `max_ratio⁻¹` times the largest (the pivot
+    /// ratio is a cheap lower bound of `cond(UᵀU)`, also scale-free); for fits whose refusal
+    /// only selects a fallback (the jet normals).
+    pub(crate) fn solve_ldl(&self, max_ratio: f64) -> Option<[f64; N]> {
+        self.ldl(max_ratio).map(|(c, _)| c)
+    }
+
+    /// [`Normal::solve_ldl`] and the determinant of `UᵀU` (the product of the pivots).
+    fn ldl(&self, max_ratio: f64) -> Option<([f64; N], f64)> {
+        if self.rows < N {
+            return None;
+        }
+        let mut l = [[0.0f64; N]; N];
+        let mut d = [0.0f64; N];
+        let dmax = (0..N).map(|i| self.ata[(i, i)]).fold(0.0, f64::max);
+        for j in 0..N {
+            let mut dj = self.ata[(j, j)];
+            for k in 0..j {
+                dj -= l[j][k] * l[j][k] * d[k];
+            }
+            // written so that NaN refuses too
+            if !(dj > 0.0 && dj * max_ratio >= dmax) {
+                return None;
+            }
+            d[j] = dj;
+            for i in j + 1..N {
+                let mut x = self.ata[(j, i)];
+                for k in 0..j {
+                    x -= l[i][k] * l[j][k] * d[k];
+                }
+                l[i][j] = x / dj;
+            }
+        }
+        // L y = b, D z = y, Lᵀ c = z
+        let mut c = [0.0f64; N];
+        for i in 0..N {
+            let mut x = self.atd[i];
+            for k in 0..i {
+                x -= l[i][k] * c[k];
+            }
+            c[i] = x;
+        }
+        for i in 0..N {
+            c[i] /= d[i];
+        }
+        for i in (0..N).rev() {
+            let mut x = c[i];
+            for k in i + 1..N {
+                x -= l[k][i] * c[k];
+            }
+            c[i] = x;
+        }
+        let det = d.iter().product::<f64>();
+        c.iter().all(|x| x.is_finite()).then_some((c, det))
+    }
+}
+
+/// Eigenvalues of a small symmetric matrix by cyclic Jacobi rotations, on the stack (no
+/// allocation per vertex; accurate to rounding also for the small eigenvalues the condition
+/// test needs). NaN entries give NaN eigenvalues.
+fn sym_eigenvalues<const N: usize>(mut a: [[f64; N]; N]) -> [f64; N] {
+    for _ in 0..32 {
+        let mut off = 0.0;
+        let mut diag = 0.0;
+        for i in 0..N {
+            diag += a[i][i] * a[i][i];
+            for j in i + 1..N {
+                off += a[i][j] * a[i][j];
+            }
+        }
+        if off.is_nan() || diag.is_nan() || off <= 1e-34 * diag {
+            break;
+        }
+        for p in 0..N {
+            for q in p + 1..N {
+                if a[p][q] == 0.0 {
+                    continue;
+                }
+                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                // (θ² may overflow to ∞: then t = 0, no rotation; libm's hypot was a fifth of
+                // the whole computation)
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let c = 1.0 / (t * t + 1.0).sqrt();
+                let s = t * c;
+                for row in a.iter_mut() {
+                    let (kp, kq) = (row[p], row[q]);
+                    row[p] = c * kp - s * kq;
+                    row[q] = s * kp + c * kq;
+                }
+                for k in 0..N {
+                    let (pk, qk) = (a[p][k], a[q][k]);
+                    a[p][k] = c * pk - s * qk;
+                    a[q][k] = s * pk + c * qk;
+                }
+                a[p][q] = 0.0;
+                a[q][p] = 0.0;
+            }
+        }
+    }
+    std::array::from_fn(|i| a[i][i])
 }
 
 #[cfg(test)]
@@ -79,5 +189,27 @@ mod tests {
             d.add([u * u, 0.0, 0.0], 1.0);
         }
         assert!(d.solve(1e10).is_none());
+        assert!(d.solve_ldl(1e10).is_none());
+        let e = n.solve_ldl(1e10).unwrap();
+        assert!((SVector::<f64, 3>::from(e) - c).norm() < 1e-12);
+    }
+
+    #[test]
+    fn jacobi_eigenvalues() {
+        let a = [[4.0, 1.0, -2.0], [1.0, 2.0, 0.5], [-2.0, 0.5, 3.0]];
+        let mut e = sym_eigenvalues(a);
+        e.sort_by(f64::total_cmp);
+        let m = nalgebra::Matrix3::from_fn(|i, j| a[i][j]);
+        let mut r: Vec<f64> = m.symmetric_eigenvalues().iter().copied().collect();
+        r.sort_by(f64::total_cmp);
+        for i in 0..3 {
+            assert!((e[i] - r[i]).abs() < 1e-13, "{e:?} {r:?}");
+        }
+        // a tiny eigenvalue is kept to relative accuracy (the condition test needs it)
+        let d = [[1.0, 1.0], [1.0, 1.0 + 1e-9]];
+        let e = sym_eigenvalues(d);
+        let small = e[0].min(e[1]);
+        assert!((small - 0.5e-9).abs() < 1e-15, "{e:?}");
+        assert!(sym_eigenvalues([[f64::NAN, 0.0], [0.0, 1.0]])[0].is_nan());
     }
 }

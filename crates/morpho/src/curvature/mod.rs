@@ -17,7 +17,7 @@ mod trivariate;
 
 pub use error::CurvatureError;
 pub use surface::{
-    surface_curvature, NormalSource, SurfaceCurvature, SurfaceOptions, VertexStatus,
+    surface_curvature, NormalSource, SurfaceCurvature, SurfaceFit, SurfaceOptions, VertexStatus,
     SURFACE_MAX_COND,
 };
 pub use trivariate::{

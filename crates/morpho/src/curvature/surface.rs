@@ -22,6 +22,25 @@
 //! graph convention, H (4.15)); reversing the orientation (or the normals) flips κ₁, κ₂, H and
 //! the directions' roles, and keeps K.
 //!
+//! **Estimated normals** (not in the thesis; issue 20). The thesis's tables used exact normals
+//! (notes C.4). With area-weighted normals the 1-ring paraboloid is fine on regular grids, but
+//! on irregular meshes the normal's error tilts the tangent plane and the fit turns it into
+//! curvature: on a randomly tessellated unit sphere (4000 points, convex hull) its interior
+//! RMS of H is 1.5 and of K 1.8e3, against libigl's 0.026 / 0.053.
+//! [`SurfaceOptions::estimated_normals`] (the CLI's default) therefore first replaces each
+//! normal by the normal of a cubic jet `a u + b v + ½(c20 u² + 2c11 uv + c02 v²) + cubic terms`
+//! fitted over the 2-ring ([`SurfaceOptions::jet_normals`]; the cubic terms keep the
+//! surface's third-order part out of the slopes, which a quadric's slopes carry), then runs
+//! the thesis's steps unchanged. On the meshes of `bench/curvature_peers.py` (torus regular and
+//! jittered, ellipsoid, random sphere, the 8 curved surfaces of Table 4.1 on its grid, all with
+//! estimated normals) its interior RMS and median relative error of H and K are below
+//! libigl's `principal_curvature` in every case (0.02–0.6×), and below `vtkCurvatures` by
+//! 10–100× on the irregular meshes; on regular grids VTK's discrete operators are
+//! super-convergent and stay ahead on some surfaces (up to 3.6× in RMS on the torus grid, 6× on
+//! the cylinder, where VTK's K is exactly 0): `bench/README.md` has the tables. The quadric
+//! with linear terms ([`SurfaceFit::Quadric`], 2-ring) is the other extension measured: better
+//! than the thesis's method on irregular meshes, worse than the jet normals on grids.
+//!
 //! **Undetermined vertices** (NaN in every output, a [`VertexStatus`] other than `Ok`, and
 //! counted in [`SurfaceCurvature::undetermined`]): a vertex in no triangle, a vertex without a
 //! normal (zero or non-finite), a platelet of fewer than 3 points, and a platelet whose normal
@@ -61,6 +80,21 @@ impl Default for NormalSource {
     }
 }
 
+/// The local surface fitted over the platelet, in the frame of the vertex's tangent plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SurfaceFit {
+    /// The thesis's osculating paraboloid `½(c20 u² + 2 c11 uv + c02 v²)` (H (4.28)–(4.31)):
+    /// the tangent plane is taken from the normal as given, 3 coefficients, ≥ 3 points.
+    #[default]
+    Paraboloid,
+    /// The quadric with linear terms `a u + b v + ½(c20 u² + 2 c11 uv + c02 v²)` through the
+    /// vertex: the fit corrects the tilt of an estimated normal (the curvatures are those of
+    /// the fitted graph at the vertex, H (4.15), and the normal becomes the fitted one);
+    /// 5 coefficients, ≥ 5 points — use a 2-ring or larger. Not in the thesis: an extension
+    /// for estimated normals (see the module doc).
+    Quadric,
+}
+
 /// Options of [`surface_curvature`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct SurfaceOptions {
@@ -68,13 +102,38 @@ pub struct SurfaceOptions {
     pub normals: NormalSource,
     /// The platelet: the vertices within this many edges (1 = the thesis's 1-ring).
     pub ring: usize,
+    /// The fitted surface (default: the thesis's paraboloid).
+    pub fit: SurfaceFit,
+    /// Replace each normal by that of a cubic fit over the vertex's 2-ring before the fit
+    /// (not in the thesis; see the module doc). Where the cubic is undetermined on the 2-ring
+    /// (fewer than 9 points, pivot ratio above 1e10) the 3-ring is tried; where it is
+    /// undetermined there too, the normal is kept and counted in
+    /// [`SurfaceCurvature::jet_fallbacks`].
+    pub jet_normals: bool,
 }
 
 impl Default for SurfaceOptions {
+    /// The thesis's method (H §4.2): 1-ring paraboloid, area-weighted estimated normals.
     fn default() -> Self {
         SurfaceOptions {
             normals: NormalSource::default(),
             ring: 1,
+            fit: SurfaceFit::Paraboloid,
+            jet_normals: false,
+        }
+    }
+}
+
+impl SurfaceOptions {
+    /// The method for meshes whose normals are estimated (the CLI's default): area-weighted
+    /// normals corrected by the cubic fit over the 2-ring ([`SurfaceOptions::jet_normals`]),
+    /// then the thesis's 1-ring paraboloid. The module doc gives the measurements that chose it.
+    pub fn estimated_normals() -> Self {
+        SurfaceOptions {
+            normals: NormalSource::Estimated(NormalWeighting::Area),
+            ring: 1,
+            fit: SurfaceFit::Paraboloid,
+            jet_normals: true,
         }
     }
 }
@@ -117,6 +176,9 @@ pub struct SurfaceCurvature {
     pub status: Vec<VertexStatus>,
     /// Number of vertices whose status is not `Ok`.
     pub undetermined: usize,
+    /// With [`SurfaceOptions::jet_normals`]: vertices whose cubic fit was undetermined and that
+    /// kept their given or estimated normal.
+    pub jet_fallbacks: usize,
 }
 
 /// Condition-number bound of the 3×3 normal matrix (notes C.2).
@@ -154,15 +216,46 @@ pub fn surface_curvature(
     }
     let adj = Adjacency::new(mesh);
     let pos: Vec<[f64; 3]> = mesh.positions.iter().map(|p| (*p).into()).collect();
-    let per: Vec<Vertex> = (0..n)
+    let per: Vec<(Vertex, bool)> = (0..n)
         .into_par_iter()
-        .map_init(Vec::new, |ring, v| {
-            adj.ring(v, opts.ring, ring);
-            fit_vertex(&pos, v, ring, normals[v].into())
-        })
+        .map_init(
+            || (Vec::new(), Vec::new()),
+            |(ring, ring2), v| {
+                let mut nrm: [f64; 3] = normals[v].into();
+                let mut fallback = false;
+                if opts.jet_normals {
+                    adj.ring(v, 2, ring2);
+                    // a 2-ring too small or too flat for the cubic (a valence-3 vertex among
+                    // valence-3 neighbours has 8 points): the 3-ring
+                    let jet = jet_normal(&pos, v, ring2, nrm).or_else(|| {
+                        adj.ring(v, 3, ring);
+                        jet_normal(&pos, v, ring, nrm)
+                    });
+                    match jet {
+                        Some(j) => nrm = j,
+                        None => fallback = true,
+                    }
+                }
+                // the breadth-first ring lists the 1-ring first: reuse the 2-ring's prefix
+                let platelet: &[u32] = match (opts.jet_normals, opts.ring) {
+                    (true, 1) => &ring2[..adj.of(v).len()],
+                    (true, 2) => ring2,
+                    _ => {
+                        adj.ring(v, opts.ring, ring);
+                        ring
+                    }
+                };
+                let r = match opts.fit {
+                    SurfaceFit::Paraboloid => fit_vertex(&pos, v, platelet, nrm),
+                    SurfaceFit::Quadric => fit_quadric(&pos, v, platelet, nrm),
+                };
+                (r, fallback)
+            },
+        )
         .collect();
     let mut out = SurfaceCurvature::default();
-    for r in per {
+    for (r, fallback) in per {
+        out.jet_fallbacks += usize::from(fallback);
         out.undetermined += usize::from(r.status != VertexStatus::Ok);
         out.k1.push(r.k[0]);
         out.k2.push(r.k[1]);
@@ -198,22 +291,10 @@ impl Vertex {
 
 /// Steps (i)–(viii) at vertex `v` with platelet `ring` (without `v`) and normal `nrm`.
 fn fit_vertex(pos: &[[f64; 3]], v: usize, ring: &[u32], nrm: [f64; 3]) -> Vertex {
-    let len = vec::norm(nrm);
-    if len.is_nan() || len <= 0.0 || len.is_infinite() {
-        let status = if ring.is_empty() {
-            VertexStatus::Isolated
-        } else {
-            VertexStatus::NoNormal
-        };
-        return Vertex::undetermined([0.0; 3], status);
-    }
-    let n = vec::scale(nrm, 1.0 / len);
-    if ring.is_empty() {
-        return Vertex::undetermined(n, VertexStatus::Isolated);
-    }
-    if ring.len() < 3 {
-        return Vertex::undetermined(n, VertexStatus::TooFewPoints);
-    }
+    let n = match unit_normal(ring, nrm, 3) {
+        Ok(n) => n,
+        Err(r) => return r,
+    };
     let (b1, b2) = tangent_basis(n);
     let y0 = pos[v];
     let mut ne = Normal::<3>::new();
@@ -237,6 +318,137 @@ fn fit_vertex(pos: &[[f64; 3]], v: usize, ring: &[u32], nrm: [f64; 3]) -> Vertex
         n,
         status: VertexStatus::Ok,
     }
+}
+
+/// The unit normal, or the status of a vertex without one.
+fn unit_normal(ring: &[u32], nrm: [f64; 3], need: usize) -> Result<[f64; 3], Vertex> {
+    let len = vec::norm(nrm);
+    if len.is_nan() || len <= 0.0 || len.is_infinite() {
+        let status = if ring.is_empty() {
+            VertexStatus::Isolated
+        } else {
+            VertexStatus::NoNormal
+        };
+        return Err(Vertex::undetermined([0.0; 3], status));
+    }
+    let n = vec::scale(nrm, 1.0 / len);
+    if ring.is_empty() {
+        return Err(Vertex::undetermined(n, VertexStatus::Isolated));
+    }
+    if ring.len() < need {
+        return Err(Vertex::undetermined(n, VertexStatus::TooFewPoints));
+    }
+    Ok(n)
+}
+
+/// The quadric with linear terms ([`SurfaceFit::Quadric`]) at vertex `v`: least squares
+/// `a u + b v + ½(c20 u² + 2 c11 uv + c02 v²) = d_j` in the frame of `nrm`, then the
+/// curvatures of that graph at the origin (H (4.15)): the eigenvalues of `S Hess S / l` with
+/// `l = √(1+a²+b²)` and `S = (I + ggᵀ)^{-1/2}`, `g = (a, b)`. The coordinates are divided by
+/// the platelet's RMS radius ρ first, so that the condition number stays scale-free.
+fn fit_quadric(pos: &[[f64; 3]], v: usize, ring: &[u32], nrm: [f64; 3]) -> Vertex {
+    let n = match unit_normal(ring, nrm, 5) {
+        Ok(n) => n,
+        Err(r) => return r,
+    };
+    let (b1, b2) = tangent_basis(n);
+    let y0 = pos[v];
+    let rho2 = ring
+        .iter()
+        .map(|&j| vec::norm2(vec::sub(pos[j as usize], y0)))
+        .sum::<f64>()
+        / ring.len() as f64;
+    let rho = rho2.sqrt();
+    if !(rho > 0.0 && rho.is_finite()) {
+        return Vertex::undetermined(n, VertexStatus::IllConditioned);
+    }
+    let inv = 1.0 / rho;
+    let mut ne = Normal::<5>::new();
+    for &j in ring {
+        let w = vec::scale(vec::sub(pos[j as usize], y0), inv);
+        let (u, t) = (vec::dot(w, b1), vec::dot(w, b2));
+        ne.add([u, t, 0.5 * u * u, u * t, 0.5 * t * t], vec::dot(n, w));
+    }
+    let Some(c) = ne.solve(SURFACE_MAX_COND) else {
+        return Vertex::undetermined(n, VertexStatus::IllConditioned);
+    };
+    // slopes are scale-free; second derivatives scale by 1/ρ
+    let (ga, gb) = (c[0], c[1]);
+    let (h11, h12, h22) = (c[2] * inv, c[3] * inv, c[4] * inv);
+    let g2 = ga * ga + gb * gb;
+    let l = (1.0 + g2).sqrt();
+    // S = I + (1/l − 1) ĝĝᵀ
+    let f = if g2 > 0.0 { (1.0 / l - 1.0) / g2 } else { 0.0 };
+    let s = [
+        [1.0 + f * ga * ga, f * ga * gb],
+        [f * ga * gb, 1.0 + f * gb * gb],
+    ];
+    let hs = [
+        [h11 * s[0][0] + h12 * s[1][0], h11 * s[0][1] + h12 * s[1][1]],
+        [h12 * s[0][0] + h22 * s[1][0], h12 * s[0][1] + h22 * s[1][1]],
+    ];
+    let m = |i: usize, j: usize| (s[i][0] * hs[0][j] + s[i][1] * hs[1][j]) / l;
+    let (k, e) = sym2_eigen(m(0, 0), 0.5 * (m(0, 1) + m(1, 0)), m(1, 1));
+    // the parameter direction S e, mapped onto the graph's tangent (b₁ + a n, b₂ + b n)
+    let w = [
+        s[0][0] * e[0] + s[0][1] * e[1],
+        s[1][0] * e[0] + s[1][1] * e[1],
+    ];
+    let t1 = vec::add_scaled(
+        vec::add_scaled(vec::scale(b1, w[0]), w[1], b2),
+        w[0] * ga + w[1] * gb,
+        n,
+    );
+    let d1 = vec::scale(t1, 1.0 / vec::norm(t1));
+    let nf = vec::scale(
+        vec::add_scaled(vec::add_scaled(n, -ga, b1), -gb, b2),
+        1.0 / l,
+    );
+    Vertex {
+        k,
+        d: [d1, vec::cross(nf, d1)],
+        n: nf,
+        status: VertexStatus::Ok,
+    }
+}
+
+/// The normal of the cubic `a u + b v + ½(c20 u² + 2c11 uv + c02 v²) + c30 u³ + c21 u²v +
+/// c12 uv² + c03 v³` fitted over `ring` in the frame of `nrm` (jet fitting of degree 3): the
+/// graph's normal at the vertex, `(n − a b₁ − b b₂)/√(1+a²+b²)`. The cubic terms keep the
+/// surface's third-order part out of the slopes (a quadric's slopes carry it, O(h²) with the
+/// 2-ring's larger constant). Coordinates are divided by the RMS radius first (scale-free
+/// pivot test). `None` when `nrm` is not usable, fewer than 9 points, or pivots above 1e10.
+fn jet_normal(pos: &[[f64; 3]], v: usize, ring: &[u32], nrm: [f64; 3]) -> Option<[f64; 3]> {
+    let len = vec::norm(nrm);
+    if !(len > 0.0 && len.is_finite()) || ring.len() < 9 {
+        return None;
+    }
+    let n = vec::scale(nrm, 1.0 / len);
+    let (b1, b2) = tangent_basis(n);
+    let y0 = pos[v];
+    let rho2 = ring
+        .iter()
+        .map(|&j| vec::norm2(vec::sub(pos[j as usize], y0)))
+        .sum::<f64>()
+        / ring.len() as f64;
+    if !(rho2 > 0.0 && rho2.is_finite()) {
+        return None;
+    }
+    let inv = 1.0 / rho2.sqrt();
+    let mut ne = Normal::<9>::new();
+    for &j in ring {
+        let w = vec::scale(vec::sub(pos[j as usize], y0), inv);
+        let (u, t) = (vec::dot(w, b1), vec::dot(w, b2));
+        let (uu, ut, tt) = (u * u, u * t, t * t);
+        ne.add(
+            [u, t, 0.5 * uu, ut, 0.5 * tt, uu * u, uu * t, u * tt, tt * t],
+            vec::dot(n, w),
+        );
+    }
+    let c = ne.solve_ldl(SURFACE_MAX_COND)?;
+    let m = vec::add_scaled(vec::add_scaled(n, -c[0], b1), -c[1], b2);
+    let l = vec::norm(m);
+    (l > 0.0 && l.is_finite()).then(|| vec::scale(m, 1.0 / l))
 }
 
 /// Orthonormal `b₁, b₂` with `(b₁, b₂, n)` right-handed, `b₁ ∝ n × e_k` for the axis `e_k`
@@ -275,34 +487,57 @@ fn sym2_eigen(a: f64, b: f64, c: f64) -> ([f64; 2], [f64; 2]) {
     ([l1, l2], e)
 }
 
-/// Vertex adjacency (unique neighbours) in compressed rows.
+/// Vertex adjacency (unique neighbours, ascending) in compressed rows.
 struct Adjacency {
     start: Vec<usize>,
     nb: Vec<u32>,
 }
 
 impl Adjacency {
+    /// Incident triangles by counting (O(T)), then each vertex's sorted neighbours in
+    /// parallel.
     fn new(mesh: &TriMesh) -> Self {
         let n = mesh.positions.len();
-        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(mesh.triangles.len() * 6);
-        for &[a, b, c] in &mesh.triangles {
-            for (x, y) in [(a, b), (b, c), (c, a)] {
-                if x != y {
-                    pairs.push((x, y));
-                    pairs.push((y, x));
-                }
+        let mut tstart = vec![0usize; n + 1];
+        for t in &mesh.triangles {
+            for &x in t {
+                tstart[x as usize + 1] += 1;
             }
         }
-        pairs.par_sort_unstable();
-        pairs.dedup();
-        let mut start = vec![0usize; n + 1];
-        for &(x, _) in &pairs {
-            start[x as usize + 1] += 1;
-        }
         for i in 0..n {
-            start[i + 1] += start[i];
+            tstart[i + 1] += tstart[i];
         }
-        let nb = pairs.into_iter().map(|(_, y)| y).collect();
+        let mut fill = tstart.clone();
+        let mut inc = vec![0u32; tstart[n]];
+        for (ti, t) in mesh.triangles.iter().enumerate() {
+            for &x in t {
+                inc[fill[x as usize]] = ti as u32;
+                fill[x as usize] += 1;
+            }
+        }
+        let lists: Vec<Vec<u32>> = (0..n)
+            .into_par_iter()
+            .map(|v| {
+                let mut l = Vec::with_capacity(2 * (tstart[v + 1] - tstart[v]));
+                for &ti in &inc[tstart[v]..tstart[v + 1]] {
+                    for &x in &mesh.triangles[ti as usize] {
+                        if x as usize != v {
+                            l.push(x);
+                        }
+                    }
+                }
+                l.sort_unstable();
+                l.dedup();
+                l
+            })
+            .collect();
+        let mut start = Vec::with_capacity(n + 1);
+        start.push(0);
+        let mut nb = Vec::with_capacity(lists.iter().map(Vec::len).sum());
+        for l in lists {
+            nb.extend_from_slice(&l);
+            start.push(nb.len());
+        }
         Adjacency { start, nb }
     }
     fn of(&self, v: usize) -> &[u32] {

@@ -188,6 +188,7 @@ pub fn table_4_1(m: usize) -> Vec<TableRow> {
             let opts = SurfaceOptions {
                 normals: NormalSource::File,
                 ring: 1,
+                ..Default::default()
             };
             let c = surface_curvature(&mesh, &opts).expect("a valid grid mesh");
             let (mut all, mut inner) = ([0.0; 4], [0.0; 4]);
@@ -303,30 +304,75 @@ pub fn trivariate_exact(g: [f64; 3], hess: [[f64; 3]; 3]) -> [f64; 3] {
     k
 }
 
-/// Table 4.2 (H p. 88) on an `m³` grid (the thesis: m = 26), exact gradients.
-pub fn table_4_2(m: usize) -> Vec<TableRow> {
+/// Exact and approximated H and K of one Table 4.2 function on the `m³` grid over `[-1,1]³`.
+struct Fields42 {
+    exact: Vec<[f64; 2]>,
+    approx: Vec<[f64; 2]>,
+    determined: Vec<bool>,
+    undetermined: usize,
+}
+
+fn fields_4_2(m: usize, f: F3) -> Fields42 {
     let h = 2.0 / (m - 1) as f64;
     let axis: Vec<f64> = (0..m).map(|i| -1.0 + i as f64 * h).collect();
     let coords = [axis.clone(), axis.clone(), axis];
-    let pts: Vec<[f64; 3]> = (0..m * m * m)
-        .map(|i| [i % m, (i / m) % m, i / (m * m)].map(|q| -1.0 + q as f64 * h))
+    let vals: Vec<_> = (0..m * m * m)
+        .map(|i| f([i % m, (i / m) % m, i / (m * m)].map(|q| -1.0 + q as f64 * h)))
         .collect();
+    let values: Vec<f64> = vals.iter().map(|v| v.0).collect();
+    let grads = Gradients::Given(vals.iter().map(|v| v.1).collect());
+    let c = trivariate_curvature([m; 3], &coords, &values, &grads).expect("a valid grid");
+    let exact = vals
+        .iter()
+        .map(|v| {
+            let k = trivariate_exact(v.1, v.2);
+            [(k[0] + k[1] + k[2]) / 3.0, k[0] * k[1] * k[2]]
+        })
+        .collect();
+    let approx = c.h.iter().zip(&c.k).map(|(&h, &k)| [h, k]).collect();
+    Fields42 {
+        exact,
+        approx,
+        determined: c.determined,
+        undetermined: c.undetermined,
+    }
+}
+
+/// The H Table 4.2 function of row `row` (1-based, 1..=6) on the `m³` grid over `[-1,1]³`
+/// (exact gradients): `[exact H, approximated H, exact K, approximated K]`, x fastest, NaN
+/// where the fit is undetermined — the fields of H Figs 4.9–4.12. `None` for another row or
+/// `m < 2`.
+pub fn table_4_2_fields(row: usize, m: usize) -> Option<[Vec<f64>; 4]> {
+    if m < 2 || row == 0 || row > T42.len() {
+        return None;
+    }
+    let fl = fields_4_2(m, T42[row - 1].2);
+    let col = |v: &[[f64; 2]], i: usize| v.iter().map(|x| x[i]).collect::<Vec<f64>>();
+    Some([
+        col(&fl.exact, 0),
+        col(&fl.approx, 0),
+        col(&fl.exact, 1),
+        col(&fl.approx, 1),
+    ])
+}
+
+/// The name of Table 4.2's row `row` (1-based), as in the thesis.
+pub fn table_4_2_name(row: usize) -> Option<&'static str> {
+    T42.get(row.checked_sub(1)?).map(|r| r.0)
+}
+
+/// Table 4.2 (H p. 88) on an `m³` grid (the thesis: m = 26), exact gradients.
+pub fn table_4_2(m: usize) -> Vec<TableRow> {
     T42.iter()
         .enumerate()
         .map(|(r, &(name, thesis, f))| {
-            let vals: Vec<_> = pts.iter().map(|&p| f(p)).collect();
-            let values: Vec<f64> = vals.iter().map(|v| v.0).collect();
-            let grads = Gradients::Given(vals.iter().map(|v| v.1).collect());
-            let c = trivariate_curvature([m; 3], &coords, &values, &grads).expect("a valid grid");
+            let fl = fields_4_2(m, f);
             let (mut all, mut inner) = ([0.0; 2], [0.0; 2]);
             let (mut na, mut ni) = (0, 0);
-            for (i, v) in vals.iter().enumerate() {
-                if !c.determined[i] {
+            for (i, (ex, ap)) in fl.exact.iter().zip(&fl.approx).enumerate() {
+                if !fl.determined[i] {
                     continue;
                 }
-                let k = trivariate_exact(v.1, v.2);
-                let ex = [(k[0] + k[1] + k[2]) / 3.0, k[0] * k[1] * k[2]];
-                let ap = [c.h[i], c.k[i]];
                 let q = [i % m, (i / m) % m, i / (m * m)];
                 let interior = q.iter().all(|&x| x > 0 && x + 1 < m);
                 na += 1;
@@ -345,7 +391,7 @@ pub fn table_4_2(m: usize) -> Vec<TableRow> {
                 thesis: thesis.to_vec(),
                 rms: rms(&all, na),
                 rms_interior: rms(&inner, ni),
-                undetermined: c.undetermined,
+                undetermined: fl.undetermined,
             }
         })
         .collect()

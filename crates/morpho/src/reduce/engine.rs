@@ -386,6 +386,7 @@ fn vertex_curvature(
     let so = SurfaceOptions {
         normals: opts.normals.clone(),
         ring: 1,
+        ..Default::default()
     };
     let c = surface_curvature(mesh, &so)?;
     let mut a = c.a;
