@@ -1,0 +1,124 @@
+#!/usr/bin/env python3
+"""Issue 18 numbers: point-in-polygon and point-in-mesh queries, morpho's flintstone tree
+against shapely (GEOS, prepared ``contains_xy``) and trimesh (``contains``, ray tests) on the
+same inputs in the same run.
+
+    python bench/flint_peers.py [--morpho target/release/morpho] [--vertices 1000000] [--queries 1000000]
+
+2D: the Great Britain coast (``../shared/data/polygons``) upsampled to about ``--vertices``
+vertices (points inserted along each edge: the same shape), ``--queries`` uniform points in its
+bounding box. 3D: the horse (97k triangles), queries uniform in its bounding box. morpho's
+figures are the CLI's own ``timings.build`` and ``timings.query`` (reading and writing the CSVs
+excluded), with ``RAYON_NUM_THREADS=1`` for the single-thread line; the answers are compared
+with the peer's (points exactly on the boundary excepted). Minimum of ``--rounds``.
+"""
+
+import argparse
+import gzip
+import json
+import os
+import subprocess
+import tempfile
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, "..", "..", "shared", "data")
+
+
+def best(f, rounds):
+    out, t = None, []
+    for _ in range(rounds):
+        s = time.perf_counter()
+        out = f()
+        t.append(time.perf_counter() - s)
+    return min(t), out
+
+
+def morpho_contains(exe, shape, queries, out, rep, threads, rounds):
+    env = dict(os.environ)
+    if threads:
+        env["RAYON_NUM_THREADS"] = str(threads)
+    b, q = [], []
+    for _ in range(rounds):
+        subprocess.run([exe, "flint", "contains", shape, queries, "-o", out, "--report", rep],
+                       check=True, capture_output=True, env=env)
+        r = json.load(open(rep))
+        b.append(r["timings"]["build"])
+        q.append(r["timings"]["query"])
+    inside = np.loadtxt(out, delimiter=",", skiprows=1, usecols=-1).astype(int)
+    return min(b), min(q), inside
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--morpho", default=os.path.join(HERE, "..", "target", "release", "morpho"))
+    ap.add_argument("--vertices", type=int, default=1_000_000)
+    ap.add_argument("--queries", type=int, default=1_000_000)
+    ap.add_argument("--mesh-queries", type=int, default=200_000)
+    ap.add_argument("--rounds", type=int, default=3)
+    a = ap.parse_args()
+    import shapely
+    import rtree  # noqa: F401  trimesh's ray tests need it to stay fast
+
+    d = tempfile.mkdtemp()
+    rep, out = os.path.join(d, "r.json"), os.path.join(d, "o.csv")
+    print(f"load average {os.getloadavg()[0]:.1f}, {os.cpu_count()} cores")
+    # 2D
+    xy = np.loadtxt(os.path.join(DATA, "polygons", "coast_great_britain_ne10m.csv"), delimiter=",",
+                    skiprows=1)
+    if np.all(xy[0] == xy[-1]):
+        xy = xy[:-1]
+    k = max(1, a.vertices // len(xy))
+    nxt = np.roll(xy, -1, axis=0)
+    t = np.arange(k)[None, :, None] / k
+    up = (xy[:, None, :] * (1 - t) + nxt[:, None, :] * t).reshape(-1, 2)
+    poly_csv = os.path.join(d, "poly.csv")
+    np.savetxt(poly_csv, up, delimiter=",", header="x,y", comments="", fmt="%.17g")
+    rng = np.random.default_rng(18)
+    lo, hi = up.min(axis=0), up.max(axis=0)
+    q = lo + rng.random((a.queries, 2)) * (hi - lo)
+    q_csv = os.path.join(d, "q.csv")
+    np.savetxt(q_csv, q, delimiter=",", header="x,y", comments="", fmt="%.17g")
+    poly = shapely.Polygon(up)
+    t_prep, _ = best(lambda: shapely.prepare(shapely.Polygon(up)), a.rounds)
+    shapely.prepare(poly)
+    t_sh, sh = best(lambda: shapely.contains_xy(poly, q[:, 0], q[:, 1]), a.rounds)
+    t_dp, _ = best(lambda: shapely.simplify(poly, 1e-3, preserve_topology=False), a.rounds)
+    print(f"2D: GB coast upsampled to {len(up):,} vertices, {len(q):,} queries")
+    print(f"  shapely prepare {t_prep:.3f} s, contains_xy {t_sh:.3f} s = {len(q) / t_sh / 1e6:.2f} M/s;"
+          f" Douglas–Peucker (simplify) {t_dp:.3f} s")
+    for threads in [1, 0]:
+        b, qt, ins = morpho_contains(a.morpho, poly_csv, q_csv, out, rep, threads, a.rounds)
+        agree = np.mean((ins == 1) == sh)
+        name = "1 thread" if threads == 1 else "all cores"
+        print(f"  morpho {name:9s} build {b:.3f} s ({b / t_dp:.2f}× DP), queries {qt:.3f} s = "
+              f"{len(q) / qt / 1e6:.2f} M/s ({t_sh / qt:.2f}× shapely); answers agree {100 * agree:.4f} %")
+    # 3D
+    import trimesh
+
+    with gzip.open(os.path.join(DATA, "meshes", "horse.obj.gz"), "rt") as f:
+        m = trimesh.load(trimesh.util.wrap_as_stream(f.read()), file_type="obj", process=False)
+    mesh_ply = os.path.join(d, "horse.ply")
+    m.export(mesh_ply)
+    lo, hi = m.bounds
+    q3 = lo + rng.random((a.mesh_queries, 3)) * (hi - lo)
+    q3_csv = os.path.join(d, "q3.csv")
+    np.savetxt(q3_csv, q3, delimiter=",", header="x,y,z", comments="", fmt="%.17g")
+    # trimesh's ray tests hold arrays per query × candidate triangle: batches keep it in memory
+    # (one call on 20k points took 22 GB here)
+    t_tm, tm = best(lambda: np.concatenate([m.contains(q3[i:i + 200])
+                                            for i in range(0, len(q3), 200)]), 1)
+    print(f"3D: horse {len(m.faces):,} triangles, {len(q3):,} queries")
+    print(f"  trimesh contains {t_tm:.3f} s = {len(q3) / t_tm / 1e6:.3f} M/s")
+    for threads in [1, 0]:
+        b, qt, ins = morpho_contains(a.morpho, mesh_ply, q3_csv, out, rep, threads, a.rounds)
+        agree = np.mean((ins == 1) == tm)
+        name = "1 thread" if threads == 1 else "all cores"
+        print(f"  morpho {name:9s} build {b:.3f} s, queries {qt:.3f} s = {len(q3) / qt / 1e6:.2f} M/s "
+              f"({t_tm / qt:.1f}× trimesh); answers agree {100 * agree:.3f} %")
+
+
+if __name__ == "__main__":
+    main()
