@@ -34,7 +34,9 @@ def test_info_open_mesh():
 
 def test_curvature_matches_cli(tmp_path, cli, data):
     src = data / "meshes" / "spot.obj"
-    cli("curvature", src, "-o", tmp_path / "k.csv")
+    # the CLI's default for estimated normals is jet normals; morpho.curvature keeps the
+    # thesis's area-weighted normals (its documented default)
+    cli("curvature", src, "--normals", "area", "-o", tmp_path / "k.csv")
     with open(tmp_path / "k.csv") as fh:
         rows = list(csv.DictReader(fh))
     d = morpho.read(src)
