@@ -33,6 +33,7 @@
 //! [`center_interval_3d`]); the brute-force graphs of Thm 3.1 cost O(N^{k+1}).
 
 use crate::geom::distance::dot_sign;
+use crate::geom::near_sphere::{Lift, NearSphere};
 use crate::geom::predicates::raw;
 use crate::geom::vec::{cross, dot, sub};
 
@@ -470,6 +471,9 @@ pub struct TriFrame {
     m: [f64; 3],
     r2: f64,
     n: [f64; 3],
+    /// A sphere the points lie near, with the corners' lifts: in-sphere tests through
+    /// [`NearSphere::insphere`] (same signs, fewer exact evaluations on nearly cospherical sets).
+    near: Option<(NearSphere, [Lift; 3])>,
 }
 
 impl TriFrame {
@@ -481,7 +485,30 @@ impl TriFrame {
             m,
             r2,
             n,
+            near: None,
         })
+    }
+    /// The frame with in-sphere tests filtered by the reference sphere `s` (see
+    /// [`NearSphere`]); the results are identical.
+    pub fn with_near(mut self, s: Option<NearSphere>) -> Self {
+        self.near = s.map(|s| (s, self.t.map(|x| s.lift(x))));
+        self
+    }
+    /// `insphere` of the corners (as (b, a, c) when `swap`, else (a, b, c)), y and x.
+    #[inline]
+    fn insphere_at(&self, swap: bool, y: [f64; 3], x: [f64; 3]) -> f64 {
+        let [a, b, c] = self.t;
+        let (p, q) = if swap { (b, a) } else { (a, b) };
+        match &self.near {
+            None => raw::insphere(p, q, c, y, x),
+            Some((s, l)) => {
+                let (lp, lq) = if swap { (l[1], l[0]) } else { (l[0], l[1]) };
+                s.insphere(
+                    [p, q, c, y, x],
+                    [Some(lp), Some(lq), Some(l[2]), None, None],
+                )
+            }
+        }
     }
     /// The interval before any point is added.
     pub fn start(&self) -> CenterInterval {
@@ -526,32 +553,31 @@ impl TriFrame {
     /// decided by exact in-sphere tests (see [`EdgeFrame::add`]).
     pub fn add(&self, iv: &mut CenterInterval, x: [f64; 3]) {
         let (side, tau) = self.tau(x);
-        let [a, b, c] = self.t;
         if side > 0.0 {
             // above: (b, a, c, y) is positively oriented
             let better = match iv.hi_at {
                 None => true,
-                Some(y) => raw::insphere(b, a, c, y, x) > 0.0,
+                Some(y) => self.insphere_at(true, y, x) > 0.0,
             };
             if better {
                 iv.hi = tau;
                 iv.hi_at = Some(x);
                 if let Some(l) = iv.lo_at {
                     iv.lo = self.tau(l).1;
-                    iv.settle(raw::insphere(b, a, c, x, l));
+                    iv.settle(self.insphere_at(true, x, l));
                 }
             }
         } else if side < 0.0 {
             let better = match iv.lo_at {
                 None => true,
-                Some(y) => raw::insphere(a, b, c, y, x) > 0.0,
+                Some(y) => self.insphere_at(false, y, x) > 0.0,
             };
             if better {
                 iv.lo = tau;
                 iv.lo_at = Some(x);
                 if let Some(h) = iv.hi_at {
                     iv.hi = self.tau(h).1;
-                    iv.settle(raw::insphere(b, a, c, h, x));
+                    iv.settle(self.insphere_at(true, h, x));
                 }
             }
         } else {

@@ -521,6 +521,51 @@ mod beyond3_oracle {
         check(&sph, &cs);
     }
 
+    /// Integer points with x² + y² + z² = 50 (84 of them) times `scale`, rounded, then scaled by
+    /// the power of two that `graph_3d` applies at extreme scales: no longer exactly cospherical
+    /// (the rounding moves them by ~1e-16 relative; points with the same coordinate magnitudes
+    /// stay on one sphere), so every in-sphere test is nearly or exactly degenerate.
+    pub(super) fn rounded_sphere(scale: f64, max: usize) -> Vec<[f64; 3]> {
+        let mut v = Vec::new();
+        for x in -8i32..=8 {
+            for y in -8i32..=8 {
+                for z in -8i32..=8 {
+                    if x * x + y * y + z * z == 50 {
+                        v.push([x as f64, y as f64, z as f64].map(|c| c * scale));
+                    }
+                }
+            }
+        }
+        v.truncate(max);
+        let m = v.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+        let s = crate::geom::exact::power_of_two_scale(m);
+        v.iter().map(|q| q.map(|c| c * s)).collect()
+    }
+
+    /// Issue 17 (B): c = −1 (the brute force over every triple) on nearly cospherical points,
+    /// where the in-sphere filter of `geom::near_sphere` decides most tests: the brute force's
+    /// triangles and γ-values (the oracle computes its intervals without the filter).
+    #[test]
+    fn beyond_3d_matches_brute_on_rounded_cospherical_sets() {
+        for scale in [1e-300, 1e150, 0.1] {
+            let p = rounded_sphere(scale, 20);
+            assert_eq!(p.len(), 20);
+            check(&p, &[-1.0]);
+        }
+    }
+
+    /// Found while testing issue 17 (B), not fixed: for c > −1 the floating-point filters of
+    /// `beyond_dt_3d` (flood regions, partners, cone filter) drop triangles of
+    /// γ(\[-1,1\],\[c,1\]) on nearly cospherical points — at c = −0.5 on these 20 points at
+    /// 1e-300 e.g. the triangle of vertices 0, 1, 19 (a gap interval, c₁′ ≈ −0.128 over all
+    /// points, checked in exact rational arithmetic) is missing. The same with and without
+    /// the in-sphere filter (the exact decisions are not involved).
+    #[test]
+    #[ignore = "known wrong: beyond_dt_3d's float filters at c > -1 on rounded cospherical points"]
+    fn beyond_3d_matches_brute_on_rounded_cospherical_sets_above_minus_one() {
+        check(&rounded_sphere(1e-300, 20), &[-0.5]);
+    }
+
     #[test]
     fn beyond_3d_matches_brute_with_duplicates_and_coplanar_points() {
         let cs = [-0.05, -0.2, -0.5, -1.0];
