@@ -45,10 +45,15 @@
 //! exact ones either way. The filters of steps 2–4 are evaluated in floating point with a
 //! relative slack of 1e-6; a triangle could be discarded wrongly only if its circumcentre's
 //! rounding error exceeded that (near-collinear triangles with a condition number beyond ~10⁹).
-//! **Known wrong** (issue 17, found with the rounded cospherical sets): at c = −0.5 on 20
-//! integer points of a sphere scaled by 1e-300 these filters drop triangles the brute force
-//! keeps (the ignored test `beyond_3d_matches_brute_on_rounded_cospherical_sets_above_minus_one`).
-//! The final decision (step 5) is the exact one of [`TriFrame`].
+//! On nearly cospherical sets they are not what fails: issue 17's c = −0.5 misses on 20
+//! rounded lattice points of a sphere (1e-300) passed every filter and were lost in step 5,
+//! where a point nearly on the triangle's circumcircle (on it before rounding, so nearly in its
+//! plane) got a meaningless floating-point offset τ = q/2h (two rounding-sized numbers) that
+//! passed ±F and ended the scan early; the brute-force oracle shared the error (c₁′ = −1 for
+//! triangles whose exact value is ≈ −0.128). [`TriFrame`] now takes τ from exact expansions
+//! whenever its error bound does not certify the float quotient (`gamma::exact_offset`).
+//! The final decision (step 5) is the one of [`TriFrame`]: binding points by exact predicates,
+//! γ-values from offsets accurate to ~1e-10 (compared with c in floating point).
 //!
 //! # Complexity (honest)
 //! The field costs O(N) cells and one nearest-point query each. A *closed* vertex costs

@@ -554,16 +554,20 @@ mod beyond3_oracle {
         }
     }
 
-    /// Found while testing issue 17 (B), not fixed: for c > −1 the floating-point filters of
-    /// `beyond_dt_3d` (flood regions, partners, cone filter) drop triangles of
-    /// γ(\[-1,1\],\[c,1\]) on nearly cospherical points — at c = −0.5 on these 20 points at
-    /// 1e-300 e.g. the triangle of vertices 0, 1, 19 (a gap interval, c₁′ ≈ −0.128 over all
-    /// points, checked in exact rational arithmetic) is missing. The same with and without
-    /// the in-sphere filter (the exact decisions are not involved).
+    /// Issue 17 (B), c > −1 on nearly cospherical points: a point nearly on a triangle's
+    /// circumcircle (exactly on it before rounding) lies nearly in its plane, and its offset
+    /// τ = q / 2h, a quotient of two rounding-sized numbers, was meaningless in floating point:
+    /// it made the oracle's γ-values wrong (the triangle 0, 1, 19 at 1e-300: c₁′ = −1 instead
+    /// of ≈ −0.128, checked in exact rational arithmetic) and stopped `beyond_dt_3d`'s exact
+    /// decisions early (2, 6, 17 and 3, 16, 18 missing). Those offsets now come from exact
+    /// expansions (`gamma::exact_offset`).
     #[test]
-    #[ignore = "known wrong: beyond_dt_3d's float filters at c > -1 on rounded cospherical points"]
     fn beyond_3d_matches_brute_on_rounded_cospherical_sets_above_minus_one() {
-        check(&rounded_sphere(1e-300, 20), &[-0.5]);
+        for scale in [1e-300, 1e-150, 1.0, 1e150, 1e300] {
+            let p = rounded_sphere(scale, 20);
+            assert_eq!(p.len(), 20);
+            check(&p, &[-0.9, -0.5, 0.5]);
+        }
     }
 
     #[test]
