@@ -22,6 +22,7 @@ mod enclosing;
 pub(crate) mod exact;
 pub(crate) mod expansion;
 pub(crate) mod grid;
+pub(crate) mod near_sphere;
 // Exact intersection tests of segments and triangles (2D and 3D): a namespace of its own because
 // its names (`segments_intersect`, `triangles_intersect`, …) only make sense next to each other.
 pub mod intersect;

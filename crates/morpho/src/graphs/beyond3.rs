@@ -37,10 +37,23 @@
 //!    trusted, and it is kept when c₁′ ≥ c.
 //!
 //! c = −1 (μ = 0, every triple whose closed triangle holds no other point) is the brute force
-//! over all triples. The filters of steps 2–4 are evaluated in floating point with a relative
-//! slack of 1e-6; a triangle could be discarded wrongly only if its circumcentre's rounding
-//! error exceeded that (near-collinear triangles with a condition number beyond ~10⁹). The
-//! final decision (step 5) is the exact one of [`TriFrame`].
+//! over all triples. The exact in-sphere tests of step 5 go through [`NearSphere`] with the
+//! circumsphere of the largest tetrahedron as reference: on points that lie within rounding of
+//! one sphere (cospherical integer points scaled by 1e-300, say — every test nearly degenerate)
+//! it decides most of them in floating point with a certified error bound instead of Shewchuk's
+//! expansion stages (40 such points at c = −1: 1.3 → 0.25–0.35 s CPU); the signs are the
+//! exact ones either way. The filters of steps 2–4 are evaluated in floating point with a
+//! relative slack of 1e-6; a triangle could be discarded wrongly only if its circumcentre's
+//! rounding error exceeded that (near-collinear triangles with a condition number beyond ~10⁹).
+//! On nearly cospherical sets they are not what fails: issue 17's c = −0.5 misses on 20
+//! rounded lattice points of a sphere (1e-300) passed every filter and were lost in step 5,
+//! where a point nearly on the triangle's circumcircle (on it before rounding, so nearly in its
+//! plane) got a meaningless floating-point offset τ = q/2h (two rounding-sized numbers) that
+//! passed ±F and ended the scan early; the brute-force oracle shared the error (c₁′ = −1 for
+//! triangles whose exact value is ≈ −0.128). [`TriFrame`] now takes τ from exact expansions
+//! whenever its error bound does not certify the float quotient (`gamma::exact_offset`).
+//! The final decision (step 5) is the one of [`TriFrame`]: binding points by exact predicates,
+//! γ-values from offsets accurate to ~1e-10 (compared with c in floating point).
 //!
 //! # Complexity (honest)
 //! The field costs O(N) cells and one nearest-point query each. A *closed* vertex costs
@@ -65,6 +78,7 @@ use super::fast::{coords3, Candidates3};
 use super::gamma::{offset_of, triangle_circle, CenterInterval, TriFrame};
 use crate::delaunay::d3::Delaunay3;
 use crate::geom::grid::PointGrid as Grid;
+use crate::geom::near_sphere::NearSphere;
 use rayon::prelude::*;
 use std::collections::HashSet;
 
@@ -98,7 +112,7 @@ pub fn beyond_dt_3d(
     let existing: HashSet<[u32; 3]> = cand.triangles.iter().copied().collect();
     let grid = Grid::new(&p, 2.0);
     let cabs = c.abs().min(1.0);
-    let dec = Decider::new(&p, &grid, c);
+    let dec = Decider::new(&p, &grid, c, reference_sphere(d, &p));
     if cabs >= 1.0 {
         // μ = 0: nothing restricts the triples (the output is every triangle whose closed
         // triangle holds no other point): the brute force of Thm 3.1
@@ -247,10 +261,12 @@ struct Decider<'a> {
     mu: f64,
     /// radius of the region holding every binding point, over r (∞ for c = −1)
     reach_over_r: f64,
+    /// the in-sphere filter's reference sphere (see [`reference_sphere`])
+    near: Option<NearSphere>,
 }
 
 impl<'a> Decider<'a> {
-    fn new(p: &'a [[f64; 3]], grid: &'a Grid<'a, 3>, c: f64) -> Self {
+    fn new(p: &'a [[f64; 3]], grid: &'a Grid<'a, 3>, c: f64, near: Option<NearSphere>) -> Self {
         let cabs = c.abs().min(1.0);
         let (mu, reach_over_r) = if cabs >= 1.0 {
             (0.0, f64::INFINITY)
@@ -265,6 +281,7 @@ impl<'a> Decider<'a> {
             c,
             mu,
             reach_over_r,
+            near,
         }
     }
 
@@ -272,7 +289,7 @@ impl<'a> Decider<'a> {
     fn decide(&self, t: [u32; 3]) -> Option<CenterInterval> {
         let p = self.p;
         let [pa, pb, pc] = t.map(|v| p[v as usize]);
-        let f = TriFrame::new(pa, pb, pc)?;
+        let f = TriFrame::new(pa, pb, pc)?.with_near(self.near);
         let (m, r2, _) = triangle_circle(pa, pb, pc)?;
         let r = r2.sqrt();
         let mut iv = f.start();
@@ -322,6 +339,30 @@ impl<'a> Decider<'a> {
         let (_, c1) = iv.gamma_values()?;
         (c1 >= self.c).then_some(iv)
     }
+}
+
+/// The circumsphere of the tetrahedron of largest volume: the reference sphere of the exact
+/// decisions' in-sphere filter ([`NearSphere`]). When the points lie near one sphere (a
+/// cospherical set after rounding), every in-sphere test of step 5 is nearly degenerate and the
+/// filter decides most of them without expansion arithmetic; otherwise it is rarely consulted
+/// (the floating-point stage decides first) and never changes a sign.
+fn reference_sphere(d: &Delaunay3, p: &[[f64; 3]]) -> Option<NearSphere> {
+    let vol = |t: &[u32; 4]| {
+        let [a, b, c, e] = t.map(|v| p[v as usize]);
+        let u = [a[0] - e[0], a[1] - e[1], a[2] - e[2]];
+        let v = [b[0] - e[0], b[1] - e[1], b[2] - e[2]];
+        let w = [c[0] - e[0], c[1] - e[1], c[2] - e[2]];
+        (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+            + u[2] * (v[0] * w[1] - v[1] * w[0]))
+            .abs()
+    };
+    let t = d
+        .tets
+        .iter()
+        .filter(|t| t.iter().all(|&v| (v as usize) < p.len()))
+        .max_by(|x, y| vol(x).total_cmp(&vol(y)))?;
+    let [a, b, c, e] = t.map(|v| p[v as usize]);
+    NearSphere::through(a, b, c, e)
 }
 
 fn min_dist(x: [f64; 3], lo: [f64; 3], hi: [f64; 3]) -> f64 {

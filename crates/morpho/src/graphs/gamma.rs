@@ -27,12 +27,17 @@
 //! Sidedness (the sign of h) is decided by the exact orientation predicates. The offsets τ are
 //! computed in floating point from exactly representable q and h for the unnormalised normal,
 //! so for inputs with small integer coordinates all comparisons of τ values are exact (ties
-//! stay ties: IEEE division is correctly rounded); otherwise they are accurate to rounding.
+//! stay ties: IEEE division is correctly rounded); otherwise they are accurate to rounding. In
+//! 3D a first-order error bound checks each binding point's τ (relative 1e-10 of |τ| + r/|n|)
+//! and falls back to exact expansions ([`exact_offset`]) when it fails — points nearly in the
+//! plane, e.g. nearly on the circumcircle of a nearly cospherical set, where q and h are both
+//! rounding-sized and the float quotient meaningless. (2D edges keep the float quotient.)
 //!
 //! Complexity: one simplex against N points costs O(N) ([`center_interval_2d`],
 //! [`center_interval_3d`]); the brute-force graphs of Thm 3.1 cost O(N^{k+1}).
 
 use crate::geom::distance::dot_sign;
+use crate::geom::near_sphere::{Lift, NearSphere};
 use crate::geom::predicates::raw;
 use crate::geom::vec::{cross, dot, sub};
 
@@ -463,6 +468,45 @@ pub fn triangle_circle(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<([f64; 3
     Some((m, dot(off, off), n))
 }
 
+/// The offset τ = q / 2h of x for the triangle (a, b, c) (normal (b − a) × (c − a)) from exact
+/// expansions, rounded once at the end (relative error a few ε): with u = b − a, v = c − a,
+/// w = x − a, n = u × v, the circumcentre is a + (|u|² v×n + |v|² n×u) / 2|n|², so
+/// h = w·n and τ = (|w|²|n|² − w·(|u|² v×n + |v|² n×u)) / (2|n|²·w·n). Computed on the
+/// differences scaled by a power of two (exact) so that nothing over- or underflows; x must not
+/// lie in the plane. ±f64::MAX when the quotient overflows.
+pub fn exact_offset(t: [[f64; 3]; 3], x: [f64; 3]) -> f64 {
+    use crate::geom::exact::power_of_two_scale;
+    use crate::geom::expansion::{cross as xcross, dot as xdot, Expansion};
+    let [a, b, c] = t;
+    let diff = |p: [f64; 3]| [0, 1, 2].map(|k| Expansion::diff(p[k], a[k]));
+    let (u, v, w) = (diff(b), diff(c), diff(x));
+    let big = [u.clone(), v.clone(), w.clone()]
+        .iter()
+        .flatten()
+        .flat_map(|e| e.0.iter().copied())
+        .fold(0.0f64, |m, y| m.max(y.abs()));
+    let s = power_of_two_scale(big);
+    let sc = |e: [Expansion; 3]| e.map(|y| y.scale(s));
+    let (u, v, w) = (sc(u), sc(v), sc(w));
+    let n = xcross(&u, &v);
+    let nn = xdot(&n, &n);
+    let (uu, vv, ww) = (xdot(&u, &u), xdot(&v, &v), xdot(&w, &w));
+    let (t1, t2) = (xcross(&v, &n), xcross(&n, &u));
+    let num = ww
+        .mul(&nn)
+        .sub(&xdot(&w, &t1).mul(&uu))
+        .sub(&xdot(&w, &t2).mul(&vv));
+    let den = xdot(&w, &n).mul(&nn).scale(2.0);
+    let est = |e: &Expansion| e.0.iter().sum::<f64>();
+    // τ is homogeneous of degree −1: τ(p) = s·τ(s·p)
+    let tau = est(&num) / est(&den) * s;
+    if tau.is_nan() {
+        0.0
+    } else {
+        tau.clamp(-f64::MAX, f64::MAX)
+    }
+}
+
 /// The frame of a 3D triangle (a, b, c) for computing its [`CenterInterval`] point by point.
 #[derive(Debug, Clone, Copy)]
 pub struct TriFrame {
@@ -470,18 +514,65 @@ pub struct TriFrame {
     m: [f64; 3],
     r2: f64,
     n: [f64; 3],
+    /// A sphere the points lie near, with the corners' lifts: in-sphere tests through
+    /// [`NearSphere::insphere`] (same signs, fewer exact evaluations on nearly cospherical sets).
+    near: Option<(NearSphere, [Lift; 3])>,
+    /// |n|, r/|n| and the error scales of the float circumcentre (see [`TriFrame::offset`]).
+    n_len: f64,
+    r_over_n: f64,
+    /// bound of the rounding error of the float circumcentre m over ε (first order, generous)
+    m_err: f64,
+    /// the factor (1 + κ), κ = |b − a||c − a|/|n| the triangle's condition
+    cond: f64,
 }
+
+/// Relative accuracy (against |τ| + r/|n|) a floating-point offset τ must be certified to by
+/// the error bound of [`TriFrame::offset`]; otherwise it is recomputed from exact expansions.
+const TAU_TOL: f64 = 1e-10;
 
 impl TriFrame {
     /// Frame of the triangle; normal (b − a) × (c − a). `None` when the corners are collinear.
     pub fn new(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<Self> {
         let (m, r2, n) = triangle_circle(a, b, c)?;
+        let (u, v) = (sub(b, a), sub(c, a));
+        let (lu, lv, n_len) = (dot(u, u).sqrt(), dot(v, v).sqrt(), dot(n, n).sqrt());
+        let cond = 1.0 + lu * lv / n_len;
+        // m = a + (|u|² v×n + |v|² n×u) / 2|n|²: its error is a few ε of S = (|u|²|v| + |v|²|u|)/|n|
+        // from the products, plus the error of n (≈ 4ε|u||v|) propagated with factor ≈ 3S/|n|
+        let s = (lu * lu * lv + lv * lv * lu) / n_len;
         Some(TriFrame {
             t: [a, b, c],
             m,
             r2,
             n,
+            near: None,
+            n_len,
+            r_over_n: (r2 / dot(n, n)).sqrt(),
+            m_err: 64.0 * cond * s,
+            cond,
         })
+    }
+    /// The frame with in-sphere tests filtered by the reference sphere `s` (see
+    /// [`NearSphere`]); the results are identical.
+    pub fn with_near(mut self, s: Option<NearSphere>) -> Self {
+        self.near = s.map(|s| (s, self.t.map(|x| s.lift(x))));
+        self
+    }
+    /// `insphere` of the corners (as (b, a, c) when `swap`, else (a, b, c)), y and x.
+    #[inline]
+    fn insphere_at(&self, swap: bool, y: [f64; 3], x: [f64; 3]) -> f64 {
+        let [a, b, c] = self.t;
+        let (p, q) = if swap { (b, a) } else { (a, b) };
+        match &self.near {
+            None => raw::insphere(p, q, c, y, x),
+            Some((s, l)) => {
+                let (lp, lq) = if swap { (l[1], l[0]) } else { (l[0], l[1]) };
+                s.insphere(
+                    [p, q, c, y, x],
+                    [Some(lp), Some(lq), Some(l[2]), None, None],
+                )
+            }
+        }
     }
     /// The interval before any point is added.
     pub fn start(&self) -> CenterInterval {
@@ -489,16 +580,45 @@ impl TriFrame {
     }
     /// Side (+1 along the normal, −1 against, 0 in the plane; exact) and offset τ of x.
     pub fn tau(&self, x: [f64; 3]) -> (f64, f64) {
+        let side = self.side(x);
+        if side == 0.0 {
+            let dx = sub(x, self.m);
+            return (0.0, dot(dx, dx) - self.r2);
+        }
+        (side, self.offset(side, x))
+    }
+    /// Side of x: +1 along the normal, −1 against, 0 in the plane (exact).
+    #[inline]
+    fn side(&self, x: [f64; 3]) -> f64 {
         let [a, b, c] = self.t;
         // orient3d(a, b, c, x) > 0 when x is below, i.e. on the side opposite to n
-        let side = sign(-raw::orient3d(a, b, c, x));
+        sign(-raw::orient3d(a, b, c, x))
+    }
+    /// The offset τ = q / 2h of x off the plane (exact side `side`), accurate to a relative
+    /// [`TAU_TOL`] of |τ| + r/|n|: the floating-point value when a first-order error bound
+    /// certifies that, else the rounded quotient of exact expansions ([`exact_offset`]). For a
+    /// point nearly in the plane (on nearly cospherical sets: a point nearly on the
+    /// circumcircle) q and h are both tiny and the float quotient is meaningless.
+    fn offset(&self, side: f64, x: [f64; 3]) -> f64 {
         let dx = sub(x, self.m);
         let q = dot(dx, dx) - self.r2;
-        if side == 0.0 {
-            return (0.0, q);
-        }
         let h = dot(dx, self.n);
-        (side, tau_of(side, q, h))
+        if (h > 0.0) == (side > 0.0) && h != 0.0 {
+            let eps = f64::EPSILON;
+            let d = dot(dx, dx).sqrt();
+            let dm = eps * self.m_err;
+            // |h − h_exact| ≤ |δm||n| + |x − m||δn| + rounding; |q − q_exact| ≤ 2|x − m||δm| + …
+            let eh = dm * self.n_len + 64.0 * eps * self.cond * d * self.n_len;
+            let eq = 2.0 * d * dm + dm * dm + 8.0 * eps * (d * d + self.r2);
+            let t = q / (2.0 * h);
+            if h.abs() > 2.0 * eh {
+                let err = (t.abs() * eh + 0.5 * eq) / (h.abs() - eh);
+                if err <= TAU_TOL * (t.abs() + self.r_over_n) && t.is_finite() {
+                    return t;
+                }
+            }
+        }
+        exact_offset(self.t, x)
     }
     /// The 3D analogue of [`EdgeFrame::cocircular_ends`]: `above` (on the normal's side) and
     /// `below` the binding points, on one sphere with the corners (a triple of a cospherical
@@ -525,33 +645,33 @@ impl TriFrame {
     /// Narrows `iv` by point x (not a corner); binding points and the order of the ends are
     /// decided by exact in-sphere tests (see [`EdgeFrame::add`]).
     pub fn add(&self, iv: &mut CenterInterval, x: [f64; 3]) {
-        let (side, tau) = self.tau(x);
-        let [a, b, c] = self.t;
+        // τ only for the points that become binding ends
+        let side = self.side(x);
         if side > 0.0 {
             // above: (b, a, c, y) is positively oriented
             let better = match iv.hi_at {
                 None => true,
-                Some(y) => raw::insphere(b, a, c, y, x) > 0.0,
+                Some(y) => self.insphere_at(true, y, x) > 0.0,
             };
             if better {
-                iv.hi = tau;
+                iv.hi = self.offset(side, x);
                 iv.hi_at = Some(x);
                 if let Some(l) = iv.lo_at {
                     iv.lo = self.tau(l).1;
-                    iv.settle(raw::insphere(b, a, c, x, l));
+                    iv.settle(self.insphere_at(true, x, l));
                 }
             }
         } else if side < 0.0 {
             let better = match iv.lo_at {
                 None => true,
-                Some(y) => raw::insphere(a, b, c, y, x) > 0.0,
+                Some(y) => self.insphere_at(false, y, x) > 0.0,
             };
             if better {
-                iv.lo = tau;
+                iv.lo = self.offset(side, x);
                 iv.lo_at = Some(x);
                 if let Some(h) = iv.hi_at {
                     iv.hi = self.tau(h).1;
-                    iv.settle(raw::insphere(b, a, c, h, x));
+                    iv.settle(self.insphere_at(true, h, x));
                 }
             }
         } else {

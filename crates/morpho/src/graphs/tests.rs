@@ -451,9 +451,12 @@ mod beyond3_oracle {
         let known: HashSet<[u32; 3]> = cand.triangles.iter().copied().collect();
         let all = gamma_values_3d(&p);
         for &c in cs {
+            // c₁′ ≥ c; a gap's c₁′ is negative however small, even when it rounds to −0.0 (the
+            // candidates decide c₁′ ≥ 0 by the exact order of the ends, not by the value)
+            let reaches = |c1: f64| c1 > c || (c1 == c && !(c == 0.0 && c1.is_sign_negative()));
             let want: BTreeMap<[u32; 3], (f64, f64)> = all
                 .iter()
-                .filter(|(t, v)| v.1 >= c && !known.contains(t))
+                .filter(|(t, v)| reaches(v.1) && !known.contains(t))
                 .map(|(t, v)| (*t, *v))
                 .collect();
             let (tris, ivs) = beyond_dt_3d(&d, &cand, c);
@@ -519,6 +522,56 @@ mod beyond3_oracle {
         sph.push([0.0, 0.0, 0.0]);
         sph.push([1.0, 1.0, 1.0]);
         check(&sph, &cs);
+    }
+
+    /// Integer points with x² + y² + z² = 50 (84 of them) times `scale`, rounded, then scaled by
+    /// the power of two that `graph_3d` applies at extreme scales: no longer exactly cospherical
+    /// (the rounding moves them by ~1e-16 relative; points with the same coordinate magnitudes
+    /// stay on one sphere), so every in-sphere test is nearly or exactly degenerate.
+    pub(super) fn rounded_sphere(scale: f64, max: usize) -> Vec<[f64; 3]> {
+        let mut v = Vec::new();
+        for x in -8i32..=8 {
+            for y in -8i32..=8 {
+                for z in -8i32..=8 {
+                    if x * x + y * y + z * z == 50 {
+                        v.push([x as f64, y as f64, z as f64].map(|c| c * scale));
+                    }
+                }
+            }
+        }
+        v.truncate(max);
+        let m = v.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+        let s = crate::geom::exact::power_of_two_scale(m);
+        v.iter().map(|q| q.map(|c| c * s)).collect()
+    }
+
+    /// Issue 17 (B): c = −1 (the brute force over every triple) on nearly cospherical points,
+    /// where the in-sphere filter of `geom::near_sphere` decides most tests: the brute force's
+    /// triangles and γ-values (the oracle computes its intervals without the filter).
+    #[test]
+    fn beyond_3d_matches_brute_on_rounded_cospherical_sets() {
+        for scale in [1e-300, 1e150, 0.1] {
+            let p = rounded_sphere(scale, 20);
+            assert_eq!(p.len(), 20);
+            check(&p, &[-1.0]);
+        }
+    }
+
+    /// Issue 17 (B), c > −1 on nearly cospherical points: a point nearly on a triangle's
+    /// circumcircle (exactly on it before rounding) lies nearly in its plane, and its offset
+    /// τ = q / 2h, a quotient of two rounding-sized numbers, was meaningless in floating point:
+    /// it made the oracle's γ-values wrong (the triangle 0, 1, 19 at 1e-300: c₁′ = −1 instead
+    /// of ≈ −0.128, checked in exact rational arithmetic) and stopped `beyond_dt_3d`'s exact
+    /// decisions early (2, 6, 17 and 3, 16, 18 missing). Those offsets now come from exact
+    /// expansions (`gamma::exact_offset`). At c = 0 the oracle's filter must not take a gap's
+    /// c₁′ that rounds to −0.0 for ≥ 0 (see `check`).
+    #[test]
+    fn beyond_3d_matches_brute_on_rounded_cospherical_sets_above_minus_one() {
+        for scale in [1e-300, 1e-150, 1.0, 1e150, 1e300] {
+            let p = rounded_sphere(scale, 20);
+            assert_eq!(p.len(), 20);
+            check(&p, &[-0.9, -0.5, 0.0, 0.5]);
+        }
     }
 
     #[test]

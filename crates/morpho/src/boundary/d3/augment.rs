@@ -238,9 +238,10 @@ impl General3<'_> {
     ///    ball is empty (c₁′ ≥ 0) a far point inside the largest empty balls can still open a
     ///    gap whose far end passes c.
     ///
-    /// A rejection scans on until ub < c − [`UB_LOOKAHEAD`] (or the ball's points run out) so
-    /// that the cached bound also settles the next smaller c. Each ball's points are added
-    /// nearest to its centre first.
+    /// A rejection scans on until ub < c − [`UB_LOOKAHEAD`] (not below [`UB_FLOOR`], nor above c;
+    /// or until the ball's points run out) so that the cached bound also settles the next
+    /// smaller c. Each ball's points are added nearest to its centre first, cells wholly
+    /// outside the ball skipped.
     pub(super) fn gamma_decide(&self, t: [u32; 3], c: f64, first: &[u32]) -> Option<f64> {
         use crate::graphs::gamma::{triangle_circle, CenterInterval, TriFrame};
         let [pa, pb, pc] = t.map(|v| self.pt(v));
@@ -269,7 +270,7 @@ impl General3<'_> {
             };
         }
         let ub_of = |iv: &CenterInterval| iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
-        let stop = c - UB_LOOKAHEAD;
+        let stop = (c - UB_LOOKAHEAD).max(UB_FLOOR).min(c);
         // adds the points; true when rejected (ub below stop on the way, or below c at the end)
         let scan = |iv: &mut CenterInterval, ids: &mut dyn Iterator<Item = u32>| -> bool {
             for (j, z) in ids.enumerate() {
@@ -324,12 +325,27 @@ impl General3<'_> {
             }
             cells.clear();
             let (origin, cell) = (g.origin(), g.cell());
+            let r2s = radius * radius;
             g.for_cells(lo, hi, |k, ids| {
-                let mid = std::array::from_fn(|i| origin[i] + (k[i] as f64 + 0.5) * cell);
+                let mid: P = std::array::from_fn(|i| origin[i] + (k[i] as f64 + 0.5) * cell);
+                // a cell wholly outside the ball holds no point that `inside` admits: skip it
+                // (the points scanned, and their order, stay the same). The cell's box is
+                // widened for the rounding of the points' cell coordinates, the distance
+                // compared with room for its own rounding.
+                if !all {
+                    let d2: f64 = (0..3)
+                        .map(|i| {
+                            let half = 0.5 * cell * (1.0 + 1e-6) + 1e-12 * mid[i].abs();
+                            ((mid[i] - centre[i]).abs() - half).max(0.0).powi(2)
+                        })
+                        .sum();
+                    if d2 > r2s * (1.0 + 1e-6) {
+                        return;
+                    }
+                }
                 cells.push((depth(mid), ids));
             });
             cells.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-            let r2s = radius * radius;
             let inside = |z: &u32| {
                 all || {
                     let x = pts[*z as usize];

@@ -47,6 +47,12 @@ use std::collections::BinaryHeap;
 /// schedule), instead of rescanning it at every step.
 pub(super) const UB_LOOKAHEAD: f64 = 0.25;
 
+/// The lowest bound of c₁′ worth scanning for: the schedule's smallest c above −1 (c = −1 is
+/// decided by the closed triangle alone and never consults a cached bound, and c₁′ ≥ −1
+/// always). Without it the look-ahead of the rounds c ≤ −0.8 (c − 0.25 < −1) could never stop
+/// a rejected scan early. The decisions do not depend on it, only how much is rescanned.
+pub(super) const UB_FLOOR: f64 = -0.9;
+
 /// Heap entries: smallest key first, ties by the smallest item.
 pub(super) type Entry = MinKey<([u32; 3], u32)>;
 
