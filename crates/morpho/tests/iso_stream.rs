@@ -75,15 +75,7 @@ fn streamed(vol: &Volume, k: usize, opts: &IsoOptions) -> Result<IsoResult, Volu
     }
     Ok(IsoResult {
         mesh,
-        parts: sum.parts,
-        boundary_edges: sum.boundary_edges,
-        interior_boundary_edges: sum.interior_boundary_edges,
-        interior_holes: sum.interior_holes,
-        non_manifold_edges: sum.non_manifold_edges,
-        fan_points: sum.fan_points,
-        centroid_fallbacks: sum.centroid_fallbacks,
-        skipped_cells: sum.skipped_cells,
-        note: sum.note,
+        ..sum.figures
     })
 }
 

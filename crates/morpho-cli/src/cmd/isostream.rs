@@ -16,7 +16,7 @@
 //! RSS with 256 MiB slabs, under a 2 GiB address-space limit. `--largest-part` needs the whole
 //! mesh and is refused.
 
-use super::isosurface::{finite_extent, names, options, Args};
+use super::isosurface::{finite_extent, options, report_figures, Args};
 use crate::report::Report;
 use crate::Failure;
 use morpho::io::{self, ply::MeshSpool, Encoding};
@@ -147,23 +147,9 @@ pub fn run(args: &Args, report: &mut Report) -> Result<u8, Failure> {
         (opts.topology && sum.triangles > 0).then_some(&part as &dyn Fn(usize) -> u32);
     spool.finish(&args.output, |c| sum.resolve(c), part_fn)?;
     report.add_time("write", t2.elapsed().as_secs_f64());
-    let (method, normals) = names(args);
-    report.set("method", method);
-    report.set("normals", normals);
-    report.set("level", args.level);
+    report_figures(report, args, &sum.figures);
     report.set("stream", true);
     report.set("slab_slices", slab);
-    report.set("parts", sum.parts);
-    report.set("boundary_edges", sum.boundary_edges);
-    report.set("interior_holes", sum.interior_holes);
-    report.set("interior_boundary_edges", sum.interior_boundary_edges);
-    report.set("non_manifold_edges", sum.non_manifold_edges);
-    report.set("fan_points", sum.fan_points);
-    report.set("centroid_fallbacks", sum.centroid_fallbacks);
-    report.set("skipped_cells", sum.skipped_cells);
-    if let Some(n) = &sum.note {
-        report.set("note", n.clone());
-    }
     report.set("vertices", sum.edge_vertices + sum.interior_vertices);
     report.set("triangles", sum.triangles);
     report.set("input", args.input.display().to_string());

@@ -151,7 +151,7 @@ pub fn options(args: &Args) -> IsoOptions {
 }
 
 /// The report's names of the method and the normals.
-pub fn names(args: &Args) -> (&'static str, &'static str) {
+fn names(args: &Args) -> (&'static str, &'static str) {
     let method = match args.method {
         MethodArg::Decider => "decider",
         MethodArg::Tetra => "tetra",
@@ -166,9 +166,8 @@ pub fn names(args: &Args) -> (&'static str, &'static str) {
     (method, normals)
 }
 
-/// Extracts the surface, fills the report, applies `--largest-part`.
-pub fn process(vol: &Volume, args: &Args, report: &mut Report) -> Result<TriMesh, Failure> {
-    let r = isosurface(vol, &options(args))?;
+/// The report's method, normals, level and the result's figures (not its counts).
+pub fn report_figures(report: &mut Report, args: &Args, r: &morpho::volume::IsoResult) {
     let (method, normals) = names(args);
     report.set("method", method);
     report.set("normals", normals);
@@ -184,6 +183,12 @@ pub fn process(vol: &Volume, args: &Args, report: &mut Report) -> Result<TriMesh
     if let Some(n) = &r.note {
         report.set("note", n.clone());
     }
+}
+
+/// Extracts the surface, fills the report, applies `--largest-part`.
+pub fn process(vol: &Volume, args: &Args, report: &mut Report) -> Result<TriMesh, Failure> {
+    let r = isosurface(vol, &options(args))?;
+    report_figures(report, args, &r);
     let mut mesh = r.mesh;
     if args.largest_part {
         if let Some(p) = largest_part(&mesh) {

@@ -35,8 +35,7 @@
 //! Complexity: linear in the data size.
 
 use super::rawjson::{
-    beside, data_size, decode, encode, header_line, memory_for, open_data, output_type, read_data,
-    uniform, Codec, Sample,
+    beside, data_size, encode, header_line, open_data, output_type, uniform, Codec, Sample,
 };
 use super::volstream::{Data, Head, VolumeStream};
 use crate::volume::{Axes, Orientation, Volume};
@@ -326,16 +325,7 @@ fn source(path: &Path) -> Result<(Head, Data)> {
 /// Reads a volume (the data file is found relative to `path`).
 pub fn read(path: &Path) -> Result<Volume> {
     let (h, d) = source(path)?;
-    memory_for(h.dims, h.ty)?;
-    let (_, nbytes) = data_size(h.dims, h.ty)?;
-    let raw = read_data(d.reader, d.available, d.codec, d.skip, nbytes)?;
-    Ok(Volume {
-        dims: h.dims,
-        axes: h.axes,
-        data: decode(&raw, h.ty, h.big),
-        source_dtype: h.ty.source_dtype(),
-        orientation: h.orientation,
-    })
+    super::rawjson::load(h, d)
 }
 
 /// Opens the samples for reading slice by slice ([`super::open_volume_stream`]).

@@ -652,6 +652,12 @@ fn source(path: &Path) -> Result<(Head, Data)> {
 /// Reads a volume from its sidecar (the data file is found relative to `path`).
 pub fn read(path: &Path) -> Result<Volume> {
     let (h, d) = source(path)?;
+    load(h, d)
+}
+
+/// The whole volume from a parsed header and its opened data (MetaImage and sidecars; NRRD
+/// has its text encoding besides): the memory check, then every sample decoded to `f32`.
+pub(crate) fn load(h: Head, d: Data) -> Result<Volume> {
     memory_for(h.dims, h.ty)?;
     let (n, nbytes) = data_size(h.dims, h.ty)?;
     let raw = read_data(d.reader, d.available, d.codec, d.skip, nbytes)

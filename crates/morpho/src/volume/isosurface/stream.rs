@@ -30,7 +30,9 @@
 //! triangle union–find.
 
 use super::block::key_of_id;
-use super::{on_domain_boundary, perturbation, union, IsoBlock, IsoOptions, NormalMethod};
+use super::{
+    on_domain_boundary, perturbation, union, IsoBlock, IsoOptions, IsoResult, NormalMethod,
+};
 use crate::geom::{Point3, Vector3};
 use crate::mesh::TriMesh;
 use crate::volume::gradient::mesh_normals_where;
@@ -76,24 +78,9 @@ pub struct StreamSummary {
     pub interior_vertices: usize,
     /// Triangles emitted.
     pub triangles: usize,
-    /// As [`super::IsoResult`].
-    pub parts: usize,
-    /// As [`super::IsoResult`].
-    pub boundary_edges: usize,
-    /// As [`super::IsoResult`].
-    pub interior_boundary_edges: usize,
-    /// As [`super::IsoResult`].
-    pub interior_holes: usize,
-    /// As [`super::IsoResult`].
-    pub non_manifold_edges: usize,
-    /// As [`super::IsoResult`].
-    pub fan_points: usize,
-    /// As [`super::IsoResult`].
-    pub centroid_fallbacks: usize,
-    /// As [`super::IsoResult`].
-    pub skipped_cells: usize,
-    /// As [`super::IsoResult`].
-    pub note: Option<String>,
+    /// The figures of [`super::isosurface`]'s result (parts, boundary edges, holes, fan
+    /// points, skipped cells, note), with an empty mesh.
+    pub figures: IsoResult,
     /// Root triangle of each triangle's part (empty without topology).
     roots: Vec<u32>,
     /// The roots in increasing order: part label = position.
@@ -352,15 +339,18 @@ impl IsoStream {
             edge_vertices: self.next_vertex as usize,
             interior_vertices: self.next_interior as usize,
             triangles,
-            parts: if topo { root_list.len() } else { 0 },
-            boundary_edges: if topo { self.boundary.len() } else { 0 },
-            interior_boundary_edges: if topo { interior_boundary_edges } else { 0 },
-            interior_holes: if topo { interior_holes } else { 0 },
-            non_manifold_edges: if topo { self.nonman } else { 0 },
-            fan_points: self.fan_points,
-            centroid_fallbacks: self.centroid_fallbacks,
-            skipped_cells: self.skipped,
-            note,
+            figures: IsoResult {
+                mesh: TriMesh::default(),
+                parts: if topo { root_list.len() } else { 0 },
+                boundary_edges: if topo { self.boundary.len() } else { 0 },
+                interior_boundary_edges: if topo { interior_boundary_edges } else { 0 },
+                interior_holes: if topo { interior_holes } else { 0 },
+                non_manifold_edges: if topo { self.nonman } else { 0 },
+                fan_points: self.fan_points,
+                centroid_fallbacks: self.centroid_fallbacks,
+                skipped_cells: self.skipped,
+                note,
+            },
             roots: if topo { roots } else { Vec::new() },
             root_list: if topo { root_list } else { Vec::new() },
         })
