@@ -122,6 +122,18 @@ pub struct IsoBlock {
     pub zero_normals: bool,
 }
 
+impl IsoBlock {
+    /// Ids, normals, triangles and triangle cells match the vertices (what the stitchers
+    /// check of a block that may come from another process).
+    pub(super) fn consistent(&self) -> bool {
+        let nv = self.positions.len();
+        self.ids.len() == nv
+            && self.normals.as_ref().map_or(true, |n| n.len() == nv)
+            && self.triangles.iter().flatten().all(|&v| (v as usize) < nv)
+            && self.triangle_cells.len() == self.triangles.len()
+    }
+}
+
 /// Position of entity kind κ (as packed by `extract::key`) in the emission order: (L, S, σ).
 const ORDER: [(u64, u64, u64); 7] = [
     (0, 0, 0), // x-edge
@@ -161,7 +173,7 @@ pub(super) fn key_of_id(id: u64, d: [usize; 3]) -> u64 {
     key(kind as u64, x as usize, y as usize, z as usize)
 }
 
-fn cell_index(c: [usize; 3], d: [usize; 3]) -> u64 {
+pub(super) fn cell_index(c: [usize; 3], d: [usize; 3]) -> u64 {
     c[0] as u64 + d[0] as u64 * (c[1] as u64 + d[1] as u64 * c[2] as u64)
 }
 
@@ -413,14 +425,7 @@ pub fn stitch_blocks(
     }
     let g = grid.dims;
     for (b, blk) in blocks.iter().enumerate() {
-        let nv = blk.positions.len();
-        let normals_ok = blk.normals.as_ref().map_or(true, |n| n.len() == nv);
-        let tris_ok = blk.triangles.iter().flatten().all(|&v| (v as usize) < nv);
-        if blk.ids.len() != nv
-            || !normals_ok
-            || !tris_ok
-            || blk.triangle_cells.len() != blk.triangles.len()
-        {
+        if !blk.consistent() {
             return Err(bad(format!(
                 "block {b} is inconsistent (ids, normals, triangles or cells do not match its \
                  vertices)"

@@ -344,26 +344,66 @@ fn finish(
 /// windings reversed when the directions mirror (so that normals and windings keep pointing to
 /// the same side). A no-op for axis-aligned volumes.
 fn to_world(axes: &crate::volume::Axes, o: &crate::volume::Orientation, mesh: &mut TriMesh) {
-    let crate::volume::Axes::Uniform { origin, .. } = *axes else {
-        return;
-    };
-    if o.is_axis_aligned() {
+    let w = World::of(axes, o);
+    if w.o.is_none() {
         return;
     }
     for p in &mut mesh.positions {
-        let w = o.to_world(origin, [p.x, p.y, p.z]);
-        *p = crate::geom::Point3::new(w[0], w[1], w[2]);
+        *p = w.point(*p);
     }
     if let Some(ns) = &mut mesh.normals {
         for n in ns.iter_mut() {
-            let w = o.normal_to_world([n.x, n.y, n.z]);
-            *n = crate::geom::Vector3::new(w[0], w[1], w[2]);
+            *n = w.normal(*n);
         }
     }
-    if o.determinant() < 0.0 {
+    if w.mirrors() {
         for t in &mut mesh.triangles {
             t.swap(1, 2);
         }
+    }
+}
+
+/// Where a volume's grid frame sits in world space, point by point ([`to_world`] applies it to
+/// a whole mesh, the stream to each emitted piece): `o` is `None` for axis-aligned volumes and
+/// per-index axes, where the grid frame is the world frame.
+pub(super) struct World<'a> {
+    origin: [f64; 3],
+    o: Option<&'a crate::volume::Orientation>,
+}
+
+impl<'a> World<'a> {
+    pub(super) fn of(axes: &crate::volume::Axes, o: &'a crate::volume::Orientation) -> World<'a> {
+        match *axes {
+            crate::volume::Axes::Uniform { origin, .. } if !o.is_axis_aligned() => {
+                World { origin, o: Some(o) }
+            }
+            _ => World {
+                origin: [0.0; 3],
+                o: None,
+            },
+        }
+    }
+    pub(super) fn point(&self, p: crate::geom::Point3) -> crate::geom::Point3 {
+        match self.o {
+            Some(o) => {
+                let w = o.to_world(self.origin, [p.x, p.y, p.z]);
+                crate::geom::Point3::new(w[0], w[1], w[2])
+            }
+            None => p,
+        }
+    }
+    pub(super) fn normal(&self, n: Vector3) -> Vector3 {
+        match self.o {
+            Some(o) => {
+                let w = o.normal_to_world([n.x, n.y, n.z]);
+                Vector3::new(w[0], w[1], w[2])
+            }
+            None => n,
+        }
+    }
+    /// The directions mirror: triangle windings are reversed.
+    pub(super) fn mirrors(&self) -> bool {
+        self.o.is_some_and(|o| o.determinant() < 0.0)
     }
 }
 

@@ -29,14 +29,14 @@
 //! Memory: two blocks' extraction output, the carried plane edges, the boundary edges, and the
 //! triangle union–find.
 
-use super::block::key_of_id;
+use super::block::{cell_index, key_of_id};
 use super::{
-    on_domain_boundary, perturbation, union, IsoBlock, IsoOptions, IsoResult, NormalMethod,
+    on_domain_boundary, perturbation, union, IsoBlock, IsoOptions, IsoResult, NormalMethod, World,
 };
 use crate::geom::{Point3, Vector3};
 use crate::mesh::TriMesh;
 use crate::volume::gradient::mesh_normals_where;
-use crate::volume::{Axes, VolumeError, VolumeGrid};
+use crate::volume::{VolumeError, VolumeGrid};
 use std::collections::{HashMap, HashSet};
 
 /// Flag of a triangle corner that names the j-th cell-interior vertex (`INTERIOR_REF | j`).
@@ -215,7 +215,13 @@ impl IsoStream {
         if self.empty {
             return Ok(());
         }
-        check_block(&block)?;
+        if !block.consistent() {
+            return Err(bad(
+                "block is inconsistent (ids, normals, triangles or cells do not match its \
+                 vertices)"
+                    .into(),
+            ));
+        }
         self.fan_points += block.fan_points;
         self.centroid_fallbacks += block.centroid_fallbacks;
         self.skipped += block.nan_cells.len();
@@ -488,7 +494,7 @@ impl IsoStream {
                 .collect();
             mesh_n = fit_normals(pb, cb, &plane, &want);
         }
-        let world = World::of(&self.grid);
+        let world = World::of(&self.grid.axes, &self.grid.orientation);
         for &(w, l) in &fin {
             let b = if w == 0 { pb } else { cb };
             let Some(b) = b else { continue };
@@ -552,7 +558,7 @@ impl IsoStream {
     /// Emits the triangles of a block whose vertices all have their final numbers, and
     /// collects their edges for the topology.
     fn emit_triangles(&mut self, h: &Held, out: &mut StreamPiece) -> Result<(), VolumeError> {
-        let mirrors = World::of(&self.grid).mirrors();
+        let mirrors = World::of(&self.grid.axes, &self.grid.orientation).mirrors();
         let topo = self.opts.topology;
         for &t in &h.order {
             let local = h.block.triangles[t as usize];
@@ -612,7 +618,7 @@ impl IsoStream {
                     return false;
                 }
             }
-            let ci = c[0] as u64 + dims[0] as u64 * (c[1] as u64 + dims[1] as u64 * c[2] as u64);
+            let ci = cell_index([c[0] as usize, c[1] as usize, c[2] as usize], dims);
             !nan_a.contains(&ci) && !nan_b.contains(&ci)
         };
         let mut carry = Vec::new();
@@ -707,59 +713,4 @@ fn fit_normals(
 
 fn bad(reason: String) -> VolumeError {
     VolumeError::BadBlock { reason }
-}
-
-fn check_block(b: &IsoBlock) -> Result<(), VolumeError> {
-    let nv = b.positions.len();
-    let normals_ok = b.normals.as_ref().map_or(true, |n| n.len() == nv);
-    let tris_ok = b.triangles.iter().flatten().all(|&v| (v as usize) < nv);
-    if b.ids.len() != nv || !normals_ok || !tris_ok || b.triangle_cells.len() != b.triangles.len() {
-        return Err(bad(
-            "block is inconsistent (ids, normals, triangles or cells do not match its vertices)"
-                .into(),
-        ));
-    }
-    Ok(())
-}
-
-/// The volume's orientation applied to emitted points and normals (as `to_world`).
-struct World<'a> {
-    origin: [f64; 3],
-    o: Option<&'a crate::volume::Orientation>,
-}
-
-impl<'a> World<'a> {
-    fn of(g: &'a VolumeGrid) -> World<'a> {
-        match g.axes {
-            Axes::Uniform { origin, .. } if !g.orientation.is_axis_aligned() => World {
-                origin,
-                o: Some(&g.orientation),
-            },
-            _ => World {
-                origin: [0.0; 3],
-                o: None,
-            },
-        }
-    }
-    fn point(&self, p: Point3) -> Point3 {
-        match self.o {
-            Some(o) => {
-                let w = o.to_world(self.origin, [p.x, p.y, p.z]);
-                Point3::new(w[0], w[1], w[2])
-            }
-            None => p,
-        }
-    }
-    fn normal(&self, n: Vector3) -> Vector3 {
-        match self.o {
-            Some(o) => {
-                let w = o.normal_to_world([n.x, n.y, n.z]);
-                Vector3::new(w[0], w[1], w[2])
-            }
-            None => n,
-        }
-    }
-    fn mirrors(&self) -> bool {
-        self.o.is_some_and(|o| o.determinant() < 0.0)
-    }
 }
