@@ -196,21 +196,23 @@ pub(crate) enum Codec {
     Zlib,
 }
 
-/// Reads `skip` bytes to discard and then exactly `expected` bytes from `r` (at most
-/// `available` compressed or raw bytes), decompressing with `codec`. Decompression stops one
-/// byte after the expected size, so a gzip bomb cannot allocate more; too little or too much
-/// data is an error.
-pub(crate) fn read_data(
-    r: impl Read,
+/// The sample bytes of a data stream: checks that `available` raw or compressed bytes can hold
+/// `skip` bytes to discard and then `expected` bytes (raw data must have exactly that size;
+/// deflate cannot compress better than about 1032:1), discards the `skip` bytes (after
+/// decompression for `codec` ≠ Raw), and returns the reader positioned at the first sample
+/// byte — limited to the expected bytes for raw data, the decompressor otherwise (whose end
+/// the caller checks). Shared by the whole read ([`read_data`]) and the slice-by-slice
+/// stream ([`super::VolumeStream`]).
+pub(crate) fn sample_reader<'a>(
+    r: impl Read + 'a,
     available: u64,
     codec: Codec,
     skip: u64,
-    expected: usize,
-) -> Result<Vec<u8>> {
+    expected: u64,
+) -> Result<Box<dyn Read + 'a>> {
     let want = skip
-        .checked_add(expected as u64)
+        .checked_add(expected)
         .ok_or_else(|| Error::format("bytes to skip are out of range"))?;
-    let mut out = Vec::new();
     match codec {
         Codec::Raw => {
             if available != want {
@@ -225,22 +227,19 @@ pub(crate) fn read_data(
                     }
                 )));
             }
-            out.reserve_exact(expected);
             let mut r = r.take(want);
             std::io::copy(&mut (&mut r).take(skip), &mut std::io::sink())
                 .map_err(|e| Error::format(format!("cannot read data: {e}")))?;
-            r.read_to_end(&mut out)
-                .map_err(|e| Error::format(format!("cannot read data: {e}")))?;
+            Ok(Box::new(r))
         }
         Codec::Gzip | Codec::Zlib => {
-            // deflate cannot compress better than about 1032:1
             if want > available.saturating_mul(1100).saturating_add(1 << 16) {
                 return Err(Error::format(format!(
                     "{available} compressed bytes cannot hold the {want} bytes the header needs"
                 )));
             }
             let src = r.take(available);
-            let mut dec: Box<dyn Read> = match codec {
+            let mut dec: Box<dyn Read + 'a> = match codec {
                 Codec::Gzip => Box::new(flate2::read::MultiGzDecoder::new(src)),
                 _ => Box::new(flate2::read::ZlibDecoder::new(src)),
             };
@@ -251,11 +250,33 @@ pub(crate) fn read_data(
                     "decompressed data is shorter than the bytes to skip",
                 ));
             }
-            dec.take(expected as u64 + 1)
-                .read_to_end(&mut out)
-                .map_err(|e| Error::format(format!("bad compressed data: {e}")))?;
+            Ok(dec)
         }
     }
+}
+
+/// Reads `skip` bytes to discard and then exactly `expected` bytes from `r` (at most
+/// `available` compressed or raw bytes), decompressing with `codec` ([`sample_reader`]).
+/// Decompression stops one byte after the expected size, so a gzip bomb cannot allocate more;
+/// too little or too much data is an error.
+pub(crate) fn read_data(
+    r: impl Read,
+    available: u64,
+    codec: Codec,
+    skip: u64,
+    expected: usize,
+) -> Result<Vec<u8>> {
+    let dec = sample_reader(r, available, codec, skip, expected as u64)?;
+    let mut out = Vec::new();
+    if codec == Codec::Raw {
+        out.reserve_exact(expected);
+    }
+    dec.take(expected as u64 + 1)
+        .read_to_end(&mut out)
+        .map_err(|e| match codec {
+            Codec::Raw => Error::format(format!("cannot read data: {e}")),
+            _ => Error::format(format!("bad compressed data: {e}")),
+        })?;
     if out.len() != expected {
         return Err(Error::format(format!(
             "data has {}{} bytes, dims × sample size need {expected}",

@@ -10,7 +10,7 @@
 //! The whole-volume memory limit ([`super::memory`]) does not apply; each call checks the
 //! memory of the slices it decodes instead.
 
-use super::rawjson::{decode, Codec, Sample};
+use super::rawjson::{decode, sample_reader, Codec, Sample};
 use crate::volume::{Axes, DType, Orientation, VolumeGrid};
 use crate::{Error, Result};
 use std::io::Read;
@@ -58,46 +58,13 @@ impl VolumeStream {
             .checked_mul(head.dims[1])
             .and_then(|v| v.checked_mul(head.ty.size()))
             .ok_or_else(|| Error::invalid(format!("volume sizes {:?} overflow", head.dims)))?;
-        let want = (slice_bytes as u64)
+        let expected = (slice_bytes as u64)
             .checked_mul(head.dims[2] as u64)
-            .and_then(|b| b.checked_add(data.skip))
-            .ok_or_else(|| Error::format("bytes to skip are out of range"))?;
+            .ok_or_else(|| Error::invalid(format!("volume sizes {:?} overflow", head.dims)))?;
         let path = data.path.clone();
-        let skip_err = |e: std::io::Error| Error::format(format!("cannot read data: {e}"));
-        let (mut reader, compressed): (Box<dyn Read>, bool) = match data.codec {
-            Codec::Raw => {
-                if data.available != want {
-                    return Err(Error::format(format!(
-                        "data has {} bytes, the header needs {want}",
-                        data.available
-                    ))
-                    .with_path(&path));
-                }
-                (Box::new(data.reader.take(want)), false)
-            }
-            Codec::Gzip | Codec::Zlib => {
-                if want > data.available.saturating_mul(1100).saturating_add(1 << 16) {
-                    return Err(Error::format(format!(
-                        "{} compressed bytes cannot hold the {want} bytes the header needs",
-                        data.available
-                    ))
-                    .with_path(&path));
-                }
-                let src = data.reader.take(data.available);
-                let dec: Box<dyn Read> = match data.codec {
-                    Codec::Gzip => Box::new(flate2::read::MultiGzDecoder::new(src)),
-                    _ => Box::new(flate2::read::ZlibDecoder::new(src)),
-                };
-                (dec, true)
-            }
-        };
-        let skipped = std::io::copy(&mut (&mut reader).take(data.skip), &mut std::io::sink())
-            .map_err(|e| skip_err(e).with_path(&path))?;
-        if skipped < data.skip {
-            return Err(
-                Error::format("the data is shorter than the bytes to skip").with_path(&path)
-            );
-        }
+        let compressed = data.codec != Codec::Raw;
+        let reader = sample_reader(data.reader, data.available, data.codec, data.skip, expected)
+            .map_err(|e| e.with_path(&path))?;
         Ok(VolumeStream {
             dims: head.dims,
             axes: head.axes,
