@@ -20,7 +20,9 @@ use super::isosurface::{finite_extent, options, report_figures, Args};
 use crate::report::Report;
 use crate::Failure;
 use morpho::io::{self, ply::MeshSpool, Encoding};
-use morpho::volume::{isosurface_block, IsoBlock, IsoStream, NormalMethod, StreamPiece};
+use morpho::volume::{
+    finite_range, isosurface_block, IsoBlock, IsoStream, NormalMethod, StreamPiece,
+};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -53,14 +55,7 @@ pub fn run(args: &Args, report: &mut Report) -> Result<u8, Failure> {
     while s.slices_left() > 0 {
         buf.clear();
         s.read_slices(slab, &mut buf)?;
-        for &v in &buf {
-            if v.is_finite() {
-                range = Some(match range {
-                    None => (v, v),
-                    Some((a, b)) => (a.min(v), b.max(v)),
-                });
-            }
-        }
+        range = finite_range(&buf, range);
     }
     s.finish()?;
     if d.iter().any(|&k| k < 2) {

@@ -13,6 +13,21 @@ pub use isosurface::{
     INTERIOR_REF,
 };
 
+/// Smallest and largest finite value of `data`, widening `start` (`None`: no finite value
+/// yet) — so ranges of consecutive pieces of a volume combine into the whole volume's.
+pub fn finite_range(data: &[f32], start: Option<(f32, f32)>) -> Option<(f32, f32)> {
+    let mut r = start;
+    for &v in data {
+        if v.is_finite() {
+            r = Some(match r {
+                None => (v, v),
+                Some((a, b)) => (a.min(v), b.max(v)),
+            });
+        }
+    }
+    r
+}
+
 /// Data type of the samples as stored in a file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -308,16 +323,7 @@ impl Volume {
     }
     /// Smallest and largest finite sample (`None` when there is none).
     pub fn value_range(&self) -> Option<(f32, f32)> {
-        let mut r: Option<(f32, f32)> = None;
-        for &v in &self.data {
-            if v.is_finite() {
-                r = Some(match r {
-                    None => (v, v),
-                    Some((a, b)) => (a.min(v), b.max(v)),
-                });
-            }
-        }
-        r
+        finite_range(&self.data, None)
     }
     /// Checks sizes, axes and spacing.
     pub fn validate(&self) -> Result<(), VolumeError> {
