@@ -3,7 +3,9 @@
 //! `morpho::curvature::surface_curvature`).
 
 use crate::convert::{as_points3, bad, compute, coords, frows, index_rows, py_err};
-use morpho::curvature::{surface_curvature, NormalSource, SurfaceOptions, VertexStatus};
+use morpho::curvature::{
+    surface_curvature, NormalSource, SurfaceFit, SurfaceOptions, VertexStatus,
+};
 use morpho::geom::Vector3;
 use morpho::mesh::{analyze_topology, NormalWeighting, TriMesh};
 use numpy::{PyArray1, PyReadonlyArray2};
@@ -94,22 +96,51 @@ pub fn normal_source(normals: Option<&Bound<'_, PyAny>>) -> PyResult<NormalSourc
 
 /// Per-vertex curvature of a triangle mesh: a dict of `(n,)` arrays `k1, k2, H, K, A`, `(n, 3)`
 /// arrays `dir1, dir2, normals`, `status` (0 ok, 1 isolated, 2 no normal, 3 too few points,
-/// 4 ill-conditioned; the curvatures of such vertices are NaN) and `undetermined`.
+/// 4 ill-conditioned; the curvatures of such vertices are NaN), `undetermined` and, with jet
+/// normals, `jet_fallbacks`.
+///
+/// The options are the CLI's (`morpho curvature`): `normals="jet"` (default: area-weighted
+/// normals corrected by a cubic fit over the 2-ring), a weighting name or an `(n, 3)` array;
+/// `fit="paraboloid"` (the thesis's, H §4.2) or `"quadric"`; `ring` defaults to 1 for the
+/// paraboloid and 2 for the quadric. The thesis's method is `normals="area"`.
 #[pyfunction]
-#[pyo3(signature = (vertices, faces, normals=None, ring=1))]
+#[pyo3(signature = (vertices, faces, normals=None, ring=None, fit="paraboloid"))]
 pub fn curvature<'py>(
     py: Python<'py>,
     vertices: PyReadonlyArray2<'py, f64>,
     faces: &Bound<'py, PyAny>,
     normals: Option<&Bound<'py, PyAny>>,
-    ring: usize,
+    ring: Option<usize>,
+    fit: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let m = trimesh(&vertices, faces)?;
-    let source = normal_source(normals)?;
+    let jet_normals = match normals {
+        None => true,
+        Some(n) => n.extract::<String>().is_ok_and(|s| s == "jet"),
+    };
+    let source = if jet_normals {
+        NormalSource::Estimated(NormalWeighting::Area)
+    } else {
+        normal_source(normals)?
+    };
+    let fit = match fit {
+        "paraboloid" => SurfaceFit::Paraboloid,
+        "quadric" => SurfaceFit::Quadric,
+        o => {
+            return Err(bad(format!(
+                "fit: unknown surface '{o}': use paraboloid or quadric"
+            )))
+        }
+    };
+    let ring = ring.unwrap_or(match fit {
+        SurfaceFit::Quadric => 2,
+        _ => 1,
+    });
     let opts = SurfaceOptions {
         normals: source,
         ring,
-        ..Default::default()
+        fit,
+        jet_normals,
     };
     let c = compute(py, || surface_curvature(&m, &opts))?.map_err(py_err)?;
     let v3 = |v: &[Vector3]| v.iter().map(|n| [n.x, n.y, n.z]).collect::<Vec<_>>();
@@ -130,6 +161,9 @@ pub fn curvature<'py>(
         .collect();
     d.set_item("status", PyArray1::from_vec(py, status))?;
     d.set_item("undetermined", c.undetermined)?;
+    if jet_normals {
+        d.set_item("jet_fallbacks", c.jet_fallbacks)?;
+    }
     d.set_item("k1", PyArray1::from_vec(py, c.k1))?;
     d.set_item("k2", PyArray1::from_vec(py, c.k2))?;
     d.set_item("H", PyArray1::from_vec(py, c.h))?;

@@ -198,18 +198,22 @@ def info(vertices, faces=None):
     return _morpho.info(v, f)
 
 
-def curvature(vertices, faces=None, normals="area", ring=1):
-    """Per-vertex curvature by the osculating-paraboloid fit (Hamann 1991, §4.2).
+def curvature(vertices, faces=None, normals="jet", ring=None, fit="paraboloid"):
+    """Per-vertex curvature by a local surface fit (Hamann 1991, §4.2); the CLI's options.
 
-    ``normals``: ``area``/``uniform``/``inverse`` (estimated, V §9.4 weightings) or an
-    ``(n, 3)`` array. ``ring``: neighbourhood size. Returns a dict of arrays ``k1, k2, H, K, A``,
-    ``dir1, dir2, normals``, ``status`` (0 ok; otherwise the curvatures are NaN) and
-    ``undetermined`` (count). ``curvature(mesh)`` takes a mesh object too.
+    ``normals``: ``jet`` (default: area-weighted normals corrected by a cubic fit over the
+    2-ring, as ``morpho curvature``), ``area``/``uniform``/``inverse`` (estimated, V §9.4
+    weightings; ``area`` with the default fit and ring is the thesis's method) or an ``(n, 3)``
+    array. ``fit``: ``paraboloid`` (the thesis's osculating paraboloid) or ``quadric`` (with
+    linear terms). ``ring``: neighbourhood size (default 1 for the paraboloid, 2 for the
+    quadric). Returns a dict of arrays ``k1, k2, H, K, A``, ``dir1, dir2, normals``,
+    ``status`` (0 ok; otherwise the curvatures are NaN), ``undetermined`` (count) and, with
+    jet normals, ``jet_fallbacks``. ``curvature(mesh)`` takes a mesh object too.
     """
     v, f = _mesh(vertices, faces)
     if not isinstance(normals, str):
         normals = _coords(normals, "normals", (3,))
-    return _morpho.curvature(v, f, normals, int(ring))
+    return _morpho.curvature(v, f, normals, None if ring is None else int(ring), fit)
 
 
 def reduce(vertices, faces=None, keep=None, triangles=None, rms=None, max_error=None,

@@ -71,8 +71,9 @@ def info(vertices: Any, faces: Optional[npt.ArrayLike] = None) -> Dict[str, Any]
 def curvature(
     vertices: Any,
     faces: Optional[npt.ArrayLike] = None,
-    normals: Union[Literal["area", "uniform", "inverse"], npt.ArrayLike] = "area",
-    ring: int = 1,
+    normals: Union[Literal["jet", "area", "uniform", "inverse"], npt.ArrayLike] = "jet",
+    ring: Optional[int] = None,
+    fit: Literal["paraboloid", "quadric"] = "paraboloid",
 ) -> Dict[str, Any]: ...
 @overload
 def reduce(

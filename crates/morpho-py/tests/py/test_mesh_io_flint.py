@@ -32,19 +32,23 @@ def test_info_open_mesh():
     assert i["genus"] == 0 and i["area"] == pytest.approx(1.0)
 
 
-def test_curvature_matches_cli(tmp_path, cli, data):
+@pytest.mark.parametrize("opts", [[], ["--normals", "area"], ["--fit", "quadric"]])
+def test_curvature_matches_cli(tmp_path, cli, data, opts):
     src = data / "meshes" / "spot.obj"
-    # the CLI's default for estimated normals is jet normals; morpho.curvature keeps the
-    # thesis's area-weighted normals (its documented default)
-    cli("curvature", src, "--normals", "area", "-o", tmp_path / "k.csv")
+    cli("curvature", src, *opts, "-o", tmp_path / "k.csv")
     with open(tmp_path / "k.csv") as fh:
         rows = list(csv.DictReader(fh))
     d = morpho.read(src)
-    c = morpho.curvature(d["vertices"], d["faces"])
+    kw = dict(zip([o.lstrip("-") for o in opts[::2]], opts[1::2]))
+    c = morpho.curvature(d["vertices"], d["faces"], **kw)
     for key in ["k1", "k2", "H", "K", "A"]:
         ref = np.array([float(r[key]) if r[key] != "" else np.nan for r in rows])
         assert np.allclose(c[key], ref, rtol=1e-9, atol=1e-12, equal_nan=True), key
     assert c["undetermined"] == int(np.isnan(c["H"]).sum())
+    assert ("jet_fallbacks" in c) == (kw.get("normals", "jet") == "jet")
+    if not opts:  # the default differs from the thesis's method on a real mesh
+        area = morpho.curvature(d["vertices"], d["faces"], normals="area")
+        assert not np.allclose(c["H"], area["H"], equal_nan=True)
 
 
 def test_curvature_sphere_and_ring():
@@ -59,6 +63,8 @@ def test_curvature_sphere_and_ring():
         morpho.curvature(v, f, ring=0)
     with pytest.raises(ValueError, match="normals"):
         morpho.curvature(v, f, normals=np.ones((3, 3)))
+    with pytest.raises(ValueError, match="fit"):
+        morpho.curvature(v, f, fit="cubic")
 
 
 def test_io_round_trips(tmp_path):
