@@ -5,7 +5,8 @@
 //! - Meshes → `.ply` (the mesh with vertex properties `k1,k2,H,K,A`, κ₁ ≤ κ₂, NaN where the fit
 //!   is undetermined) or `.csv` (`x,y,z,index,k1,k2,H,K,A` per vertex; an undetermined value is
 //!   an empty cell). Normals: `--normals jet` (default) estimates them by area weighting and
-//!   corrects each by a cubic fit over its 2-ring; `area` (= `mesh`), `uniform`, `inverse` are
+//!   corrects each by a cubic fit over its 2-ring (on a boundary vertex, where that fit is
+//!   one-sided, the quadric with linear terms over the 2-ring is fitted instead); `area` (= `mesh`), `uniform`, `inverse` are
 //!   the weightings of V §9.4 alone; `file` uses the file's (PLY `nx,ny,nz`; refused when
 //!   absent). `--fit paraboloid` (default) is the thesis's osculating paraboloid (H §4.2) over
 //!   the `--ring K` platelet (default 1); `--fit quadric` adds linear terms (default ring 2).
@@ -40,7 +41,8 @@ pub struct Args {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Vertex normals: `jet` = area-weighted, corrected by a cubic fit over the 2-ring
-    /// (default; not in the thesis); `area` (= `mesh`), `uniform`, `inverse` = that weighting
+    /// (default; not in the thesis; boundary vertices get the quadric over the 2-ring instead);
+    /// `area` (= `mesh`), `uniform`, `inverse` = that weighting
     /// alone (V §9.4); `file` = the file's. The thesis's method: `--normals area` (or `file`)
     /// with the default fit and ring.
     #[arg(long, default_value = "jet", value_parser = ["jet", "mesh", "area", "uniform", "inverse", "file"])]
