@@ -230,19 +230,19 @@ pub fn surface_curvature(
     let per: Vec<(Vertex, bool)> = (0..n)
         .into_par_iter()
         .map_init(
-            || (Vec::new(), Vec::new()),
-            |(ring, ring2), v| {
+            || (Vec::new(), Vec::new(), Marks::default()),
+            |(ring, ring2, marks), v| {
                 let mut nrm: [f64; 3] = normals[v].into();
                 let mut fallback = false;
                 // on an open fan the jet and the paraboloid are one-sided: the quadric with
                 // linear terms over the (at least) 2-ring instead (module doc, "Boundaries")
                 let boundary_quadric = opts.jet_normals && adj.open[v];
                 if opts.jet_normals && !boundary_quadric {
-                    adj.ring(v, 2, ring2);
+                    adj.ring(v, 2, ring2, marks);
                     // a 2-ring too small or too flat for the cubic (a valence-3 vertex among
                     // valence-3 neighbours has 8 points): the 3-ring
                     let jet = jet_normal(&pos, v, ring2, nrm).or_else(|| {
-                        adj.ring(v, 3, ring);
+                        adj.ring(v, 3, ring, marks);
                         jet_normal(&pos, v, ring, nrm)
                     });
                     match jet {
@@ -260,7 +260,7 @@ pub fn surface_curvature(
                         } else {
                             opts.ring
                         };
-                        adj.ring(v, k, ring);
+                        adj.ring(v, k, ring, marks);
                         ring
                     }
                 };
@@ -574,22 +574,57 @@ impl Adjacency {
     fn of(&self, v: usize) -> &[u32] {
         &self.nb[self.start[v]..self.start[v + 1]]
     }
-    /// The vertices within `k` edges of `v`, without `v`, into `out` (breadth-first).
-    fn ring(&self, v: usize, k: usize, out: &mut Vec<u32>) {
+    /// The vertices within `k` edges of `v`, without `v`, into `out` (breadth-first: the
+    /// 1-ring first, in its sorted order, then each level in discovery order).
+    fn ring(&self, v: usize, k: usize, out: &mut Vec<u32>, marks: &mut Marks) {
         out.clear();
         out.extend_from_slice(self.of(v));
+        if k == 1 {
+            return;
+        }
+        let g = marks.next(self.start.len() - 1);
+        let seen = &mut marks.stamp;
+        seen[v] = g;
+        for &x in out.iter() {
+            seen[x as usize] = g;
+        }
         let mut level = 0..out.len();
         for _ in 1..k {
             let end = out.len();
             for i in level.clone() {
                 let w = out[i] as usize;
                 for &x in self.of(w) {
-                    if x as usize != v && !out.contains(&x) {
+                    if seen[x as usize] != g {
+                        seen[x as usize] = g;
                         out.push(x);
                     }
                 }
             }
             level = end..out.len();
         }
+    }
+}
+
+/// Visited marks of the ring search, one per vertex and thread: a vertex is seen in the
+/// current search when its stamp equals the search's generation (no clearing between
+/// searches; the O(1) test replaced a scan of the ring found so far).
+#[derive(Default)]
+struct Marks {
+    stamp: Vec<u32>,
+    generation: u32,
+}
+
+impl Marks {
+    /// The generation of a new search over `n` vertices.
+    fn next(&mut self, n: usize) -> u32 {
+        if self.stamp.len() < n {
+            self.stamp.resize(n, 0);
+        }
+        self.generation = self.generation.wrapping_add(1);
+        if self.generation == 0 {
+            self.stamp.fill(0);
+            self.generation = 1;
+        }
+        self.generation
     }
 }
