@@ -394,6 +394,9 @@ fn main() -> ExitCode {
             f.code
         }
     };
+    if let Some((r, w)) = morpho::io::guard::traffic() {
+        report.set_io(r, w);
+    }
     if let Some(path) = &cli.report {
         if let Err(e) = report.save(path) {
             eprintln!("error: {}", printable(&staged.unmap(&e.to_string())));

@@ -1,5 +1,10 @@
-//! The `--report FILE.json` figures: `command`, `version`, `elapsed_s`, `timings` and each
-//! command's own keys.
+//! The `--report FILE.json` figures: `command`, `version`, `elapsed_s`, `timings`, `io` and
+//! each command's own keys.
+//!
+//! `io`: `read_bytes` (the distinct input files opened, data files named by headers included),
+//! `write_bytes` (the files written), and `read_mb_s` / `write_mb_s`: those bytes over the
+//! `read` / `write` stage times in MB/s (10⁶ bytes; absent when the stage took no time). The
+//! stages include parsing and formatting, so these are the rates a user sees, not the disk's.
 
 use serde_json::{Map, Value};
 use std::path::Path;
@@ -10,6 +15,7 @@ pub struct Report {
     start: Instant,
     fields: Map<String, Value>,
     timings: Map<String, Value>,
+    io: Option<(u64, u64)>,
 }
 
 impl Report {
@@ -21,6 +27,7 @@ impl Report {
             start: Instant::now(),
             fields,
             timings: Map::new(),
+            io: None,
         }
     }
     /// Sets a key.
@@ -46,6 +53,10 @@ impl Report {
             .unwrap_or(0.0);
         self.timings.insert(stage.to_string(), (prev + dt).into());
     }
+    /// Sets the bytes read and written (`io`; see the module doc).
+    pub fn set_io(&mut self, read_bytes: u64, write_bytes: u64) {
+        self.io = Some((read_bytes, write_bytes));
+    }
     /// The JSON object.
     pub fn to_json(&self) -> Value {
         let mut m = self.fields.clone();
@@ -56,6 +67,17 @@ impl Report {
         let mut t = self.timings.clone();
         for k in ["read", "compute", "write"] {
             t.entry(k).or_insert(0.0.into());
+        }
+        if let Some((r, w)) = self.io {
+            let mut io = Map::new();
+            for (k, bytes, stage) in [("read", r, "read"), ("write", w, "write")] {
+                io.insert(format!("{k}_bytes"), bytes.into());
+                let s = t.get(stage).and_then(Value::as_f64).unwrap_or(0.0);
+                if s > 0.0 {
+                    io.insert(format!("{k}_mb_s"), (bytes as f64 / s / 1e6).into());
+                }
+            }
+            m.insert("io".into(), Value::Object(io));
         }
         m.insert("timings".into(), Value::Object(t));
         Value::Object(m)

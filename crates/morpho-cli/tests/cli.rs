@@ -89,6 +89,9 @@ fn info_on_a_closed_cube() {
     assert_eq!(r["manifold"], true);
     assert_eq!(r["orientable"], true);
     assert!(r["elapsed_s"].as_f64().unwrap() >= 0.0);
+    // the input's bytes; nothing written but the report (saved after the figures)
+    assert_eq!(r["io"]["read_bytes"], CUBE_OBJ.len());
+    assert_eq!(r["io"]["write_bytes"], 0);
     for k in ["read", "compute", "write"] {
         assert!(r["timings"][k].as_f64().is_some(), "timings.{k}");
     }
@@ -514,6 +517,11 @@ fn isosurface_command() {
         "a sphere inside the volume is closed"
     );
     assert!(r["triangles"].as_u64().unwrap() > 100);
+    // io: the sidecar and its raw data file were read, the PLY written
+    let len = |p: &Path| std::fs::metadata(p).unwrap().len();
+    assert_eq!(r["io"]["read_bytes"], len(&vol) + len(&d.join("s.raw")));
+    assert_eq!(r["io"]["write_bytes"], len(&out));
+    assert!(r["io"]["write_mb_s"].as_f64().unwrap() > 0.0);
     // the written mesh is a closed genus-0 surface
     let rep2 = d.join("i.json");
     let o = morpho(&[

@@ -356,6 +356,21 @@ pub(crate) fn written(path: &Path) {
     }
 }
 
+/// Bytes read and written so far in this run, when the guard is on (`None` otherwise): the
+/// length of each distinct input file opened (data files named by headers included) and of
+/// each file written by an atomic replace, as they are now. For the report's throughput
+/// figures; a file that has gone since counts 0.
+pub fn traffic() -> Option<(u64, u64)> {
+    let r = registry();
+    let r = r.as_ref()?;
+    let size = |l: &[(FileKey, PathBuf)]| -> u64 {
+        l.iter()
+            .map(|(_, p)| std::fs::metadata(p).map_or(0, |m| m.len()))
+            .sum()
+    };
+    Some((size(&r.inputs), size(&r.written)))
+}
+
 /// Checks, before anything is written, that no two paths of `paths` are the same file and
 /// that every one may be written ([`output_target`]) — for a command's outputs and for writers
 /// that create several files (a header and its data file).
