@@ -1,5 +1,5 @@
-//! Criterion benchmark of the 2D Delaunay triangulation (uniform random points and an integer
-//! grid). Peer comparisons (delaunator, spade, scipy) live in `bench/` and
+//! Criterion benchmark of the 2D Delaunay triangulation (uniform random points, an integer
+//! grid, points along a closed curve). Peer comparisons (delaunator, spade, scipy) live in `bench/` and
 //! `examples/bench_delaunay2d.rs`.
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 use morpho::delaunay::triangulate_2d;
@@ -22,6 +22,20 @@ fn delaunay2d(c: &mut Criterion) {
             .map(|k| Point2::new((k % side) as f64, (k / side) as f64))
             .collect();
         g.bench_with_input(BenchmarkId::new("grid", n), &grid, |b, p| {
+            b.iter(|| black_box(triangulate_2d(p).map(|d| d.triangles.len())))
+        });
+        // the `curve` input of examples/bench_delaunay2d.rs: r = 1 + 0.3 sin 5t, jitter ±1e-9
+        let tau = std::f64::consts::TAU;
+        let curve: Vec<Point2> = (0..n)
+            .map(|k| {
+                let t = tau * k as f64 / n as f64;
+                let r = 1.0 + 0.3 * (5.0 * t).sin();
+                let jx = (rng.gen::<f64>() - 0.5) * 2e-9;
+                let jy = (rng.gen::<f64>() - 0.5) * 2e-9;
+                Point2::new(r * t.cos() + jx, r * t.sin() + jy)
+            })
+            .collect();
+        g.bench_with_input(BenchmarkId::new("curve", n), &curve, |b, p| {
             b.iter(|| black_box(triangulate_2d(p).map(|d| d.triangles.len())))
         });
     }

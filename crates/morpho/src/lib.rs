@@ -72,6 +72,8 @@ pub mod internals {
     // --- end delaunay, graphs ---
     // --- geom (f-rest): the exact fallbacks, checked against the adaptive predicates ---
     pub use crate::geom::exact::{insphere_exact, insphere_sign, orient3d_exact, orient_sign};
+    /// Stage counters of the in-circle cascade (feature `predicate-stats`).
+    pub use crate::geom::predicates::stats as predicate_stats;
     // --- end f-rest ---
     // --- boundary (f-bnd): engines of boundary_2d / boundary_3d ---
     pub use crate::boundary::internals::*;

@@ -1,5 +1,9 @@
 //! Exact geometric predicates (Shewchuk's adaptive-precision arithmetic, via the `robust` crate).
 //!
+//! Size (over 800 lines): the four predicates and the cheaper in-circle cascade of the Delaunay
+//! engines ([`incircle_sign`]: its integer and stack-expansion stages, its stage counters); about
+//! half of the file is tests.
+//!
 //! Every topological decision in morpho goes through these functions. The returned `f64` has the
 //! exact sign of the determinant; its magnitude is only an approximation.
 //!
@@ -111,6 +115,441 @@ pub mod raw {
     }
 }
 
+/// The in-circle sign through a cheaper adaptive stage (used by the Delaunay engines).
+///
+/// Returns the exact sign (+1, 0, −1) of [`incircle`]`(a, b, c, d)`: the same decision, reached
+/// through a cascade whose middle stage is cheap on near-cocircular input (points along a curve,
+/// where the float filter legitimately fails often):
+///
+/// 1. **Filter** (Shewchuk's stage A): the determinant of the differences `p − d` in floating
+///    point with the semi-static bound `ε_A · permanent`, `ε_A = (10 + 96u)u`, u = 2⁻⁵³ (the
+///    bound is computed from the same differences, so it adapts to the local scale — a single
+///    static bound over the whole input would fail on every test between close points).
+/// 2. **Exact, allocation-free** (only when stage 1 cannot decide): when the six differences
+///    `adx = a.x − d.x, …` are exact (checked: `(a.x − adx) − d.x` is the rounding error of the
+///    subtraction, by Knuth/Dekker's two-diff; all six zero), the determinant
+///    `Σ_cyc (adx² + ady²)·(bdx·cdy − cdx·bdy)` is a polynomial in six doubles, evaluated
+///    exactly as a Shewchuk expansion (error-free `two_prod`/`two_sum`, expansions grown by
+///    exact scaling and exact sums, never rounded) of at most 96 components on the stack: its sign
+///    is the sign of its largest component, so this stage is exact, not a filter. Differences
+///    are exact by Sterbenz's lemma whenever the two coordinates are within a factor 2 of each
+///    other, which is the common case for the near neighbours a Delaunay test compares; nothing
+///    underflows in the range the engines accept (the 2D engine's module documentation gives it).
+/// 3. Otherwise Shewchuk's full adaptive cascade ([`incircle`]), which handles inexact
+///    differences.
+///
+/// Before stage 2, an exact **integer** evaluation after an exact power-of-two rescale decides
+/// whenever the eight coordinates span at most 61 binary orders (most tests, including those
+/// between far-apart points whose differences are inexact; the proof is at
+/// `incircle_sign_int`); stages 2 and 3 serve the rest.
+///
+/// With the `predicate-stats` feature the calls decided at each stage are counted
+/// ([`stats::snapshot`]).
+#[inline]
+pub fn incircle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> i32 {
+    let adx = a[0] - d[0];
+    let bdx = b[0] - d[0];
+    let cdx = c[0] - d[0];
+    let ady = a[1] - d[1];
+    let bdy = b[1] - d[1];
+    let cdy = c[1] - d[1];
+    let bdxcdy = bdx * cdy;
+    let cdxbdy = cdx * bdy;
+    let alift = adx * adx + ady * ady;
+    let cdxady = cdx * ady;
+    let adxcdy = adx * cdy;
+    let blift = bdx * bdx + bdy * bdy;
+    let adxbdy = adx * bdy;
+    let bdxady = bdx * ady;
+    let clift = cdx * cdx + cdy * cdy;
+    let det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * alift
+        + (cdxady.abs() + adxcdy.abs()) * blift
+        + (adxbdy.abs() + bdxady.abs()) * clift;
+    let errbound = ICC_ERRBOUND_A * permanent;
+    if det > errbound {
+        stats::count(stats::INCIRCLE_FILTER);
+        return 1;
+    }
+    if -det > errbound {
+        stats::count(stats::INCIRCLE_FILTER);
+        return -1;
+    }
+    incircle_sign_exact(a, b, c, d)
+}
+
+/// u = 2⁻⁵³, the unit roundoff.
+const U: f64 = f64::EPSILON / 2.0;
+/// Shewchuk's bound for the floating-point in-circle determinant (stage A).
+const ICC_ERRBOUND_A: f64 = (10.0 + 96.0 * U) * U;
+
+/// Stages 2–4 of [`incircle_sign`].
+#[inline(never)]
+fn incircle_sign_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> i32 {
+    if let Some(s) = incircle_sign_int([a, b, c, d]) {
+        stats::count(stats::INCIRCLE_INT);
+        return s;
+    }
+    let (adx, adxt) = xp::two_diff(a[0], d[0]);
+    let (bdx, bdxt) = xp::two_diff(b[0], d[0]);
+    let (cdx, cdxt) = xp::two_diff(c[0], d[0]);
+    let (ady, adyt) = xp::two_diff(a[1], d[1]);
+    let (bdy, bdyt) = xp::two_diff(b[1], d[1]);
+    let (cdy, cdyt) = xp::two_diff(c[1], d[1]);
+    if adxt != 0.0 || bdxt != 0.0 || cdxt != 0.0 || adyt != 0.0 || bdyt != 0.0 || cdyt != 0.0 {
+        stats::count(stats::INCIRCLE_FULL);
+        let s = raw::incircle(a, b, c, d);
+        return (s > 0.0) as i32 - (s < 0.0) as i32;
+    }
+    stats::count(stats::INCIRCLE_EXACT);
+    // Σ_cyc lift(a)·(b × c), each term an expansion of ≤ 32 components.
+    let mut ta = [0.0; 32];
+    let mut tb = [0.0; 32];
+    let mut tc = [0.0; 32];
+    let na = xp::lifted_cross(adx, ady, [bdx, bdy], [cdx, cdy], &mut ta);
+    let nb = xp::lifted_cross(bdx, bdy, [cdx, cdy], [adx, ady], &mut tb);
+    let nc = xp::lifted_cross(cdx, cdy, [adx, ady], [bdx, bdy], &mut tc);
+    let mut ab = [0.0; 64];
+    let nab = xp::sum(&ta[..na], &tb[..nb], &mut ab);
+    let mut fin = [0.0; 96];
+    let n = xp::sum(&ab[..nab], &tc[..nc], &mut fin);
+    xp::sign(&fin[..n])
+}
+
+/// Stage 2 of [`incircle_sign`]: the determinant in integer arithmetic, or `None` when the
+/// eight coordinates span more than 61 binary orders (or one is subnormal).
+///
+/// Why it is exact: every finite double is `±m·2^q` with an integer `m < 2^53`. Let `lo` be the
+/// smallest exponent of a set bit over the eight coordinates and `2^hi` a bound on their
+/// magnitudes. Multiplying every coordinate by `2^−lo` — an exact power-of-two rescale, done
+/// here by shifting the mantissas, so no rounding and no overflow at any scale — gives integers
+/// `X` with `|X| < 2^(hi−lo) ≤ 2^61`. The in-circle determinant is homogeneous of degree 4 in
+/// the coordinates (it depends on differences only), so its sign is unchanged by the rescale.
+/// Then the differences are < 2^62 (exact in `i64`), each product of two differences and each
+/// 2×2 cross term or lift is < 2^125 (exact in `i128`), each product lift × cross is < 2^250
+/// and the sum of the three is < 2^252, exact in the 256-bit two's-complement accumulator.
+/// No step rounds, so the sign is the exact sign of the determinant.
+#[inline]
+fn incircle_sign_int(p: [[f64; 2]; 4]) -> Option<i32> {
+    let mut lo = i32::MAX;
+    let mut hi = i32::MIN;
+    for q in &p {
+        for &x in q {
+            if x == 0.0 {
+                continue;
+            }
+            let bits = x.to_bits();
+            let e = ((bits >> 52) & 0x7ff) as i32;
+            if e == 0 {
+                return None; // subnormal
+            }
+            let m = (bits & ((1u64 << 52) - 1)) | (1u64 << 52);
+            // |x| = m·2^(e−1075) < 2^(e−1022)
+            lo = lo.min(e - 1075 + m.trailing_zeros() as i32);
+            hi = hi.max(e - 1022);
+        }
+    }
+    if hi == i32::MIN {
+        return Some(0); // four copies of the origin
+    }
+    if hi - lo > 61 {
+        return None;
+    }
+    let int = |x: f64| -> i64 {
+        if x == 0.0 {
+            return 0;
+        }
+        let bits = x.to_bits();
+        let e = ((bits >> 52) & 0x7ff) as i32;
+        let m = ((bits & ((1u64 << 52) - 1)) | (1u64 << 52)) as i64;
+        // x·2^−lo = m·2^(e−1075−lo); a right shift drops only zero bits (lo ≤ e−1075+tz(m))
+        let s = e - 1075 - lo;
+        let v = if s >= 0 { m << s } else { m >> -s };
+        if bits >> 63 == 1 {
+            -v
+        } else {
+            v
+        }
+    };
+    let [a, b, c, d] = p.map(|q| [int(q[0]), int(q[1])]);
+    let diff = |u: [i64; 2]| [(u[0] - d[0]) as i128, (u[1] - d[1]) as i128];
+    let ([adx, ady], [bdx, bdy], [cdx, cdy]) = (diff(a), diff(b), diff(c));
+    let term = |x: i128, y: i128, u: [i128; 2], v: [i128; 2]| {
+        wide::mul(x * x + y * y, u[0] * v[1] - v[0] * u[1])
+    };
+    let det = wide::add(
+        wide::add(
+            term(adx, ady, [bdx, bdy], [cdx, cdy]),
+            term(bdx, bdy, [cdx, cdy], [adx, ady]),
+        ),
+        term(cdx, cdy, [adx, ady], [bdx, bdy]),
+    );
+    Some(wide::sign(det))
+}
+
+/// 256-bit two's-complement integers `(high, low)` = high·2^128 + low, for
+/// [`incircle_sign_int`]: products of two `i128` below 2^126 in magnitude and sums of a few.
+mod wide {
+    pub type W = (u128, u128);
+
+    /// The exact product a·b (|a|, |b| < 2^126).
+    #[inline]
+    pub fn mul(a: i128, b: i128) -> W {
+        let neg = (a < 0) != (b < 0);
+        let (x, y) = (a.unsigned_abs(), b.unsigned_abs());
+        let (x1, x0) = (x >> 64, x & u64::MAX as u128);
+        let (y1, y0) = (y >> 64, y & u64::MAX as u128);
+        let low = x0 * y0;
+        let mid = x0 * y1 + x1 * y0; // < 2^127: no overflow
+        let lo = low.wrapping_add(mid << 64);
+        let carry = (lo < low) as u128;
+        let hi = x1 * y1 + (mid >> 64) + carry;
+        if neg {
+            ((!hi).wrapping_add((lo == 0) as u128), (!lo).wrapping_add(1))
+        } else {
+            (hi, lo)
+        }
+    }
+
+    /// a + b (no overflow for the magnitudes used).
+    #[inline]
+    pub fn add(a: W, b: W) -> W {
+        let lo = a.1.wrapping_add(b.1);
+        let carry = (lo < a.1) as u128;
+        (a.0.wrapping_add(b.0).wrapping_add(carry), lo)
+    }
+
+    /// The sign of a (+1, 0, −1).
+    #[inline]
+    pub fn sign(a: W) -> i32 {
+        if a.0 >> 127 == 1 {
+            -1
+        } else {
+            (a.0 != 0 || a.1 != 0) as i32
+        }
+    }
+}
+
+/// Stack-only Shewchuk expansion arithmetic for [`incircle_sign`] (an expansion is a slice of
+/// non-overlapping doubles in increasing magnitude, zeros eliminated, whose exact sum is the
+/// value). Written for fixed small sizes: nothing allocates and nothing is rounded.
+mod xp {
+    /// x = fl(a − b) and its exact rounding error y: a − b = x + y.
+    #[inline(always)]
+    pub fn two_diff(a: f64, b: f64) -> (f64, f64) {
+        let x = a - b;
+        let bv = a - x;
+        let av = x + bv;
+        (x, (a - av) + (bv - b))
+    }
+
+    /// x = fl(a + b), a + b = x + y exactly.
+    #[inline(always)]
+    fn two_sum(a: f64, b: f64) -> (f64, f64) {
+        let x = a + b;
+        let bv = x - a;
+        let av = x - bv;
+        (x, (a - av) + (b - bv))
+    }
+
+    /// x = fl(a + b), a + b = x + y exactly, valid when |a| ≥ |b| (or a = 0).
+    #[inline(always)]
+    fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
+        let x = a + b;
+        (x, b - (x - a))
+    }
+
+    /// Veltkamp's split of a into 26-bit halves.
+    #[inline(always)]
+    fn split(a: f64) -> (f64, f64) {
+        const SPLITTER: f64 = 134_217_729.0; // 2^27 + 1
+        let c = SPLITTER * a;
+        let hi = c - (c - a);
+        (hi, a - hi)
+    }
+
+    /// x = fl(a·b), a·b = x + y exactly (Dekker).
+    #[inline(always)]
+    fn two_prod(a: f64, b: f64) -> (f64, f64) {
+        let x = a * b;
+        let (ah, al) = split(a);
+        let (bh, bl) = split(b);
+        let err = x - ah * bh - al * bh - ah * bl;
+        (x, al * bl - err)
+    }
+
+    /// The expansion e·b (|e| ≤ 16 components) into h; returns its length.
+    fn scale(e: &[f64], b: f64, h: &mut [f64]) -> usize {
+        let mut n = 0;
+        let (mut q, lo) = two_prod(e[0], b);
+        if lo != 0.0 {
+            h[n] = lo;
+            n += 1;
+        }
+        for &ei in &e[1..] {
+            let (p1, p0) = two_prod(ei, b);
+            let (s, lo) = two_sum(q, p0);
+            if lo != 0.0 {
+                h[n] = lo;
+                n += 1;
+            }
+            let (q2, lo) = fast_two_sum(p1, s);
+            q = q2;
+            if lo != 0.0 {
+                h[n] = lo;
+                n += 1;
+            }
+        }
+        if q != 0.0 || n == 0 {
+            h[n] = q;
+            n += 1;
+        }
+        n
+    }
+
+    /// The exact sum of two expansions into h (Shewchuk's fast expansion sum with zero
+    /// elimination); returns its length (≥ 1).
+    pub fn sum(e: &[f64], f: &[f64], h: &mut [f64]) -> usize {
+        let (mut i, mut j) = (0, 0);
+        let next = |i: &mut usize, j: &mut usize| -> f64 {
+            let take_e = *j >= f.len() || (*i < e.len() && e[*i].abs() < f[*j].abs());
+            if take_e {
+                *i += 1;
+                e[*i - 1]
+            } else {
+                *j += 1;
+                f[*j - 1]
+            }
+        };
+        let total = e.len() + f.len();
+        let mut q = next(&mut i, &mut j);
+        let mut n = 0;
+        if total > 1 {
+            let g = next(&mut i, &mut j);
+            let (q2, lo) = fast_two_sum(g, q);
+            q = q2;
+            if lo != 0.0 {
+                h[n] = lo;
+                n += 1;
+            }
+            for _ in 2..total {
+                let g = next(&mut i, &mut j);
+                let (q2, lo) = two_sum(q, g);
+                q = q2;
+                if lo != 0.0 {
+                    h[n] = lo;
+                    n += 1;
+                }
+            }
+        }
+        if q != 0.0 || n == 0 {
+            h[n] = q;
+            n += 1;
+        }
+        n
+    }
+
+    /// (x² + y²)·(u × v) = (x² + y²)·(u.x·v.y − v.x·u.y) exactly, into h (≤ 32 components).
+    pub fn lifted_cross(x: f64, y: f64, u: [f64; 2], v: [f64; 2], h: &mut [f64; 32]) -> usize {
+        let (p1, p0) = two_prod(u[0], v[1]);
+        let (q1, q0) = two_prod(v[0], u[1]);
+        let cr = two_two_diff(p1, p0, q1, q0);
+        let mut t1 = [0.0; 8];
+        let mut t2 = [0.0; 16];
+        let mut xx = [0.0; 16];
+        let n1 = scale(&cr, x, &mut t1);
+        let nx = scale(&t1[..n1], x, &mut xx);
+        let n1 = scale(&cr, y, &mut t1);
+        let ny = scale(&t1[..n1], y, &mut t2);
+        sum(&xx[..nx], &t2[..ny], h)
+    }
+
+    /// (a1 + a0) − (b1 + b0) as the four-component expansion [x0, x1, x2, x3] (Shewchuk's
+    /// Two-Two-Diff: two Two-One-Diffs, i.e. expansion growth by −b0, then by −b1).
+    #[inline(always)]
+    fn two_two_diff(a1: f64, a0: f64, b1: f64, b0: f64) -> [f64; 4] {
+        let (i, x0) = two_diff(a0, b0);
+        let (j, z) = two_sum(a1, i);
+        let (k, x1) = two_diff(z, b1);
+        let (x3, x2) = two_sum(j, k);
+        [x0, x1, x2, x3]
+    }
+
+    /// The exact sign of an expansion: that of its largest (last) component.
+    #[inline]
+    pub fn sign(e: &[f64]) -> i32 {
+        let top = e[e.len() - 1];
+        (top > 0.0) as i32 - (top < 0.0) as i32
+    }
+}
+
+/// Counts of the stage at which each [`incircle_sign`] call was decided (feature
+/// `predicate-stats`; without it the counters stay 0 and cost nothing).
+pub mod stats {
+    #[cfg(feature = "predicate-stats")]
+    use std::sync::atomic::{AtomicU64, Ordering};
+
+    /// Decided by the floating-point filter.
+    pub const INCIRCLE_FILTER: usize = 0;
+    /// Decided by the exact integer evaluation after the power-of-two rescale.
+    pub const INCIRCLE_INT: usize = 1;
+    /// Decided by the exact expansion of exact differences.
+    pub const INCIRCLE_EXACT: usize = 2;
+    /// Passed to Shewchuk's full adaptive cascade (inexact differences).
+    pub const INCIRCLE_FULL: usize = 3;
+    /// Exactly zero in-circle determinant: decided by symbolic perturbation (counted by the
+    /// Delaunay engine).
+    pub const INCIRCLE_SOS: usize = 4;
+    /// Visibility-walk steps (triangles visited) of the 2D engine.
+    pub const WALK_STEPS: usize = 5;
+    /// Lawson flips of the 2D engine.
+    pub const FLIPS: usize = 6;
+    /// Number of counters.
+    pub const N: usize = 7;
+    /// Names of the counters, in order.
+    pub const NAMES: [&str; N] = [
+        "incircle_filter",
+        "incircle_int",
+        "incircle_exact",
+        "incircle_full",
+        "incircle_sos",
+        "walk_steps",
+        "flips",
+    ];
+
+    #[cfg(feature = "predicate-stats")]
+    static COUNTS: [AtomicU64; N] = [const { AtomicU64::new(0) }; N];
+
+    /// Adds one to counter `k`.
+    #[inline(always)]
+    pub fn count(k: usize) {
+        #[cfg(feature = "predicate-stats")]
+        COUNTS[k].fetch_add(1, Ordering::Relaxed);
+        #[cfg(not(feature = "predicate-stats"))]
+        let _ = k;
+    }
+
+    /// The counters (all 0 without the feature).
+    pub fn snapshot() -> [u64; N] {
+        #[cfg(feature = "predicate-stats")]
+        {
+            std::array::from_fn(|k| COUNTS[k].load(Ordering::Relaxed))
+        }
+        #[cfg(not(feature = "predicate-stats"))]
+        {
+            [0; N]
+        }
+    }
+
+    /// Sets every counter to 0.
+    pub fn reset() {
+        #[cfg(feature = "predicate-stats")]
+        for c in &COUNTS {
+            c.store(0, Ordering::Relaxed);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     //! The predicates must give the exact sign where naive floating-point evaluation does not.
@@ -182,6 +621,31 @@ mod tests {
     }
     fn f3(p: [i64; 3]) -> [f64; 3] {
         p.map(|v| v as f64)
+    }
+
+    /// Every stage of [`super::incircle_sign`] is reached and agrees: exact zeros with exact
+    /// differences (stage 2), exact zeros with inexact differences (stage 3), near misses.
+    #[test]
+    fn incircle_sign_stages() {
+        let u = 2f64.powi(-40);
+        // cocircular integer points about a far centre: differences exact, determinant 0
+        let o = 1024.0;
+        let (a, b, c) = ([o + 5.0, o], [o + 3.0, o + 4.0], [o - 4.0, o + 3.0]);
+        assert_eq!(super::incircle_sign(a, b, c, [o, o - 5.0]), 0);
+        assert_eq!(super::incircle_sign(a, b, c, [o, o - 5.0 + 2.0 * u * o]), 1);
+        assert_eq!(
+            super::incircle_sign(a, b, c, [o, o - 5.0 - 2.0 * u * o]),
+            -1
+        );
+        // a centre at the origin: differences across 0 are inexact for fractional coordinates
+        let (a, b, c) = ([0.6, 0.8], [-0.8, 0.6], [0.0, -1.0]);
+        for d in [[0.8, -0.6], [0.6, -0.8], [-0.6, -0.8], [1.0, 0.0]] {
+            assert_eq!(
+                super::incircle_sign(a, b, c, d),
+                sign(raw::incircle(a, b, c, d)),
+                "{d:?}"
+            );
+        }
     }
 
     #[test]
@@ -402,6 +866,36 @@ mod tests {
             prop_assert_eq!(
                 sign(raw::insphere(f3(p), f3(q), f3(r), f3(s), f3(t))),
                 isign(i_insphere(p, q, r, s, t))
+            );
+        }
+
+        /// The cheaper cascade decides exactly as Shewchuk's: on integer points (exact zeros),
+        /// on points nearly on a circle at several scales and offsets (the float filter fails,
+        /// the differences are exact or not), and against the i128 oracle.
+        #[test]
+        fn incircle_sign_agrees(a in p2(), b in p2(), c in p2(), d in p2(),
+                                t in proptest::array::uniform4(0.0..std::f64::consts::TAU),
+                                k in proptest::array::uniform4(-64i32..=64),
+                                sc in -40i32..40, off in prop_oneof![Just(0.0), -3.0..3.0f64]) {
+            let s = super::incircle_sign(f2(a), f2(b), f2(c), f2(d));
+            prop_assert_eq!(s, isign(i_incircle(a, b, c, d)));
+            // four points on a circle of radius 2^sc about (off, off)·2^sc, moved by k ulps
+            let r = 2f64.powi(sc);
+            let q: Vec<[f64; 2]> = (0..4).map(|i| {
+                let x = off * r + r * t[i].cos();
+                let y = off * r + r * t[i].sin();
+                let ux = f64::from_bits(x.abs().to_bits() + 1) - x.abs();
+                [x + k[i] as f64 * ux, y]
+            }).collect();
+            prop_assert_eq!(
+                super::incircle_sign(q[0], q[1], q[2], q[3]),
+                sign(raw::incircle(q[0], q[1], q[2], q[3]))
+            );
+            // the same four points close together (exact differences by Sterbenz)
+            let near: Vec<[f64; 2]> = q.iter().map(|p| [1.0 + p[0] * 1e-6, 1.5 + p[1] * 1e-6]).collect();
+            prop_assert_eq!(
+                super::incircle_sign(near[0], near[1], near[2], near[3]),
+                sign(raw::incircle(near[0], near[1], near[2], near[3]))
             );
         }
 
