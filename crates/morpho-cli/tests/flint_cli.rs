@@ -334,6 +334,78 @@ fn bad_input_is_refused() {
     );
 }
 
+/// `--repair`: the ne10m Australia ring (two zero-area spikes) is refused without it, with the
+/// hint, and accepted with it (`spikes_removed`, input indices in `indices`); the Benelux ring
+/// crosses itself and stays refused, its edges named by input vertices.
+#[test]
+fn repair_removes_spikes_and_refuses_crossings() {
+    let (Some(au), Some(bx)) = (
+        data("polygons/coast_australia_mainland_ne10m.csv"),
+        data("polygons/benelux_mainland_ne10m.csv"),
+    ) else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("q.csv"),
+        "x,y\n136.21276212762126,-13.219\n134,-25\n0,0\n",
+    )
+    .unwrap();
+    let (au, bx) = (au.to_str().unwrap(), bx.to_str().unwrap());
+    let o = morpho(
+        dir.path(),
+        &["flint", "contains", au, "q.csv", "-o", "a.csv"],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.starts_with("error: ") && err.contains("--repair"),
+        "{err}"
+    );
+    let o = morpho(
+        dir.path(),
+        &[
+            "flint", "contains", au, "q.csv", "-o", "a.csv", "--repair", "--report", "r.json",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = report(dir.path(), "r.json");
+    assert_eq!(r["spikes_removed"], 2);
+    assert_eq!(r["removed_vertices"], serde_json::json!([5081, 7182]));
+    let out = std::fs::read_to_string(dir.path().join("a.csv")).unwrap();
+    let inside: Vec<&str> = out
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    // on the removed spike (x of vertex 5081, between its ends): not boundary any more
+    assert_ne!(inside[0], "2", "{out}");
+    assert_eq!(&inside[1..], ["1", "0"], "{out}");
+    let o = morpho(
+        dir.path(),
+        &[
+            "flint", "approx", au, "--count", "50", "-o", "ap.csv", "--repair", "--report",
+            "r2.json",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let idx = report(dir.path(), "r2.json")["indices"].clone();
+    let idx: Vec<u64> = serde_json::from_value(idx).unwrap();
+    assert!(idx.iter().all(|&i| i != 5081 && i != 7182 && i < 9454));
+    assert_eq!(idx.len(), 50);
+    let o = morpho(
+        dir.path(),
+        &["flint", "build", bx, "-o", "t.json", "--repair"],
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.starts_with("error: ") && err.contains("edge 584–585 meets edge 586–587"),
+        "{err}"
+    );
+    assert!(!dir.path().join("t.json").exists());
+}
+
 /// A closed mesh written as OFF with its generator's integer coordinates.
 fn write_off(path: &Path, m: &morpho::mesh::TriMesh) {
     let mut s = format!("OFF\n{} {} 0\n", m.positions.len(), m.triangles.len());

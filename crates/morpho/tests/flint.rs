@@ -223,6 +223,84 @@ fn self_touching_maps_are_refused_with_the_edges() {
     }
 }
 
+/// Zero-area spikes (collinear back-tracks) of the ne10m Australia ring are removed by
+/// `new_repaired` (exact; the repaired ring is simple and answers like brute force on it);
+/// the Benelux and Iceland rings cross themselves (tiny loops, not spikes) and stay refused with
+/// their edges named by input indices.
+#[test]
+fn spikes_are_repaired_and_crossings_still_refused() {
+    let Some(p) = ring("coast_australia_mainland_ne10m.csv") else {
+        return;
+    };
+    assert!(FlintTree2::new(&p, true).is_err());
+    let (t, r) = FlintTree2::new_repaired(&p).unwrap();
+    assert_eq!(r.removed, vec![5081, 7182]);
+    assert_eq!(t.len(), p.len() - 2);
+    let kept: Vec<Point2> = r.kept.iter().map(|&i| p[i]).collect();
+    assert!(simple(&kept));
+    let c: Vec<u32> = (0..p.len() as u32).collect();
+    let k: Vec<u32> = r.kept.iter().map(|&i| i as u32).collect();
+    let check = |cy: &[u32]| morpho::mesh::validity::check_polygon(&p, cy).area2;
+    assert_eq!(
+        check(&c),
+        check(&k),
+        "area (f64 shoelace; exact in the unit test)"
+    );
+    let mut rng = Rng::new(11);
+    let cnt = check_queries(&t, &queries(&kept, &mut rng, 20_000));
+    assert!(cnt[0] > 1000 && cnt[1] > 1000, "{cnt:?}");
+    // a point on the removed spike is no longer on the boundary
+    let spike_mid = Point2::new(p[5081].x, (p[5081].y + p[5082].y) / 2.0);
+    assert_ne!(t.contains(spike_mid).unwrap(), Containment::Boundary);
+    for (name, e1, e2) in [
+        ("benelux_mainland_ne10m.csv", [584, 585], [586, 587]),
+        ("coast_iceland_ne10m.csv", [511, 512], [513, 514]),
+    ] {
+        let Some(p) = ring(name) else { return };
+        let e = FlintTree2::new_repaired(&p).unwrap_err();
+        assert_eq!(
+            e,
+            FlintError::NotSimpleAfterRepair {
+                removed: 0,
+                first: e1,
+                second: e2
+            },
+            "{name}"
+        );
+        assert!(
+            e.to_string().contains(&format!("edge {}–{}", e1[0], e1[1])),
+            "{e}"
+        );
+    }
+    // a synthetic ring with spikes on a square and one crossing: refused after repair, edges
+    // renamed to input indices
+    let q = [
+        (0., 0.),
+        (4., 0.),
+        (4., 4.),
+        (2., 4.),
+        (2., 6.),
+        (2., 5.),
+        (2., 4.),
+        (1., 5.),
+        (3., 5.),
+        (0., 4.),
+    ]
+    .map(|(x, y)| Point2::new(x, y));
+    match FlintTree2::new_repaired(&q).unwrap_err() {
+        FlintError::NotSimpleAfterRepair {
+            removed,
+            first,
+            second,
+        } => {
+            assert_eq!(removed, 3);
+            // kept ring 0 1 2 3 7 8 9: edge 3–7 (input vertices) crosses edge 8–9 at (1.5, 4.5)
+            assert_eq!((first, second), ([3, 7], [8, 9]));
+        }
+        e => panic!("{e:?}"),
+    }
+}
+
 #[test]
 fn bad_input_is_refused() {
     let p = |v: &[(f64, f64)]| {
@@ -319,20 +397,25 @@ fn approximations_levels_adaptive_and_count() {
     }
 }
 
+/// The fast walk (`contains`, the parallel batch, the Hilbert-sorted batch) and the plain
+/// Lemma 6.1 walk (`locate_counted`) against exact brute-force parity.
 fn check_queries(t: &FlintTree2, qs: &[Point2]) -> [usize; 3] {
     let got = t.contains_batch(qs).unwrap();
+    assert_eq!(t.contains_batch_hilbert(qs).unwrap(), got);
     let mut counts = [0; 3];
     for (q, g) in qs.iter().zip(&got) {
         let want = contains_brute(t.points(), [q.x, q.y]);
         assert_eq!(*g, want, "at {q:?}");
         assert_eq!(t.contains(*q).unwrap(), want);
+        assert_eq!(t.locate_counted(*q).unwrap().0, want);
         counts[want as usize] += 1;
     }
     counts
 }
 
 /// Random bbox points, every vertex, points on edges (exact midpoints of even-integer polygons,
-/// lerps elsewhere: the oracle decides), and points on the vertices' horizontal lines.
+/// lerps elsewhere: the oracle decides), and points on the vertices' horizontal and vertical
+/// lines (the x- and y-extents of the tree's boxes are vertex coordinates), the box corners.
 fn queries(p: &[Point2], r: &mut Rng, m: usize) -> Vec<Point2> {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for q in p {
@@ -355,6 +438,13 @@ fn queries(p: &[Point2], r: &mut Rng, m: usize) -> Vec<Point2> {
         let s = unit(r);
         qs.push(Point2::new(a.x + s * (b.x - a.x), a.y + s * (b.y - a.y)));
         qs.push(Point2::new(lo[0] + (hi[0] - lo[0]) * unit(r), a.y));
+        qs.push(Point2::new(a.x, lo[1] + (hi[1] - lo[1]) * unit(r)));
+        qs.push(Point2::new(a.x, b.y));
+    }
+    for x in [lo[0], hi[0]] {
+        for y in [lo[1], hi[1]] {
+            qs.push(Point2::new(x, y));
+        }
     }
     qs
 }
@@ -369,7 +459,7 @@ fn point_in_polygon_equals_brute_force() {
             continue;
         }
         let t = FlintTree2::new(&p, true).unwrap();
-        let c = check_queries(&t, &queries(&p, &mut r, 5000));
+        let c = check_queries(&t, &queries(&p, &mut r, 6000));
         if k % 2 == 0 {
             assert!(
                 c[2] >= 2 * p.len(),

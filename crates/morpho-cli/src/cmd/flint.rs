@@ -19,6 +19,15 @@
 //!   `intersects`, `pairs`, `overlaps`, `visited` (piece pairs the descent filtered) against
 //!   `brute_pairs` (edge pairs of brute force), timings.
 //!
+//! `--repair` (all four, closed rings): zero-area spikes — collinear back-tracks, common in GIS
+//! rings — and repeated consecutive vertices are removed first (exact, area unchanged;
+//! `morpho::mesh::validity::remove_spikes`); report keys `spikes_removed`,
+//! `removed_vertices` (input indices); indices in the outputs (`indices`, `edge_a`/`edge_b`)
+//! stay input indices, and `build` adds `input_index` (repaired position → input vertex). It is
+//! a flag, not the default: the input is never changed silently; a ring refused for spikes says
+//! that `--repair` removes them. A ring that really crosses itself is refused either way,
+//! naming the two edges by their input vertices (exit 2).
+//!
 //! A closed mesh (.ply/.obj/.off/.stl, also gzipped) as IN of `build`, `approx` and
 //! `contains` uses the 3D tree instead (`cmd/flint3.rs`; queries `x,y,z`). Not built yet:
 //! `intersect` of meshes and the 3D baselines.
@@ -28,6 +37,7 @@ use crate::Failure;
 use morpho::flint::{baseline, Baseline, Containment, FlintTree2, Target};
 use morpho::geom::Point2;
 use morpho::io;
+use morpho::mesh::validity::{remove_spikes, SpikeRepair};
 use morpho::mesh::{Column, PointSet, Polygon, Polyline, Shapes2};
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -53,6 +63,10 @@ pub enum Sub {
         /// Read a CSV as an open polyline (a GeoJSON says what it is).
         #[arg(long)]
         open: bool,
+        /// Remove zero-area spikes (collinear back-tracks) and repeated consecutive vertices of
+        /// a closed ring first (exact; area unchanged); reported as `spikes_removed`.
+        #[arg(long)]
+        repair: bool,
     },
     /// Approximate the polygon by a level, an error bound or an edge count.
     Approx {
@@ -76,6 +90,10 @@ pub enum Sub {
         /// Read a CSV as an open polyline.
         #[arg(long)]
         open: bool,
+        /// Remove zero-area spikes (collinear back-tracks) and repeated consecutive vertices of
+        /// a closed ring first (exact; area unchanged); reported as `spikes_removed`.
+        #[arg(long)]
+        repair: bool,
     },
     /// Point-in-polygon (x,y) or point-in-mesh (x,y,z) for every row of QUERIES: adds an
     /// `inside` column.
@@ -87,6 +105,10 @@ pub enum Sub {
         /// Output (.csv): the queries plus `inside` (1 inside, 0 outside, 2 on the boundary).
         #[arg(short, long)]
         output: PathBuf,
+        /// Remove zero-area spikes (collinear back-tracks) and repeated consecutive vertices of
+        /// a closed ring first (exact; area unchanged); reported as `spikes_removed`.
+        #[arg(long)]
+        repair: bool,
     },
     /// Where the boundaries of A and B meet: one row per meeting edge pair.
     Intersect {
@@ -104,6 +126,10 @@ pub enum Sub {
         /// Read CSV inputs as open polylines.
         #[arg(long)]
         open: bool,
+        /// Remove zero-area spikes (collinear back-tracks) and repeated consecutive vertices of
+        /// a closed ring first (exact; area unchanged); reported as `spikes_removed`.
+        #[arg(long)]
+        repair: bool,
     },
 }
 
@@ -118,6 +144,7 @@ impl Args {
                 input,
                 queries,
                 output,
+                ..
             } => (vec![input.as_path(), queries.as_path()], output.as_path()),
             Sub::Intersect { a, b, output, .. } => {
                 (vec![a.as_path(), b.as_path()], output.as_path())
@@ -149,8 +176,105 @@ fn read_curve(path: &Path, open: bool) -> Result<(Vec<Point2>, bool), Failure> {
     Ok((pts, closed))
 }
 
-fn tree(path: &Path, pts: &[Point2], closed: bool) -> Result<FlintTree2, Failure> {
-    FlintTree2::new(pts, closed).map_err(|e| morpho::Error::from(e).with_path(path).into())
+/// A curve as read, after the optional `--repair`.
+struct Curve {
+    pts: Vec<Point2>,
+    closed: bool,
+    /// With `--repair`: what was removed (vertex `k` of `pts` is input vertex `kept[k]`).
+    repair: Option<SpikeRepair>,
+}
+
+impl Curve {
+    /// The input index of vertex `k`.
+    fn input(&self, k: usize) -> usize {
+        self.repair.as_ref().map_or(k, |r| r.kept[k])
+    }
+    /// The input indices removed by `--repair`.
+    fn removed(&self) -> &[usize] {
+        self.repair.as_ref().map_or(&[], |r| &r.removed)
+    }
+}
+
+/// The `--repair` keys of the report: `spikes_removed` and `removed_vertices` (input indices;
+/// one list per input).
+fn report_repair(report: &mut Report, curves: &[&Curve]) {
+    if curves.iter().all(|c| c.repair.is_none()) {
+        return;
+    }
+    let n: usize = curves.iter().map(|c| c.removed().len()).sum();
+    report.set("spikes_removed", n);
+    let lists: Vec<_> = curves.iter().map(|c| json!(c.removed())).collect();
+    report.set(
+        "removed_vertices",
+        if lists.len() == 1 {
+            lists[0].clone()
+        } else {
+            json!(lists)
+        },
+    );
+}
+
+/// [`read_curve`], then with `repair` (closed rings only) the spikes removed.
+fn read_repaired(
+    path: &Path,
+    open: bool,
+    repair: bool,
+    report: &mut Report,
+) -> Result<Curve, Failure> {
+    let (pts, closed) = report.time("read", || read_curve(path, open))?;
+    if !(repair && closed) {
+        return Ok(Curve {
+            pts,
+            closed,
+            repair: None,
+        });
+    }
+    if let Some(index) = pts
+        .iter()
+        .position(|p| !(p.x.is_finite() && p.y.is_finite()))
+    {
+        let e = morpho::flint::FlintError::NonFinite { index };
+        return Err(morpho::Error::from(e).with_path(path).into());
+    }
+    let r = report.time("repair", || remove_spikes(&pts));
+    if !r.removed.is_empty() {
+        eprintln!(
+            "note: {}: removed {} zero-area spike or repeated vertices (input indices {:?}{})",
+            path.display(),
+            r.removed.len(),
+            &r.removed[..r.removed.len().min(8)],
+            if r.removed.len() > 8 { ", …" } else { "" }
+        );
+    }
+    Ok(Curve {
+        pts: r.kept.iter().map(|&i| pts[i]).collect(),
+        closed,
+        repair: Some(r),
+    })
+}
+
+/// The tree of a curve; a refusal names input indices, and a ring refused for spikes that
+/// `--repair` would remove says so.
+fn tree(path: &Path, c: &Curve) -> Result<FlintTree2, Failure> {
+    FlintTree2::new(&c.pts, c.closed).map_err(|e| {
+        let spikes = match (&e, &c.repair) {
+            (morpho::flint::FlintError::NotSimple { .. }, None) if c.closed => {
+                remove_spikes(&c.pts).removed.len()
+            }
+            _ => 0,
+        };
+        let e = match &c.repair {
+            Some(r) => e.after_repair(r),
+            None => e,
+        };
+        let mut f: Failure = morpho::Error::from(e).with_path(path).into();
+        if spikes > 0 {
+            f.msg += &format!(
+                " ({spikes} zero-area spike or repeated vertices found: --repair removes them)"
+            );
+        }
+        f
+    })
 }
 
 /// Runs `morpho flint`.
@@ -160,6 +284,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             input,
             output,
             open,
+            repair,
         } => {
             if crate::cmd::extension(&output) != "json" {
                 return Err(Failure::usage(format!(
@@ -170,8 +295,10 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             if super::flint3::is_mesh(&input) {
                 return super::flint3::build(&input, &output, report);
             }
-            let (pts, closed) = report.time("read", || read_curve(&input, open))?;
-            let t = report.time("build", || tree(&input, &pts, closed))?;
+            let c = read_repaired(&input, open, repair, report)?;
+            let (pts, closed) = (&c.pts, c.closed);
+            let t = report.time("build", || tree(&input, &c))?;
+            report_repair(report, &[&c]);
             let k = t.kind_counts();
             report.set("vertices", pts.len());
             report.set("closed", closed);
@@ -200,7 +327,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                     })
                 })
                 .collect();
-            let doc = json!({
+            let mut doc = json!({
                 "closed": closed,
                 "vertices": pts.len(),
                 "root": {"chord": t.root.chord, "center": t.root.center, "radius": t.root.radius,
@@ -209,6 +336,11 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                 "kinds": kinds,
                 "nodes": nodes,
             });
+            if let Some(r) = &c.repair {
+                // positions index the repaired ring; this maps them to input vertices
+                doc["input_index"] = json!(r.kept);
+                doc["removed_vertices"] = json!(r.removed);
+            }
             report.time("write", || {
                 io::write_atomic(&output, |w| io::json::write_value(w, &doc))
             })?;
@@ -228,6 +360,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             count,
             method,
             open,
+            repair,
         } => {
             let target = match (level, error, count) {
                 (Some(l), None, None) => Target::Level(l),
@@ -249,10 +382,12 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                     output.display()
                 )));
             }
-            let (pts, closed) = report.time("read", || read_curve(&input, open))?;
+            let c = read_repaired(&input, open, repair, report)?;
+            report_repair(report, &[&c]);
+            let (pts, closed) = (&c.pts, c.closed);
             let a = report.time("approximate", || -> Result<_, Failure> {
                 let r = match method.as_str() {
-                    "flintstone" => tree(&input, &pts, closed)?.approximate(target),
+                    "flintstone" => tree(&input, &c)?.approximate(target),
                     m => {
                         let b = match m {
                             "dp" => Baseline::DouglasPeucker,
@@ -260,7 +395,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                             "blg" => Baseline::Blg,
                             _ => Baseline::Arc,
                         };
-                        baseline(&pts, closed, b, target)
+                        baseline(pts, closed, b, target)
                     }
                 };
                 r.map_err(|e| morpho::Error::from(e).with_path(&input).into())
@@ -278,7 +413,8 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                 report.set(k, json!(v.is_finite().then_some(v)));
             }
             report.set("simple", json!(a.simple));
-            report.set("indices", json!(a.vertices));
+            let indices: Vec<usize> = a.vertices.iter().map(|&i| c.input(i)).collect();
+            report.set("indices", json!(indices));
             let kept: Vec<Point2> = a.vertices.iter().map(|&i| pts[i]).collect();
             let shapes = if a.closed {
                 Shapes2 {
@@ -311,6 +447,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             input,
             queries,
             output,
+            repair,
         } => {
             if crate::cmd::extension(&output) != "csv" {
                 return Err(Failure::usage(format!(
@@ -321,15 +458,16 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             if super::flint3::is_mesh(&input) {
                 return super::flint3::contains(&input, &queries, &output, report);
             }
-            let (pts, closed) = report.time("read", || read_curve(&input, false))?;
-            if !closed {
+            let c = read_repaired(&input, false, repair, report)?;
+            if !c.closed {
                 return Err(Failure::usage(format!(
                     "{}: point-in-polygon needs a closed polygon, the file holds an open polyline",
                     input.display()
                 )));
             }
             let mut q = report.time("read", || crate::cmd::read_points(&queries, Some(2)))?;
-            let t = report.time("build", || tree(&input, &pts, true))?;
+            let t = report.time("build", || tree(&input, &c))?;
+            report_repair(report, &[&c]);
             let xs: Vec<Point2> = q
                 .coords
                 .chunks_exact(2)
@@ -365,6 +503,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             output,
             first,
             open,
+            repair,
         } => {
             let ext = crate::cmd::extension(&output);
             if !matches!(ext.as_str(), "csv" | "geojson" | "json" | "ply" | "xyz") {
@@ -373,11 +512,13 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                     output.display()
                 )));
             }
-            let (pa, ca) = report.time("read", || read_curve(&a, open))?;
-            let (pb, cb) = report.time("read", || read_curve(&b, open))?;
+            let cva = read_repaired(&a, open, repair, report)?;
+            let cvb = read_repaired(&b, open, repair, report)?;
+            let (ca, cb) = (cva.closed, cvb.closed);
             let (ta, tb) = report.time("build", || -> Result<_, Failure> {
-                Ok((tree(&a, &pa, ca)?, tree(&b, &pb, cb)?))
+                Ok((tree(&a, &cva)?, tree(&b, &cvb)?))
             })?;
+            report_repair(report, &[&cva, &cvb]);
             let (m, st) = report.time("intersect", || {
                 morpho::flint::intersect_counted(&ta, &tb, first)
             });
@@ -400,8 +541,8 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             let columns = vec![
                 col("x2", &|c| c.overlap.unwrap_or(c.point)[0]),
                 col("y2", &|c| c.overlap.unwrap_or(c.point)[1]),
-                col("edge_a", &|c| c.a as f64),
-                col("edge_b", &|c| c.b as f64),
+                col("edge_a", &|c| cva.input(c.a) as f64),
+                col("edge_b", &|c| cvb.input(c.b) as f64),
                 col("overlap", &|c| f64::from(u8::from(c.overlap.is_some()))),
             ];
             for c in &m {

@@ -26,7 +26,7 @@
 
 use crate::geom::intersect::on_segment;
 use crate::geom::predicates::raw::{incircle, orient2d};
-use crate::geom::vec::{dist, dot, midpoint, perp, scale, sub};
+use crate::geom::vec::{dist, dist2, dot, midpoint, perp, scale, sub};
 
 /// The disc of one side of a chord: through both chord ends and its defining vertex.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -99,6 +99,18 @@ pub(crate) fn at(points: &[[f64; 2]], p: usize) -> [f64; 2] {
     points[p % points.len()]
 }
 
+/// The positions `from..to` of a polygon (wrapping) with their points, in order, without a
+/// division per vertex.
+fn positions(
+    points: &[[f64; 2]],
+    from: usize,
+    to: usize,
+) -> impl Iterator<Item = (usize, [f64; 2])> + '_ {
+    let n = points.len();
+    let start = from % n;
+    (from..to).zip(points[start..].iter().chain(points.iter().cycle()).copied())
+}
+
 /// True when `x` lies in the closed disc through `a`, `b`, `v` (exact; `v` off line ab).
 #[inline]
 pub(crate) fn in_closed_disc(a: [f64; 2], b: [f64; 2], v: [f64; 2], x: [f64; 2]) -> bool {
@@ -150,10 +162,12 @@ impl Flintstone {
     /// (positions taken modulo `points.len()`). The chord ends must differ.
     pub fn of(points: &[[f64; 2]], lo: usize, hi: usize) -> Flintstone {
         let (a, b) = (at(points, lo), at(points, hi));
+        let n = points.len();
+        // positions lo+1..hi as (position, point) without a division per vertex
+        let interior = || positions(points, lo + 1, hi);
         let (mut best_l, mut best_r): (Option<usize>, Option<usize>) = (None, None);
         let mut unbounded = false;
-        for p in lo + 1..hi {
-            let x = at(points, p);
+        for (p, x) in interior() {
             let o = orient2d(a, b, x);
             if o == 0.0 {
                 unbounded |= !on_segment(a, b, x);
@@ -163,7 +177,10 @@ impl Flintstone {
             match *best {
                 None => *best = Some(p),
                 Some(q) => {
-                    if !in_closed_disc(a, b, at(points, q), x) {
+                    // the current vertex q is on the same side as x (orient2d(a, b, q) has
+                    // the sign of o): x replaces q iff strictly outside the circle a, b, q
+                    let ic = incircle(a, b, points[q % n], x);
+                    if (o > 0.0 && ic < 0.0) || (o < 0.0 && ic > 0.0) {
                         *best = Some(p);
                     }
                 }
@@ -183,14 +200,22 @@ impl Flintstone {
                 }
             }
         };
-        // conservative reaches: every polyline vertex in f64 distance
+        // conservative reaches: every polyline vertex in f64 distance (squares compared, one
+        // square root at the end)
         let m = midpoint(a, b);
-        let mut hull_r: f64 = 0.0;
-        for p in lo..=hi {
-            let x = at(points, p);
-            hull_r = hull_r.max(dist(m, x));
-            for d in [&mut left, &mut right].into_iter().flatten() {
-                d.reach = d.reach.max(dist(d.center, x));
+        let mut hull2: f64 = 0.0;
+        let mut reach2 = [0.0f64; 2];
+        for (_, x) in positions(points, lo, hi + 1) {
+            hull2 = hull2.max(dist2(m, x));
+            for (k, d) in [&left, &right].into_iter().enumerate() {
+                if let Some(d) = d {
+                    reach2[k] = reach2[k].max(dist2(d.center, x));
+                }
+            }
+        }
+        for (k, d) in [&mut left, &mut right].into_iter().enumerate() {
+            if let Some(d) = d {
+                d.reach = d.reach.max(reach2[k].sqrt());
             }
         }
         Flintstone {
@@ -199,7 +224,7 @@ impl Flintstone {
             left,
             right,
             kind,
-            hull: (m, hull_r),
+            hull: (m, hull2.sqrt()),
         }
     }
 

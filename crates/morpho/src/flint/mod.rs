@@ -5,6 +5,8 @@
 //!   ± operator (Defs. 7.1–7.4), exact membership;
 //! - [`Criteria`], [`edge_criteria`], [`approximation_criteria`]: the error criteria e1–e5 (§6.2);
 //! - [`FlintTree2`]: the 2D flintstone tree (Alg. 7.1) of a simple polygon or open polyline;
+//!   [`FlintTree2::new_repaired`] first removes zero-area spikes (GIS collinear back-tracks,
+//!   [`crate::mesh::validity::remove_spikes`]);
 //! - [`Target`], [`Approximation`]: level-ℓ, adaptive-ε and edge-count approximations (§7.2.3);
 //! - [`FlintTree2::contains`], [`intersect`], [`intersect_counted`]: hierarchical
 //!   point-in-polygon and boundary intersection (§7.4, Lemma 6.1; crossings, touchings and
@@ -13,7 +15,8 @@
 //! - [`Baseline`], [`baseline`]: Douglas–Peucker (iterative end-point fit), strip tree, BLG tree
 //!   and arc tree (§6.3) through the same criteria; [`BaselineTree`]: their point-in-polygon
 //!   walk (capsule, strip, ellipse regions), with visits counted like
-//!   [`FlintTree2::locate_counted`].
+//!   [`FlintTree2::locate_counted`]. The point queries run on a flat copy of the tree with an
+//!   exact box pre-filter (`locate.rs`); batches are Hilbert-sorted and parallel.
 //! - [`FlintTree3`]: the 3D flintstone tree of a closed triangle mesh (Alg. 7.2, §7.3) with
 //!   [`Flintstone3`] balls of signed radius (Defs. 7.5–7.6), its point-in-polyhedron walk
 //!   [`FlintTree3::contains`] (Lemma 6.1, exact; crack-safe through path fills, see
@@ -29,6 +32,7 @@ mod baselines;
 mod bquery;
 mod criteria;
 mod disc;
+mod locate;
 mod patch3;
 mod query;
 mod query3;
@@ -90,6 +94,17 @@ pub enum FlintError {
         repeated: bool,
         /// Number of vertices (for naming the closing edge).
         n: usize,
+    },
+    /// A polygon still not simple after its zero-area spikes were removed (`--repair`); the
+    /// edges are named by the input indices of their end vertices.
+    #[error("flint: polygon is not simple after removing {removed} spike vertices: edge {}–{} meets edge {}–{} (input vertices)", .first[0], .first[1], .second[0], .second[1])]
+    NotSimpleAfterRepair {
+        /// Number of vertices removed.
+        removed: usize,
+        /// End vertices of the first edge.
+        first: [usize; 2],
+        /// End vertices of the second edge (equal ends: a repeated vertex).
+        second: [usize; 2],
     },
     /// A query that needs a closed polygon on an open polyline.
     #[error("flint: point-in-polygon needs a closed polygon, the input is an open polyline")]
@@ -154,6 +169,33 @@ fn not_simple(i: usize, j: usize, repeated: bool, n: usize) -> String {
 }
 
 impl FlintError {
+    /// The refusal of a ring rebuilt from `repair.kept` (its vertex `k` is input vertex
+    /// `repair.kept[k]`), with a [`FlintError::NotSimple`] renamed by input indices
+    /// ([`FlintError::NotSimpleAfterRepair`]); other refusals unchanged.
+    pub fn after_repair(self, repair: &crate::mesh::validity::SpikeRepair) -> FlintError {
+        let FlintError::NotSimple {
+            first,
+            second,
+            repeated,
+            n,
+        } = self
+        else {
+            return self;
+        };
+        let k = &repair.kept;
+        let edge = |e: usize| [k[e], k[(e + 1) % n]];
+        let (first, second) = if repeated {
+            ([k[first]; 2], [k[second]; 2])
+        } else {
+            (edge(first), edge(second))
+        };
+        FlintError::NotSimpleAfterRepair {
+            removed: repair.removed.len(),
+            first,
+            second,
+        }
+    }
+
     /// Every refusal is caused by the input (CLI exit code 2).
     pub fn is_input_error(&self) -> bool {
         true

@@ -27,7 +27,6 @@ use crate::geom::predicates::raw::orient2d;
 use crate::geom::vec::dist;
 use crate::geom::Point2;
 use crate::util::NONE;
-use rayon::prelude::*;
 
 /// Where a point is relative to a polygon.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -100,15 +99,28 @@ impl FlintTree2 {
         Ok(self.locate([x.x, x.y]))
     }
 
-    /// [`Self::contains`] for many points, in parallel (rayon).
+    /// [`Self::contains`] for many points, in input order, located in parallel (rayon) on the
+    /// flat layout of `locate.rs` (deterministic: the answers do not depend on the threads).
     pub fn contains_batch(&self, xs: &[Point2]) -> Result<Vec<Containment>, FlintError> {
+        self.batch(xs, false)
+    }
+
+    /// [`Self::contains_batch`] visiting the points sorted along a Hilbert curve (for the
+    /// benchmark; same answers).
+    #[doc(hidden)]
+    pub fn contains_batch_hilbert(&self, xs: &[Point2]) -> Result<Vec<Containment>, FlintError> {
+        self.batch(xs, true)
+    }
+
+    fn batch(&self, xs: &[Point2], hilbert: bool) -> Result<Vec<Containment>, FlintError> {
         if !self.closed {
             return Err(FlintError::NotClosed);
         }
         if xs.iter().any(|x| !(x.x.is_finite() && x.y.is_finite())) {
             return Err(FlintError::NonFiniteQuery);
         }
-        Ok(xs.par_iter().map(|x| self.locate([x.x, x.y])).collect())
+        let xs: Vec<[f64; 2]> = xs.iter().map(|x| [x.x, x.y]).collect();
+        Ok(self.flat.locate_batch(&self.points, &xs, hilbert))
     }
 
     /// [`Self::contains`] and the number of pieces (nodes and leaf edges) the walk examined
@@ -124,11 +136,13 @@ impl FlintTree2 {
         Ok(self.walk([x.x, x.y]))
     }
 
-    /// The hierarchical walk (closed polygon, finite `x`).
+    /// The hierarchical walk on the flat layout (closed polygon, finite `x`; `locate.rs`).
     pub(crate) fn locate(&self, x: [f64; 2]) -> Containment {
-        self.walk(x).0
+        self.flat
+            .locate(&self.points, x, &mut Vec::with_capacity(64))
     }
 
+    /// The plain Lemma 6.1 walk over the flintstones alone (no box filter), counting visits.
     fn walk(&self, x: [f64; 2]) -> (Containment, usize) {
         let r = &self.root;
         // outside the root disc (with slack: the disc is constructed in f64) ⇒ outside

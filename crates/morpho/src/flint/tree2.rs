@@ -19,7 +19,7 @@
 use super::disc::Flintstone;
 use super::FlintError;
 use crate::geom::{smallest_enclosing_disc, Point2};
-use crate::mesh::validity::check_polygon;
+use crate::mesh::validity::{check_polygon, remove_spikes, SpikeRepair};
 use crate::util::NONE;
 
 /// One node of the tree below the root: the polyline between positions `stone.lo` and
@@ -59,6 +59,8 @@ pub struct FlintTree2 {
     pub root: FlintRoot,
     /// All nodes below the root.
     pub nodes: Vec<FlintNode>,
+    /// The query layout (closed polygons; empty for polylines).
+    pub(crate) flat: super::locate::Flat,
 }
 
 /// Checks finiteness and count; for polygons, exact simplicity.
@@ -132,12 +134,46 @@ impl FlintTree2 {
                 children: [NONE, NONE],
             },
             nodes: Vec::with_capacity(n),
+            flat: Default::default(),
         };
         t.root.children[0] = t.build(chord[0], chord[1]);
         if closed {
             t.root.children[1] = t.build(chord[1], chord[0] + n);
+            t.flat = super::locate::Flat::new(&t);
         }
         Ok(t)
+    }
+
+    /// Builds the tree of the closed ring `points` after removing its zero-area spikes and
+    /// repeated consecutive vertices ([`remove_spikes`]: exact, area unchanged). The tree's
+    /// vertices (and every index it reports) are those of the repaired ring: vertex `k` is input
+    /// vertex `repair.kept[k]`. A ring that is still not simple is refused with its edges named
+    /// by input indices ([`FlintError::NotSimpleAfterRepair`]).
+    ///
+    /// ```
+    /// use morpho::flint::{Containment, FlintTree2};
+    /// use morpho::geom::Point2;
+    /// // a square with a spike up from its top edge at (1, 2)
+    /// let p = [(0., 0.), (2., 0.), (2., 2.), (1., 2.), (1., 3.), (1., 2.), (0., 2.)]
+    ///     .map(|(x, y)| Point2::new(x, y));
+    /// assert!(FlintTree2::new(&p, true).is_err());
+    /// let (t, r) = FlintTree2::new_repaired(&p).unwrap();
+    /// assert_eq!(r.removed, vec![4, 5]);
+    /// assert_eq!(t.len(), 5);
+    /// assert_eq!(t.contains(Point2::new(1.0, 1.0)).unwrap(), Containment::Inside);
+    /// ```
+    pub fn new_repaired(points: &[Point2]) -> Result<(FlintTree2, SpikeRepair), FlintError> {
+        if let Some(index) = points
+            .iter()
+            .position(|p| !(p.x.is_finite() && p.y.is_finite()))
+        {
+            return Err(FlintError::NonFinite { index });
+        }
+        let repair = remove_spikes(points);
+        let kept: Vec<Point2> = repair.kept.iter().map(|&i| points[i]).collect();
+        FlintTree2::new(&kept, true)
+            .map(|t| (t, repair.clone()))
+            .map_err(|e| e.after_repair(&repair))
     }
 
     /// Builds the subtree of the polyline `lo..=hi`; returns its node id or [`NONE`].
