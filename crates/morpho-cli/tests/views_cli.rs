@@ -18,8 +18,10 @@ fn morpho(args: &[&str]) -> Output {
         .expect("morpho runs")
 }
 
-/// The Figs' parameter sets: (golden file stem, `morpho render` arguments).
-const FIGS: [(&str, &[&str]); 4] = [
+/// The Figs' parameter sets: (golden file stem, `morpho render` arguments). Figs 2.5/2.6
+/// (n = 8, t = 0.5 and t = 0.95) show a data set that is not available; they are drawn here
+/// with the exponential function of Fig. 2.2 sampled on 9³ points.
+const FIGS: [(&str, &[&str]); 6] = [
     (
         "fig2_2_exp_q5_a1",
         &[
@@ -62,6 +64,32 @@ const FIGS: [(&str, &[&str]); 4] = [
     (
         "fig2_9_exp_heights_k30",
         &["--function", "hamann-exp", "--view", "heights", "--k", "30"],
+    ),
+    (
+        "fig2_5_exp_n8_t05",
+        &[
+            "--function",
+            "hamann-exp",
+            "--view",
+            "transparency",
+            "--grid",
+            "8",
+            "--transparency",
+            "0.5",
+        ],
+    ),
+    (
+        "fig2_6_exp_n8_t095",
+        &[
+            "--function",
+            "hamann-exp",
+            "--view",
+            "transparency",
+            "--grid",
+            "8",
+            "--transparency",
+            "0.95",
+        ],
     ),
 ];
 
@@ -164,7 +192,8 @@ fn figure_views_match_their_golden_images() {
 }
 
 /// The comparison can fail: a perturbed parameter (a gap ratio 1.15 instead of 1, q = 6
-/// instead of 5, the camera 5° round, the heights seen 10° higher) fails it. (The height grid
+/// instead of 5, the camera 5° round, the heights seen 10° higher, transparency 0.6 instead
+/// of 0.5, a 7³-cell grid instead of 8³) fails it. (The height grid
 /// k = 24 instead of 30 does not: at 240×180 it moves 0.17 % of the pixels, which is within
 /// the tolerance — the surfaces are smooth.)
 #[test]
@@ -193,6 +222,11 @@ fn a_perturbed_parameter_fails_the_golden_comparison() {
             "fig2_9_exp_heights_k30",
             with(FIGS[3].1, "--elevation", "35"),
         ),
+        (
+            "fig2_5_exp_n8_t05",
+            with(FIGS[4].1, "--transparency", "0.6"),
+        ),
+        ("fig2_5_exp_n8_t05", with(FIGS[4].1, "--grid", "7")),
     ];
     for (i, (stem, args)) in cases.iter().enumerate() {
         let out = dir.path().join(format!("p{i}.png"));

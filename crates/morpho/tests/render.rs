@@ -209,7 +209,11 @@ fn zbuffer_small_triangle_in_front_covers_big_one() {
 #[test]
 fn transparency_blends_back_to_front() {
     // Front square (value 1 → white) listed first, back square (value 0 → black) second; red
-    // background; t = 0.5. Back to front: red → (0.5 black + 0.5 red) → (0.5 white + 0.5 that).
+    // background; t = 0.5. Back to front: red → (0.5 black + 0.5 red) → (0.5 white + 0.5 that),
+    // the closed form (1 − t) c_front + t (1 − t) c_back + t² bg = 0.5·255 + 0.25·0 + 0.25·255
+    // = 191.25 in red and 127.5 in green and blue, rounded once: (191, 128, 128). (Rounding
+    // after every layer, as the renderer did before, gave 192: the back layer's 127.5 rounded
+    // up to 128, then 0.5·255 + 0.5·128 = 191.5 → 192.)
     let sq = |z: f64| {
         vec![
             Point3::new(-1.0, -1.0, z),
@@ -233,7 +237,7 @@ fn transparency_blends_back_to_front() {
         ..ortho_front(20, 20)
     };
     let img = render_mesh(&m, &o);
-    assert_eq!(img.get(10, 10), [192, 128, 128, 255]);
+    assert_eq!(img.get(10, 10), [191, 128, 128, 255]);
     // t = 0: opaque painter's order, the front square wins.
     let img = render_mesh(
         &m,
@@ -252,6 +256,135 @@ fn transparency_blends_back_to_front() {
         },
     );
     assert_eq!(img.get(10, 10), [255, 0, 0, 255]);
+}
+
+/// `n` parallel squares, layer 0 in front, each with its own per-face grey level `values[i]`
+/// (Greys map over 0..255). In the 17×16 front view of the test no sample centre lies on the
+/// squares' diagonals (the rasterizer's edge test is inclusive, so a sample on the shared
+/// edge of two triangles takes both).
+fn stack(values: &[f64]) -> (TriMesh, Vec<f64>) {
+    let mut pos = Vec::new();
+    let mut tris = Vec::new();
+    let mut fv = Vec::new();
+    for (i, &v) in values.iter().enumerate() {
+        let z = -(i as f64);
+        let b = pos.len() as u32;
+        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            pos.push(Point3::new(x, y, z));
+        }
+        tris.push([b, b + 1, b + 2]);
+        tris.push([b, b + 2, b + 3]);
+        fv.extend([v, v]);
+    }
+    (TriMesh::new(pos, tris), fv)
+}
+
+/// Alpha blending of many layers equals the closed form `Σ (1 − t) tⁱ c_i + tⁿ bg` (all
+/// layers, exact arithmetic) to one level, for every t, although the renderer stops taking
+/// layers once they cannot matter. The faint layers (4 levels of 255 at t = 0.99: each adds
+/// 0.04) are the case that rounding after every layer got wrong: it never left the
+/// background (0) while the closed form reaches 40 (1 − 0.99³⁰⁰) = 38.0.
+#[test]
+fn transparency_matches_the_closed_form_over_many_layers() {
+    let mut rng = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut cases: Vec<(f64, Vec<f64>)> = Vec::new();
+    for &t in &[0.0, 0.3, 0.5, 0.8, 0.95] {
+        for n in [1, 2, 5, 9, 10, 40] {
+            cases.push((t, (0..n).map(|_| (next() * 255.0).round()).collect()));
+        }
+    }
+    cases.push((0.99, vec![40.0; 300]));
+    for (t, values) in cases {
+        let (m, fv) = stack(&values);
+        let o = RenderOptions {
+            transparency: Some(t),
+            background: [0, 0, 0, 0],
+            scalars: Some(Scalars {
+                values: fv,
+                per_face: true,
+                colormap: Colormap::Greys,
+                range: Some((0.0, 255.0)),
+            }),
+            ..ortho_front(17, 16)
+        };
+        let (img, st) = render_mesh_stats(&m, &o);
+        // Greys: 0 → black, 1 → white (an 8-bit map, so the level is the value rounded).
+        let grey = |v: f64| Colormap::Greys.color(v / 255.0)[0] as f64;
+        let mut want = 0.0;
+        let mut tr = 1.0;
+        for &v in &values {
+            want += tr * (1.0 - t) * grey(v);
+            tr *= t;
+        }
+        let alpha = 255.0 * (1.0 - tr);
+        for (i, p) in img.rgba.chunks(4).enumerate() {
+            if !(1..16).contains(&(i % 17)) {
+                continue; // the squares' left and right edges
+            }
+            assert!(
+                (p[0] as f64 - want).abs() <= 1.0 && (p[3] as f64 - alpha).abs() <= 1.0,
+                "t {t}, {} layers: {p:?}, closed form {want:.2} / alpha {alpha:.2}",
+                values.len()
+            );
+        }
+        // Early termination: no sample takes a layer once t^i ≤ 1/512.
+        let needed = (0..=values.len())
+            .find(|&i| t.powi(i as i32) <= 1.0 / 512.0)
+            .unwrap_or(values.len())
+            .min(values.len());
+        assert!(
+            st.composited <= (needed * 17 * 16) as u64,
+            "t {t}: {} samples composited, {} layers needed",
+            st.composited,
+            needed
+        );
+    }
+}
+
+/// Alpha blending gives the same bytes with 1, 2 and 3 threads (bands are independent; the
+/// back-to-front sort is a total order).
+#[test]
+fn transparency_is_deterministic_across_thread_counts() {
+    let v = Volume::from_fn([13, 11, 9], [0.0; 3], [39.0, 30.0, 20.0], |x, y, z| {
+        (0.2 * x).sin() + (0.15 * y).cos() * z * 0.1
+    });
+    let gm = morpho::render::grid_planes_mesh(&v, [1, 1, 1]).unwrap();
+    let gv = gm.vertex_prop("value").unwrap().values.clone();
+    for t in [0.5, 0.9] {
+        let o = RenderOptions {
+            width: 200,
+            height: 150,
+            up: UpAxis::Z,
+            transparency: Some(t),
+            scalars: Some(Scalars {
+                values: gv.clone(),
+                per_face: false,
+                colormap: Colormap::Viridis,
+                range: None,
+            }),
+            ..Default::default()
+        };
+        let run = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| render_mesh_stats(&gm, &o))
+        };
+        let (a, sa) = run(1);
+        for threads in [2, 3] {
+            let (b, sb) = run(threads);
+            assert!(a == b, "t {t}: 1 and {threads} threads differ");
+            assert_eq!(sa.composited, sb.composited);
+        }
+        assert!(sa.composited > 0);
+    }
 }
 
 #[test]

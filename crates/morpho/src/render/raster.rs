@@ -23,8 +23,13 @@
 //!
 //! With [`RenderOptions::transparency`] the z-buffer is replaced by Hamann's alpha blending
 //! (1991, §2.2): triangles sorted back to front, each sample `(1 − t) c_triangle + t c_old`.
+//! The recurrence is evaluated front to back (same order, reversed; a transmittance per
+//! sample, rounded to 8 bits once): a sample takes no more layers once the layers behind it
+//! could change it by less than half a level, and triangles over saturated tiles are skipped,
+//! so the cost follows the visible layers, not all of them.
 //!
-//! Complexity: O(n + covered samples) time, O(W·H·s²) memory. Hamann (1991, §2.3) shades
+//! Complexity: O(n log n + covered samples) time (alpha blending: O(n log n + samples ×
+//! visible layers) plus a bounding-box test per triangle), O(W·H·s²) memory. Hamann (1991, §2.3) shades
 //! slice surfaces with Gouraud shading; [`Shading::Smooth`] interpolates normals instead
 //! (per-sample lighting), which keeps highlights round on coarse meshes.
 //!
@@ -139,6 +144,9 @@ pub struct RenderOptions {
     /// the longest edge, which keeps both halves of a split rectangle together), drawn back to
     /// front, unlit, each sample becoming
     /// `(1 − t) c_triangle + t c_old`; `t` is clamped to [0, 1] (0: opaque painter's order).
+    /// Evaluated front to back and rounded once, `Σ_i (1 − t) tⁱ c_i + tⁿ background` (layer
+    /// 0 nearest), stopping once `tⁱ ≤ 1/512` (the rest moves a channel by < 0.5).
+    /// Colour maps are read from a table of 4096 parameters.
     pub transparency: Option<f64>,
     /// Reflection lines (Veltkamp 1992, §8.4) over the shading: see [`ReflectionLines`].
     /// Ignored with `transparency`.
@@ -221,6 +229,9 @@ pub struct RenderStats {
     pub supersample: u32,
     /// Value range mapped to the colour map ends (when scalars were shown).
     pub range: Option<(f64, f64)>,
+    /// Samples composited by alpha blending ([`RenderOptions::transparency`]): samples of a
+    /// triangle that reached a pixel sample not yet saturated (0 with the z-buffer).
+    pub composited: u64,
 }
 
 /// Renders `mesh` (see the module documentation). Never fails: invalid triangles are skipped,
@@ -231,6 +242,15 @@ pub fn render_mesh(mesh: &TriMesh, opts: &RenderOptions) -> Image {
 
 const BAND: usize = 16;
 const MAX_SAMPLES: u64 = 1 << 26;
+/// Width in samples of the tiles (of one band's height) whose saturation alpha blending tracks.
+const TILE: usize = 8;
+/// Transmittance at or below which a sample takes no more layers: the layers behind could add
+/// at most `255 / 512 < 0.5` to a channel, so the rounded 8-bit result moves by at most one
+/// rounding step.
+const SATURATED: f32 = 1.0 / 512.0;
+/// Entries of the colour table of alpha blending (parameter step 1/4095: neighbouring entries
+/// of the 8-bit maps differ by at most one level).
+const LUT: usize = 4096;
 
 /// Per-vertex data after projection.
 #[derive(Clone, Copy)]
@@ -266,8 +286,6 @@ struct Tri {
     face_base: [u8; 3],
     /// Flat-shaded colour.
     flat_col: [u8; 4],
-    /// Depth key for back-to-front sorting (larger is nearer).
-    near: f64,
 }
 
 /// What triangle setup made of a triangle.
@@ -276,6 +294,33 @@ enum Setup {
     /// Drawn but covering no sample (off screen or thinner than a sample spacing).
     Empty,
     Tri(Box<Tri>),
+}
+
+/// Where a triangle lands on the sample grid: twice its signed screen area and its sample
+/// box (inclusive).
+#[derive(Clone, Copy)]
+struct Cover {
+    signed: f64,
+    x0: u32,
+    x1: u32,
+    y0: u32,
+    y1: u32,
+}
+
+/// A layer in a band's list: its index in the layers and its sample columns.
+#[derive(Clone, Copy)]
+struct BinEntry {
+    layer: u32,
+    x0: u16,
+    x1: u16,
+}
+
+/// A triangle of alpha blending before its setup: mesh index, sample box, depth key (larger
+/// is nearer).
+struct Layer {
+    tri: u32,
+    cover: Cover,
+    near: f64,
 }
 
 /// Edge function of the directed edge a→b at (x, y): twice the signed area of (a, b, p).
@@ -315,6 +360,19 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
     };
     let (colours, range) = Colours::new(mesh, &valid, &used, opts);
     stats.range = range;
+    let translucent = opts.transparency.map(|t| {
+        if t.is_finite() {
+            t.clamp(0.0, 1.0)
+        } else {
+            0.5
+        }
+    });
+    let lut = match (translucent, colours.per_vertex()) {
+        (Some(_), Some(m)) => (0..LUT)
+            .map(|i| m.color(i as f64 / (LUT - 1) as f64).map(f32::from))
+            .collect(),
+        _ => Vec::new(),
+    };
     let scene = Scene {
         mesh,
         opts,
@@ -325,14 +383,15 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
         colours,
         lights: Lights::new(),
         eye_dist,
-        translucent: opts.transparency.map(|t| {
-            if t.is_finite() {
-                t.clamp(0.0, 1.0)
-            } else {
-                0.5
-            }
-        }),
+        translucent,
+        lut,
     };
+
+    if let Some(t) = scene.translucent {
+        let (img, composited) = scene.blend(t, &valid, &mut stats);
+        stats.composited = composited;
+        return (img, stats);
+    }
 
     // Triangle setup (parallel, order kept) and binning into bands.
     let setups: Vec<Setup> = valid.par_iter().map(|&t| scene.setup(t)).collect();
@@ -346,10 +405,6 @@ pub fn render_mesh_stats(mesh: &TriMesh, opts: &RenderOptions) -> (Image, Render
                 tris.push(t);
             }
         }
-    }
-    if scene.translucent.is_some() {
-        // Back to front (stable: ties keep the mesh order).
-        tris.sort_by(|a, b| a.near.total_cmp(&b.near));
     }
     let bins = bin_by_band(&tris, scene.frame.sh);
 
@@ -700,6 +755,8 @@ struct Scene<'a> {
     eye_dist: Option<f64>,
     /// Transparency t of alpha blending, `None` for the z-buffer.
     translucent: Option<f64>,
+    /// Alpha blending with per-vertex scalars: the colour map at `i / (LUT − 1)`.
+    lut: Vec<[f32; 3]>,
 }
 
 /// Triangle indices of the bands of `BAND` sample rows each triangle's box touches.
@@ -714,11 +771,65 @@ fn bin_by_band(tris: &[Box<Tri>], sh: usize) -> Vec<Vec<u32>> {
     bins
 }
 
+/// Alpha blending state of one band: per sample the colour composited so far (front to back)
+/// and the transmittance left (`[r, g, b, T]`), and per tile the samples not yet saturated.
+struct Composite {
+    acc: Vec<[f32; 4]>,
+    rows: usize,
+    /// Unsaturated samples per tile (`TILE` columns of the band).
+    open: Vec<u32>,
+    /// Tiles with an unsaturated sample.
+    open_tiles: usize,
+    /// `1 − t` and `t`.
+    opacity: f32,
+    t: f32,
+}
+
+/// The span `xs..=xe` of sample row `fy` inside all three half-planes of `t` (one sample of
+/// slack; the edge test per sample decides), clipped to the triangle's box.
+#[inline]
+fn row_span(t: &Tri, fy: f64) -> Option<(usize, usize)> {
+    let [p0, p1, p2] = &t.p;
+    let (mut xa, mut xb) = (t.x0 as f64, t.x1 as f64);
+    for (a, b) in [(p1, p2), (p2, p0), (p0, p1)] {
+        // edge(a, b, x, fy) = k * x + m
+        let k = -(b.py - a.py);
+        let m = edge(a, b, 0.0, fy);
+        if k > 0.0 {
+            xa = xa.max((-m / k - 0.5).floor() - 1.0);
+        } else if k < 0.0 {
+            xb = xb.min((-m / k - 0.5).ceil() + 1.0);
+        }
+    }
+    if xa > xb {
+        return None;
+    }
+    Some((xa.max(t.x0 as f64) as usize, xb.min(t.x1 as f64) as usize))
+}
+
 impl Scene<'_> {
     /// Triangle setup of triangle `t`: corner order, sample box, constant colours, depth key.
     fn setup(&self, t: usize) -> Setup {
+        match self.cover(t) {
+            Ok(c) => Setup::Tri(Box::new(self.make_tri(t, c))),
+            Err(s) => s,
+        }
+    }
+
+    /// Twice the signed screen area of triangle `t` (as [`Scene::cover`] computes it).
+    fn signed_area(&self, t: usize) -> f64 {
+        let [a, b, c] = self.mesh.triangles[t];
+        let (va, vb, vc) = (
+            &self.verts[a as usize],
+            &self.verts[b as usize],
+            &self.verts[c as usize],
+        );
+        edge(va, vb, vc.px, vc.py)
+    }
+
+    /// The sample box of triangle `t`, or why it has none (degenerate, or covering no sample).
+    fn cover(&self, t: usize) -> Result<Cover, Setup> {
         let (sw, sh) = (self.frame.sw, self.frame.sh);
-        let opts = self.opts;
         let [a, b, c] = self.mesh.triangles[t];
         let (va, vb, vc) = (
             self.verts[a as usize],
@@ -727,7 +838,7 @@ impl Scene<'_> {
         );
         let signed = edge(&va, &vb, vc.px, vc.py);
         if signed == 0.0 || !signed.is_finite() {
-            return Setup::Degenerate;
+            return Err(Setup::Degenerate);
         }
         let xmin = va.px.min(vb.px).min(vc.px);
         let xmax = va.px.max(vb.px).max(vc.px);
@@ -743,8 +854,30 @@ impl Scene<'_> {
             || fx0 > fx1
             || fy0 > fy1
         {
-            return Setup::Empty;
+            return Err(Setup::Empty);
         }
+        // The sample grid is at most 8192 · 4 samples wide and high (`Frame::new`).
+        Ok(Cover {
+            signed,
+            x0: fx0.max(0.0) as u32,
+            x1: (fx1 as usize).min(sw - 1) as u32,
+            y0: fy0.max(0.0) as u32,
+            y1: (fy1 as usize).min(sh - 1) as u32,
+        })
+    }
+
+    /// The setup of triangle `t` with sample box `cover`: corner order, constant colours and
+    /// (with the z-buffer: alpha blending is unlit) the lighting and wireframe constants.
+    fn make_tri(&self, t: usize, cover: Cover) -> Tri {
+        let opts = self.opts;
+        let [a, b, c] = self.mesh.triangles[t];
+        let (va, vb, vc) = (
+            self.verts[a as usize],
+            self.verts[b as usize],
+            self.verts[c as usize],
+        );
+        let signed = cover.signed;
+        let lit = self.translucent.is_none();
         // Pixel y grows downwards, so a counter-clockwise (front) triangle has signed < 0.
         let back = signed > 0.0;
         let (p, ids) = if back {
@@ -752,12 +885,18 @@ impl Scene<'_> {
         } else {
             ([va, vc, vb], [a, c, b])
         };
-        let lens = [
-            (p[2].px - p[1].px).hypot(p[2].py - p[1].py),
-            (p[0].px - p[2].px).hypot(p[0].py - p[2].py),
-            (p[1].px - p[0].px).hypot(p[1].py - p[0].py),
-        ];
-        let face_n = {
+        let lens = if lit {
+            [
+                (p[2].px - p[1].px).hypot(p[2].py - p[1].py),
+                (p[0].px - p[2].px).hypot(p[0].py - p[2].py),
+                (p[1].px - p[0].px).hypot(p[1].py - p[0].py),
+            ]
+        } else {
+            [0.0; 3]
+        };
+        let face_n = if !lit {
+            self.lights.head
+        } else {
             let f = face_normal(self.mesh, &self.cam, t);
             let l = f.norm();
             let f = if l > 0.0 && l.is_finite() {
@@ -781,27 +920,36 @@ impl Scene<'_> {
                 }
             }
         };
-        Setup::Tri(Box::new(Tri {
+        Tri {
             ids,
             p,
-            x0: fx0.max(0.0) as usize,
-            x1: (fx1 as usize).min(sw - 1),
-            y0: fy0.max(0.0) as usize,
-            y1: (fy1 as usize).min(sh - 1),
+            x0: cover.x0 as usize,
+            x1: cover.x1 as usize,
+            y0: cover.y0 as usize,
+            y1: cover.y1 as usize,
             inv_area: 1.0 / signed.abs(),
             lens,
             back,
             face_n,
             face_base,
-            flat_col: self.lights.shade(face_n, face_base),
-            near: self.depth_key([a, b, c], [va, vb, vc]),
-        }))
+            flat_col: if lit {
+                self.lights.shade(face_n, face_base)
+            } else {
+                [0; 4]
+            },
+        }
     }
 
     /// Depth at the midpoint of the longest edge (in camera space): the two halves of a
     /// rectangle split along its diagonal get the same key, so the stable sort keeps them
     /// together.
-    fn depth_key(&self, [a, b, c]: [u32; 3], [va, vb, vc]: [Vert; 3]) -> f64 {
+    fn depth_key(&self, t: usize) -> f64 {
+        let [a, b, c] = self.mesh.triangles[t];
+        let (va, vb, vc) = (
+            self.verts[a as usize],
+            self.verts[b as usize],
+            self.verts[c as usize],
+        );
         let cam = &self.cam;
         let (ca, cb, cc) = (cam[a as usize], cam[b as usize], cam[c as usize]);
         let (lab, lbc, lca) = ((cb - ca).norm(), (cc - cb).norm(), (ca - cc).norm());
@@ -882,23 +1030,9 @@ impl Scene<'_> {
         for y in ylo..=yhi {
             let fy = y as f64 + 0.5;
             let row = (y - y_base) * sw;
-            // Span of this row inside all three half-planes (one sample of slack; the edge
-            // test below decides).
-            let (mut xa, mut xb) = (t.x0 as f64, t.x1 as f64);
-            for (a, b) in [(p1, p2), (p2, p0), (p0, p1)] {
-                // edge(a, b, x, fy) = k * x + m
-                let k = -(b.py - a.py);
-                let m = edge(a, b, 0.0, fy);
-                if k > 0.0 {
-                    xa = xa.max((-m / k - 0.5).floor() - 1.0);
-                } else if k < 0.0 {
-                    xb = xb.min((-m / k - 0.5).ceil() + 1.0);
-                }
-            }
-            if xa > xb {
+            let Some((xs, xe)) = row_span(t, fy) else {
                 continue;
-            }
-            let (xs, xe) = (xa.max(t.x0 as f64) as usize, xb.min(t.x1 as f64) as usize);
+            };
             for x in xs..=xe {
                 let fx = x as f64 + 0.5;
                 // Edge functions: w0 opposite p0, etc. Positive inside (inclusive).
@@ -913,30 +1047,213 @@ impl Scene<'_> {
                 let l = [w[0] * inv_area, w[1] * inv_area, w[2] * inv_area];
                 let depth = l[0] * p0.depth + l[1] * p1.depth + l[2] * p2.depth;
                 let zi = row + x;
-                if self.translucent.is_none() {
-                    if depth.partial_cmp(&zbuf[zi]) != Some(std::cmp::Ordering::Greater) {
-                        continue;
-                    }
-                    zbuf[zi] = depth;
-                }
-                // Perspective-correct weights.
-                let pw = [l[0] * p0.invw, l[1] * p1.invw, l[2] * p2.invw];
-                let s = pw[0] + pw[1] + pw[2];
-                let b = [pw[0] / s, pw[1] / s, pw[2] / s];
-                let base = self.base_colour(t, b);
-                let o = zi * 4;
-                if let Some(tr) = self.translucent {
-                    for k in 0..4 {
-                        let c = if k < 3 { base[k] as f64 } else { 255.0 };
-                        let old = band[o + k] as f64;
-                        band[o + k] = ((1.0 - tr) * c + tr * old).round() as u8;
-                    }
+                if depth.partial_cmp(&zbuf[zi]) != Some(std::cmp::Ordering::Greater) {
                     continue;
                 }
+                zbuf[zi] = depth;
+                let b = perspective_weights(t, w);
+                let base = self.base_colour(t, b);
+                let o = zi * 4;
                 let col = self.lit_colour(t, b, base, w);
                 band[o..o + 4].copy_from_slice(&col);
             }
         }
+    }
+
+    /// Steps 4–6 with alpha blending (transparency `t`): the covering triangles' sample boxes
+    /// and depth keys, sorted back to front (ties in mesh order: the order of a stable sort;
+    /// a total order, so the parallel sort gives it for any thread count), binned to bands
+    /// and composited band by band ([`Scene::composite_band`]; a triangle's full setup is made
+    /// only where it is not hidden). Returns the picture and the samples composited.
+    fn blend(&self, t: f64, valid: &[usize], stats: &mut RenderStats) -> (Image, u64) {
+        let layers: Vec<Layer> = valid
+            .par_iter()
+            .filter_map(|&ti| {
+                let cover = self.cover(ti).ok()?;
+                Some(Layer {
+                    tri: ti as u32,
+                    cover,
+                    near: self.depth_key(ti),
+                })
+            })
+            .collect();
+        stats.degenerate = valid
+            .par_iter()
+            .filter(|&&ti| {
+                let s = self.signed_area(ti);
+                s == 0.0 || !s.is_finite()
+            })
+            .count();
+        stats.drawn = valid.len() - stats.degenerate;
+        // Keys, indices and rows sort in one small array (`layers` is in mesh order); the
+        // bins carry each layer's columns, so the hidden ones are skipped without reading
+        // `layers`. Sample coordinates fit in u16 (at most 8192 · 4, `Frame::new`).
+        let mut order: Vec<(f64, u32, [u16; 4])> = layers
+            .iter()
+            .enumerate()
+            .map(|(i, l)| {
+                let c = l.cover;
+                (l.near, i as u32, [c.x0, c.x1, c.y0, c.y1].map(|v| v as u16))
+            })
+            .collect();
+        order.par_sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let (sw, sh) = (self.frame.sw, self.frame.sh);
+        let mut bins: Vec<Vec<BinEntry>> = vec![Vec::new(); sh.div_ceil(BAND).max(1)];
+        for &(_, i, [x0, x1, y0, y1]) in &order {
+            let e = BinEntry { layer: i, x0, x1 };
+            let (y0, y1) = (y0 as usize, y1 as usize);
+            for b in bins.iter_mut().take(y1 / BAND + 1).skip(y0 / BAND) {
+                b.push(e);
+            }
+        }
+        drop(order);
+        let mut samples = vec![0u8; sw * sh * 4];
+        let composited = samples
+            .par_chunks_mut(BAND * sw * 4)
+            .enumerate()
+            .map(|(bi, band)| self.composite_band(t, bi * BAND, band, &bins[bi], &layers))
+            .sum();
+        (downsample(samples, &self.frame), composited)
+    }
+
+    /// Alpha blending of one band starting at sample row `y_base` (Hamann 1991, §2.2):
+    /// the band's triangles are taken front to back (the reverse of the back-to-front order
+    /// in `bin`), each sample keeping the colour composited so far `C` and the transmittance
+    /// `T` of the layers in front; a layer of colour `c` makes `C += T (1 − t) c`,
+    /// `T *= t`, and the background ends it: `C + T · background`. This is the back-to-front
+    /// recurrence `c_new = (1 − t) c + t c_old` unrolled, `Σ_i (1 − t) tⁱ c_i + tⁿ bg`, rounded
+    /// to 8 bits once instead of after every layer. A sample stops taking layers once
+    /// `T ≤ 1/512` (`SATURATED`), a triangle is skipped when every tile it touches is
+    /// saturated, and the band stops when all are. Returns the samples composited.
+    fn composite_band(
+        &self,
+        t: f64,
+        y_base: usize,
+        band: &mut [u8],
+        bin: &[BinEntry],
+        layers: &[Layer],
+    ) -> u64 {
+        let sw = self.frame.sw;
+        let rows = band.len() / (sw * 4);
+        let ntiles = sw.div_ceil(TILE);
+        let mut buf = Composite {
+            acc: vec![[0.0, 0.0, 0.0, 1.0]; rows * sw],
+            rows,
+            open: (0..ntiles)
+                .map(|k| (rows * (sw.min((k + 1) * TILE) - k * TILE)) as u32)
+                .collect(),
+            open_tiles: ntiles,
+            opacity: (1.0 - t) as f32,
+            t: t as f32,
+        };
+        let mut composited = 0;
+        // t = 1: every layer is invisible.
+        if t < 1.0 {
+            for e in bin.iter().rev() {
+                if buf.open_tiles == 0 {
+                    break;
+                }
+                let (x0, x1) = (e.x0 as usize, e.x1 as usize);
+                if (x0 / TILE..=x1 / TILE).all(|k| buf.open[k] == 0) {
+                    continue;
+                }
+                let l = &layers[e.layer as usize];
+                let tri = self.make_tri(l.tri as usize, l.cover);
+                composited += self.composite_triangle(&tri, y_base, &mut buf);
+            }
+        }
+        let bg = self.opts.background.map(f32::from);
+        for (px, a) in band.chunks_exact_mut(4).zip(&buf.acc) {
+            let tr = a[3];
+            // Non-negative sums: adding 0.5 and truncating rounds half away from zero, as
+            // `f64::round` does; `as u8` saturates at 255.
+            for k in 0..3 {
+                px[k] = (a[k] + tr * bg[k] + 0.5) as u8;
+            }
+            px[3] = (255.0 * (1.0 - tr) + tr * bg[3] + 0.5) as u8;
+        }
+        composited
+    }
+
+    /// One triangle of [`Scene::composite_band`] over the unsaturated samples it covers.
+    fn composite_triangle(&self, t: &Tri, y_base: usize, buf: &mut Composite) -> u64 {
+        let sw = self.frame.sw;
+        let [p0, p1, p2] = &t.p;
+        let ylo = t.y0.max(y_base);
+        let yhi = t.y1.min(y_base + buf.rows - 1);
+        let mut n = 0;
+        for y in ylo..=yhi {
+            let fy = y as f64 + 0.5;
+            let row = (y - y_base) * sw;
+            let Some((xs, xe)) = row_span(t, fy) else {
+                continue;
+            };
+            for x in xs..=xe {
+                let zi = row + x;
+                let tr = buf.acc[zi][3];
+                if tr <= SATURATED {
+                    continue;
+                }
+                let fx = x as f64 + 0.5;
+                let w = [
+                    edge(p1, p2, fx, fy),
+                    edge(p2, p0, fx, fy),
+                    edge(p0, p1, fx, fy),
+                ];
+                if w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0 {
+                    continue;
+                }
+                let c = self.blend_colour(t, perspective_weights(t, w));
+                let k = tr * buf.opacity;
+                let nt = tr * buf.t;
+                let a = &mut buf.acc[zi];
+                a[0] += k * c[0];
+                a[1] += k * c[1];
+                a[2] += k * c[2];
+                a[3] = nt;
+                n += 1;
+                if nt <= SATURATED {
+                    let tile = x / TILE;
+                    buf.open[tile] -= 1;
+                    if buf.open[tile] == 0 {
+                        buf.open_tiles -= 1;
+                    }
+                }
+            }
+        }
+        n
+    }
+
+    /// The unlit colour of alpha blending at weights `b`: [`Scene::base_colour`] with the
+    /// colour map read from the table `lut` (nearest of 4096 parameters).
+    #[inline]
+    fn blend_colour(&self, t: &Tri, b: [f64; 3]) -> [f32; 3] {
+        if self.lut.is_empty() {
+            return t.face_base.map(f32::from);
+        }
+        let tvals = &self.colours.tvals;
+        let ids = t.ids;
+        let tv = [
+            tvals[ids[0] as usize],
+            tvals[ids[1] as usize],
+            tvals[ids[2] as usize],
+        ];
+        let mut tt = b[0] * tv[0] + b[1] * tv[1] + b[2] * tv[2];
+        if tt.is_nan() {
+            // Missing at some corner: nearest corner decides.
+            tt = if b[0] >= b[1] && b[0] >= b[2] {
+                tv[0]
+            } else if b[1] >= b[2] {
+                tv[1]
+            } else {
+                tv[2]
+            };
+            if tt.is_nan() {
+                return super::colormap::MISSING.map(f32::from);
+            }
+        }
+        let i = (tt.clamp(0.0, 1.0) * (LUT - 1) as f64 + 0.5) as usize;
+        self.lut[i.min(LUT - 1)]
     }
 
     /// The unlit colour at barycentric weights `b` (corner order of `t`): per-vertex scalars
@@ -1016,6 +1333,20 @@ impl Scene<'_> {
         }
         col
     }
+}
+
+/// Perspective-correct barycentric weights of a sample with edge functions `w` in `t`.
+#[inline]
+fn perspective_weights(t: &Tri, w: [f64; 3]) -> [f64; 3] {
+    let [p0, p1, p2] = &t.p;
+    let inv_area = t.inv_area;
+    let pw = [
+        w[0] * inv_area * p0.invw,
+        w[1] * inv_area * p1.invw,
+        w[2] * inv_area * p2.invw,
+    ];
+    let s = pw[0] + pw[1] + pw[2];
+    [pw[0] / s, pw[1] / s, pw[2] / s]
 }
 
 /// Step 6: each pixel the average of its `ss × ss` samples (rounded).

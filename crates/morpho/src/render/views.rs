@@ -11,6 +11,10 @@
 //!   back to front and alpha-blended `c_new = (1 − t) c_poly + t c_old` by the rasterizer
 //!   ([`super::RenderOptions::transparency`]; the sort key is the rectangle's centre, which for
 //!   the axis-parallel rectangles of one family orders them as Hamann's nearest corner does).
+//!   The rasterizer evaluates that recurrence front to back in the same order (one rounding
+//!   to 8 bits, a sample stops once the layers behind it cannot move it by half a level), so
+//!   the hidden layers cost a bounding-box test, not a blend. There is no empty space to skip:
+//!   every rectangle has opacity 1 − t whatever its value (t = 1 draws the background only).
 //! - [`View::Slices`] (§2.3, first possibility): [`super::orthogonal_slices`].
 //! - [`View::Heights`] (§2.3, second possibility, Fig. 2.9): the three middle slices sampled on
 //!   `(k+1)²` points, their graphs triangulated by I₁/I₂ ([`height_surface_mesh`], `2k²`
@@ -21,7 +25,8 @@
 //! Bad input: a volume without a finite value or with one sample along an axis (3D views) is a
 //! [`RenderError`]; a constant volume gives a picture with a note written on it.
 //!
-//! Cost: linear in the primitives drawn plus the rasterizer's O(covered samples).
+//! Cost: linear in the primitives drawn plus the rasterizer's O(covered samples) (for the
+//! transparency view: O(n log n) for the sort plus samples × layers in front of saturation).
 
 /// A map of domain points (the identity for volumes, a formula's parameter map otherwise).
 type PointMap = Box<dyn Fn([f64; 3]) -> [f64; 3]>;
