@@ -29,6 +29,7 @@ mod side_vertex;
 mod singular;
 mod split3;
 mod tessellate;
+mod transversal;
 mod triangle;
 
 pub use bezier::{bernstein, joint, BezierCurve, Joint};

@@ -14,11 +14,12 @@
 //! and `μ(t) = μ0 t + μ1 u` is linear: the linear-E,F,G conditions (9.3) are then consistent
 //! with `F = G` constant, i.e. with the ratio `ρ = e1/e0` chosen so that `f1 = f0`.
 //!
-//! So, for an edge detected as (near-)singular:
-//! 1. its two edge points become `M1 = (M0 + 2Q)/3`, `M2 = (M3 + 2Q)/3`, where `Q` is the
-//!    point nearest the edge midpoint in both vertex tangent planes and in the plane through
-//!    the edge spanned by the mean normal (the mirror plane of a symmetric edge), so positions
-//!    and normals are still interpolated ([`quadratic_handles`]);
+//! So (now used by `split3.rs` as its last resort; the quadratic boundary serves the explicit
+//! construction of `transversal.rs` on every edge where it is usable):
+//! 1. the two edge points become `M1 = (M0 + 2Q)/3`, `M2 = (M3 + 2Q)/3`, where `Q` is the
+//!    point of both vertex tangent planes nearest a given point (the caller passes the one
+//!    that keeps the boundary nearest the Step-2 one), so positions and normals are still
+//!    interpolated ([`quadratic_handles`]);
 //! 2. Step 5 solves (9.3b), (9.3c) with `e0 = 1`, `e1 = ρ = (f0²+g0²)/(f0 f1 + g0 g1)`
 //!    (which makes `f1 = f0` exactly on symmetric edges) by the minimum-norm least-squares
 //!    correction of the current `(L1, R1)` (pseudo-inverse of the 2×2 coefficient matrix):
@@ -37,17 +38,17 @@ type P3 = [f64; 3];
 const CUTOFF: f64 = 1e-9;
 
 /// The edge points `(M1, M2)` of the degree-elevated quadratic boundary from `a` (normal
-/// `na`) to `b` (normal `nb`), or `None` when no point lies in both tangent planes (parallel,
-/// offset planes) or the result is not finite.
-pub(crate) fn quadratic_handles(a: P3, na: P3, b: P3, nb: P3) -> Option<(P3, P3)> {
-    let e = vec::sub(b, a);
-    let len = vec::norm(e);
-    let mid = vec::lerp(a, b, 0.5);
-    let s = vec::add(na, nb);
-    let w = vec::cross(e, s);
-    let wl = vec::norm(w);
-    let w = if wl > 1e-12 * len * vec::norm(s) && wl > 0.0 {
-        vec::scale(w, 1.0 / wl)
+/// `na`) to `b` (normal `nb`) whose middle point `Q` lies in both tangent planes, nearest to
+/// `c` along their line of intersection (anywhere in the plane when the planes coincide), or
+/// `None` when no point lies in both tangent planes (parallel, offset planes) or the result is
+/// not finite. `Q` is returned too.
+pub(crate) fn quadratic_handles(a: P3, na: P3, b: P3, nb: P3, c: P3) -> Option<(P3, P3, P3)> {
+    let len = vec::dist(a, b);
+    let mid = c;
+    let d = vec::cross(na, nb);
+    let dl = vec::norm(d);
+    let w = if dl > 1e-12 && dl.is_finite() {
+        vec::scale(d, 1.0 / dl)
     } else {
         [0.0; 3]
     };
@@ -69,18 +70,22 @@ pub(crate) fn quadratic_handles(a: P3, na: P3, b: P3, nb: P3) -> Option<(P3, P3)
     }
     let m1 = vec::add_scaled(a, 2.0 / 3.0, vec::sub(q, a));
     let m2 = vec::add_scaled(b, 2.0 / 3.0, vec::sub(q, b));
-    Some((m1, m2))
+    Some((m1, m2, q))
 }
 
 /// Step 5 on a (near-)singular edge (module doc): `m` the edge points, `l`, `r` the first rows
 /// of both sides, `[f0, g0, f1, g1]` from (9.3a), (9.3d) with `e = 1`, `old` the current
-/// `(L1, R1)`. Returns the new `(L1, R1)` and the relative residual of (9.3b), (9.3c).
+/// `(L1, R1)`, `cutoff` the relative singular value below which the pseudo-inverse drops a
+/// direction (at least `CUTOFF`; a larger one bounds the move where the pair is nearly
+/// dependent, at the price of a residual). Returns the new `(L1, R1)` and the relative
+/// residual of (9.3b), (9.3c).
 pub(crate) fn solve_singular(
     m: &[P3; 4],
     l: &[P3; 3],
     r: &[P3; 3],
     [f0, g0, f1, g1]: [f64; 4],
     old: (P3, P3),
+    cutoff: f64,
 ) -> ((P3, P3), f64) {
     let d = vec::sub;
     let dot01 = f0 * f1 + g0 * g1;
@@ -102,7 +107,7 @@ pub(crate) fn solve_singular(
     //   2ρ f1 u + 2ρ g1 v       = −A1 − 2ρ (M2−M1)         (9.3c)
     let b = Matrix2::new(2.0 * f0, 2.0 * g0, 2.0 * rho * f1, 2.0 * rho * g1);
     let svd = b.svd(true, true);
-    let cut = CUTOFF * svd.singular_values.max();
+    let cut = cutoff.max(CUTOFF) * svd.singular_values.max();
     let (u_old, v_old) = (d(old.0, m[1]), d(old.1, m[1]));
     let mut u = [0.0; 3];
     let mut v = [0.0; 3];
@@ -134,11 +139,12 @@ mod tests {
 
     #[test]
     fn quadratic_boundary_of_the_octahedron_edge_is_the_corner_point() {
-        let (m1, m2) = quadratic_handles(
+        let (m1, m2, _) = quadratic_handles(
             [1.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],
             [0.0, 1.0, 0.0],
+            [0.5, 0.5, 0.0],
         )
         .unwrap();
         // Q = (1,1,0): M1 = (1, 2/3, 0), M2 = (2/3, 1, 0)
@@ -150,12 +156,19 @@ mod tests {
             [0.0, 0.0, 0.0],
             [0.0, 0.0, 1.0],
             [1.0, 0.0, 1.0],
-            [0.0, 0.0, 1.0]
+            [0.0, 0.0, 1.0],
+            [0.5, 0.0, 0.5]
         )
         .is_none());
         // one plane: the straight edge
-        let (m1, _) =
-            quadratic_handles([0.0; 3], [0.0, 0.0, 1.0], [3.0, 0.0, 0.0], [0.0, 0.0, 1.0]).unwrap();
+        let (m1, _, _) = quadratic_handles(
+            [0.0; 3],
+            [0.0, 0.0, 1.0],
+            [3.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.5, 0.0, 0.0],
+        )
+        .unwrap();
         assert!(vec::dist(m1, [1.0, 0.0, 0.0]) < 1e-15);
     }
 }

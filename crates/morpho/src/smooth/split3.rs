@@ -10,17 +10,34 @@
 //! `Y_i = (W_i + X_a + X_b)/3`, `Z = (Y_0+Y_1+Y_2)/3` (the text's `Y_1..Y_3` is an index garble).
 //! O(triangles).
 //!
-//! **Deviation (the singular case, not in the text).** When the two sides of an edge are
-//! (nearly) mirror images (octahedron, icosahedron with sphere normals, symmetric grids),
-//! `f0 g1 ≈ g0 f1` and (9.4) is singular and inconsistent (NOTES B.5): the text's construction
-//! would leave a crease of 0.29 rad (octahedron). Such edges
-//! (`|f0 g1 − g0 f1| ≤ 1e-7 (|f0|+|g0|)(|f1|+|g1|)`) are **reported** in
-//! [`SplitSurface::singular_edges`] and built with a degree-elevated quadratic boundary and the
-//! ratio `e1/e0` that makes (9.3) consistent, solved in closed form (the derivation is in
-//! `singular.rs`). Edges where that still leaves a residual are listed in
-//! [`SplitSurface::unresolved_edges`]; edges whose `f`, `g` differ in sign (a fold, NOTES B.1:
-//! the text's "opposite signs" is a garble) in [`SplitSurface::sign_warnings`]. Continuity is
-//! verified independently by [`super::continuity`].
+//! **Deviation: Step 5 without (9.4) where possible (not in the text).** (9.4)'s determinant
+//! `f0 g1 − g0 f1` vanishes when the two triangles of an edge are mirror images (octahedron,
+//! icosahedron with sphere normals, symmetric grids), where (9.3) is also inconsistent
+//! (NOTES B.5), and it is *small on most edges of a good real mesh*, whose neighbouring
+//! triangles are nearly symmetric: on the horse 75 % of the edges have it below 1e-3 of its
+//! scale and 331 below 1e-7, on spot 104 exactly 0. The residual of (9.3) does not vanish with
+//! it, so (9.4) throws `L1, R1` out by residual/determinant: 1.4e14 edge lengths on spot's edge
+//! 104–1842, 3.8e12 on the horse (the "wild oscillation" of V Fig. 9.5). No threshold or choice
+//! of the free ratio `e1/e0` cures that (see `transversal.rs`). So, per macro edge:
+//! 1. if a **degree-elevated quadratic boundary** exists near the Step-2 one (its middle
+//!    point `Q` in both tangent planes, nearest the Step-2 boundary in least squares; each edge
+//!    point moves by at most `QUAD_MOVE` of its distance from the vertex), the edge gets it and
+//!    Step 5 is the **explicit transversal construction** of `transversal.rs`: `L1, R1` in
+//!    closed form, G¹ by construction (proof sketch there: (8.10) with quadratic `E`, linear
+//!    `F, G`), no division by the determinant;
+//! 2. else (an inflected edge: offset, nearly parallel tangent planes; or a fold at an end),
+//!    (9.4) on the cubic boundary if it moves `L1, R1` by at most `MAX_MOVE` edge lengths;
+//! 3. else the minimum-norm correction of `singular.rs` with a pseudo-inverse cut-off at
+//!    `SINGULAR` (kept only if it also moves at most `MAX_MOVE`, else the Step-4 points stay):
+//!    the edge is listed in [`SplitSurface::unresolved_edges`] when (9.3) keeps a residual.
+//!
+//! So every `L1, R1` lies within `MAX_MOVE` edge lengths of its Step-4 value (no spikes), and
+//! every edge not listed as unresolved satisfies (8.10) exactly (up to rounding). Edges where
+//! (9.4) is ill-conditioned (`|f0 g1 − g0 f1| ≤ SINGULAR (|f0|+|g0|)(|f1|+|g1|)` on the final
+//! data) are **reported** in [`SplitSurface::singular_edges`] whichever way they were built;
+//! edges whose `f`, `g` differ in sign (a fold, NOTES B.1: the text's "opposite signs" is a
+//! garble) in [`SplitSurface::sign_warnings`]. Continuity is verified independently by
+//! [`super::continuity`].
 //!
 //! **Folds (derived here; the text only says "the normal at a vertex should be altered").**
 //! The sign rule `f, g < 0` at an edge end holds exactly when the edge point lies strictly
@@ -45,8 +62,14 @@ use std::collections::HashMap;
 
 type P3 = [f64; 3];
 
-/// Relative threshold of `is_singular`.
-const SINGULAR: f64 = 1e-7;
+/// Relative threshold of `is_singular`: below it (9.4) moves `L1, R1` by more than about
+/// `1/SINGULAR` times its residual (module doc).
+const SINGULAR: f64 = 1e-2;
+/// Largest move of an edge point from Step 2 to the quadratic boundary, relative to its
+/// distance from the vertex, for the quadratic boundary to be used.
+const QUAD_MOVE: f64 = 1.0;
+/// Largest move of `L1` or `R1` by (9.4), in edge lengths, accepted as a solution.
+const MAX_MOVE: f64 = 3.0;
 /// Largest relative residual of (9.3b, c) accepted on a singular edge.
 const RESOLVED: f64 = 1e-10;
 /// The half-edge map and the unit normals of a checked mesh.
@@ -74,19 +97,21 @@ pub struct SplitSurface {
     /// Micro patches; for the three-split, patch `3t+i` has corners `(V_i, V_{i+1}, Z)` of
     /// macro triangle t.
     pub patches: Vec<MicroPatch>,
-    /// Macro edges `[a, b]` (a < b) where (9.4) is (nearly) singular (reported, then built with
-    /// the quadratic boundary of the module doc).
+    /// Macro edges `[a, b]` (a < b) where (9.4) is ill-conditioned on the final data or would
+    /// move `L1, R1` by more than `MAX_MOVE` edge lengths (reported; built as the module doc
+    /// says, without (9.4) where the quadratic boundary is usable). Contains every unresolved
+    /// edge.
     pub singular_edges: Vec<[u32; 2]>,
-    /// Singular edges where that construction left a residual (no quadratic boundary, or
-    /// (9.3) inconsistent): not G¹.
+    /// Edges where neither the transversal construction nor a bounded (9.4) applied and the
+    /// minimum-norm correction left a residual of (9.3): not G¹ (module doc).
     pub unresolved_edges: Vec<[u32; 2]>,
     /// Macro edges whose `f0,g0` or `f1,g1` differ in sign (a fold is likely).
     pub sign_warnings: Vec<[u32; 2]>,
-    /// Singular edges that keep the cubic boundary because the quadratic one would have
-    /// turned a neighbouring corner over (module doc, "folds"); they are also unresolved.
+    /// Edges that keep the cubic boundary because the quadratic one would have turned a
+    /// neighbouring corner over (module doc, "folds").
     pub fold_guarded: Vec<[u32; 2]>,
-    /// Max over edges of `|L1 − L1_step4| / |edge|` (large values: the "wild oscillation" of
-    /// near-singular edges, Fig. 9.5).
+    /// Max over edges of `|L1 − L1_step4| / |edge|` (and the same for `R1`), with Step 4 on the
+    /// final boundaries; at most `MAX_MOVE` = 3 by construction (module doc).
     pub max_displacement: f64,
 }
 
@@ -226,10 +251,15 @@ fn edge_data(
     (e, [f0, g0, f1, g1])
 }
 
-/// `|f0 g1 − g0 f1| ≤ 1e-7 (|f0|+|g0|)(|f1|+|g1|)`: (9.4) is (nearly) dependent.
+/// `|f0 g1 − g0 f1| ≤ SINGULAR (|f0|+|g0|)(|f1|+|g1|)`: (9.4) is ill-conditioned.
 fn is_singular([f0, g0, f1, g1]: [f64; 4]) -> bool {
     let delta = f0 * g1 - g0 * f1;
     delta.abs() <= SINGULAR * (f0.abs() + g0.abs()) * (f1.abs() + g1.abs()) || delta.is_nan()
+}
+
+/// Whether `lr` is finite and within `bound` of `old`.
+fn moves_at_most(lr: (P3, P3), old: (P3, P3), bound: f64) -> bool {
+    vec::dist(lr.0, old.0) <= bound && vec::dist(lr.1, old.1) <= bound
 }
 
 /// The pair (9.4) solved for `(L1, R1)` with `e0 = e1 = 1`.
@@ -308,10 +338,10 @@ pub fn three_split(
 /// Options of [`three_split_with`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct SplitOptions {
-    /// Accept a singular edge's quadratic boundary only where it keeps the fans at both ends
-    /// (module doc, "folds"). Off by default: it removes folds on real meshes (spot: 277 fold
-    /// samples → 0) but a guarded edge is a crease, and next to a sharp rim it breaks the linear
-    /// precision of a flat region (the regular flat box of the tests: 5e-3 off the plane).
+    /// Accept an edge's quadratic boundary only where it keeps the fans at both ends (module
+    /// doc, "folds"). Off by default: it removes most folds on real meshes (spot with visible
+    /// normals: 2 803 fold samples → 0), but a guarded edge keeps its cubic boundary and is G¹
+    /// only where (9.4) stays bounded.
     pub fold_guard: bool,
 }
 
@@ -357,47 +387,51 @@ pub fn three_split_with(
     let mut edges: Vec<(u32, u32)> = half.keys().copied().filter(|&(a, b)| a < b).collect();
     edges.sort_unstable();
     let mut out = SplitSurface::default();
-    let step4 = build(&handles);
-    // classify on the Step-4 data (once: re-classifying after the quadratic boundaries moved
-    // the neighbours' W points was tried and makes more edges fold on real meshes)
-    let mut singular: HashMap<(u32, u32), bool> = HashMap::new();
-    for &(a, b) in &edges {
-        let (_, fg) = edge_data(&step4, &half, a, b);
-        if is_singular(fg) {
+    // The boundary of each edge: the degree-elevated quadratic wherever its point Q (in both
+    // tangent planes) is usable, so that Step 5 is the explicit transversal construction
+    // (transversal.rs); else the cubic of Step 2 and (9.4).
+    let quad: Vec<Option<(P3, P3)>> = edges
+        .par_iter()
+        .map(|&(a, b)| {
             let (pa, pb) = (pos[a as usize], pos[b as usize]);
-            let q = super::singular::quadratic_handles(pa, nrm[a as usize], pb, nrm[b as usize]);
-            let mut quadratic = false;
-            if let Some((m1, m2)) = q {
-                let old = (handles[&(a, b)], handles[&(b, a)]);
-                handles.insert((a, b), m1);
-                handles.insert((b, a), m2);
-                quadratic = !opts.fold_guard
-                    || (fan_ok(&pos, &nrm, &corners, &handles, a)
-                        && fan_ok(&pos, &nrm, &corners, &handles, b));
-                if !quadratic {
-                    // the new boundary would turn a neighbour's projected angle over (a fold)
-                    handles.insert((a, b), old.0);
-                    handles.insert((b, a), old.1);
-                    out.fold_guarded.push([a, b]);
-                }
-            }
-            singular.insert((a, b), quadratic);
-        }
-    }
-    // only the two triangles of an edge read its edge points (Steps 2–3): rebuild those
-    let mut patches = step4.clone();
-    let mut touched: Vec<usize> = singular
-        .keys()
-        .flat_map(|&(a, b)| [half[&(a, b)] / 3, half[&(b, a)] / 3])
+            let h = (handles[&(a, b)], handles[&(b, a)]);
+            // the Q whose boundary is nearest the Step-2 one: least squares of |M − H|
+            let c = vec::scale(
+                vec::add(
+                    vec::add_scaled(vec::scale(h.0, 3.0), -1.0, pa),
+                    vec::add_scaled(vec::scale(h.1, 3.0), -1.0, pb),
+                ),
+                0.25,
+            );
+            let (m1, m2, _) =
+                super::singular::quadratic_handles(pa, nrm[a as usize], pb, nrm[b as usize], c)?;
+            let near = |m: P3, h: P3, v: P3| vec::dist(m, h) <= QUAD_MOVE * vec::dist(h, v);
+            (near(m1, h.0, pa) && near(m2, h.1, pb)).then_some((m1, m2))
+        })
         .collect();
-    touched.sort_unstable();
-    touched.dedup();
-    for t in touched {
-        patches[3 * t..3 * t + 3].copy_from_slice(&tri_patches(&handles, &mesh.triangles[t]));
+    let mut quadratic: HashMap<(u32, u32), bool> = HashMap::new();
+    for (&(a, b), q) in edges.iter().zip(&quad) {
+        let Some((m1, m2)) = *q else { continue };
+        let old = (handles[&(a, b)], handles[&(b, a)]);
+        handles.insert((a, b), m1);
+        handles.insert((b, a), m2);
+        if opts.fold_guard
+            && !(fan_ok(&pos, &nrm, &corners, &handles, a)
+                && fan_ok(&pos, &nrm, &corners, &handles, b))
+        {
+            // the new boundary would turn a neighbour's projected angle over (a fold)
+            handles.insert((a, b), old.0);
+            handles.insert((b, a), old.1);
+            out.fold_guarded.push([a, b]);
+            continue;
+        }
+        quadratic.insert((a, b), true);
     }
-    // Step 5 on the final edge points: each edge reads only its own two patches' boundary
-    // rows and writes only their 111 points, so the edges are solved in parallel and applied
-    // in edge order.
+    // Steps 1–4 with the final boundaries
+    let step4 = build(&handles);
+    let mut patches = step4.clone();
+    // Step 5: each edge reads only its own two patches' boundary rows and writes only their
+    // 111 points, so the edges are solved in parallel and applied in edge order.
     struct Solved {
         p: usize,
         q: usize,
@@ -413,40 +447,49 @@ pub fn three_split_with(
             let (p, q) = (half[&(a, b)], half[&(b, a)]);
             let (e, fg) = edge_data(&patches, &half, a, b);
             let sign_warning = fg[0] * fg[1] <= 0.0 || fg[2] * fg[3] <= 0.0;
-            let old_l = step4[p][4];
             let len = vec::dist(e.m[0], e.m[3]);
-            let (mut singular_edge, mut unresolved) = (false, false);
-            let lr = match singular.get(&(a, b)) {
-                Some(&quadratic) => {
-                    singular_edge = true;
-                    let (lr, res) = super::singular::solve_singular(
-                        &e.m,
-                        &e.l,
-                        &e.r,
-                        fg,
-                        (patches[p][4], patches[q][4]),
-                    );
-                    unresolved = !quadratic || (res > RESOLVED || res.is_nan());
-                    lr
+            let old = (patches[p][4], patches[q][4]);
+            let bound = MAX_MOVE * len;
+            let lr94 = solve_94(&e, fg);
+            let bounded94 = moves_at_most(lr94, old, bound);
+            // ill-conditioned, or (9.4) would throw L1, R1 beyond the bound
+            let singular = is_singular(fg) || !bounded94;
+            let explicit = if quadratic.contains_key(&(a, b)) {
+                super::transversal::transversal_edge(
+                    &e.m,
+                    &e.l,
+                    &e.r,
+                    nrm[a as usize],
+                    nrm[b as usize],
+                )
+            } else {
+                None
+            };
+            let explicit = explicit
+                .map(|t| (t.l1, t.r1))
+                .filter(|&lr| moves_at_most(lr, old, bound));
+            let (lr, unresolved) = match explicit {
+                Some(lr) => (lr, false),
+                None if bounded94 => (lr94, false),
+                None => {
+                    let (lr, res) =
+                        super::singular::solve_singular(&e.m, &e.l, &e.r, fg, old, SINGULAR);
+                    if moves_at_most(lr, old, bound) {
+                        (lr, res > RESOLVED || res.is_nan())
+                    } else {
+                        // no bounded solution: keep Step 4 (a reported crease, not a spike)
+                        (old, true)
+                    }
                 }
-                // an edge made singular by its neighbours' new boundaries: the same solve
-                None if is_singular(fg) => {
-                    singular_edge = true;
-                    let old = (patches[p][4], patches[q][4]);
-                    let (lr, res) = super::singular::solve_singular(&e.m, &e.l, &e.r, fg, old);
-                    unresolved = res > RESOLVED || res.is_nan();
-                    lr
-                }
-                None => solve_94(&e, fg),
             };
             Solved {
                 p,
                 q,
                 lr,
                 sign_warning,
-                singular: singular_edge,
+                singular,
                 unresolved,
-                displacement: vec::dist(lr.0, old_l) / len,
+                displacement: vec::dist(lr.0, step4[p][4]).max(vec::dist(lr.1, step4[q][4])) / len,
             }
         })
         .collect();
