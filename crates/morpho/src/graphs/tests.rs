@@ -1441,15 +1441,25 @@ mod exact_oracle {
         }
     }
 
-    /// Issue 17, 2D: rounded cocircular points at every scale. The 2D offsets were float
-    /// quotients q / 2h, meaningless for a point nearly on an edge's line relative to its
-    /// rounding (here: the chords of a nearly cocircular set), which made decisions wrong.
+    /// Issue 17, 2D: rounded cocircular points at every scale, alone and with a twin of each
+    /// point moved along the circle's tangent by a few units in the last place (still on the
+    /// circle to rounding). The 2D analogue of a triangle's circumcircle is the edge's end
+    /// pair: a twin of an end lies nearly on the edge's line *and* nearly on its diametral
+    /// circle, so q and h of its offset are both rounding-sized and the old float quotient
+    /// q / 2h (through the rounded midpoint) was meaningless — while the twin binds the
+    /// interval of every edge at that end.
     #[test]
     fn beyond_2d_matches_exact_oracle_on_rounded_cocircular_sets() {
         for scale in [1e-300, 1e-150, 0.1, 1.0, 1e150, 1e300] {
             let p = rounded_circle(scale);
             assert_eq!(p.len(), 20);
             check_2d(&p, &[-0.9, -0.5, 0.0, 0.5]);
+            let mut twins = p.clone();
+            for (i, q) in p.iter().enumerate() {
+                let d = [1e-15, 4e-15, 3e-14][i % 3];
+                twins.push([q[0] - d * q[1], q[1] + d * q[0]]);
+            }
+            check_2d(&twins, &[-0.9, -0.5, 0.0, 0.5]);
         }
     }
 
