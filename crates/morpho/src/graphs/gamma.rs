@@ -929,6 +929,10 @@ pub fn def_contains_2d(a: [f64; 2], b: [f64; 2], c0: f64, c1: f64, side: f64, x:
         if c.abs() >= 1.0 {
             return o * sd > 0.0; // open half-plane on side sd
         }
+        if c == 0.0 {
+            // the diametral disc, exactly: (a − x)·(b − x) < 0
+            return dot_sign(&a, &b, &x) < 0;
+        }
         let t = sd * offset_of(c.abs(), r_over_n);
         q < 2.0 * t * h
     };
