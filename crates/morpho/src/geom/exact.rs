@@ -372,6 +372,66 @@ pub fn diametral_side_exact(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3]) 
     big_sign(&(dd * nn - big_dot(&d, &w)))
 }
 
+/// |c| = C / S exactly, for 0 ≤ |c| < 1 (S a power of two).
+fn ratio_of(c_abs: f64) -> (BigInt, BigInt) {
+    if c_abs == 0.0 {
+        return (BigInt::from(0), BigInt::from(1));
+    }
+    let (m, e) = float_parts(c_abs);
+    // c_abs < 1, so e < 0
+    (BigInt::from(m), BigInt::from(1) << ((-e) as usize))
+}
+
+/// Exact sign of τ(x)² (1 − |c|)² − ρ₀² |c| (2 − |c|) for the triangle (a, b, c) and a point x
+/// off its plane: whether the ball through a, b, c and x (centre m + τ n, n = (b − a) × (c − a))
+/// is beyond (+1), on (0) or within (−1) the balls of parameter ±|c| (offset ρ₀ √(k² − 1),
+/// k = 1/(1 − |c|), ρ₀ = r/|n|), 0 ≤ |c| < 1. With u = b − a, v = c − a, w = x − a:
+/// τ = N / (2|n|² h), N = |w|²|n|² + |u|² n·(v × w) + |v|² n·(w × u), h = w·n, and
+/// ρ₀² = |u|²|v|²|u − v|² / (4|n|⁴); with |c| = C/S the sign is that of
+/// N² (S − C)² − h² |u|²|v|²|u − v|² C (2S − C) (homogeneous: any common scaling of the
+/// coordinates keeps it). The big-integer fallback of `graphs::gamma`'s exact γ-value decision.
+pub fn offset_reach_sign_3d(t: [[f64; 3]; 3], x: [f64; 3], c_abs: f64) -> i32 {
+    let [a, b, c] = t;
+    let v = to_big_ints(&[
+        a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2], x[0], x[1], x[2],
+    ]);
+    let d = |p: usize| -> [BigInt; 3] { [0, 1, 2].map(|k| &v[3 * p + k] - &v[k]) };
+    let (u, vv_, w) = (d(1), d(2), d(3));
+    let n = big_cross(&u, &vv_);
+    let (uu, vv, ww, nn) = (
+        big_dot(&u, &u),
+        big_dot(&vv_, &vv_),
+        big_dot(&w, &w),
+        big_dot(&n, &n),
+    );
+    let num =
+        &ww * &nn + &uu * big_dot(&n, &big_cross(&vv_, &w)) + &vv * big_dot(&n, &big_cross(&w, &u));
+    let h = big_dot(&w, &n);
+    let uv: [BigInt; 3] = [0, 1, 2].map(|k| &u[k] - &vv_[k]);
+    let (cn, cs) = ratio_of(c_abs);
+    let k1 = &cs - &cn;
+    let kk = &cn * (BigInt::from(2) * &cs - &cn);
+    let lhs = &num * &num * &k1 * &k1;
+    let rhs = &h * &h * uu * vv * big_dot(&uv, &uv) * kk;
+    big_sign(&(lhs - rhs))
+}
+
+/// The 2D analogue of [`offset_reach_sign_3d`] for the edge (a, b) and a point x off its line:
+/// τ = q / 2h with q = (x − a)·(x − b), h = orient2d(a, b, x), ρ₀ = 1/2, so the sign is that
+/// of q² (S − C)² − h² C (2S − C) for |c| = C/S.
+pub fn offset_reach_sign_2d(a: [f64; 2], b: [f64; 2], x: [f64; 2], c_abs: f64) -> i32 {
+    let v = to_big_ints(&[a[0], a[1], b[0], b[1], x[0], x[1]]);
+    let (xa0, xa1) = (&v[4] - &v[0], &v[5] - &v[1]);
+    let (xb0, xb1) = (&v[4] - &v[2], &v[5] - &v[3]);
+    let (ba0, ba1) = (&v[2] - &v[0], &v[3] - &v[1]);
+    let q = &xa0 * &xb0 + &xa1 * &xb1;
+    let h = &ba0 * &xa1 - &ba1 * &xa0;
+    let (cn, cs) = ratio_of(c_abs);
+    let k1 = &cs - &cn;
+    let kk = &cn * (BigInt::from(2) * &cs - &cn);
+    big_sign(&(&q * &q * &k1 * &k1 - &h * &h * kk))
+}
+
 /// a · b of big-integer 3-vectors.
 pub fn big_dot(a: &[BigInt; 3], b: &[BigInt; 3]) -> BigInt {
     &a[0] * &b[0] + &a[1] * &b[1] + &a[2] * &b[2]

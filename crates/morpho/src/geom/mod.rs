@@ -17,6 +17,7 @@
 //! assert_eq!(orient2d(&a, &b, &Point2::new(7.0, 0.0)), 0.0); // exactly collinear
 //! ```
 
+pub(crate) mod bounded;
 pub(crate) mod distance;
 mod enclosing;
 pub(crate) mod exact;

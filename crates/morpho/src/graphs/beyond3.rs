@@ -53,7 +53,7 @@
 //! triangles whose exact value is ≈ −0.128). [`TriFrame`] now takes τ from exact expansions
 //! whenever its error bound does not certify the float quotient (`gamma::exact_offset`).
 //! The final decision (step 5) is the one of [`TriFrame`]: binding points by exact predicates,
-//! γ-values from offsets accurate to ~1e-10 (compared with c in floating point).
+//! c₁′ ≥ c exactly ([`TriFrame::c1_at_least`]); the γ-values reported are accurate to ~1e-10.
 //!
 //! # Complexity (honest)
 //! The field costs O(N) cells and one nearest-point query each. A *closed* vertex costs
@@ -336,8 +336,8 @@ impl<'a> Decider<'a> {
         if iv.lo <= iv.hi {
             return None;
         }
-        let (_, c1) = iv.gamma_values()?;
-        (c1 >= self.c).then_some(iv)
+        // c₁′ ≥ c decided exactly (not by the rounded γ-value)
+        f.c1_at_least(&iv, self.c).then_some(iv)
     }
 }
 

@@ -964,10 +964,9 @@ fn beyond_dt_2d_impl(
                     if iv.lo <= iv.hi {
                         continue;
                     }
-                    if let Some((_, c1)) = iv.gamma_values() {
-                        if c1 >= c {
-                            found.push((key, iv));
-                        }
+                    // c₁′ ≥ c decided exactly (not by the rounded γ-value)
+                    if f.c1_at_least(&iv, c) {
+                        found.push((key, iv));
                     }
                 }
                 found

@@ -25,17 +25,22 @@
 //! σ ∈ γ(\[c₀,c₁\],\[c₂,c₃\]) by Def. 3.3 ([`in_gamma_range`]).
 //!
 //! Sidedness (the sign of h) is decided by the exact orientation predicates. The offsets τ are
-//! computed in floating point from exactly representable q and h for the unnormalised normal,
-//! so for inputs with small integer coordinates all comparisons of τ values are exact (ties
-//! stay ties: IEEE division is correctly rounded); otherwise they are accurate to rounding. In
-//! 3D a first-order error bound checks each binding point's τ (relative 1e-10 of |τ| + r/|n|)
-//! and falls back to exact expansions ([`exact_offset`]) when it fails — points nearly in the
-//! plane, e.g. nearly on the circumcircle of a nearly cospherical set, where q and h are both
-//! rounding-sized and the float quotient meaningless. (2D edges keep the float quotient.)
+//! computed in floating point from the differences to a corner with a proven running error
+//! bound (`geom::bounded`); a binding point's τ is kept when the bound certifies it to a
+//! relative [`TAU_TOL`] of |τ| + r/|n| and is otherwise recomputed from exact expansions
+//! ([`exact_offset`], [`exact_offset_2d`]) — points nearly in the hyperplane, e.g. nearly on
+//! the circumcircle of a nearly cospherical (cocircular) set, where q and h are both
+//! rounding-sized and the float quotient meaningless. The ends' order is decided by exact
+//! in-circle/in-sphere tests, so the regime of the γ-values is exact. The floats are what the
+//! γ-values report; the *decision* c₁′ ≥ c is exact ([`TriFrame::c1_at_least`],
+//! [`EdgeFrame::c1_at_least`]): the sign of τ² (1 − |c|)² − ρ₀² |c| (2 − |c|) for the binding
+//! points, from the proven bounds when they decide it, else in big integers
+//! (`geom::exact::offset_reach_sign_3d`, `offset_reach_sign_2d`).
 //!
 //! Complexity: one simplex against N points costs O(N) ([`center_interval_2d`],
 //! [`center_interval_3d`]); the brute-force graphs of Thm 3.1 cost O(N^{k+1}).
 
+use crate::geom::bounded::Bounded;
 use crate::geom::distance::dot_sign;
 use crate::geom::near_sphere::{Lift, NearSphere};
 use crate::geom::predicates::raw;
@@ -62,6 +67,11 @@ pub struct CenterInterval {
     pub lo_at: Option<[f64; 3]>,
     /// The point that fixes `hi`, if any.
     pub hi_at: Option<[f64; 3]>,
+    /// τ of `lo_at` and `hi_at` as computed, before [`CenterInterval::settle`] adjusted the
+    /// ends to their exact order: a new binding point on one side restores the other end from
+    /// here instead of recomputing its offset.
+    lo_raw: f64,
+    hi_raw: f64,
 }
 
 /// |c| of the ball with offset `s` (in normal units) for a simplex with `r_over_n`.
@@ -109,7 +119,20 @@ impl CenterInterval {
             all_blocked: false,
             lo_at: None,
             hi_at: None,
+            lo_raw: f64::NEG_INFINITY,
+            hi_raw: f64::INFINITY,
         }
+    }
+
+    /// Makes x, with offset τ, the point binding `hi`; restores `lo` to its computed value.
+    fn bind_hi(&mut self, tau: f64, x: [f64; 3]) {
+        (self.hi, self.hi_raw, self.hi_at) = (tau, tau, Some(x));
+        self.lo = self.lo_raw;
+    }
+    /// Makes x, with offset τ, the point binding `lo`; restores `hi` to its computed value.
+    fn bind_lo(&mut self, tau: f64, x: [f64; 3]) {
+        (self.lo, self.lo_raw, self.lo_at) = (tau, tau, Some(x));
+        self.hi = self.hi_raw;
     }
 
     /// Makes the float ends agree with the exact relation `rel` between them (< 0: lo < hi,
@@ -204,6 +227,49 @@ impl CenterInterval {
         }
     }
 
+    /// c₁′ ≥ c, decided exactly given `reach(x, |c|)`: the exact sign of |τ(x)| − s(|c|) for a
+    /// binding point x, s(|c|) the offset of the balls with parameter ±|c| (0 ≤ |c| < 1) —
+    /// [`TriFrame::c1_at_least`], [`EdgeFrame::c1_at_least`]. The regime (`lo ≤ hi` or not) is
+    /// exact already (the ends' order is settled by exact in-circle/in-sphere tests), and so
+    /// are the blocked flags. With both ends' balls empty-or-not as in [`Self::gamma_values`]:
+    /// - `lo ≤ hi`: c₁′ = |c| of the farther end ≥ 0, so c₁′ ≥ c iff c ≤ 0 or some end reaches
+    ///   s(c) (an end without a binding point is at infinity: |c| = 1);
+    /// - `lo > hi`: c₁′ = −(|c| of the farther end) < 0, so c₁′ ≥ c iff c < 0 and neither end
+    ///   reaches beyond s(|c|) (c ≤ −1: always).
+    pub fn c1_at_least_by(&self, c: f64, reach: impl Fn([f64; 3], f64) -> i32) -> bool {
+        if self.all_blocked || c > 1.0 || c.is_nan() {
+            return false;
+        }
+        let open_end = self.lo_at.is_none() || self.hi_at.is_none();
+        if self.finite_blocked {
+            // (1, 1) or (−1, 1) with an open end, no γ-values without one
+            return open_end;
+        }
+        if self.lo <= self.hi {
+            if c <= 0.0 || open_end {
+                return true;
+            }
+            if c >= 1.0 {
+                return false;
+            }
+            [self.lo_at, self.hi_at]
+                .into_iter()
+                .flatten()
+                .any(|x| reach(x, c) >= 0)
+        } else {
+            if c >= 0.0 {
+                return false;
+            }
+            if c <= -1.0 {
+                return true;
+            }
+            [self.lo_at, self.hi_at]
+                .into_iter()
+                .flatten()
+                .all(|x| reach(x, -c) <= 0)
+        }
+    }
+
     /// The offset s of a ball B(s) touching the simplex that holds an empty neighbourhood of
     /// γ(\[-1,1\],\[c,1\]) (c ≤ 0) among the points added so far: while no point lies strictly
     /// inside B(s), the simplex is in γ(\[-1,1\],\[c,1\]) — so once every point inside B(s) has
@@ -283,18 +349,6 @@ pub fn sign(x: f64) -> f64 {
     }
 }
 
-/// The offset τ = q / 2h of a point off the hyperplane with exact side `side` (±1), power `q`
-/// and height `h`. The float h has the sign of `side` up to rounding; the predicate is trusted.
-#[inline]
-fn tau_of(side: f64, q: f64, h: f64) -> f64 {
-    let h = if (h > 0.0) != (side > 0.0) || h == 0.0 {
-        side * f64::MIN_POSITIVE
-    } else {
-        h
-    };
-    q / (2.0 * h)
-}
-
 /// The frame of a 2D edge (a, b) for computing its [`CenterInterval`] point by point.
 #[derive(Debug, Clone, Copy)]
 pub struct EdgeFrame {
@@ -326,13 +380,55 @@ impl EdgeFrame {
     /// Side (+1 left, −1 right, 0 on the line; exact) and offset τ of point x.
     pub fn tau(&self, x: [f64; 2]) -> (f64, f64) {
         let side = sign(raw::orient2d(self.pa, self.pb, x));
-        let dx = [x[0] - self.m[0], x[1] - self.m[1]];
-        let q = dx[0] * dx[0] + dx[1] * dx[1] - self.r2;
         if side == 0.0 {
-            return (0.0, q);
+            let dx = [x[0] - self.m[0], x[1] - self.m[1]];
+            return (0.0, dx[0] * dx[0] + dx[1] * dx[1] - self.r2);
         }
-        let h = dx[0] * self.nrm[0] + dx[1] * self.nrm[1];
-        (side, tau_of(side, q, h))
+        (side, self.offset(side, x))
+    }
+    /// The offset τ = q / 2h of x off the line (exact side `side`), accurate to a relative
+    /// [`TAU_TOL`] of |τ| + 1/2 (r/|n| = 1/2 for an edge): the floating-point value when its
+    /// proven error bound certifies that, else the rounded quotient of exact expansions
+    /// ([`exact_offset_2d`]) — for a point nearly on the line, e.g. nearly on the circle of a
+    /// rounded cocircular set, q and h are both tiny and the float quotient meaningless.
+    fn offset(&self, side: f64, x: [f64; 2]) -> f64 {
+        if let Some((t, h)) = self.offset_bounded(x) {
+            if (h > 0.0) == (side > 0.0) && t.certified() <= TAU_TOL * (t.v.abs() + 0.5) {
+                return t.v;
+            }
+        }
+        exact_offset_2d(self.pa, self.pb, x)
+    }
+    /// τ(x) with a proven error bound: q = (x − a)·(x − b) (= |x − m|² − r²), h = orient2d(a,
+    /// b, x) (= (x − m)·n), τ = q / 2h; `None` when h is not certainly nonzero; with τ, the
+    /// float h.
+    fn offset_bounded(&self, x: [f64; 2]) -> Option<(Bounded, f64)> {
+        let (a, b) = (self.pa, self.pb);
+        let wa = [0, 1].map(|k| Bounded::diff(x[k], a[k]));
+        let wb = [0, 1].map(|k| Bounded::diff(x[k], b[k]));
+        let d = [0, 1].map(|k| Bounded::diff(b[k], a[k]));
+        let q = wa[0].times(wb[0]).plus(wa[1].times(wb[1]));
+        let h = d[0].times(wa[1]).minus(d[1].times(wa[0]));
+        Some((q.over(h.scale2(2.0))?, h.v))
+    }
+    /// The exact sign of |τ(x)| − s(c) for 0 ≤ `c_abs` < 1 (see [`TriFrame::reach_sign`]; here
+    /// ρ₀ = 1/2): the proven bounds when they decide it, else big integers
+    /// ([`crate::geom::exact::offset_reach_sign_2d`]).
+    fn reach_sign(&self, x: [f64; 2], c_abs: f64) -> i32 {
+        if let Some((t, _)) = self.offset_bounded(x) {
+            let k1 = Bounded::diff(1.0, c_abs);
+            let kk = Bounded::exact(c_abs).times(Bounded::diff(2.0, c_abs));
+            let e = t.times(t).times(k1.times(k1)).minus(kk.scale2(0.25));
+            if let Some(s) = e.sign() {
+                return s;
+            }
+        }
+        crate::geom::exact::offset_reach_sign_2d(self.pa, self.pb, x, c_abs)
+    }
+    /// c₁′ ≥ c for the interval `iv` of this edge, decided exactly (see
+    /// [`CenterInterval::c1_at_least_by`]).
+    pub fn c1_at_least(&self, iv: &CenterInterval, c: f64) -> bool {
+        iv.c1_at_least_by(c, |x, ca| self.reach_sign([x[0], x[1]], ca))
     }
     /// The interval of a Delaunay edge from the apexes of the triangles on its two sides
     /// (`left` strictly left of a→b, `right` strictly right; `None` on the hull side), with
@@ -345,18 +441,12 @@ impl EdgeFrame {
         rel: f64,
     ) -> CenterInterval {
         let mut iv = self.start();
-        let tau = |x: [f64; 2], side: f64| {
-            let dx = [x[0] - self.m[0], x[1] - self.m[1]];
-            let q = dx[0] * dx[0] + dx[1] * dx[1] - self.r2;
-            tau_of(side, q, dx[0] * self.nrm[0] + dx[1] * self.nrm[1])
-        };
+        let tau = |x: [f64; 2], side: f64| self.offset(side, x);
         if let Some(x) = left {
-            iv.hi = tau(x, 1.0);
-            iv.hi_at = Some([x[0], x[1], 0.0]);
+            iv.bind_hi(tau(x, 1.0), [x[0], x[1], 0.0]);
         }
         if let Some(y) = right {
-            iv.lo = tau(y, -1.0);
-            iv.lo_at = Some([y[0], y[1], 0.0]);
+            iv.bind_lo(tau(y, -1.0), [y[0], y[1], 0.0]);
             if left.is_some() {
                 iv.settle(rel);
             }
@@ -377,12 +467,10 @@ impl EdgeFrame {
     ) -> CenterInterval {
         let mut iv = self.start();
         if let Some(x) = left {
-            iv.hi = self.tau(x).1;
-            iv.hi_at = Some([x[0], x[1], 0.0]);
+            iv.bind_hi(self.tau(x).1, [x[0], x[1], 0.0]);
         }
         if let Some(y) = right {
-            iv.lo = self.tau(y).1;
-            iv.lo_at = Some([y[0], y[1], 0.0]);
+            iv.bind_lo(self.tau(y).1, [y[0], y[1], 0.0]);
             if left.is_some() {
                 iv.settle(0.0);
             }
@@ -393,7 +481,8 @@ impl EdgeFrame {
     /// are equal or in which order, is decided by exact in-circle tests: τ(x) < τ(y) for points
     /// above ⇔ x lies inside the circle through a, b, y.
     pub fn add(&self, iv: &mut CenterInterval, x: [f64; 2]) {
-        let (side, tau) = self.tau(x);
+        // τ only for the points that become binding ends
+        let side = sign(raw::orient2d(self.pa, self.pb, x));
         let xy = |p: [f64; 3]| [p[0], p[1]];
         if side > 0.0 {
             let better = match iv.hi_at {
@@ -401,10 +490,8 @@ impl EdgeFrame {
                 Some(y) => raw::incircle(self.pa, self.pb, xy(y), x) > 0.0,
             };
             if better {
-                iv.hi = tau;
-                iv.hi_at = Some([x[0], x[1], 0.0]);
+                iv.bind_hi(self.offset(side, x), [x[0], x[1], 0.0]);
                 if let Some(l) = iv.lo_at {
-                    iv.lo = self.tau(xy(l)).1;
                     iv.settle(raw::incircle(self.pa, self.pb, x, xy(l)));
                 }
             }
@@ -414,10 +501,8 @@ impl EdgeFrame {
                 Some(y) => raw::incircle(self.pb, self.pa, xy(y), x) > 0.0,
             };
             if better {
-                iv.lo = tau;
-                iv.lo_at = Some([x[0], x[1], 0.0]);
+                iv.bind_lo(self.offset(side, x), [x[0], x[1], 0.0]);
                 if let Some(h) = iv.hi_at {
-                    iv.hi = self.tau(xy(h)).1;
                     iv.settle(raw::incircle(self.pa, self.pb, xy(h), x));
                 }
             }
@@ -507,6 +592,34 @@ pub fn exact_offset(t: [[f64; 3]; 3], x: [f64; 3]) -> f64 {
     }
 }
 
+/// The 2D offset τ = q / 2h of x for the edge (a, b) (left normal of b − a) from exact
+/// expansions, rounded once at the end: q = (x − a)·(x − b), h = orient2d(a, b, x), on the
+/// differences scaled by a power of two (exact) so that nothing over- or underflows; x must not
+/// lie on the line. τ is homogeneous of degree 0. ±f64::MAX when the quotient overflows.
+pub fn exact_offset_2d(a: [f64; 2], b: [f64; 2], x: [f64; 2]) -> f64 {
+    use crate::geom::exact::power_of_two_scale;
+    use crate::geom::expansion::Expansion;
+    let diff = |p: [f64; 2], o: [f64; 2]| [0, 1].map(|k| Expansion::diff(p[k], o[k]));
+    let (wa, wb, d) = (diff(x, a), diff(x, b), diff(b, a));
+    let big = [&wa, &wb, &d]
+        .iter()
+        .flat_map(|v| v.iter())
+        .flat_map(|e| e.0.iter().copied())
+        .fold(0.0f64, |m, y| m.max(y.abs()));
+    let s = power_of_two_scale(big);
+    let sc = |e: [Expansion; 2]| e.map(|y| y.scale(s));
+    let (wa, wb, d) = (sc(wa), sc(wb), sc(d));
+    let q = wa[0].mul(&wb[0]).add(&wa[1].mul(&wb[1]));
+    let h = d[0].mul(&wa[1]).sub(&d[1].mul(&wa[0]));
+    let est = |e: &Expansion| e.0.iter().sum::<f64>();
+    let tau = est(&q) / (2.0 * est(&h));
+    if tau.is_nan() {
+        0.0
+    } else {
+        tau.clamp(-f64::MAX, f64::MAX)
+    }
+}
+
 /// The frame of a 3D triangle (a, b, c) for computing its [`CenterInterval`] point by point.
 #[derive(Debug, Clone, Copy)]
 pub struct TriFrame {
@@ -517,39 +630,59 @@ pub struct TriFrame {
     /// A sphere the points lie near, with the corners' lifts: in-sphere tests through
     /// [`NearSphere::insphere`] (same signs, fewer exact evaluations on nearly cospherical sets).
     near: Option<(NearSphere, [Lift; 3])>,
-    /// |n|, r/|n| and the error scales of the float circumcentre (see [`TriFrame::offset`]).
-    n_len: f64,
+    /// r/|n| (the scale of [`TAU_TOL`]).
     r_over_n: f64,
-    /// bound of the rounding error of the float circumcentre m over ε (first order, generous)
-    m_err: f64,
-    /// the factor (1 + κ), κ = |b − a||c − a|/|n| the triangle's condition
-    cond: f64,
+    /// The normal n = (b − a) × (c − a) and the circumcentre's offset o = m − a with proven
+    /// error bounds, and ρ₀² = |o|²/|n|² (see [`TriFrame::offset_bounded`]); `None` when |n|²
+    /// is not certainly nonzero (then every offset is exact).
+    frame: Option<BoundedFrame>,
+}
+
+/// The floating-point frame of [`TriFrame`] with running error bounds.
+#[derive(Debug, Clone, Copy)]
+struct BoundedFrame {
+    n: [Bounded; 3],
+    o: [Bounded; 3],
+    rho2: Bounded,
+}
+
+impl BoundedFrame {
+    /// n = u × v, o = (|u|² v × n + |v|² n × u) / 2|n|², ρ₀² = |o|²/|n|² for u = b − a,
+    /// v = c − a.
+    fn new(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<Self> {
+        let u = [0, 1, 2].map(|k| Bounded::diff(b[k], a[k]));
+        let v = [0, 1, 2].map(|k| Bounded::diff(c[k], a[k]));
+        let n = Bounded::cross3(u, v);
+        let nn = Bounded::dot3(n, n);
+        let (uu, vv) = (Bounded::dot3(u, u), Bounded::dot3(v, v));
+        let (t1, t2) = (Bounded::cross3(v, n), Bounded::cross3(n, u));
+        let den = nn.scale2(2.0);
+        let mut o = [Bounded::exact(0.0); 3];
+        for k in 0..3 {
+            o[k] = uu.times(t1[k]).plus(vv.times(t2[k])).over(den)?;
+        }
+        let rho2 = Bounded::dot3(o, o).over(nn)?;
+        Some(BoundedFrame { n, o, rho2 })
+    }
 }
 
 /// Relative accuracy (against |τ| + r/|n|) a floating-point offset τ must be certified to by
-/// the error bound of [`TriFrame::offset`]; otherwise it is recomputed from exact expansions.
-const TAU_TOL: f64 = 1e-10;
+/// its proven error bound ([`TriFrame::offset`], [`EdgeFrame::offset`]); otherwise it is
+/// recomputed from exact expansions.
+pub const TAU_TOL: f64 = 1e-10;
 
 impl TriFrame {
     /// Frame of the triangle; normal (b − a) × (c − a). `None` when the corners are collinear.
     pub fn new(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<Self> {
         let (m, r2, n) = triangle_circle(a, b, c)?;
-        let (u, v) = (sub(b, a), sub(c, a));
-        let (lu, lv, n_len) = (dot(u, u).sqrt(), dot(v, v).sqrt(), dot(n, n).sqrt());
-        let cond = 1.0 + lu * lv / n_len;
-        // m = a + (|u|² v×n + |v|² n×u) / 2|n|²: its error is a few ε of S = (|u|²|v| + |v|²|u|)/|n|
-        // from the products, plus the error of n (≈ 4ε|u||v|) propagated with factor ≈ 3S/|n|
-        let s = (lu * lu * lv + lv * lv * lu) / n_len;
         Some(TriFrame {
             t: [a, b, c],
             m,
             r2,
             n,
             near: None,
-            n_len,
             r_over_n: (r2 / dot(n, n)).sqrt(),
-            m_err: 64.0 * cond * s,
-            cond,
+            frame: BoundedFrame::new(a, b, c),
         })
     }
     /// The frame with in-sphere tests filtered by the reference sphere `s` (see
@@ -595,30 +728,52 @@ impl TriFrame {
         sign(-raw::orient3d(a, b, c, x))
     }
     /// The offset τ = q / 2h of x off the plane (exact side `side`), accurate to a relative
-    /// [`TAU_TOL`] of |τ| + r/|n|: the floating-point value when a first-order error bound
-    /// certifies that, else the rounded quotient of exact expansions ([`exact_offset`]). For a
-    /// point nearly in the plane (on nearly cospherical sets: a point nearly on the
-    /// circumcircle) q and h are both tiny and the float quotient is meaningless.
+    /// [`TAU_TOL`] of |τ| + r/|n|: the floating-point value when its proven error bound
+    /// ([`TriFrame::offset_bounded`]) certifies that, else the rounded quotient of exact
+    /// expansions ([`exact_offset`]). For a point nearly in the plane (on nearly cospherical
+    /// sets: a point nearly on the circumcircle) q and h are both tiny and the float quotient
+    /// can be meaningless.
     fn offset(&self, side: f64, x: [f64; 3]) -> f64 {
-        let dx = sub(x, self.m);
-        let q = dot(dx, dx) - self.r2;
-        let h = dot(dx, self.n);
-        if (h > 0.0) == (side > 0.0) && h != 0.0 {
-            let eps = f64::EPSILON;
-            let d = dot(dx, dx).sqrt();
-            let dm = eps * self.m_err;
-            // |h − h_exact| ≤ |δm||n| + |x − m||δn| + rounding; |q − q_exact| ≤ 2|x − m||δm| + …
-            let eh = dm * self.n_len + 64.0 * eps * self.cond * d * self.n_len;
-            let eq = 2.0 * d * dm + dm * dm + 8.0 * eps * (d * d + self.r2);
-            let t = q / (2.0 * h);
-            if h.abs() > 2.0 * eh {
-                let err = (t.abs() * eh + 0.5 * eq) / (h.abs() - eh);
-                if err <= TAU_TOL * (t.abs() + self.r_over_n) && t.is_finite() {
-                    return t;
-                }
+        if let Some((t, h)) = self.offset_bounded(x) {
+            // (h's sign is certified, so it is the exact side; checked all the same)
+            if (h > 0.0) == (side > 0.0) && t.certified() <= TAU_TOL * (t.v.abs() + self.r_over_n) {
+                return t.v;
             }
         }
         exact_offset(self.t, x)
+    }
+    /// τ(x) in floating point with a proven error bound, from the differences to corner a:
+    /// with w = x − a, h = w·n and q = |w|² − 2 w·o (= |x − m|² − r²), τ = q / 2h. `None` when
+    /// the bound does not certify h ≠ 0 (x nearly in the plane); with τ, the float h.
+    fn offset_bounded(&self, x: [f64; 3]) -> Option<(Bounded, f64)> {
+        let f = self.frame.as_ref()?;
+        let a = self.t[0];
+        let w = [0, 1, 2].map(|k| Bounded::diff(x[k], a[k]));
+        let h = Bounded::dot3(w, f.n);
+        let q = Bounded::dot3(w, w).minus(Bounded::dot3(w, f.o).scale2(2.0));
+        Some((q.over(h.scale2(2.0))?, h.v))
+    }
+    /// The exact sign of |τ(x)| − s(c) for 0 ≤ `c_abs` < 1, s(c) = ρ₀ √(k² − 1) with
+    /// k = 1/(1 − |c|) the offset of the balls with parameter ±|c| (x off the plane): +1 when
+    /// x's ball is beyond them (|c(τ)| > |c|), 0 on them, −1 within. The sign of
+    /// τ² (1 − |c|)² − ρ₀² |c| (2 − |c|), from the proven bounds when they decide it, else in
+    /// big integers ([`crate::geom::exact::offset_reach_sign_3d`]).
+    fn reach_sign(&self, x: [f64; 3], c_abs: f64) -> i32 {
+        if let (Some(f), Some((t, _))) = (self.frame.as_ref(), self.offset_bounded(x)) {
+            let k1 = Bounded::diff(1.0, c_abs);
+            let kk = Bounded::exact(c_abs).times(Bounded::diff(2.0, c_abs));
+            let e = t.times(t).times(k1.times(k1)).minus(f.rho2.times(kk));
+            if let Some(s) = e.sign() {
+                return s;
+            }
+        }
+        crate::geom::exact::offset_reach_sign_3d(self.t, x, c_abs)
+    }
+    /// c₁′ ≥ c for the interval `iv` of this triangle, decided exactly (see
+    /// [`CenterInterval::c1_at_least_by`]); the same as comparing the second of
+    /// [`CenterInterval::gamma_values`] with c, but for rounding.
+    pub fn c1_at_least(&self, iv: &CenterInterval, c: f64) -> bool {
+        iv.c1_at_least_by(c, |x, ca| self.reach_sign(x, ca))
     }
     /// The 3D analogue of [`EdgeFrame::cocircular_ends`]: `above` (on the normal's side) and
     /// `below` the binding points, on one sphere with the corners (a triple of a cospherical
@@ -630,12 +785,10 @@ impl TriFrame {
     ) -> CenterInterval {
         let mut iv = self.start();
         if let Some(x) = above {
-            iv.hi = self.tau(x).1;
-            iv.hi_at = Some(x);
+            iv.bind_hi(self.tau(x).1, x);
         }
         if let Some(y) = below {
-            iv.lo = self.tau(y).1;
-            iv.lo_at = Some(y);
+            iv.bind_lo(self.tau(y).1, y);
             if above.is_some() {
                 iv.settle(0.0);
             }
@@ -654,10 +807,8 @@ impl TriFrame {
                 Some(y) => self.insphere_at(true, y, x) > 0.0,
             };
             if better {
-                iv.hi = self.offset(side, x);
-                iv.hi_at = Some(x);
+                iv.bind_hi(self.offset(side, x), x);
                 if let Some(l) = iv.lo_at {
-                    iv.lo = self.tau(l).1;
                     iv.settle(self.insphere_at(true, x, l));
                 }
             }
@@ -667,10 +818,8 @@ impl TriFrame {
                 Some(y) => self.insphere_at(false, y, x) > 0.0,
             };
             if better {
-                iv.lo = self.offset(side, x);
-                iv.lo_at = Some(x);
+                iv.bind_lo(self.offset(side, x), x);
                 if let Some(h) = iv.hi_at {
-                    iv.hi = self.tau(h).1;
                     iv.settle(self.insphere_at(true, h, x));
                 }
             }
@@ -779,6 +928,10 @@ pub fn def_contains_2d(a: [f64; 2], b: [f64; 2], c0: f64, c1: f64, side: f64, x:
     let in_ball = |c: f64, sd: f64| -> bool {
         if c.abs() >= 1.0 {
             return o * sd > 0.0; // open half-plane on side sd
+        }
+        if c == 0.0 {
+            // the diametral disc, exactly: (a − x)·(b − x) < 0
+            return dot_sign(&a, &b, &x) < 0;
         }
         let t = sd * offset_of(c.abs(), r_over_n);
         q < 2.0 * t * h

@@ -451,12 +451,19 @@ mod beyond3_oracle {
         let known: HashSet<[u32; 3]> = cand.triangles.iter().copied().collect();
         let all = gamma_values_3d(&p);
         for &c in cs {
-            // c₁′ ≥ c; a gap's c₁′ is negative however small, even when it rounds to −0.0 (the
-            // candidates decide c₁′ ≥ 0 by the exact order of the ends, not by the value)
-            let reaches = |c1: f64| c1 > c || (c1 == c && !(c == 0.0 && c1.is_sign_negative()));
+            // c₁′ ≥ c; within 1e-8 of a tie the rounded γ-value cannot tell (e.g. a gap's c₁′
+            // that rounds to −0.0 at c = 0, or a γ-value of exactly −0.5 before rounding): the
+            // exact oracle decides, as the library does (`TriFrame::c1_at_least`)
+            let reaches = |t: [u32; 3], c1: f64| {
+                if (c1 - c).abs() < 1e-8 {
+                    super::exact_oracle::reaches_3d(&p, t, c).unwrap_or(false)
+                } else {
+                    c1 > c
+                }
+            };
             let want: BTreeMap<[u32; 3], (f64, f64)> = all
                 .iter()
-                .filter(|(t, v)| reaches(v.1) && !known.contains(t))
+                .filter(|(t, v)| reaches(*t, v.1) && !known.contains(t))
                 .map(|(t, v)| (*t, *v))
                 .collect();
             let (tris, ivs) = beyond_dt_3d(&d, &cand, c);
@@ -1185,5 +1192,347 @@ mod lune_oracle {
                 .collect();
             check("jittered", &p);
         }
+    }
+}
+
+// ---- exact oracle of c₁′ ≥ c (issue 17: exact γ-value decisions, 2D certified offsets) ----
+
+mod exact_oracle {
+    use super::super::beyond3::beyond_dt_3d;
+    use super::super::brute::gamma_values_3d;
+    use super::super::fast::{beyond_dt_2d, candidates_2d, candidates_3d, coords2, coords3};
+    use super::super::gamma::{center_interval_3d, EdgeFrame, TriFrame};
+    use super::random_3d;
+    use crate::delaunay::{d2, d3};
+    use crate::geom::exact::{big_cross, big_dot, float_parts, to_big_ints};
+    use crate::geom::{Point2, Point3};
+    use num_bigint::{BigInt, Sign};
+    use std::collections::BTreeSet;
+
+    /// The exact interval of one simplex in rationals: each end as (numerator, denominator) of
+    /// its offset τ (denominator with the sign of the point's side), ρ₀² = r/q, and whether a
+    /// point in the closed simplex blocks everything.
+    struct Exact {
+        lo: Option<(BigInt, BigInt)>,
+        hi: Option<(BigInt, BigInt)>,
+        rho2: (BigInt, BigInt),
+        blocked: bool,
+        /// a point in the plane strictly inside the circumcircle (3D): only half-spaces empty
+        finite: bool,
+    }
+
+    /// n1/d1 < n2/d2 for d1, d2 of one sign.
+    fn less(a: &(BigInt, BigInt), b: &(BigInt, BigInt)) -> bool {
+        let s = &a.1 * &b.1; // > 0
+        debug_assert!(s.sign() == Sign::Plus);
+        &a.0 * &b.1 < &b.0 * &a.1
+    }
+
+    impl Exact {
+        /// Narrows by a point with offset num/den (den ≠ 0, sign = side).
+        fn add(&mut self, num: BigInt, den: BigInt) {
+            let t = (num, den);
+            if t.1.sign() == Sign::Plus {
+                if self.hi.as_ref().is_none_or(|h| less(&t, h)) {
+                    self.hi = Some(t);
+                }
+            } else if self.lo.as_ref().is_none_or(|l| less(l, &t)) {
+                self.lo = Some(t);
+            }
+        }
+        /// |c(τ)| ≥ |c| (+1), = (0) or < (−1) for the end τ, |c| = C/S:
+        /// τ² (1 − |c|)² vs ρ₀² |c| (2 − |c|), cross-multiplied.
+        fn reach(&self, t: &(BigInt, BigInt), cn: &BigInt, cs: &BigInt) -> std::cmp::Ordering {
+            let k1 = cs - cn;
+            let lhs = &t.0 * &t.0 * &k1 * &k1 * &self.rho2.1;
+            let rhs = &t.1 * &t.1 * &self.rho2.0 * cn * (BigInt::from(2) * cs - cn);
+            lhs.cmp(&rhs)
+        }
+        /// c₁′ ≥ c by Def. 3.3 on the exact ends (see `CenterInterval::gamma_values`).
+        fn reaches(&self, c: f64) -> bool {
+            use std::cmp::Ordering::*;
+            if self.blocked || c > 1.0 {
+                return false;
+            }
+            if self.finite {
+                return self.lo.is_none() || self.hi.is_none();
+            }
+            // |c| = C/S exactly (for |c| ≥ 1 only the order of the cases below matters)
+            let (cn, cs) = if c == 0.0 || c.abs() >= 1.0 {
+                (BigInt::from(0), BigInt::from(1))
+            } else {
+                let (m, e) = float_parts(c.abs());
+                (BigInt::from(m), BigInt::from(1) << ((-e) as usize))
+            };
+            match (&self.lo, &self.hi) {
+                // an end without a binding point: a half-space is empty, c₁′ = 1
+                (None, _) | (_, None) => true,
+                (Some(l), Some(h)) => {
+                    // lo ≤ hi ⇔ l.0/l.1 ≤ h.0/h.1 with l.1 < 0 < h.1
+                    let lo_le_hi = &l.0 * &h.1 >= &h.0 * &l.1;
+                    if lo_le_hi {
+                        c <= 0.0
+                            || (c < 1.0
+                                && (self.reach(l, &cn, &cs) != Less
+                                    || self.reach(h, &cn, &cs) != Less))
+                    } else {
+                        c < 0.0
+                            && (c <= -1.0
+                                || (self.reach(l, &cn, &cs) != Greater
+                                    && self.reach(h, &cn, &cs) != Greater))
+                    }
+                }
+            }
+        }
+    }
+
+    /// The exact interval of the 2D edge (a, b) over the points `q` (integers after a common
+    /// scaling): τ = (x − a)·(x − b) / 2 orient(a, b, x), ρ₀² = 1/4.
+    fn exact_2d(q: &[[BigInt; 2]], a: usize, b: usize) -> Exact {
+        let mut ex = Exact {
+            lo: None,
+            hi: None,
+            rho2: (BigInt::from(1), BigInt::from(4)),
+            blocked: false,
+            finite: false,
+        };
+        let (pa, pb) = (&q[a], &q[b]);
+        for (i, x) in q.iter().enumerate() {
+            if i == a || i == b {
+                continue;
+            }
+            let xa = [&x[0] - &pa[0], &x[1] - &pa[1]];
+            let xb = [&x[0] - &pb[0], &x[1] - &pb[1]];
+            let ba = [&pb[0] - &pa[0], &pb[1] - &pa[1]];
+            let num = &xa[0] * &xb[0] + &xa[1] * &xb[1];
+            let h = &ba[0] * &xa[1] - &ba[1] * &xa[0];
+            if h.sign() == Sign::NoSign {
+                // on the line: on the closed segment iff (x − a)·(x − b) ≤ 0
+                if num.sign() != Sign::Plus {
+                    ex.blocked = true;
+                }
+                continue;
+            }
+            ex.add(num, h * 2);
+        }
+        ex
+    }
+
+    /// The exact interval of triangle (a, b, c): τ = N / (2|n|² h) (see
+    /// `geom::exact::offset_reach_sign_3d`), ρ₀² = |u|²|v|²|u − v|² / 4|n|⁴; a point in the
+    /// plane blocks everything in the closed triangle, every finite ball strictly inside the
+    /// circumcircle (N = |n|² (|x − m|² − r²) < 0). `None` for collinear corners.
+    fn exact_3d(q: &[[BigInt; 3]], t: [usize; 3]) -> Option<Exact> {
+        let d = |p: &[BigInt; 3], o: &[BigInt; 3]| -> [BigInt; 3] {
+            [&p[0] - &o[0], &p[1] - &o[1], &p[2] - &o[2]]
+        };
+        let a = &q[t[0]];
+        let (u, v) = (d(&q[t[1]], a), d(&q[t[2]], a));
+        let n = big_cross(&u, &v);
+        let (uu, vv, nn) = (big_dot(&u, &u), big_dot(&v, &v), big_dot(&n, &n));
+        if nn.sign() == Sign::NoSign {
+            return None;
+        }
+        let uv = d(&u, &v);
+        let mut ex = Exact {
+            lo: None,
+            hi: None,
+            rho2: (&uu * &vv * big_dot(&uv, &uv), BigInt::from(4) * &nn * &nn),
+            blocked: false,
+            finite: false,
+        };
+        for (i, x) in q.iter().enumerate() {
+            if t.contains(&i) {
+                continue;
+            }
+            let w = d(x, a);
+            let h = big_dot(&w, &n);
+            let num = big_dot(&w, &w) * &nn
+                + &uu * big_dot(&n, &big_cross(&v, &w))
+                + &vv * big_dot(&n, &big_cross(&w, &u));
+            if h.sign() == Sign::NoSign {
+                let side = |p: &[BigInt; 3], r: &[BigInt; 3]| {
+                    big_dot(&n, &big_cross(&d(r, p), &d(x, p))).sign() != Sign::Minus
+                };
+                let (pa, pb, pc) = (&q[t[0]], &q[t[1]], &q[t[2]]);
+                if side(pa, pb) && side(pb, pc) && side(pc, pa) {
+                    ex.blocked = true;
+                } else if num.sign() == Sign::Minus {
+                    ex.finite = true;
+                }
+                continue;
+            }
+            ex.add(num, BigInt::from(2) * &nn * h);
+        }
+        Some(ex)
+    }
+
+    /// c₁′ ≥ c for triangle `t` of `p`, exactly (`None` for collinear corners): the oracle of
+    /// the decisions near ties for the brute-force checks of `beyond3_oracle`.
+    pub(super) fn reaches_3d(p: &[[f64; 3]], t: [u32; 3], c: f64) -> Option<bool> {
+        let q = ints(p);
+        exact_3d(&q, t.map(|v| v as usize)).map(|e| e.reaches(c))
+    }
+
+    fn ints<const D: usize>(p: &[[f64; D]]) -> Vec<[BigInt; D]> {
+        let flat: Vec<f64> = p.iter().flatten().copied().collect();
+        let v = to_big_ints(&flat);
+        (0..p.len())
+            .map(|i| std::array::from_fn(|k| v[D * i + k].clone()))
+            .collect()
+    }
+
+    /// The 20 integer points with x² + y² = 625 (exactly cocircular) times `scale`, rounded,
+    /// then scaled by a power of two to magnitude ≈ 1: no longer exactly cocircular (points
+    /// with equal coordinate magnitudes stay on one circle), so every in-circle test is nearly
+    /// or exactly degenerate and a point nearly on an edge's circle lies nearly on its line's
+    /// circle family's degenerate member — both q and h of its offset are rounding-sized.
+    fn rounded_circle(scale: f64) -> Vec<[f64; 2]> {
+        let mut v = Vec::new();
+        for x in -25i32..=25 {
+            for y in -25i32..=25 {
+                if x * x + y * y == 625 {
+                    v.push([x as f64 * scale, y as f64 * scale]);
+                }
+            }
+        }
+        let m = v.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+        let s = crate::geom::exact::power_of_two_scale(m);
+        v.iter().map(|q| q.map(|c| c * s)).collect()
+    }
+
+    /// Every pair's c₁′ ≥ c from the library — the Delaunay candidates by
+    /// `EdgeFrame::c1_at_least` on their intervals, the edges beyond by `beyond_dt_2d` (c < 0)
+    /// — against the exact oracle over all pairs.
+    fn check_2d(pts: &[[f64; 2]], cs: &[f64]) {
+        let input: Vec<Point2> = pts.iter().map(|q| Point2::new(q[0], q[1])).collect();
+        let d = d2::triangulate(&input).unwrap();
+        let p = coords2(&d);
+        let q = ints(&p);
+        let cand = candidates_2d(&d);
+        let n = p.len();
+        let exact: Vec<([u32; 2], Exact)> = (0..n)
+            .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
+            .map(|(a, b)| ([a as u32, b as u32], exact_2d(&q, a, b)))
+            .collect();
+        for &c in cs {
+            let want: BTreeSet<[u32; 2]> = exact
+                .iter()
+                .filter(|(_, e)| e.reaches(c))
+                .map(|(k, _)| *k)
+                .collect();
+            let mut got = BTreeSet::new();
+            for (e, iv) in cand.edges.iter().zip(&cand.intervals) {
+                let f = EdgeFrame::new(p[e[0] as usize], p[e[1] as usize]);
+                if f.c1_at_least(iv, c) {
+                    got.insert([e[0].min(e[1]), e[0].max(e[1])]);
+                }
+            }
+            if c < 0.0 {
+                let (be, _) = beyond_dt_2d(&d, &cand, c);
+                got.extend(be.iter().map(|e| [e[0].min(e[1]), e[0].max(e[1])]));
+            }
+            let missing: Vec<_> = want.difference(&got).collect();
+            let extra: Vec<_> = got.difference(&want).collect();
+            assert!(
+                missing.is_empty() && extra.is_empty(),
+                "c = {c}: missing {missing:?}, extra {extra:?}"
+            );
+        }
+    }
+
+    /// Issue 17, 2D: rounded cocircular points at every scale, alone and with a twin of each
+    /// point moved along the circle's tangent by a few units in the last place (still on the
+    /// circle to rounding). The 2D analogue of a triangle's circumcircle is the edge's end
+    /// pair: a twin of an end lies nearly on the edge's line *and* nearly on its diametral
+    /// circle, so q and h of its offset are both rounding-sized and the old float quotient
+    /// q / 2h (through the rounded midpoint) was meaningless — while the twin binds the
+    /// interval of every edge at that end.
+    #[test]
+    fn beyond_2d_matches_exact_oracle_on_rounded_cocircular_sets() {
+        for scale in [1e-300, 1e-150, 0.1, 1.0, 1e150, 1e300] {
+            let p = rounded_circle(scale);
+            assert_eq!(p.len(), 20);
+            check_2d(&p, &[-0.9, -0.5, 0.0, 0.5]);
+            let mut twins = p.clone();
+            for (i, q) in p.iter().enumerate() {
+                let d = [1e-15, 4e-15, 3e-14][i % 3];
+                twins.push([q[0] - d * q[1], q[1] + d * q[0]]);
+            }
+            check_2d(&twins, &[-0.9, -0.5, 0.0, 0.5]);
+        }
+    }
+
+    /// The exact decision: c within 1e-12 of triangles' γ-values (and equal to them) on random
+    /// points, every triple by `TriFrame::c1_at_least` and the triangles beyond the Delaunay
+    /// tetrahedralization by `beyond_dt_3d`, against the exact oracle. A float comparison of
+    /// the rounded γ-value with c gets some of these wrong.
+    #[test]
+    fn gamma_decision_is_exact_near_gamma_values_3d() {
+        let pts = random_3d(16, 4300);
+        let input: Vec<Point3> = pts.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
+        let d = d3::triangulate(&input).unwrap();
+        let p = coords3(&d);
+        let q = ints(&p);
+        let cand = candidates_3d(&d);
+        let known: BTreeSet<[u32; 3]> = cand.triangles.iter().copied().collect();
+        let vals = gamma_values_3d(&p);
+        let mut cs = Vec::new();
+        for (k, (_, v)) in vals.iter().enumerate().filter(|(k, _)| k % 7 == 0) {
+            let c1 = v.1;
+            if c1.abs() < 0.95 && c1 != 0.0 {
+                let ulp = f64::from_bits(c1.to_bits() + 1) - c1;
+                cs.extend([c1, c1 + ulp, c1 - ulp]);
+                if k % 2 == 0 {
+                    cs.extend([c1 + 1e-13, c1 - 1e-13, c1 + 9e-13, c1 - 9e-13]);
+                }
+            }
+        }
+        assert!(cs.len() > 60);
+        let n = p.len();
+        let mut triples = Vec::new();
+        for a in 0..n {
+            for b in a + 1..n {
+                for e in b + 1..n {
+                    triples.push([a, b, e]);
+                }
+            }
+        }
+        let exact: Vec<Exact> = triples
+            .iter()
+            .map(|&t| exact_3d(&q, t).expect("random points: no three collinear"))
+            .collect();
+        let ivs: Vec<_> = triples
+            .iter()
+            .map(|t| {
+                let f = TriFrame::new(p[t[0]], p[t[1]], p[t[2]]).unwrap();
+                (f, center_interval_3d(&p, t[0], t[1], t[2]).unwrap())
+            })
+            .collect();
+        let mut wrong = Vec::new();
+        for &c in &cs {
+            let mut want_beyond = BTreeSet::new();
+            for ((t, ex), (f, iv)) in triples.iter().zip(&exact).zip(&ivs) {
+                let w = ex.reaches(c);
+                if f.c1_at_least(iv, c) != w {
+                    wrong.push((c, *t, w));
+                }
+                let key = t.map(|v| v as u32);
+                if w && !known.contains(&key) {
+                    want_beyond.insert(key);
+                }
+            }
+            if c < 0.0 {
+                let (tris, _) = beyond_dt_3d(&d, &cand, c);
+                let got: BTreeSet<[u32; 3]> = tris.into_iter().collect();
+                assert_eq!(got, want_beyond, "beyond_dt_3d at c = {c:e}");
+            }
+        }
+        assert!(
+            wrong.is_empty(),
+            "{} wrong decisions: {:?}",
+            wrong.len(),
+            &wrong[..wrong.len().min(5)]
+        );
     }
 }

@@ -269,19 +269,24 @@ impl General3<'_> {
                 None
             };
         }
-        let ub_of = |iv: &CenterInterval| iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
+        // the float c₁′ (accurate to 1e-9: the offsets are certified to `TAU_TOL`) raised by
+        // `UB_MARGIN`: a proven upper bound of c₁′, the bound returned and cached
+        let c1_float = |iv: &CenterInterval| iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
+        let ub_of = |iv: &CenterInterval| c1_float(iv) + UB_MARGIN;
         let stop = (c - UB_LOOKAHEAD).max(UB_FLOOR).min(c);
-        // adds the points; true when rejected (ub below stop on the way, or below c at the end)
+        // c₁′ < c, exactly (the float bound when it is below c, else the exact decision)
+        let below_c = |iv: &CenterInterval| ub_of(iv) < c || !f.c1_at_least(iv, c);
+        // adds the points; true when rejected (ub below stop on the way, or c₁′ < c at the end)
         let scan = |iv: &mut CenterInterval, ids: &mut dyn Iterator<Item = u32>| -> bool {
             for (j, z) in ids.enumerate() {
                 if !t.contains(&z) {
                     f.add(iv, pts[z as usize]);
                 }
-                if j % 32 == 31 && ub_of(iv) < stop {
+                if j % 32 == 31 && c1_float(iv) < stop && below_c(iv) {
                     return true;
                 }
             }
-            ub_of(iv) < c
+            below_c(iv)
         };
         if scan(&mut iv, &mut first.iter().copied()) {
             return Some(ub_of(&iv));
@@ -369,7 +374,7 @@ impl General3<'_> {
                                // makes that explicit; beyond it (never reached) every point decides.
         let mut moves = 0usize;
         loop {
-            if ub_of(&iv) < 0.0 {
+            if !iv.finite_blocked && iv.lo > iv.hi {
                 return None; // the gap regime with B(m, r) added: c₁′ ≥ c is final
             }
             moves += 1;

@@ -47,6 +47,12 @@ use std::collections::BinaryHeap;
 /// schedule), instead of rescanning it at every step.
 pub(super) const UB_LOOKAHEAD: f64 = 0.25;
 
+/// What [`General3::gamma_decide`] adds to a floating-point c₁′ to make it a proven upper bound:
+/// the offsets it comes from are certified to a relative 1e-10 of |τ| + r/|n|
+/// (`graphs::gamma::TAU_TOL`), which moves |c| by less than 1e-10, and the conversion rounds a
+/// few ε.
+pub(super) const UB_MARGIN: f64 = 1e-8;
+
 /// The lowest bound of c₁′ worth scanning for: the schedule's smallest c above −1 (c = −1 is
 /// decided by the closed triangle alone and never consults a cached bound, and c₁′ ≥ −1
 /// always). Without it the look-ahead of the rounds c ≤ −0.8 (c − 0.25 < −1) could never stop
