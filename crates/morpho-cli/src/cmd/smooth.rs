@@ -610,15 +610,17 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
         "meshes/spot.obj reduced to 20 % of its triangles (Hamann's Algorithm 5.1), area-weighted \
          vertex normals (V §9.4; the few that do not see all their triangles adjusted), then the \
          cubic three-split (V §9.6: Farin's interior point, the Clough–Tocher split at the \
-         centroid, (9.4) per edge; singular edges built with a quadratic boundary) and Hamann's \
+         centroid; per edge a degree-elevated quadratic boundary where one fits, else (9.4) where it \
+         moves L1, R1 at most 3 edge lengths, else a bounded correction left creased and counted \
+         as unresolved) and Hamann's \
          side-vertex surface of degree-elevated conics (H ch. 6, automatic weights), each \
          tessellated with surface normals. Left to right: the input (flat), the three-split, the \
          side-vertex surface. Second row: reflection lines (V §8.4): parallel light lines far \
          away, reflected by the surface normals; they run continuously across a G¹ surface and \
-         break at every edge of the flat mesh. The spikes of the three-split are the 'wild \
-         oscillation' of V Fig. 9.5: edges where (9.4) is nearly singular push L1, R1 far out \
-         (max displacement below); the continuity figures are measured independently at 20 \
-         samples per macro and micro edge.",
+         break at every edge of the flat mesh, and at the three-split's unresolved edges. (9.4) \
+         alone gave the 'wild oscillation' of V Fig. 9.5 here: near-mirror-image triangles make \
+         it nearly singular and pushed L1, R1 up to 1.4e14 edge lengths out; the continuity \
+         figures are measured independently at 20 samples per macro and micro edge.",
     );
     s.fig(
         "input → reduced triangles",
