@@ -259,9 +259,8 @@ fn transparency_blends_back_to_front() {
 }
 
 /// `n` parallel squares, layer 0 in front, each with its own per-face grey level `values[i]`
-/// (Greys map over 0..255). In the 17×16 front view of the test no sample centre lies on the
-/// squares' diagonals (the rasterizer's edge test is inclusive, so a sample on the shared
-/// edge of two triangles takes both).
+/// (Greys map over 0..255). In the 17×16 front view no sample centre lies on the squares'
+/// diagonals; in the 16×16 view of `shared_diagonal_samples_are_blended_once` sixteen do.
 fn stack(values: &[f64]) -> (TriMesh, Vec<f64>) {
     let mut pos = Vec::new();
     let mut tris = Vec::new();
@@ -1543,4 +1542,45 @@ fn figures_are_balanced_and_complete() {
     let c = xml_check(&s);
     assert_eq!(c["path"], 2 + r.contour.cycles.len() + 1);
     assert!(s.contains("#c81e1e"));
+}
+
+/// A sample centre on the diagonal two triangles of a square share is blended once (the fill
+/// rule of alpha blending): in the 16×16 front view the diagonal of every square passes through
+/// sixteen sample centres, and each pixel equals the closed form of the layers in front of it.
+#[test]
+fn shared_diagonal_samples_are_blended_once() {
+    for (t, values) in [(0.5, vec![200.0]), (0.3, vec![90.0, 250.0, 10.0])] {
+        let (m, fv) = stack(&values);
+        let o = RenderOptions {
+            transparency: Some(t),
+            background: [0, 0, 0, 0],
+            scalars: Some(Scalars {
+                values: fv,
+                per_face: true,
+                colormap: Colormap::Greys,
+                range: Some((0.0, 255.0)),
+            }),
+            ..ortho_front(16, 16)
+        };
+        let (img, _) = render_mesh_stats(&m, &o);
+        let grey = |v: f64| Colormap::Greys.color(v / 255.0)[0] as f64;
+        let (mut want, mut tr) = (0.0, 1.0);
+        for &v in &values {
+            want += tr * (1.0 - t) * grey(v);
+            tr *= t;
+        }
+        let alpha = 255.0 * (1.0 - tr);
+        let mut on_diagonal = 0;
+        for y in 1..15 {
+            for x in 1..15 {
+                let p = img.get(x, y);
+                on_diagonal += usize::from(x + y == 15 || x == y);
+                assert!(
+                    (p[0] as f64 - want).abs() <= 1.0 && (p[3] as f64 - alpha).abs() <= 1.0,
+                    "t {t}, pixel ({x}, {y}): {p:?}, closed form {want:.2} / alpha {alpha:.2}"
+                );
+            }
+        }
+        assert!(on_diagonal > 0);
+    }
 }

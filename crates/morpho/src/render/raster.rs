@@ -785,6 +785,41 @@ struct Composite {
     t: f32,
 }
 
+/// [`edge`] evaluated from the lexicographically smaller end, negated when that is `b`: the two
+/// triangles of a shared edge get exactly opposite values at every sample (the plain edge
+/// function rounds differently from each end, so a sample on the edge could be inside both or
+/// neither), which [`owns_edge_samples`] needs.
+#[inline]
+fn shared_edge(a: &Vert, b: &Vert, x: f64, y: f64) -> f64 {
+    if (a.px, a.py) <= (b.px, b.py) {
+        edge(a, b, x, y)
+    } else {
+        -edge(b, a, x, y)
+    }
+}
+
+/// The fill rule of alpha blending: a sample on an edge of `t` (`w`: its [`shared_edge`]
+/// functions, all ≥ 0) is `t`'s only if that edge is a left edge (the inside lies towards +x) or a horizontal
+/// edge with the inside towards +y. Of two triangles sharing an edge exactly one owns the
+/// samples on it, so a rectangle split along a diagonal through sample centres blends each
+/// sample once (the inclusive test blended those twice). Opaque drawing does not need it: the
+/// depth test keeps one of the two.
+#[inline]
+fn owns_edge_samples(t: &Tri, w: [f64; 3]) -> bool {
+    let [p0, p1, p2] = &t.p;
+    [(p1, p2), (p2, p0), (p0, p1)]
+        .iter()
+        .zip(w)
+        .all(|((a, b), wi)| {
+            if wi != 0.0 {
+                return true;
+            }
+            // the gradient of edge(a, b, ·) is (−(b.py − a.py), b.px − a.px)
+            let (gx, gy) = (a.py - b.py, b.px - a.px);
+            gx > 0.0 || (gx == 0.0 && gy > 0.0)
+        })
+}
+
 /// The span `xs..=xe` of sample row `fy` inside all three half-planes of `t` (one sample of
 /// slack; the edge test per sample decides), clipped to the triangle's box.
 #[inline]
@@ -1196,11 +1231,11 @@ impl Scene<'_> {
                 }
                 let fx = x as f64 + 0.5;
                 let w = [
-                    edge(p1, p2, fx, fy),
-                    edge(p2, p0, fx, fy),
-                    edge(p0, p1, fx, fy),
+                    shared_edge(p1, p2, fx, fy),
+                    shared_edge(p2, p0, fx, fy),
+                    shared_edge(p0, p1, fx, fy),
                 ];
-                if w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0 {
+                if w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0 || !owns_edge_samples(t, w) {
                     continue;
                 }
                 let c = self.blend_colour(t, perspective_weights(t, w));

@@ -50,8 +50,8 @@
 //! 28 sign warnings touch a singular edge). A quadratic boundary is therefore accepted only if
 //! the fans at both ends stay valid ([`SplitOptions::fold_guard`], off by default: see
 //! there for its cost); otherwise the edge keeps its cubic boundary, is listed in
-//! [`SplitSurface::fold_guarded`] and (not G¹ there) in `unresolved_edges`: a reported crease
-//! instead of a fold.
+//! [`SplitSurface::fold_guarded`] and goes through the bounded (9.4) of Step 5; where that
+//! does not apply either it is in `unresolved_edges`: a reported crease instead of a fold.
 
 use super::triangle::{tri_index, BezierTriangle};
 use super::SmoothError;
