@@ -694,6 +694,7 @@ fn bunny_boundary(ctx: &Ctx, path: &Path) -> Result<Section> {
         ..Default::default()
     };
     render_mesh(&mesh, &opts).save_png(&ctx.path("bunny_boundary.png"))?;
+    view_page(ctx, &mut s, "bunny_boundary", &mesh)?;
     s.img(
         "bunny_boundary.png",
         "--until all: stop as soon as every point is on the boundary",

@@ -559,6 +559,7 @@ fn skull_section(
         "reduce_skull.png",
         "input · 10 % of the triangles kept · its edges",
     );
+    super::demo::view_page(ctx, &mut s, "reduce_skull_10", &r.mesh)?;
     let topo = |t: &morpho::mesh::Topology| {
         format!(
             "{} / {} / {}",
