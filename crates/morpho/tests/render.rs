@@ -278,6 +278,38 @@ fn stack(values: &[f64]) -> (TriMesh, Vec<f64>) {
     (TriMesh::new(pos, tris), fv)
 }
 
+/// The [`stack`] of `values` alpha-blended with transparency `t` in a `w`×`h` front view on a
+/// transparent black background, with the closed form of a pixel the squares cover: grey level
+/// `Σ (1 − t) tⁱ grey(v_i)` and alpha `255 (1 − tⁿ)`.
+fn blend_stack(
+    values: &[f64],
+    t: f64,
+    w: u32,
+    h: u32,
+) -> (morpho::render::Image, morpho::render::RenderStats, f64, f64) {
+    let (m, fv) = stack(values);
+    let o = RenderOptions {
+        transparency: Some(t),
+        background: [0, 0, 0, 0],
+        scalars: Some(Scalars {
+            values: fv,
+            per_face: true,
+            colormap: Colormap::Greys,
+            range: Some((0.0, 255.0)),
+        }),
+        ..ortho_front(w, h)
+    };
+    let (img, st) = render_mesh_stats(&m, &o);
+    // Greys: 0 → black, 1 → white (an 8-bit map, so the level is the value rounded).
+    let grey = |v: f64| Colormap::Greys.color(v / 255.0)[0] as f64;
+    let (mut want, mut tr) = (0.0, 1.0);
+    for &v in values {
+        want += tr * (1.0 - t) * grey(v);
+        tr *= t;
+    }
+    (img, st, want, 255.0 * (1.0 - tr))
+}
+
 /// Alpha blending of many layers equals the closed form `Σ (1 − t) tⁱ c_i + tⁿ bg` (all
 /// layers, exact arithmetic) to one level, for every t, although the renderer stops taking
 /// layers once they cannot matter. The faint layers (4 levels of 255 at t = 0.99: each adds
@@ -300,28 +332,7 @@ fn transparency_matches_the_closed_form_over_many_layers() {
     }
     cases.push((0.99, vec![40.0; 300]));
     for (t, values) in cases {
-        let (m, fv) = stack(&values);
-        let o = RenderOptions {
-            transparency: Some(t),
-            background: [0, 0, 0, 0],
-            scalars: Some(Scalars {
-                values: fv,
-                per_face: true,
-                colormap: Colormap::Greys,
-                range: Some((0.0, 255.0)),
-            }),
-            ..ortho_front(17, 16)
-        };
-        let (img, st) = render_mesh_stats(&m, &o);
-        // Greys: 0 → black, 1 → white (an 8-bit map, so the level is the value rounded).
-        let grey = |v: f64| Colormap::Greys.color(v / 255.0)[0] as f64;
-        let mut want = 0.0;
-        let mut tr = 1.0;
-        for &v in &values {
-            want += tr * (1.0 - t) * grey(v);
-            tr *= t;
-        }
-        let alpha = 255.0 * (1.0 - tr);
+        let (img, st, want, alpha) = blend_stack(&values, t, 17, 16);
         for (i, p) in img.rgba.chunks(4).enumerate() {
             if !(1..16).contains(&(i % 17)) {
                 continue; // the squares' left and right edges
@@ -1550,26 +1561,7 @@ fn figures_are_balanced_and_complete() {
 #[test]
 fn shared_diagonal_samples_are_blended_once() {
     for (t, values) in [(0.5, vec![200.0]), (0.3, vec![90.0, 250.0, 10.0])] {
-        let (m, fv) = stack(&values);
-        let o = RenderOptions {
-            transparency: Some(t),
-            background: [0, 0, 0, 0],
-            scalars: Some(Scalars {
-                values: fv,
-                per_face: true,
-                colormap: Colormap::Greys,
-                range: Some((0.0, 255.0)),
-            }),
-            ..ortho_front(16, 16)
-        };
-        let (img, _) = render_mesh_stats(&m, &o);
-        let grey = |v: f64| Colormap::Greys.color(v / 255.0)[0] as f64;
-        let (mut want, mut tr) = (0.0, 1.0);
-        for &v in &values {
-            want += tr * (1.0 - t) * grey(v);
-            tr *= t;
-        }
-        let alpha = 255.0 * (1.0 - tr);
+        let (img, _, want, alpha) = blend_stack(&values, t, 16, 16);
         let mut on_diagonal = 0;
         for y in 1..15 {
             for x in 1..15 {

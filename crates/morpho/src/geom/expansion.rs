@@ -129,6 +129,161 @@ pub fn dot(x: &[Expansion; 3], y: &[Expansion; 3]) -> Expansion {
     x[0].mul(&y[0]).add(&x[1].mul(&y[1])).add(&x[2].mul(&y[2]))
 }
 
+/// Stack-only expansion arithmetic, for the exact stage of
+/// [`super::predicates::incircle_sign`] (an expansion is a slice of non-overlapping doubles in
+/// increasing magnitude, zeros eliminated, whose exact sum is the value). Written for fixed
+/// small sizes: nothing allocates and nothing is rounded. Products by Dekker's split (no
+/// fused multiply-add needed, so no library call where the target lacks FMA).
+pub(crate) mod stack {
+    /// x = fl(a − b) and its exact rounding error y: a − b = x + y.
+    #[inline(always)]
+    pub fn two_diff(a: f64, b: f64) -> (f64, f64) {
+        let x = a - b;
+        let bv = a - x;
+        let av = x + bv;
+        (x, (a - av) + (bv - b))
+    }
+
+    /// x = fl(a + b), a + b = x + y exactly.
+    #[inline(always)]
+    fn two_sum(a: f64, b: f64) -> (f64, f64) {
+        let x = a + b;
+        let bv = x - a;
+        let av = x - bv;
+        (x, (a - av) + (b - bv))
+    }
+
+    /// x = fl(a + b), a + b = x + y exactly, valid when |a| ≥ |b| (or a = 0).
+    #[inline(always)]
+    fn fast_two_sum(a: f64, b: f64) -> (f64, f64) {
+        let x = a + b;
+        (x, b - (x - a))
+    }
+
+    /// Veltkamp's split of a into 26-bit halves.
+    #[inline(always)]
+    fn split(a: f64) -> (f64, f64) {
+        const SPLITTER: f64 = 134_217_729.0; // 2^27 + 1
+        let c = SPLITTER * a;
+        let hi = c - (c - a);
+        (hi, a - hi)
+    }
+
+    /// x = fl(a·b), a·b = x + y exactly (Dekker).
+    #[inline(always)]
+    fn two_prod(a: f64, b: f64) -> (f64, f64) {
+        let x = a * b;
+        let (ah, al) = split(a);
+        let (bh, bl) = split(b);
+        let err = x - ah * bh - al * bh - ah * bl;
+        (x, al * bl - err)
+    }
+
+    /// The expansion e·b (|e| ≤ 16 components) into h; returns its length.
+    fn scale(e: &[f64], b: f64, h: &mut [f64]) -> usize {
+        let mut n = 0;
+        let (mut q, lo) = two_prod(e[0], b);
+        if lo != 0.0 {
+            h[n] = lo;
+            n += 1;
+        }
+        for &ei in &e[1..] {
+            let (p1, p0) = two_prod(ei, b);
+            let (s, lo) = two_sum(q, p0);
+            if lo != 0.0 {
+                h[n] = lo;
+                n += 1;
+            }
+            let (q2, lo) = fast_two_sum(p1, s);
+            q = q2;
+            if lo != 0.0 {
+                h[n] = lo;
+                n += 1;
+            }
+        }
+        if q != 0.0 || n == 0 {
+            h[n] = q;
+            n += 1;
+        }
+        n
+    }
+
+    /// The exact sum of two expansions into h (Shewchuk's fast expansion sum with zero
+    /// elimination); returns its length (≥ 1).
+    pub fn sum(e: &[f64], f: &[f64], h: &mut [f64]) -> usize {
+        let (mut i, mut j) = (0, 0);
+        let next = |i: &mut usize, j: &mut usize| -> f64 {
+            let take_e = *j >= f.len() || (*i < e.len() && e[*i].abs() < f[*j].abs());
+            if take_e {
+                *i += 1;
+                e[*i - 1]
+            } else {
+                *j += 1;
+                f[*j - 1]
+            }
+        };
+        let total = e.len() + f.len();
+        let mut q = next(&mut i, &mut j);
+        let mut n = 0;
+        if total > 1 {
+            let g = next(&mut i, &mut j);
+            let (q2, lo) = fast_two_sum(g, q);
+            q = q2;
+            if lo != 0.0 {
+                h[n] = lo;
+                n += 1;
+            }
+            for _ in 2..total {
+                let g = next(&mut i, &mut j);
+                let (q2, lo) = two_sum(q, g);
+                q = q2;
+                if lo != 0.0 {
+                    h[n] = lo;
+                    n += 1;
+                }
+            }
+        }
+        if q != 0.0 || n == 0 {
+            h[n] = q;
+            n += 1;
+        }
+        n
+    }
+
+    /// (x² + y²)·(u × v) = (x² + y²)·(u.x·v.y − v.x·u.y) exactly, into h (≤ 32 components).
+    pub fn lifted_cross(x: f64, y: f64, u: [f64; 2], v: [f64; 2], h: &mut [f64; 32]) -> usize {
+        let (p1, p0) = two_prod(u[0], v[1]);
+        let (q1, q0) = two_prod(v[0], u[1]);
+        let cr = two_two_diff(p1, p0, q1, q0);
+        let mut t1 = [0.0; 8];
+        let mut t2 = [0.0; 16];
+        let mut xx = [0.0; 16];
+        let n1 = scale(&cr, x, &mut t1);
+        let nx = scale(&t1[..n1], x, &mut xx);
+        let n1 = scale(&cr, y, &mut t1);
+        let ny = scale(&t1[..n1], y, &mut t2);
+        sum(&xx[..nx], &t2[..ny], h)
+    }
+
+    /// (a1 + a0) − (b1 + b0) as the four-component expansion [x0, x1, x2, x3] (Shewchuk's
+    /// Two-Two-Diff: two Two-One-Diffs, i.e. expansion growth by −b0, then by −b1).
+    #[inline(always)]
+    fn two_two_diff(a1: f64, a0: f64, b1: f64, b0: f64) -> [f64; 4] {
+        let (i, x0) = two_diff(a0, b0);
+        let (j, z) = two_sum(a1, i);
+        let (k, x1) = two_diff(z, b1);
+        let (x3, x2) = two_sum(j, k);
+        [x0, x1, x2, x3]
+    }
+
+    /// The exact sign of an expansion: that of its largest (last) component.
+    #[inline]
+    pub fn sign(e: &[f64]) -> i32 {
+        let top = e[e.len() - 1];
+        (top > 0.0) as i32 - (top < 0.0) as i32
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
