@@ -22,25 +22,14 @@
 //! `cargo run --release -p morpho --example bench_boundary2d [FILTER]` prints a Markdown table
 //! (rows whose set name contains FILTER only).
 
+mod common;
+
 use morpho::boundary::{boundary_2d, check_polygon, Options2};
 use morpho::geom::Point2;
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
 use std::collections::HashSet;
 use std::time::Instant;
-
-fn data_dir() -> Option<std::path::PathBuf> {
-    for d in [
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"),
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data"),
-    ] {
-        let p = std::path::PathBuf::from(d);
-        if p.is_dir() {
-            return Some(p);
-        }
-    }
-    None
-}
 
 /// A point set in truth order (`truth` = whether that order is a ground-truth polygon).
 struct Set {
@@ -115,7 +104,7 @@ fn edge_set(c: &[u32]) -> HashSet<(u32, u32)> {
 
 fn main() {
     let filter = std::env::args().nth(1).unwrap_or_default();
-    let Some(dir) = data_dir() else {
+    let Some(dir) = common::data_dir() else {
         eprintln!("../shared/data not found");
         return;
     };

@@ -51,6 +51,8 @@
 //! | spot (2930, 5856) | γ-indicator | 0 | 4030 = 68.8 % | 0.05 s |
 //! | spot | min area change | 0 | 1557 = 26.6 % | 0.05 s |
 
+mod common;
+
 use morpho::boundary::Until;
 use morpho::boundary::{boundary_3d, CParam, Method3, Options3};
 use morpho::geom::Point3;
@@ -58,19 +60,6 @@ use morpho::internals::constrict_3d;
 use morpho::mesh::validity;
 use rand::{Rng, SeedableRng};
 use std::time::Instant;
-
-fn data_dir() -> Option<std::path::PathBuf> {
-    for d in [
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"),
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data"),
-    ] {
-        let p = std::path::PathBuf::from(d);
-        if p.is_dir() {
-            return Some(p);
-        }
-    }
-    None
-}
 
 fn vm_hwm_mb() -> f64 {
     let s = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
@@ -382,7 +371,7 @@ fn phases(name: &str, pts: &[Point3]) {
 }
 
 fn main() {
-    let Some(dir) = data_dir() else {
+    let Some(dir) = common::data_dir() else {
         eprintln!("shared data not found");
         return;
     };

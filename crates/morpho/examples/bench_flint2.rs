@@ -7,40 +7,16 @@
 //! `cargo run --release -p morpho --example bench_flint2 [vertices] [queries]`
 //! (default 100 000, 1 000 000).
 
+mod common;
+
 use morpho::flint::{baseline, Baseline, Containment, FlintTree2, Target};
 use morpho::geom::Point2;
 use std::time::Instant;
 
-fn data_dir() -> Option<std::path::PathBuf> {
-    for d in [
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"),
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data"),
-    ] {
-        let p = std::path::PathBuf::from(d);
-        if p.is_dir() {
-            return Some(p);
-        }
-    }
-    None
-}
-
-/// Process CPU time (user + system) in seconds.
-fn cpu() -> f64 {
-    let s = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    let f: Vec<&str> = s
-        .rsplit(')')
-        .next()
-        .unwrap_or("")
-        .split_whitespace()
-        .collect();
-    let t = |k: usize| f.get(k).and_then(|v| v.parse::<f64>().ok()).unwrap_or(0.0);
-    (t(11) + t(12)) / 100.0
-}
-
 fn timed<T>(name: &str, f: impl FnOnce() -> T) -> (T, f64) {
-    let (w, c) = (Instant::now(), cpu());
+    let (w, c) = (Instant::now(), common::cpu_seconds());
     let r = f();
-    let (w, c) = (w.elapsed().as_secs_f64(), cpu() - c);
+    let (w, c) = (w.elapsed().as_secs_f64(), common::cpu_seconds() - c);
     println!("{name:28} wall {w:.3} s  cpu {c:.3} s");
     (r, w)
 }
@@ -52,7 +28,7 @@ fn main() -> morpho::Result<()> {
         .get(2)
         .and_then(|s| s.parse().ok())
         .unwrap_or(1_000_000);
-    let Some(dir) = data_dir() else {
+    let Some(dir) = common::data_dir() else {
         println!("no ../shared/data");
         return Ok(());
     };

@@ -13,22 +13,11 @@
 //! (orient3d/insphere-free filters, but exact ray–triangle tests for each replaced node and
 //! the fills of its three paths), and ∪ stones (9 551 here) prune only by their hull ball.
 
+mod common;
+
 use morpho::flint::{Containment, FlintTree3};
 use morpho::geom::Point3;
 use std::time::Instant;
-
-fn data_dir() -> Option<std::path::PathBuf> {
-    for d in [
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"),
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data"),
-    ] {
-        let p = std::path::PathBuf::from(d);
-        if p.is_dir() {
-            return Some(p);
-        }
-    }
-    None
-}
 
 fn main() -> morpho::Result<()> {
     let args: Vec<String> = std::env::args().collect();
@@ -37,7 +26,7 @@ fn main() -> morpho::Result<()> {
         .get(2)
         .and_then(|s| s.parse().ok())
         .unwrap_or(1_000_000);
-    let Some(dir) = data_dir() else {
+    let Some(dir) = common::data_dir() else {
         eprintln!("shared/data not found");
         return Ok(());
     };

@@ -10,6 +10,8 @@
 //!
 //! The two- and six-split (V §9.7, §9.8) are not built, so they are not measured.
 
+mod common;
+
 use morpho::mesh::{vertex_normals, NormalWeighting, TriMesh};
 use morpho::smooth::{
     continuity, side_vertex, side_vertex_continuity, tessellate, three_split_with, visible_normals,
@@ -17,44 +19,17 @@ use morpho::smooth::{
 };
 use std::time::Instant;
 
-fn data_dir() -> Option<std::path::PathBuf> {
-    for d in [
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"),
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data"),
-    ] {
-        let p = std::path::PathBuf::from(d);
-        if p.is_dir() {
-            return Some(p);
-        }
-    }
-    None
-}
-
-/// CPU seconds (user + system) of this process so far, from /proc/self/stat (0 elsewhere).
-fn cpu_seconds() -> f64 {
-    let Ok(s) = std::fs::read_to_string("/proc/self/stat") else {
-        return 0.0;
-    };
-    let Some(rest) = s.rsplit_once(')').map(|(_, r)| r) else {
-        return 0.0;
-    };
-    let f: Vec<&str> = rest.split_whitespace().collect();
-    let tick = |k: usize| f.get(k).and_then(|v| v.parse::<f64>().ok()).unwrap_or(0.0);
-    // fields 14 and 15 of stat (utime, stime) are 12 and 13 after the command name
-    (tick(11) + tick(12)) / 100.0
-}
-
 /// Best wall time of `reps` runs of `f` (with the CPU seconds of that run), and its last
 /// result. Under load the CPU time is the steadier figure.
 fn best<T>(reps: usize, mut f: impl FnMut() -> T) -> ((f64, f64), T) {
     let mut t_best = (f64::INFINITY, 0.0);
     let mut out = None;
     for _ in 0..reps.max(1) {
-        let (t0, c0) = (Instant::now(), cpu_seconds());
+        let (t0, c0) = (Instant::now(), common::cpu_seconds());
         let r = f();
         let t = t0.elapsed().as_secs_f64();
         if t < t_best.0 {
-            t_best = (t, cpu_seconds() - c0);
+            t_best = (t, common::cpu_seconds() - c0);
         }
         out = Some(r);
     }
@@ -132,7 +107,7 @@ fn main() -> morpho::Result<()> {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(3);
-    let Some(dir) = data_dir() else {
+    let Some(dir) = common::data_dir() else {
         eprintln!("shared/data not found");
         return Ok(());
     };

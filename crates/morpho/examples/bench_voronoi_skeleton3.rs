@@ -42,22 +42,11 @@
 //! The skeleton's enclosed volume is about 10–25 % of the γ result's (bunny_npm 44.9 vs 223.9,
 //! spot 0.15 vs 0.82): V §5.6's "the body of the object is not filled properly".
 
+mod common;
+
 use morpho::boundary::{boundary_3d, CParam, Method3, Options3, Until};
 use std::collections::HashSet;
 use std::time::Instant;
-
-fn data_dir() -> Option<std::path::PathBuf> {
-    for d in [
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"),
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data"),
-    ] {
-        let p = std::path::PathBuf::from(d);
-        if p.is_dir() {
-            return Some(p);
-        }
-    }
-    None
-}
 
 fn sorted(t: &[u32; 3]) -> [u32; 3] {
     let mut s = *t;
@@ -127,7 +116,7 @@ fn compare(name: &str, m: &morpho::mesh::TriMesh) {
 }
 
 fn main() {
-    let Some(dir) = data_dir() else {
+    let Some(dir) = common::data_dir() else {
         eprintln!("shared data not found");
         return;
     };
