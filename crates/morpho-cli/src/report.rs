@@ -70,11 +70,11 @@ impl Report {
         }
         if let Some((r, w)) = self.io {
             let mut io = Map::new();
-            for (k, bytes, stage) in [("read", r, "read"), ("write", w, "write")] {
-                io.insert(format!("{k}_bytes"), bytes.into());
+            for (stage, bytes) in [("read", r), ("write", w)] {
+                io.insert(format!("{stage}_bytes"), bytes.into());
                 let s = t.get(stage).and_then(Value::as_f64).unwrap_or(0.0);
                 if s > 0.0 {
-                    io.insert(format!("{k}_mb_s"), (bytes as f64 / s / 1e6).into());
+                    io.insert(format!("{stage}_mb_s"), (bytes as f64 / s / 1e6).into());
                 }
             }
             m.insert("io".into(), Value::Object(io));

@@ -59,8 +59,8 @@
 //! 2e-4–1.3e-2 (monkey 9.6e-3, trig 6.4e-3), below libigl's 1.9e-3–4.0e-2 on every surface;
 //! interior vertices are unchanged (`tests/curvature.rs`).
 //!
-//! **Other inputs.** Open boundaries are fine (one-sided platelets). Zero-area triangles add their vertices to the platelet and nothing to estimated
-//! normals. Non-manifold vertices are fitted over all the triangles that contain them, as the
+//! **Other inputs.** Zero-area triangles add their vertices to the platelet and nothing to
+//! estimated normals. Non-manifold vertices are fitted over all the triangles that contain them, as the
 //! platelet definition (H Def. 4.9) says; the result is meaningful only if the normal is. A
 //! non-finite coordinate is refused ([`CurvatureError::Mesh`]).
 //!
