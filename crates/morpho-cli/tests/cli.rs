@@ -1,6 +1,9 @@
 //! End-to-end tests of the `morpho` binary: exit codes, `error:` lines, atomic outputs,
 //! reports, and behaviour on bad input (issue 2 item 8).
 
+#[path = "../../morpho/tests/common/mod.rs"]
+mod common;
+use common::data_dir;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -29,16 +32,6 @@ fn assert_input_error(o: &Output, file: &Path) {
     let name = file.display().to_string();
     assert!(lines[0].contains(&name), "error should name {name}: {err}");
     assert!(!err.contains("panicked"), "{err}");
-}
-
-fn data_dir() -> Option<PathBuf> {
-    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
-    if d.is_dir() {
-        Some(d)
-    } else {
-        eprintln!("note: ../shared/data not found; skipping real-data test");
-        None
-    }
 }
 
 fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
@@ -928,11 +921,7 @@ element face {}\nproperty list uchar int vertex_indices\nend_header\n",
 
 #[test]
 fn reduce_real_scan_keeps_topology_and_reports() {
-    // MORPHO_SHARED_DATA names the data folder from a worktree elsewhere
-    let Some(data) = std::env::var_os("MORPHO_SHARED_DATA")
-        .map(PathBuf::from)
-        .or_else(data_dir)
-    else {
+    let Some(data) = data_dir() else {
         return;
     };
     let dir = tempfile::tempdir().unwrap();

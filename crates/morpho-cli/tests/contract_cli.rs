@@ -2,6 +2,8 @@
 //! names what is missing on one `error:` line, nothing from an input reaches the terminal as a
 //! control character.
 
+#[path = "../../morpho/tests/common/mod.rs"]
+mod common;
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -315,12 +317,9 @@ fn geojson_names_the_crs_it_is_given() {
 /// (SimpleITK showed it mirrored in x and y when the orientation was dropped).
 #[test]
 fn volume_conversion_keeps_the_orientation() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/volumes/mni_icbm152_t1_2009a_197x233x189.nhdr");
-    if !src.exists() {
-        eprintln!("note: shared/data absent; skipped");
+    let Some(src) = common::data("volumes/mni_icbm152_t1_2009a_197x233x189.nhdr") else {
         return;
-    }
+    };
     let dir = tempfile::tempdir().unwrap();
     let o = morpho(
         dir.path(),

@@ -1,6 +1,9 @@
 //! `morpho flint build|approx|contains|intersect`: outputs, the notes' numbers (A.6) through the CLI,
 //! answers equal to brute-force crossing parity, and bad input refused with `error:`/exit 2.
-use std::path::{Path, PathBuf};
+#[path = "../../morpho/tests/common/mod.rs"]
+mod common;
+use common::data;
+use std::path::Path;
 use std::process::{Command, Output};
 
 fn morpho(dir: &Path, args: &[&str]) -> Output {
@@ -9,13 +12,6 @@ fn morpho(dir: &Path, args: &[&str]) -> Output {
         .args(args)
         .output()
         .expect("run morpho")
-}
-
-fn data(rel: &str) -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data")
-        .join(rel);
-    p.exists().then_some(p)
 }
 
 fn report(dir: &Path, name: &str) -> serde_json::Value {
@@ -99,7 +95,6 @@ fn contains_equals_parity_and_marks_the_boundary() {
 #[test]
 fn build_and_approx_reproduce_the_notes() {
     let Some(benelux) = data("polygons/benelux_mainland_ne50m.csv") else {
-        eprintln!("note: shared/data absent; skipped");
         return;
     };
     let dir = tempfile::tempdir().unwrap();

@@ -3,9 +3,12 @@
 //! a closed mesh, checked from the written patches and the tessellation; the report's figures
 //! against their invariants on a real mesh; bad input → one `error:` line, exit 2.
 
+#[path = "../../morpho/tests/common/mod.rs"]
+mod common;
+use common::data;
 use morpho::smooth::{continuity, MicroPatch, SplitSurface};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
 fn morpho(args: &[&str]) -> Output {
@@ -38,18 +41,6 @@ fn assert_input_error(o: &Output, file: Option<&Path>) {
     if let Some(f) = file {
         assert!(first.contains(&f.display().to_string()), "{err}");
     }
-}
-
-fn data(rel: &str) -> Option<PathBuf> {
-    // beside the repository (../shared/data), or where the project keeps it
-    let near = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
-    for d in [near.as_path(), Path::new("/work/shared/data")] {
-        if d.join(rel).exists() {
-            return Some(d.join(rel));
-        }
-    }
-    eprintln!("note: shared/data/{rel} not found; skipping");
-    None
 }
 
 fn json(p: &Path) -> Value {

@@ -2,6 +2,8 @@
 //! random sets give valid output or the documented failure, constraints appear, the comparison
 //! methods are valid, the Hamiltonicity fallback rescues a locked constriction, and real data.
 
+mod common;
+use common::data_dir;
 use morpho::boundary::{boundary_2d, check_polygon, CParam, Method2, Options2};
 use morpho::geom::Point2;
 use morpho::mesh::validity::is_simple_brute;
@@ -419,19 +421,6 @@ fn duplicates_and_errors() {
         },
     };
     assert!(boundary_2d(&c, &o).is_err());
-}
-
-fn data_dir() -> Option<std::path::PathBuf> {
-    for d in [
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"),
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data"),
-    ] {
-        let p = std::path::PathBuf::from(d);
-        if p.is_dir() {
-            return Some(p);
-        }
-    }
-    None
 }
 
 /// Fraction of the ground-truth polygon edges that are boundary edges.

@@ -5,6 +5,8 @@
 //! edge constrained, Euler relation, area coverage of the hull; polygon interiors (n − 2
 //! triangles, shoelace area) on random and real polygons; degenerate inputs; proptest.
 
+mod common;
+use common::data_dir;
 use morpho::delaunay::triangulate_2d;
 use morpho::delaunay::{triangulate_constrained_2d, triangulate_polygon_2d, Cdt2};
 use morpho::geom::predicates::raw::{incircle, orient2d};
@@ -453,20 +455,6 @@ fn polygon_interior_errors() {
     assert!(triangulate_polygon_2d(&sq, &[0, 4, 1]).is_err()); // collinear
     let t = triangulate_polygon_2d(&sq, &[0, 4, 1, 2, 3]).unwrap();
     check_interior(&sq, &[0, 4, 1, 2, 3], &t);
-}
-
-fn data_dir() -> Option<std::path::PathBuf> {
-    for d in [
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"),
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data"),
-    ] {
-        let p = std::path::PathBuf::from(d);
-        if p.is_dir() {
-            return Some(p);
-        }
-    }
-    eprintln!("note: shared/data not found, skipping");
-    None
 }
 
 /// Two-column CSV with a header (extra columns: the last two are x, y).

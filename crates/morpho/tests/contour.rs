@@ -14,6 +14,7 @@
 //! its faces is inside another surface (exact ray parity with orient3d); the union of the
 //! non-enclosed surfaces must equal the algorithm's faces.
 
+mod common;
 use morpho::contour::{
     boundary_regions, classify, external_contour, external_contour_with, external_surface,
     rate_triangles, Contour2, ContourOptions, Rating,
@@ -1051,14 +1052,9 @@ fn read_csv(path: &std::path::Path, cx: &str, cy: &str, cv: &str) -> (Vec<Point2
 
 #[test]
 fn real_samples_meuse_zinc_and_jura_cadmium() {
-    let dir = std::path::Path::new(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/geostat"
-    ));
-    if !dir.exists() {
-        eprintln!("skipping: {} not found", dir.display());
+    let Some(dir) = common::data("geostat") else {
         return;
-    }
+    };
     for (file, cx, cy, cv, thr) in [
         ("meuse.csv", "x", "y", "zinc", 500.0),
         ("jura_pred.csv", "Xloc", "Yloc", "Cd", 0.8),
@@ -1179,15 +1175,10 @@ fn pipeline_and_geojson_on_meuse() {
     };
     use morpho::io::geojson::contour_value as geojson_value;
     use morpho::mesh::{Column, PointSet};
-    let file = std::path::Path::new(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/geostat/meuse.csv"
-    ));
-    if !file.exists() {
-        eprintln!("skipping: {} not found", file.display());
+    let Some(file) = common::data("geostat/meuse.csv") else {
         return;
-    }
-    let (pts, zinc) = read_csv(file, "x", "y", "zinc");
+    };
+    let (pts, zinc) = read_csv(&file, "x", "y", "zinc");
     // Add a duplicate of sample 0 with another value and a sample without a value.
     let mut all = pts.clone();
     all.push(pts[0]);

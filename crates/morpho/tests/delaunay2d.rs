@@ -3,6 +3,7 @@
 //! symbolically perturbed triangle set from its definition), invariants (CCW, symmetric
 //! neighbours, Euler relation, hull convexity, area), degenerate and real inputs.
 
+mod common;
 use morpho::delaunay::{triangulate_2d, Delaunay2, Location};
 use morpho::delaunay::{voronoi_2d, VoronoiEdge};
 use morpho::geom::predicates::raw::{incircle, orient2d};
@@ -394,16 +395,7 @@ fn extreme_scales() {
 }
 
 fn data_dir() -> Option<std::path::PathBuf> {
-    let p = std::path::PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/delaunay/mapbox_delaunator"
-    ));
-    if p.is_dir() {
-        Some(p)
-    } else {
-        eprintln!("note: {} absent, skipping", p.display());
-        None
-    }
+    common::data("delaunay/mapbox_delaunator")
 }
 
 fn load(dir: &std::path::Path, name: &str) -> Vec<Point2> {

@@ -3,6 +3,8 @@
 //! hierarchical queries against brute force, baselines, refusals, and the notes' A.6 numbers
 //! on the project's own borders and coastlines.
 
+mod common;
+use common::data_dir;
 use morpho::flint::*;
 use morpho::geom::Point2;
 
@@ -18,19 +20,6 @@ impl Rng {
         self.0 ^= self.0 << 17;
         self.0
     }
-}
-
-fn data_dir() -> Option<std::path::PathBuf> {
-    for d in [
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"),
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data"),
-    ] {
-        let p = std::path::PathBuf::from(d);
-        if p.is_dir() {
-            return Some(p);
-        }
-    }
-    None
 }
 
 fn ring(name: &str) -> Option<Vec<Point2>> {

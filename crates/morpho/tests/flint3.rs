@@ -2,11 +2,11 @@
 //! boundary-equals-paths invariant that makes the queries exact, hierarchical point-in-mesh
 //! against brute force (including points on vertices, edges and faces and rays through
 //! vertices), approximations, and refusals of bad input.
+mod common;
 use morpho::flint::{contains_brute3, FlintError, FlintTree3, Target};
 use morpho::geom::Point3;
 use morpho::mesh::{generate, TriMesh};
 use std::collections::HashMap;
-use std::path::Path;
 
 fn meshes() -> Vec<(&'static str, TriMesh)> {
     vec![
@@ -22,11 +22,8 @@ fn meshes() -> Vec<(&'static str, TriMesh)> {
 }
 
 fn real(name: &str) -> Option<TriMesh> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/meshes")
-        .join(name);
-    p.exists()
-        .then(|| morpho::io::read_mesh(&p).expect("read mesh"))
+    let p = common::data(&format!("meshes/{name}"))?;
+    Some(morpho::io::read_mesh(&p).expect("read mesh"))
 }
 
 /// xorshift for reproducible queries.

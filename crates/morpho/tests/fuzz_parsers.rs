@@ -15,6 +15,9 @@
 //!
 //! `FUZZ_CASES` sets the cases per seed (default 1000: with the seeds below, 1000–6000 cases per
 //! format per run).
+
+mod common;
+use common::data_dir;
 use morpho::io;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -90,11 +93,6 @@ fn peak_of<T>(f: impl FnOnce() -> T) -> (T, usize) {
     let out = f();
     let peak = PEAK.with(|p| p.get());
     (out, (peak - base).max(0) as usize)
-}
-
-fn data_dir() -> Option<PathBuf> {
-    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data");
-    d.is_dir().then_some(d)
 }
 
 /// The first `max` bytes of a file (gunzipped when it ends in `.gz`).

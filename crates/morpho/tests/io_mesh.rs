@@ -1,6 +1,7 @@
 //! Mesh file formats (PLY, OBJ, OFF, STL): round trips, the real meshes in
-//! `/work/shared/data/meshes`, hostile and broken input, and a mutation fuzz test.
+//! `shared/data/meshes`, hostile and broken input, and a mutation fuzz test.
 
+mod common;
 use morpho::geom::{Point3, Vector3};
 use morpho::io::{self, obj, off, ply, stl, Encoding};
 use morpho::mesh::{Column, PointSet, Property, ScalarKind, TriMesh};
@@ -14,20 +15,9 @@ const ENCODINGS: [Encoding; 3] = [
     Encoding::BinaryBigEndian,
 ];
 
+/// The real meshes (`shared/data/meshes`).
 fn data_dir() -> Option<PathBuf> {
-    // The repository sits next to `shared/`; helper worktrees sit one level deeper.
-    let candidates = [
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data/meshes"),
-        concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../../../shared/data/meshes"
-        ),
-    ];
-    let found = candidates.iter().map(PathBuf::from).find(|d| d.is_dir());
-    if found.is_none() {
-        eprintln!("note: {} is absent; real-data test skipped", candidates[0]);
-    }
-    found
+    common::data("meshes")
 }
 
 fn ply_bytes(m: &TriMesh, enc: Encoding) -> Vec<u8> {

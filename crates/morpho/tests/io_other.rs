@@ -1,22 +1,14 @@
 //! Point, polygon and volume formats: round trips, the real data in /work/shared/data, and
 //! malformed input (errors, never panics or huge allocations).
 
+mod common;
+use common::data_dir;
 use morpho::geom::Point2;
 use morpho::io;
 use morpho::mesh::{Column, PointSet, Polygon, Polyline, Shapes2};
 use morpho::volume::{Axes, DType, Volume};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-
-fn data_dir() -> Option<PathBuf> {
-    let d = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data"));
-    if d.is_dir() {
-        Some(d)
-    } else {
-        eprintln!("note: shared data not found at {}; skipping", d.display());
-        None
-    }
-}
 
 fn p(x: f64, y: f64) -> Point2 {
     Point2::new(x, y)

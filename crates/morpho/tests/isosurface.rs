@@ -3,6 +3,7 @@
 //! characteristics, level-set accuracy, H Fig. 3.5, Lorensen's holes, determinism of the
 //! parallel run, rectilinear grids, NaN handling and normals.
 
+mod common;
 use morpho::geom::Point3;
 use morpho::mesh::TriMesh;
 use morpho::volume::{isosurface, IsoMethod, IsoOptions, IsoResult, NormalMethod};
@@ -755,14 +756,9 @@ fn regression_fan_point_on_outer_face() {
 
 #[test]
 fn ct_head_bone_surface_has_no_interior_holes() {
-    // MORPHO_SHARED_DATA overrides the location (e.g. when run from a git worktree)
-    let dir = std::env::var("MORPHO_SHARED_DATA")
-        .unwrap_or_else(|_| concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data").into());
-    let path = std::path::Path::new(&dir).join("volumes/cthead_8bit_256x256x99.raw.gz");
-    if !path.exists() {
-        eprintln!("skipping: {} absent", path.display());
+    let Some(path) = common::data("volumes/cthead_8bit_256x256x99.raw.gz") else {
         return;
-    }
+    };
     let bytes = morpho::io::read_bytes(&path).unwrap();
     assert_eq!(bytes.len(), 256 * 256 * 99);
     // a crop of the skull (x 80..144, y 40..104, z 24..48), spacing 1:1:2 as documented

@@ -1,6 +1,7 @@
 //! Volume orientation survives read → write in every volume format and places contour surfaces
 //! in world space (issue 17 item 11: the MNI volume came out mirrored in x and y in SimpleITK
 //! after `convert x.nhdr -o x.mhd`, because `space` and `space directions` were dropped).
+mod common;
 use morpho::io;
 use morpho::mesh::analyze_topology;
 use morpho::volume::{isosurface, Axes, IsoOptions, Orientation, Volume};
@@ -222,12 +223,9 @@ fn contour_surfaces_are_in_world_space() {
 /// The real MNI template (RAS) converted to MetaImage keeps its physical placement.
 #[test]
 fn mni_template_keeps_its_placement_in_metaimage() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data/volumes/mni_icbm152_t1_2009a_197x233x189.nhdr");
-    if !src.exists() {
-        eprintln!("note: shared/data absent; skipped");
+    let Some(src) = common::data("volumes/mni_icbm152_t1_2009a_197x233x189.nhdr") else {
         return;
-    }
+    };
     let v = io::read_volume(&src).unwrap();
     assert_eq!(
         v.orientation.space.as_deref(),

@@ -1,6 +1,7 @@
 //! Pictures: rasterizer (z-buffer, silhouettes, shading, determinism), SVG structure, volume
 //! slices. Meshes are built inline so these tests do not depend on the generators or readers.
 
+mod common;
 use morpho::geom::{Aabb2, Point2, Point3};
 use morpho::mesh::{Polygon, Polyline, Property, ScalarKind, Shapes2, TriMesh};
 use morpho::render::Colormap;
@@ -1094,21 +1095,12 @@ fn tiny_obj(text: &str) -> TriMesh {
     TriMesh::new(pos, tris)
 }
 
-/// The shared data folder (`$MORPHO_DATA` overrides the location next to the repository).
-fn data_dir() -> std::path::PathBuf {
-    match std::env::var_os("MORPHO_DATA") {
-        Some(d) => d.into(),
-        None => concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data").into(),
-    }
-}
-
 #[test]
 fn bunny_renders() {
-    let path = data_dir().join("meshes/bunny_npm.obj");
-    let Ok(text) = std::fs::read_to_string(&path) else {
-        eprintln!("skipping: {} not found", path.display());
+    let Some(path) = common::data("meshes/bunny_npm.obj") else {
         return;
     };
+    let text = std::fs::read_to_string(&path).unwrap();
     let m = tiny_obj(&text);
     assert_eq!(m.triangles.len(), 3674);
     let img = render_mesh(
@@ -1359,7 +1351,8 @@ fn pictures() {
             },
         ),
     );
-    if let Ok(text) = std::fs::read_to_string(data_dir().join("meshes/bunny_npm.obj")) {
+    let bunny = common::data("meshes/bunny_npm.obj");
+    if let Some(text) = bunny.and_then(|p| std::fs::read_to_string(p).ok()) {
         let b = tiny_obj(&text);
         save("bunny.png", &render_mesh(&b, &o));
         save(

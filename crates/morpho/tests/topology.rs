@@ -2,6 +2,7 @@
 //! brute-force oracles straight from the definitions, property tests, and the real meshes of
 //! /work/shared/data (section 2 of its README gives their counts).
 
+mod common;
 use morpho::geom::Point3;
 use morpho::mesh::{analyze_topology, orient_consistently, Topology};
 use morpho::mesh::{generate, TriMesh};
@@ -640,30 +641,12 @@ proptest! {
 // ---------------------------------------------------------------------------------------------
 // Real meshes.
 
-/// The shared data folder: next to the repository (CI, main checkout), or one level further up
-/// for worktrees in /work/wt/<name>.
-fn data_dir() -> String {
-    let near = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data");
-    let far = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../../shared/data");
-    if std::path::Path::new(near).is_dir() {
-        near.into()
-    } else {
-        far.into()
-    }
-}
-
 /// A tiny OBJ reader for the test data: `v x y z` and triangular `f a b c` lines (1-based,
 /// `a/b/c` forms allowed); everything else is ignored.
 fn read_obj(name: &str) -> Option<TriMesh> {
     use std::io::Read;
-    let path = format!("{}/meshes/{name}", data_dir());
-    let bytes = match std::fs::read(&path) {
-        Ok(b) => b,
-        Err(_) => {
-            eprintln!("skipping: {path} not found");
-            return None;
-        }
-    };
+    let path = common::data(&format!("meshes/{name}"))?;
+    let bytes = std::fs::read(&path).expect("read a real mesh");
     let text = if name.ends_with(".gz") {
         let mut s = String::new();
         flate2::read::GzDecoder::new(&bytes[..])
