@@ -829,3 +829,142 @@ fn infinite_samples_give_finite_vertices() {
         }
     }
 }
+
+/// The Zucker–Hummel normal of every edge vertex, recomputed from `gradient_at` at the edge's
+/// two grid points and interpolated as H Eq. 3.19 says (the same arithmetic as the extraction),
+/// on unit-spaced volumes: the extraction's per-slab gradient cache must hand out each grid
+/// point's own gradient, whatever the plane, slab or thread. Returns the largest deviation.
+fn zh_normal_deviation(v: &Volume, level: f64) -> f64 {
+    use morpho::volume::{axis_coords, gradient_at, GradientOperator};
+    let r = run(v, level, IsoMethod::Decider);
+    let normals = r.mesh.normals.as_ref().expect("normals");
+    let axes = axis_coords(v);
+    let (lo, hi) = v
+        .data
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| {
+            (l.min(x as f64), h.max(x as f64))
+        });
+    let eps = (hi - lo) * 1e-9;
+    let g = |p: [usize; 3]| {
+        let d = v.at(p[0], p[1], p[2]) as f64 - level;
+        if d == 0.0 {
+            eps
+        } else {
+            d
+        }
+    };
+    let mut worst = 0.0f64;
+    let mut checked = 0;
+    for (p, n) in r.mesh.positions.iter().zip(normals) {
+        let c = [p.x, p.y, p.z];
+        let frac: Vec<usize> = (0..3).filter(|&k| c[k].fract() != 0.0).collect();
+        let [k] = frac[..] else { continue }; // an interior fan point
+        let a = c.map(|x| x.floor() as usize);
+        let mut b = a;
+        b[k] += 1;
+        let (ga, gb) = (g(a), g(b));
+        let t = ga / (ga - gb);
+        let (na, nb) = (
+            gradient_at(v, &axes, a, GradientOperator::ZuckerHummel),
+            gradient_at(v, &axes, b, GradientOperator::ZuckerHummel),
+        );
+        let m: [f64; 3] = std::array::from_fn(|i| na[i] * (1.0 - t) + nb[i] * t);
+        let l2 = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+        if l2 == 0.0 {
+            continue; // a flat spot: the normal comes from the mesh
+        }
+        let s = -1.0 / l2.sqrt();
+        for i in 0..3 {
+            worst = worst.max((m[i] * s - [n.x, n.y, n.z][i]).abs());
+        }
+        checked += 1;
+    }
+    assert!(checked > 0 || r.mesh.positions.is_empty());
+    worst
+}
+
+#[test]
+fn zucker_hummel_normals_are_the_grid_gradients_interpolated() {
+    // smooth, several slabs in parallel, many layers sharing cached planes
+    let v = Volume::from_fn([23, 19, 41], [0.0; 3], [22.0, 18.0, 40.0], |x, y, z| {
+        (x * 0.4).sin() * (y * 0.3).cos() + (y * 0.3).sin() * (z * 0.25).cos() + (z * 0.2).sin()
+    });
+    assert_eq!(zh_normal_deviation(&v, 0.1), 0.0);
+    // random samples, with samples exactly at the level (raised by ε)
+    for seed in 0..40 {
+        let dims = [
+            3 + seed as usize % 7,
+            2 + seed as usize % 5,
+            2 + seed as usize % 9,
+        ];
+        for discrete in [false, true] {
+            let v = random_volume(dims, seed, discrete);
+            assert_eq!(zh_normal_deviation(&v, 0.0), 0.0, "seed {seed} {discrete}");
+        }
+    }
+}
+
+/// Brute-force parts of a triangulation: triangles sharing an edge are merged by repeated
+/// flooding over the edge map; labels numbered in order of first triangle. Also the count of
+/// edges with one triangle and with more than two.
+fn brute_parts(m: &TriMesh) -> (Vec<usize>, usize, usize) {
+    let em = edge_map(m);
+    let mut nbrs = vec![Vec::new(); m.triangles.len()];
+    for uses in em.values() {
+        for &(a, _) in uses {
+            for &(b, _) in uses {
+                if a != b {
+                    nbrs[a].push(b);
+                }
+            }
+        }
+    }
+    let mut label = vec![usize::MAX; m.triangles.len()];
+    let mut parts = 0;
+    for t in 0..m.triangles.len() {
+        if label[t] != usize::MAX {
+            continue;
+        }
+        let mut stack = vec![t];
+        label[t] = parts;
+        while let Some(u) = stack.pop() {
+            for &w in &nbrs[u] {
+                if label[w] == usize::MAX {
+                    label[w] = parts;
+                    stack.push(w);
+                }
+            }
+        }
+        parts += 1;
+    }
+    let boundary = em.values().filter(|u| u.len() == 1).count();
+    let nonmanifold = em.values().filter(|u| u.len() > 2).count();
+    (label, boundary, nonmanifold)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// The topology pass's parts, labels, boundary and non-manifold edge counts equal a
+    /// brute-force flood over the edge map, for every method, on random volumes with samples
+    /// exactly at the level.
+    #[test]
+    fn topology_equals_brute_force(
+        nx in 2usize..10, ny in 2usize..10, nz in 2usize..10, seed in 0u64..1_000_000,
+        discrete in any::<bool>()
+    ) {
+        let v = random_volume([nx, ny, nz], seed, discrete);
+        for m in [IsoMethod::Decider, IsoMethod::Tetra, IsoMethod::Lorensen] {
+            let r = run(&v, 0.0, m);
+            let (label, boundary, nonmanifold) = brute_parts(&r.mesh);
+            let got: Vec<usize> = r.mesh.face_prop("part").map_or(Vec::new(), |p| {
+                p.values.iter().map(|&x| x as usize).collect()
+            });
+            prop_assert_eq!(&got, &label, "{:?}", m);
+            prop_assert_eq!(r.parts, label.iter().max().map_or(0, |&l| l + 1));
+            prop_assert_eq!(r.boundary_edges, boundary);
+            prop_assert_eq!(r.non_manifold_edges, nonmanifold);
+        }
+    }
+}

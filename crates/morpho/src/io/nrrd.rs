@@ -36,7 +36,7 @@
 //! Complexity: linear in the data size.
 
 use super::rawjson::{
-    beside, data_size, decode, encode, header_line, memory_for, open_data, output_type, read_data,
+    beside, data_size, encode, header_line, memory_for, open_data, output_type, read_samples,
     uniform, Codec, Sample,
 };
 use super::volstream::{Data, Head, VolumeStream};
@@ -201,7 +201,7 @@ struct Header {
 pub fn read(path: &Path) -> Result<Volume> {
     let (h, mut data_r, available, _) = source(path)?;
     memory_for(h.dims, h.ty)?;
-    let data = read_samples(&h, &mut data_r, available)?;
+    let data = read_samples_of(&h, &mut data_r, available)?;
     Ok(Volume {
         dims: h.dims,
         axes: Axes::Uniform {
@@ -526,9 +526,10 @@ fn origin(fields: &Fields, dim: usize) -> Result<[f64; 3]> {
 }
 
 /// The samples from the data stream (`available` bytes), decoded as the header says.
-fn read_samples(h: &Header, data_r: &mut Box<dyn BufRead>, available: u64) -> Result<Vec<f32>> {
+fn read_samples_of(h: &Header, data_r: &mut Box<dyn BufRead>, available: u64) -> Result<Vec<f32>> {
     let (nbytes, byte_skip) = (h.nbytes, h.byte_skip);
-    let raw = match h.enc {
+    debug_assert_eq!(nbytes, h.n * h.ty.size());
+    match h.enc {
         Enc::Raw => {
             let skip = if byte_skip == -1 {
                 available.checked_sub(nbytes as u64).ok_or_else(|| {
@@ -539,17 +540,17 @@ fn read_samples(h: &Header, data_r: &mut Box<dyn BufRead>, available: u64) -> Re
             } else {
                 byte_skip as u64
             };
-            read_data(data_r, available, Codec::Raw, skip, nbytes)?
+            read_samples(data_r, available, Codec::Raw, skip, h.n, h.ty, h.big)
         }
         Enc::Gzip => {
             if byte_skip < 0 {
                 return Err(Error::format("byte skip -1 needs raw encoding"));
             }
-            read_data(data_r, available, Codec::Gzip, byte_skip as u64, nbytes)?
+            let skip = byte_skip as u64;
+            read_samples(data_r, available, Codec::Gzip, skip, h.n, h.ty, h.big)
         }
-        Enc::Text => return read_text(data_r, available, h.n),
-    };
-    Ok(decode(&raw, h.ty, h.big))
+        Enc::Text => read_text(data_r, available, h.n),
+    }
 }
 
 /// Text data: exactly `n` numbers separated by blanks or commas.

@@ -160,25 +160,29 @@ pub(crate) fn memory_for(dims: [usize; 3], ty: Sample) -> Result<()> {
 
 /// Converts exactly `n` samples from `bytes` (whose length must be `n * size`).
 pub(crate) fn decode(bytes: &[u8], ty: Sample, big: bool) -> Vec<f32> {
+    let mut out = Vec::with_capacity(bytes.len() / ty.size());
+    decode_into(bytes, ty, big, &mut out);
+    out
+}
+
+/// Appends the samples of `bytes` (a whole number of them) to `out`.
+pub(crate) fn decode_into(bytes: &[u8], ty: Sample, big: bool, out: &mut Vec<f32>) {
     macro_rules! conv {
         ($t:ty, $n:expr) => {
-            bytes
-                .chunks_exact($n)
-                .map(|c| {
-                    let mut a = [0u8; $n];
-                    a.copy_from_slice(c);
-                    (if big {
-                        <$t>::from_be_bytes(a)
-                    } else {
-                        <$t>::from_le_bytes(a)
-                    }) as f32
-                })
-                .collect()
+            out.extend(bytes.chunks_exact($n).map(|c| {
+                let mut a = [0u8; $n];
+                a.copy_from_slice(c);
+                (if big {
+                    <$t>::from_be_bytes(a)
+                } else {
+                    <$t>::from_le_bytes(a)
+                }) as f32
+            }))
         };
     }
     match ty {
-        Sample::U8 => bytes.iter().map(|&b| b as f32).collect(),
-        Sample::I8 => bytes.iter().map(|&b| b as i8 as f32).collect(),
+        Sample::U8 => out.extend(bytes.iter().map(|&b| b as f32)),
+        Sample::I8 => out.extend(bytes.iter().map(|&b| b as i8 as f32)),
         Sample::I16 => conv!(i16, 2),
         Sample::U16 => conv!(u16, 2),
         Sample::I32 => conv!(i32, 4),
@@ -201,7 +205,7 @@ pub(crate) enum Codec {
 /// deflate cannot compress better than about 1032:1), discards the `skip` bytes (after
 /// decompression for `codec` ≠ Raw), and returns the reader positioned at the first sample
 /// byte — limited to the expected bytes for raw data, the decompressor otherwise (whose end
-/// the caller checks). Shared by the whole read ([`read_data`]) and the slice-by-slice
+/// the caller checks). Shared by the whole read ([`read_samples`]) and the slice-by-slice
 /// stream ([`super::VolumeStream`]).
 pub(crate) fn sample_reader<'a>(
     r: impl Read + 'a,
@@ -255,39 +259,61 @@ pub(crate) fn sample_reader<'a>(
     }
 }
 
-/// Reads `skip` bytes to discard and then exactly `expected` bytes from `r` (at most
-/// `available` compressed or raw bytes), decompressing with `codec` ([`sample_reader`]).
-/// Decompression stops one byte after the expected size, so a gzip bomb cannot allocate more;
-/// too little or too much data is an error.
-pub(crate) fn read_data(
+/// Reads `skip` bytes to discard and then exactly `n` samples of type `ty` from `r` (at most
+/// `available` compressed or raw bytes), decompressing with `codec` ([`sample_reader`]) and
+/// decoding to `f32` as the bytes arrive: they pass through a 1 MiB buffer, so the volume is
+/// held once, not once as bytes and again as samples (issue 23 item 4). Decompression stops
+/// one byte after the expected size, so a gzip bomb cannot allocate more; too little or too
+/// much data is an error. The caller has checked `n` samples against the memory limit.
+pub(crate) fn read_samples(
     r: impl Read,
     available: u64,
     codec: Codec,
     skip: u64,
-    expected: usize,
-) -> Result<Vec<u8>> {
+    n: usize,
+    ty: Sample,
+    big: bool,
+) -> Result<Vec<f32>> {
+    let size = ty.size();
+    let expected = n
+        .checked_mul(size)
+        .ok_or_else(|| Error::format("sample count is out of range"))?;
     let dec = sample_reader(r, available, codec, skip, expected as u64)?;
-    let mut out = Vec::new();
-    if codec == Codec::Raw {
-        out.reserve_exact(expected);
+    let mut dec = dec.take(expected as u64 + 1);
+    let bad = |e: std::io::Error| match codec {
+        Codec::Raw => Error::format(format!("cannot read data: {e}")),
+        _ => Error::format(format!("bad compressed data: {e}")),
+    };
+    let mut out: Vec<f32> = Vec::with_capacity(n);
+    // `have` bytes at its start (less than one sample) are not decoded yet; there is always
+    // room for more
+    let mut buf = vec![0u8; (1 << 20).min(expected.saturating_add(8))];
+    let (mut have, mut total) = (0usize, 0usize);
+    loop {
+        let k = match dec.read(&mut buf[have..]) {
+            Ok(0) => break,
+            Ok(k) => k,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(bad(e)),
+        };
+        total += k;
+        if total > expected {
+            break;
+        }
+        have += k;
+        let whole = have - have % size;
+        decode_into(&buf[..whole], ty, big, &mut out);
+        buf.copy_within(whole..have, 0);
+        have -= whole;
     }
-    dec.take(expected as u64 + 1)
-        .read_to_end(&mut out)
-        .map_err(|e| match codec {
-            Codec::Raw => Error::format(format!("cannot read data: {e}")),
-            _ => Error::format(format!("bad compressed data: {e}")),
-        })?;
-    if out.len() != expected {
+    if total != expected {
         return Err(Error::format(format!(
             "data has {}{} bytes, dims × sample size need {expected}",
-            if out.len() > expected {
-                "more than "
-            } else {
-                ""
-            },
-            out.len().min(expected)
+            if total > expected { "more than " } else { "" },
+            total.min(expected)
         )));
     }
+    debug_assert_eq!(out.len(), n);
     Ok(out)
 }
 
@@ -681,10 +707,9 @@ pub fn read(path: &Path) -> Result<Volume> {
 pub(crate) fn load(h: Head, d: Data) -> Result<Volume> {
     memory_for(h.dims, h.ty)?;
     let (n, nbytes) = data_size(h.dims, h.ty)?;
-    let raw = read_data(d.reader, d.available, d.codec, d.skip, nbytes)
+    debug_assert_eq!(nbytes, n * h.ty.size());
+    let samples = read_samples(d.reader, d.available, d.codec, d.skip, n, h.ty, h.big)
         .map_err(|e| e.with_path(&d.path))?;
-    let samples = decode(&raw, h.ty, h.big);
-    debug_assert_eq!(samples.len(), n);
     Ok(Volume {
         dims: h.dims,
         axes: h.axes,
@@ -787,7 +812,16 @@ mod tests {
         assert!(data_size([0, 2, 2], Sample::U8).is_err());
         assert_eq!(data_size([2, 3, 4], Sample::I16).unwrap(), (24, 48));
         // claimed 8 GB from 100 compressed bytes: refused before inflating
-        let err = read_data(&[0u8; 100][..], 100, Codec::Gzip, 0, 1 << 32).unwrap_err();
+        let err = read_samples(
+            &[0u8; 100][..],
+            100,
+            Codec::Gzip,
+            0,
+            1 << 32,
+            Sample::U8,
+            false,
+        )
+        .unwrap_err();
         assert!(err.to_string().contains("compressed"), "{err}");
     }
 
@@ -797,17 +831,61 @@ mod tests {
         let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
         enc.write_all(&vec![0u8; 1 << 20]).unwrap();
         let gz = enc.finish().unwrap();
-        let err = read_data(&gz[..], gz.len() as u64, Codec::Gzip, 0, 1000).unwrap_err();
+        let n = gz.len() as u64;
+        let u8s = |bytes: &[u8], avail: u64, count: usize| {
+            read_samples(bytes, avail, Codec::Gzip, 0, count, Sample::U8, false)
+        };
+        let err = u8s(&gz, n, 1000).unwrap_err();
         assert!(err.to_string().contains("more than"), "{err}");
-        let ok = read_data(&gz[..], gz.len() as u64, Codec::Gzip, 0, 1 << 20).unwrap();
+        let ok = u8s(&gz, n, 1 << 20).unwrap();
         assert_eq!(ok.len(), 1 << 20);
-        let err = read_data(
-            &gz[..gz.len() / 2],
-            gz.len() as u64 / 2,
-            Codec::Gzip,
-            0,
-            1 << 20,
-        );
-        assert!(err.is_err());
+        assert!(u8s(&gz[..gz.len() / 2], n / 2, 1 << 20).is_err());
+    }
+
+    /// A reader handing out `step` bytes per call: samples straddle every read.
+    struct Trickle<'a> {
+        bytes: &'a [u8],
+        step: usize,
+    }
+
+    impl Read for Trickle<'_> {
+        fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+            let k = self.step.min(buf.len()).min(self.bytes.len());
+            buf[..k].copy_from_slice(&self.bytes[..k]);
+            self.bytes = &self.bytes[k..];
+            Ok(k)
+        }
+    }
+
+    #[test]
+    fn streamed_samples_equal_the_whole_decode() {
+        // every type and byte order, reads of 1..9 bytes (samples split across reads), more
+        // than one 1 MiB buffer, a skip: the streamed decode equals decoding the whole array
+        let vals: Vec<f32> = (0..300_000).map(|i| ((i * 7919) % 255) as f32).collect();
+        for ty in [
+            Sample::U8,
+            Sample::I16,
+            Sample::U16,
+            Sample::F32,
+            Sample::F64,
+        ] {
+            for big in [false, true] {
+                let mut b = vec![9u8; 3];
+                b.extend(encode(&vals, ty, big));
+                for step in [1, 3, 5, 8, 9, usize::MAX] {
+                    let r = Trickle { bytes: &b, step };
+                    let got = read_samples(r, b.len() as u64, Codec::Raw, 3, vals.len(), ty, big)
+                        .unwrap();
+                    assert_eq!(got, decode(&b[3..], ty, big), "{ty:?} {big} {step}");
+                }
+                // one byte short of the last sample: refused
+                let r = Trickle {
+                    bytes: &b[..b.len() - 1],
+                    step: 7,
+                };
+                let short = read_samples(r, b.len() as u64, Codec::Raw, 3, vals.len(), ty, big);
+                assert!(short.is_err());
+            }
+        }
     }
 }

@@ -190,9 +190,13 @@ pub(super) struct ChunkOut {
     pub overflow: bool,
     /// Some grid-gradient normal is the zero vector (undefined).
     pub zero_normals: bool,
-    /// Work space: gradients of two grid planes (freed when the slab is done).
-    gcache: [Vec<[f64; 3]>; 2],
-    gstamp: [Vec<u32>; 2],
+    /// Work space: gradients of two grid planes (freed when the slab is done). From
+    /// `gbase` (a 64-byte boundary) eight words per (x, y): for the planes z mod 2 = 0 and 1
+    /// the gradient's three f64 bits and the stamp, so a lookup reads one cache line and a
+    /// layer's z-edges find both ends' entries in it. Zeroed memory (stamp 0: empty) that is
+    /// only paged in where the surface passes.
+    gcache: Vec<u64>,
+    gbase: usize,
 }
 
 impl Ctx<'_> {
@@ -228,12 +232,13 @@ impl Ctx<'_> {
             return Vector3::new(g[0], g[1], g[2]);
         }
         let (slot, i, stamp) = (p[2] % 2, p[0] + self.vol.dims[0] * p[1], p[2] as u32 + 1);
-        let g = if out.gstamp[slot][i] == stamp {
-            out.gcache[slot][i]
+        let b = out.gbase + 8 * i + 4 * slot;
+        let e = &mut out.gcache[b..b + 4];
+        let g = if e[3] == stamp as u64 {
+            [e[0], e[1], e[2]].map(f64::from_bits)
         } else {
             let g = gradient_at(self.gvol, self.gaxes, self.gpoint(p), op);
-            out.gcache[slot][i] = g;
-            out.gstamp[slot][i] = stamp;
+            e.copy_from_slice(&[g[0].to_bits(), g[1].to_bits(), g[2].to_bits(), stamp as u64]);
             g
         };
         Vector3::new(g[0], g[1], g[2])
@@ -463,10 +468,9 @@ impl Ctx<'_> {
         let [nx, ny, _] = self.vol.dims;
         let mut out = ChunkOut::default();
         if self.normals == NormalMethod::ZuckerHummel {
-            for k in 0..2 {
-                out.gcache[k] = vec![[0.0; 3]; nx * ny];
-                out.gstamp[k] = vec![0; nx * ny];
-            }
+            out.gcache = vec![0u64; 8 * nx * ny + 8];
+            let off = out.gcache.as_ptr().align_offset(64);
+            out.gbase = if off < 8 { off } else { 0 };
         }
         let (ps, ls) = self.strides();
         let mut plo = vec![NONE; ps * nx * ny];
@@ -517,7 +521,6 @@ impl Ctx<'_> {
             std::mem::swap(&mut rlo, &mut rhi);
         }
         out.gcache = Default::default();
-        out.gstamp = Default::default();
         // a projection far above the real size: give the excess back
         if out.pos.capacity() > 2 * out.pos.len() + 1024 {
             out.pos.shrink_to_fit();

@@ -43,7 +43,9 @@
 //! volume, the output, and per running slab O(nx·ny) work space (sign codes, vertex index arrays,
 //! a two-plane gradient cache); the slabs' outputs are appended into the first slab's buffers,
 //! so a parallel run may hold up to about twice the output briefly. With `topology`, per-vertex
-//! grid keys (8 bytes) and a transient edge table (≈ 40 bytes per triangle) are added.
+//! grid keys (8 bytes) and a transient edge table (24 bytes per triangle, whose memory then
+//! holds the part labels, and 4 per vertex and per triangle for grouping and union–find) are
+//! added.
 
 mod block;
 mod extract;
@@ -329,7 +331,7 @@ fn finish(
         r.mesh.face_props.push(Property {
             name: "part".into(),
             kind: ScalarKind::U32,
-            values: a.labels.into_iter().map(|l| l as f64).collect(),
+            values: a.labels,
         });
     }
     if r.mesh.triangles.is_empty() && r.note.is_none() {
@@ -563,7 +565,8 @@ fn drop_unreferenced(mesh: &mut TriMesh, keys: &mut Vec<u64>) {
 }
 
 struct Analysis {
-    labels: Vec<u32>,
+    /// Part label of each triangle (as the `part` face property stores it).
+    labels: Vec<f64>,
     parts: usize,
     boundary_edges: usize,
     interior_boundary_edges: usize,
@@ -593,7 +596,8 @@ fn union(p: &mut [u32], a: u32, b: u32) {
 fn analyze(mesh: &TriMesh, keys: &[u64], valid_cell: impl Fn([i64; 3]) -> bool) -> Analysis {
     let n = mesh.positions.len();
     let nt = mesh.triangles.len();
-    // edges grouped by their smaller vertex (counting sort)
+    // edges grouped by their smaller vertex (counting sort); an entry is the larger vertex
+    // and the triangle, packed as (b << 32) | t so that sorting the u64s sorts by (b, t)
     let mut start = vec![0u32; n + 1];
     for t in &mesh.triangles {
         for i in 0..3 {
@@ -604,58 +608,68 @@ fn analyze(mesh: &TriMesh, keys: &[u64], valid_cell: impl Fn([i64; 3]) -> bool) 
     for v in 0..n {
         start[v + 1] += start[v];
     }
-    let mut fill: Vec<u32> = start[..n].to_vec();
-    let mut ent = vec![(0u32, 0u32); 3 * nt];
+    // start[a] is group a's cursor: after the scatter it is the group's end, i.e. the start
+    // of group a + 1, and group a begins where group a − 1 ends
+    let mut ent = vec![0u64; 3 * nt];
     for (ti, t) in mesh.triangles.iter().enumerate() {
         for i in 0..3 {
             let (a, b) = (t[i], t[(i + 1) % 3]);
-            let s = &mut fill[a.min(b) as usize];
-            ent[*s as usize] = (a.max(b), ti as u32);
+            let s = &mut start[a.min(b) as usize];
+            ent[*s as usize] = (a.max(b) as u64) << 32 | ti as u64;
             *s += 1;
         }
     }
-    drop(fill);
     let mut tp: Vec<u32> = (0..nt as u32).collect();
     let mut bnd: Vec<(u32, u32, bool)> = Vec::new();
     let mut nonman = 0;
+    let (vertex, tri) = (|e: u64| (e >> 32) as u32, |e: u64| e as u32);
     for a in 0..n {
-        let s = &mut ent[start[a] as usize..start[a + 1] as usize];
+        let begin = if a == 0 { 0 } else { start[a - 1] as usize };
+        let s = &mut ent[begin..start[a] as usize];
         s.sort_unstable();
         let mut i = 0;
         while i < s.len() {
             let mut j = i + 1;
-            while j < s.len() && s[j].0 == s[i].0 {
+            while j < s.len() && vertex(s[j]) == vertex(s[i]) {
                 j += 1;
             }
             match j - i {
                 1 => {
-                    let b = s[i].0;
+                    let b = vertex(s[i]);
                     let interior = !on_domain_boundary(keys[a], keys[b as usize], &valid_cell);
                     bnd.push((a as u32, b, interior));
                 }
-                2 => union(&mut tp, s[i].1, s[i + 1].1),
+                2 => union(&mut tp, tri(s[i]), tri(s[i + 1])),
                 _ => {
                     nonman += 1;
                     for k in i + 1..j {
-                        union(&mut tp, s[i].1, s[k].1);
+                        union(&mut tp, tri(s[i]), tri(s[k]));
                     }
                 }
             }
             i = j;
         }
     }
-    drop(ent);
-    let mut label_of_root = vec![u32::MAX; nt];
-    let mut labels = Vec::with_capacity(nt);
+    drop(start);
+    // the smaller root wins every union, so a parent precedes its child and a part's root is
+    // its first triangle: in increasing order, a triangle's parent already points at its root,
+    // and the root is met (and numbered) before the rest of its part. The labels reuse the
+    // edge table's memory (its first nt entries; the rest is given back)
+    ent.truncate(nt);
     let mut parts = 0u32;
-    for t in 0..nt as u32 {
-        let r = find(&mut tp, t) as usize;
-        if label_of_root[r] == u32::MAX {
-            label_of_root[r] = parts;
+    for t in 0..nt {
+        let r = tp[tp[t] as usize] as usize;
+        tp[t] = r as u32;
+        let label = if r == t {
             parts += 1;
-        }
-        labels.push(label_of_root[r]);
+            (parts - 1) as f64
+        } else {
+            f64::from_bits(ent[r])
+        };
+        ent[t] = label.to_bits();
     }
+    let mut labels: Vec<f64> = ent.into_iter().map(f64::from_bits).collect();
+    labels.shrink_to_fit();
     let interior_boundary_edges = bnd.iter().filter(|e| e.2).count();
     let mut interior_holes = 0;
     if interior_boundary_edges > 0 {
