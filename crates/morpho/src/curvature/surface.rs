@@ -64,13 +64,20 @@
 //! platelet definition (H Def. 4.9) says; the result is meaningful only if the normal is. A
 //! non-finite coordinate is refused ([`CurvatureError::Mesh`]).
 //!
-//! Cost: O(V·m) for platelets of m points; vertices are evaluated in parallel (rayon); the
-//! result does not depend on the number of threads.
+//! Cost: O(V·m) for platelets of m points; vertices are evaluated in parallel (rayon) in chunks
+//! written straight into the output arrays; the result does not depend on the number of
+//! threads. The adjacency (incident triangles and sorted neighbours) is built once in
+//! compressed rows, its rows filled in parallel; estimated normals are summed per vertex in the
+//! same pass as the fits (the same sums as [`crate::mesh::vertex_normals`]); each vertex's
+//! offsets `y_j − y₀` are gathered once for the jet and the paraboloid; the jet's 9×9 normal
+//! equations are accumulated one matrix row at a time over a batch of points (the same sums,
+//! in registers); nothing is allocated per vertex. These changes (issue 20's speed) keep every
+//! result bit for bit (`bench/README.md`).
 
 use super::error::CurvatureError;
 use super::fit::Normal;
 use crate::geom::{vec, Vector3};
-use crate::mesh::{vertex_normals, NormalWeighting, TriMesh};
+use crate::mesh::{vertex_normal_of, NormalWeighting, TriMesh};
 use rayon::prelude::*;
 
 /// Where the vertex normals of the fit come from.
@@ -214,87 +221,211 @@ pub fn surface_curvature(
         return Err(CurvatureError::ZeroRing);
     }
     let n = mesh.positions.len();
-    let normals: Vec<Vector3> = match &opts.normals {
-        NormalSource::Estimated(w) => vertex_normals(mesh, *w),
-        NormalSource::File => mesh.normals.clone().ok_or(CurvatureError::NoFileNormals)?,
-        NormalSource::Given(g) => g.clone(),
+    // estimated normals are summed vertex by vertex inside the parallel pass (the same sums in
+    // the same order as `vertex_normals`, so the same bits): no serial pass over the
+    // triangles and no array of normals
+    let given: Option<&[Vector3]> = match &opts.normals {
+        NormalSource::Estimated(_) => None,
+        NormalSource::File => Some(
+            mesh.normals
+                .as_deref()
+                .ok_or(CurvatureError::NoFileNormals)?,
+        ),
+        NormalSource::Given(g) => Some(g),
     };
-    if normals.len() != n {
-        return Err(CurvatureError::NormalCount {
-            given: normals.len(),
-            vertices: n,
-        });
+    if let Some(g) = given {
+        if g.len() != n {
+            return Err(CurvatureError::NormalCount {
+                given: g.len(),
+                vertices: n,
+            });
+        }
     }
     let adj = Adjacency::new(mesh);
-    let pos: Vec<[f64; 3]> = mesh.positions.iter().map(|p| (*p).into()).collect();
-    let per: Vec<(Vertex, bool)> = (0..n)
-        .into_par_iter()
-        .map_init(
-            || (Vec::new(), Vec::new(), Marks::default()),
-            |(ring, ring2, marks), v| {
-                let mut nrm: [f64; 3] = normals[v].into();
-                let mut fallback = false;
-                // on an open fan the jet and the paraboloid are one-sided: the quadric with
-                // linear terms over the (at least) 2-ring instead (module doc, "Boundaries")
-                let boundary_quadric = opts.jet_normals && adj.open[v];
-                if opts.jet_normals && !boundary_quadric {
-                    adj.ring(v, 2, ring2, marks);
-                    // a 2-ring too small or too flat for the cubic (a valence-3 vertex among
-                    // valence-3 neighbours has 8 points): the 3-ring
-                    let jet = jet_normal(&pos, v, ring2, nrm).or_else(|| {
-                        adj.ring(v, 3, ring, marks);
-                        jet_normal(&pos, v, ring, nrm)
-                    });
-                    match jet {
-                        Some(j) => nrm = j,
-                        None => fallback = true,
-                    }
-                }
-                // the breadth-first ring lists the 1-ring first: reuse the 2-ring's prefix
-                let platelet: &[u32] = match (opts.jet_normals, opts.ring) {
-                    (true, 1) if !boundary_quadric => &ring2[..adj.of(v).len()],
-                    (true, 2) if !boundary_quadric => ring2,
-                    _ => {
-                        let k = if boundary_quadric {
-                            opts.ring.max(2)
-                        } else {
-                            opts.ring
-                        };
-                        adj.ring(v, k, ring, marks);
-                        ring
-                    }
-                };
-                let r = match opts.fit {
-                    SurfaceFit::Paraboloid if boundary_quadric => {
-                        let r = fit_quadric(&pos, v, platelet, nrm);
-                        if r.status == VertexStatus::Ok {
-                            r
-                        } else {
-                            fit_vertex(&pos, v, &platelet[..adj.of(v).len()], nrm)
-                        }
-                    }
-                    SurfaceFit::Paraboloid => fit_vertex(&pos, v, platelet, nrm),
-                    SurfaceFit::Quadric => fit_quadric(&pos, v, platelet, nrm),
-                };
-                (r, fallback)
-            },
-        )
-        .collect();
-    let mut out = SurfaceCurvature::default();
-    for (r, fallback) in per {
-        out.jet_fallbacks += usize::from(fallback);
-        out.undetermined += usize::from(r.status != VertexStatus::Ok);
-        out.k1.push(r.k[0]);
-        out.k2.push(r.k[1]);
-        out.h.push(0.5 * (r.k[0] + r.k[1]));
-        out.k.push(r.k[0] * r.k[1]);
-        out.a.push(r.k[0].abs() + r.k[1].abs());
-        out.dir1.push(r.d[0].into());
-        out.dir2.push(r.d[1].into());
-        out.normals.push(r.n.into());
-        out.status.push(r.status);
-    }
+    let pass = Pass {
+        mesh,
+        adj: &adj,
+        opts,
+        given,
+    };
+    // the outputs are allocated once and filled in place, chunk by chunk, in parallel (the
+    // zeroed f64 arrays come from the allocator untouched; the vector arrays are written in
+    // parallel): no per-vertex results collected and copied afterwards
+    let zeros3 = || -> Vec<Vector3> { (0..n).into_par_iter().map(|_| Vector3::zeros()).collect() };
+    let mut out = SurfaceCurvature {
+        k1: vec![0.0; n],
+        k2: vec![0.0; n],
+        h: vec![0.0; n],
+        k: vec![0.0; n],
+        a: vec![0.0; n],
+        dir1: zeros3(),
+        dir2: zeros3(),
+        normals: zeros3(),
+        status: vec![VertexStatus::Ok; n],
+        undetermined: 0,
+        jet_fallbacks: 0,
+    };
+    let (undetermined, jet_fallbacks) = out
+        .k1
+        .par_chunks_mut(CHUNK)
+        .zip(out.k2.par_chunks_mut(CHUNK))
+        .zip(out.h.par_chunks_mut(CHUNK))
+        .zip(out.k.par_chunks_mut(CHUNK))
+        .zip(out.a.par_chunks_mut(CHUNK))
+        .zip(out.dir1.par_chunks_mut(CHUNK))
+        .zip(out.dir2.par_chunks_mut(CHUNK))
+        .zip(out.normals.par_chunks_mut(CHUNK))
+        .zip(out.status.par_chunks_mut(CHUNK))
+        .enumerate()
+        .map_init(Scratch::default, |s, (c, out)| {
+            pass.chunk(c * CHUNK, out, s)
+        })
+        .reduce(|| (0, 0), |x, y| (x.0 + y.0, x.1 + y.1));
+    out.undetermined = undetermined;
+    out.jet_fallbacks = jet_fallbacks;
     Ok(out)
+}
+
+/// Vertices per parallel work item of [`surface_curvature`] (the item is the unit rayon
+/// splits by; 1024 vertices are ~0.1 % of the 500k-vertex skull, small enough to balance two
+/// cores, large enough that the per-item overhead is nothing).
+const CHUNK: usize = 1024;
+
+/// What every vertex of one [`surface_curvature`] call reads.
+struct Pass<'a> {
+    mesh: &'a TriMesh,
+    adj: &'a Adjacency,
+    opts: &'a SurfaceOptions,
+    /// The normals from the file or the caller; `None`: estimated from the triangles.
+    given: Option<&'a [Vector3]>,
+}
+
+/// The per-thread buffers of the vertex pass, reused from vertex to vertex (no allocation per
+/// vertex).
+#[derive(Default)]
+struct Scratch {
+    ring: Vec<u32>,
+    ring2: Vec<u32>,
+    /// The offsets `y_j − y₀` of `ring` / `ring2`: gathered once, read by every fit of the
+    /// vertex (the jet's 2-ring and the paraboloid's 1-ring, its prefix).
+    dif: Vec<[f64; 3]>,
+    dif2: Vec<[f64; 3]>,
+    marks: Marks,
+}
+
+/// The offsets `y_j − y₀` of the points `ring` into `out`.
+fn gather(mesh: &TriMesh, y0: [f64; 3], ring: &[u32], out: &mut Vec<[f64; 3]>) {
+    out.clear();
+    out.extend(
+        ring.iter()
+            .map(|&j| vec::sub(mesh.positions[j as usize].into(), y0)),
+    );
+}
+
+/// The output slices of one chunk of vertices, as the zipped chunk iterators give them.
+type ChunkOut<'o> = (
+    (
+        (
+            (
+                (
+                    (
+                        ((&'o mut [f64], &'o mut [f64]), &'o mut [f64]),
+                        &'o mut [f64],
+                    ),
+                    &'o mut [f64],
+                ),
+                &'o mut [Vector3],
+            ),
+            &'o mut [Vector3],
+        ),
+        &'o mut [Vector3],
+    ),
+    &'o mut [VertexStatus],
+);
+
+impl Pass<'_> {
+    /// The vertices `first..` of one chunk into its output slices; the numbers of undetermined
+    /// vertices and of jet fallbacks.
+    fn chunk(&self, first: usize, out: ChunkOut<'_>, s: &mut Scratch) -> (usize, usize) {
+        let ((((((((k1, k2), h), k), a), dir1), dir2), normals), status) = out;
+        let (mut undetermined, mut fallbacks) = (0, 0);
+        for i in 0..k1.len() {
+            let (r, fallback) = self.vertex(first + i, s);
+            fallbacks += usize::from(fallback);
+            undetermined += usize::from(r.status != VertexStatus::Ok);
+            k1[i] = r.k[0];
+            k2[i] = r.k[1];
+            h[i] = 0.5 * (r.k[0] + r.k[1]);
+            k[i] = r.k[0] * r.k[1];
+            a[i] = r.k[0].abs() + r.k[1].abs();
+            dir1[i] = r.d[0].into();
+            dir2[i] = r.d[1].into();
+            normals[i] = r.n.into();
+            status[i] = r.status;
+        }
+        (undetermined, fallbacks)
+    }
+
+    /// The fit at vertex `v`, and whether its jet normal fell back to the given one.
+    fn vertex(&self, v: usize, s: &mut Scratch) -> (Vertex, bool) {
+        let (adj, opts, mesh) = (self.adj, self.opts, self.mesh);
+        let mut nrm: [f64; 3] = match (self.given, &opts.normals) {
+            (Some(g), _) => g[v].into(),
+            (None, NormalSource::Estimated(w)) => {
+                vertex_normal_of(mesh, adj.triangles(v), *w).into()
+            }
+            (None, _) => [0.0; 3],
+        };
+        let y0: [f64; 3] = mesh.positions[v].into();
+        let deg = adj.of(v).len();
+        let mut fallback = false;
+        // on an open fan the jet and the paraboloid are one-sided: the quadric with linear
+        // terms over the (at least) 2-ring instead (module doc, "Boundaries")
+        let boundary_quadric = opts.jet_normals && adj.open[v];
+        if opts.jet_normals && !boundary_quadric {
+            adj.ring(v, 2, &mut s.ring2, &mut s.marks);
+            gather(mesh, y0, &s.ring2, &mut s.dif2);
+            // a 2-ring too small or too flat for the cubic (a valence-3 vertex among
+            // valence-3 neighbours has 8 points): the 3-ring
+            let jet = jet_normal(&s.dif2, nrm).or_else(|| {
+                adj.ring(v, 3, &mut s.ring, &mut s.marks);
+                gather(mesh, y0, &s.ring, &mut s.dif);
+                jet_normal(&s.dif, nrm)
+            });
+            match jet {
+                Some(j) => nrm = j,
+                None => fallback = true,
+            }
+        }
+        // the breadth-first ring lists the 1-ring first: reuse the 2-ring's prefix
+        let platelet: &[[f64; 3]] = match (opts.jet_normals, opts.ring) {
+            (true, 1) if !boundary_quadric => &s.dif2[..deg],
+            (true, 2) if !boundary_quadric => &s.dif2,
+            _ => {
+                let k = if boundary_quadric {
+                    opts.ring.max(2)
+                } else {
+                    opts.ring
+                };
+                adj.ring(v, k, &mut s.ring, &mut s.marks);
+                gather(mesh, y0, &s.ring, &mut s.dif);
+                &s.dif
+            }
+        };
+        let r = match opts.fit {
+            SurfaceFit::Paraboloid if boundary_quadric => {
+                let r = fit_quadric(platelet, nrm);
+                if r.status == VertexStatus::Ok {
+                    r
+                } else {
+                    fit_vertex(&platelet[..deg], nrm)
+                }
+            }
+            SurfaceFit::Paraboloid => fit_vertex(platelet, nrm),
+            SurfaceFit::Quadric => fit_quadric(platelet, nrm),
+        };
+        (r, fallback)
+    }
 }
 
 /// The result of one vertex.
@@ -316,17 +447,16 @@ impl Vertex {
     }
 }
 
-/// Steps (i)–(viii) at vertex `v` with platelet `ring` (without `v`) and normal `nrm`.
-fn fit_vertex(pos: &[[f64; 3]], v: usize, ring: &[u32], nrm: [f64; 3]) -> Vertex {
+/// Steps (i)–(viii) at a vertex with platelet offsets `ring` (`y_j − y₀`, without `y₀`) and
+/// normal `nrm`.
+fn fit_vertex(ring: &[[f64; 3]], nrm: [f64; 3]) -> Vertex {
     let n = match unit_normal(ring, nrm, 3) {
         Ok(n) => n,
         Err(r) => return r,
     };
     let (b1, b2) = tangent_basis(n);
-    let y0 = pos[v];
     let mut ne = Normal::<3>::new();
-    for &j in ring {
-        let w = vec::sub(pos[j as usize], y0);
+    for &w in ring {
         let d = vec::dot(n, w);
         // the projection's offset from y₀ is w − d n, orthogonal to n: its b-coordinates are
         // those of w
@@ -348,7 +478,7 @@ fn fit_vertex(pos: &[[f64; 3]], v: usize, ring: &[u32], nrm: [f64; 3]) -> Vertex
 }
 
 /// The unit normal, or the status of a vertex without one.
-fn unit_normal(ring: &[u32], nrm: [f64; 3], need: usize) -> Result<[f64; 3], Vertex> {
+fn unit_normal(ring: &[[f64; 3]], nrm: [f64; 3], need: usize) -> Result<[f64; 3], Vertex> {
     let len = vec::norm(nrm);
     if len.is_nan() || len <= 0.0 || len.is_infinite() {
         let status = if ring.is_empty() {
@@ -373,26 +503,21 @@ fn unit_normal(ring: &[u32], nrm: [f64; 3], need: usize) -> Result<[f64; 3], Ver
 /// curvatures of that graph at the origin (H (4.15)): the eigenvalues of `S Hess S / l` with
 /// `l = √(1+a²+b²)` and `S = (I + ggᵀ)^{-1/2}`, `g = (a, b)`. The coordinates are divided by
 /// the platelet's RMS radius ρ first, so that the condition number stays scale-free.
-fn fit_quadric(pos: &[[f64; 3]], v: usize, ring: &[u32], nrm: [f64; 3]) -> Vertex {
+fn fit_quadric(ring: &[[f64; 3]], nrm: [f64; 3]) -> Vertex {
     let n = match unit_normal(ring, nrm, 5) {
         Ok(n) => n,
         Err(r) => return r,
     };
     let (b1, b2) = tangent_basis(n);
-    let y0 = pos[v];
-    let rho2 = ring
-        .iter()
-        .map(|&j| vec::norm2(vec::sub(pos[j as usize], y0)))
-        .sum::<f64>()
-        / ring.len() as f64;
+    let rho2 = ring.iter().map(|&w| vec::norm2(w)).sum::<f64>() / ring.len() as f64;
     let rho = rho2.sqrt();
     if !(rho > 0.0 && rho.is_finite()) {
         return Vertex::undetermined(n, VertexStatus::IllConditioned);
     }
     let inv = 1.0 / rho;
     let mut ne = Normal::<5>::new();
-    for &j in ring {
-        let w = vec::scale(vec::sub(pos[j as usize], y0), inv);
+    for &w in ring {
+        let w = vec::scale(w, inv);
         let (u, t) = (vec::dot(w, b1), vec::dot(w, b2));
         ne.add([u, t, 0.5 * u * u, u * t, 0.5 * t * t], vec::dot(n, w));
     }
@@ -445,38 +570,42 @@ fn fit_quadric(pos: &[[f64; 3]], v: usize, ring: &[u32], nrm: [f64; 3]) -> Verte
 /// surface's third-order part out of the slopes (a quadric's slopes carry it, O(h²) with the
 /// 2-ring's larger constant). Coordinates are divided by the RMS radius first (scale-free
 /// pivot test). `None` when `nrm` is not usable, fewer than 9 points, or pivots above 1e10.
-fn jet_normal(pos: &[[f64; 3]], v: usize, ring: &[u32], nrm: [f64; 3]) -> Option<[f64; 3]> {
+fn jet_normal(ring: &[[f64; 3]], nrm: [f64; 3]) -> Option<[f64; 3]> {
     let len = vec::norm(nrm);
     if !(len > 0.0 && len.is_finite()) || ring.len() < 9 {
         return None;
     }
     let n = vec::scale(nrm, 1.0 / len);
     let (b1, b2) = tangent_basis(n);
-    let y0 = pos[v];
-    let rho2 = ring
-        .iter()
-        .map(|&j| vec::norm2(vec::sub(pos[j as usize], y0)))
-        .sum::<f64>()
-        / ring.len() as f64;
+    let rho2 = ring.iter().map(|&w| vec::norm2(w)).sum::<f64>() / ring.len() as f64;
     if !(rho2 > 0.0 && rho2.is_finite()) {
         return None;
     }
     let inv = 1.0 / rho2.sqrt();
     let mut ne = Normal::<9>::new();
-    for &j in ring {
-        let w = vec::scale(vec::sub(pos[j as usize], y0), inv);
-        let (u, t) = (vec::dot(w, b1), vec::dot(w, b2));
-        let (uu, ut, tt) = (u * u, u * t, t * t);
-        ne.add(
-            [u, t, 0.5 * uu, ut, 0.5 * tt, uu * u, uu * t, u * tt, tt * t],
-            vec::dot(n, w),
-        );
+    // the rows in batches on the stack, accumulated batch by batch (`Normal::add_rows`: the
+    // same sums as point by point)
+    let mut batch = [([0.0; 9], 0.0); JET_BATCH];
+    for part in ring.chunks(JET_BATCH) {
+        for (&w, slot) in part.iter().zip(batch.iter_mut()) {
+            let w = vec::scale(w, inv);
+            let (u, t) = (vec::dot(w, b1), vec::dot(w, b2));
+            let (uu, ut, tt) = (u * u, u * t, t * t);
+            *slot = (
+                [u, t, 0.5 * uu, ut, 0.5 * tt, uu * u, uu * t, u * tt, tt * t],
+                vec::dot(n, w),
+            );
+        }
+        ne.add_rows(&batch[..part.len()]);
     }
     let c = ne.solve_ldl(SURFACE_MAX_COND)?;
     let m = vec::add_scaled(vec::add_scaled(n, -c[0], b1), -c[1], b2);
     let l = vec::norm(m);
     (l > 0.0 && l.is_finite()).then(|| vec::scale(m, 1.0 / l))
 }
+
+/// Points per batch of the jet's accumulation (a 2-ring has ~18, a 3-ring ~36).
+const JET_BATCH: usize = 32;
 
 /// Orthonormal `b₁, b₂` with `(b₁, b₂, n)` right-handed, `b₁ ∝ n × e_k` for the axis `e_k`
 /// least aligned with `n`.
@@ -514,17 +643,26 @@ fn sym2_eigen(a: f64, b: f64, c: f64) -> ([f64; 2], [f64; 2]) {
     ([l1, l2], e)
 }
 
-/// Vertex adjacency (unique neighbours, ascending) in compressed rows.
+/// Vertex adjacency: incident triangles and unique neighbours (ascending), in compressed rows.
 struct Adjacency {
-    start: Vec<usize>,
+    /// The triangles of vertex `v` are `tri[tstart[v]..tstart[v + 1]]`, ascending.
+    tstart: Vec<usize>,
+    tri: Vec<u32>,
+    /// The neighbours of `v` are `nb[2 tstart[v]..][..len[v]]`: each vertex has room for two
+    /// per incident triangle (the other two corners), so every vertex's row is known before
+    /// any is filled and the rows are filled in parallel in place.
     nb: Vec<u32>,
+    len: Vec<u32>,
     /// Vertices whose neighbours outnumber their triangles: an open fan (on a boundary).
     open: Vec<bool>,
 }
 
+/// Vertices per parallel block of [`Adjacency::new`].
+const ADJ_BLOCK: usize = 4096;
+
 impl Adjacency {
-    /// Incident triangles by counting (O(T)), then each vertex's sorted neighbours in
-    /// parallel.
+    /// Incident triangles by counting (O(T)), then each vertex's sorted neighbours, in
+    /// parallel blocks of vertices whose rows are one contiguous slice.
     fn new(mesh: &TriMesh) -> Self {
         let n = mesh.positions.len();
         let mut tstart = vec![0usize; n + 1];
@@ -537,42 +675,73 @@ impl Adjacency {
             tstart[i + 1] += tstart[i];
         }
         let mut fill = tstart.clone();
-        let mut inc = vec![0u32; tstart[n]];
+        let mut tri = vec![0u32; tstart[n]];
         for (ti, t) in mesh.triangles.iter().enumerate() {
             for &x in t {
-                inc[fill[x as usize]] = ti as u32;
+                tri[fill[x as usize]] = ti as u32;
                 fill[x as usize] += 1;
             }
         }
-        let lists: Vec<Vec<u32>> = (0..n)
-            .into_par_iter()
-            .map(|v| {
-                let mut l = Vec::with_capacity(2 * (tstart[v + 1] - tstart[v]));
-                for &ti in &inc[tstart[v]..tstart[v + 1]] {
-                    for &x in &mesh.triangles[ti as usize] {
-                        if x as usize != v {
-                            l.push(x);
+        drop(fill);
+        let mut nb = vec![0u32; 2 * tstart[n]];
+        let mut len = vec![0u32; n];
+        let mut open = vec![false; n];
+        let mut rows = Vec::with_capacity(n.div_ceil(ADJ_BLOCK));
+        let mut rest: &mut [u32] = &mut nb;
+        for lo in (0..n).step_by(ADJ_BLOCK) {
+            let hi = (lo + ADJ_BLOCK).min(n);
+            let (row, r) = std::mem::take(&mut rest).split_at_mut(2 * (tstart[hi] - tstart[lo]));
+            rows.push(row);
+            rest = r;
+        }
+        rows.into_par_iter()
+            .zip(len.par_chunks_mut(ADJ_BLOCK))
+            .zip(open.par_chunks_mut(ADJ_BLOCK))
+            .enumerate()
+            .for_each(|(b, ((row, len), open))| {
+                let base = 2 * tstart[b * ADJ_BLOCK];
+                for (i, (l, o)) in len.iter_mut().zip(open.iter_mut()).enumerate() {
+                    let v = b * ADJ_BLOCK + i;
+                    let (t0, t1) = (tstart[v], tstart[v + 1]);
+                    let out = &mut row[2 * t0 - base..2 * t1 - base];
+                    // each occurrence of v in a triangle adds at most its two other corners
+                    let mut m = 0;
+                    for &ti in &tri[t0..t1] {
+                        for &x in &mesh.triangles[ti as usize] {
+                            if x as usize != v {
+                                out[m] = x;
+                                m += 1;
+                            }
                         }
                     }
+                    let out = &mut out[..m];
+                    out.sort_unstable();
+                    let mut k = 0;
+                    for j in 0..m {
+                        if k == 0 || out[j] != out[k - 1] {
+                            out[k] = out[j];
+                            k += 1;
+                        }
+                    }
+                    *l = k as u32;
+                    *o = k > t1 - t0;
                 }
-                l.sort_unstable();
-                l.dedup();
-                l
-            })
-            .collect();
-        let mut start = Vec::with_capacity(n + 1);
-        start.push(0);
-        let mut nb = Vec::with_capacity(lists.iter().map(Vec::len).sum());
-        let mut open = Vec::with_capacity(n);
-        for (v, l) in lists.into_iter().enumerate() {
-            open.push(l.len() > tstart[v + 1] - tstart[v]);
-            nb.extend_from_slice(&l);
-            start.push(nb.len());
+            });
+        Adjacency {
+            tstart,
+            tri,
+            nb,
+            len,
+            open,
         }
-        Adjacency { start, nb, open }
+    }
+    /// The triangles containing `v`, ascending.
+    fn triangles(&self, v: usize) -> &[u32] {
+        &self.tri[self.tstart[v]..self.tstart[v + 1]]
     }
     fn of(&self, v: usize) -> &[u32] {
-        &self.nb[self.start[v]..self.start[v + 1]]
+        let s = 2 * self.tstart[v];
+        &self.nb[s..s + self.len[v] as usize]
     }
     /// The vertices within `k` edges of `v`, without `v`, into `out` (breadth-first: the
     /// 1-ring first, in its sorted order, then each level in discovery order).
@@ -582,7 +751,7 @@ impl Adjacency {
         if k == 1 {
             return;
         }
-        let g = marks.next(self.start.len() - 1);
+        let g = marks.next(self.len.len());
         let seen = &mut marks.stamp;
         seen[v] = g;
         for &x in out.iter() {
@@ -618,7 +787,8 @@ impl Marks {
     /// The generation of a new search over `n` vertices.
     fn next(&mut self, n: usize) -> u32 {
         if self.stamp.len() < n {
-            self.stamp.resize(n, 0);
+            // zeroed by the allocator: pages are touched only where the searches go
+            self.stamp = vec![0; n];
         }
         self.generation = self.generation.wrapping_add(1);
         if self.generation == 0 {
@@ -626,5 +796,74 @@ impl Marks {
             self.generation = 1;
         }
         self.generation
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Point3;
+    use crate::mesh::{generate, vertex_normals};
+    use std::collections::BTreeSet;
+
+    /// A mesh with every special case of the adjacency: a triangle repeating a vertex, a
+    /// non-manifold edge (three triangles), a boundary, an isolated vertex, and enough
+    /// vertices for several parallel blocks.
+    fn awkward_mesh() -> TriMesh {
+        let mut m = generate::torus(2.0, 0.7, 90, 60);
+        let n = m.positions.len() as u32;
+        m.positions.push(Point3::new(9.0, 9.0, 9.0)); // isolated
+        m.positions.push(Point3::new(5.0, 0.0, 0.0));
+        m.triangles.push([0, 0, 1]);
+        m.triangles.push([0, 1, n + 1]); // third triangle on edge 0–1
+        m.triangles.push([2, 2, 2]);
+        m
+    }
+
+    #[test]
+    fn adjacency_rows_match_a_direct_construction() {
+        let m = awkward_mesh();
+        let adj = Adjacency::new(&m);
+        for v in 0..m.positions.len() {
+            let tris: Vec<u32> = (0..m.triangles.len() as u32)
+                .filter(|&t| m.triangles[t as usize].contains(&(v as u32)))
+                .collect();
+            let uses: usize = m
+                .triangles
+                .iter()
+                .map(|t| t.iter().filter(|&&x| x as usize == v).count())
+                .sum();
+            let nb: BTreeSet<u32> = tris
+                .iter()
+                .flat_map(|&t| m.triangles[t as usize])
+                .filter(|&x| x as usize != v)
+                .collect();
+            assert_eq!(adj.of(v), nb.iter().copied().collect::<Vec<_>>(), "{v}");
+            assert_eq!(adj.open[v], nb.len() > uses, "{v}");
+            // every triangle once per corner it gives v, ascending
+            let mut t2 = adj.triangles(v).to_vec();
+            assert!(t2.windows(2).all(|w| w[0] <= w[1]));
+            t2.dedup();
+            assert_eq!(t2, tris, "{v}");
+        }
+    }
+
+    #[test]
+    fn per_vertex_normals_are_bitwise_vertex_normals() {
+        let m = awkward_mesh();
+        let adj = Adjacency::new(&m);
+        for w in [
+            NormalWeighting::Area,
+            NormalWeighting::Uniform,
+            NormalWeighting::InverseArea,
+        ] {
+            let all = vertex_normals(&m, w);
+            for (v, n) in all.iter().enumerate() {
+                let one = vertex_normal_of(&m, adj.triangles(v), w);
+                for k in 0..3 {
+                    assert_eq!(one[k].to_bits(), n[k].to_bits(), "{v} {w:?}");
+                }
+            }
+        }
     }
 }

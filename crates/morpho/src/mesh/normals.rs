@@ -38,35 +38,69 @@ pub enum NormalWeighting {
 /// ```
 pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<Vector3> {
     let mut acc = vec![[0.0f64; 3]; mesh.positions.len()];
-    for &[a, b, c] in &mesh.triangles {
-        let p = |i: u32| -> [f64; 3] { mesh.positions[i as usize].into() };
-        let (pa, pb, pc) = (p(a), p(b), p(c));
-        let ct = vec::cross(vec::sub(pb, pa), vec::sub(pc, pa));
-        let len = vec::norm(ct);
-        if len.is_nan() || len <= 0.0 || len.is_infinite() {
+    for t in &mesh.triangles {
+        let Some((w, ct)) = weighted_cross(mesh, t, weighting) else {
             continue;
-        }
-        let w = match weighting {
-            NormalWeighting::Area => 1.0,
-            NormalWeighting::Uniform => 1.0 / len,
-            // (c/|c|)/area = 2c/|c|²
-            NormalWeighting::InverseArea => 2.0 / (len * len),
         };
-        for v in [a, b, c] {
+        for v in *t {
             let s = &mut acc[v as usize];
             *s = vec::add_scaled(*s, w, ct);
         }
     }
-    acc.into_iter()
-        .map(|s| {
-            let l = vec::norm(s);
-            if l > 0.0 && l.is_finite() {
-                Vector3::from(vec::scale(s, 1.0 / l))
-            } else {
-                Vector3::zeros()
-            }
-        })
-        .collect()
+    acc.into_iter().map(unit_or_zero).collect()
+}
+
+/// The unit normal of one vertex from its incident triangles `tris` (indices into
+/// `mesh.triangles`): the same sums in the same order as [`vertex_normals`] when `tris` is
+/// ascending, so the same bits; for callers that need the normals one vertex at a time (in
+/// parallel, without the whole array).
+pub(crate) fn vertex_normal_of(
+    mesh: &TriMesh,
+    tris: &[u32],
+    weighting: NormalWeighting,
+) -> Vector3 {
+    let mut s = [0.0f64; 3];
+    for &t in tris {
+        if let Some((w, ct)) = weighted_cross(mesh, &mesh.triangles[t as usize], weighting) {
+            s = vec::add_scaled(s, w, ct);
+        }
+    }
+    unit_or_zero(s)
+}
+
+/// The weight and cross product `c_t = (x1−x0)×(x2−x0)` of one triangle, `None` for a
+/// zero-area (or non-finite) one.
+#[inline]
+fn weighted_cross(
+    mesh: &TriMesh,
+    &[a, b, c]: &[u32; 3],
+    weighting: NormalWeighting,
+) -> Option<(f64, [f64; 3])> {
+    let p = |i: u32| -> [f64; 3] { mesh.positions[i as usize].into() };
+    let (pa, pb, pc) = (p(a), p(b), p(c));
+    let ct = vec::cross(vec::sub(pb, pa), vec::sub(pc, pa));
+    let len = vec::norm(ct);
+    if len.is_nan() || len <= 0.0 || len.is_infinite() {
+        return None;
+    }
+    let w = match weighting {
+        NormalWeighting::Area => 1.0,
+        NormalWeighting::Uniform => 1.0 / len,
+        // (c/|c|)/area = 2c/|c|²
+        NormalWeighting::InverseArea => 2.0 / (len * len),
+    };
+    Some((w, ct))
+}
+
+/// `s/|s|`, or the zero vector when `s` has no direction.
+#[inline]
+fn unit_or_zero(s: [f64; 3]) -> Vector3 {
+    let l = vec::norm(s);
+    if l > 0.0 && l.is_finite() {
+        Vector3::from(vec::scale(s, 1.0 / l))
+    } else {
+        Vector3::zeros()
+    }
 }
 
 #[cfg(test)]
