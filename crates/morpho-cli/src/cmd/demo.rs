@@ -152,6 +152,44 @@ pub fn view_page(ctx: &Ctx, s: &mut Section, name: &str, m: &morpho::mesh::TriMe
     Ok(())
 }
 
+/// Issue 22: the interactive page of a volume (three movable slices, and the contour surface
+/// at `level` as a hidden layer when given), written as `NAME.view.html` and listed with the
+/// section's files.
+pub fn volume_view_page(
+    ctx: &Ctx,
+    s: &mut Section,
+    name: &str,
+    v: &morpho::volume::Volume,
+    level: Option<f64>,
+) -> Result<()> {
+    use morpho::viewer::{page_html, Layer, Page, VolumeLayer, DEFAULT_LOD, DEFAULT_MAX_SAMPLES};
+    // the gallery's volumes are valid (finite samples): no page otherwise
+    let Ok(vl) = VolumeLayer::new(v, DEFAULT_MAX_SAMPLES) else {
+        return Ok(());
+    };
+    let mut layers = vec![Layer::volume(&format!("{name} (slices)"), vl)];
+    if let Some(level) = level {
+        let opts = morpho::volume::IsoOptions {
+            level,
+            ..Default::default()
+        };
+        let r = morpho::volume::isosurface(v, &opts)?;
+        let mut m = Layer::mesh(&format!("{name} (contour f = {level})"), &r.mesh);
+        m.hidden = true;
+        layers.push(m);
+    }
+    let page = Page {
+        title: name.to_string(),
+        layers,
+        figures: None,
+        lod: DEFAULT_LOD,
+    };
+    let file = format!("{name}.view.html");
+    morpho::io::write_text(&ctx.path(&file), &page_html(&page))?;
+    s.files.push(file);
+    Ok(())
+}
+
 /// Every mesh file of a section gets its interactive page ([`view_page`]).
 fn add_views(ctx: &Ctx, s: &mut Section) -> Result<()> {
     let meshes: Vec<String> = s
@@ -402,6 +440,7 @@ fn volume_section(ctx: &Ctx) -> Result<Vec<Section>> {
     if let Some((lo, hi)) = v.value_range() {
         s.fig("value range", format!("{lo} .. {hi}"));
     }
+    volume_view_page(ctx, &mut s, "phantom", &v, Some(0.1))?;
     out.push(s);
     if let Some(path) = ctx.data_file("volumes/cthead_8bit_256x256x99.json") {
         let v = morpho::io::read_volume(&path)?;
@@ -420,6 +459,7 @@ fn volume_section(ctx: &Ctx) -> Result<Vec<Section>> {
         if let Some((lo, hi)) = v.value_range() {
             s.fig("value range", format!("{lo} .. {hi}"));
         }
+        volume_view_page(ctx, &mut s, "cthead", &v, None)?;
         out.push(s);
     }
     Ok(out)

@@ -1,9 +1,13 @@
-//! `morpho view FILE… -o page.html [--figures REPORT.json] [--level L] [--lod TRIANGLES]`: one self-contained
-//! interactive page (WebGL 2, offline, `file://`) showing every input (issue 22, part 2; see
-//! `morpho::viewer`). Meshes with their vertex properties as colour maps, point sets, 2D
-//! shapes; a volume is shown by its contour surface at `--level` (default: the midpoint of its
-//! range). Inputs are read through `morpho::io`; the page is written with `io::write_text`
-//! (atomic, never over an input).
+//! `morpho view FILE… -o page.html [--figures REPORT.json] [--level L] [--lod TRIANGLES]
+//! [--volume-samples N]`: one self-contained interactive page (WebGL 2, offline, `file://`)
+//! showing every input (issue 22, part 2; see `morpho::viewer`). Meshes with their vertex
+//! properties as colour maps, point sets, 2D shapes; a volume as three movable orthogonal
+//! slices (`morpho::viewer::VolumeLayer`, subsampled above `--volume-samples` with a note) and
+//! its contour surface at `--level` (default: the midpoint of its range) as a second layer,
+//! hidden until ticked (none, with a note, for a constant volume or one with a single sample
+//! along an axis). A volume without a finite sample is `error:` (exit 2). Inputs are read
+//! through `morpho::io`; the page is written with `io::write_text` (atomic, never over an
+//! input).
 
 use crate::report::Report;
 use crate::Failure;
@@ -30,6 +34,10 @@ pub struct Args {
     /// (vertex clustering), drawn while the camera moves; 0 turns it off.
     #[arg(long, default_value_t = morpho::viewer::DEFAULT_LOD)]
     pub lod: usize,
+    /// Volumes with more samples are shown subsampled (one sample in s along each axis, the
+    /// smallest s that fits), with a note.
+    #[arg(long, default_value_t = morpho::viewer::DEFAULT_MAX_SAMPLES)]
+    pub volume_samples: usize,
 }
 
 /// Runs `morpho view`.
@@ -52,26 +60,13 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             Data::Points(ps) => Layer::points(&name, &ps),
             Data::Shapes(s) => Layer::shapes(&name, &s),
             Data::Volume(v) => {
-                let fin = v.data.iter().copied().filter(|x| x.is_finite());
-                let (lo, hi) = fin.fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), x| {
-                    (a.min(x), b.max(x))
-                });
-                if lo >= hi {
-                    return Err(Failure::usage(format!(
-                        "{}: the volume is constant or has no finite sample; no contour to show",
-                        p.display()
-                    )));
+                for l in volume_layers(p, &name, &v, &args)? {
+                    for n in &l.notes {
+                        eprintln!("note: {}: {n}", p.display());
+                    }
+                    layers.push(l);
                 }
-                let level = args.level.unwrap_or(0.5 * (lo as f64 + hi as f64));
-                let r = morpho::volume::isosurface(
-                    &v,
-                    &morpho::volume::IsoOptions {
-                        level,
-                        ..Default::default()
-                    },
-                )
-                .map_err(|e| Failure::from(morpho::Error::from(e).with_path(p)))?;
-                Layer::mesh(&format!("{name} (contour f = {level})"), &r.mesh)
+                continue;
             }
         };
         if layer.is_empty() {
@@ -107,4 +102,47 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     report.set("bytes", html.len());
     eprintln!("wrote {} ({} bytes)", args.output.display(), html.len());
     Ok(0)
+}
+
+/// A volume's layers: its slices, then its contour surface (hidden until ticked), or a note on
+/// the slices saying why there is none.
+fn volume_layers(
+    p: &std::path::Path,
+    name: &str,
+    v: &morpho::volume::Volume,
+    args: &Args,
+) -> Result<Vec<Layer>, Failure> {
+    let vl = morpho::viewer::VolumeLayer::new(v, args.volume_samples)
+        .map_err(|e| Failure::usage(format!("{}: {e}", p.display())))?;
+    let (lo, hi) = v
+        .value_range()
+        .map_or((0.0, 0.0), |(a, b)| (a as f64, b as f64));
+    let mut slices = Layer::volume(&format!("{name} (slices)"), vl);
+    let mut out = Vec::new();
+    if lo == hi || v.dims.iter().any(|&n| n < 2) {
+        slices.notes.push(
+            "no contour surface (the volume is constant or has one sample along an axis)".into(),
+        );
+    } else {
+        let level = args.level.unwrap_or(0.5 * (lo + hi));
+        let r = morpho::volume::isosurface(
+            v,
+            &morpho::volume::IsoOptions {
+                level,
+                ..Default::default()
+            },
+        )
+        .map_err(|e| Failure::from(morpho::Error::from(e).with_path(p)))?;
+        if r.mesh.triangles.is_empty() {
+            slices
+                .notes
+                .push(format!("the contour surface at f = {level} is empty"));
+        } else {
+            let mut m = Layer::mesh(&format!("{name} (contour f = {level})"), &r.mesh);
+            m.hidden = true;
+            out.push(m);
+        }
+    }
+    out.insert(0, slices);
+    Ok(out)
 }

@@ -26,7 +26,10 @@
 //! The recurrence is evaluated front to back (same order, reversed; a transmittance per
 //! sample, rounded to 8 bits once): a sample takes no more layers once the layers behind it
 //! could change it by less than half a level, and triangles over saturated tiles are skipped,
-//! so the cost follows the visible layers, not all of them.
+//! so the cost follows the visible layers, not all of them. Per row a triangle takes one
+//! interval of samples (found by the exact edge tests at its ends, the edge functions being
+//! monotone along a row) and rows over saturated row tiles are skipped; inside the interval
+//! the colour parameter is stepped (`Scene::composite_triangle`).
 //!
 //! Complexity: O(n log n + covered samples) time (alpha blending: O(n log n + samples ×
 //! visible layers) plus a bounding-box test per triangle), O(W·H·s²) memory. Hamann (1991, §2.3) shades
@@ -307,20 +310,15 @@ struct Cover {
     y1: u32,
 }
 
-/// A layer in a band's list: its index in the layers and its sample columns.
+/// A layer in a band's list: its mesh triangle and its sample box (inclusive; sample
+/// coordinates fit in u16, at most 8192 · 4, `Frame::new`).
 #[derive(Clone, Copy)]
 struct BinEntry {
-    layer: u32,
+    tri: u32,
     x0: u16,
     x1: u16,
-}
-
-/// A triangle of alpha blending before its setup: mesh index, sample box, depth key (larger
-/// is nearer).
-struct Layer {
-    tri: u32,
-    cover: Cover,
-    near: f64,
+    y0: u16,
+    y1: u16,
 }
 
 /// Edge function of the directed edge a→b at (x, y): twice the signed area of (a, b, p).
@@ -780,6 +778,11 @@ struct Composite {
     open: Vec<u32>,
     /// Tiles with an unsaturated sample.
     open_tiles: usize,
+    /// Unsaturated samples per row of each tile (`row · tiles + tile`): a triangle's row
+    /// whose span lies in saturated row tiles is skipped before any edge test.
+    row_open: Vec<u8>,
+    /// Tiles per row.
+    ntiles: usize,
     /// `1 − t` and `t`.
     opacity: f32,
     t: f32,
@@ -788,17 +791,54 @@ struct Composite {
 /// [`edge`] evaluated from the lexicographically smaller end, negated when that is `b`: the two
 /// triangles of a shared edge get exactly opposite values at every sample (the plain edge
 /// function rounds differently from each end, so a sample on the edge could be inside both or
-/// neither), which [`owns_edge_samples`] needs.
-#[inline]
-fn shared_edge(a: &Vert, b: &Vert, x: f64, y: f64) -> f64 {
-    if (a.px, a.py) <= (b.px, b.py) {
-        edge(a, b, x, y)
-    } else {
-        -edge(b, a, x, y)
+/// neither), which [`owns_edge_samples`] needs. The ends are ordered once per triangle.
+#[derive(Clone, Copy)]
+struct SharedEdge {
+    a: Vert,
+    b: Vert,
+    /// True when the ends were swapped (the value is negated).
+    flip: bool,
+}
+
+impl SharedEdge {
+    fn new(a: &Vert, b: &Vert) -> Self {
+        if (a.px, a.py) <= (b.px, b.py) {
+            SharedEdge {
+                a: *a,
+                b: *b,
+                flip: false,
+            }
+        } else {
+            SharedEdge {
+                a: *b,
+                b: *a,
+                flip: true,
+            }
+        }
+    }
+    /// The edge function of the directed edge at (x, y).
+    #[inline]
+    fn at(&self, x: f64, y: f64) -> f64 {
+        let e = edge(&self.a, &self.b, x, y);
+        if self.flip {
+            -e
+        } else {
+            e
+        }
+    }
+    /// Its derivative in x.
+    #[inline]
+    fn dx(&self) -> f64 {
+        let d = -(self.b.py - self.a.py);
+        if self.flip {
+            -d
+        } else {
+            d
+        }
     }
 }
 
-/// The fill rule of alpha blending: a sample on an edge of `t` (`w`: its [`shared_edge`]
+/// The fill rule of alpha blending: a sample on an edge of `t` (`w`: its [`SharedEdge`]
 /// functions, all ≥ 0) is `t`'s only if that edge is a left edge (the inside lies towards +x) or a horizontal
 /// edge with the inside towards +y. Of two triangles sharing an edge exactly one owns the
 /// samples on it, so a rectangle split along a diagonal through sample centres blends each
@@ -1101,17 +1141,22 @@ impl Scene<'_> {
     /// and composited band by band ([`Scene::composite_band`]; a triangle's full setup is made
     /// only where it is not hidden). Returns the picture and the samples composited.
     fn blend(&self, t: f64, valid: &[usize], stats: &mut RenderStats) -> (Image, u64) {
-        let layers: Vec<Layer> = valid
+        // Depth key, mesh index and sample box of each covering triangle, in one small array
+        // sorted in place (collected with its exact size: no per-thread pieces to join); the
+        // bins carry the box, so the hidden layers are skipped without another lookup.
+        let mut order: Vec<(f64, u32, [u16; 4])> = valid
             .par_iter()
-            .filter_map(|&ti| {
-                let cover = self.cover(ti).ok()?;
-                Some(Layer {
-                    tri: ti as u32,
-                    cover,
-                    near: self.depth_key(ti),
-                })
+            .map(|&ti| match self.cover(ti) {
+                Ok(c) => (
+                    self.depth_key(ti),
+                    ti as u32,
+                    [c.x0, c.x1, c.y0, c.y1].map(|v| v as u16),
+                ),
+                // covers no sample: dropped below
+                Err(_) => (0.0, u32::MAX, [0; 4]),
             })
             .collect();
+        order.retain(|e| e.1 != u32::MAX);
         stats.degenerate = valid
             .par_iter()
             .filter(|&&ti| {
@@ -1120,24 +1165,26 @@ impl Scene<'_> {
             })
             .count();
         stats.drawn = valid.len() - stats.degenerate;
-        // Keys, indices and rows sort in one small array (`layers` is in mesh order); the
-        // bins carry each layer's columns, so the hidden ones are skipped without reading
-        // `layers`. Sample coordinates fit in u16 (at most 8192 · 4, `Frame::new`).
-        let mut order: Vec<(f64, u32, [u16; 4])> = layers
-            .iter()
-            .enumerate()
-            .map(|(i, l)| {
-                let c = l.cover;
-                (l.near, i as u32, [c.x0, c.x1, c.y0, c.y1].map(|v| v as u16))
-            })
-            .collect();
+        // ties in mesh order (`valid` is increasing): a total order
         order.par_sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let (sw, sh) = (self.frame.sw, self.frame.sh);
-        let mut bins: Vec<Vec<BinEntry>> = vec![Vec::new(); sh.div_ceil(BAND).max(1)];
-        for &(_, i, [x0, x1, y0, y1]) in &order {
-            let e = BinEntry { layer: i, x0, x1 };
-            let (y0, y1) = (y0 as usize, y1 as usize);
-            for b in bins.iter_mut().take(y1 / BAND + 1).skip(y0 / BAND) {
+        let nbands = sh.div_ceil(BAND).max(1);
+        let mut counts = vec![0usize; nbands];
+        for &(_, _, [_, _, y0, y1]) in &order {
+            for c in &mut counts[y0 as usize / BAND..=y1 as usize / BAND] {
+                *c += 1;
+            }
+        }
+        let mut bins: Vec<Vec<BinEntry>> = counts.iter().map(|&n| Vec::with_capacity(n)).collect();
+        for &(_, tri, [x0, x1, y0, y1]) in &order {
+            let e = BinEntry {
+                tri,
+                x0,
+                x1,
+                y0,
+                y1,
+            };
+            for b in &mut bins[y0 as usize / BAND..=y1 as usize / BAND] {
                 b.push(e);
             }
         }
@@ -1146,7 +1193,7 @@ impl Scene<'_> {
         let composited = samples
             .par_chunks_mut(BAND * sw * 4)
             .enumerate()
-            .map(|(bi, band)| self.composite_band(t, bi * BAND, band, &bins[bi], &layers))
+            .map(|(bi, band)| self.composite_band(t, bi * BAND, band, &bins[bi]))
             .sum();
         (downsample(samples, &self.frame), composited)
     }
@@ -1160,14 +1207,7 @@ impl Scene<'_> {
     /// to 8 bits once instead of after every layer. A sample stops taking layers once
     /// `T ≤ 1/512` (`SATURATED`), a triangle is skipped when every tile it touches is
     /// saturated, and the band stops when all are. Returns the samples composited.
-    fn composite_band(
-        &self,
-        t: f64,
-        y_base: usize,
-        band: &mut [u8],
-        bin: &[BinEntry],
-        layers: &[Layer],
-    ) -> u64 {
+    fn composite_band(&self, t: f64, y_base: usize, band: &mut [u8], bin: &[BinEntry]) -> u64 {
         let sw = self.frame.sw;
         let rows = band.len() / (sw * 4);
         let ntiles = sw.div_ceil(TILE);
@@ -1178,6 +1218,10 @@ impl Scene<'_> {
                 .map(|k| (rows * (sw.min((k + 1) * TILE) - k * TILE)) as u32)
                 .collect(),
             open_tiles: ntiles,
+            row_open: (0..rows * ntiles)
+                .map(|i| (sw.min((i % ntiles + 1) * TILE) - (i % ntiles) * TILE) as u8)
+                .collect(),
+            ntiles,
             opacity: (1.0 - t) as f32,
             t: t as f32,
         };
@@ -1192,8 +1236,15 @@ impl Scene<'_> {
                 if (x0 / TILE..=x1 / TILE).all(|k| buf.open[k] == 0) {
                     continue;
                 }
-                let l = &layers[e.layer as usize];
-                let tri = self.make_tri(l.tri as usize, l.cover);
+                let ti = e.tri as usize;
+                let cover = Cover {
+                    signed: self.signed_area(ti),
+                    x0: e.x0 as u32,
+                    x1: e.x1 as u32,
+                    y0: e.y0 as u32,
+                    y1: e.y1 as u32,
+                };
+                let tri = self.make_tri(ti, cover);
                 composited += self.composite_triangle(&tri, y_base, &mut buf);
             }
         }
@@ -1211,34 +1262,88 @@ impl Scene<'_> {
     }
 
     /// One triangle of [`Scene::composite_band`] over the unsaturated samples it covers.
+    ///
+    /// Which samples: per row, the samples whose [`SharedEdge`] functions are all ≥ 0 and
+    /// that [`owns_edge_samples`] gives the triangle. Each edge function, computed in floating
+    /// point, is monotone in x along a row (`C − D·(x − a)`: every operation rounds
+    /// monotonically), so these samples form one interval: its ends are found by testing from
+    /// the ends of [`row_span`] inwards, and the samples between them take no edge test (the
+    /// same samples as testing each one).
+    ///
+    /// Their colour: the colour-map parameter is the perspective-correct interpolation
+    /// `Σ wᵢ qᵢ τᵢ / Σ wᵢ qᵢ` (`wᵢ` the edge functions, `qᵢ` the corners' `1/w` over the area,
+    /// `τᵢ` the corners' parameters), whose numerator and denominator are linear along a row:
+    /// both are evaluated at the interval's first sample from its edge functions and stepped
+    /// by their x-derivatives (`N₀ + k·dN`, no running sum). This is [`Scene::blend_colour`]'s
+    /// value up to rounding (relative 1e-14), so a colour-table index (step 1/4095) differs
+    /// only for a parameter within that of a half step; a corner without a value (NaN) takes
+    /// [`Scene::blend_colour`] per sample.
     fn composite_triangle(&self, t: &Tri, y_base: usize, buf: &mut Composite) -> u64 {
         let sw = self.frame.sw;
         let [p0, p1, p2] = &t.p;
+        let edges = [(p1, p2), (p2, p0), (p0, p1)].map(|(a, b)| SharedEdge::new(a, b));
+        let w_at = |fx: f64, fy: f64| -> [f64; 3] { edges.map(|e| e.at(fx, fy)) };
+        let takes =
+            |w: [f64; 3]| !(w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0) && owns_edge_samples(t, w);
+        // the colour-map parameter along a row: corners' parameters and weights per unit w
+        let tvals = &self.colours.tvals;
+        let tv = t.ids.map(|i| tvals.get(i as usize).copied().unwrap_or(0.0));
+        let stepped = !self.lut.is_empty() && tv.iter().all(|v| v.is_finite());
+        let q = [
+            t.inv_area * p0.invw,
+            t.inv_area * p1.invw,
+            t.inv_area * p2.invw,
+        ];
+        let dw = edges.map(|e| e.dx());
+        let d_s = dw[0] * q[0] + dw[1] * q[1] + dw[2] * q[2];
+        let d_n = dw[0] * q[0] * tv[0] + dw[1] * q[1] * tv[1] + dw[2] * q[2] * tv[2];
         let ylo = t.y0.max(y_base);
         let yhi = t.y1.min(y_base + buf.rows - 1);
         let mut n = 0;
         for y in ylo..=yhi {
             let fy = y as f64 + 0.5;
             let row = (y - y_base) * sw;
-            let Some((xs, xe)) = row_span(t, fy) else {
+            let Some((xa, xb)) = row_span(t, fy) else {
                 continue;
             };
+            let rt = (y - y_base) * buf.ntiles;
+            if xa > xb
+                || buf.row_open[rt + xa / TILE..=rt + xb / TILE]
+                    .iter()
+                    .all(|&o| o == 0)
+            {
+                continue;
+            }
+            // the interval of samples the triangle takes on this row
+            let Some(xs) = (xa..=xb).find(|&x| takes(w_at(x as f64 + 0.5, fy))) else {
+                continue;
+            };
+            let xe = (xs..=xb)
+                .rev()
+                .find(|&x| takes(w_at(x as f64 + 0.5, fy)))
+                .unwrap_or(xs);
+            let w0 = w_at(xs as f64 + 0.5, fy);
+            let s0 = w0[0] * q[0] + w0[1] * q[1] + w0[2] * q[2];
+            let n0 = w0[0] * q[0] * tv[0] + w0[1] * q[1] * tv[1] + w0[2] * q[2] * tv[2];
             for x in xs..=xe {
                 let zi = row + x;
                 let tr = buf.acc[zi][3];
                 if tr <= SATURATED {
                     continue;
                 }
-                let fx = x as f64 + 0.5;
-                let w = [
-                    shared_edge(p1, p2, fx, fy),
-                    shared_edge(p2, p0, fx, fy),
-                    shared_edge(p0, p1, fx, fy),
-                ];
-                if w[0] < 0.0 || w[1] < 0.0 || w[2] < 0.0 || !owns_edge_samples(t, w) {
-                    continue;
-                }
-                let c = self.blend_colour(t, perspective_weights(t, w));
+                let c = if self.lut.is_empty() {
+                    t.face_base.map(f32::from)
+                } else {
+                    let k = (x - xs) as f64;
+                    let tt = (n0 + k * d_n) / (s0 + k * d_s);
+                    if stepped && tt.is_finite() {
+                        let i = (tt.clamp(0.0, 1.0) * (LUT - 1) as f64 + 0.5) as usize;
+                        self.lut[i.min(LUT - 1)]
+                    } else {
+                        let w = w_at(x as f64 + 0.5, fy);
+                        self.blend_colour(t, perspective_weights(t, w))
+                    }
+                };
                 let k = tr * buf.opacity;
                 let nt = tr * buf.t;
                 let a = &mut buf.acc[zi];
@@ -1249,6 +1354,7 @@ impl Scene<'_> {
                 n += 1;
                 if nt <= SATURATED {
                     let tile = x / TILE;
+                    buf.row_open[rt + tile] -= 1;
                     buf.open[tile] -= 1;
                     if buf.open[tile] == 0 {
                         buf.open_tiles -= 1;

@@ -218,6 +218,11 @@ pub fn grid_planes_mesh(vol: &Volume, stride: [usize; 3]) -> Result<TriMesh, Ren
     let mut positions = Vec::new();
     let mut values = Vec::new();
     let mut triangles = Vec::with_capacity(total);
+    // A grid point on planes of several families is one vertex (a third of the vertices for
+    // stride 1), through a table over the grid when it is not much larger than the mesh;
+    // otherwise each plane has its own vertices. The triangles are the same either way.
+    let shared = vol.len() <= total.saturating_mul(4);
+    let mut vertex_of = vec![u32::MAX; if shared { vol.len() } else { 0 }];
     for a in 0..3 {
         // In-plane axes (u, w) cyclic after a, so that u × w points along +a.
         let (u, w) = ((a + 1) % 3, (a + 2) % 3);
@@ -226,22 +231,32 @@ pub fn grid_planes_mesh(vol: &Volume, stride: [usize; 3]) -> Result<TriMesh, Ren
             continue;
         }
         for c in planes(a) {
-            let base = positions.len() as u32;
+            let mut ids = Vec::with_capacity(nu * nw);
             for j in 0..nw {
                 for i in 0..nu {
                     let mut g = [0usize; 3];
                     g[a] = c;
                     g[u] = i;
                     g[w] = j;
+                    let gi = vol.index(g[0], g[1], g[2]);
+                    if shared && vertex_of[gi] != u32::MAX {
+                        ids.push(vertex_of[gi]);
+                        continue;
+                    }
+                    let id = positions.len() as u32;
                     positions.push(Point3::new(
                         vol.coord(0, g[0]),
                         vol.coord(1, g[1]),
                         vol.coord(2, g[2]),
                     ));
-                    values.push(vol.at(g[0], g[1], g[2]) as f64);
+                    values.push(vol.data[gi] as f64);
+                    if shared {
+                        vertex_of[gi] = id;
+                    }
+                    ids.push(id);
                 }
             }
-            let id = |i: usize, j: usize| base + (j * nu + i) as u32;
+            let id = |i: usize, j: usize| ids[j * nu + i];
             for j in 0..nw - 1 {
                 for i in 0..nu - 1 {
                     triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
@@ -327,6 +342,9 @@ mod tests {
         for (p, f) in m.positions.iter().zip(val) {
             assert!((p.x + 10.0 * p.y + 100.0 * p.z - f).abs() < 1e-3);
         }
+        // Grid points shared by the three families are one vertex each: every grid point of
+        // this 4×3×5 grid lies on a plane, so there are 60 vertices.
+        assert_eq!(m.positions.len(), 60);
         // Stride 2 along z: planes 0, 2, 4.
         let m2 = grid_planes_mesh(&v, [100, 100, 2]).unwrap();
         assert_eq!(m2.triangles.len(), 2 * (2 * 8 + 2 * 12 + 3 * 6));

@@ -10,7 +10,9 @@
 //!
 //! Layers: meshes (shaded, per-vertex colour maps from PLY properties such as `H`, `K`),
 //! point sets (first columns as properties), 2D shapes (polygons and polylines as lines at
-//! z = 0). Volumes are shown by the CLI as their contour surface (a mesh layer).
+//! z = 0), volumes ([`Layer::volume`], [`VolumeLayer`]: three movable orthogonal slices with a
+//! colour map of the sample values, drawn by `slices.js` with `slice.vert`/`slice.frag`; the
+//! CLI adds the volume's contour surface as a mesh layer, hidden until ticked).
 //! A mesh with more than [`Page::lod`] triangles also carries an interaction proxy of about that
 //! many triangles ([`cluster_proxy`], vertex clustering, computed here at page-generation time,
 //! indices as `u16` when they fit): the page draws the proxy, at half resolution, while the
@@ -43,7 +45,11 @@ use crate::mesh::{PointSet, Shapes2, TriMesh};
 use serde_json::{json, Value};
 
 mod lod;
+mod volume;
 pub use lod::{cluster_proxy, Proxy};
+pub use volume::{
+    quantize_samples, Quantized, VolumeLayer, DEFAULT_MAX_SAMPLES, MAX_AXIS, NAN_CODE,
+};
 
 /// The default size of a mesh's interaction proxy (triangles). Measured with SwiftShader on two
 /// cores at load average ≈ 8 (`bench/viewer_fps.py`, 1024×768, the proxy drawn at half
@@ -55,11 +61,17 @@ pub const DEFAULT_LOD: usize = 10_000;
 pub struct Layer {
     /// Name shown in the panel.
     pub name: String,
-    /// `mesh`, `points` or `lines`.
+    /// `mesh`, `points`, `lines` or `volume`.
     kind: &'static str,
     positions: Vec<[f64; 3]>,
     indices: Vec<u32>,
     props: Vec<(String, Vec<f64>)>,
+    /// The samples of a `volume` layer.
+    volume: Option<Box<VolumeLayer>>,
+    /// Sentences shown under the layer's name in the panel.
+    pub notes: Vec<String>,
+    /// Drawn only once ticked in the panel.
+    pub hidden: bool,
 }
 
 impl Layer {
@@ -75,6 +87,35 @@ impl Layer {
                 .iter()
                 .map(|p| (p.name.clone(), p.values.clone()))
                 .collect(),
+            volume: None,
+            notes: Vec::new(),
+            hidden: false,
+        }
+    }
+    /// A volume, drawn as three movable orthogonal slices (see [`VolumeLayer`]); its notes
+    /// become the layer's.
+    pub fn volume(name: &str, v: VolumeLayer) -> Layer {
+        let mut positions = Vec::with_capacity(8);
+        for k in 0..8 {
+            let p: [f64; 3] = std::array::from_fn(|a| {
+                let c = &v.coords[a];
+                if k >> a & 1 == 1 {
+                    c[c.len() - 1]
+                } else {
+                    c[0]
+                }
+            });
+            positions.push(v.to_world(p));
+        }
+        Layer {
+            name: name.into(),
+            kind: "volume",
+            positions,
+            indices: Vec::new(),
+            props: Vec::new(),
+            notes: v.notes.clone(),
+            volume: Some(Box::new(v)),
+            hidden: false,
         }
     }
     /// A 2D or 3D point set with its columns.
@@ -101,6 +142,9 @@ impl Layer {
                 .iter()
                 .map(|c| (c.name.clone(), c.values.clone()))
                 .collect(),
+            volume: None,
+            notes: Vec::new(),
+            hidden: false,
         }
     }
     /// 2D polygons and polylines, as line segments at z = 0.
@@ -132,6 +176,9 @@ impl Layer {
             positions,
             indices,
             props: Vec::new(),
+            volume: None,
+            notes: Vec::new(),
+            hidden: false,
         }
     }
     /// True when the layer has nothing to draw.
@@ -246,7 +293,14 @@ fn encode(l: &Layer, lod: usize, blobs: &mut Vec<String>) -> Value {
         blobs.len() - 1
     };
     let pos = push(&quantize(&l.positions, &lo, &ext));
-    let mut d = json!({"kind": l.kind, "name": l.name, "min": lo, "ext": ext, "pos": pos});
+    let mut d = json!({"kind": l.kind, "name": l.name, "min": lo, "ext": ext, "pos": pos,
+        "notes": l.notes, "hidden": l.hidden});
+    if let Some(v) = &l.volume {
+        let q = &v.quantized;
+        d["volume"] = json!({"dims": v.dims, "coords": v.coords, "directions": v.directions,
+            "pivot": v.pivot, "bits": q.bits, "lo": q.lo, "step": q.step,
+            "range": [v.range.0, v.range.1], "stride": v.stride, "data": push(&q.bytes)});
+    }
     if !l.indices.is_empty() {
         let b: Vec<u8> = l.indices.iter().flat_map(|i| i.to_le_bytes()).collect();
         d["idx"] = json!(push(&b));
@@ -295,10 +349,22 @@ pub fn page_html(page: &Page) -> String {
         .layers
         .iter()
         .all(|l| l.positions.iter().all(|p| p[2] == 0.0));
-    let scene = json!({"layers": layers, "flat": flat})
+    let cmaps: serde_json::Map<String, Value> = [
+        crate::render::Colormap::Viridis,
+        crate::render::Colormap::Greys,
+        crate::render::Colormap::Coolwarm,
+    ]
+    .iter()
+    .map(|m| {
+        let lut: Vec<u8> = (0..256).flat_map(|i| m.color(i as f64 / 255.0)).collect();
+        (m.name().to_string(), json!(lut))
+    })
+    .collect();
+    let scene = json!({"layers": layers, "flat": flat, "cmaps": cmaps})
         .to_string()
         .replace("</", "<\\/");
-    let shaders = json!({"vert": include_str!("mesh.vert"), "frag": include_str!("mesh.frag")});
+    let shaders = json!({"vert": include_str!("mesh.vert"), "frag": include_str!("mesh.frag"),
+        "svert": include_str!("slice.vert"), "sfrag": include_str!("slice.frag")});
     let mut rows = Vec::new();
     if let Some(f) = &page.figures {
         figure_rows(f, "", &mut rows);
@@ -331,6 +397,7 @@ background:rgba(255,255,255,.85);padding:8px;border:1px solid #ccc}#legend{margi
     h.push_str("<script>const SHADERS = ");
     h.push_str(&shaders.to_string().replace("</", "<\\/"));
     h.push_str(";\n");
+    h.push_str(include_str!("slices.js"));
     h.push_str(include_str!("viewer.js"));
     h.push_str("</script></body></html>\n");
     h

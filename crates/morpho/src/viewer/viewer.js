@@ -42,6 +42,7 @@
     return p;
   }
   const P = prog(SHADERS.vert, SHADERS.frag);
+  const SP = prog(SHADERS.svert, SHADERS.sfrag);
   const U = {};
   for (const n of ["uMVP", "uOff", "uScl", "uEye", "uColor", "uMode", "uRange", "uLit", "uPS"]) U[n] = gl.getUniformLocation(P, n);
   // colour map: blue - white - red for signed values, viridis-like ramp otherwise
@@ -89,6 +90,12 @@
   for (const L of scene.layers) {
     const q = new Uint16Array(blob(L.pos).buffer);
     for (let k = 0; k < 3; k++) { lo[k] = Math.min(lo[k], L.min[k]); hi[k] = Math.max(hi[k], L.min[k] + L.ext[k]); }
+    if (L.kind === "volume") {
+      // a volume: three movable slices (slices.js)
+      const vol = morphoVolume(gl, L.volume, blob(L.volume.data), scene.cmaps, SP);
+      layers.push({ L, vol, pos: null, idx: null, props: [], full: null, proxy: null, n: 0, prop: -1, visible: !L.hidden });
+      continue;
+    }
     const idx = L.idx !== undefined ? new Uint32Array(blob(L.idx).buffer) : null;
     const props = (L.props || []).map((p) => ({ name: p.name, min: p.min, max: p.max, v: new Float32Array(blob(p.blob).buffer) }));
     const full = geometry(L, q, idx, props.length ? props[0].v : null, L.kind === "mesh");
@@ -99,7 +106,7 @@
       proxy = geometry(L, new Uint16Array(blob(L.lod.pos).buffer), pi, pv.length ? pv[0] : null, true);
       proxy.vals = pv;
     }
-    layers.push({ L, pos: full.pos, idx, props, full, proxy, n: full.n, prop: props.length ? 0 : -1, visible: true });
+    layers.push({ L, pos: full.pos, idx, props, full, proxy, n: full.n, prop: props.length ? 0 : -1, visible: !L.hidden });
   }
   const cam = { az: 0.5, el: 0.35, dist: 1, target: [0, 0, 0] };
   const diag = Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
@@ -120,7 +127,9 @@
     }
     return { M, e, r, up, f };
   }
+  let lastM = null;
   function setup(m, w, h) {
+    lastM = m.M;
     gl.viewport(0, 0, w, h);
     gl.clearColor(0.96, 0.96, 0.96, 1); gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
     gl.enable(gl.DEPTH_TEST); gl.useProgram(P);
@@ -128,6 +137,7 @@
   }
   // draws triangles [t0, t1) of the layer's geometry g (all of a non-mesh layer)
   function drawLayer(l, g, t0, t1) {
+    if (l.vol) { l.vol.draw(lastM); gl.useProgram(P); return; }
     gl.bindVertexArray(g.vao);
     gl.uniform3fv(U.uOff, l.L.min); gl.uniform3fv(U.uScl, l.L.ext); gl.uniform3fv(U.uColor, [0.8, 0.75, 0.6]);
     const p = l.prop >= 0 ? l.props[l.prop] : null;
@@ -198,16 +208,29 @@
     clearTimeout(idle); idle = setTimeout(rest, 250);
   }
   function legend() {
-    const l = layers.find((l) => l.prop >= 0), el = document.getElementById("legend");
-    if (!l) { el.style.display = "none"; return; }
-    const p = l.props[l.prop], s = p.min < 0 && p.max > 0, mm = Math.max(-p.min, p.max);
-    const a = s ? -mm : p.min, b = s ? mm : p.max, stops = [];
-    for (let i = 0; i <= 8; i++) stops.push("rgb(" + cmap(i / 8, s).map((x) => Math.round(255 * Math.min(1, Math.max(0, x)))).join(",") + ")");
-    el.innerHTML = "<b>" + p.name + "</b><div style='height:12px;background:linear-gradient(to right," + stops.join(",") + ")'></div><span>" + a.toPrecision(3) + "</span><span style='float:right'>" + b.toPrecision(3) + "</span>";
+    const l = layers.find((l) => l.prop >= 0 && l.visible), el = document.getElementById("legend");
+    const bar = (name, stops, a, b) => "<b>" + name + "</b><div style='height:12px;background:linear-gradient(to right," + stops.join(",") + ")'></div><span>" + a.toPrecision(4) + "</span><span style='float:right'>" + b.toPrecision(4) + "</span><div style='clear:both'></div>";
+    let html = "";
+    if (l) {
+      const p = l.props[l.prop], s = p.min < 0 && p.max > 0, mm = Math.max(-p.min, p.max);
+      const a = s ? -mm : p.min, b = s ? mm : p.max, stops = [];
+      for (let i = 0; i <= 8; i++) stops.push("rgb(" + cmap(i / 8, s).map((x) => Math.round(255 * Math.min(1, Math.max(0, x)))).join(",") + ")");
+      html += bar(p.name, stops, a, b);
+    }
+    // volumes: the slices' colour map over the value range (data units)
+    for (const v of layers) {
+      if (!v.vol || !v.visible) continue;
+      const t = scene.cmaps[v.vol.cmap], stops = [];
+      for (let i = 0; i <= 16; i++) { const k = 3 * Math.round(i * 255 / 16); stops.push("rgb(" + t[k] + "," + t[k + 1] + "," + t[k + 2] + ")"); }
+      html += bar(v.L.name + " (value)", stops, v.vol.range[0], v.vol.range[1]);
+    }
+    el.style.display = html ? "" : "none";
+    el.innerHTML = html;
   }
   // the colour-map shader uses the same ramp as the legend (uploaded as a uniform-free formula)
   function pixels() { const w = canvas.width, h = canvas.height, px = new Uint8Array(4 * w * h); gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px); return px; }
-  function stats(px) { let fg = 0, s = 0; for (let i = 0; i < px.length; i += 4) { if (Math.abs(px[i] - 245) > 6 || Math.abs(px[i + 2] - 245) > 6) fg++; s += px[i]; } return { foreground: fg / (px.length / 4), mean: s / (px.length / 4) }; }
+  // foreground: the share of pixels off the background; colours: distinct colours (4 bits a channel)
+  function stats(px) { let fg = 0, s = 0; const seen = new Set(); for (let i = 0; i < px.length; i += 4) { if (Math.abs(px[i] - 245) > 6 || Math.abs(px[i + 2] - 245) > 6) fg++; s += px[i]; seen.add((px[i] >> 4) << 8 | (px[i + 1] >> 4) << 4 | px[i + 2] >> 4); } return { foreground: fg / (px.length / 4), mean: s / (px.length / 4), colours: seen.size }; }
   function pick(cx, cy) {
     const m = mvp(), a = W / H, t = Math.tan(0.35);
     const dx = (2 * cx / W - 1) * t * a, dy = (1 - 2 * cy / H) * t;
@@ -228,7 +251,18 @@
         if (tt > 0 && tt < best.t) { const w = [1 - u - v, u, v], k = w.indexOf(Math.max(...w)); best = { t: tt, layer: li, vertex: I[i + k] }; }
       }
     });
+    // slices of volumes: the nearest hit along the same ray wins
+    layers.forEach((l, li) => {
+      if (!l.visible || !l.vol) return;
+      const h = l.vol.pick(o, d);
+      if (h && h.t < best.t) best = { t: h.t, layer: li, slice: h };
+    });
     if (best.layer === undefined) return null;
+    if (best.slice) {
+      const h = best.slice, out = { layer: best.layer, slice: h.slice, index: h.index, point: h.point, fractional: h.fractional, value: h.value, sample: h.sample };
+      document.getElementById("pick").textContent = "xyz"[h.slice] + " slice " + h.index + " at (" + h.point.map((x) => x.toPrecision(4)).join(", ") + "): value " + h.value.toPrecision(5) + " (nearest sample " + JSON.stringify(h.sample.index) + ": " + h.sample.value.toPrecision(5) + ")";
+      return out;
+    }
     const l = layers[best.layer], out = { layer: best.layer, vertex: best.vertex, values: {} };
     for (const p of l.props) out.values[p.name] = p.v[best.vertex];
     document.getElementById("pick").textContent = "vertex " + best.vertex + " " + JSON.stringify(out.values);
@@ -248,7 +282,7 @@
   // panel: layers, colour property, figures
   const panel = document.getElementById("layers");
   layers.forEach((l) => {
-    const d = document.createElement("div"), cb = document.createElement("input"); cb.type = "checkbox"; cb.checked = true;
+    const d = document.createElement("div"), cb = document.createElement("input"); cb.type = "checkbox"; cb.checked = l.visible;
     cb.onchange = () => { l.visible = cb.checked; legend(); moved(); }; d.append(cb, " " + l.L.name + " ");
     if (l.props.length) {
       const s = document.createElement("select");
@@ -264,6 +298,24 @@
       };
       d.append(s);
     }
+    if (l.vol) {
+      // the three slices: a slider each (grid plane index), and the colour map
+      const v = l.vol, V = l.L.volume;
+      for (let a = 0; a < 3; a++) {
+        const row = document.createElement("div"), r = document.createElement("input"), lab = document.createElement("span");
+        r.type = "range"; r.min = 0; r.max = V.dims[a] - 1; r.step = 1; r.value = v.index[a]; r.id = "slice" + a; r.style.width = "120px";
+        const show = () => { lab.textContent = " " + "xyz"[a] + " = " + v.position(a).toPrecision(4) + " (" + v.index[a] + ")"; };
+        r.oninput = () => { v.set(a, +r.value); show(); moved(); };
+        show(); row.append(r, lab); d.append(row);
+        l["slider" + a] = { r, show };
+      }
+      const s = document.createElement("select");
+      s.innerHTML = Object.keys(scene.cmaps).map((k) => "<option>" + k + "</option>").join("");
+      s.value = v.cmap;
+      s.onchange = () => { v.setMap(s.value); legend(); moved(); };
+      d.append("colours ", s);
+    }
+    for (const t of l.L.notes || []) { const e = document.createElement("div"); e.style.color = "#a40"; e.textContent = "note: " + t; d.append(e); }
     panel.append(d);
   });
   // first frame: the proxies (fast), then the full meshes chunk by chunk
@@ -318,6 +370,16 @@
       }
       // frames drawn back to back, each waited for (readPixels of one pixel)
       if (what === "bench") { const N = +arg || 30, t0 = performance.now(); for (let i = 0; i < N; i++) { cam.az += 0.05; frame(true); pixels.one(); } res.fps = N / ((performance.now() - t0) / 1000); }
+      // volumes: move slice A of the first volume to grid plane I (and measure what changed),
+      // pick at the fraction (X, Y) of the canvas, show or hide layer N
+      if (what === "slice") {
+        const [, a, i] = step.split(":"), l = layers.find((l) => l.vol);
+        draw(); const pa = pixels(); l.vol.set(+a, +i); draw(); const pb = pixels();
+        let ch = 0; for (let k = 0; k < pa.length; k += 4) if (pa[k] !== pb[k] || pa[k + 1] !== pb[k + 1] || pa[k + 2] !== pb[k + 2]) ch++;
+        (res.slices = res.slices || []).push({ axis: +a, index: l.vol.index[+a], position: l.vol.position(+a), changed: ch / (pa.length / 4), stats: stats(pb) });
+      }
+      if (what === "vpick") { const [, x, y] = step.split(":"); draw(); (res.vpick = res.vpick || []).push(pick(+x * W, +y * H)); }
+      if (what === "show" || what === "hide") { layers[+arg].visible = what === "show"; draw(); res.stats = stats(pixels()); }
       if (what === "full") { if (fullAt === null) await new Promise((w) => waiters.push(w)); res.full_ms = fullAt; res.full_stats = stats(pixels()); }
       if (what === "fps") res.orbit = await orbitFps(+arg || 3, true, MOVING_SCALE);
       if (what === "fpsfullres") res.orbit_fullres = await orbitFps(+arg || 3, true, 1);
