@@ -61,11 +61,11 @@
 use super::corona::{centroid, half_plane_2d, origin_of, ring_of, Frame, Origin, Ring, Scratch};
 use super::error::ReduceError;
 use super::heap::WeightHeap;
-use super::point::{bivariate_point, implicit_point, NewPoint};
-use super::retri::{fan, improve};
+use super::point::{bivariate_point, implicit_point, Fitted, NewPoint};
+use super::retri::{fan, improve, Flips};
 use super::state::State;
 use super::track::Tracker;
-use super::weight::{angle_weight, triangle_weight};
+use super::weight::triangle_weight;
 use crate::curvature::{surface_curvature, NormalSource, SurfaceOptions};
 use crate::geom::grid::BoxGrid;
 use crate::geom::intersect::{degenerate_triangle, triangles_meet_beyond_shared};
@@ -196,9 +196,25 @@ pub struct Reduced {
     pub max_error: Option<f64>,
 }
 
-/// A removal ready to apply.
-struct Plan {
+/// What every plan of one triangle's removal shares, whatever the new point: the ring, the
+/// frame, the origin and the fit (computed once per triangle and reused for the corner
+/// alternatives of [`Order::ErrorLevels`]).
+struct Prep {
+    /// The triangle removed.
+    t: u32,
     ring: Ring,
+    ap: [[f64; 3]; 3],
+    f0: Frame,
+    /// The ring in the frame's plane coordinates.
+    ring2: Vec<[f64; 2]>,
+    fit: Fitted,
+    origin: [f64; 3],
+    /// The farthest platelet point from the origin (the fit's reach).
+    reach: f64,
+}
+
+/// A removal ready to apply (with the [`Prep`] it was made from).
+struct Plan {
     p: [f64; 3],
     abs_curv: f64,
     /// New triangles in local indices (0 = p, 1 + j = ring vertex j).
@@ -222,6 +238,12 @@ struct Engine<'o> {
     opts: &'o ReduceOptions,
     removals: u32,
     buf: Vec<u32>,
+    /// Scratch of [`Engine::finish`] and [`Engine::embedded`] (reused: no allocation per plan).
+    flips: Flips,
+    p2s: Vec<[f64; 2]>,
+    p3s: Vec<[f64; 3]>,
+    xys: Vec<[f64; 2]>,
+    cand: Vec<u32>,
     /// [`Order::ErrorLevels`]: the current error bound ε.
     eps: f64,
     /// Triangles whose removal would exceed ε, keyed by that error.
@@ -286,30 +308,32 @@ pub fn reduce(mesh: &TriMesh, opts: &ReduceOptions) -> Result<Reduced, ReduceErr
     let mut tracker =
         (tolerance || height || levels).then(|| Tracker::new(pos, &mesh.triangles, height));
     let mut e = Engine::new(s, curv, opts);
+    let mut corners: Vec<[[f64; 3]; 3]> = Vec::new();
     let stop = loop {
         if !tolerance && e.s.live_tris <= target {
             break StopReason::Target;
         }
-        let Some(mut plan) = e.next_plan() else {
+        let Some((prep, mut plan)) = e.next_plan() else {
             if levels && e.next_level() {
                 continue;
             }
             break StopReason::NoRemovable;
         };
-        let t = plan.ring.removed[0];
+        let t = prep.t;
         // the tracker's last evaluation, while it is that of `plan` (then not repeated)
         let mut evaluated = None;
         if let (true, Some(tr)) = (levels, tracker.as_mut()) {
             // the fitted point, or a corner of the triangle if that moves the input's
             // vertices less (creases and corners stay where the fit would round them)
-            evaluated = Some(tr.evaluate(&plan.ring.removed, &e.new_corners(&plan)));
+            e.new_corners(&prep, &plan, &mut corners);
+            evaluated = Some(tr.evaluate(&prep.ring.removed, &corners));
             let mut best = tr.last_local_max();
             if best > e.eps {
                 for k in 0..3 {
-                    if let Some(alt) = e.plan_with(t, Some(k)) {
+                    if let Some(alt) = e.finish(&prep, Some(k)) {
                         // (a corner worse than the best so far is abandoned early)
-                        let new = e.new_corners(&alt);
-                        let ev = tr.evaluate_within(&alt.ring.removed, &new, best);
+                        e.new_corners(&prep, &alt, &mut corners);
+                        let ev = tr.evaluate_within(&prep.ring.removed, &corners, best);
                         evaluated = None;
                         if ev.is_some() && tr.last_local_max() < best {
                             best = tr.last_local_max();
@@ -325,12 +349,14 @@ pub fn reduce(mesh: &TriMesh, opts: &ReduceOptions) -> Result<Reduced, ReduceErr
             }
         }
         let eval = tracker.as_mut().map(|tr| {
-            let ev =
-                evaluated.unwrap_or_else(|| tr.evaluate(&plan.ring.removed, &e.new_corners(&plan)));
+            let ev = evaluated.unwrap_or_else(|| {
+                e.new_corners(&prep, &plan, &mut corners);
+                tr.evaluate(&prep.ring.removed, &corners)
+            });
             (ev, tr)
         });
         // the costliest test last: no self-intersection (exact, against nearby triangles)
-        if !e.embedded(&plan, e.s.tri[t as usize][0]) {
+        if !e.embedded(&prep, &plan, e.s.tri[t as usize][0]) {
             e.parked[t as usize] = true;
             continue;
         }
@@ -342,9 +368,9 @@ pub fn reduce(mesh: &TriMesh, opts: &ReduceOptions) -> Result<Reduced, ReduceErr
         if over {
             break StopReason::Tolerance;
         }
-        let slots = e.apply(&plan);
+        let slots = e.apply(&prep, &plan);
         if let Some(((sse, mx), tr)) = eval {
-            tr.commit(&plan.ring.removed, &slots, sse, mx);
+            tr.commit(&prep.ring.removed, &slots, sse, mx);
         }
     };
     let (p, tris, map) = e.s.compact();
@@ -429,6 +455,11 @@ impl<'o> Engine<'o> {
             opts,
             removals: 0,
             buf: Vec::new(),
+            flips: Flips::default(),
+            p2s: Vec::new(),
+            p3s: Vec::new(),
+            xys: Vec::new(),
+            cand: Vec::new(),
             eps: 0.0,
             over: WeightHeap::default(),
             waiting: vec![false; nt],
@@ -471,24 +502,27 @@ impl<'o> Engine<'o> {
         triangle_weight(tr.map(|v| self.s.p(v)), tr.map(|v| self.curv[v as usize]))
     }
 
-    fn local_pos(&self, plan: &Plan, i: usize) -> [f64; 3] {
+    fn local_pos(&self, prep: &Prep, plan: &Plan, i: usize) -> [f64; 3] {
         if i == 0 {
             plan.p
         } else {
-            self.s.p(plan.ring.verts[i - 1])
+            self.s.p(prep.ring.verts[i - 1])
         }
     }
 
     /// The next removal of Alg. 5.1: the removable old triangle of least weight; when there
     /// is none, every new triangle becomes old (Rem. 5.9) and the search repeats.
-    fn next_plan(&mut self) -> Option<Plan> {
+    fn next_plan(&mut self) -> Option<(Prep, Plan)> {
         loop {
             while let Some((t, _)) = self.heap.pop() {
                 if !self.s.alive[t as usize] {
                     continue;
                 }
-                match self.plan(t) {
-                    Some(p) => return Some(p),
+                match self
+                    .prepare(t)
+                    .and_then(|prep| Some((self.finish(&prep, None)?, prep)))
+                {
+                    Some((plan, prep)) => return Some((prep, plan)),
                     None => self.parked[t as usize] = true,
                 }
             }
@@ -557,22 +591,19 @@ impl<'o> Engine<'o> {
         }
     }
 
-    /// Decides whether `t` is removable and builds its re-triangulation.
-    fn plan(&mut self, t: u32) -> Option<Plan> {
-        self.plan_with(t, None)
+    /// The corners of a plan's new triangles, into `out`.
+    fn new_corners(&self, prep: &Prep, plan: &Plan, out: &mut Vec<[[f64; 3]; 3]>) {
+        out.clear();
+        out.extend(
+            plan.tris
+                .iter()
+                .map(|t| t.map(|i| self.local_pos(prep, plan, i))),
+        );
     }
 
-    /// The corners of a plan's new triangles.
-    fn new_corners(&self, plan: &Plan) -> Vec<[[f64; 3]; 3]> {
-        plan.tris
-            .iter()
-            .map(|t| t.map(|i| self.local_pos(plan, i)))
-            .collect()
-    }
-
-    /// [`Engine::plan`] with the new point fitted (`corner` `None`) or put at a corner of the
-    /// triangle ([`Order::ErrorLevels`] compares them).
-    fn plan_with(&mut self, t: u32, corner: Option<usize>) -> Option<Plan> {
+    /// The part of a plan that does not depend on the new point: the ring and its
+    /// removability (corona, frozen boundary, half-plane test), the origin and the fit.
+    fn prepare(&mut self, t: u32) -> Option<Prep> {
         let mut ring = Ring::default();
         let class = ring_of(&self.s, t, &mut self.sc, &mut ring)?;
         if !class.admits_removal() || (self.opts.freeze_boundary && ring.any_boundary) {
@@ -582,11 +613,8 @@ impl<'o> Engine<'o> {
         let ap = a.map(|v| self.s.p(v));
         let cen = centroid(ap);
         let f0 = Frame::of(ap, cen)?;
-        let m = ring.verts.len();
-        let mut p2: Vec<[f64; 2]> = Vec::with_capacity(m + 1);
-        p2.push([0.0, 0.0]);
-        p2.extend(ring.verts.iter().map(|&v| f0.uv(self.s.p(v))));
-        if !half_plane_2d(&p2[1..], [0.0, 0.0], ring.closed) {
+        let ring2: Vec<[f64; 2]> = ring.verts.iter().map(|&v| f0.uv(self.s.p(v))).collect();
+        if !half_plane_2d(&ring2, [0.0, 0.0], ring.closed) {
             return None;
         }
         let height = self.opts.domain == Domain::HeightField;
@@ -598,7 +626,9 @@ impl<'o> Engine<'o> {
             Origin::Vertex(v) => self.s.p(v),
             Origin::Midpoint(u, v) => midpoint(self.s.p(u), self.s.p(v)),
         };
-        let mut pts: Vec<[f64; 3]> = ap.to_vec();
+        let mut pts = std::mem::take(&mut self.p3s);
+        pts.clear();
+        pts.extend_from_slice(&ap);
         pts.extend(ring.verts.iter().map(|&v| self.s.p(v)));
         let fallback = a.iter().map(|&v| self.curv[v as usize]).sum::<f64>() / 3.0;
         let fit = if height && !ring.closed {
@@ -618,57 +648,81 @@ impl<'o> Engine<'o> {
                 NewPoint::Bivariate => bivariate_point(&f, &pts, fallback),
             }
         };
+        let reach = pts.iter().map(|&q| dist(q, origin)).fold(0.0f64, f64::max);
+        self.p3s = pts;
+        Some(Prep {
+            t,
+            ring,
+            ap,
+            f0,
+            ring2,
+            fit,
+            origin,
+            reach,
+        })
+    }
+
+    /// The plan of a prepared removal with the new point fitted (`corner` `None`) or put at
+    /// a corner of the triangle ([`Order::ErrorLevels`] compares them): the fan, its swaps
+    /// and the tests of the new triangles.
+    fn finish(&mut self, prep: &Prep, corner: Option<usize>) -> Option<Plan> {
+        let ring = &prep.ring;
+        let t = prep.t;
         let (p, abs_curv) = match corner {
-            Some(k) => (ap[k], self.curv[a[k] as usize]),
-            None => (fit.p, fit.abs_curv),
+            Some(k) => (prep.ap[k], self.curv[self.s.tri[t as usize][k] as usize]),
+            None => (prep.fit.p, prep.fit.abs_curv),
         };
         // an ill-conditioned fit (a platelet folded over a crease projects to a sliver of
         // its plane) can extrapolate far beyond the data: a point farther from the origin
         // than every platelet point is not determined by them, and the triangle waits
-        let reach = pts.iter().map(|&q| dist(q, origin)).fold(0.0f64, f64::max);
-        if !p.iter().all(|x| x.is_finite()) || dist(p, origin) > reach {
+        if !p.iter().all(|x| x.is_finite()) || dist(p, prep.origin) > prep.reach {
             return None;
         }
-        p2[0] = f0.uv(p);
-        let xy: Option<Vec<[f64; 2]>> = height.then(|| {
-            std::iter::once([p[0], p[1]])
-                .chain(ring.verts.iter().map(|&v| {
-                    let q = self.s.p(v);
-                    [q[0], q[1]]
-                }))
-                .collect()
-        });
-        if height && !ring.closed && !self.domain_kept(&ring, p) {
-            return None;
+        let height = self.opts.domain == Domain::HeightField;
+        let m = ring.verts.len();
+        let mut p2 = std::mem::take(&mut self.p2s);
+        p2.clear();
+        p2.push(prep.f0.uv(p));
+        p2.extend_from_slice(&prep.ring2);
+        let mut xy = std::mem::take(&mut self.xys);
+        xy.clear();
+        if height {
+            xy.push([p[0], p[1]]);
+            xy.extend(ring.verts.iter().map(|&v| {
+                let q = self.s.p(v);
+                [q[0], q[1]]
+            }));
         }
-        let mut tris = Vec::new();
-        fan(m, ring.closed, &mut tris);
-        let mut p3: Vec<[f64; 3]> = vec![p];
+        let mut p3 = std::mem::take(&mut self.p3s);
+        p3.clear();
+        p3.push(p);
         p3.extend(ring.verts.iter().map(|&v| self.s.p(v)));
-        {
-            let (s, verts, buf) = (&self.s, &ring.verts, &mut self.buf);
-            improve(&mut tris, &p3, &p2, xy.as_deref(), |i, j| {
-                s.has_edge(verts[i - 1], verts[j - 1], buf)
-            });
-        }
-        for tr in &tris {
-            let [x, y, z] = *tr;
-            if orient2d(p2[x], p2[y], p2[z]) <= 0.0
-                || xy
-                    .as_ref()
-                    .is_some_and(|c| orient2d(c[x], c[y], c[z]) <= 0.0)
-                || degenerate_triangle(p3[x], p3[y], p3[z])
-                || angle_weight(p3[x], p3[y], p3[z]) <= 1e-6
-            {
-                return None;
-            }
-        }
-        Some(Plan {
-            ring,
-            p,
-            abs_curv,
-            tris,
-        })
+        let mut tris = Vec::new();
+        let ok = (!height || ring.closed || self.domain_kept(ring, p)) && {
+            fan(m, ring.closed, &mut tris);
+            let xyo = height.then_some(xy.as_slice());
+            let (s, verts, buf, flips) = (&self.s, &ring.verts, &mut self.buf, &mut self.flips);
+            improve(
+                &mut tris,
+                &p3,
+                &p2,
+                xyo,
+                |i, j| s.has_edge(verts[i - 1], verts[j - 1], buf),
+                flips,
+            );
+            // (the angle weights of the final triangles are improve's, same corners in the
+            // same order)
+            tris.iter().zip(flips.weights()).all(|(&[x, y, z], &w)| {
+                !(orient2d(p2[x], p2[y], p2[z]) <= 0.0
+                    || xyo.is_some_and(|c| orient2d(c[x], c[y], c[z]) <= 0.0)
+                    || degenerate_triangle(p3[x], p3[y], p3[z])
+                    || w <= 1e-6)
+            })
+        };
+        self.p2s = p2;
+        self.xys = xy;
+        self.p3s = p3;
+        ok.then_some(Plan { p, abs_curv, tris })
     }
 
     /// Height fields, open corona: the boundary polyline `e → chain… → s` through the removed
@@ -693,44 +747,42 @@ impl<'o> Engine<'o> {
     }
 
     /// No new triangle meets a triangle outside the platelet beyond shared vertices/edges.
-    fn embedded(&mut self, plan: &Plan, pid: u32) -> bool {
+    fn embedded(&mut self, prep: &Prep, plan: &Plan, pid: u32) -> bool {
         let Some(grid) = &self.grid else {
             return true;
         };
-        let ids = |i: usize| {
-            if i == 0 {
-                pid
-            } else {
-                plan.ring.verts[i - 1]
-            }
-        };
-        let mut cand = Vec::new();
-        for tr in &plan.tris {
+        let ring = &prep.ring;
+        let ids = |i: usize| if i == 0 { pid } else { ring.verts[i - 1] };
+        let mut cand = std::mem::take(&mut self.cand);
+        let mut ok = true;
+        'tris: for tr in &plan.tris {
             let ti = tr.map(ids);
-            let tp = tr.map(|i| self.local_pos(plan, i));
+            let tp = tr.map(|i| self.local_pos(prep, plan, i));
             let (lo, hi) = bounds(&tp);
             grid.query(lo, hi, &mut cand);
             for &u in &cand {
                 if (u as usize) >= self.s.tri.len()
                     || !self.s.alive[u as usize]
-                    || plan.ring.removed.contains(&u)
+                    || ring.removed.contains(&u)
                 {
                     continue;
                 }
                 let ut = self.s.tri[u as usize];
                 if triangles_meet_beyond_shared(ti, tp, ut, ut.map(|v| self.s.p(v))) {
-                    return false;
+                    ok = false;
+                    break 'tris;
                 }
             }
         }
-        true
+        self.cand = cand;
+        ok
     }
 
     /// Applies a plan; returns the slots of the new triangles (in plan order).
-    fn apply(&mut self, plan: &Plan) -> Vec<u32> {
-        let t0 = plan.ring.removed[0];
+    fn apply(&mut self, prep: &Prep, plan: &Plan) -> Vec<u32> {
+        let t0 = prep.ring.removed[0];
         let a = self.s.tri[t0 as usize];
-        for &u in &plan.ring.removed {
+        for &u in &prep.ring.removed {
             self.heap.invalidate(u);
             self.young.invalidate(u);
             self.over.invalidate(u);
@@ -741,7 +793,7 @@ impl<'o> Engine<'o> {
         self.curv[pid as usize] = plan.abs_curv;
         self.s.vhe[a[1] as usize] = NONE;
         self.s.vhe[a[2] as usize] = NONE;
-        let verts = &plan.ring.verts;
+        let verts = &prep.ring.verts;
         let m = verts.len();
         let gid = |i: usize| if i == 0 { pid } else { verts[i - 1] };
         let slots: Vec<u32> = plan
@@ -764,9 +816,9 @@ impl<'o> Engine<'o> {
             for i in 0..3 {
                 let (x, y) = (tr[i], tr[(i + 1) % 3]);
                 let h = 3 * slots[k] + i as u32;
-                let ring_edge = x >= 1 && y >= 1 && (y == x % m + 1) && (plan.ring.closed || x < m);
+                let ring_edge = x >= 1 && y >= 1 && (y == x % m + 1) && (prep.ring.closed || x < m);
                 let o = if ring_edge {
-                    plan.ring.outer[x - 1]
+                    prep.ring.outer[x - 1]
                 } else {
                     plan.tris
                         .iter()

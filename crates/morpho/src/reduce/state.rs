@@ -144,6 +144,21 @@ impl State {
         if h0 == NONE {
             return false;
         }
+        // counter-clockwise from h0: all the way round for an interior vertex (the answer);
+        // a boundary ends the walk, and the fan is collected again from the clockwise-most
+        let mut h = h0;
+        loop {
+            out.push(h);
+            let o = self.opp[prev(h) as usize];
+            if o == h0 {
+                return false;
+            }
+            if o == NONE || out.len() > self.tri.len() {
+                break;
+            }
+            h = o;
+        }
+        out.clear();
         // rotate clockwise to the boundary (or all the way round)
         let mut h = h0;
         let mut boundary = false;

@@ -26,6 +26,8 @@ pub(crate) struct Tracker {
     pub max: f64,
     /// Scratch of the last evaluation: (knot, local new triangle, error).
     pending: Vec<(u32, usize, f64)>,
+    /// Scratch: the bounding ball of each new triangle.
+    balls: Vec<([f64; 3], f64)>,
 }
 
 impl Tracker {
@@ -40,6 +42,7 @@ impl Tracker {
             sse: 0.0,
             max: 0.0,
             pending: Vec::new(),
+            balls: Vec::new(),
         };
         let mut done = vec![false; n];
         for (i, tr) in tris.iter().enumerate() {
@@ -88,19 +91,32 @@ impl Tracker {
         bound: f64,
     ) -> Option<(f64, f64)> {
         self.pending.clear();
-        let (mut sse, mut max) = (self.sse, self.max);
+        let (sse, max) = (self.sse, self.max);
         // surfaces: a triangle farther than |x − c| − r from a knot x (c its centroid, r its
         // farthest corner from c) cannot beat the best one found
-        let balls: Vec<([f64; 3], f64)> = if self.vertical {
-            Vec::new()
-        } else {
-            new.iter()
-                .map(|t| {
-                    let c = std::array::from_fn(|i| (t[0][i] + t[1][i] + t[2][i]) / 3.0);
-                    (c, dist(c, t[0]).max(dist(c, t[1])).max(dist(c, t[2])))
-                })
-                .collect()
-        };
+        let mut balls = std::mem::take(&mut self.balls);
+        balls.clear();
+        if !self.vertical {
+            balls.extend(new.iter().map(|t| {
+                let c = std::array::from_fn(|i| (t[0][i] + t[1][i] + t[2][i]) / 3.0);
+                (c, dist(c, t[0]).max(dist(c, t[1])).max(dist(c, t[2])))
+            }));
+        }
+        let r = self.assign(removed, new, bound, &balls, sse, max);
+        self.balls = balls;
+        r
+    }
+
+    /// The knots of `removed` assigned among `new` (the loop of [`Tracker::evaluate_within`]).
+    fn assign(
+        &mut self,
+        removed: &[u32],
+        new: &[[[f64; 3]; 3]],
+        bound: f64,
+        balls: &[([f64; 3], f64)],
+        mut sse: f64,
+        mut max: f64,
+    ) -> Option<(f64, f64)> {
         for &t in removed {
             let mut k = self.head.get(t as usize).copied().unwrap_or(NONE);
             while k != NONE {
