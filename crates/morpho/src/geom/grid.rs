@@ -429,11 +429,6 @@ impl<const D: usize> BoxGrid<D> {
         self.coarse.is_none() && self.big.is_empty()
     }
 
-    /// Reserves room for `n` more cells on the finest level.
-    pub fn reserve(&mut self, n: usize) {
-        self.cells.reserve(n);
-    }
-
     /// The cells of the box `[lo, hi]` on this level (coordinates beyond `i64` saturate, NaN
     /// gives cell 0).
     pub fn range(&self, lo: [f64; D], hi: [f64; D]) -> CellRange<D> {

@@ -130,8 +130,11 @@ pub(super) fn boxes_meet(a: (P, P), b: (P, P)) -> bool {
 /// inline, without an allocation each).
 pub(super) type Thirds = smallvec::SmallVec<[u32; 4]>;
 
+/// Up to four faces of a tetrahedron (inline, no allocation).
+pub(super) type Faces = smallvec::SmallVec<[[u32; 3]; 4]>;
+
 /// A removal: key, boundary faces of the tetrahedron, its new boundary faces.
-pub(super) type Removal = (f64, Vec<[u32; 3]>, Vec<[u32; 3]>);
+pub(super) type Removal = (f64, Faces, Faces);
 
 /// The general 3D constriction (see the module documentation). Vertex indices are indices into
 /// the point array given to [`General3::new`].
@@ -383,11 +386,11 @@ impl<'a> General3<'a> {
                         )
                     },
                     || {
-                        vgrid.reserve(p.len());
-                        for (v, &q) in p.iter().enumerate() {
-                            vgrid.insert(v as u32, q, q);
-                            vcoarse.insert(v as u32, q, q);
-                        }
+                        // (in bulk: each cell's list allocated once; the same grids as
+                        // inserting the points one by one, ids increasing)
+                        let pts = || p.iter().enumerate().map(|(v, &q)| (v as u32, q, q));
+                        vgrid.insert_many(pts());
+                        vcoarse.insert_many(pts());
                         bnext.reserve(3 * boundary.len());
                         for f in boundary {
                             for k in 0..3 {
@@ -659,6 +662,7 @@ mod tests {
         let mut one = General3::blank(&pos, &st.triangles, &live, &keep);
         for (v, &q) in pos.iter().enumerate() {
             one.vgrid.insert(v as u32, q, q);
+            one.vcoarse.insert(v as u32, q, q);
         }
         for &t in &st.triangles {
             one.add_tri_grid(t, false);
@@ -686,6 +690,7 @@ mod tests {
         assert_eq!(bulk.tgrid, one.tgrid);
         assert_eq!(bulk.bgrid, one.bgrid);
         assert_eq!(bulk.vgrid, one.vgrid);
+        assert_eq!(bulk.vcoarse, one.vcoarse);
         // the cells of the point grid chosen for a box (the coarse one for wide boxes) hold
         // every point inside the box, each once
         let mut wide = 0;

@@ -171,9 +171,9 @@ impl General3<'_> {
             return None;
         }
         let faces = tet_faces(a, b, c, l);
-        let mut bf = Vec::new();
-        let mut nf = Vec::new();
-        let mut opp = Vec::new();
+        let mut bf = Faces::new();
+        let mut nf = Faces::new();
+        let mut opp = smallvec::SmallVec::<[u32; 4]>::new();
         for (face, o) in faces {
             if self.is_bface(face) {
                 bf.push(face);
@@ -550,13 +550,24 @@ impl General3<'_> {
 
     /// The box of face f and the apexes on its edges: everything its removability depends on.
     pub(super) fn lock_box(&self, f: [u32; 3]) -> (P, P) {
-        let mut q: Vec<P> = f.iter().map(|&v| self.pt(v)).collect();
+        // (the box of the corners grown by every apex: the same box as `bbox` of them all,
+        // without collecting them)
+        let mut b = bbox(&f.map(|v| self.pt(v)));
         for k in 0..3 {
-            if let Some(ls) = self.eadj.get(&ek(f[k], f[(k + 1) % 3])) {
-                q.extend(ls.iter().map(|&l| self.pt(l)));
+            for &l in self
+                .eadj
+                .get(&ek(f[k], f[(k + 1) % 3]))
+                .into_iter()
+                .flatten()
+            {
+                let q = self.pt(l);
+                for i in 0..3 {
+                    b.0[i] = b.0[i].min(q[i]);
+                    b.1[i] = b.1[i].max(q[i]);
+                }
             }
         }
-        bbox(&q)
+        b
     }
 
     pub(super) fn remove(&mut self, f: [u32; 3], l: u32, bf: &[[u32; 3]], nf: &[[u32; 3]]) {
