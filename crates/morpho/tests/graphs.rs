@@ -178,6 +178,15 @@ fn every_2d_kind_equals_its_definition() {
         for kind in kinds_2d() {
             let g = graph_2d(&pts, kind).unwrap_or_else(|e| panic!("{name} {kind:?}: {e}"));
             let mut want = oracle_2d(&p, kind);
+            // snapped: the edge (6,5)–(4,5) has c₁′ = 1/5 exactly (a 3-4-5 triangle with (5,7)),
+            // below the binary parameter 0.2 = 0.2000000000000000111…; the exact decision
+            // leaves it out, the float oracles (rounded γ-value, float offsets) keep it
+            if name == "snapped"
+                && (matches!(kind, Kind::Gamma(a, b) if a == 0.2 && b == -0.4)
+                    || matches!(kind, Kind::GammaRange(r) if r == [0.0, 1.0, 0.2, 0.8]))
+            {
+                want.retain(|e| *e != [6, 47]);
+            }
             want.sort_unstable();
             assert_eq!(g.edges, want, "{name}: {kind:?}");
             if matches!(kind, Kind::Gamma(..) | Kind::GammaRange(_)) && !g.edges.is_empty() {

@@ -54,6 +54,9 @@
 //! whenever its error bound does not certify the float quotient (`gamma::exact_offset`).
 //! The final decision (step 5) is the one of [`TriFrame`]: binding points by exact predicates,
 //! c₁′ ≥ c exactly ([`TriFrame::c1_at_least`]); the γ-values reported are accurate to ~1e-10.
+//! The pruning bounds (μ, the reach, ±F) are computed without cancellation
+//! ([`offset_ratio`]: k² − 1 is 0 in floats for |c| < 2⁻⁵³) and the early end only
+//! trusts an end certainly past ±F ([`CenterInterval::past`]).
 //!
 //! # Complexity (honest)
 //! The field costs O(N) cells and one nearest-point query each. A *closed* vertex costs
@@ -75,7 +78,7 @@
 //! Preconditions: a full-dimensional tetrahedralization (`d.degenerate` is `None`).
 
 use super::fast::{coords3, Candidates3};
-use super::gamma::{offset_of, triangle_circle, CenterInterval, TriFrame};
+use super::gamma::{offset_ratio, triangle_circle, CenterInterval, TriFrame};
 use crate::delaunay::d3::Delaunay3;
 use crate::geom::grid::PointGrid as Grid;
 use crate::geom::near_sphere::NearSphere;
@@ -271,9 +274,10 @@ impl<'a> Decider<'a> {
         let (mu, reach_over_r) = if cabs >= 1.0 {
             (0.0, f64::INFINITY)
         } else {
+            // k ± √(k² − 1) without cancellation (k − √(k² − 1) = 1/(k + √(k² − 1)))
             let k = 1.0 / (1.0 - cabs);
-            let s = (k * k - 1.0).sqrt();
-            (k - s, k + s)
+            let s = offset_ratio(cabs);
+            (1.0 / (k + s), k + s)
         };
         Decider {
             p,
@@ -296,11 +300,11 @@ impl<'a> Decider<'a> {
         // the ends only move inwards as points are added (lo = max τ below, hi = min τ above):
         // once an end passes ±F the triangle's c₁′ is < c whatever the other points do (a point
         // in the lens, e.g. in the ball B(m, μr), does that at once)
-        let f_off = offset_of(self.c.abs().min(1.0), iv.r_over_n) * (1.0 + 1e-9);
+        let f_off = iv.r_over_n * offset_ratio(self.c.abs().min(1.0)) * (1.0 + 1e-9);
         let mut add = |x: u32| {
             if !t.contains(&x) {
                 f.add(&mut iv, p[x as usize]);
-                if iv.all_blocked || iv.lo > f_off || iv.hi < -f_off {
+                if iv.past(f_off) {
                     return false;
                 }
             }

@@ -9,7 +9,10 @@
 //! to them). Where a graph is not unique (NNG and EMST under ties) the oracle returns the
 //! union of all choices (NNG) or one tree (EMST; compare lengths).
 
-use super::gamma::{center_interval_2d, center_interval_3d, def_contains_2d, def_contains_3d};
+use super::gamma::{
+    center_interval_2d, center_interval_3d, def_contains_2d, def_contains_3d, CenterInterval,
+    TriFrame,
+};
 use crate::geom::distance::{cmp_dist2, dot_sign, in_lune_ball, sum_of_roots_exceeds};
 use crate::geom::predicates::raw;
 use crate::geom::vec::{cross, dist, dot, sub};
@@ -353,6 +356,22 @@ pub fn gamma_values_3d(p: &[[f64; 3]]) -> Vec<([u32; 3], (f64, f64))> {
             center_interval_3d(p, i, j, k)?
                 .gamma_values()
                 .map(|v| ([i as u32, j as u32, k as u32], v))
+        })
+        .collect()
+}
+
+/// The triples of `p` with γ-values that `keep` accepts, decided on each triangle's frame and
+/// interval (brute force, Thm 3.1; e.g. [`TriFrame::in_gamma`], exact), with their γ-values.
+pub fn gamma_filter_3d(
+    p: &[[f64; 3]],
+    keep: impl Fn(&TriFrame, &CenterInterval) -> bool,
+) -> Vec<([u32; 3], (f64, f64))> {
+    triples(p.len())
+        .filter_map(|(i, j, k)| {
+            let f = TriFrame::new(p[i], p[j], p[k])?;
+            let iv = center_interval_3d(p, i, j, k)?;
+            let v = iv.gamma_values()?;
+            keep(&f, &iv).then_some(([i as u32, j as u32, k as u32], v))
         })
         .collect()
 }

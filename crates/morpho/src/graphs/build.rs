@@ -25,7 +25,7 @@
 use super::brute;
 use super::distance::{classic, emst_boruvka, sig_edges, tri_edges};
 use super::fast;
-use super::gamma::{in_gamma_range, CenterInterval};
+use super::gamma::{CenterInterval, EdgeFrame};
 use super::lune::LuneGrid;
 use super::GraphError;
 use crate::delaunay::d2;
@@ -434,13 +434,14 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         triangles: vec![],
         gamma,
     };
-    // γ kinds: decide every candidate edge in parallel, keeping its γ-values (computed once and
-    // handed to `decide`)
-    type Decide<'a> = dyn Fn(&CenterInterval, (f64, f64)) -> bool + Sync + 'a;
+    // γ kinds: decide every candidate edge in parallel, exactly on its interval (through the
+    // edge's frame), keeping its γ-values
+    type Decide<'a> = dyn Fn(&EdgeFrame, &CenterInterval) -> bool + Sync + 'a;
     let gamma_kind = |decide: &Decide<'_>, beyond: Option<f64>| {
         let keep = |e: [u32; 2], iv: &CenterInterval| {
             let v = iv.gamma_values()?;
-            decide(iv, v).then_some((e, [v.0, v.1]))
+            let f = EdgeFrame::new(p[e[0] as usize], p[e[1] as usize]);
+            decide(&f, iv).then_some((e, [v.0, v.1]))
         };
         let kept: Vec<([u32; 2], [f64; 2])> = match beyond {
             // the Delaunay-subgraph part streams, vertex star by vertex star in input order
@@ -540,15 +541,15 @@ pub fn graph_2d(points: &[Point2], kind: Kind) -> Result<Graph> {
         }
         Kind::BetaCircle(_) => unreachable!("dispatched to Gamma(b, b) above"),
         Kind::BetaLune(b) if b < 0.0 => unreachable!("dispatched to Gamma({b}, {b}) above"),
-        // decided on the interval itself (not through the rounded γ-values), so that a
-        // parameter equal to a γ-value is decided exactly
-        Kind::Gamma(c0, c1) => gamma_kind(
-            &|iv, _| iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0),
-            (c1 < 0.0).then_some(c1),
-        ),
-        Kind::GammaRange(r) => {
-            gamma_kind(&|_, v| in_gamma_range(v, r), (r[2] < 0.0).then_some(r[2]))
+        // decided exactly on the interval (not through the rounded γ-values), so that a
+        // parameter equal to or an ulp from a γ-value is decided right (Lemmas 3.1, 3.2; Def. 3.3)
+        Kind::Gamma(c0, c1) => {
+            gamma_kind(&|f, iv| f.in_gamma(iv, c0, c1), (c1 < 0.0).then_some(c1))
         }
+        Kind::GammaRange(r) => gamma_kind(
+            &|f, iv| f.in_gamma_range(iv, r),
+            (r[2] < 0.0).then_some(r[2]),
+        ),
         _ => {
             let needs_gabriel = matches!(kind, Kind::Rng | Kind::BetaLune(_) | Kind::Strip);
             let g = if needs_gabriel {

@@ -8,7 +8,7 @@ use super::brute;
 use super::build::{extreme_scale, scaled_kind, Graph, Kind, ALPHA_HULL_LIMIT_3D, BRUTE_LIMIT_3D};
 use super::distance::classic;
 use super::fast;
-use super::gamma::{in_gamma, in_gamma_range, CenterInterval};
+use super::gamma::{CenterInterval, TriFrame};
 use super::GraphError;
 use crate::delaunay::d3;
 use crate::geom::distance::dot_sign;
@@ -111,6 +111,9 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
     }
     dt_edges.sort_unstable();
     dt_edges.dedup();
+    // the frame of a candidate triangle, for the exact γ decisions (the binding points and the
+    // decisions do not depend on the order of the corners)
+    let frame = |t: &[u32; 3]| TriFrame::new(p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]);
     let tri_filter = |f: &TriPredicate<'_>| -> Vec<Simplex3> {
         cand.triangles
             .iter()
@@ -165,31 +168,29 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
         Kind::Gamma(c0, c1) if c1 >= 0.0 => finish3(
             &d,
             vec![],
-            tri_filter(&|iv, _| {
+            tri_filter(&|iv, t| {
                 let v = iv.gamma_values()?;
-                (iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0))
-                    .then_some(Some([v.0, v.1]))
+                frame(t)?.in_gamma(iv, c0, c1).then_some(Some([v.0, v.1]))
             }),
         ),
         Kind::GammaRange(r) if r[2] >= 0.0 => finish3(
             &d,
             vec![],
-            tri_filter(&|iv, _| {
+            tri_filter(&|iv, t| {
                 let v = iv.gamma_values()?;
-                in_gamma_range(v, r).then_some(Some([v.0, v.1]))
+                frame(t)?.in_gamma_range(iv, r).then_some(Some([v.0, v.1]))
             }),
         ),
         Kind::Gamma(..) | Kind::GammaRange(_) => {
             // c₁ < 0 (c₂ < 0): the candidates plus the triangles beyond the tetrahedralization
             let (c, keep): (f64, &TriPredicate<'_>) = match kind {
-                Kind::Gamma(c0, c1) => (c1, &move |iv: &CenterInterval, _: &[u32; 3]| {
+                Kind::Gamma(c0, c1) => (c1, &move |iv: &CenterInterval, t: &[u32; 3]| {
                     let v = iv.gamma_values()?;
-                    (iv.neighborhood_empty(c0, c1, 1.0) || iv.neighborhood_empty(c0, c1, -1.0))
-                        .then_some(Some([v.0, v.1]))
+                    frame(t)?.in_gamma(iv, c0, c1).then_some(Some([v.0, v.1]))
                 }),
-                Kind::GammaRange(r) => (r[2], &move |iv: &CenterInterval, _: &[u32; 3]| {
+                Kind::GammaRange(r) => (r[2], &move |iv: &CenterInterval, t: &[u32; 3]| {
                     let v = iv.gamma_values()?;
-                    in_gamma_range(v, r).then_some(Some([v.0, v.1]))
+                    frame(t)?.in_gamma_range(iv, r).then_some(Some([v.0, v.1]))
                 }),
                 _ => unreachable!("matched above"),
             };
@@ -362,25 +363,23 @@ fn brute_3d(d: &d3::Delaunay3, p: &[[f64; 3]], kind: Kind) -> Result<Graph> {
     let tris = |t: Vec<([u32; 3], Option<[f64; 2]>)>| finish3(d, vec![], t);
     let edges = |e: Vec<[u32; 2]>| finish3(d, e, vec![]);
     Ok(match kind {
+        // decided exactly on each triangle's interval (see `graph_3d`)
         Kind::Gamma(c0, c1) => tris(
-            brute::gamma_values_3d(p)
+            brute::gamma_filter_3d(p, |f, iv| f.in_gamma(iv, c0, c1))
                 .into_iter()
-                .filter(|(_, v)| in_gamma(*v, c0, c1))
                 .map(|(t, v)| (t, Some([v.0, v.1])))
                 .collect(),
         ),
         Kind::GammaRange(r) => tris(
-            brute::gamma_values_3d(p)
+            brute::gamma_filter_3d(p, |f, iv| f.in_gamma_range(iv, r))
                 .into_iter()
-                .filter(|(_, v)| in_gamma_range(*v, r))
                 .map(|(t, v)| (t, Some([v.0, v.1])))
                 .collect(),
         ),
         Kind::Hull => tris(brute::hull_3d(p).into_iter().map(|t| (t, None)).collect()),
         Kind::Delaunay => tris(
-            brute::gamma_values_3d(p)
+            brute::gamma_filter_3d(p, |f, iv| f.in_gamma_range(iv, [-1.0, 1.0, 0.0, 1.0]))
                 .into_iter()
-                .filter(|(_, v)| in_gamma_range(*v, [-1.0, 1.0, 0.0, 1.0]))
                 .map(|(t, _)| (t, None))
                 .collect(),
         ),

@@ -29,7 +29,7 @@
 //! hull is long and thin — instead of the O(N³) of V Thm 3.1. 3D beyond-Delaunay graphs use the
 //! brute force (limited to small inputs).
 
-use super::gamma::{offset_of, CenterInterval, EdgeFrame, TriFrame};
+use super::gamma::{offset_ratio, CenterInterval, EdgeFrame, TriFrame};
 use super::lune::LuneGrid;
 use crate::delaunay::d2::Delaunay2;
 use crate::delaunay::d3::Delaunay3;
@@ -889,8 +889,11 @@ fn beyond_dt_2d_impl(
         }
     } else {
         let k = 1.0 / (1.0 - cabs);
-        let lam = 0.5 * (k - (k * k - 1.0).sqrt()); // midpoint disc radius / edge length
-        let f_over_r = (k * k - 1.0).sqrt();
+        let f_over_r = offset_ratio(cabs);
+        // midpoint disc radius / edge length, ½ (k − √(k² − 1)) without cancellation (|c| near
+        // 1) and shrunk by far more than its rounding (|c| near 0 puts it within an ulp of ½):
+        // a smaller disc only rejects what the exact one rejects
+        let lam = 0.5 / (k + f_over_r) * (1.0 - 1e-9);
         let bound = MidpointBound::new(d, &p);
         // one vertex's partners at a time, vertices in parallel (results in vertex order)
         let per_vertex: Vec<Vec<([u32; 2], CenterInterval)>> = sources
@@ -937,9 +940,10 @@ fn beyond_dt_2d_impl(
                     let f = EdgeFrame::new(pu, pv);
                     let mut iv = f.start();
                     // The ends only move inwards as points are added, so once one passes ±F
-                    // (with a margin far above rounding) c₁′ < c is certain and the search ends.
+                    // for certain (the ends' accuracy allowed for: `CenterInterval::past`)
+                    // c₁′ < c is certain and the search ends.
                     // Growing shells around m find the binding points early.
-                    let f_off = offset_of(cabs, iv.r_over_n) * (1.0 + 1e-9);
+                    let f_off = iv.r_over_n * f_over_r * (1.0 + 1e-9);
                     let mut inner2 = -1.0;
                     for sh in (0..4).rev() {
                         let rad = reach / (1u32 << sh) as f64;
@@ -950,7 +954,7 @@ fn beyond_dt_2d_impl(
                                 return true;
                             }
                             f.add(&mut iv, q);
-                            !(iv.all_blocked || iv.lo > f_off || iv.hi < -f_off)
+                            !iv.past(f_off)
                         });
                         if !more {
                             break;

@@ -32,10 +32,19 @@
 //! the circumcircle of a nearly cospherical (cocircular) set, where q and h are both
 //! rounding-sized and the float quotient meaningless. The ends' order is decided by exact
 //! in-circle/in-sphere tests, so the regime of the γ-values is exact. The floats are what the
-//! γ-values report; the *decision* c₁′ ≥ c is exact ([`TriFrame::c1_at_least`],
-//! [`EdgeFrame::c1_at_least`]): the sign of τ² (1 − |c|)² − ρ₀² |c| (2 − |c|) for the binding
+//! γ-values report; the *decisions* are exact: c₁′ ≥ c ([`TriFrame::c1_at_least`],
+//! [`EdgeFrame::c1_at_least`]) by the sign of τ² (1 − |c|)² − ρ₀² |c| (2 − |c|) for the binding
 //! points, from the proven bounds when they decide it, else in big integers
-//! (`geom::exact::offset_reach_sign_3d`, `offset_reach_sign_2d`).
+//! (`geom::exact::offset_reach_sign_3d`, `offset_reach_sign_2d`); and every comparison of c₀′
+//! or c₁′ with a parameter ([`CenterInterval::cmp_gamma_by`], [`EdgeFrame::cmp_gamma`],
+//! [`TriFrame::cmp_gamma`]) by the same signs plus the exact side of the smallest touching
+//! ball at the binding points, hence σ ∈ γ(c₀, c₁) and σ ∈ γ(\[c₀,c₁\],\[c₂,c₃\])
+//! ([`EdgeFrame::in_gamma`], [`EdgeFrame::in_gamma_range`] and the [`TriFrame`] ones), which
+//! the graph builders use (`morpho graph --kind gamma | gamma-range`). Still in floating point:
+//! [`CenterInterval::neighborhood_empty`] and [`CenterInterval::ball_empty`] (the α-shapes;
+//! tests), [`in_gamma`] / [`in_gamma_range`] on given rounded γ-values, the gap case of
+//! [`CenterInterval::witness_offset`], and the brute-force oracles [`def_contains_2d`],
+//! [`def_contains_3d`].
 //!
 //! Complexity: one simplex against N points costs O(N) ([`center_interval_2d`],
 //! [`center_interval_3d`]); the brute-force graphs of Thm 3.1 cost O(N^{k+1}).
@@ -45,6 +54,7 @@ use crate::geom::distance::dot_sign;
 use crate::geom::near_sphere::{Lift, NearSphere};
 use crate::geom::predicates::raw;
 use crate::geom::vec::{cross, dot, sub};
+use std::cmp::Ordering;
 
 /// The offsets (in units of the simplex's unnormalised normal) of the empty balls touching a
 /// simplex: exactly the balls with offset in `[lo, hi]` are empty (`lo > hi`: none is).
@@ -98,7 +108,8 @@ pub fn abs_c(s: f64, r_over_n: f64) -> f64 {
     }
 }
 
-/// Offset (in normal units, ≥ 0) of a ball with parameter |c|.
+/// Offset (in normal units, ≥ 0) of a ball with parameter |c| (as ρ₀ √(k² − 1): 0 for
+/// |c| < 2⁻⁵³; [`offset_ratio`] is accurate there).
 #[inline]
 pub fn offset_of(c_abs: f64, r_over_n: f64) -> f64 {
     if c_abs >= 1.0 {
@@ -106,6 +117,18 @@ pub fn offset_of(c_abs: f64, r_over_n: f64) -> f64 {
     }
     let k = 1.0 / (1.0 - c_abs);
     r_over_n * (k * k - 1.0).max(0.0).sqrt()
+}
+
+/// √(k² − 1) for k = 1/(1 − |c|) (the offset of the balls with parameter ±|c| over ρ₀),
+/// computed as √(|c| (2 − |c|)) / (1 − |c|) to a few ulps: k² − 1 cancels for tiny |c| (for
+/// |c| < 2⁻⁵³, 1 − |c| rounds to 1 and k² − 1 to 0, though the offset is ≈ ρ₀ √(2|c|)).
+/// ∞ for |c| ≥ 1.
+#[inline]
+pub fn offset_ratio(c_abs: f64) -> f64 {
+    if c_abs >= 1.0 {
+        return f64::INFINITY;
+    }
+    (c_abs * (2.0 - c_abs)).max(0.0).sqrt() / (1.0 - c_abs)
 }
 
 impl CenterInterval {
@@ -145,6 +168,16 @@ impl CenterInterval {
         } else if rel > 0.0 && self.lo <= self.hi {
             self.lo = self.hi + self.hi.abs() * 4.0 * f64::EPSILON + f64::MIN_POSITIVE;
         }
+    }
+
+    /// True when a point blocks everything or an end is certainly beyond ±`f` (f ≥ 0): the ends
+    /// are accurate to a relative [`TAU_TOL`] of |τ| + r/|n| (allowed for twice here). For
+    /// f ≥ s(c) (the offset of the balls with parameter ±c), c₁′ < c for c < 0 then whatever
+    /// points are added, since the ends only move inwards — the early end of the searches
+    /// beyond the triangulations.
+    pub fn past(&self, f: f64) -> bool {
+        let tol = |t: f64| 2.0 * TAU_TOL * (t.abs() + self.r_over_n);
+        self.all_blocked || self.lo - tol(self.lo) > f || self.hi + tol(self.hi) < -f
     }
 
     /// True when the ball with offset `s` (±∞ = half-space) is empty.
@@ -270,6 +303,69 @@ impl CenterInterval {
         }
     }
 
+    /// The γ-values (c₀′, c₁′) compared with c, exactly: (c₀′ vs c, c₁′ vs c), given
+    /// `reach(x, |c|)` (the exact sign of |τ(x)| − s(|c|) for a binding point x and
+    /// 0 ≤ |c| < 1, as in [`Self::c1_at_least_by`]) and `q_sign(x)` (the exact sign of
+    /// q = |x − m|² − r²: whether x is outside the smallest touching ball). `None` when there
+    /// are no γ-values ([`Self::gamma_values`]). The same as comparing [`Self::gamma_values`]
+    /// with c, but for rounding.
+    ///
+    /// With A, B the |c| of the two ends (1 for an end without a binding point), c₁′ = ±max(A,
+    /// B) and c₀′ = ±min(A, B) (see [`Self::gamma_values`]), so each comparison is the min or
+    /// max of the two ends' exact comparisons with |c|, and the signs are exact too: the ends'
+    /// offsets have the signs of −q (below) and q (above), so
+    /// - `lo ≤ hi` (exact, see [`Self::c1_at_least_by`]): c₁′ ≥ 0; c₀′ ≥ 0 iff lo ≤ 0 ≤ hi,
+    ///   i.e. q ≥ 0 at both binding points;
+    /// - `lo > hi`: c₁′ < 0; c₀′ < 0 iff hi < 0 < lo, i.e. q < 0 at both binding points.
+    ///
+    /// (When an end's offset is 0, min(A, B) = 0 and the sign of c₀′ does not matter.)
+    pub fn cmp_gamma_by(
+        &self,
+        c: f64,
+        reach: impl Fn([f64; 3], f64) -> i32,
+        q_sign: impl Fn([f64; 3]) -> i32,
+    ) -> Option<(Ordering, Ordering)> {
+        use Ordering::*;
+        if self.all_blocked || c.is_nan() {
+            return None;
+        }
+        let (lo_at, hi_at) = (self.lo_at, self.hi_at);
+        if self.finite_blocked {
+            // only half-spaces: (1, 1) or (−1, 1), no γ-values without an open end
+            let c0 = match (lo_at.is_none(), hi_at.is_none()) {
+                (true, true) => 1.0,
+                (true, false) | (false, true) => -1.0,
+                (false, false) => return None,
+            };
+            return Some((cmp_f64(c0, c), cmp_f64(1.0, c)));
+        }
+        let t = c.abs();
+        // |c| of an end against |c|
+        let end = |x: Option<[f64; 3]>| match x {
+            None => cmp_f64(1.0, t),
+            Some(_) if t >= 1.0 => Less,
+            Some(x) => reach(x, t).cmp(&0),
+        };
+        let (a, b) = (end(lo_at), end(hi_at));
+        let (near, far) = (a.min(b), a.max(b));
+        // ±M against c for M ≥ 0 with M vs |c| = m
+        let signed = |positive: bool, m: Ordering| match (positive, c) {
+            (true, c) if c < 0.0 => Greater,
+            (true, _) => m,
+            (false, c) if c > 0.0 => Less,
+            (false, _) => m.reverse(),
+        };
+        if self.lo <= self.hi {
+            let outside = |x: Option<[f64; 3]>| x.map_or(true, |x| q_sign(x) >= 0);
+            let c0_pos = outside(lo_at) && outside(hi_at);
+            Some((signed(c0_pos, near), signed(true, far)))
+        } else {
+            let inside = |x: Option<[f64; 3]>| x.is_some_and(|x| q_sign(x) < 0);
+            let c0_neg = inside(lo_at) && inside(hi_at);
+            Some((signed(!c0_neg, near), signed(false, far)))
+        }
+    }
+
     /// The offset s of a ball B(s) touching the simplex that holds an empty neighbourhood of
     /// γ(\[-1,1\],\[c,1\]) (c ≤ 0) among the points added so far: while no point lies strictly
     /// inside B(s), the simplex is in γ(\[-1,1\],\[c,1\]) — so once every point inside B(s) has
@@ -298,7 +394,10 @@ impl CenterInterval {
 
 /// σ ∈ γ(c₀, c₁) given σ's γ-values, by Lemma 3.1 (c₁ ≥ 0) and Lemma 3.2 (c₁ < 0).
 /// Requires |c₀| ≤ |c₁|. O(1): filter a γ graph's simplices ([`crate::graphs::Graph::gamma`])
-/// at other parameters without rebuilding.
+/// at other parameters without rebuilding. The γ-values given are rounded (to ~1e-10), so a
+/// parameter that close to a γ-value may be decided differently from the exact graph; the
+/// builders decide on the simplex's interval exactly ([`EdgeFrame::in_gamma`],
+/// [`TriFrame::in_gamma`]).
 ///
 /// ```rust
 /// use morpho::graphs::{graph_2d, in_gamma, Kind};
@@ -325,7 +424,9 @@ pub fn in_gamma(values: (f64, f64), c0: f64, c1: f64) -> bool {
     }
 }
 
-/// σ ∈ γ(\[c₀,c₁\],\[c₂,c₃\]) given σ's γ-values (Def. 3.3). O(1).
+/// σ ∈ γ(\[c₀,c₁\],\[c₂,c₃\]) given σ's γ-values (Def. 3.3). O(1). On the rounded values
+/// (see [`in_gamma`]); exact on the interval: [`EdgeFrame::in_gamma_range`],
+/// [`TriFrame::in_gamma_range`].
 ///
 /// ```rust
 /// use morpho::graphs::in_gamma_range;
@@ -335,6 +436,36 @@ pub fn in_gamma(values: (f64, f64), c0: f64, c1: f64) -> bool {
 pub fn in_gamma_range(values: (f64, f64), range: [f64; 4]) -> bool {
     let (a, b) = values;
     range[0] <= a && a <= range[1] && range[2] <= b && b <= range[3]
+}
+
+/// σ ∈ γ(c₀, c₁) by Lemmas 3.1 (c₁ ≥ 0) and 3.2 (c₁ < 0), as [`in_gamma`], on exact
+/// comparisons `cmp(c)` = (c₀′ vs c, c₁′ vs c) of σ's γ-values (`None`: no γ-values) —
+/// [`EdgeFrame::cmp_gamma`], [`TriFrame::cmp_gamma`]. Requires |c₀| ≤ |c₁|.
+pub fn in_gamma_exact(cmp: impl Fn(f64) -> Option<(Ordering, Ordering)>, c0: f64, c1: f64) -> bool {
+    use Ordering::Less;
+    let ge0 = |c: f64| cmp(c).is_some_and(|o| o.0 != Less);
+    let ge1 = |c: f64| cmp(c).is_some_and(|o| o.1 != Less);
+    (ge0(c0) && ge1(c1)) || (c1 < 0.0 && ge0(c1) && ge1(c0.abs()))
+}
+
+/// σ ∈ γ(\[c₀,c₁\],\[c₂,c₃\]) (Def. 3.3), as [`in_gamma_range`], on exact comparisons `cmp(c)`
+/// of σ's γ-values (see [`in_gamma_exact`]).
+pub fn in_gamma_range_exact(
+    cmp: impl Fn(f64) -> Option<(Ordering, Ordering)>,
+    range: [f64; 4],
+) -> bool {
+    use Ordering::{Greater, Less};
+    let is = |c: f64, k: usize, not: Ordering| cmp(c).is_some_and(|o| [o.0, o.1][k] != not);
+    is(range[0], 0, Less)
+        && is(range[1], 0, Greater)
+        && is(range[2], 1, Less)
+        && is(range[3], 1, Greater)
+}
+
+/// a vs b for non-NaN floats.
+#[inline]
+fn cmp_f64(a: f64, b: f64) -> Ordering {
+    a.partial_cmp(&b).unwrap_or(Ordering::Less)
 }
 
 /// −1, 0 or +1 (unlike `f64::signum`, 0 for zero).
@@ -429,6 +560,24 @@ impl EdgeFrame {
     /// [`CenterInterval::c1_at_least_by`]).
     pub fn c1_at_least(&self, iv: &CenterInterval, c: f64) -> bool {
         iv.c1_at_least_by(c, |x, ca| self.reach_sign([x[0], x[1]], ca))
+    }
+    /// The γ-values of the interval `iv` of this edge compared with c, exactly (see
+    /// [`CenterInterval::cmp_gamma_by`]); the side of the diametral disc by [`dot_sign`].
+    pub fn cmp_gamma(&self, iv: &CenterInterval, c: f64) -> Option<(Ordering, Ordering)> {
+        iv.cmp_gamma_by(
+            c,
+            |x, ca| self.reach_sign([x[0], x[1]], ca),
+            |x| dot_sign(&self.pa, &self.pb, &[x[0], x[1]]),
+        )
+    }
+    /// σ ∈ γ(c₀, c₁) for the interval `iv` of this edge, exactly ([`in_gamma_exact`]).
+    pub fn in_gamma(&self, iv: &CenterInterval, c0: f64, c1: f64) -> bool {
+        in_gamma_exact(|c| self.cmp_gamma(iv, c), c0, c1)
+    }
+    /// σ ∈ γ(\[c₀,c₁\],\[c₂,c₃\]) for the interval `iv` of this edge, exactly
+    /// ([`in_gamma_range_exact`]).
+    pub fn in_gamma_range(&self, iv: &CenterInterval, range: [f64; 4]) -> bool {
+        in_gamma_range_exact(|c| self.cmp_gamma(iv, c), range)
     }
     /// The interval of a Delaunay edge from the apexes of the triangles on its two sides
     /// (`left` strictly left of a→b, `right` strictly right; `None` on the hull side), with
@@ -774,6 +923,35 @@ impl TriFrame {
     /// [`CenterInterval::gamma_values`] with c, but for rounding.
     pub fn c1_at_least(&self, iv: &CenterInterval, c: f64) -> bool {
         iv.c1_at_least_by(c, |x, ca| self.reach_sign(x, ca))
+    }
+    /// The exact sign of q = |x − m|² − r² (+1: x outside the triangle's diametral sphere):
+    /// from the proven bound of q = |w|² − 2 w·o (w = x − a) when it decides, else in big
+    /// integers ([`crate::geom::exact::diametral_side_exact`]).
+    fn q_sign(&self, x: [f64; 3]) -> i32 {
+        if let Some(f) = self.frame.as_ref() {
+            let a = self.t[0];
+            let w = [0, 1, 2].map(|k| Bounded::diff(x[k], a[k]));
+            let q = Bounded::dot3(w, w).minus(Bounded::dot3(w, f.o).scale2(2.0));
+            if let Some(s) = q.sign() {
+                return s;
+            }
+        }
+        let [a, b, c] = self.t;
+        crate::geom::exact::diametral_side_exact(a, b, c, x)
+    }
+    /// The γ-values of the interval `iv` of this triangle compared with c, exactly (see
+    /// [`CenterInterval::cmp_gamma_by`]).
+    pub fn cmp_gamma(&self, iv: &CenterInterval, c: f64) -> Option<(Ordering, Ordering)> {
+        iv.cmp_gamma_by(c, |x, ca| self.reach_sign(x, ca), |x| self.q_sign(x))
+    }
+    /// σ ∈ γ(c₀, c₁) for the interval `iv` of this triangle, exactly ([`in_gamma_exact`]).
+    pub fn in_gamma(&self, iv: &CenterInterval, c0: f64, c1: f64) -> bool {
+        in_gamma_exact(|c| self.cmp_gamma(iv, c), c0, c1)
+    }
+    /// σ ∈ γ(\[c₀,c₁\],\[c₂,c₃\]) for the interval `iv` of this triangle, exactly
+    /// ([`in_gamma_range_exact`]).
+    pub fn in_gamma_range(&self, iv: &CenterInterval, range: [f64; 4]) -> bool {
+        in_gamma_range_exact(|c| self.cmp_gamma(iv, c), range)
     }
     /// The 3D analogue of [`EdgeFrame::cocircular_ends`]: `above` (on the normal's side) and
     /// `below` the binding points, on one sphere with the corners (a triple of a cospherical

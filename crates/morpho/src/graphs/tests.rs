@@ -1286,6 +1286,109 @@ mod exact_oracle {
         }
     }
 
+    /// The sign of an end's offset (an end without a binding point: lo = −∞, hi = +∞).
+    fn tau_sign(t: &Option<(BigInt, BigInt)>, infinite: Sign) -> i32 {
+        let s = |x: Sign| match x {
+            Sign::Minus => -1,
+            Sign::NoSign => 0,
+            Sign::Plus => 1,
+        };
+        t.as_ref()
+            .map_or(s(infinite), |t| s(t.0.sign()) * s(t.1.sign()))
+    }
+
+    impl Exact {
+        /// |τ| of `a` ≤ |τ| of `b` (an end without a binding point is infinite).
+        fn abs_le(a: &Option<(BigInt, BigInt)>, b: &Option<(BigInt, BigInt)>) -> bool {
+            match (a, b) {
+                (_, None) => true,
+                (None, Some(_)) => false,
+                (Some(a), Some(b)) => (&a.0 * &b.1).magnitude() <= (&b.0 * &a.1).magnitude(),
+            }
+        }
+        /// (c₀′ vs c, c₁′ vs c) by Def. 3.3 literally on the exact ends, as
+        /// `CenterInterval::gamma_values` describes it: the nearer end (smaller |τ|) gives
+        /// |c₀′|, the farther |c₁′|; signs from the regime and the ends' signs. `None`: no
+        /// γ-values.
+        fn cmp_values(&self, c: f64) -> Option<(std::cmp::Ordering, std::cmp::Ordering)> {
+            use std::cmp::Ordering::*;
+            if self.blocked {
+                return None;
+            }
+            if self.finite {
+                let v0 = match (self.lo.is_none(), self.hi.is_none()) {
+                    (true, true) => 1.0,
+                    (false, false) => return None,
+                    _ => -1.0,
+                };
+                return Some((v0.partial_cmp(&c)?, 1.0f64.partial_cmp(&c)?));
+            }
+            let (cn, cs) = if c == 0.0 || c.abs() >= 1.0 {
+                (BigInt::from(0), BigInt::from(1))
+            } else {
+                let (m, e) = float_parts(c.abs());
+                (BigInt::from(m), BigInt::from(1) << ((-e) as usize))
+            };
+            // |c(τ)| of an end vs |c|
+            let abs_cmp = |t: &Option<(BigInt, BigInt)>| match t {
+                None => 1.0f64.partial_cmp(&c.abs()).unwrap(),
+                Some(_) if c.abs() >= 1.0 => Less,
+                Some(t) => self.reach(t, &cn, &cs),
+            };
+            // (sign of the value, |value| vs |c|) against c
+            let against = |positive: bool, m: std::cmp::Ordering| {
+                if positive {
+                    if c < 0.0 {
+                        Greater
+                    } else {
+                        m
+                    }
+                } else if c > 0.0 {
+                    Less
+                } else {
+                    m.reverse()
+                }
+            };
+            let (sl, sh) = (
+                tau_sign(&self.lo, Sign::Minus),
+                tau_sign(&self.hi, Sign::Plus),
+            );
+            let lo_le_hi = match (&self.lo, &self.hi) {
+                (Some(l), Some(h)) => &l.0 * &h.1 >= &h.0 * &l.1,
+                _ => true,
+            };
+            let (near, far, sn, sf) = if Self::abs_le(&self.lo, &self.hi) {
+                (&self.lo, &self.hi, sl, sh)
+            } else {
+                (&self.hi, &self.lo, sh, sl)
+            };
+            let (p0, p1) = if lo_le_hi {
+                (sl <= 0 && sh >= 0, true)
+            } else {
+                (sn * sf > 0 || sn == 0, false)
+            };
+            Some((against(p0, abs_cmp(near)), against(p1, abs_cmp(far))))
+        }
+        /// σ ∈ γ(c₀, c₁) by Lemmas 3.1, 3.2 on the exact values.
+        fn in_gamma(&self, c0: f64, c1: f64) -> bool {
+            use std::cmp::Ordering::Less;
+            let ge = |c: f64, k: usize| self.cmp_values(c).is_some_and(|o| [o.0, o.1][k] != Less);
+            (ge(c0, 0) && ge(c1, 1)) || (c1 < 0.0 && ge(c1, 0) && ge(c0.abs(), 1))
+        }
+        /// σ ∈ γ(\[c₀,c₁\],\[c₂,c₃\]) by Def. 3.3 on the exact values.
+        fn in_range(&self, r: [f64; 4]) -> bool {
+            use std::cmp::Ordering::*;
+            let (a, b) = (self.cmp_values(r[0]), self.cmp_values(r[1]));
+            let (c, d) = (self.cmp_values(r[2]), self.cmp_values(r[3]));
+            match (a, b, c, d) {
+                (Some(a), Some(b), Some(c), Some(d)) => {
+                    a.0 != Less && b.0 != Greater && c.1 != Less && d.1 != Greater
+                }
+                _ => false,
+            }
+        }
+    }
+
     /// The exact interval of the 2D edge (a, b) over the points `q` (integers after a common
     /// scaling): τ = (x − a)·(x − b) / 2 orient(a, b, x), ρ₀² = 1/4.
     fn exact_2d(q: &[[BigInt; 2]], a: usize, b: usize) -> Exact {
@@ -1533,6 +1636,161 @@ mod exact_oracle {
             "{} wrong decisions: {:?}",
             wrong.len(),
             &wrong[..wrong.len().min(5)]
+        );
+    }
+
+    /// Parameters at, and one ulp either side of, some of the (rounded) γ-values of `vals`.
+    fn near_values(vals: &[f64], every: usize) -> Vec<f64> {
+        let mut cs: Vec<f64> = Vec::new();
+        for &v in vals.iter().step_by(every) {
+            if v.abs() < 1.0 && v != 0.0 {
+                let up = f64::from_bits(v.to_bits() + 1);
+                let down = f64::from_bits(v.to_bits() - 1);
+                cs.extend([v, up, down]);
+            }
+        }
+        cs
+    }
+
+    /// The graph kinds that put a parameter at c: the four bounds of γ([c₀,c₁],[c₂,c₃]) and
+    /// γ(c₀, c₁) with c as either parameter.
+    fn kinds_at(c: f64) -> Vec<crate::graphs::Kind> {
+        use crate::graphs::Kind::*;
+        vec![
+            GammaRange([c, 1.0, -1.0, 1.0]),
+            GammaRange([-1.0, c, -1.0, 1.0]),
+            GammaRange([-1.0, 1.0, c, 1.0]),
+            GammaRange([-1.0, 1.0, -1.0, c]),
+            Gamma(c, -1.0),
+            Gamma(0.0, c),
+            Gamma(c, c),
+        ]
+    }
+
+    fn oracle_of(ex: &Exact, kind: crate::graphs::Kind) -> bool {
+        match kind {
+            crate::graphs::Kind::Gamma(c0, c1) => ex.in_gamma(c0, c1),
+            crate::graphs::Kind::GammaRange(r) => ex.in_range(r),
+            _ => unreachable!(),
+        }
+    }
+
+    /// `morpho graph --kind gamma | gamma-range` (`graph_2d`) with a parameter at or one ulp
+    /// from a γ-value (c₀′ or c₁′) of some edge, on rounded cocircular sets at every scale
+    /// (with and without near twins, see above) and random points, against the exact oracle
+    /// over all pairs. The decisions through the rounded γ-values (`in_gamma_range`) and the
+    /// float offsets (`CenterInterval::neighborhood_empty`) get some of these wrong.
+    #[test]
+    fn gamma_graphs_2d_are_exact_at_gamma_values() {
+        use crate::graphs::graph_2d;
+        let mut sets = vec![super::random_2d(24, 7)];
+        for scale in [1e-300, 0.1, 1e300] {
+            let p = rounded_circle(scale);
+            let mut twins = p.clone();
+            for (i, q) in p.iter().enumerate() {
+                let d = [1e-15, 4e-15, 3e-14][i % 3];
+                twins.push([q[0] - d * q[1], q[1] + d * q[0]]);
+            }
+            sets.push(p);
+            sets.push(twins);
+        }
+        let mut wrong = Vec::new();
+        let mut checked = 0;
+        for pts in &sets {
+            let q = ints(pts);
+            let n = pts.len();
+            let exact: Vec<([u32; 2], Exact)> = (0..n)
+                .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
+                .map(|(a, b)| ([a as u32, b as u32], exact_2d(&q, a, b)))
+                .collect();
+            let vals: Vec<f64> = super::gamma_values_2d(pts)
+                .iter()
+                .flat_map(|(_, v)| [v.0, v.1])
+                .collect();
+            let input: Vec<Point2> = pts.iter().map(|q| Point2::new(q[0], q[1])).collect();
+            for c in near_values(&vals, 89) {
+                for kind in kinds_at(c) {
+                    let want: BTreeSet<[u32; 2]> = exact
+                        .iter()
+                        .filter(|(_, e)| oracle_of(e, kind))
+                        .map(|(k, _)| *k)
+                        .collect();
+                    let g = graph_2d(&input, kind).unwrap();
+                    let got: BTreeSet<[u32; 2]> = g
+                        .edges
+                        .iter()
+                        .map(|e| [e[0].min(e[1]), e[0].max(e[1])])
+                        .collect();
+                    checked += 1;
+                    if got != want {
+                        wrong.push((kind, want.symmetric_difference(&got).count()));
+                    }
+                }
+            }
+        }
+        assert!(checked > 300, "{checked}");
+        assert!(
+            wrong.is_empty(),
+            "{} of {checked} graphs wrong: {:?}",
+            wrong.len(),
+            &wrong[..wrong.len().min(6)]
+        );
+    }
+
+    /// The 3D analogue (`graph_3d`, `morpho graph --kind gamma | gamma-range` on 3D points):
+    /// parameters at and one ulp from triangles' γ-values on random points, against the exact
+    /// oracle over all triples.
+    #[test]
+    fn gamma_graphs_3d_are_exact_at_gamma_values() {
+        use crate::graphs::graph_3d;
+        let pts = random_3d(14, 4301);
+        let q = ints(&pts);
+        let n = pts.len();
+        let mut exact = Vec::new();
+        for a in 0..n {
+            for b in a + 1..n {
+                for c in b + 1..n {
+                    let t = [a, b, c];
+                    exact.push((t.map(|v| v as u32), exact_3d(&q, t).unwrap()));
+                }
+            }
+        }
+        let vals: Vec<f64> = gamma_values_3d(&pts)
+            .iter()
+            .flat_map(|(_, v)| [v.0, v.1])
+            .collect();
+        let input: Vec<Point3> = pts.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
+        let mut wrong = Vec::new();
+        let mut checked = 0;
+        for c in near_values(&vals, 23) {
+            for kind in kinds_at(c) {
+                let want: BTreeSet<[u32; 3]> = exact
+                    .iter()
+                    .filter(|(_, e)| oracle_of(e, kind))
+                    .map(|(k, _)| *k)
+                    .collect();
+                let g = graph_3d(&input, kind).unwrap();
+                let got: BTreeSet<[u32; 3]> = g
+                    .triangles
+                    .iter()
+                    .map(|t| {
+                        let mut t = *t;
+                        t.sort_unstable();
+                        t
+                    })
+                    .collect();
+                checked += 1;
+                if got != want {
+                    wrong.push((kind, want.symmetric_difference(&got).count()));
+                }
+            }
+        }
+        assert!(checked > 300, "{checked}");
+        assert!(
+            wrong.is_empty(),
+            "{} of {checked} graphs wrong: {:?}",
+            wrong.len(),
+            &wrong[..wrong.len().min(6)]
         );
     }
 }
