@@ -139,10 +139,20 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
 /// Issue 22: the interactive page (`morpho view`'s page) of a 3D result, written beside the
 /// gallery as `NAME.view.html` and listed with the section's files, so the gallery links it.
 pub fn view_page(ctx: &Ctx, s: &mut Section, name: &str, m: &morpho::mesh::TriMesh) -> Result<()> {
-    use morpho::viewer::{page_html, Layer, Page, DEFAULT_LOD};
+    write_view(ctx, s, name, vec![morpho::viewer::Layer::mesh(name, m)])
+}
+
+/// Writes the page of `layers` as `NAME.view.html` and lists it with the section's files.
+fn write_view(
+    ctx: &Ctx,
+    s: &mut Section,
+    name: &str,
+    layers: Vec<morpho::viewer::Layer>,
+) -> Result<()> {
+    use morpho::viewer::{page_html, Page, DEFAULT_LOD};
     let page = Page {
         title: name.to_string(),
-        layers: vec![Layer::mesh(name, m)],
+        layers,
         figures: None,
         lod: DEFAULT_LOD,
     };
@@ -162,7 +172,7 @@ pub fn volume_view_page(
     v: &morpho::volume::Volume,
     level: Option<f64>,
 ) -> Result<()> {
-    use morpho::viewer::{page_html, Layer, Page, VolumeLayer, DEFAULT_LOD, DEFAULT_MAX_SAMPLES};
+    use morpho::viewer::{Layer, VolumeLayer, DEFAULT_MAX_SAMPLES};
     // the gallery's volumes are valid (finite samples): no page otherwise
     let Ok(vl) = VolumeLayer::new(v, DEFAULT_MAX_SAMPLES) else {
         return Ok(());
@@ -178,16 +188,7 @@ pub fn volume_view_page(
         m.hidden = true;
         layers.push(m);
     }
-    let page = Page {
-        title: name.to_string(),
-        layers,
-        figures: None,
-        lod: DEFAULT_LOD,
-    };
-    let file = format!("{name}.view.html");
-    morpho::io::write_text(&ctx.path(&file), &page_html(&page))?;
-    s.files.push(file);
-    Ok(())
+    write_view(ctx, s, name, layers)
 }
 
 /// Every mesh file of a section gets its interactive page ([`view_page`]).

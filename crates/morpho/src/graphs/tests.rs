@@ -1675,6 +1675,18 @@ mod exact_oracle {
         }
     }
 
+    /// More than 300 graphs were compared and none differed from the exact oracle (`wrong`:
+    /// each wrong graph's kind and the size of its symmetric difference).
+    fn assert_none_wrong<K: std::fmt::Debug>(checked: usize, wrong: &[(K, usize)]) {
+        assert!(checked > 300, "{checked}");
+        assert!(
+            wrong.is_empty(),
+            "{} of {checked} graphs wrong: {:?}",
+            wrong.len(),
+            &wrong[..wrong.len().min(6)]
+        );
+    }
+
     /// `morpho graph --kind gamma | gamma-range` (`graph_2d`) with a parameter at or one ulp
     /// from a γ-value (c₀′ or c₁′) of some edge, on rounded cocircular sets at every scale
     /// (with and without near twins, see above) and random points, against the exact oracle
@@ -1728,13 +1740,7 @@ mod exact_oracle {
                 }
             }
         }
-        assert!(checked > 300, "{checked}");
-        assert!(
-            wrong.is_empty(),
-            "{} of {checked} graphs wrong: {:?}",
-            wrong.len(),
-            &wrong[..wrong.len().min(6)]
-        );
+        assert_none_wrong(checked, &wrong);
     }
 
     /// The 3D analogue (`graph_3d`, `morpho graph --kind gamma | gamma-range` on 3D points):
@@ -1785,12 +1791,6 @@ mod exact_oracle {
                 }
             }
         }
-        assert!(checked > 300, "{checked}");
-        assert!(
-            wrong.is_empty(),
-            "{} of {checked} graphs wrong: {:?}",
-            wrong.len(),
-            &wrong[..wrong.len().min(6)]
-        );
+        assert_none_wrong(checked, &wrong);
     }
 }
