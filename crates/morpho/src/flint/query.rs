@@ -456,13 +456,8 @@ mod tests {
     /// disc filter (so the descent has no false negative).
     #[test]
     fn every_ancestor_pair_of_meeting_edges_passes_the_filter() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut unit = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::util::Rng::new(0x2545_f491_4f6c_dd1d);
+        let mut unit = move || rng.unit();
         let mut checked = 0;
         for round in 0..40 {
             let mk = |unit: &mut dyn FnMut() -> f64, n: usize, dx: f64| {

@@ -347,14 +347,7 @@ pub fn diametral_side_exact(i: [f64; 3], j: [f64; 3], k: [f64; 3], l: [f64; 3]) 
     let v = to_big_ints(&[
         i[0], i[1], i[2], j[0], j[1], j[2], k[0], k[1], k[2], l[0], l[1], l[2],
     ]);
-    let bsub = |a: usize, o: usize| -> [BigInt; 3] {
-        [
-            &v[3 * a] - &v[3 * o],
-            &v[3 * a + 1] - &v[3 * o + 1],
-            &v[3 * a + 2] - &v[3 * o + 2],
-        ]
-    };
-    let (b, c, d) = (bsub(1, 0), bsub(2, 0), bsub(3, 0));
+    let (b, c, d) = (big_sub(&v, 1, 0), big_sub(&v, 2, 0), big_sub(&v, 3, 0));
     let n = big_cross(&b, &c);
     let (bb, cc, dd, nn) = (
         big_dot(&b, &b),
@@ -395,8 +388,7 @@ pub fn offset_reach_sign_3d(t: [[f64; 3]; 3], x: [f64; 3], c_abs: f64) -> i32 {
     let v = to_big_ints(&[
         a[0], a[1], a[2], b[0], b[1], b[2], c[0], c[1], c[2], x[0], x[1], x[2],
     ]);
-    let d = |p: usize| -> [BigInt; 3] { [0, 1, 2].map(|k| &v[3 * p + k] - &v[k]) };
-    let (u, vv_, w) = (d(1), d(2), d(3));
+    let (u, vv_, w) = (big_sub(&v, 1, 0), big_sub(&v, 2, 0), big_sub(&v, 3, 0));
     let n = big_cross(&u, &vv_);
     let (uu, vv, ww, nn) = (
         big_dot(&u, &u),
@@ -430,6 +422,11 @@ pub fn offset_reach_sign_2d(a: [f64; 2], b: [f64; 2], x: [f64; 2], c_abs: f64) -
     let k1 = &cs - &cn;
     let kk = &cn * (BigInt::from(2) * &cs - &cn);
     big_sign(&(&q * &q * &k1 * &k1 - &h * &h * kk))
+}
+
+/// Point `a` minus point `o` of a flat array of 3D points (`[x₀, y₀, z₀, x₁, …]`), exactly.
+fn big_sub(v: &[BigInt], a: usize, o: usize) -> [BigInt; 3] {
+    [0, 1, 2].map(|k| &v[3 * a + k] - &v[3 * o + k])
 }
 
 /// a · b of big-integer 3-vectors.

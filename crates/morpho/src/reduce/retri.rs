@@ -295,7 +295,7 @@ mod tests {
         // exchanged (folded), points outside, open fans, height-field projections; one
         // scratch for all (stale buffers must not leak from one call into the next)
         let mut rng = Rng::new(21);
-        let mut unit = || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let mut unit = || rng.unit();
         let mut sc = Flips::default();
         let (mut total, mut cases_with_swaps) = (0, 0);
         for case in 0..3000 {

@@ -1337,8 +1337,7 @@ impl Scene<'_> {
                     let k = (x - xs) as f64;
                     let tt = (n0 + k * d_n) / (s0 + k * d_s);
                     if stepped && tt.is_finite() {
-                        let i = (tt.clamp(0.0, 1.0) * (LUT - 1) as f64 + 0.5) as usize;
-                        self.lut[i.min(LUT - 1)]
+                        self.lut_colour(tt)
                     } else {
                         let w = w_at(x as f64 + 0.5, fy);
                         self.blend_colour(t, perspective_weights(t, w))
@@ -1372,29 +1371,39 @@ impl Scene<'_> {
         if self.lut.is_empty() {
             return t.face_base.map(f32::from);
         }
-        let tvals = &self.colours.tvals;
-        let ids = t.ids;
-        let tv = [
-            tvals[ids[0] as usize],
-            tvals[ids[1] as usize],
-            tvals[ids[2] as usize],
-        ];
-        let mut tt = b[0] * tv[0] + b[1] * tv[1] + b[2] * tv[2];
+        let tt = self.corner_param(t, b);
         if tt.is_nan() {
-            // Missing at some corner: nearest corner decides.
-            tt = if b[0] >= b[1] && b[0] >= b[2] {
-                tv[0]
-            } else if b[1] >= b[2] {
-                tv[1]
-            } else {
-                tv[2]
-            };
-            if tt.is_nan() {
-                return super::colormap::MISSING.map(f32::from);
-            }
+            return super::colormap::MISSING.map(f32::from);
         }
+        self.lut_colour(tt)
+    }
+
+    /// The colour-map parameter `tt` read from the table `lut` (nearest of its entries).
+    #[inline]
+    fn lut_colour(&self, tt: f64) -> [f32; 3] {
         let i = (tt.clamp(0.0, 1.0) * (LUT - 1) as f64 + 0.5) as usize;
         self.lut[i.min(LUT - 1)]
+    }
+
+    /// The per-vertex colour parameter at barycentric weights `b` (corner order of `t`),
+    /// interpolated; where a corner has no value (NaN), the nearest corner's (itself NaN when
+    /// that corner has none).
+    #[inline]
+    fn corner_param(&self, t: &Tri, b: [f64; 3]) -> f64 {
+        let tvals = &self.colours.tvals;
+        let tv = t.ids.map(|i| tvals[i as usize]);
+        let tt = b[0] * tv[0] + b[1] * tv[1] + b[2] * tv[2];
+        if !tt.is_nan() {
+            return tt;
+        }
+        let j = if b[0] >= b[1] && b[0] >= b[2] {
+            0
+        } else if b[1] >= b[2] {
+            1
+        } else {
+            2
+        };
+        tv[j]
     }
 
     /// The unlit colour at barycentric weights `b` (corner order of `t`): per-vertex scalars
@@ -1404,27 +1413,7 @@ impl Scene<'_> {
         let Some(m) = self.colours.per_vertex() else {
             return t.face_base;
         };
-        let tvals = &self.colours.tvals;
-        let ids = t.ids;
-        let tv = [
-            tvals[ids[0] as usize],
-            tvals[ids[1] as usize],
-            tvals[ids[2] as usize],
-        ];
-        let tt = b[0] * tv[0] + b[1] * tv[1] + b[2] * tv[2];
-        if tt.is_nan() {
-            // Missing at some corner: nearest corner decides.
-            let j = if b[0] >= b[1] && b[0] >= b[2] {
-                0
-            } else if b[1] >= b[2] {
-                1
-            } else {
-                2
-            };
-            m.color(tv[j])
-        } else {
-            m.color(tt)
-        }
+        m.color(self.corner_param(t, b))
     }
 
     /// The lit colour of a sample (z-buffer mode), with the wireframe where the sample is

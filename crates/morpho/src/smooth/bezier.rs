@@ -158,7 +158,7 @@ mod tests {
     use crate::util::Rng;
 
     fn uni(r: &mut Rng) -> f64 {
-        (r.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+        r.unit()
     }
 
     fn bernstein_sum(c: &BezierCurve<3>, u: f64) -> [f64; 3] {

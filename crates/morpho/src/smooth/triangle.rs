@@ -180,7 +180,7 @@ mod tests {
     use crate::util::Rng;
 
     fn uni(r: &mut Rng) -> f64 {
-        (r.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+        r.unit()
     }
 
     fn fact(n: usize) -> f64 {

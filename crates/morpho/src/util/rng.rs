@@ -34,6 +34,14 @@ impl Rng {
         x
     }
 
+    /// The next value as a double uniform in [0, 1): the top 53 bits of [`Rng::next_u64`]
+    /// over 2⁵³ (the unit tests' random coordinates).
+    #[cfg(test)]
+    #[inline]
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
     /// The next value reduced modulo `n` (`n > 0`; slightly biased for `n` not a power of two,
     /// which does not matter for the choices it makes).
     #[inline]
