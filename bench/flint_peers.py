@@ -63,6 +63,46 @@ def morpho_contains(exe, shape, queries, out, rep, threads, rounds):
     return min(b), min(q), inside
 
 
+def build_only(a, up, poly_csv, d):
+    """Tree build against Douglas–Peucker on the same polygon, taking turns, `a.rounds` rounds:
+    morpho's `timings.build` and process CPU (`flint contains` with one query: read + build),
+    shapely's `simplify` wall and CPU at tolerance 1e-3 and 0 (0 recurses to every vertex, the
+    whole hierarchy as the tree does). Minimum over the rounds."""
+    import shapely
+
+    q_csv = os.path.join(d, "q1.csv")
+    np.savetxt(q_csv, up[:1] * 0 + up.mean(axis=0), delimiter=",", header="x,y", comments="",
+               fmt="%.17g")
+    poly = shapely.Polygon(up)
+    rep, out = os.path.join(d, "r.json"), os.path.join(d, "o.csv")
+    env = dict(os.environ, RAYON_NUM_THREADS="1")
+    rows = {"morpho build": [], "morpho process cpu": [], "dp 1e-3": [], "dp 1e-3 cpu": [],
+            "dp 0": [], "dp 0 cpu": []}
+    depth = None
+    for _ in range(a.rounds):
+        c = child_cpu()
+        subprocess.run([a.morpho, "flint", "contains", poly_csv, q_csv, "-o", out, "--report", rep],
+                       check=True, capture_output=True, env=env)
+        rows["morpho process cpu"].append(child_cpu() - c)
+        r = json.load(open(rep))
+        rows["morpho build"].append(r["timings"]["build"])
+        for tol in ["1e-3", "0"]:
+            w, _ = best(lambda: shapely.simplify(poly, float(tol), preserve_topology=False), 1)
+            rows[f"dp {tol}"].append(w)
+            rows[f"dp {tol} cpu"].append(best.cpu)
+    subprocess.run([a.morpho, "flint", "build", poly_csv, "-o", os.path.join(d, "t.json"),
+                    "--report", rep], check=True, capture_output=True, env=env)
+    depth = json.load(open(rep)).get("depth")
+    m = {k: min(v) for k, v in rows.items()}
+    print(f"build only: {len(up):,} vertices, tree depth {depth}, min of {a.rounds} rounds")
+    for k, v in m.items():
+        print(f"  {k:20s} {v:.3f} s")
+    print(f"  ratio build / DP 1e-3 {m['morpho build'] / m['dp 1e-3']:.2f}× (wall), "
+          f"build / DP 0 {m['morpho build'] / m['dp 0']:.2f}× (wall), "
+          f"process cpu / DP 0 cpu {m['morpho process cpu'] / max(m['dp 0 cpu'], 1e-9):.2f}×")
+    print(f"load average {os.getloadavg()}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--morpho", default=os.path.join(HERE, "..", "target", "release", "morpho"))
@@ -70,6 +110,10 @@ def main():
     ap.add_argument("--queries", type=int, default=1_000_000)
     ap.add_argument("--mesh-queries", type=int, default=200_000)
     ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--polygon", help="a polygon CSV (x,y in order) instead of the upsampled GB coast")
+    ap.add_argument("--build-only", action="store_true",
+                    help="tree build (one query) against Douglas–Peucker at tolerance 1e-3 and 0 "
+                         "(the whole hierarchy), process CPU, taking turns; no point queries")
     a = ap.parse_args()
     import shapely
     import rtree  # noqa: F401  trimesh's ray tests need it to stay fast
@@ -78,16 +122,23 @@ def main():
     rep, out = os.path.join(d, "r.json"), os.path.join(d, "o.csv")
     print(f"load average {os.getloadavg()}, {os.cpu_count()} cores")
     # 2D
-    xy = np.loadtxt(os.path.join(DATA, "polygons", "coast_great_britain_ne10m.csv"), delimiter=",",
-                    skiprows=1)
-    if np.all(xy[0] == xy[-1]):
-        xy = xy[:-1]
-    k = max(1, a.vertices // len(xy))
-    nxt = np.roll(xy, -1, axis=0)
-    t = np.arange(k)[None, :, None] / k
-    up = (xy[:, None, :] * (1 - t) + nxt[:, None, :] * t).reshape(-1, 2)
-    poly_csv = os.path.join(d, "poly.csv")
-    np.savetxt(poly_csv, up, delimiter=",", header="x,y", comments="", fmt="%.17g")
+    if a.polygon:
+        up = np.loadtxt(a.polygon, delimiter=",", skiprows=1)
+        poly_csv = a.polygon
+    else:
+        xy = np.loadtxt(os.path.join(DATA, "polygons", "coast_great_britain_ne10m.csv"),
+                        delimiter=",", skiprows=1)
+        if np.all(xy[0] == xy[-1]):
+            xy = xy[:-1]
+        k = max(1, a.vertices // len(xy))
+        nxt = np.roll(xy, -1, axis=0)
+        t = np.arange(k)[None, :, None] / k
+        up = (xy[:, None, :] * (1 - t) + nxt[:, None, :] * t).reshape(-1, 2)
+        poly_csv = os.path.join(d, "poly.csv")
+        np.savetxt(poly_csv, up, delimiter=",", header="x,y", comments="", fmt="%.17g")
+    if a.build_only:
+        build_only(a, up, poly_csv, d)
+        return
     rng = np.random.default_rng(18)
     lo, hi = up.min(axis=0), up.max(axis=0)
     q = lo + rng.random((a.queries, 2)) * (hi - lo)

@@ -92,6 +92,45 @@ fn contains_equals_parity_and_marks_the_boundary() {
     assert_eq!(r["boundary"], on_edge + 2);
 }
 
+/// The tree JSON of `flint build` (written node by node): its keys, the root, and every node's
+/// chord, split vertex, children and level consistent (`n` = vertices of the tree).
+fn check_tree_json(t: &serde_json::Value, n: usize) {
+    let keys: Vec<&str> = t.as_object().unwrap().keys().map(|k| k.as_str()).collect();
+    for k in ["closed", "depth", "kinds", "nodes", "root", "vertices"] {
+        assert!(keys.contains(&k), "{keys:?}");
+    }
+    assert_eq!(t["vertices"], n);
+    let nodes = t["nodes"].as_array().unwrap();
+    assert_eq!(nodes.len() + 2, n); // closed: N − 1 nodes with the root
+    let mut depth = 0;
+    for nd in nodes {
+        let (lo, hi) = (
+            nd["chord"][0].as_u64().unwrap(),
+            nd["chord"][1].as_u64().unwrap(),
+        );
+        let v = nd["vertex"].as_u64().unwrap();
+        assert!(lo < v && v < hi, "{nd}");
+        depth = depth.max(nd["level"].as_u64().unwrap());
+        for c in nd["children"].as_array().unwrap() {
+            if let Some(c) = c.as_u64() {
+                let ch = &nodes[c as usize];
+                assert_eq!(
+                    ch["level"].as_u64().unwrap(),
+                    nd["level"].as_u64().unwrap() + 1
+                );
+                assert!(
+                    ch["chord"][0].as_u64().unwrap() >= lo
+                        && ch["chord"][1].as_u64().unwrap() <= hi
+                );
+            }
+        }
+        assert!(["cap", "intersection", "union", "segment", "unbounded"]
+            .contains(&nd["kind"].as_str().unwrap()));
+    }
+    assert_eq!(t["depth"], depth);
+    assert!(t["root"]["radius"].as_f64().unwrap() > 0.0);
+}
+
 #[test]
 fn build_and_approx_reproduce_the_notes() {
     let Some(benelux) = data("polygons/benelux_mainland_ne50m.csv") else {
@@ -110,6 +149,7 @@ fn build_and_approx_reproduce_the_notes() {
     let t = report(dir.path(), "t.json");
     // the root (chord and disc) and 231 split nodes; the report's `nodes` counts both
     assert_eq!(t["nodes"].as_array().unwrap().len() + 1, 232);
+    check_tree_json(&t, 233);
     for (args, edges) in [
         (&["--level", "3"][..], Some(13)),
         (&["--count", "60"][..], Some(60)),
@@ -367,6 +407,17 @@ fn repair_removes_spikes_and_refuses_crossings() {
     let r = report(dir.path(), "r.json");
     assert_eq!(r["spikes_removed"], 2);
     assert_eq!(r["removed_vertices"], serde_json::json!([5081, 7182]));
+    // the streamed tree JSON with the repair's maps
+    let o = morpho(
+        dir.path(),
+        &["flint", "build", au, "-o", "au.json", "--repair"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let t = report(dir.path(), "au.json");
+    assert_eq!(t["removed_vertices"], serde_json::json!([5081, 7182]));
+    let kept = t["input_index"].as_array().unwrap();
+    check_tree_json(&t, kept.len());
+    assert!(kept.iter().all(|k| k != 5081 && k != 7182));
     let out = std::fs::read_to_string(dir.path().join("a.csv")).unwrap();
     let inside: Vec<&str> = out
         .lines()

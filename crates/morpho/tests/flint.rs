@@ -106,17 +106,81 @@ fn random_polygons_and_polylines_structure() {
     }
 }
 
+/// Dense smooth curves with a fine random walk in the radius (closed) or the height (open):
+/// Alg. 7.1's widest disc sits next to a chord end there and its tree degenerates towards a
+/// path (depth ~ N, build Θ(N²)); the depth budget of `tree2.rs` keeps the depth O(log N) and
+/// the work (vertex visits, Σ over nodes of the edges spanned) O(N log N), with every tree
+/// invariant. Counts, not times.
+#[test]
+fn dense_smooth_curves_have_logarithmic_depth() {
+    let mut r = Rng::new(18);
+    let n = 20_000;
+    let mut walk = 0.0f64;
+    let mut circle = Vec::with_capacity(n);
+    let mut line = Vec::with_capacity(n);
+    for k in 0..n {
+        walk += (unit(&mut r) - 0.5) * 2e-5;
+        let a = k as f64 / n as f64 * std::f64::consts::TAU;
+        let rad = 1.0 + 0.1 * (7.0 * a).sin() + walk;
+        circle.push(Point2::new(rad * a.cos(), rad * a.sin()));
+        line.push(Point2::new(k as f64 / n as f64, walk));
+    }
+    // an exact circle too (cocircular up to rounding: near-ties everywhere)
+    let round: Vec<Point2> = (0..n)
+        .map(|k| {
+            let a = k as f64 / n as f64 * std::f64::consts::TAU;
+            Point2::new(a.cos(), a.sin())
+        })
+        .collect();
+    let log2 = (n as f64).log2().ceil() as u32;
+    // the cause: Alg. 7.1's own rule on the rough star (what `FlintTree2::new` was before the
+    // budget) fails the depth bound below
+    let v = FlintTree2::new_alg71(&circle, true).unwrap();
+    assert!(v.depth() > 4 * log2 + 4, "Alg. 7.1 depth {}", v.depth());
+    for (name, p, closed) in [
+        ("star", &circle, true),
+        ("circle", &round, true),
+        ("line", &line, false),
+    ] {
+        let t = FlintTree2::new(p, closed).unwrap();
+        let visits: usize = t.nodes.iter().map(|nd| nd.stone.hi - nd.stone.lo).sum();
+        assert!(
+            t.depth() <= 4 * log2 + 4,
+            "{name}: depth {} for {n} vertices",
+            t.depth()
+        );
+        assert!(
+            visits <= 4 * log2 as usize * n,
+            "{name}: {visits} vertex visits"
+        );
+        if closed {
+            check_tree(&t);
+        } else {
+            assert_eq!(t.node_count(), n - 1);
+            assert_eq!(t.in_order(), (0..n).collect::<Vec<_>>());
+            for nd in &t.nodes {
+                assert!(nd.stone.lo < nd.vertex && nd.vertex < nd.stone.hi);
+                for q in nd.stone.lo..=nd.stone.hi {
+                    assert!(nd.stone.contains(t.points(), t.points()[q]));
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn benelux_ne50m_numbers_of_a6() {
     let Some(p) = ring("benelux_mainland_ne50m.csv") else {
         return;
     };
     assert_eq!(p.len(), 233);
-    let t = FlintTree2::new(&p, true).unwrap();
+    let t = FlintTree2::new_alg71(&p, true).unwrap();
     check_tree(&t);
     assert_eq!(t.node_count(), 232);
     assert_eq!(t.kind_counts(), [129, 102, 0, 0, 0]);
     assert_eq!(t.depth(), 19);
+    // the depth budget of `FlintTree2::new` never overrides Alg. 7.1 here
+    assert_eq!(FlintTree2::new(&p, true).unwrap(), t);
     // level 3: 13 edges, e5 0.728; level 4: 23 edges, e5 3.35 (e5 not monotone)
     let l3 = t.approximate(Target::Level(3)).unwrap();
     let l4 = t.approximate(Target::Level(4)).unwrap();
@@ -154,7 +218,7 @@ fn great_britain_numbers_of_a6() {
         return;
     };
     assert_eq!(p.len(), 3697);
-    let t = FlintTree2::new(&p, true).unwrap();
+    let t = FlintTree2::new_alg71(&p, true).unwrap();
     check_tree(&t);
     assert_eq!(t.node_count(), 3696);
     // the notes: 2029 caps / 1606 ∩ / 60 segments / 0 ∪, "depending on tie rules (collinear
@@ -163,6 +227,10 @@ fn great_britain_numbers_of_a6() {
     assert_eq!(k, [2026, 1607, 62, 0, 0]);
     assert!(k[0].abs_diff(2029) <= 5 && k[1].abs_diff(1606) <= 5 && k[2].abs_diff(60) <= 5);
     assert_eq!(t.depth(), 57);
+    // with the depth budget: ⌈log₂ N⌉ + log_{4/3} N + 2 < 43 levels, same invariants
+    let b = FlintTree2::new(&p, true).unwrap();
+    check_tree(&b);
+    assert!(b.depth() <= 42, "{}", b.depth());
     let l6 = t.approximate(Target::Level(6)).unwrap();
     assert_eq!(l6.edges(), 64);
     assert!((l6.errors.e5 - 2.61).abs() < 0.005, "{}", l6.errors.e5);

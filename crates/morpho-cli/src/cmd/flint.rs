@@ -277,6 +277,71 @@ fn tree(path: &Path, c: &Curve) -> Result<FlintTree2, Failure> {
     })
 }
 
+/// Writes the tree as one compact JSON object (keys sorted, as `serde_json`'s map writes
+/// them), streamed node by node: memory stays that of the tree, not of a JSON value of it.
+fn write_tree(
+    w: &mut dyn std::io::Write,
+    t: &FlintTree2,
+    kinds: &serde_json::Value,
+    repair: Option<&SpikeRepair>,
+) -> morpho::Result<()> {
+    let side = |d: &Option<morpho::flint::SideDisc>| {
+        d.as_ref().map(
+            |d| json!({"vertex": d.pos, "center": d.center, "radius": d.radius, "width": d.width}),
+        )
+    };
+    let some = |c: u32| (c != morpho::util::NONE).then_some(c);
+    let put = |w: &mut dyn std::io::Write, s: &str| io::write_all(w, s.as_bytes());
+    // serde_json fails on a writer only when the writer fails
+    let value = |w: &mut dyn std::io::Write, v: &serde_json::Value| {
+        serde_json::to_writer(&mut *w, v).map_err(|e| morpho::Error::io("", e.into()))
+    };
+    put(
+        w,
+        &format!("{{\"closed\":{},\"depth\":{},", t.is_closed(), t.depth()),
+    )?;
+    if let Some(r) = repair {
+        // positions index the repaired ring; this maps them to input vertices
+        put(w, "\"input_index\":")?;
+        value(w, &json!(r.kept))?;
+        put(w, ",")?;
+    }
+    put(w, "\"kinds\":")?;
+    value(w, kinds)?;
+    put(w, ",\"nodes\":[")?;
+    for (k, n) in t.nodes.iter().enumerate() {
+        if k > 0 {
+            put(w, ",")?;
+        }
+        value(
+            w,
+            &json!({
+                "vertex": n.vertex,
+                "kind": n.stone.kind.name(),
+                "chord": [n.stone.lo, n.stone.hi],
+                "left": side(&n.stone.left),
+                "right": side(&n.stone.right),
+                "error": n.stone.error(),
+                "children": n.children.map(some),
+                "level": n.level,
+            }),
+        )?;
+    }
+    put(w, "],")?;
+    if let Some(r) = repair {
+        put(w, "\"removed_vertices\":")?;
+        value(w, &json!(r.removed))?;
+        put(w, ",")?;
+    }
+    put(w, "\"root\":")?;
+    value(
+        w,
+        &json!({"chord": t.root.chord, "center": t.root.center, "radius": t.root.radius,
+                "children": t.root.children.map(some)}),
+    )?;
+    put(w, &format!(",\"vertices\":{}}}\n", t.len()))
+}
+
 /// Runs `morpho flint`.
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     match args.command {
@@ -306,43 +371,8 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             report.set("depth", t.depth());
             let kinds = json!({"cap": k[0], "intersection": k[1], "union": k[2], "segment": k[3], "unbounded": k[4]});
             report.set("kinds", kinds.clone());
-            let side = |d: &Option<morpho::flint::SideDisc>| {
-                d.as_ref().map(|d| {
-                    json!({"vertex": d.pos, "center": d.center, "radius": d.radius, "width": d.width})
-                })
-            };
-            let nodes: Vec<_> = t
-                .nodes
-                .iter()
-                .map(|n| {
-                    json!({
-                        "vertex": n.vertex,
-                        "kind": n.stone.kind.name(),
-                        "chord": [n.stone.lo, n.stone.hi],
-                        "left": side(&n.stone.left),
-                        "right": side(&n.stone.right),
-                        "error": n.stone.error(),
-                        "children": n.children.map(|c| (c != morpho::util::NONE).then_some(c)),
-                        "level": n.level,
-                    })
-                })
-                .collect();
-            let mut doc = json!({
-                "closed": closed,
-                "vertices": pts.len(),
-                "root": {"chord": t.root.chord, "center": t.root.center, "radius": t.root.radius,
-                         "children": t.root.children.map(|c| (c != morpho::util::NONE).then_some(c))},
-                "depth": t.depth(),
-                "kinds": kinds,
-                "nodes": nodes,
-            });
-            if let Some(r) = &c.repair {
-                // positions index the repaired ring; this maps them to input vertices
-                doc["input_index"] = json!(r.kept);
-                doc["removed_vertices"] = json!(r.removed);
-            }
             report.time("write", || {
-                io::write_atomic(&output, |w| io::json::write_value(w, &doc))
+                io::write_atomic(&output, |w| write_tree(w, &t, &kinds, c.repair.as_ref()))
             })?;
             eprintln!(
                 "wrote {} ({} nodes, depth {})",

@@ -161,14 +161,35 @@ impl Flintstone {
     /// The flintstone of the polyline at positions `lo..=hi` (`hi ≥ lo + 2`) of `points`
     /// (positions taken modulo `points.len()`). The chord ends must differ.
     pub fn of(points: &[[f64; 2]], lo: usize, hi: usize) -> Flintstone {
+        Flintstone::of_windowed(points, lo, hi, None).0
+    }
+
+    /// [`Flintstone::of`], and in the same pass the position in the closed position range
+    /// `window` (inside `lo + 1..=hi − 1`, non-empty) farthest from the chord line (largest
+    /// `|orient2d|` as constructed — a choice, not a decision; ties to the first, all on the
+    /// line: the window's middle). `None` without a window. The balanced split of
+    /// `tree2.rs` (the depth budget) takes it when Alg. 7.1's vertex would leave a part too
+    /// large.
+    pub(crate) fn of_windowed(
+        points: &[[f64; 2]],
+        lo: usize,
+        hi: usize,
+        window: Option<[usize; 2]>,
+    ) -> (Flintstone, Option<usize>) {
         let (a, b) = (at(points, lo), at(points, hi));
         let n = points.len();
         // positions lo+1..hi as (position, point) without a division per vertex
         let interior = || positions(points, lo + 1, hi);
         let (mut best_l, mut best_r): (Option<usize>, Option<usize>) = (None, None);
         let mut unbounded = false;
+        // an empty range (never in the window) when there is no window
+        let [w_lo, w_hi] = window.unwrap_or([1, 0]);
+        let (mut far, mut far_o) = (window.map(|[l, h]| l + (h - l) / 2), 0.0f64);
         for (p, x) in interior() {
             let o = orient2d(a, b, x);
+            if p >= w_lo && p <= w_hi && o.abs() > far_o {
+                (far, far_o) = (Some(p), o.abs());
+            }
             if o == 0.0 {
                 unbounded |= !on_segment(a, b, x);
                 continue;
@@ -218,14 +239,15 @@ impl Flintstone {
                 d.reach = d.reach.max(reach2[k].sqrt());
             }
         }
-        Flintstone {
+        let stone = Flintstone {
             lo,
             hi,
             left,
             right,
             kind,
             hull: (m, hull2.sqrt()),
-        }
+        };
+        (stone, far)
     }
 
     /// The flintstone error `max{w_1, w_2}` (Def. 7.4; 0 for a segment, ∞ when unbounded).

@@ -4,7 +4,9 @@
 //! - [`Flintstone`], [`SideDisc`], [`StoneKind`]: discs with signed radius, half-planes and the
 //!   ± operator (Defs. 7.1–7.4), exact membership;
 //! - [`Criteria`], [`edge_criteria`], [`approximation_criteria`]: the error criteria e1–e5 (§6.2);
-//! - [`FlintTree2`]: the 2D flintstone tree (Alg. 7.1) of a simple polygon or open polyline;
+//! - [`FlintTree2`]: the 2D flintstone tree (Alg. 7.1 within a depth budget that keeps the
+//!   build O(N log N) on dense smooth curves, see `tree2.rs`; [`FlintTree2::new_alg71`]
+//!   without it) of a simple polygon or open polyline;
 //!   [`FlintTree2::new_repaired`] first removes zero-area spikes (GIS collinear back-tracks,
 //!   [`crate::mesh::validity::remove_spikes`]);
 //! - [`Target`], [`Approximation`]: level-ℓ, adaptive-ε and edge-count approximations (§7.2.3);

@@ -5,13 +5,40 @@
 //! apart (existing Welzl, [`crate::geom::smallest_enclosing_disc`]; for a polyline: its two end
 //! points) and the disc. Every polyline `v_p … v_s` with `p + 1 < s` gets a node: its flintstone
 //! ([`Flintstone`]) and the split vertex of Alg. 7.1 (cap vertex, else larger signed radius; the
-//! middle position when all interior vertices lie on the chord). Its children are the nodes
+//! middle position when all interior vertices lie on the chord), within the depth budget
+//! below. Its children are the nodes
 //! of `v_p … v_q` and `v_q … v_s` (none for an edge). So the tree has exactly N − 1 nodes
 //! (root + one per other vertex) and an in-order traversal gives the polygon order.
 //! The recursion is breadth-agnostic (an explicit stack), so depth never overflows.
 //!
 //! Levels: the root is level 0, its children level 1, …; the level-ℓ approximation has at most
-//! `2^{ℓ+1}` edges. Build: Θ(N log N) best, O(N²) worst (Thm 7.1); storage Θ(N) (Thm 7.2).
+//! `2^{ℓ+1}` edges. Storage Θ(N) (Thm 7.2).
+//!
+//! **Deviation from Alg. 7.1 (V §7.2.2): a depth budget.** Alg. 7.1's build is Θ(N log N) best,
+//! O(N²) worst (Thm 7.1), and ordinary dense data reach the worst case: on a densely sampled
+//! smooth or slightly rough curve the widest side disc belongs to a vertex next to a chord end
+//! (the key `(x−a)·(x−b) / 2|(b−a)×(x−a)|` is largest where the product of the distances to
+//! the ends is smallest), each split cuts off a few vertices, the depth grows like N and the
+//! build like Σ subtree sizes (a 10⁶-vertex rough star: 71 s, depth in the thousands; a circle
+//! of 10⁷ vertices would run for hours). [`FlintTree2::new`] therefore takes Alg. 7.1's vertex
+//! only while both parts stay within a per-level cap: `N` edges for the first `⌈log₂ N⌉`
+//! levels, then `max(⌈c/2⌉, ⌊3c/4⌋)` of the level above. Otherwise it splits at the vertex
+//! farthest from the chord line among the positions whose two parts both fit the cap (the
+//! middle half of the polyline once the cap has shrunk to `3k/4`; Douglas–Peucker's rule on
+//! that window). A node within its cap can always be split so (`⌈k/2⌉` fits), so the depth is
+//! at most `⌈log₂ N⌉ + log_{4/3} N + 2` (≈ 3.4 log₂ N) and the build O(N log N) on every
+//! input. Nothing else changes: the flintstone of a node depends only on its chord ends, so
+//! exactly N − 1 nodes, in-order = polygon order, every vertex of a node's polyline in its
+//! flintstone and the discs through their defining vertices hold as before; only which vertex
+//! splits a node differs, and only where Alg. 7.1's would break the budget (on the project's
+//! Benelux 1:50m border never; on the Great Britain coast 1:10m at 38 of 3 695 nodes, depth
+//! 57 → 37; on the 10⁶-vertex upsampled coast and rough star at 10 % and 6 % of the nodes).
+//! Not fixed by it: on (nearly) cocircular input, such as an exact circle, every visit's
+//! in-circle test takes its exact slow path (≈ 15 s per 10⁶ vertices, `bench/README.md`).
+//! What it costs in
+//! approximation quality (e1–e5 at equal edge counts) is measured in `bench/README.md`
+//! ("Flintstone tree build: the depth budget"). [`FlintTree2::new_alg71`] builds the thesis's
+//! tree without the budget (its figures, the notes' A.6 numbers).
 //! Input checks: ≥ 3 vertices, finite coordinates, and for a polygon the exact simplicity test
 //! of [`crate::mesh::validity::check_polygon`] (near-duplicate points are accepted; points that
 //! really coincide or edges that really meet are refused, naming their vertex indices).
@@ -105,6 +132,25 @@ impl FlintTree2 {
     /// assert_eq!(t.in_order(), vec![0, 1, 2, 3, 4]);
     /// ```
     pub fn new(points: &[Point2], closed: bool) -> Result<FlintTree2, FlintError> {
+        FlintTree2::with_rule(points, closed, true)
+    }
+
+    /// [`FlintTree2::new`] with Alg. 7.1's split vertex at every node (no depth budget): the
+    /// thesis's tree, for reproducing its figures and the notes' A.6 numbers. Its build is
+    /// O(N²) in the worst case (Thm 7.1), and dense smooth curves reach it (see the module
+    /// doc): not for untrusted or large input.
+    ///
+    /// ```
+    /// use morpho::flint::FlintTree2;
+    /// use morpho::geom::Point2;
+    /// let sq = [(0.0, 0.0), (1.0, 0.0), (2.0, 0.1), (2.0, 2.0), (0.0, 2.0)].map(|(x, y)| Point2::new(x, y));
+    /// assert_eq!(FlintTree2::new_alg71(&sq, true).unwrap(), FlintTree2::new(&sq, true).unwrap());
+    /// ```
+    pub fn new_alg71(points: &[Point2], closed: bool) -> Result<FlintTree2, FlintError> {
+        FlintTree2::with_rule(points, closed, false)
+    }
+
+    fn with_rule(points: &[Point2], closed: bool, budget: bool) -> Result<FlintTree2, FlintError> {
         let flat = check_input(points, closed)?;
         let n = flat.len();
         let disc = smallest_enclosing_disc(points).map_err(|_| FlintError::AllCoincident)?;
@@ -136,9 +182,9 @@ impl FlintTree2 {
             nodes: Vec::with_capacity(n),
             flat: Default::default(),
         };
-        t.root.children[0] = t.build(chord[0], chord[1]);
+        t.root.children[0] = t.build(chord[0], chord[1], budget);
         if closed {
-            t.root.children[1] = t.build(chord[1], chord[0] + n);
+            t.root.children[1] = t.build(chord[1], chord[0] + n, budget);
             t.flat = super::locate::Flat::new(&t);
         }
         Ok(t)
@@ -177,16 +223,35 @@ impl FlintTree2 {
     }
 
     /// Builds the subtree of the polyline `lo..=hi`; returns its node id or [`NONE`].
-    fn build(&mut self, lo: usize, hi: usize) -> u32 {
+    fn build(&mut self, lo: usize, hi: usize, budget: bool) -> u32 {
         if hi < lo + 2 {
             return NONE;
         }
+        // without the budget: N at every level (Alg. 7.1's vertex always taken)
+        let caps = if budget {
+            level_caps(self.points.len())
+        } else {
+            Vec::new()
+        };
         // (lo, hi, parent, child slot, level); parent NONE = the subtree's own root
         let mut stack = vec![(lo, hi, NONE, 0usize, 1u32)];
         let mut top = NONE;
         while let Some((lo, hi, parent, slot, level)) = stack.pop() {
-            let stone = Flintstone::of(&self.points, lo, hi);
-            let vertex = stone.split().unwrap_or((lo + hi) / 2);
+            // the children (level + 1) may have at most `cap` edges each
+            // (never below ⌈k/2⌉ by the caps' construction; the max keeps the window non-empty
+            // whatever happens)
+            let cap = match budget {
+                true => caps.get(level as usize + 1).copied().unwrap_or(1),
+                false => hi - lo,
+            }
+            .max((hi - lo).div_ceil(2));
+            let window = (hi - lo > cap).then(|| [hi - cap, lo + cap]);
+            let (stone, far) = Flintstone::of_windowed(&self.points, lo, hi, window);
+            let vertex = match stone.split() {
+                Some(q) if q - lo <= cap && hi - q <= cap => q,
+                // Alg. 7.1's vertex (or none: a segment) leaves a part over the budget
+                _ => far.unwrap_or((lo + hi) / 2),
+            };
             let id = self.nodes.len() as u32;
             self.nodes.push(FlintNode {
                 vertex,
@@ -282,6 +347,26 @@ impl FlintTree2 {
     }
 }
 
+/// Levels of unconstrained Alg. 7.1 splits: `⌈log₂ N⌉` (a balanced tree's height).
+fn budget_slack(n: usize) -> usize {
+    n.next_power_of_two().trailing_zeros() as usize
+}
+
+/// The depth budget: `caps[ℓ]` is the most edges a node of level `ℓ` may span. `N` down to the
+/// slack, then `max(⌈c/2⌉, ⌊3c/4⌋)` per level, so that a node within its cap can always be split
+/// with both parts within the next (a part of `⌈k/2⌉ ≤ ⌈c/2⌉` edges fits), and the tree depth
+/// is at most `slack + log_{4/3} N + 2`. Ends at the first cap below 2 (no node below).
+fn level_caps(n: usize) -> Vec<usize> {
+    // the root's two parts may each span up to N edges (levels 0 and 1)
+    let mut caps = vec![n; budget_slack(n).max(1) + 1];
+    let mut c = n;
+    while c >= 2 {
+        c = c.div_ceil(2).max(c / 4 * 3 + c % 4 * 3 / 4);
+        caps.push(c);
+    }
+    caps
+}
+
 /// The two support points farthest apart, in increasing order.
 fn root_pair(p: &[[f64; 2]], support: &[usize]) -> Option<[usize; 2]> {
     let mut best: Option<(f64, usize, usize)> = None;
@@ -294,4 +379,32 @@ fn root_pair(p: &[[f64; 2]], support: &[usize]) -> Option<[usize; 2]> {
         }
     }
     best.map(|(_, a, b)| [a, b])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The budget's induction: a node within its level's cap can be split with both parts
+    /// within the next level's cap, and the caps end after `slack + log_{4/3} N + 2` levels.
+    #[test]
+    fn level_caps_admit_a_split_and_bound_the_depth() {
+        for n in (3..2000).chain([4096, 4097, 1 << 20, 10_000_000, 1 << 40]) {
+            let caps = level_caps(n);
+            let slack = budget_slack(n);
+            assert!(caps[..=slack].iter().all(|&c| c == n));
+            for w in caps.windows(2) {
+                if w[0] >= 2 {
+                    assert!(w[0].div_ceil(2) <= w[1] && w[1] <= w[0], "{n}: {w:?}");
+                }
+            }
+            assert!(*caps.last().unwrap() < 2 && caps[caps.len() - 2] >= 2);
+            let bound = slack as f64 + (n as f64).ln() / (4.0f64 / 3.0).ln() + 2.0;
+            assert!(
+                ((caps.len() - 1) as f64) <= bound,
+                "{n}: {} levels",
+                caps.len() - 1
+            );
+        }
+    }
 }
