@@ -232,6 +232,40 @@ fn every_3d_kind_equals_its_definition() {
     cube.push([0.5, 0.5, 0.5]);
     cube.push([3.0, 0.2, 0.4]);
     sets.push(("cube".into(), cube));
+    // a hull facet of 5×5 coplanar points (cocircular unit squares) over a few points below it
+    // (issue 17: the facet's triangles are listed from its empty triangles), and a circle of
+    // 12 integer points with a point far above and below (one cocircular cell of Delaunay faces)
+    let mut facet: Vec<[f64; 3]> = (0..25)
+        .map(|i| [(i % 5) as f64, (i / 5) as f64, 0.0])
+        .collect();
+    facet.extend([
+        [0.0, 0.0, -2.0],
+        [4.0, 0.0, -4.0],
+        [0.0, 4.0, -3.0],
+        [4.0, 4.0, -2.0],
+        [1.3, 2.2, -1.1],
+        [2.9, 0.6, -0.7],
+    ]);
+    sets.push(("facet".into(), facet));
+    let mut circle: Vec<[f64; 3]> = [
+        [5., 0.],
+        [4., 3.],
+        [3., 4.],
+        [0., 5.],
+        [-3., 4.],
+        [-4., 3.],
+        [-5., 0.],
+        [-4., -3.],
+        [-3., -4.],
+        [0., -5.],
+        [3., -4.],
+        [4., -3.],
+    ]
+    .iter()
+    .map(|q| [q[0], q[1], 0.0])
+    .collect();
+    circle.extend([[0.0, 0.0, 10.0], [0.0, 0.0, -10.0], [1.0, 2.0, 16.0]]);
+    sets.push(("circle".into(), circle));
     for (name, p) in sets {
         let pts: Vec<Point3> = p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
         let edge_kinds = [

@@ -97,10 +97,17 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
         return brute_3d(&d, &p, kind);
     }
     // the triples of cospherical (and flat) groups — up to g³/6 of them — only for the kinds
-    // made of such triangles; the others need the Delaunay faces and the groups' pairs
-    let triples = matches!(kind, Kind::Gamma(..) | Kind::GammaRange(_))
-        || matches!(kind, Kind::Alpha(a) if a < 0.0);
-    let (cand, groups) = fast::candidates_3d_groups(&d, triples);
+    // made of such triangles; the others need the Delaunay faces and the groups' pairs. The
+    // triangles of hull facets that only a half-space leaves empty (γ-values (−1, 1)) only
+    // for the γ kinds with a parameter −1.
+    let triples = match kind {
+        Kind::Gamma(c0, c1) if c0 <= -1.0 || c1 <= -1.0 => fast::GroupTriples::All,
+        Kind::GammaRange(r) if r[0] <= -1.0 => fast::GroupTriples::All,
+        Kind::Gamma(..) | Kind::GammaRange(_) => fast::GroupTriples::Balls,
+        Kind::Alpha(a) if a < 0.0 => fast::GroupTriples::Balls,
+        _ => fast::GroupTriples::Faces,
+    };
+    let (cand, groups) = fast::candidates_3d_with(&d, triples);
     let mut dt_edges: Vec<[u32; 2]> = Vec::with_capacity(d.tets.len() * 2);
     for t in &d.tets {
         for i in 0..4 {
@@ -332,28 +339,29 @@ fn hull_3d(d: &d3::Delaunay3, p: &[[f64; 3]]) -> Vec<[u32; 3]> {
         vs.sort_unstable();
         vs.dedup();
         let gp: Vec<[f64; 3]> = vs.iter().map(|&v| p[v as usize]).collect();
-        for i in 0..vs.len() {
-            for j in i + 1..vs.len() {
-                for k in j + 1..vs.len() {
-                    let n = crate::geom::vec::cross(
-                        crate::geom::vec::sub(gp[j], gp[i]),
-                        crate::geom::vec::sub(gp[k], gp[i]),
-                    );
-                    if n == [0.0, 0.0, 0.0] {
-                        continue;
-                    }
-                    let empty = (0..vs.len()).all(|x| {
-                        x == i
-                            || x == j
-                            || x == k
-                            || !super::gamma::in_closed_triangle_3d(gp[i], gp[j], gp[k], gp[x], n)
-                    });
-                    if empty {
-                        out.push([vs[i], vs[j], vs[k]]);
-                    }
-                }
+        // every empty triangle of the facet, O(1) each after O(g² log g) ([`super::facets`];
+        // testing every triple against every point was O(g⁴): hours on the 1597 points of the
+        // fandisk model's top facet)
+        let start = out.len();
+        super::facets::empty_triangles_3d(&gp, |i, j, k| {
+            let mut t = [vs[i as usize], vs[j as usize], vs[k as usize]];
+            t.sort_unstable();
+            out.push(t);
+        });
+        // (as before: no triangle whose floating-point normal vanishes)
+        let mut k = start;
+        for i in start..out.len() {
+            let t = out[i].map(|v| p[v as usize]);
+            let n = crate::geom::vec::cross(
+                crate::geom::vec::sub(t[1], t[0]),
+                crate::geom::vec::sub(t[2], t[0]),
+            );
+            if n != [0.0, 0.0, 0.0] {
+                out[k] = out[i];
+                k += 1;
             }
         }
+        out.truncate(k);
     }
     out
 }

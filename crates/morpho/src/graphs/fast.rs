@@ -1002,6 +1002,25 @@ pub fn coords3(d: &Delaunay3) -> Vec<[f64; 3]> {
     d.points.iter().map(|p| [p.x, p.y, p.z]).collect()
 }
 
+/// Which triples of the cospherical and flat groups [`candidates_3d_with`] adds to the
+/// Delaunay faces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GroupTriples {
+    /// None: the Delaunay faces only (the kinds that need no more than the faces and the pairs
+    /// of the groups skip the Θ(g³) triples).
+    Faces,
+    /// Every triple with an empty ball through it: the triples of the cospherical groups and of
+    /// the cocircular (flat) cells — all of γ(\[-1,1\],\[0,1\]) but the triangles below.
+    Balls,
+    /// [`GroupTriples::Balls`] and the triangles of coplanar hull facets with more than three
+    /// points whose closed triangle is empty but whose circumcircle holds a point of the facet:
+    /// only the outer half-space is an empty neighbourhood of them (γ-values (−1, 1)), so only
+    /// the γ kinds with a parameter −1 (and the boundary's γ(\[-1,1\],\[0,1\])) contain them.
+    /// Listed from the empty triangles of each facet ([`super::facets`]), O(1) each after
+    /// O(g² log g) per facet of g points; they can be Θ(g³) (points in convex position).
+    All,
+}
+
 /// Builds the 3D candidates. Cospherical groups (adjacent tetrahedra with a common empty
 /// sphere, found by exact in-sphere) contribute every non-degenerate triple of their vertices;
 /// such a triple's interval is computed against the group's vertices and the vertices of all
@@ -1010,13 +1029,25 @@ pub fn coords3(d: &Delaunay3) -> Vec<[f64; 3]> {
 /// A group of g points has up to g³/6 triples, all in γ(\[-1,1\],\[0,1\]) when the points lie on
 /// one sphere: that output costs O(1) per triple on the sphere, not O(g) ([`SphereGroup`]).
 pub fn candidates_3d(d: &Delaunay3) -> Candidates3 {
-    candidates_3d_groups(d, true).0
+    candidates_3d_with(d, GroupTriples::All).0
 }
 
-/// [`candidates_3d`], with the triples of the cospherical and flat groups only when `triples`
-/// (the kinds that need no more than the Delaunay faces and the pairs of the groups skip their
-/// Θ(g³) triples), and the groups' sorted vertex sets.
-pub fn candidates_3d_groups(d: &Delaunay3, triples: bool) -> (Candidates3, Vec<Vec<u32>>) {
+/// The Delaunay faces with their intervals and the group triples `which`, and the sorted
+/// vertex sets of the groups whose pairs may be chords of γ(\[-1,1\],\[0,1\]) (V §3.3): the
+/// cospherical groups and the cocircular cells.
+///
+/// Groups: (a) cospherical tetrahedra; (b) coplanar, cocircular faces sharing an edge — one
+/// circle, which bounds the same family of balls for every triple of it; (c) coplanar hull
+/// faces sharing an edge — a hull facet, whose every empty triangle is a hull triangle
+/// (Def. 2.10) with an empty outer half-space. A triangle of a facet whose circumcircle holds
+/// no point of the facet is a Delaunay face or a triple of a cell (b) (the facet's Delaunay
+/// faces triangulate its planar Delaunay subdivision, whose cells are the cells (b)); the
+/// others have no empty finite ball (their interval is `finite_blocked`) and are listed from
+/// the facet's empty triangles ([`super::facets`]) in O(1) each, only for
+/// [`GroupTriples::All`]. Testing every triple of a facet against every candidate point, as
+/// before, cost O(g⁴): hours for the 1597 points of the fandisk model's top facet
+/// (issue 17, item 8).
+pub fn candidates_3d_with(d: &Delaunay3, which: GroupTriples) -> (Candidates3, Vec<Vec<u32>>) {
     let p = coords3(d);
     let mut out = Candidates3::default();
     let nt = d.tets.len();
@@ -1049,20 +1080,22 @@ pub fn candidates_3d_groups(d: &Delaunay3, triples: bool) -> (Candidates3, Vec<V
         out.intervals.push(iv);
         out.in_dt.push(true);
     }
-    // groups of vertices whose triples all belong to γ([-1,1],[0,1]):
-    // (a) cospherical tetrahedra (common empty sphere)
-    let mut groups = union_groups(&mut parent, &d.tets);
-    // (b) coplanar, cocircular faces sharing an edge (their common circle bounds the same
-    // family of balls); (c) coplanar hull facets (every empty triangle of a facet is a hull
-    // triangle, Def. 2.10, whose half-space is empty)
-    groups.extend(flat_groups(d, &p, &out.triangles));
-    for g in groups.iter_mut() {
+    // groups of vertices whose triples all belong to γ([-1,1],[0,1]): (a) cospherical
+    // tetrahedra (common empty sphere), (b) cocircular cells
+    let mut spheres = union_groups(&mut parent, &d.tets);
+    let (mut groups, facets) = flat_groups(d, &p, &out.triangles);
+    for g in spheres.iter_mut() {
         g.sort_unstable();
         g.dedup();
     }
-    groups.sort();
-    groups.dedup();
-    if groups.is_empty() || !triples {
+    spheres.sort();
+    spheres.dedup();
+    // the cells first: a circle of a cospherical group with more than three points is a cell
+    // (its Delaunay faces are coplanar and cocircular), whose triples [`CircleGroup`] decides
+    // in O(1) each, while [`SphereGroup`] would take them point by point (the whole group lies
+    // on one side of them)
+    groups.extend(spheres);
+    if which == GroupTriples::Faces || (groups.is_empty() && facets.is_empty()) {
         return (out, groups);
     }
     let mut existing: HashSet<[u32; 3]> = out.triangles.iter().copied().collect();
@@ -1080,6 +1113,9 @@ pub fn candidates_3d_groups(d: &Delaunay3, triples: bool) -> (Candidates3, Vec<V
         let sphere = group_fast_paths()
             .then(|| SphereGroup::new(&p, vs, &cands))
             .flatten();
+        let circle = (group_fast_paths() && sphere.is_none())
+            .then(|| CircleGroup::new(&p, vs, &cands))
+            .flatten();
         for i in 0..vs.len() {
             for j in i + 1..vs.len() {
                 for k in j + 1..vs.len() {
@@ -1092,7 +1128,12 @@ pub fn candidates_3d_groups(d: &Delaunay3, triples: bool) -> (Candidates3, Vec<V
                     else {
                         continue;
                     };
-                    let iv = match sphere.as_ref().and_then(|g| g.interval(&p, &fr, t)) {
+                    let fast = match (&sphere, &circle) {
+                        (Some(g), _) => g.interval(&p, &fr, t),
+                        (None, Some(g)) => Some(g.interval(&fr)),
+                        (None, None) => None,
+                    };
+                    let iv = match fast {
                         Some(iv) => iv,
                         None => {
                             count_triple_work(cands.len());
@@ -1120,7 +1161,142 @@ pub fn candidates_3d_groups(d: &Delaunay3, triples: bool) -> (Candidates3, Vec<V
             }
         }
     }
+    if which == GroupTriples::All {
+        for (vs, inner) in &facets {
+            facet_triangles(&p, vs, *inner, &mut existing, &mut out);
+        }
+    }
     (out, groups)
+}
+
+/// A cell of [`candidates_3d_with`] (b): points on one circle, with no candidate point strictly
+/// inside that circle in its plane (checked exactly once per group: O(|cands|) tests).
+///
+/// Every sphere through a triple of the group is a sphere through the circle, so the relation
+/// "x is better than y" of [`TriFrame::add`] between points off the plane (x inside the sphere
+/// through the circle and y) is the same for every triple, and so is the binding point on each
+/// side of the plane (the first of the best in candidate order); a point in the plane binds
+/// nothing (none is inside the circle, so none is in a closed triangle of it either). The two
+/// binding points are found once by adding every candidate for one triple; then a triple costs
+/// O(1) instead of O(|cands|) ([`TriFrame::ends`]), bit for bit the same interval. The triples
+/// of g cocircular points (a flat cell of a 3D set: all of them in γ(\[-1,1\],\[0,1\]), Θ(g³))
+/// cost O(g⁴) point by point: 324 integer points of a circle with one point above and one
+/// below it took minutes (issue 17, item 8).
+struct CircleGroup {
+    /// The binding points on the normal's side of the first triple and on the other side.
+    sides: [Option<[f64; 3]>; 2],
+}
+
+impl CircleGroup {
+    fn new(p: &[[f64; 3]], vs: &[u32], cands: &[u32]) -> Option<Self> {
+        let at = |v: u32| p[v as usize];
+        let (&a, &b) = (vs.first()?, vs.get(1)?);
+        let c = *vs
+            .iter()
+            .find(|&&c| TriFrame::new(at(a), at(b), at(c)).is_some())?;
+        let fr = TriFrame::new(at(a), at(b), at(c))?;
+        let n = crate::geom::vec::cross(
+            crate::geom::vec::sub(at(b), at(a)),
+            crate::geom::vec::sub(at(c), at(a)),
+        );
+        count_triple_work(cands.len());
+        let mut iv = fr.start();
+        let mut g = 0;
+        for &x in cands {
+            let member = g < vs.len() && vs[g] == x;
+            if member {
+                g += 1;
+            }
+            let q = at(x);
+            if fr.side(q) != 0.0 {
+                if member {
+                    return None;
+                }
+                fr.add(&mut iv, q);
+                continue;
+            }
+            // in the plane: the group on the circle (a, b, c exactly not collinear: the circle
+            // side of a is 0, not the collinear 0 — checked by a member off the circle below),
+            // every other point not inside it
+            let side = super::gamma::circumcircle_side_3d(at(a), at(b), at(c), q, n);
+            if (member && side != 0.0) || (!member && side > 0.0) {
+                return None;
+            }
+        }
+        let lifted = {
+            let mut d = at(a);
+            let k = (0..3)
+                .max_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
+                .unwrap_or(0);
+            d[k] += 1.0 + d[k].abs();
+            d
+        };
+        // corners exactly not collinear (else every side above was 0)
+        if raw::orient3d(at(a), at(b), at(c), lifted) == 0.0 {
+            return None;
+        }
+        (g == vs.len() && !iv.finite_blocked && !iv.all_blocked).then_some(CircleGroup {
+            sides: [iv.hi_at, iv.lo_at],
+        })
+    }
+
+    /// The interval of a triple of the group (frame `fr`).
+    fn interval(&self, fr: &TriFrame) -> CenterInterval {
+        count_triple_work(1);
+        let [x, y] = self.sides;
+        // the first triple's normal side is this one's, or the other
+        let flip = match (x, y) {
+            (Some(q), _) => fr.side(q) < 0.0,
+            (None, Some(q)) => fr.side(q) > 0.0,
+            (None, None) => false,
+        };
+        if flip {
+            fr.ends(y, x)
+        } else {
+            fr.ends(x, y)
+        }
+    }
+}
+
+/// The triangles of the hull facet `vs` (sorted) that are not candidates yet: its empty
+/// triangles whose circumcircle holds a point of the facet (see [`candidates_3d_with`]), each
+/// with the interval the point-by-point computation gives but for the value of its finite end
+/// (no finite ball is empty, only the presence of a binding point matters; `inner` is a point
+/// off the facet's plane, all of which lie on one side). Appended in sorted order.
+fn facet_triangles(
+    p: &[[f64; 3]],
+    vs: &[u32],
+    inner: u32,
+    existing: &mut HashSet<[u32; 3]>,
+    out: &mut Candidates3,
+) {
+    if !group_fast_paths() {
+        facet_triangles_reference(p, vs, existing, out);
+        return;
+    }
+    let fp: Vec<[f64; 3]> = vs.iter().map(|&v| p[v as usize]).collect();
+    let mut found: Vec<[u32; 3]> = Vec::new();
+    super::facets::empty_triangles_3d(&fp, |a, b, c| {
+        let mut t = [vs[a as usize], vs[b as usize], vs[c as usize]];
+        t.sort_unstable();
+        if !existing.contains(&t) {
+            found.push(t);
+        }
+    });
+    found.sort_unstable();
+    for t in found {
+        let Some(fr) = TriFrame::new(p[t[0] as usize], p[t[1] as usize], p[t[2] as usize]) else {
+            continue;
+        };
+        count_triple_work(1);
+        let mut iv = fr.start();
+        fr.add(&mut iv, p[inner as usize]);
+        iv.finite_blocked = true;
+        existing.insert(t);
+        out.triangles.push(t);
+        out.intervals.push(iv);
+        out.in_dt.push(false);
+    }
 }
 
 #[cfg(test)]
@@ -1209,9 +1385,49 @@ impl<'a> SphereGroup<'a> {
     }
 }
 
-/// Vertex groups of coplanar faces sharing an edge that are cocircular (exact in-sphere test
-/// against a point off the plane) or both on the hull.
-fn flat_groups(d: &Delaunay3, p: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u32>> {
+/// [`facet_triangles`] by the definition, for the tests: every triple of the facet that is
+/// not a candidate yet, with its interval against every point. O(g³·N).
+fn facet_triangles_reference(
+    p: &[[f64; 3]],
+    vs: &[u32],
+    existing: &mut HashSet<[u32; 3]>,
+    out: &mut Candidates3,
+) {
+    for i in 0..vs.len() {
+        for j in i + 1..vs.len() {
+            for k in j + 1..vs.len() {
+                let t = [vs[i], vs[j], vs[k]];
+                if existing.contains(&t) {
+                    continue;
+                }
+                let Some(iv) = super::gamma::center_interval_3d(
+                    p,
+                    t[0] as usize,
+                    t[1] as usize,
+                    t[2] as usize,
+                ) else {
+                    continue;
+                };
+                count_triple_work(p.len());
+                if iv.gamma_values().is_some() && iv.lo <= iv.hi {
+                    existing.insert(t);
+                    out.triangles.push(t);
+                    out.intervals.push(iv);
+                    out.in_dt.push(false);
+                }
+            }
+        }
+    }
+}
+
+/// A hull facet's sorted vertices and a vertex off its plane.
+type Facet = (Vec<u32>, u32);
+
+/// The flat groups of [`candidates_3d_with`] from the Delaunay faces: the cells, vertex sets of
+/// coplanar faces sharing an edge that are cocircular (exact in-sphere test against a point
+/// off the plane), and the hull facets with more than three points, vertex sets of coplanar
+/// hull faces sharing an edge, each with a vertex off its plane (the apex of one of its faces).
+fn flat_groups(d: &Delaunay3, p: &[[f64; 3]], faces: &[[u32; 3]]) -> (Vec<Vec<u32>>, Vec<Facet>) {
     let hull: HashSet<[u32; 3]> = d.hull.iter().map(|t| sorted3(*t)).collect();
     let mut by_edge: HashMap<[u32; 2], Vec<usize>> = HashMap::new();
     for (i, t) in faces.iter().enumerate() {
@@ -1219,8 +1435,14 @@ fn flat_groups(d: &Delaunay3, p: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u32
             by_edge.entry([a, b]).or_default().push(i);
         }
     }
-    let mut parent: Vec<u32> = (0..faces.len() as u32).collect();
-    let mut joined = vec![false; faces.len()];
+    let mut cell = (vec![false; faces.len()], (0..faces.len() as u32).collect());
+    let mut facet = (vec![false; faces.len()], (0..faces.len() as u32).collect());
+    let join = |(joined, parent): &mut (Vec<bool>, Vec<u32>), x: usize, y: usize| {
+        let (r1, r2) = (find(parent, x as u32), find(parent, y as u32));
+        parent[r1 as usize] = r2;
+        joined[x] = true;
+        joined[y] = true;
+    };
     for (edge, fs) in &by_edge {
         for x in 0..fs.len() {
             for y in x + 1..fs.len() {
@@ -1235,34 +1457,57 @@ fn flat_groups(d: &Delaunay3, p: &[[f64; 3]], faces: &[[u32; 3]]) -> Vec<Vec<u32
                 if raw::orient3d(q[0], q[1], q[2], pa) != 0.0 {
                     continue;
                 }
-                let both_hull = hull.contains(&f) && hull.contains(&g);
+                if hull.contains(&f) && hull.contains(&g) {
+                    join(&mut facet, fs[x], fs[y]);
+                }
                 let n = crate::geom::vec::cross(
                     crate::geom::vec::sub(q[1], q[0]),
                     crate::geom::vec::sub(q[2], q[0]),
                 );
                 let e = [q[0][0] + n[0], q[0][1] + n[1], q[0][2] + n[2]];
-                let cocircular = raw::orient3d(q[0], q[1], q[2], e) != 0.0
-                    && raw::insphere(q[0], q[1], q[2], e, pa) == 0.0;
-                if both_hull || cocircular {
-                    let (r1, r2) = (
-                        find(&mut parent, fs[x] as u32),
-                        find(&mut parent, fs[y] as u32),
-                    );
-                    parent[r1 as usize] = r2;
-                    joined[fs[x]] = true;
-                    joined[fs[y]] = true;
+                if raw::orient3d(q[0], q[1], q[2], e) != 0.0
+                    && raw::insphere(q[0], q[1], q[2], e, pa) == 0.0
+                {
+                    join(&mut cell, fs[x], fs[y]);
                 }
             }
         }
     }
-    let mut groups: HashMap<u32, Vec<u32>> = HashMap::new();
-    for i in 0..faces.len() {
-        if joined[i] {
-            let r = find(&mut parent, i as u32);
-            groups.entry(r).or_default().extend_from_slice(&faces[i]);
+    let collect = |(joined, parent): &mut (Vec<bool>, Vec<u32>)| {
+        let mut groups: HashMap<u32, (Vec<u32>, usize)> = HashMap::new();
+        for i in 0..faces.len() {
+            if joined[i] {
+                let r = find(parent, i as u32);
+                let g = groups.entry(r).or_insert((Vec::new(), i));
+                g.0.extend_from_slice(&faces[i]);
+            }
         }
-    }
-    groups.into_values().collect()
+        let mut v: Vec<(Vec<u32>, usize)> = groups.into_values().collect();
+        for g in v.iter_mut() {
+            g.0.sort_unstable();
+            g.0.dedup();
+        }
+        v.sort();
+        v
+    };
+    let cells = collect(&mut cell).into_iter().map(|g| g.0).collect();
+    let facets = collect(&mut facet)
+        .into_iter()
+        .filter(|g| g.0.len() > 3)
+        .filter_map(|(vs, face)| {
+            // the apex of the face's tetrahedron (a hull face has one)
+            let t = faces[face];
+            d.tets_around_vertex(t[0])
+                .into_iter()
+                .flat_map(|tet| d.tets[tet as usize])
+                .find(|&x| {
+                    let q = t.map(|v| p[v as usize]);
+                    raw::orient3d(q[0], q[1], q[2], p[x as usize]) != 0.0
+                })
+                .map(|x| (vs, x))
+        })
+        .collect();
+    (cells, facets)
 }
 
 #[cfg(test)]
@@ -1385,6 +1630,25 @@ mod tests {
         let mut shells = sphere(9);
         shells.extend(sphere(50).into_iter().map(|q| [q[0] + 0.5, q[1], q[2]]));
         vec![
+            (
+                "circle 65, apexes",
+                circle_3d(65, &[[0.0, 0.0, 130.0], [0.0, 0.0, -130.0]]),
+            ),
+            (
+                "circle 25, more points",
+                circle_3d(
+                    25,
+                    &[
+                        [0.0, 0.0, 50.0],
+                        [0.0, 0.0, -50.0],
+                        [3.0, 1.0, 80.0],
+                        [-20.0, 4.0, 62.5],
+                        [1.0, -2.0, -76.0],
+                        [40.0, 0.0, -1.0],
+                        [30.0, 30.0, 0.0],
+                    ],
+                ),
+            ),
             ("sphere 25", sphere(25)),
             ("sphere 26", sphere(26)),
             ("sphere 25 and outside", with_more),
@@ -1397,6 +1661,45 @@ mod tests {
                     .collect(),
             ),
         ]
+    }
+
+    /// The integer points of the circle x² + y² = r² in the plane z = 0 and the points `more`
+    /// (two at (0, 0, ±2r) make the disc a wall of Delaunay faces: one cocircular cell).
+    fn circle_3d(r: i64, more: &[[f64; 3]]) -> Vec<[f64; 3]> {
+        let mut p: Vec<[f64; 3]> = circle(r).into_iter().map(|q| [q[0], q[1], 0.0]).collect();
+        p.extend_from_slice(more);
+        p
+    }
+
+    /// A cocircular cell of g points (all Θ(g³) triples in γ(\[-1,1\],\[0,1\])) costs O(1) per
+    /// triple, not O(g): 108 points of a circle with a point above and below, each making a
+    /// cospherical cone with it, whose circle triples the cone took point by point (the whole
+    /// cone lies on one side of them).
+    #[test]
+    fn cocircular_triples_in_space_cost_constant_work_each() {
+        let p = circle_3d(1105, &[[0.0, 0.0, 2210.0], [0.0, 0.0, -2210.0]]);
+        let g = p.len() as u64 - 2;
+        assert_eq!(g, 108);
+        let pts: Vec<Point3> = p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
+        let d = d3::triangulate(&pts).unwrap();
+        TRIPLE_WORK.with(|c| c.set(0));
+        SLOW_TRIPLES.with(|c| c.set(0));
+        let cand = candidates_3d(&d);
+        let work = TRIPLE_WORK.with(|c| c.get());
+        let triples = cand.in_dt.iter().filter(|x| !**x).count() as u64;
+        let flat = cand
+            .triangles
+            .iter()
+            .zip(&cand.in_dt)
+            .filter(|(t, dt)| !**dt && t.iter().all(|&v| d.points[v as usize].z == 0.0))
+            .count() as u64;
+        assert_eq!(flat, g * (g - 1) * (g - 2) / 6 - (g - 2));
+        let slow = SLOW_TRIPLES.with(|c| c.get());
+        assert!(slow < 4 * g, "{slow} triples point by point");
+        assert!(
+            work <= 40 * triples,
+            "{work} points examined for {triples} triples"
+        );
     }
 
     fn cands3(p: &[[f64; 3]]) -> (Candidates3, u64) {
@@ -1415,8 +1718,122 @@ mod tests {
             assert!(fast.in_dt.iter().any(|x| !x), "{name}: no group triples");
             assert_eq!(fast.triangles, slow.triangles, "{name}");
             assert_eq!(fast.in_dt, slow.in_dt, "{name}");
-            assert_eq!(fast.intervals, slow.intervals, "{name}");
+            assert_alike(&fast.intervals, &slow.intervals, name);
         }
+    }
+
+    /// Intervals equal bit for bit, but for the finite end of a `finite_blocked` one (a hull
+    /// facet triangle that only the outer half-space leaves empty), where only the presence of
+    /// a binding point matters ([`facet_triangles`]).
+    fn assert_alike(fast: &[CenterInterval], slow: &[CenterInterval], name: &str) {
+        assert_eq!(fast.len(), slow.len(), "{name}");
+        for (a, b) in fast.iter().zip(slow) {
+            if a.finite_blocked || b.finite_blocked {
+                let key = |x: &CenterInterval| {
+                    (
+                        x.finite_blocked,
+                        x.all_blocked,
+                        x.lo_at.is_some(),
+                        x.hi_at.is_some(),
+                        x.gamma_values(),
+                    )
+                };
+                assert_eq!(key(a), key(b), "{name}");
+            } else {
+                assert_eq!(a, b, "{name}");
+            }
+        }
+    }
+
+    /// A g×g lattice on the top facet z = 0 of a box, with lattice points below it (and a few
+    /// points off the lattice, so that the tetrahedralization is not all cospherical): a hull
+    /// facet of g² points whose unit squares are cocircular cells.
+    fn facet_box(g: usize) -> Vec<[f64; 3]> {
+        let mut p: Vec<[f64; 3]> = (0..g * g)
+            .map(|i| [(i % g) as f64, (i / g) as f64, 0.0])
+            .collect();
+        let s = (g - 1) as f64;
+        for z in 1..3 {
+            for i in 0..4 {
+                p.push([
+                    (i % 2) as f64 * s,
+                    (i / 2) as f64 * s,
+                    -(z as f64) * s / 2.0,
+                ]);
+            }
+        }
+        p.extend([
+            [0.3, 0.7, -0.4],
+            [s * 0.6, s * 0.45, -s * 0.3],
+            [1.7, s - 0.9, -0.8],
+        ]);
+        p
+    }
+
+    fn cands3_with(p: &[[f64; 3]], which: GroupTriples) -> (Candidates3, u64) {
+        let pts: Vec<Point3> = p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
+        let d = d3::triangulate(&pts).unwrap();
+        TRIPLE_WORK.with(|c| c.set(0));
+        let cand = candidates_3d_with(&d, which).0;
+        (cand, TRIPLE_WORK.with(|c| c.get()))
+    }
+
+    /// The triangles of hull facets, listed from their empty triangles, against every triple
+    /// of the facet decided on every point; and without them for [`GroupTriples::Balls`].
+    #[test]
+    fn facet_triangles_equal_the_definition() {
+        let mut slanted = facet_box(5);
+        // the same on a plane through no axis (an integer map keeps it exactly flat)
+        for q in slanted.iter_mut() {
+            *q = [q[0] + q[2], q[1] - 2.0 * q[2], q[2] + q[0] - q[1]];
+        }
+        for (name, p) in [
+            ("facet 4×4", facet_box(4)),
+            ("facet 6×6", facet_box(6)),
+            ("slanted facet 5×5", slanted),
+        ] {
+            let (fast, _) = cands3_with(&p, GroupTriples::All);
+            let (slow, _) = reference(|| cands3_with(&p, GroupTriples::All));
+            assert_eq!(fast.triangles, slow.triangles, "{name}");
+            assert_eq!(fast.in_dt, slow.in_dt, "{name}");
+            assert_alike(&fast.intervals, &slow.intervals, name);
+            let blocked = fast.intervals.iter().filter(|iv| iv.finite_blocked).count();
+            assert!(blocked > 0, "{name}");
+            // Balls: the same but the half-space-only triangles
+            let (balls, _) = cands3_with(&p, GroupTriples::Balls);
+            assert_eq!(
+                balls.triangles.len(),
+                fast.triangles.len() - blocked,
+                "{name}"
+            );
+            let kept: Vec<_> = fast
+                .triangles
+                .iter()
+                .zip(&fast.intervals)
+                .filter(|x| !x.1.finite_blocked)
+                .map(|x| *x.0)
+                .collect();
+            assert_eq!(balls.triangles, kept, "{name}");
+        }
+    }
+
+    /// The fandisk case (issue 17, item 8): a hull facet of g² coplanar points cost O(g⁴)
+    /// (every triple against every candidate point; hours for the model's 1597-point facet in
+    /// `graph --kind gamma --c0 0 --c1 0.5`). Now its triangles cost O(1) each and nothing at
+    /// all when only the triples with an empty ball are asked for.
+    #[test]
+    fn facet_triangles_cost_constant_work_each() {
+        let p = facet_box(10);
+        let g2 = 100u64;
+        let (all, work) = cands3(&p);
+        let extra = all.in_dt.iter().filter(|x| !**x).count() as u64;
+        // (the cells' triples are point by point on their few neighbours)
+        assert!(
+            work <= 2 * extra + 200 * g2,
+            "{work} points examined for {extra} group triples"
+        );
+        let (_, work) = cands3_with(&p, GroupTriples::Balls);
+        assert!(work <= 200 * g2, "{work} points examined");
     }
 
     /// The issue-17 case: the triples of g exactly cospherical points (all of
@@ -1447,7 +1864,7 @@ mod tests {
         let d = d3::triangulate(&pts).unwrap();
         let all = candidates_3d(&d);
         TRIPLE_WORK.with(|c| c.set(0));
-        let (faces, groups) = candidates_3d_groups(&d, false);
+        let (faces, groups) = candidates_3d_with(&d, GroupTriples::Faces);
         assert_eq!(TRIPLE_WORK.with(|c| c.get()), 0);
         assert!(faces.in_dt.iter().all(|x| *x));
         let dt: Vec<_> = all

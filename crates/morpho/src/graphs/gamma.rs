@@ -871,7 +871,7 @@ impl TriFrame {
     }
     /// Side of x: +1 along the normal, −1 against, 0 in the plane (exact).
     #[inline]
-    fn side(&self, x: [f64; 3]) -> f64 {
+    pub(crate) fn side(&self, x: [f64; 3]) -> f64 {
         let [a, b, c] = self.t;
         // orient3d(a, b, c, x) > 0 when x is below, i.e. on the side opposite to n
         sign(-raw::orient3d(a, b, c, x))
@@ -973,6 +973,24 @@ impl TriFrame {
         }
         iv
     }
+    /// The interval with the binding points `above` (on the normal's side) and `below`: the
+    /// same as adding them (in any order) and then points that bind nothing — for a triple of
+    /// a cocircular group, whose binding points are those of every other triple of its circle
+    /// (`fast::CircleGroup`). The order of the ends by the exact in-sphere test, as in
+    /// [`TriFrame::add`].
+    pub fn ends(&self, above: Option<[f64; 3]>, below: Option<[f64; 3]>) -> CenterInterval {
+        let mut iv = self.start();
+        if let Some(x) = above {
+            iv.bind_hi(self.offset(1.0, x), x);
+        }
+        if let Some(y) = below {
+            iv.bind_lo(self.offset(-1.0, y), y);
+            if let Some(x) = above {
+                iv.settle(self.insphere_at(true, x, y));
+            }
+        }
+        iv
+    }
     /// Narrows `iv` by point x (not a corner); binding points and the order of the ends are
     /// decided by exact in-sphere tests (see [`EdgeFrame::add`]).
     pub fn add(&self, iv: &mut CenterInterval, x: [f64; 3]) {
@@ -1065,6 +1083,19 @@ pub fn in_closed_triangle_3d(
 /// point d off the plane, x is inside the circle iff it is inside the sphere through a, b, c, d
 /// (`insphere` times the orientation of (a, b, c, d) is positive).
 pub fn in_circumcircle_3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], x: [f64; 3], n: [f64; 3]) -> bool {
+    circumcircle_side_3d(a, b, c, x, n) > 0.0
+}
+
+/// For x coplanar with the triangle (a, b, c) (normal ≈ `n`): > 0 when x lies strictly inside
+/// its circumcircle, 0 on it, < 0 outside (exact, see [`in_circumcircle_3d`]); 0 for collinear
+/// corners.
+pub fn circumcircle_side_3d(
+    a: [f64; 3],
+    b: [f64; 3],
+    c: [f64; 3],
+    x: [f64; 3],
+    n: [f64; 3],
+) -> f64 {
     let k = if n[0].abs() >= n[1].abs() && n[0].abs() >= n[2].abs() {
         0
     } else if n[1].abs() >= n[2].abs() {
@@ -1077,9 +1108,9 @@ pub fn in_circumcircle_3d(a: [f64; 3], b: [f64; 3], c: [f64; 3], x: [f64; 3], n:
     d[k] = a[k] + (1.0 + a[k].abs());
     let o = raw::orient3d(a, b, c, d);
     if o == 0.0 {
-        return false; // collinear corners: no circle
+        return 0.0; // collinear corners: no circle
     }
-    raw::insphere(a, b, c, d, x) * o > 0.0
+    raw::insphere(a, b, c, d, x) * o
 }
 
 /// Whether `x` lies in the neighbourhood N_γ(c₀, c₁) of the 2D edge (a, b), with the larger

@@ -17,7 +17,11 @@
 //! over the h hull vertices; γ beyond the Delaunay triangulation (a parameter < 0): output
 //! sensitive. In 3D, γ with a parameter −1 (nearly every triple of points, the brute force of
 //! V Thm 3.1) and degenerate (coplanar) input are limited to [`BRUTE_LIMIT_3D`] points, α with
-//! a > 0 to [`ALPHA_HULL_LIMIT_3D`] hull vertices (O(h⁴) worst case).
+//! a > 0 to [`ALPHA_HULL_LIMIT_3D`] hull vertices (O(h⁴) worst case). Degenerate groups are
+//! output-sensitive: the Θ(g³) triples of g cospherical or cocircular points cost O(1) each
+//! (`fast::SphereGroup`, `fast::CircleGroup`), and a hull facet of g coplanar points costs
+//! O(g² log g) plus O(1) per empty triangle ([`facets`]) for the hull and the γ kinds with a
+//! parameter −1, nothing more for the other kinds (it cost O(g⁴) for every triangle kind).
 //!
 //! Every decision is exact (`geom::predicates`, `geom::distance`); point sets at extreme scales
 //! are first multiplied by an exact power of two.
@@ -40,6 +44,7 @@ mod build;
 mod build3;
 mod distance;
 mod error;
+pub(crate) mod facets;
 pub(crate) mod fast;
 pub(crate) mod gamma;
 mod lune;
