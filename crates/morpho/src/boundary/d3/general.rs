@@ -31,7 +31,9 @@
 //! boundary faces next to a live non-boundary triangle (the only ones that can carry a
 //! removable tetrahedron), so a caller may pass only the live triangles near the locked
 //! vertices (as [`super::boundary_3d`] does) and pay for the boundary only once, in
-//! [`General3::new`]. Worst case O(T²) for T triangles.
+//! [`General3::new`]. That list of faces is kept up to date from the edges the mutations
+//! changed (`General3::sweep_faces`), not rebuilt from every live triangle at each sweep.
+//! Worst case O(T²) for T triangles.
 //!
 //! Preconditions: the initial surface is a closed genus-0 2-manifold enclosing every vertex and
 //! every given triangle (as produced by [`super::constrict`] or the convex hull).
@@ -133,6 +135,10 @@ pub(super) type Thirds = smallvec::SmallVec<[u32; 4]>;
 /// Up to four faces of a tetrahedron (inline, no allocation).
 pub(super) type Faces = smallvec::SmallVec<[[u32; 3]; 4]>;
 
+/// The table behind the sweep's face list (see `General3::sweep_src`): directed edge → face
+/// it names, and face → how many directed edges name it.
+pub(super) type SweepSrc = (IdMap<u64, [u32; 3]>, IdMap<[u32; 3], u32>);
+
 /// A removal: key, boundary faces of the tetrahedron, its new boundary faces.
 pub(super) type Removal = (f64, Faces, Faces);
 
@@ -196,6 +202,22 @@ pub struct General3<'a> {
     pub(super) sequential_sweeps: bool,
     /// Tests: evaluate every skipped face anyway and panic if it has a removable tetrahedron.
     pub(super) verify_skips: bool,
+    /// The sweep's face list ([`General3::sweep_faces`]) kept up to date from `dirty_edges`
+    /// instead of rebuilt from every live triangle: every directed boundary edge x→y (key
+    /// `dk`) on a live non-boundary triangle with the face it names (x, y, `bnext`(x→y)), and
+    /// how many such edges name each face; `None` before the first sweep.
+    pub(super) sweep_src: Option<SweepSrc>,
+    /// The (undirected) edges of every triangle whose live or boundary state changed since the
+    /// last sweep — the only edges on which a boundary face can have entered or left the list.
+    pub(super) dirty_edges: Vec<u64>,
+    /// Tests: rebuild the sweep's face list from every live triangle each time (the reference
+    /// the incremental list is compared with).
+    pub(super) rebuild_sweeps: bool,
+    /// Tests: compare the incremental face list with a full rebuild at every sweep (panics on
+    /// a difference).
+    pub(super) verify_sweep_list: bool,
+    /// Sweeps whose face list was updated incrementally (for the tests).
+    pub(super) incremental_sweeps: usize,
     /// Number of boundary vertices.
     pub boundary_vertices: usize,
     /// Number of removed tetrahedra.
@@ -284,6 +306,11 @@ impl<'a> General3<'a> {
             skipped: 0,
             sequential_sweeps: false,
             verify_skips: false,
+            sweep_src: None,
+            dirty_edges: Vec::new(),
+            rebuild_sweeps: false,
+            verify_sweep_list: false,
+            incremental_sweeps: 0,
             boundary_vertices: 0,
             iterations: 0,
             added: 0,
@@ -492,6 +519,7 @@ impl<'a> General3<'a> {
         for k in 0..3 {
             let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
             self.eadj.entry(ek(a, b)).or_default().push(c);
+            self.dirty_edges.push(ek(a, b));
         }
         if self.track {
             let (lo, hi) = self.tbox[self.id[&s] as usize];
@@ -513,6 +541,7 @@ impl<'a> General3<'a> {
             if let Some(v) = self.eadj.get_mut(&ek(a, b)) {
                 v.retain(|x| *x != c);
             }
+            self.dirty_edges.push(ek(a, b));
         }
     }
 
@@ -538,6 +567,7 @@ impl<'a> General3<'a> {
         }
         for k in 0..3 {
             let (a, b, c) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
+            self.dirty_edges.push(ek(a, b));
             if on {
                 self.bnext.insert(dk(a, b), c);
             } else {

@@ -27,7 +27,7 @@ use super::general::*;
 use crate::geom::intersect::triangles_meet_beyond_shared;
 use crate::geom::predicates::raw::orient3d;
 use crate::geom::vec::{cross, sub};
-use crate::util::sorted3;
+use crate::util::{sorted3, IdMap};
 
 /// Sign of det[x − y, e, f] (e, f edge vectors as differences of doubles), or `None` when the
 /// floating-point value is not certified.
@@ -445,21 +445,7 @@ impl General3<'_> {
     /// the other boundary faces never have one).
     pub(super) fn push_all(&mut self) -> bool {
         use rayon::prelude::*;
-        let this = &*self;
-        let mut faces: Vec<[u32; 3]> = (0..this.tris.len())
-            .into_par_iter()
-            .filter(|&i| this.live[i] && !this.bflag[i])
-            .flat_map_iter(|i| {
-                let t = this.tris[i];
-                (0..6).filter_map(move |j| {
-                    let (a, b) = (t[j / 2], t[(j / 2 + 1) % 3]);
-                    let (x, y) = if j % 2 == 0 { (a, b) } else { (b, a) };
-                    this.bnext.get(&dk(x, y)).map(|&z| sorted_rot([x, y, z]))
-                })
-            })
-            .collect();
-        faces.par_sort_unstable();
-        faces.dedup();
+        let faces = self.sweep_faces();
         // Without keep triangles evaluating a face changes nothing (no rewiring): the faces
         // are tested and evaluated in parallel against the same state, then handled in order.
         if self.keep.is_empty() && !self.sequential_sweeps {
@@ -524,6 +510,136 @@ impl General3<'_> {
             }
         }
         any
+    }
+
+    /// The boundary faces [`Self::push_all`] examines: for every directed edge x→y of a live
+    /// triangle that is not a boundary face, the boundary face (x, y, `bnext`(x→y)) when there
+    /// is one, rotated to start at its smallest vertex; sorted, each once.
+    ///
+    /// Kept up to date instead of rebuilt from every live triangle (6 look-ups each in the
+    /// directed-edge map) at every sweep: whether the directed edge x→y names a face of the
+    /// list, and which, depends only on `bnext`(x→y) and on the live and boundary flags of the
+    /// triangles on the edge {x, y}, and every change of those (`add_tri_grid`, `kill`,
+    /// `set_boundary`) records the changed triangle's edges in `dirty_edges`. So only the
+    /// directed edges of the dirty edges are decided again (`sweep_src`: edge → face named,
+    /// with a count of the edges naming each face). The same list as
+    /// [`Self::sweep_faces_rebuilt`] in every state, consistent or not (checked in the tests,
+    /// and at every sweep with `verify_sweep_list`).
+    pub(super) fn sweep_faces(&mut self) -> Vec<[u32; 3]> {
+        let mut dirty = std::mem::take(&mut self.dirty_edges);
+        let src = match self.sweep_src.take() {
+            // (rebuilt in one pass when more triangles changed than there are — three edges
+            // recorded per change —, and in the tests' reference runs; the tests' checked runs
+            // always update)
+            Some(mut src)
+                if !self.rebuild_sweeps
+                    && (dirty.len() < 3 * self.tris.len() || self.verify_sweep_list) =>
+            {
+                self.incremental_sweeps += 1;
+                dirty.sort_unstable();
+                dirty.dedup();
+                let (named, count) = &mut src;
+                for &e in &dirty {
+                    let (a, b) = ((e >> 32) as u32, e as u32);
+                    let inner = self.on_inner_triangle(a, b);
+                    for (x, y) in [(a, b), (b, a)] {
+                        let now = match self.bnext.get(&dk(x, y)) {
+                            Some(&z) if inner => Some(sorted_rot([x, y, z])),
+                            _ => None,
+                        };
+                        let before = named.get(&dk(x, y)).copied();
+                        if before == now {
+                            continue;
+                        }
+                        if let Some(f) = before {
+                            named.remove(&dk(x, y));
+                            let c = count.get_mut(&f).expect("a named face is counted");
+                            *c -= 1;
+                            if *c == 0 {
+                                count.remove(&f);
+                            }
+                        }
+                        if let Some(f) = now {
+                            named.insert(dk(x, y), f);
+                            *count.entry(f).or_insert(0) += 1;
+                        }
+                    }
+                }
+                src
+            }
+            _ => self.sweep_src_rebuilt(),
+        };
+        let mut faces: Vec<[u32; 3]> = src.1.keys().copied().collect();
+        faces.sort_unstable();
+        self.sweep_src = Some(src);
+        if self.verify_sweep_list {
+            assert_eq!(faces, self.sweep_faces_rebuilt(), "incremental sweep list");
+        }
+        faces
+    }
+
+    /// The table `sweep_src` of [`Self::sweep_faces`] built from every live non-boundary
+    /// triangle.
+    pub(super) fn sweep_src_rebuilt(&self) -> SweepSrc {
+        use rayon::prelude::*;
+        let this = self;
+        let mut edges: Vec<(u64, [u32; 3])> = (0..this.tris.len())
+            .into_par_iter()
+            .filter(|&i| this.live[i] && !this.bflag[i])
+            .flat_map_iter(|i| {
+                let t = this.tris[i];
+                (0..6).filter_map(move |j| {
+                    let (a, b) = (t[j / 2], t[(j / 2 + 1) % 3]);
+                    let (x, y) = if j % 2 == 0 { (a, b) } else { (b, a) };
+                    this.bnext
+                        .get(&dk(x, y))
+                        .map(|&z| (dk(x, y), sorted_rot([x, y, z])))
+                })
+            })
+            .collect();
+        edges.par_sort_unstable();
+        edges.dedup();
+        let mut named: IdMap<u64, [u32; 3]> = IdMap::default();
+        let mut count: IdMap<[u32; 3], u32> = IdMap::default();
+        named.reserve(edges.len());
+        count.reserve(edges.len() / 2);
+        for (e, f) in edges {
+            named.insert(e, f);
+            *count.entry(f).or_insert(0) += 1;
+        }
+        (named, count)
+    }
+
+    /// The list of [`Self::sweep_faces`] rebuilt from every live non-boundary triangle.
+    pub(super) fn sweep_faces_rebuilt(&self) -> Vec<[u32; 3]> {
+        use rayon::prelude::*;
+        let this = self;
+        let mut faces: Vec<[u32; 3]> = (0..this.tris.len())
+            .into_par_iter()
+            .filter(|&i| this.live[i] && !this.bflag[i])
+            .flat_map_iter(|i| {
+                let t = this.tris[i];
+                (0..6).filter_map(move |j| {
+                    let (a, b) = (t[j / 2], t[(j / 2 + 1) % 3]);
+                    let (x, y) = if j % 2 == 0 { (a, b) } else { (b, a) };
+                    this.bnext.get(&dk(x, y)).map(|&z| sorted_rot([x, y, z]))
+                })
+            })
+            .collect();
+        faces.par_sort_unstable();
+        faces.dedup();
+        faces
+    }
+
+    /// The edge {a, b} is an edge of a live triangle that is not a boundary face.
+    pub(super) fn on_inner_triangle(&self, a: u32, b: u32) -> bool {
+        self.eadj.get(&ek(a, b)).is_some_and(|thirds| {
+            thirds.iter().any(|&m| {
+                self.id
+                    .get(&sorted3([a, b, m]))
+                    .is_some_and(|&i| self.live[i as usize] && !self.bflag[i as usize])
+            })
+        })
     }
 
     /// Whether face f was found locked before and nothing meeting the box of f and its
@@ -632,6 +748,183 @@ mod tests {
             }
         }
         false
+    }
+
+    /// The sweep's face list kept up to date from the changed edges equals the list rebuilt
+    /// from every live triangle at every sweep (checked inside each sweep), and the engine
+    /// constricts exactly as with the rebuilt list (same surface, removals, additions) —
+    /// through the whole schedule of c steps and the insertion of the last vertices: on
+    /// clustered cube points where the Delaunay constriction locks, from the hull of a bumpy
+    /// sphere with interior points and of an integer lattice (many ties), and with keep
+    /// triangles (faces evaluated one after the other, with rewiring during the sweep).
+    #[test]
+    fn incremental_sweep_list_equals_the_rebuilt_one() {
+        use crate::boundary::d3::augment::augment_until_done_3d;
+        use crate::boundary::d3::constrict::{constrict_3d, Until};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(23);
+        let mut sets: Vec<(Vec<crate::geom::Point3>, bool, usize)> = Vec::new();
+        // (the clustered cube points of `sweeps_that_skip_unchanged_faces_constrict_identically`)
+        for seed in [1647u64, 1755, 1, 2, 3, 4] {
+            let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let n = r.gen_range(40..600);
+            let cube = (0..n)
+                .map(|_| {
+                    let v: [f64; 3] = std::array::from_fn(|_| r.gen_range(-1.0f64..1.0).powi(3));
+                    crate::geom::Point3::new(v[0], v[1], v[2])
+                })
+                .collect();
+            sets.push((cube, false, 0));
+        }
+        let bumpy: Vec<crate::geom::Point3> = (0..800)
+            .map(|i| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+                let s = if i % 5 == 0 {
+                    0.7
+                } else {
+                    1.0 + 0.2 * (4.0 * v[0] / r).sin() * (3.0 * v[2] / r).cos()
+                };
+                crate::geom::Point3::new(v[0] / r * s, v[1] / r * s, 1.4 * v[2] / r * s)
+            })
+            .collect();
+        sets.push((bumpy.clone(), true, 0));
+        let lattice: Vec<crate::geom::Point3> = (0..6 * 5 * 4)
+            .map(|i| crate::geom::Point3::new((i % 6) as f64, (i / 6 % 5) as f64, (i / 30) as f64))
+            .collect();
+        sets.push((lattice, true, 0));
+        sets.push((bumpy[..400].to_vec(), true, 6));
+        let (mut removals, mut incremental) = (0, 0);
+        for (k, (pts, from_hull, n_keep)) in sets.iter().enumerate() {
+            let d = crate::delaunay::d3::triangulate(pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let all = crate::graphs::fast::candidates_3d(&d).triangles;
+            let (start, live) = if *from_hull {
+                (d.hull.clone(), all.clone())
+            } else {
+                let st = constrict_3d(&d, Until::All);
+                let mut live: Vec<[u32; 3]> = Vec::new();
+                for (t, tet) in d.tets.iter().enumerate() {
+                    if st.alive[t] {
+                        for (a, b, c) in [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)] {
+                            live.push(sorted3([tet[a], tet[b], tet[c]]));
+                        }
+                    }
+                }
+                live.sort_unstable();
+                live.dedup();
+                (st.triangles, live)
+            };
+            // keep triangles: interior Delaunay triangles spread over the set
+            let keep: Vec<[u32; 3]> = all
+                .iter()
+                .step_by(all.len() / (n_keep + 1) + 1)
+                .take(*n_keep)
+                .copied()
+                .collect();
+            let go = |rebuild: bool| {
+                let mut g = General3::blank(&pos, &start, &live, &keep);
+                g.build(&start, &live, &keep);
+                g.track = true;
+                g.rebuild_sweeps = rebuild;
+                g.verify_sweep_list = !rebuild;
+                g.push_all();
+                // first a constriction with a sweep after every 10 removals (many sweeps with
+                // few changes each), then the schedule as `boundary_3d` runs it
+                while !g.done() {
+                    let mut removed = 0;
+                    while removed < 10 && !g.done() {
+                        let Some(en) = g.heap.pop() else { break };
+                        if !g.is_bface(en.item.0) {
+                            continue;
+                        }
+                        match g.check(en.item.0, en.item.1) {
+                            Some((_, bf, nf)) => {
+                                g.remove(en.item.0, en.item.1, &bf, &nf);
+                                removed += 1;
+                            }
+                            None => {
+                                g.push(en.item.0);
+                            }
+                        }
+                    }
+                    if !g.push_all() && g.heap.is_empty() {
+                        break;
+                    }
+                }
+                let c = augment_until_done_3d(&mut g, 0.0);
+                (
+                    g.boundary(),
+                    (g.iterations, g.added, g.boundary_vertices, c),
+                    g.incremental_sweeps,
+                )
+            };
+            let (b1, s1, i1) = go(true);
+            let (b2, s2, i2) = go(false);
+            assert_eq!(i1, 0);
+            assert_eq!(s1, s2, "set {k}");
+            assert_eq!(b1, b2, "set {k}");
+            removals += s1.0;
+            incremental += i2;
+        }
+        assert!(
+            removals > 2000 && incremental > 300,
+            "{removals} {incremental}"
+        );
+    }
+
+    /// The incremental sweep list equals the rebuilt one after any sequence of the engine's
+    /// mutation primitives — killing and reviving live triangles, adding new ones, taking
+    /// faces off the boundary and putting triangles on it (in either orientation), in
+    /// arbitrary order, not only as removals combine them — checked after every few steps.
+    #[test]
+    fn sweep_list_follows_every_mutation_primitive() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let pts: Vec<crate::geom::Point3> = (0..400)
+            .map(|_| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                crate::geom::Point3::new(v[0], v[1], v[2])
+            })
+            .collect();
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let all = crate::graphs::fast::candidates_3d(&d).triangles;
+        let mut g = General3::new(&pos, &d.hull, &all, &[]);
+        let n = pos.len() as u32;
+        let (mut checks, mut listed) = (0, 0);
+        for step in 0..3000 {
+            let i = rng.gen_range(0..g.tris.len());
+            let t = g.tris[i];
+            match rng.gen_range(0..6) {
+                0 | 1 => g.kill(i as u32),
+                2 => {
+                    g.add_tri(t);
+                }
+                3 => {
+                    let x = [0; 3].map(|_: u32| rng.gen_range(0..n));
+                    g.add_tri(x);
+                }
+                4 => {
+                    let f = if g.is_bface(t) { t } else { [t[0], t[2], t[1]] };
+                    g.set_boundary(f, false);
+                }
+                _ => {
+                    let f = if rng.gen_bool(0.5) {
+                        t
+                    } else {
+                        [t[0], t[2], t[1]]
+                    };
+                    g.set_boundary(f, true);
+                }
+            }
+            if step % 7 == 0 {
+                let inc = g.sweep_faces();
+                assert_eq!(inc, g.sweep_faces_rebuilt(), "step {step}");
+                checks += 1;
+                listed += inc.len();
+            }
+        }
+        assert!(g.incremental_sweeps >= checks && checks > 400, "{checks}");
+        assert!(listed > 20 * checks, "{listed}");
     }
 
     #[test]
