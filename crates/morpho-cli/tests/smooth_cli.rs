@@ -562,3 +562,130 @@ fn reflection_lines_beside_the_input_mesh() {
     ]);
     assert_input_error(&o, None);
 }
+
+/// `--scheme split6`: the `.json` patches (six per macro triangle, the vertices at their
+/// corners), checked independently of the construction; the report keys of split3; bad
+/// input refused with exit 2.
+#[test]
+fn six_split_surface_from_the_cli() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("oct.obj");
+    std::fs::write(&input, octahedron_obj()).unwrap();
+    let m = morpho::io::read_mesh(&input).unwrap();
+    let pj = dir.path().join("p.json");
+    let rep = dir.path().join("r.json");
+    ok(&morpho(&[
+        "smooth",
+        input.to_str().unwrap(),
+        "-o",
+        pj.to_str().unwrap(),
+        "--scheme",
+        "split6",
+        "--report",
+        rep.to_str().unwrap(),
+    ]));
+    let v = json(&pj);
+    assert_eq!(v["degree"].as_u64(), Some(3));
+    let patches: Vec<MicroPatch> = v["patches"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| {
+            let c: Vec<Vec<f64>> = p["control"].as_array().unwrap().iter().map(pt).collect();
+            let mut control = [[0.0; 3]; 10];
+            for (k, x) in c.iter().enumerate() {
+                control[k] = [x[0], x[1], x[2]];
+            }
+            MicroPatch {
+                macro_tri: p["macro"].as_u64().unwrap() as u32,
+                control,
+            }
+        })
+        .collect();
+    assert_eq!(patches.len(), 6 * m.triangles.len());
+    // patch 6t+2i starts at corner i, patch 6t+2i+1 ends at corner i+1
+    for (k, p) in patches.iter().enumerate() {
+        let t = m.triangles[k / 6];
+        let i = (k % 6) / 2;
+        assert_eq!(p.macro_tri as usize, k / 6);
+        if k % 2 == 0 {
+            let a: [f64; 3] = m.positions[t[i] as usize].into();
+            assert_eq!(p.control[0], a);
+        } else {
+            let b: [f64; 3] = m.positions[t[(i + 1) % 3] as usize].into();
+            assert_eq!(p.control[6], b);
+        }
+    }
+    let s = SplitSurface {
+        patches,
+        ..Default::default()
+    };
+    let c = continuity(&s, 25);
+    assert_eq!(c.open_edges, 0);
+    assert_eq!(c.folds, 0);
+    assert!(c.max_normal_jump_rad <= 1e-9, "{c:?}");
+    let r = json(&rep);
+    assert_eq!(r["scheme"], "split6");
+    for k in [
+        "max_normal_jump_rad",
+        "non_g1_edges",
+        "max_deviation",
+        "unresolved_edges",
+        "folds",
+    ] {
+        assert!(r.get(k).is_some(), "{k}: {r}");
+    }
+    assert!(r["max_normal_jump_rad"].as_f64().unwrap() <= 1e-9);
+    assert_eq!(r["non_g1_edges"].as_u64(), Some(0));
+    assert_eq!(r["patches"].as_u64(), Some(48));
+    assert!(r["max_deviation"].as_f64().unwrap() > 0.0);
+    // tessellated: closed, every input vertex on it
+    let ply = dir.path().join("t.ply");
+    ok(&morpho(&[
+        "smooth",
+        input.to_str().unwrap(),
+        "-o",
+        ply.to_str().unwrap(),
+        "--scheme",
+        "split6",
+        "--density",
+        "3",
+    ]));
+    let t = morpho::io::read_mesh(&ply).unwrap();
+    assert_eq!(t.triangles.len(), 48 * 9);
+    assert!(morpho::mesh::analyze_topology(&t).is_closed());
+    for p in &m.positions {
+        assert!(t.positions.iter().any(|q| (q - p).norm() <= 1e-12));
+    }
+    // bad input: open mesh, 2D input with split6
+    let open = dir.path().join("open.obj");
+    std::fs::write(
+        &open,
+        octahedron_obj()
+            .lines()
+            .take(13)
+            .collect::<Vec<_>>()
+            .join("\n"),
+    )
+    .unwrap();
+    let o = morpho(&[
+        "smooth",
+        open.to_str().unwrap(),
+        "-o",
+        ply.to_str().unwrap(),
+        "--scheme",
+        "split6",
+    ]);
+    assert_input_error(&o, Some(&open));
+    let csv = dir.path().join("p.csv");
+    std::fs::write(&csv, "x,y\n0,0\n1,0\n0,1\n").unwrap();
+    let o = morpho(&[
+        "smooth",
+        csv.to_str().unwrap(),
+        "-o",
+        pj.to_str().unwrap(),
+        "--scheme",
+        "split6",
+    ]);
+    assert_input_error(&o, None);
+}

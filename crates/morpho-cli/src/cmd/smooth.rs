@@ -1,8 +1,10 @@
-//! `morpho smooth IN -o OUT [--scheme curve|split3|side-vertex] [--weights length|uniform|inverse]
-//! [--normals area|uniform|inverse|file] [--density N] [--tension T]`: the G¹ curve through a
-//! polygon (Veltkamp 1992, §9.2; NOTES B.2), the cubic three-split G¹ surface through a closed
-//! mesh (V §9.6; NOTES B.5) or Hamann's side-vertex surface of degree-elevated conics (Hamann
-//! 1991, ch. 6; NOTES E); see `morpho::smooth`.
+//! `morpho smooth IN -o OUT [--scheme curve|split3|split6|side-vertex]
+//! [--weights length|uniform|inverse] [--normals area|uniform|inverse|file] [--density N]
+//! [--tension T]`: the G¹ curve through a polygon (Veltkamp 1992, §9.2; NOTES B.2), the cubic
+//! three-split G¹ surface through a closed mesh (V §9.6; NOTES B.5), the cubic six-split
+//! (V §9.8 rebuilt as a Powell–Sabin macro element with a prescribed normal field; NOTES B.7;
+//! `morpho::smooth::six_split`) or Hamann's side-vertex surface of degree-elevated conics
+//! (Hamann 1991, ch. 6; NOTES E); see `morpho::smooth`.
 //!
 //! - 2D input (`.csv`, `.geojson`: polygons with holes and polylines; every ring and polyline
 //!   becomes one curve) → `.svg` (the true cubic path), `.json`
@@ -28,7 +30,9 @@
 //! Report keys (3D): `max_normal_jump_rad` (every macro and micro edge, 20 samples per edge,
 //! measured independently of the construction), `max_macro_jump_rad`, `max_micro_jump_rad`,
 //! `non_g1_edges` (edges above 1e-9 rad), `folds` (samples with `n₁·n₂ ≤ 0`), `fold_edges`,
-//! `singular_edges`, `unresolved_edges`, `sign_warnings`, `fold_guarded_edges`,
+//! `singular_edges` (split6: edges built with the fallback normal field, inflected or flat),
+//! `unresolved_edges` (split6: edges whose linear systems kept a residual: the only ones
+//! that may be non-G¹), `sign_warnings`, `fold_guarded_edges` (split3 only),
 //! `adjusted_normals` (with `--folds guard`, the default; see `morpho::smooth::visible_normals`
 //! and `SplitOptions::fold_guard`), `max_displacement`,
 //! `max_deviation` (surface vs flat mesh at the same parameter), `patches`, `triangles`;
@@ -43,8 +47,8 @@ use morpho::io::{self, Format};
 use morpho::mesh::{NormalWeighting, Polygon, Polyline, Shapes2, TriMesh};
 use morpho::smooth::{
     continuity, curve_joints, g1_curve, max_deviation, reversed_normals, side_vertex,
-    side_vertex_continuity, tessellate, three_split_with, visible_normals, CurveWeighting,
-    FailureKind, G1Curve, SideVertexOptions, SplitOptions,
+    side_vertex_continuity, six_split, tessellate, three_split_with, visible_normals,
+    CurveWeighting, FailureKind, G1Curve, SideVertexOptions, SplitOptions,
 };
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -58,8 +62,9 @@ pub struct Args {
     #[arg(short, long)]
     pub output: PathBuf,
     /// The construction (default: `curve` for 2D input, `split3` for a mesh; `side-vertex`:
-    /// Hamann's conic surface). The two- and six-split are not built yet.
-    #[arg(long, value_parser = ["curve", "split3", "side-vertex"])]
+    /// Hamann's conic surface; `split6`: the six-split, V §9.8 rebuilt, see
+    /// `morpho::smooth::six_split`). The two-split is not built yet.
+    #[arg(long, value_parser = ["curve", "split3", "split6", "side-vertex"])]
     pub scheme: Option<String>,
     /// Side-vertex surface: scales every conic's automatic weight (1 = Thm 6.3; smaller
     /// values pull the surface towards the mesh).
@@ -108,7 +113,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                 args.input.display()
             )))
         }
-        (Some(s @ ("split3" | "side-vertex")), false) => {
+        (Some(s @ ("split3" | "split6" | "side-vertex")), false) => {
             return Err(Failure::usage(format!(
                 "{}: --scheme {s} smooths closed meshes (.ply .obj .off .stl)",
                 args.input.display()
@@ -354,9 +359,14 @@ fn run_surface(args: &Args, report: &mut Report) -> Result<u8, Failure> {
         n = a.normals;
     }
     let opts = SplitOptions { fold_guard: guard };
+    let scheme = args.scheme.as_deref().unwrap_or("split3");
     let s = report.time("compute", || {
-        three_split_with(&mesh, &n, &opts)
-            .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
+        if scheme == "split6" {
+            six_split(&mesh, &n)
+        } else {
+            three_split_with(&mesh, &n, &opts)
+        }
+        .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
     })?;
     let c = report.time("check", || continuity(&s, 20));
     // default: 8 steps, fewer on big meshes (at most ~4M triangles); an explicit density is
@@ -374,7 +384,7 @@ fn run_surface(args: &Args, report: &mut Report) -> Result<u8, Failure> {
         None => (1..=8).rev().find(|&d| per(d) <= 4_000_000).unwrap_or(1),
     };
     let dev = report.time("deviation", || max_deviation(&s, &mesh, density.min(16)));
-    report.set("scheme", "split3");
+    report.set("scheme", scheme);
     report.set("normals", args.normals.as_str());
     report.set("vertices", mesh.positions.len());
     report.set("macro_triangles", mesh.triangles.len());

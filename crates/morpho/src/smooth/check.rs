@@ -90,13 +90,16 @@ pub fn continuity(s: &SplitSurface, samples: usize) -> Continuity {
     out
 }
 
-/// The largest distance between the three-split surface `s` of `mesh` and the flat mesh,
-/// measured at the same parameter: micro patch `3t+i` (corners `V_i, V_{i+1}, Z` of macro
-/// triangle t) at barycentric `(a, b, c)` against `a V_i + b V_{i+1} + c·centroid`, on the
-/// grid with `samples` (≥ 1) steps per micro edge. An upper bound of the distance from the
-/// surface to the input mesh. O(patches · samples²).
+/// The largest distance between the split surface `s` of `mesh` and the flat mesh, measured
+/// at the same parameter: for the three-split, micro patch `3t+i` (corners `V_i, V_{i+1}, Z`
+/// of macro triangle t) at barycentric `(a, b, c)` against `a V_i + b V_{i+1} + c·centroid`;
+/// for the six-split (`6·T` patches), patch `6t+2i` against the flat `(V_i, M_i, Z)` and
+/// `6t+2i+1` against `(M_i, V_{i+1}, Z)`, `M_i` the edge midpoint; on the grid with
+/// `samples` (≥ 1) steps per micro edge. An upper bound of the distance from the surface to
+/// the input mesh. O(patches · samples²).
 pub fn max_deviation(s: &SplitSurface, mesh: &crate::mesh::TriMesh, samples: usize) -> f64 {
     let n = samples.max(1);
+    let six = s.patches.len() == 6 * mesh.triangles.len();
     let mut worst: f64 = 0.0;
     for (k, patch) in s.patches.iter().enumerate() {
         let Some(t) = mesh.triangles.get(patch.macro_tri as usize) else {
@@ -104,7 +107,17 @@ pub fn max_deviation(s: &SplitSurface, mesh: &crate::mesh::TriMesh, samples: usi
         };
         let v = t.map(|i| -> [f64; 3] { mesh.positions[i as usize].into() });
         let z = vec::scale(vec::add(vec::add(v[0], v[1]), v[2]), 1.0 / 3.0);
-        let (a, b) = (v[k % 3], v[(k + 1) % 3]);
+        let (a, b) = if six {
+            let i = (k % 6) / 2;
+            let m = vec::midpoint(v[i], v[(i + 1) % 3]);
+            if k % 2 == 0 {
+                (v[i], m)
+            } else {
+                (m, v[(i + 1) % 3])
+            }
+        } else {
+            (v[k % 3], v[(k + 1) % 3])
+        };
         let tri = patch.triangle();
         for i in 0..=n {
             for j in 0..=n - i {

@@ -15,9 +15,13 @@
 //! (inflected) conics the text leaves open.
 //!
 //! Reflection lines (V §8.4), the visual continuity check, are drawn by the rasterizer
-//! ([`crate::render::ReflectionLines`]); the bench is `examples/bench_smooth.rs`. Not yet built
-//! (issue 19): the two- and six-split (V §9.7, §9.8). The CLI is `morpho smooth` (curve,
-//! three-split, side-vertex).
+//! ([`crate::render::ReflectionLines`]); the bench is `examples/bench_smooth.rs`. The six-split
+//! (V §9.8, [`six_split`]) is rebuilt from its conditions (NOTES B.7): a C¹ piecewise-quadratic
+//! boundary, a prescribed piecewise-linear normal field along every macro edge (linear along
+//! the whole edge where the edge is not inflected, after Peters 1990), each side's cross
+//! derivative solved independently against it, and the Powell–Sabin C¹ interior; see its
+//! file. Not yet built (issue 19): the two-split (V §9.7). The CLI is `morpho smooth` (curve,
+//! three-split, six-split, side-vertex).
 
 mod bezier;
 mod check;
@@ -28,6 +32,7 @@ mod normals;
 mod side_vertex;
 mod singular;
 mod split3;
+mod split6;
 mod tessellate;
 mod transversal;
 mod triangle;
@@ -42,5 +47,6 @@ pub use error::SmoothError;
 pub use normals::{visible_normals, AdjustedNormals};
 pub use side_vertex::{side_vertex, SideVertexOptions, SideVertexSurface};
 pub use split3::{three_split, three_split_with, MicroPatch, SplitOptions, SplitSurface};
+pub use split6::six_split;
 pub use tessellate::tessellate;
 pub use triangle::{tri_index, BezierTriangle};
