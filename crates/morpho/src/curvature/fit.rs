@@ -39,27 +39,6 @@ impl<const N: usize> Normal<N> {
         }
         self.rows += 1;
     }
-    /// Adds the equations `row · c = d` of every `(row, d)` in `rows`: the same sums in the same
-    /// order as [`Normal::add`] row after row (so the same bits), computed one matrix row at a
-    /// time so that its partial sums stay in registers (row after row, the N(N+1)/2 partial
-    /// sums of a 9-coefficient fit do not fit in them and go through memory on every point).
-    #[inline(always)]
-    pub(crate) fn add_rows(&mut self, rows: &[([f64; N], f64)]) {
-        for i in 0..N {
-            let mut acc = self.ata[i];
-            let mut b = self.atd[i];
-            for (row, d) in rows {
-                let ri = row[i];
-                for j in i..N {
-                    acc[j] += ri * row[j];
-                }
-                b += ri * d;
-            }
-            self.ata[i] = acc;
-            self.atd[i] = b;
-        }
-        self.rows += rows.len();
-    }
     /// The least-squares solution, or `None` when fewer than N rows were added or
     /// `cond(UᵀU) > max_cond` (also when it is not finite).
     pub(crate) fn solve(&self, max_cond: f64) -> Option<SVector<f64, N>> {
@@ -106,6 +85,9 @@ impl<const N: usize> Normal<N> {
         }
         let mut l = [[0.0f64; N]; N];
         let mut d = [0.0f64; N];
+        // the pivots' reciprocals: one division per pivot instead of one per entry of L and
+        // of the solution
+        let mut rd = [0.0f64; N];
         let dmax = (0..N).map(|i| self.ata[i][i]).fold(0.0, f64::max);
         for j in 0..N {
             let mut dj = self.ata[j][j];
@@ -117,12 +99,13 @@ impl<const N: usize> Normal<N> {
                 return None;
             }
             d[j] = dj;
+            rd[j] = 1.0 / dj;
             for i in j + 1..N {
                 let mut x = self.ata[j][i];
                 for k in 0..j {
                     x -= l[i][k] * l[j][k] * d[k];
                 }
-                l[i][j] = x / dj;
+                l[i][j] = x * rd[j];
             }
         }
         // L y = b, D z = y, Lᵀ c = z
@@ -135,7 +118,7 @@ impl<const N: usize> Normal<N> {
             c[i] = x;
         }
         for i in 0..N {
-            c[i] /= d[i];
+            c[i] *= rd[i];
         }
         for i in (0..N).rev() {
             let mut x = c[i];
@@ -146,6 +129,135 @@ impl<const N: usize> Normal<N> {
         }
         let det = d.iter().product::<f64>();
         c.iter().all(|x| x.is_finite()).then_some((c, det))
+    }
+}
+
+/// The normal equations of the cubic jet `a u + b t + ½(c20 u² + 2 c11 ut + c02 t²) + c30 u³ +
+/// c21 u²t + c12 ut² + c03 t³ = d` (the unknowns in that order), accumulated as moments: the
+/// 45 entries of `UᵀU` are `cᵢcⱼ Σ uᵃtᵇ` over only 25 distinct monomials of degree 2–6, and
+/// `Uᵀd` is `cᵢ Σ d uᵃtᵇ` over the 9 monomials of degree 1–3 (`cᵢ` is 1 or ½, so the
+/// scaling is exact). Each monomial of degree k is one product from degree k − 1, so a point
+/// costs 34 products and 34 sums instead of the 54 products and sums of its row's outer
+/// product. The sums are those of [`Normal::add`] up to the rounding of the monomials.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct CubicJet {
+    /// `Σ uᵃtᵇ` for `a + b = k`, k = 2…6, in blocks of k + 1 by increasing b
+    /// ([`CubicJet::at`]).
+    m: [f64; 25],
+    /// `Σ d u, Σ d t, Σ d u², Σ d ut, Σ d t², Σ d u³, Σ d u²t, Σ d ut², Σ d t³`.
+    r: [f64; 9],
+    rows: usize,
+}
+
+impl CubicJet {
+    /// The unknowns' exponents `(a, b)` of `uᵃtᵇ` and their factors, in the order of the fit.
+    const TERMS: [(usize, usize, f64); 9] = [
+        (1, 0, 1.0),
+        (0, 1, 1.0),
+        (2, 0, 0.5),
+        (1, 1, 1.0),
+        (0, 2, 0.5),
+        (3, 0, 1.0),
+        (2, 1, 1.0),
+        (1, 2, 1.0),
+        (0, 3, 1.0),
+    ];
+
+    pub(crate) fn new() -> Self {
+        CubicJet {
+            m: [0.0; 25],
+            r: [0.0; 9],
+            rows: 0,
+        }
+    }
+
+    /// The index of `Σ uᵃtᵇ` (`2 ≤ a + b ≤ 6`) in `m`.
+    const fn at(a: usize, b: usize) -> usize {
+        let k = a + b;
+        k * (k + 1) / 2 - 3 + b
+    }
+
+    /// Adds the point `(u, t)` with height `d`.
+    #[inline(always)]
+    pub(crate) fn add(&mut self, u: f64, t: f64, d: f64) {
+        // degree by degree: the first monomial times u, every other the one before it times t
+        let d2 = [u * u, u * t, t * t];
+        let d3 = [d2[0] * u, d2[0] * t, d2[1] * t, d2[2] * t];
+        let d4 = [d3[0] * u, d3[0] * t, d3[1] * t, d3[2] * t, d3[3] * t];
+        let d5 = [
+            d4[0] * u,
+            d4[0] * t,
+            d4[1] * t,
+            d4[2] * t,
+            d4[3] * t,
+            d4[4] * t,
+        ];
+        let d6 = [
+            d5[0] * u,
+            d5[0] * t,
+            d5[1] * t,
+            d5[2] * t,
+            d5[3] * t,
+            d5[4] * t,
+            d5[5] * t,
+        ];
+        let m = &mut self.m;
+        for (acc, x) in m[0..3].iter_mut().zip(d2) {
+            *acc += x;
+        }
+        for (acc, x) in m[3..7].iter_mut().zip(d3) {
+            *acc += x;
+        }
+        for (acc, x) in m[7..12].iter_mut().zip(d4) {
+            *acc += x;
+        }
+        for (acc, x) in m[12..18].iter_mut().zip(d5) {
+            *acc += x;
+        }
+        for (acc, x) in m[18..25].iter_mut().zip(d6) {
+            *acc += x;
+        }
+        let low = [u, t, d2[0], d2[1], d2[2], d3[0], d3[1], d3[2], d3[3]];
+        for (acc, x) in self.r.iter_mut().zip(low) {
+            *acc += d * x;
+        }
+        self.rows += 1;
+    }
+
+    /// For each entry `(i, j)`, `i ≤ j`, of `UᵀU` in row order: the index of its moment in `m`
+    /// and its factor `cᵢcⱼ` (evaluated at compile time).
+    const ENTRIES: [(u8, f64); 45] = {
+        let mut e = [(0u8, 0.0f64); 45];
+        let (mut i, mut k) = (0, 0);
+        while i < 9 {
+            let mut j = i;
+            while j < 9 {
+                let (ai, bi, ci) = Self::TERMS[i];
+                let (aj, bj, cj) = Self::TERMS[j];
+                e[k] = (Self::at(ai + aj, bi + bj) as u8, ci * cj);
+                k += 1;
+                j += 1;
+            }
+            i += 1;
+        }
+        e
+    };
+
+    /// The normal equations `UᵀU c = Uᵀd` of the points added so far.
+    pub(crate) fn normal(&self) -> Normal<9> {
+        let mut ne = Normal::<9>::new();
+        let mut k = 0;
+        for i in 0..9 {
+            for j in i..9 {
+                let (at, f) = Self::ENTRIES[k];
+                ne.ata[i][j] = f * self.m[at as usize];
+                k += 1;
+            }
+            // degree 1–3 monomials: Σ d uᵃtᵇ is stored in the order of the unknowns
+            ne.atd[i] = Self::TERMS[i].2 * self.r[i];
+        }
+        ne.rows = self.rows;
+        ne
     }
 }
 
@@ -218,34 +330,45 @@ mod tests {
     }
 
     #[test]
-    fn rows_at_once_are_bitwise_rows_one_by_one() {
-        // the batched accumulation must give exactly the sums of `add` (the curvature's
-        // results are compared bit for bit against the row-by-row version)
-        let mut one = Normal::<9>::new();
-        let mut all = Normal::<9>::new();
-        let mut rows = Vec::new();
+    fn jet_moments_are_the_rows_normal_equations() {
+        // the 25 moments must give the outer products' sums of the 9-term rows up to rounding
+        // (a wrong index or factor is off by O(1))
+        let mut rows = Normal::<9>::new();
+        let mut jet = CubicJet::new();
         let mut x = 0.37f64;
         for k in 0..23 {
-            let row: [f64; 9] = std::array::from_fn(|i| {
-                x = (x * 3.7 + 0.11 * (i + k) as f64).fract() - 0.5;
-                x * (1.0 + k as f64)
-            });
-            let d = row.iter().sum::<f64>() * 0.3 - 1e-3 * k as f64;
-            one.add(row, d);
-            rows.push((row, d));
+            let mut next = || {
+                x = (x * 3.7 + 0.11 * k as f64).fract() - 0.5;
+                2.0 * x
+            };
+            let (u, t) = (next(), next());
+            let d = next() + 0.3 * u * t;
+            let (uu, ut, tt) = (u * u, u * t, t * t);
+            rows.add(
+                [u, t, 0.5 * uu, ut, 0.5 * tt, uu * u, uu * t, u * tt, tt * t],
+                d,
+            );
+            jet.add(u, t, d);
         }
-        all.add_rows(&rows[..10]);
-        all.add_rows(&rows[10..]);
-        assert_eq!(one.rows, all.rows);
+        let ne = jet.normal();
+        assert_eq!(ne.rows, rows.rows);
         for i in 0..9 {
-            assert_eq!(one.atd[i].to_bits(), all.atd[i].to_bits());
+            let (a, b) = (ne.atd[i], rows.atd[i]);
+            assert!((a - b).abs() <= 1e-14 * b.abs().max(1.0), "atd {i} {a} {b}");
             for j in i..9 {
-                assert_eq!(
-                    one.ata[i][j].to_bits(),
-                    all.ata[i][j].to_bits(),
-                    "({i},{j})"
+                let (a, b) = (ne.ata[i][j], rows.ata[i][j]);
+                assert!(
+                    (a - b).abs() <= 1e-14 * b.abs().max(1.0),
+                    "({i},{j}) {a} {b}"
                 );
             }
+        }
+        let (c1, c2) = (ne.solve_ldl(1e10).unwrap(), rows.solve_ldl(1e10).unwrap());
+        for i in 0..9 {
+            assert!(
+                (c1[i] - c2[i]).abs() < 1e-9 * (1.0 + c2[i].abs()),
+                "{c1:?} {c2:?}"
+            );
         }
     }
 

@@ -75,9 +75,9 @@
 //! result bit for bit (`bench/README.md`).
 
 use super::error::CurvatureError;
-use super::fit::Normal;
+use super::fit::{CubicJet, Normal};
 use crate::geom::{vec, Vector3};
-use crate::mesh::{vertex_normal_of, NormalWeighting, TriMesh};
+use crate::mesh::{vertex_normal_from, weighted_crosses, NormalWeighting, TriMesh};
 use rayon::prelude::*;
 
 /// Where the vertex normals of the fit come from.
@@ -242,11 +242,18 @@ pub fn surface_curvature(
         }
     }
     let adj = Adjacency::new(mesh);
+    // estimated normals: each triangle's weighted cross product once, in parallel (the
+    // per-vertex sums below are the same bits as `vertex_normals`)
+    let crosses = match &opts.normals {
+        NormalSource::Estimated(w) => Some(weighted_crosses(mesh, *w)),
+        _ => None,
+    };
     let pass = Pass {
         mesh,
         adj: &adj,
         opts,
         given,
+        crosses,
     };
     // the outputs are allocated once and filled in place, chunk by chunk, in parallel (the
     // zeroed f64 arrays come from the allocator untouched; the vector arrays are written in
@@ -298,6 +305,9 @@ struct Pass<'a> {
     opts: &'a SurfaceOptions,
     /// The normals from the file or the caller; `None`: estimated from the triangles.
     given: Option<&'a [Vector3]>,
+    /// With estimated normals: every triangle's weighted cross product
+    /// ([`weighted_crosses`]).
+    crosses: Option<Vec<Option<[f64; 3]>>>,
 }
 
 /// The per-thread buffers of the vertex pass, reused from vertex to vertex (no allocation per
@@ -371,10 +381,10 @@ impl Pass<'_> {
         let (adj, opts, mesh) = (self.adj, self.opts, self.mesh);
         let mut nrm: [f64; 3] = match (self.given, &opts.normals) {
             (Some(g), _) => g[v].into(),
-            (None, NormalSource::Estimated(w)) => {
-                vertex_normal_of(mesh, adj.triangles(v), *w).into()
-            }
-            (None, _) => [0.0; 3],
+            (None, _) => match &self.crosses {
+                Some(c) => vertex_normal_from(c, adj.triangles(v)).into(),
+                None => [0.0; 3],
+            },
         };
         let y0: [f64; 3] = mesh.positions[v].into();
         let deg = adj.of(v).len();
@@ -582,30 +592,18 @@ fn jet_normal(ring: &[[f64; 3]], nrm: [f64; 3]) -> Option<[f64; 3]> {
         return None;
     }
     let inv = 1.0 / rho2.sqrt();
-    let mut ne = Normal::<9>::new();
-    // the rows in batches on the stack, accumulated batch by batch (`Normal::add_rows`: the
-    // same sums as point by point)
-    let mut batch = [([0.0; 9], 0.0); JET_BATCH];
-    for part in ring.chunks(JET_BATCH) {
-        for (&w, slot) in part.iter().zip(batch.iter_mut()) {
-            let w = vec::scale(w, inv);
-            let (u, t) = (vec::dot(w, b1), vec::dot(w, b2));
-            let (uu, ut, tt) = (u * u, u * t, t * t);
-            *slot = (
-                [u, t, 0.5 * uu, ut, 0.5 * tt, uu * u, uu * t, u * tt, tt * t],
-                vec::dot(n, w),
-            );
-        }
-        ne.add_rows(&batch[..part.len()]);
+    // the 25 moments of the rows' outer products (`CubicJet`): fewer products than the rows
+    let mut jet = CubicJet::new();
+    for &w in ring {
+        let w = vec::scale(w, inv);
+        jet.add(vec::dot(w, b1), vec::dot(w, b2), vec::dot(n, w));
     }
+    let ne = jet.normal();
     let c = ne.solve_ldl(SURFACE_MAX_COND)?;
     let m = vec::add_scaled(vec::add_scaled(n, -c[0], b1), -c[1], b2);
     let l = vec::norm(m);
     (l > 0.0 && l.is_finite()).then(|| vec::scale(m, 1.0 / l))
 }
-
-/// Points per batch of the jet's accumulation (a 2-ring has ~18, a 3-ring ~36).
-const JET_BATCH: usize = 32;
 
 /// Orthonormal `b₁, b₂` with `(b₁, b₂, n)` right-handed, `b₁ ∝ n × e_k` for the axis `e_k`
 /// least aligned with `n`.
@@ -628,7 +626,7 @@ pub(crate) fn tangent_basis(n: [f64; 3]) -> ([f64; 3], [f64; 3]) {
 /// Eigenvalues `λ₁ ≤ λ₂` of `[[a, b], [b, c]]` and the unit eigenvector of λ₁ (closed form).
 fn sym2_eigen(a: f64, b: f64, c: f64) -> ([f64; 2], [f64; 2]) {
     let m = 0.5 * (a + c);
-    let r = (0.5 * (a - c)).hypot(b);
+    let r = hypot2(0.5 * (a - c), b);
     let (l1, l2) = (m - r, m + r);
     // (A − λ₁I) has rows (a−λ₁, b) and (b, c−λ₁); an eigenvector is orthogonal to both: take
     // the perpendicular of the longer row
@@ -641,6 +639,18 @@ fn sym2_eigen(a: f64, b: f64, c: f64) -> ([f64; 2], [f64; 2]) {
         [1.0, 0.0]
     };
     ([l1, l2], e)
+}
+
+/// `√(x² + y²)`: the plain formula where neither square can overflow nor lose bits to
+/// underflow (libm's `hypot` was 4 % of the whole curvature pass), else [`f64::hypot`].
+#[inline]
+fn hypot2(x: f64, y: f64) -> f64 {
+    let q = x * x + y * y;
+    if (1e-290..=f64::MAX).contains(&q) {
+        q.sqrt()
+    } else {
+        x.hypot(y)
+    }
 }
 
 /// Vertex adjacency: incident triangles and unique neighbours (ascending), in compressed rows.
@@ -849,6 +859,23 @@ mod tests {
     }
 
     #[test]
+    fn hypot2_is_hypot() {
+        let mut x = 0.3f64;
+        for e in [-300, -200, -150, -20, 0, 20, 150, 154, 160, 300] {
+            for _ in 0..50 {
+                x = (x * 7.1 + 0.13).fract();
+                let (a, b) = ((x - 0.5) * 10f64.powi(e), (0.7 - x) * 10f64.powi(e / 2));
+                let (h, r) = (hypot2(a, b), a.hypot(b));
+                assert!((h - r).abs() <= 2.0 * f64::EPSILON * r, "{a} {b}: {h} {r}");
+            }
+        }
+        assert_eq!(hypot2(0.0, 0.0), 0.0);
+        assert_eq!(hypot2(f64::MAX, f64::MAX), f64::INFINITY);
+        assert!((hypot2(3e200, 4e200) / 5e200 - 1.0).abs() < 1e-15);
+        assert!(hypot2(f64::NAN, 1.0).is_nan());
+    }
+
+    #[test]
     fn per_vertex_normals_are_bitwise_vertex_normals() {
         let m = awkward_mesh();
         let adj = Adjacency::new(&m);
@@ -858,8 +885,9 @@ mod tests {
             NormalWeighting::InverseArea,
         ] {
             let all = vertex_normals(&m, w);
+            let crosses = weighted_crosses(&m, w);
             for (v, n) in all.iter().enumerate() {
-                let one = vertex_normal_of(&m, adj.triangles(v), w);
+                let one = vertex_normal_from(&crosses, adj.triangles(v));
                 for k in 0..3 {
                     assert_eq!(one[k].to_bits(), n[k].to_bits(), "{v} {w:?}");
                 }

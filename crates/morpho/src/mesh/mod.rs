@@ -11,7 +11,7 @@ pub(crate) mod topology;
 
 pub use error::MeshError;
 mod normals;
-pub(crate) use normals::vertex_normal_of;
+pub(crate) use normals::{vertex_normal_from, weighted_crosses};
 pub use normals::{vertex_normals, NormalWeighting};
 pub use topology::{analyze_topology, orient_consistently, PartInfo, Topology};
 // The polygon and mesh validators (a namespace of its own: `mesh::validity::check_polygon`, …).

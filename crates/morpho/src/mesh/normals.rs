@@ -50,19 +50,31 @@ pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<Vector3
     acc.into_iter().map(unit_or_zero).collect()
 }
 
-/// The unit normal of one vertex from its incident triangles `tris` (indices into
-/// `mesh.triangles`): the same sums in the same order as [`vertex_normals`] when `tris` is
-/// ascending, so the same bits; for callers that need the normals one vertex at a time (in
-/// parallel, without the whole array).
-pub(crate) fn vertex_normal_of(
+/// Every triangle's weighted cross product `w_t c_t` (`None` for a zero-area or non-finite
+/// triangle), in parallel: what [`vertex_normal_from`] sums. The products are rounded exactly
+/// as [`vertex_normals`] rounds them (`s + w·c` is `s + (w·c)`: no fused multiply-add), so the
+/// sums are the same bits; each triangle's cross product and length are computed once instead
+/// of once per corner.
+pub(crate) fn weighted_crosses(
     mesh: &TriMesh,
-    tris: &[u32],
     weighting: NormalWeighting,
-) -> Vector3 {
+) -> Vec<Option<[f64; 3]>> {
+    use rayon::prelude::*;
+    mesh.triangles
+        .par_iter()
+        .map(|t| weighted_cross(mesh, t, weighting).map(|(w, ct)| vec::scale(ct, w)))
+        .collect()
+}
+
+/// The unit normal of one vertex from its incident triangles `tris` (indices into
+/// `crosses`, from [`weighted_crosses`]): the same sums in the same order as
+/// [`vertex_normals`] when `tris` is ascending, so the same bits; for callers that need the
+/// normals one vertex at a time (in parallel, without the whole array).
+pub(crate) fn vertex_normal_from(crosses: &[Option<[f64; 3]>], tris: &[u32]) -> Vector3 {
     let mut s = [0.0f64; 3];
     for &t in tris {
-        if let Some((w, ct)) = weighted_cross(mesh, &mesh.triangles[t as usize], weighting) {
-            s = vec::add_scaled(s, w, ct);
+        if let Some(p) = crosses[t as usize] {
+            s = vec::add(s, p);
         }
     }
     unit_or_zero(s)
