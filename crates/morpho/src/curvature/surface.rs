@@ -645,6 +645,14 @@ fn sym2_eigen(a: f64, b: f64, c: f64) -> ([f64; 2], [f64; 2]) {
 /// underflow (libm's `hypot` was 4 % of the whole curvature pass), else [`f64::hypot`].
 #[inline]
 fn hypot2(x: f64, y: f64) -> f64 {
+    // exactly flat or umbilic platelets (c20 = c02, c11 = 0: planar parts of contour surfaces)
+    // are common; their squares would fall below the range and into `hypot`
+    if x == 0.0 {
+        return y.abs();
+    }
+    if y == 0.0 {
+        return x.abs();
+    }
     let q = x * x + y * y;
     if (1e-290..=f64::MAX).contains(&q) {
         q.sqrt()
@@ -870,6 +878,9 @@ mod tests {
             }
         }
         assert_eq!(hypot2(0.0, 0.0), 0.0);
+        assert_eq!(hypot2(-0.0, -3e-300), 3e-300);
+        assert_eq!(hypot2(-2.5, 0.0), 2.5);
+        assert!(hypot2(0.0, f64::NAN).is_nan());
         assert_eq!(hypot2(f64::MAX, f64::MAX), f64::INFINITY);
         assert!((hypot2(3e200, 4e200) / 5e200 - 1.0).abs() < 1e-15);
         assert!(hypot2(f64::NAN, 1.0).is_nan());
