@@ -55,6 +55,26 @@ fn pt(v: &Value) -> Vec<f64> {
         .collect()
 }
 
+/// The `patches` of a written patch `.json` (`{"macro": t, "control": [[x, y, z] × 10]}`).
+fn micro_patches(v: &Value) -> Vec<MicroPatch> {
+    v["patches"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| {
+            let c: Vec<Vec<f64>> = p["control"].as_array().unwrap().iter().map(pt).collect();
+            let mut control = [[0.0; 3]; 10];
+            for (k, x) in c.iter().enumerate() {
+                control[k] = [x[0], x[1], x[2]];
+            }
+            MicroPatch {
+                macro_tri: p["macro"].as_u64().unwrap() as u32,
+                control,
+            }
+        })
+        .collect()
+}
+
 fn sub(a: &[f64], b: &[f64]) -> Vec<f64> {
     a.iter().zip(b).map(|(x, y)| x - y).collect()
 }
@@ -206,22 +226,7 @@ fn smooth_surface_of_a_closed_mesh_is_g1_and_interpolates() {
     ]));
     let v = json(&pj);
     assert_eq!(v["degree"].as_u64(), Some(3));
-    let patches: Vec<MicroPatch> = v["patches"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|p| {
-            let c: Vec<Vec<f64>> = p["control"].as_array().unwrap().iter().map(pt).collect();
-            let mut control = [[0.0; 3]; 10];
-            for (k, x) in c.iter().enumerate() {
-                control[k] = [x[0], x[1], x[2]];
-            }
-            MicroPatch {
-                macro_tri: p["macro"].as_u64().unwrap() as u32,
-                control,
-            }
-        })
-        .collect();
+    let patches = micro_patches(&v);
     assert_eq!(patches.len(), 3 * m.triangles.len());
     // b300 of patch 3t+i is corner i of macro triangle t, b030 corner i+1
     for (k, p) in patches.iter().enumerate() {
@@ -586,22 +591,7 @@ fn six_split_surface_from_the_cli() {
     ]));
     let v = json(&pj);
     assert_eq!(v["degree"].as_u64(), Some(3));
-    let patches: Vec<MicroPatch> = v["patches"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|p| {
-            let c: Vec<Vec<f64>> = p["control"].as_array().unwrap().iter().map(pt).collect();
-            let mut control = [[0.0; 3]; 10];
-            for (k, x) in c.iter().enumerate() {
-                control[k] = [x[0], x[1], x[2]];
-            }
-            MicroPatch {
-                macro_tri: p["macro"].as_u64().unwrap() as u32,
-                control,
-            }
-        })
-        .collect();
+    let patches = micro_patches(&v);
     assert_eq!(patches.len(), 6 * m.triangles.len());
     // patch 6t+2i starts at corner i, patch 6t+2i+1 ends at corner i+1
     for (k, p) in patches.iter().enumerate() {

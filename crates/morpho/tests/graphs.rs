@@ -7,6 +7,22 @@ use morpho::internals::graphs::brute;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+/// The 12 points with integer coordinates on the circle of radius 5 (cocircular test data).
+const CIRCLE5: [[f64; 2]; 12] = [
+    [5., 0.],
+    [4., 3.],
+    [3., 4.],
+    [0., 5.],
+    [-3., 4.],
+    [-4., 3.],
+    [-5., 0.],
+    [-4., -3.],
+    [-3., -4.],
+    [0., -5.],
+    [3., -4.],
+    [4., -3.],
+];
+
 fn sets_2d() -> Vec<(String, Vec<[f64; 2]>)> {
     let mut v = Vec::new();
     for s in 0..4 {
@@ -24,22 +40,11 @@ fn sets_2d() -> Vec<(String, Vec<[f64; 2]>)> {
     // points on a circle of radius 5 with integer coordinates plus a few inside
     v.push((
         "circle".into(),
-        vec![
-            [5., 0.],
-            [4., 3.],
-            [3., 4.],
-            [0., 5.],
-            [-3., 4.],
-            [-4., 3.],
-            [-5., 0.],
-            [-4., -3.],
-            [-3., -4.],
-            [0., -5.],
-            [3., -4.],
-            [4., -3.],
-            [1., 1.],
-            [-2., 0.],
-        ],
+        CIRCLE5
+            .iter()
+            .copied()
+            .chain([[1., 1.], [-2., 0.]])
+            .collect(),
     ));
     // collinear triples and a line
     v.push((
@@ -247,23 +252,7 @@ fn every_3d_kind_equals_its_definition() {
         [2.9, 0.6, -0.7],
     ]);
     sets.push(("facet".into(), facet));
-    let mut circle: Vec<[f64; 3]> = [
-        [5., 0.],
-        [4., 3.],
-        [3., 4.],
-        [0., 5.],
-        [-3., 4.],
-        [-4., 3.],
-        [-5., 0.],
-        [-4., -3.],
-        [-3., -4.],
-        [0., -5.],
-        [3., -4.],
-        [4., -3.],
-    ]
-    .iter()
-    .map(|q| [q[0], q[1], 0.0])
-    .collect();
+    let mut circle: Vec<[f64; 3]> = CIRCLE5.iter().map(|q| [q[0], q[1], 0.0]).collect();
     circle.extend([[0.0, 0.0, 10.0], [0.0, 0.0, -10.0], [1.0, 2.0, 16.0]]);
     sets.push(("circle".into(), circle));
     for (name, p) in sets {
