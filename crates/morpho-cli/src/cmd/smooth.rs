@@ -616,18 +616,20 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
     let m = r.mesh;
     io::write_mesh(&ctx.path("smooth_spot20.ply"), &m, io::Encoding::default())?;
     let mut s = Section::new(
-        "Smooth surfaces: a reduced scan, three-split and side-vertex (Veltkamp §9.6, Hamann ch. 6)",
+        "Smooth surfaces: a reduced scan, three-split, six-split and side-vertex (Veltkamp §9.6, §9.8, Hamann ch. 6)",
         "meshes/spot.obj reduced to 20 % of its triangles (Hamann's Algorithm 5.1), area-weighted \
          vertex normals (V §9.4; the few that do not see all their triangles adjusted), then the \
          cubic three-split (V §9.6: Farin's interior point, the Clough–Tocher split at the \
          centroid; per edge a degree-elevated quadratic boundary where one fits, else (9.4) where it \
          moves L1, R1 at most 3 edge lengths, else a bounded correction left creased and counted \
-         as unresolved) and Hamann's \
+         as unresolved), the six-split (V §9.8 rebuilt: a C¹ piecewise-quadratic boundary, a \
+         prescribed normal field per macro edge, Powell–Sabin interior; inflected edges and sides \
+         that would turn outward fall back to a reported crease) and Hamann's \
          side-vertex surface of degree-elevated conics (H ch. 6, automatic weights), each \
          tessellated with surface normals. Left to right: the input (flat), the three-split, the \
-         side-vertex surface. Second row: reflection lines (V §8.4): parallel light lines far \
+         six-split, the side-vertex surface. Second row: reflection lines (V §8.4): parallel light lines far \
          away, reflected by the surface normals; they run continuously across a G¹ surface and \
-         break at every edge of the flat mesh, and at the three-split's unresolved edges. (9.4) \
+         break at every edge of the flat mesh, and at the split surfaces' unresolved edges. (9.4) \
          alone gave the 'wild oscillation' of V Fig. 9.5 here: near-mirror-image triangles make \
          it nearly singular and pushed L1, R1 up to 1.4e14 edge lengths out; the continuity \
          figures are measured independently at 20 samples per macro and micro edge.",
@@ -671,6 +673,31 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
         format!("{:.1} ms", t_split * 1e3),
     );
     let t0 = std::time::Instant::now();
+    let split6 = six_split(&m, &n)?;
+    let t_split6 = t0.elapsed().as_secs_f64();
+    let c6 = continuity(&split6, 20);
+    let tess6 = tessellate(&split6, 4)?;
+    s.fig(
+        "six-split: max normal jump (rad) / non-G¹ edges / fold edges",
+        format!(
+            "{:.1e} / {} of {} / {}",
+            c6.max_normal_jump_rad,
+            c6.non_g1_edges.len(),
+            c6.edges,
+            c6.fold_edges
+        ),
+    );
+    s.fig(
+        "six-split: fallback / unresolved edges, max deviation, construction time",
+        format!(
+            "{} / {}, {:.3}, {:.1} ms",
+            split6.singular_edges.len(),
+            split6.unresolved_edges.len(),
+            max_deviation(&split6, &m, 8),
+            t_split6 * 1e3
+        ),
+    );
+    let t0 = std::time::Instant::now();
     let sv = side_vertex(&m, &n, &SideVertexOptions::default())?;
     let t_sv = t0.elapsed().as_secs_f64();
     let csv = side_vertex_continuity(&sv, 20, 1e-9);
@@ -696,6 +723,7 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
     );
     for (t, name) in [
         (&tess3, "smooth_spot_split3.ply"),
+        (&tess6, "smooth_spot_split6.ply"),
         (&tess_sv, "smooth_spot_side_vertex.ply"),
     ] {
         io::write_mesh(&ctx.path(name), t, io::Encoding::BinaryLittleEndian)?;
@@ -721,22 +749,24 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
     let shaded = [
         render_mesh(&m, &flat),
         render_mesh(&tess3, &base),
+        render_mesh(&tess6, &base),
         render_mesh(&tess_sv, &base),
     ];
     let striped = [
         render_mesh(&m, &lines(&flat)),
         render_mesh(&tess3, &lines(&base)),
+        render_mesh(&tess6, &lines(&base)),
         render_mesh(&tess_sv, &lines(&base)),
     ];
     super::reduce::hstack(&shaded).save_png(&ctx.path("smooth_spot.png"))?;
     s.img(
         "smooth_spot.png",
-        "input (flat) · three-split · side-vertex",
+        "input (flat) · three-split · six-split · side-vertex",
     );
     super::reduce::hstack(&striped).save_png(&ctx.path("smooth_spot_reflection.png"))?;
     s.img(
         "smooth_spot_reflection.png",
-        "reflection lines: input (facet normals) · three-split · side-vertex",
+        "reflection lines: input (facet normals) · three-split · six-split · side-vertex",
     );
     Ok(s)
 }
