@@ -24,7 +24,7 @@
 use super::approx::{make_approximation, Approximation, Target};
 use super::criteria::{dist_to_segment, edge_criteria};
 use super::disc::at;
-use super::tree2::FlintTree2;
+use super::tree2::root_of;
 use super::FlintError;
 use crate::geom::vec::dist;
 use crate::geom::Point2;
@@ -90,11 +90,10 @@ pub fn baseline(
     method: Baseline,
     target: Target,
 ) -> Result<Approximation, FlintError> {
-    // the flintstone tree's input checks and root chord
-    let t = FlintTree2::new(points, closed)?;
-    let p = t.points();
+    // the flintstone tree's input checks and root chord (not the tree itself)
+    let (flat, _, [i, j]) = root_of(points, closed)?;
+    let p = &flat[..];
     let n = p.len();
-    let [i, j] = t.root.chord;
     let mut spans = vec![(i, j)];
     if closed {
         spans.push((j, i + n));

@@ -91,6 +91,36 @@ pub struct FlintTree2 {
 }
 
 /// Checks finiteness and count; for polygons, exact simplicity.
+/// What [`root_of`] gives: the points as arrays, the smallest enclosing disc, the root chord.
+pub(crate) type Root = (Vec<[f64; 2]>, crate::geom::EnclosingDisc, [usize; 2]);
+
+/// The input checks of [`FlintTree2::new`] and its root: the points as arrays, the smallest
+/// enclosing disc and the root chord (a closed polygon: the pair of the disc's support points
+/// chosen by `root_pair`; a polyline: its ends). Shared with the baselines, which need the same
+/// checks and chord but not the tree.
+pub(crate) fn root_of(points: &[Point2], closed: bool) -> Result<Root, FlintError> {
+    let flat = check_input(points, closed)?;
+    let n = flat.len();
+    let disc = smallest_enclosing_disc(points).map_err(|_| FlintError::AllCoincident)?;
+    if disc.support.len() < 2 {
+        return Err(FlintError::AllCoincident);
+    }
+    let chord = if closed {
+        root_pair(&flat, &disc.support).ok_or(FlintError::AllCoincident)?
+    } else {
+        if flat[0] == flat[n - 1] {
+            return Err(FlintError::NotSimple {
+                first: 0,
+                second: n - 1,
+                repeated: true,
+                n,
+            });
+        }
+        [0, n - 1]
+    };
+    Ok((flat, disc, chord))
+}
+
 fn check_input(points: &[Point2], closed: bool) -> Result<Vec<[f64; 2]>, FlintError> {
     if points.len() < 3 {
         return Err(FlintError::TooFewVertices { n: points.len() });
@@ -151,25 +181,8 @@ impl FlintTree2 {
     }
 
     fn with_rule(points: &[Point2], closed: bool, budget: bool) -> Result<FlintTree2, FlintError> {
-        let flat = check_input(points, closed)?;
+        let (flat, disc, chord) = root_of(points, closed)?;
         let n = flat.len();
-        let disc = smallest_enclosing_disc(points).map_err(|_| FlintError::AllCoincident)?;
-        if disc.support.len() < 2 {
-            return Err(FlintError::AllCoincident);
-        }
-        let chord = if closed {
-            root_pair(&flat, &disc.support).ok_or(FlintError::AllCoincident)?
-        } else {
-            if flat[0] == flat[n - 1] {
-                return Err(FlintError::NotSimple {
-                    first: 0,
-                    second: n - 1,
-                    repeated: true,
-                    n,
-                });
-            }
-            [0, n - 1]
-        };
         let mut t = FlintTree2 {
             points: flat,
             closed,
