@@ -27,24 +27,26 @@ fn grid_2d(k: usize) -> Vec<[f64; 2]> {
         .collect()
 }
 
+/// The 12 points with integer coordinates on the circle x² + y² = 25 (cocircular test data,
+/// shared with the other modules' unit tests).
+pub(super) const CIRCLE5: [[f64; 2]; 12] = [
+    [5., 0.],
+    [4., 3.],
+    [3., 4.],
+    [0., 5.],
+    [-3., 4.],
+    [-4., 3.],
+    [-5., 0.],
+    [-4., -3.],
+    [-3., -4.],
+    [0., -5.],
+    [3., -4.],
+    [4., -3.],
+];
+
 fn circle_2d(n: usize) -> Vec<[f64; 2]> {
-    // points on the circle x² + y² = 25 with integer coordinates, plus the centre
-    let mut v: Vec<[f64; 2]> = vec![
-        [5., 0.],
-        [4., 3.],
-        [3., 4.],
-        [0., 5.],
-        [-3., 4.],
-        [-4., 3.],
-        [-5., 0.],
-        [-4., -3.],
-        [-3., -4.],
-        [0., -5.],
-        [3., -4.],
-        [4., -3.],
-    ];
-    v.truncate(n.min(12));
-    v
+    // the first n points on the circle x² + y² = 25 with integer coordinates
+    CIRCLE5[..n.min(12)].to_vec()
 }
 
 /// Parameter pairs with |c0| ≤ |c1| covering every case of Def. 3.1.
