@@ -610,21 +610,8 @@ mod tests {
     #[test]
     fn skipping_pending_pushes_changes_nothing() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(17);
-        let sphere: Vec<crate::geom::Point3> = (0..3000)
-            .map(|i| {
-                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
-                let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
-                let s = if i % 5 == 0 {
-                    0.7
-                } else {
-                    1.0 + 0.2 * (4.0 * v[0] / r).sin() * (3.0 * v[2] / r).cos()
-                };
-                crate::geom::Point3::new(v[0] / r * s, v[1] / r * s, 1.4 * v[2] / r * s)
-            })
-            .collect();
-        let lattice: Vec<crate::geom::Point3> = (0..7 * 6 * 5)
-            .map(|i| crate::geom::Point3::new((i % 7) as f64, (i / 7 % 6) as f64, (i / 42) as f64))
-            .collect();
+        let sphere = super::super::test_sets::bumpy_sphere(&mut rng, 3000);
+        let lattice = super::super::test_sets::lattice(7, 6, 5);
         let mut differs_from_locked = false;
         for pts in [&sphere, &lattice] {
             let d = crate::delaunay::d3::triangulate(pts).unwrap();

@@ -823,12 +823,7 @@ mod tests {
     #[test]
     fn mutations_stamp_the_cells_they_touch() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
-        let pts: Vec<crate::geom::Point3> = (0..300)
-            .map(|_| {
-                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
-                crate::geom::Point3::new(v[0], v[1], v[2])
-            })
-            .collect();
+        let pts = super::super::test_sets::cube(&mut rng, 300);
         let d = crate::delaunay::d3::triangulate(&pts).unwrap();
         let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
         let all = crate::graphs::fast::candidates_3d(&d).triangles;

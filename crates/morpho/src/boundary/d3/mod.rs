@@ -16,6 +16,8 @@ pub(crate) mod general;
 mod insert;
 mod keep;
 mod removal;
+#[cfg(test)]
+mod test_sets;
 
 use super::BoundaryError;
 use super::CParam;

@@ -578,9 +578,10 @@ impl General3<'_> {
         faces
     }
 
-    /// The table `sweep_src` of [`Self::sweep_faces`] built from every live non-boundary
-    /// triangle.
-    pub(super) fn sweep_src_rebuilt(&self) -> SweepSrc {
+    /// Every directed edge (x, y) of a live non-boundary triangle that names a boundary face
+    /// (x, y, z) through `bnext`, with that face (rotated to its smallest corner first),
+    /// sorted and without repeats: what both rebuilds below read.
+    fn named_edges(&self) -> Vec<(u64, [u32; 3])> {
         use rayon::prelude::*;
         let this = self;
         let mut edges: Vec<(u64, [u32; 3])> = (0..this.tris.len())
@@ -599,6 +600,13 @@ impl General3<'_> {
             .collect();
         edges.par_sort_unstable();
         edges.dedup();
+        edges
+    }
+
+    /// The table `sweep_src` of [`Self::sweep_faces`] built from every live non-boundary
+    /// triangle.
+    pub(super) fn sweep_src_rebuilt(&self) -> SweepSrc {
+        let edges = self.named_edges();
         let mut named: IdMap<u64, [u32; 3]> = IdMap::default();
         let mut count: IdMap<[u32; 3], u32> = IdMap::default();
         named.reserve(edges.len());
@@ -613,19 +621,7 @@ impl General3<'_> {
     /// The list of [`Self::sweep_faces`] rebuilt from every live non-boundary triangle.
     pub(super) fn sweep_faces_rebuilt(&self) -> Vec<[u32; 3]> {
         use rayon::prelude::*;
-        let this = self;
-        let mut faces: Vec<[u32; 3]> = (0..this.tris.len())
-            .into_par_iter()
-            .filter(|&i| this.live[i] && !this.bflag[i])
-            .flat_map_iter(|i| {
-                let t = this.tris[i];
-                (0..6).filter_map(move |j| {
-                    let (a, b) = (t[j / 2], t[(j / 2 + 1) % 3]);
-                    let (x, y) = if j % 2 == 0 { (a, b) } else { (b, a) };
-                    this.bnext.get(&dk(x, y)).map(|&z| sorted_rot([x, y, z]))
-                })
-            })
-            .collect();
+        let mut faces: Vec<[u32; 3]> = self.named_edges().into_iter().map(|(_, f)| f).collect();
         faces.par_sort_unstable();
         faces.dedup();
         faces
@@ -775,22 +771,9 @@ mod tests {
                 .collect();
             sets.push((cube, false, 0));
         }
-        let bumpy: Vec<crate::geom::Point3> = (0..800)
-            .map(|i| {
-                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
-                let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
-                let s = if i % 5 == 0 {
-                    0.7
-                } else {
-                    1.0 + 0.2 * (4.0 * v[0] / r).sin() * (3.0 * v[2] / r).cos()
-                };
-                crate::geom::Point3::new(v[0] / r * s, v[1] / r * s, 1.4 * v[2] / r * s)
-            })
-            .collect();
+        let bumpy = super::super::test_sets::bumpy_sphere(&mut rng, 800);
         sets.push((bumpy.clone(), true, 0));
-        let lattice: Vec<crate::geom::Point3> = (0..6 * 5 * 4)
-            .map(|i| crate::geom::Point3::new((i % 6) as f64, (i / 6 % 5) as f64, (i / 30) as f64))
-            .collect();
+        let lattice = super::super::test_sets::lattice(6, 5, 4);
         sets.push((lattice, true, 0));
         sets.push((bumpy[..400].to_vec(), true, 6));
         let (mut removals, mut incremental) = (0, 0);
@@ -879,12 +862,7 @@ mod tests {
     #[test]
     fn sweep_list_follows_every_mutation_primitive() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
-        let pts: Vec<crate::geom::Point3> = (0..400)
-            .map(|_| {
-                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
-                crate::geom::Point3::new(v[0], v[1], v[2])
-            })
-            .collect();
+        let pts = super::super::test_sets::cube(&mut rng, 400);
         let d = crate::delaunay::d3::triangulate(&pts).unwrap();
         let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
         let all = crate::graphs::fast::candidates_3d(&d).triangles;

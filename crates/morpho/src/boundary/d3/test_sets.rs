@@ -1,0 +1,45 @@
+//! Point sets shared by the unit tests of the 3D boundary (test-only): the same draws from the
+//! caller's generator as the copies they replace, so every test keeps its exact input.
+
+use crate::geom::Point3;
+use rand::Rng;
+
+/// `n` points uniform in the cube [−1, 1)³.
+pub(super) fn cube(rng: &mut impl Rng, n: usize) -> Vec<Point3> {
+    (0..n)
+        .map(|_| {
+            let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            Point3::new(v[0], v[1], v[2])
+        })
+        .collect()
+}
+
+/// `n` points of a bumpy ellipsoid (radius 1 + 0.2·sin(4x)·cos(3z) in the directions of
+/// uniform cube points, z stretched by 1.4), every fifth at radius 0.7 inside it.
+pub(super) fn bumpy_sphere(rng: &mut impl Rng, n: usize) -> Vec<Point3> {
+    (0..n)
+        .map(|i| {
+            let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            let r = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+            let s = if i % 5 == 0 {
+                0.7
+            } else {
+                1.0 + 0.2 * (4.0 * v[0] / r).sin() * (3.0 * v[2] / r).cos()
+            };
+            Point3::new(v[0] / r * s, v[1] / r * s, 1.4 * v[2] / r * s)
+        })
+        .collect()
+}
+
+/// The integer lattice {0..nx} × {0..ny} × {0..nz}, x fastest.
+pub(super) fn lattice(nx: usize, ny: usize, nz: usize) -> Vec<Point3> {
+    (0..nx * ny * nz)
+        .map(|i| {
+            Point3::new(
+                (i % nx) as f64,
+                (i / nx % ny) as f64,
+                (i / (nx * ny)) as f64,
+            )
+        })
+        .collect()
+}
