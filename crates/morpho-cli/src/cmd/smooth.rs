@@ -599,7 +599,19 @@ fn curve_demo(ctx: &super::demo::Ctx) -> morpho::Result<morpho::io::html::Sectio
     Ok(s)
 }
 
-/// Spot reduced to 20 % (Hamann's Algorithm 5.1), its three-split and side-vertex surfaces.
+/// The demo table's "max normal jump (rad) / non-G¹ edges of all / fold edges" of one surface.
+fn jump_row(c: &morpho::smooth::Continuity) -> String {
+    format!(
+        "{:.1e} / {} of {} / {}",
+        c.max_normal_jump_rad,
+        c.non_g1_edges.len(),
+        c.edges,
+        c.fold_edges
+    )
+}
+
+/// Spot reduced to 20 % (Hamann's Algorithm 5.1), its three-split, six-split and side-vertex
+/// surfaces.
 fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::io::html::Section> {
     use morpho::io::html::Section;
     use morpho::reduce::{reduce, ReduceOptions, Stop};
@@ -650,13 +662,7 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
     let tess3 = tessellate(&split, 6)?;
     s.fig(
         "three-split: max normal jump (rad) / non-G¹ edges / fold edges",
-        format!(
-            "{:.1e} / {} of {} / {}",
-            c3.max_normal_jump_rad,
-            c3.non_g1_edges.len(),
-            c3.edges,
-            c3.fold_edges
-        ),
+        jump_row(&c3),
     );
     s.fig(
         "three-split: singular / unresolved edges, max displacement, max deviation",
@@ -679,13 +685,7 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
     let tess6 = tessellate(&split6, 4)?;
     s.fig(
         "six-split: max normal jump (rad) / non-G¹ edges / fold edges",
-        format!(
-            "{:.1e} / {} of {} / {}",
-            c6.max_normal_jump_rad,
-            c6.non_g1_edges.len(),
-            c6.edges,
-            c6.fold_edges
-        ),
+        jump_row(&c6),
     );
     s.fig(
         "six-split: fallback / unresolved edges, max deviation, construction time",
@@ -704,13 +704,7 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
     let tess_sv = sv.tessellate(6)?;
     s.fig(
         "side-vertex: max normal jump (rad) / non-G¹ edges / fold edges",
-        format!(
-            "{:.1e} / {} of {} / {}",
-            csv.max_normal_jump_rad,
-            csv.non_g1_edges.len(),
-            csv.edges,
-            csv.fold_edges
-        ),
+        jump_row(&csv),
     );
     s.fig(
         "side-vertex: inflected edges, max deviation, construction time",
