@@ -265,10 +265,9 @@ fn three_split_generic_mesh_is_g1_with_every_weighting() {
     }
 }
 
-#[test]
-fn three_split_reports_singular_edges_and_the_fallback_is_g1() {
-    // octahedron and icosahedron with exact (sphere) normals: every edge mirror-symmetric
-    let oct = TriMesh::new(
+/// The regular octahedron with vertices ±e_k, outward (every edge mirror-symmetric).
+fn octahedron() -> TriMesh {
+    TriMesh::new(
         vec![
             Point3::new(1.0, 0.0, 0.0),
             Point3::new(-1.0, 0.0, 0.0),
@@ -287,7 +286,13 @@ fn three_split_reports_singular_edges_and_the_fallback_is_g1() {
             [3, 1, 5],
             [0, 3, 5],
         ],
-    );
+    )
+}
+
+#[test]
+fn three_split_reports_singular_edges_and_the_fallback_is_g1() {
+    // octahedron and icosahedron with exact (sphere) normals: every edge mirror-symmetric
+    let oct = octahedron();
     for m in [oct, generate::icosphere(0)] {
         let n: Vec<Vector3> = m.positions.iter().map(|p| p.coords.normalize()).collect();
         let s = three_split(&m, &n).unwrap();
@@ -714,26 +719,7 @@ fn six_split_generic_meshes_are_g1_with_every_weighting() {
 fn six_split_is_g1_where_the_three_split_is_singular() {
     // octahedron and icosahedron with exact (sphere) normals: every edge mirror-symmetric,
     // (9.4) singular for the three-split; the six-split's sides are solved independently
-    let oct = TriMesh::new(
-        vec![
-            Point3::new(1.0, 0.0, 0.0),
-            Point3::new(-1.0, 0.0, 0.0),
-            Point3::new(0.0, 1.0, 0.0),
-            Point3::new(0.0, -1.0, 0.0),
-            Point3::new(0.0, 0.0, 1.0),
-            Point3::new(0.0, 0.0, -1.0),
-        ],
-        vec![
-            [0, 2, 4],
-            [2, 1, 4],
-            [1, 3, 4],
-            [3, 0, 4],
-            [2, 0, 5],
-            [1, 2, 5],
-            [3, 1, 5],
-            [0, 3, 5],
-        ],
-    );
+    let oct = octahedron();
     for m in [oct, generate::icosphere(0), generate::icosphere(2)] {
         let n: Vec<Vector3> = m.positions.iter().map(|p| p.coords.normalize()).collect();
         let (s, c) = check_six(&m, &n);
