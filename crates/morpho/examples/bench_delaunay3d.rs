@@ -1,8 +1,10 @@
 //! Benchmark of the 3D Delaunay tetrahedralization on N uniform random points in the unit cube.
 //!
 //! ```text
-//! cargo run --release -p morpho --example bench_delaunay3d -- [N] [--seed S] [--write points.f64] [--tets tets.u32]
+//! cargo run --release -p morpho --example bench_delaunay3d -- [N] [--seed S] [--sphere] [--grid G] [--write points.f64] [--tets tets.u32]
 //! ```
+//! `--sphere`: N points uniform on the unit sphere (normalized Gaussian triples, rounded to
+//! doubles) — the near-cospherical case where the in-sphere filter fails often (issue 23).
 //! Prints points/second and the peak resident memory (VmHWM) per point. `--write` stores the
 //! points as little-endian f64 triples, `--tets` the tetrahedra (input indices, little-endian u32
 //! quadruples) for `bench/delaunay3d_qhull.py` (scipy/Qhull timing and tetrahedron-set check).
@@ -38,6 +40,7 @@ fn main() {
     let mut tets: Option<String> = None;
     let mut grid = 0usize;
     let mut check = false;
+    let mut sphere = false;
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -50,6 +53,7 @@ fn main() {
                 grid = args[i].parse().expect("grid size");
             }
             "--check" => check = true,
+            "--sphere" => sphere = true,
             "--tets" => {
                 i += 1;
                 tets = Some(args[i].clone());
@@ -77,6 +81,22 @@ fn main() {
             .collect();
         v.shuffle(&mut rng);
         v
+    } else if sphere {
+        (0..n)
+            .map(|_| loop {
+                // Marsaglia: a uniform direction from a point of the unit ball, normalized
+                let v: [f64; 3] = [
+                    rng.gen::<f64>() * 2.0 - 1.0,
+                    rng.gen::<f64>() * 2.0 - 1.0,
+                    rng.gen::<f64>() * 2.0 - 1.0,
+                ];
+                let r2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+                if r2 > 1e-4 && r2 <= 1.0 {
+                    let r = r2.sqrt();
+                    break Point3::new(v[0] / r, v[1] / r, v[2] / r);
+                }
+            })
+            .collect()
     } else {
         (0..n)
             .map(|_| Point3::new(rng.gen(), rng.gen(), rng.gen()))
@@ -92,6 +112,8 @@ fn main() {
         std::fs::write(&path, bytes).expect("write points");
     }
     let before = vm_hwm_kib().unwrap_or(0);
+    use morpho::internals::predicate_stats as ps;
+    ps::reset();
     let c0 = cpu_secs();
     let t = Instant::now();
     let d = triangulate_3d(&pts).expect("triangulate");
@@ -105,6 +127,19 @@ fn main() {
         n as f64 / secs,
         n as f64 / cpu.max(0.01)
     );
+    let k = ps::snapshot();
+    let calls: u64 = k[7..10].iter().sum();
+    if calls > 0 {
+        // built with --features morpho/predicate-stats; the small-integer kernel (lattices) and
+        // the out-of-range kernel do not go through the counted cascade
+        let share = |x: u64| 100.0 * x as f64 / calls as f64;
+        println!(
+            "insphere calls {calls}: filter {:.2} %, integer {:.3} %, full cascade {:.4} %",
+            share(k[7]),
+            share(k[8]),
+            share(k[9])
+        );
+    }
     if check {
         let t = Instant::now();
         d.check_topology().expect("topology");

@@ -54,7 +54,8 @@ use super::DelaunayError;
 use crate::geom::exact::{
     insphere_exact, insphere_small_int, orient2d_exact, orient3d_exact, safe_range,
 };
-use crate::geom::predicates::raw::{insphere, orient3d};
+use crate::geom::predicates::insphere_sign;
+use crate::geom::predicates::raw::orient3d;
 use crate::geom::Point3;
 use crate::util::hilbert::hilbert3;
 use crate::util::{Rng, NONE};
@@ -219,7 +220,7 @@ impl<'a> Builder<'a> {
         let s = if self.small_int {
             insphere_small_int(&q)
         } else if self.safe {
-            insphere(q[0], q[1], q[2], q[3], q[4])
+            insphere_sign(q[0], q[1], q[2], q[3], q[4]) as f64
         } else {
             insphere_exact(q[0], q[1], q[2], q[3], q[4])
         };
