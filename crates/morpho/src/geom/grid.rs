@@ -617,6 +617,9 @@ impl<const D: usize> BoxGrid<D> {
     /// Calls `f` on the ids whose cells meet the box (an id may come more than once; every
     /// level and the list of wide boxes included) until it returns true; returns whether it
     /// did.
+    // (no caller outside the tests since the 3D engine's triangle grids became
+    // `boundary::d3::trigrid::TriGrid`; kept as the grid's early-exit query)
+    #[cfg_attr(not(test), allow(dead_code))]
     pub fn any_in_box(&self, lo: [f64; D], hi: [f64; D], mut f: impl FnMut(u32) -> bool) -> bool {
         self.any_in_box_dyn(lo, hi, &mut f)
     }

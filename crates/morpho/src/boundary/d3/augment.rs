@@ -502,6 +502,8 @@ impl Engine3 {
             let region = near_locked(&self.d, &st.alive, &st.triangles, LOCAL_DEPTH);
             let live = self.faces_of(&region);
             let mut g = General3::new(&self.pos, &st.triangles, &live, &self.keep_v);
+            // (the boundary and live triangles are faces of Delaunay tetrahedra)
+            g.trust_initial_as_delaunay();
             let c = augment_until_done_3d(&mut g, 0.0);
             if g.done() {
                 return Outcome3::general(&g, c, st.iterations);
@@ -509,6 +511,8 @@ impl Engine3 {
         }
         let live = self.faces_of(&st.alive);
         let mut g = General3::new(&self.pos, &st.triangles, &live, &self.keep_v);
+        // (keep triangles too: this path has only Delaunay faces among them)
+        g.trust_initial_as_delaunay();
         let c = augment_until_done_3d(&mut g, 0.0);
         Outcome3::general(&g, c, st.iterations)
     }

@@ -30,9 +30,13 @@ type Result<T> = std::result::Result<T, BoundaryError>;
 
 /// What a constriction step produced, before the checks of [`Engine3::finish`] (vertex
 /// indices).
+#[derive(Clone)]
 pub(super) struct Outcome3 {
     /// The boundary triangles, oriented outward.
     pub(super) triangles: Vec<[u32; 3]>,
+    /// For each triangle, whether the engine knows it to be a face of the Delaunay
+    /// tetrahedralization (`None`: not known, [`Engine3::finish`] looks it up).
+    pub(super) delaunay_faces: Option<Vec<bool>>,
     /// The live tetrahedra when the result is a set of Delaunay tetrahedra (`None` after the
     /// general engine, whose tetrahedra are implicit).
     pub(super) alive: Option<Vec<bool>>,
@@ -46,8 +50,10 @@ impl Outcome3 {
     /// The outcome of the general engine `g` after it ran with c down to `c_used`, after
     /// `before` removals of an earlier constriction.
     pub(super) fn general(g: &General3<'_>, c_used: f64, before: usize) -> Self {
+        let (triangles, delaunay_faces) = g.boundary_with_delaunay_flags();
         Outcome3 {
-            triangles: g.boundary(),
+            triangles,
+            delaunay_faces,
             alive: None,
             c_used,
             iterations: before + g.iterations,
@@ -103,6 +109,7 @@ impl Engine3 {
         let sk = voronoi_skeleton3::shortest_skeleton_3d(&self.d, max_seeds);
         Outcome3 {
             triangles: sk.triangles,
+            delaunay_faces: None,
             alive: Some(sk.alive),
             c_used: 0.0,
             iterations: sk.iterations,
@@ -156,6 +163,7 @@ impl Engine3 {
         if done || !augment {
             return Outcome3 {
                 triangles: st.triangles,
+                delaunay_faces: None,
                 alive: Some(st.alive),
                 c_used: 0.0,
                 iterations: st.iterations,
@@ -196,7 +204,12 @@ impl Engine3 {
         let tris = o.triangles;
         let mesh = crate::mesh::TriMesh::new(d.points.clone(), tris.clone());
         let topo = crate::mesh::topology::analyze(&mesh);
-        let delaunay_face = validity::faces_of_tetrahedra(&d.tets, &tris);
+        // the Delaunay faces among the triangles: as the engine knows them, or looked up (the
+        // check then skips only pairs of them, which meet properly in any case)
+        let delaunay_face = match o.delaunay_faces {
+            Some(f) if f.len() == tris.len() => f,
+            _ => validity::faces_of_tetrahedra(&d.tets, &tris),
+        };
         let intersections =
             validity::self_intersections_trusting(&self.pos, &tris, &delaunay_face, 10);
         let mut on = vec![false; d.points.len()];
@@ -245,5 +258,101 @@ impl Engine3 {
     /// Some keep triangle is not a face of the Delaunay tetrahedralization.
     pub(super) fn non_delaunay_keep(&self) -> bool {
         has_non_delaunay_keep(&self.d, &self.keep_v)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::boundary::d3::test_sets;
+    use rand::SeedableRng;
+
+    /// The Delaunay-face flags the general engine hands to the final check after a locked
+    /// Delaunay constriction are true (each flagged triangle is a face of a Delaunay
+    /// tetrahedron, by the lookup the check made before), and the checked result is the same
+    /// as with the lookup.
+    #[test]
+    fn engine_delaunay_face_flags_are_true_and_check_alike() {
+        use rand::Rng;
+        let mut locked = 0;
+        // clustered cube points on which the Delaunay constriction locks (the seeds of the
+        // integration test `locked_delaunay_constriction_falls_back_and_stays_valid`, and of
+        // `general::tests::sweeps_that_skip_unchanged_faces_constrict_identically`)
+        for seed in [1647u64, 1755, 1, 2, 3, 4] {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let n = rng.gen_range(40..600);
+            let pts: Vec<Point3> = (0..n)
+                .map(|_| {
+                    let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                    Point3::new(v[0].powi(3), v[1].powi(3), v[2].powi(3))
+                })
+                .collect();
+            let e = Engine3::new(&pts).unwrap();
+            let o = e.delaunay_constriction(Key::Gamma, Until::All, true);
+            let Some(flags) = o.delaunay_faces.clone() else {
+                continue;
+            };
+            locked += 1;
+            let oracle = validity::faces_of_tetrahedra(&e.d.tets, &o.triangles);
+            assert_eq!(flags.len(), oracle.len());
+            assert!(
+                flags.iter().zip(&oracle).all(|(&f, &t)| !f || t),
+                "seed {seed}"
+            );
+            // (the triangles the engine added are the only ones not flagged)
+            assert!(flags.iter().filter(|&&f| f).count() + o.added >= oracle.len());
+            let mut looked_up = o.clone();
+            looked_up.delaunay_faces = None;
+            let (a, b) = (e.finish(o), e.finish(looked_up));
+            assert!(
+                a.closed_manifold && a.intersections.is_empty(),
+                "seed {seed}"
+            );
+            assert_eq!(a.genus, Some(0));
+            assert_eq!(a.triangles, b.triangles);
+            assert_eq!(a.left_out, b.left_out);
+            assert_eq!(a.intersections, b.intersections);
+            assert_eq!(a.volume.to_bits(), b.volume.to_bits());
+        }
+        assert!(locked >= 2, "{locked} sets locked");
+    }
+
+    /// A corrupted general-engine result is rejected by the final check with the engine's
+    /// flags: a boundary face listed in both orientations (the copy is not trusted: the pair
+    /// intersects, the surface is not a 2-manifold), and a face missing (not closed).
+    #[test]
+    fn corrupted_engine_results_are_rejected() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let pts = test_sets::cube(&mut rng, 200);
+        let e = Engine3::new(&pts).unwrap();
+        let hull = e.d.hull.clone();
+        // sound: the hull itself (every point is not on it, but it is a closed genus-0 surface)
+        let mut g = General3::new(&e.pos, &hull, &[], &[]);
+        g.trust_initial_as_delaunay();
+        let ok = e.finish(Outcome3::general(&g, 0.0, 0));
+        assert!(ok.closed_manifold && ok.intersections.is_empty(), "hull");
+        assert!(!ok.all_on_boundary && !ok.left_out.is_empty());
+        // a face in both orientations
+        let f = hull[3];
+        g.set_boundary([f[0], f[2], f[1]], true);
+        let o = Outcome3::general(&g, 0.0, 0);
+        let flags = o.delaunay_faces.clone().unwrap();
+        assert_eq!(
+            flags.iter().filter(|&&x| !x).count(),
+            1,
+            "one copy untrusted"
+        );
+        let bad = e.finish(o);
+        assert!(!bad.closed_manifold, "doubled face");
+        assert!(
+            !bad.intersections.is_empty(),
+            "doubled face: the copies meet"
+        );
+        // a face missing
+        let mut g = General3::new(&e.pos, &hull, &[], &[]);
+        g.trust_initial_as_delaunay();
+        g.set_boundary(hull[7], false);
+        let bad = e.finish(Outcome3::general(&g, 0.0, 0));
+        assert!(!bad.closed_manifold, "missing face");
     }
 }

@@ -23,10 +23,11 @@
 //! itself.
 //!
 //! # Complexity
-//! Removal: O(k log n) with k the live triangles and vertices near Q (uniform hash grids over
+//! Removal: O(k log n) with k the live triangles and vertices near Q (uniform grids over
 //! bounding boxes, cell twice the median edge length; boundary faces and the other live
-//! triangles in separate grids; triangles spanning more than 512 cells are kept in a list
-//! tested always). Boundary tests stop at the first hit and skip boxes that a conservative
+//! triangles in separate grids, [`super::trigrid::TriGrid`]: the triangles of
+//! [`General3::new`] in one flat array built by a counting sort, later ones in a hash grid;
+//! triangles spanning more than 512 cells on coarser levels or in a list tested always). Boundary tests stop at the first hit and skip boxes that a conservative
 //! floating-point bound puts off the triangle's plane. The sweep of `run` visits only the
 //! boundary faces next to a live non-boundary triangle (the only ones that can carry a
 //! removable tetrahedron), so a caller may pass only the live triangles near the locked
@@ -38,6 +39,7 @@
 //! Preconditions: the initial surface is a closed genus-0 2-manifold enclosing every vertex and
 //! every given triangle (as produced by [`super::constrict`] or the convex hull).
 
+use super::trigrid::TriGrid;
 use crate::boundary::indicator::MinKey;
 use crate::geom::grid::BoxGrid;
 use crate::geom::vec::{cross, dist, dot, norm, sub};
@@ -159,10 +161,10 @@ pub struct General3<'a> {
     pub(super) vcount: Vec<u32>,
     pub(super) keep: IdSet<[u32; 3]>,
     /// Live triangles that were not boundary faces when added (for [`Self::crossing`]).
-    pub(super) tgrid: Grid,
+    pub(super) tgrid: TriGrid,
     /// Triangles that have been boundary faces (for [`Self::hits_boundary`]; `bflag` tells
     /// which still are).
-    pub(super) bgrid: Grid,
+    pub(super) bgrid: TriGrid,
     pub(super) in_bgrid: Vec<bool>,
     pub(super) vgrid: Grid,
     /// The bounding box of the points.
@@ -218,6 +220,12 @@ pub struct General3<'a> {
     pub(super) verify_sweep_list: bool,
     /// Sweeps whose face list was updated incrementally (for the tests).
     pub(super) incremental_sweeps: usize,
+    /// Ids below this are faces of the Delaunay tetrahedralization of the points: the
+    /// triangles given to [`General3::new`] when its caller vouches for them
+    /// ([`General3::trust_initial_as_delaunay`]; 0 otherwise). The final check trusts such
+    /// boundary faces instead of looking every tetrahedron's faces up
+    /// ([`General3::boundary_with_delaunay_flags`]).
+    pub(super) delaunay_ids: u32,
     /// Number of boundary vertices.
     pub boundary_vertices: usize,
     /// Number of removed tetrahedra.
@@ -285,8 +293,8 @@ impl<'a> General3<'a> {
             bnext: IdMap::default(),
             vcount: vec![0; p.len()],
             keep: keep.iter().map(|&f| sorted3(f)).collect(),
-            tgrid: Grid::new(lo, cell, true),
-            bgrid: Grid::new(lo, cell, true),
+            tgrid: TriGrid::new(lo, cell),
+            bgrid: TriGrid::new(lo, cell),
             in_bgrid: Vec::new(),
             vgrid: Grid::new(lo, cell, false),
             pbox: (lo, hi),
@@ -311,6 +319,7 @@ impl<'a> General3<'a> {
             rebuild_sweeps: false,
             verify_sweep_list: false,
             incremental_sweeps: 0,
+            delaunay_ids: 0,
             boundary_vertices: 0,
             iterations: 0,
             added: 0,
@@ -615,6 +624,40 @@ impl<'a> General3<'a> {
         out
     }
 
+    /// The caller's word that every triangle given to [`General3::new`] (boundary, live and
+    /// keep triangles) is a face of the Delaunay tetrahedralization of the points (as in
+    /// [`super::Engine3::augment_after_lock`]: faces of Delaunay tetrahedra). Call right after
+    /// `new`, before anything is added.
+    pub(super) fn trust_initial_as_delaunay(&mut self) {
+        debug_assert_eq!(self.added, 0);
+        self.delaunay_ids = self.tris.len() as u32;
+    }
+
+    /// [`General3::boundary`] and, when the caller vouched for the initial triangles
+    /// ([`General3::trust_initial_as_delaunay`]), for each boundary triangle whether it is one
+    /// of them (then a Delaunay face; a triangle added later counts as not, even when it
+    /// happens to be one: the final check then tests it, which can only cost time). As
+    /// [`crate::mesh::validity::faces_of_tetrahedra`], a triangle listed twice (both
+    /// orientations) is trusted once, its first copy, so that the pair is still tested.
+    pub(super) fn boundary_with_delaunay_flags(&self) -> (Vec<[u32; 3]>, Option<Vec<bool>>) {
+        let tris = self.boundary();
+        if self.delaunay_ids == 0 {
+            return (tris, None);
+        }
+        let mut seen = vec![false; self.delaunay_ids as usize];
+        let flags = tris
+            .iter()
+            .map(|&t| match self.id.get(&sorted3(t)) {
+                Some(&i) if i < self.delaunay_ids && !seen[i as usize] => {
+                    seen[i as usize] = true;
+                    true
+                }
+                _ => false,
+            })
+            .collect();
+        (tris, Some(flags))
+    }
+
     /// Keep triangles not (yet) on the boundary.
     pub fn keep_missing(&self) -> usize {
         self.keep
@@ -717,8 +760,8 @@ mod tests {
         assert_eq!(bulk.bnext, one.bnext);
         assert_eq!(bulk.vcount, one.vcount);
         assert_eq!(bulk.boundary_vertices, one.boundary_vertices);
-        assert_eq!(bulk.tgrid, one.tgrid);
-        assert_eq!(bulk.bgrid, one.bgrid);
+        assert_eq!(bulk.tgrid.contents(), one.tgrid.contents());
+        assert_eq!(bulk.bgrid.contents(), one.bgrid.contents());
         assert_eq!(bulk.vgrid, one.vgrid);
         assert_eq!(bulk.vcoarse, one.vcoarse);
         // the cells of the point grid chosen for a box (the coarse one for wide boxes) hold

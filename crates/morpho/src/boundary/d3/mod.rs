@@ -18,6 +18,7 @@ mod keep;
 mod removal;
 #[cfg(test)]
 mod test_sets;
+mod trigrid;
 
 use super::BoundaryError;
 use super::CParam;
