@@ -28,10 +28,12 @@ vertex is |x − x_ex| / max(|x_ex|, 0.1·rms(x_ex)) (the floor keeps saddles' z
 dominating); median over the vertices.
 Tools: morpho `morpho curvature IN.ply -o OUT.csv` (variants below), libigl
 `igl.principal_curvature(V, F)` (its defaults: radius 5, k-ring), VTK `vtkCurvatures` mean and
-Gaussian (the discrete operators). Variants: `default` (the CLI default: area normals corrected
-by a cubic fit over the 2-ring, then the thesis's 1-ring paraboloid), `thesis` (`--normals area`:
-the 1-ring paraboloid with area-weighted normals, H §4.2), `quadric` (`--normals area --fit
-quadric`: linear terms over the 2-ring), `jetquadric` (`--fit quadric`).
+Gaussian (the discrete operators). Variants: `default` (the CLI default, `--fit jet`: the cubic
+jet over the 2-ring in the frame of the area normal, curvature of the jet at the vertex),
+`jetparab` (`--fit paraboloid`: the previous default, area normals corrected by the cubic jet,
+then the thesis's 1-ring paraboloid), `thesis` (`--normals area`: the 1-ring paraboloid with
+area-weighted normals, H §4.2), `quadric` (`--normals area --fit quadric`: linear terms over
+the 2-ring), `jetquadric` (`--fit quadric`), `jet3` (`--fit jet --ring 3`).
 
 slopes — morpho's default on refined meshes (regular torus, jittered torus, Table 4.1 row 8,
 random sphere): interior RMS of H and K against the mean edge length h, and the least-squares
@@ -58,6 +60,8 @@ MORPHO = os.environ.get("MORPHO", os.path.join(ROOT, "target", "release", "morph
 
 VARIANTS = {
     "default": [],
+    "jetparab": ["--fit", "paraboloid"],
+    "jet3": ["--fit", "jet", "--ring", "3"],
     "thesis": ["--normals", "area"],
     "quadric": ["--normals", "area", "--fit", "quadric"],
     "jetquadric": ["--fit", "quadric"],

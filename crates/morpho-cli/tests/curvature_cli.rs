@@ -157,15 +157,19 @@ fn report(dir: &Path, name: &str) -> serde_json::Value {
     serde_json::from_slice(&std::fs::read(dir.join(name)).unwrap()).unwrap()
 }
 
-/// The default (jet normals + 1-ring paraboloid) and the thesis's method by flag, named in the
-/// report; `--fit quadric` defaults to the 2-ring.
+/// The default (the jet's curvature over the 2-ring), the previous default (jet normals +
+/// 1-ring paraboloid) and the thesis's method by flag, named in the report; `--fit quadric`
+/// and `--fit jet` default to the 2-ring (the jet needs at least 2).
 #[test]
 fn default_thesis_and_quadric_are_reported() {
     let dir = tempfile::tempdir().unwrap();
     plane(dir.path(), 8);
     for (args, normals, fit, ring) in [
-        (&[][..], "jet", "paraboloid", 1),
+        (&[][..], "jet", "jet", 2),
+        (&["--ring", "1"][..], "jet", "jet", 2),
+        (&["--fit", "paraboloid"][..], "jet", "paraboloid", 1),
         (&["--normals", "area"][..], "area", "paraboloid", 1),
+        (&["--normals", "area", "--fit", "jet"][..], "area", "jet", 2),
         (&["--fit", "quadric"][..], "jet", "quadric", 2),
         (
             &["--fit", "quadric", "--ring", "3"][..],
@@ -189,7 +193,10 @@ fn default_thesis_and_quadric_are_reported() {
         assert_eq!(r["normals"], normals, "{args:?}");
         assert_eq!(r["fit"], fit, "{args:?}");
         assert_eq!(r["ring"], ring, "{args:?}");
-        assert_eq!(r.get("jet_fallbacks").is_some(), normals == "jet");
+        assert_eq!(
+            r.get("jet_fallbacks").is_some(),
+            normals == "jet" || fit == "jet"
+        );
         // a plane: every determined value is 0
         for q in ["k1", "k2", "H", "K"] {
             for k in ["min", "max"] {

@@ -100,18 +100,20 @@ pub fn normal_source(normals: Option<&Bound<'_, PyAny>>) -> PyResult<NormalSourc
 /// normals, `jet_fallbacks`.
 ///
 /// The options are the CLI's (`morpho curvature`): `normals="jet"` (default: area-weighted
-/// normals corrected by a cubic fit over the 2-ring), a weighting name or an `(n, 3)` array;
-/// `fit="paraboloid"` (the thesis's, H §4.2) or `"quadric"`; `ring` defaults to 1 for the
-/// paraboloid and 2 for the quadric. The thesis's method is `normals="area"`.
+/// normals; with the default fit, the jet's own curvature), a weighting name or an `(n, 3)`
+/// array; `fit="jet"` (the default with `normals="jet"`: the quartic/cubic jet over the
+/// 2-ring, its curvature at the vertex), `"paraboloid"` (the thesis's, H §4.2; the default
+/// otherwise; after jet-corrected normals with `normals="jet"`) or `"quadric"`; `ring`
+/// defaults to 1 for the paraboloid and 2 otherwise. The thesis's method is `normals="area"`.
 #[pyfunction]
-#[pyo3(signature = (vertices, faces, normals=None, ring=None, fit="paraboloid"))]
+#[pyo3(signature = (vertices, faces, normals=None, ring=None, fit=None))]
 pub fn curvature<'py>(
     py: Python<'py>,
     vertices: PyReadonlyArray2<'py, f64>,
     faces: &Bound<'py, PyAny>,
     normals: Option<&Bound<'py, PyAny>>,
     ring: Option<usize>,
-    fit: &str,
+    fit: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let m = trimesh(&vertices, faces)?;
     let jet_normals = match normals {
@@ -123,18 +125,22 @@ pub fn curvature<'py>(
     } else {
         normal_source(normals)?
     };
-    let fit = match fit {
-        "paraboloid" => SurfaceFit::Paraboloid,
-        "quadric" => SurfaceFit::Quadric,
-        o => {
+    let fit = match (fit, jet_normals) {
+        (Some("jet"), _) | (None, true) => SurfaceFit::Jet,
+        (Some("paraboloid"), _) | (None, false) => SurfaceFit::Paraboloid,
+        (Some("quadric"), _) => SurfaceFit::Quadric,
+        (Some(o), _) => {
             return Err(bad(format!(
-                "fit: unknown surface '{o}': use paraboloid or quadric"
+                "fit: unknown surface '{o}': use jet, paraboloid or quadric"
             )))
         }
     };
+    // as the CLI: the jet fit needs no jet-corrected normal (it is the same fit)
+    let jet_normals = jet_normals && fit != SurfaceFit::Jet;
+    let jet_report = jet_normals || fit == SurfaceFit::Jet;
     let ring = ring.unwrap_or(match fit {
-        SurfaceFit::Quadric => 2,
-        _ => 1,
+        SurfaceFit::Paraboloid => 1,
+        _ => 2,
     });
     let opts = SurfaceOptions {
         normals: source,
@@ -161,7 +167,7 @@ pub fn curvature<'py>(
         .collect();
     d.set_item("status", PyArray1::from_vec(py, status))?;
     d.set_item("undetermined", c.undetermined)?;
-    if jet_normals {
+    if jet_report {
         d.set_item("jet_fallbacks", c.jet_fallbacks)?;
     }
     d.set_item("k1", PyArray1::from_vec(py, c.k1))?;

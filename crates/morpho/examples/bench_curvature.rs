@@ -1,6 +1,7 @@
 //! Times `morpho::curvature::surface_curvature` on one mesh in this process (issue 20, speed):
-//! the thesis's method (1-ring paraboloid, area normals) and the default for estimated normals
-//! (jet normals + 1-ring paraboloid), each on a rayon pool of 1 and of 2 threads, alternately,
+//! the thesis's method (1-ring paraboloid, area normals), the default for estimated normals
+//! (the cubic jet's curvature over the 2-ring) and the previous default (jet normals + 1-ring
+//! paraboloid), each on a rayon pool of 1 and of 2 threads, alternately,
 //! `--rounds` times; prints wall and process CPU seconds of each call and the 1-minute load
 //! average before it (the machine may be shared).
 //!
@@ -48,6 +49,7 @@ fn main() {
     let methods = [
         ("thesis", SurfaceOptions::default()),
         ("default", SurfaceOptions::estimated_normals()),
+        ("jetparab", SurfaceOptions::jet_normals_paraboloid()),
     ];
     let pools: Vec<_> = [1, 2]
         .iter()

@@ -4,17 +4,20 @@
 //!
 //! - Meshes → `.ply` (the mesh with vertex properties `k1,k2,H,K,A`, κ₁ ≤ κ₂, NaN where the fit
 //!   is undetermined) or `.csv` (`x,y,z,index,k1,k2,H,K,A` per vertex; an undetermined value is
-//!   an empty cell). Normals: `--normals jet` (default) estimates them by area weighting and
-//!   corrects each by a cubic fit over its 2-ring (on a boundary vertex, where that fit is
-//!   one-sided, the quadric with linear terms over the 2-ring is fitted instead); `area` (= `mesh`), `uniform`, `inverse` are
-//!   the weightings of V §9.4 alone; `file` uses the file's (PLY `nx,ny,nz`; refused when
-//!   absent). `--fit paraboloid` (default) is the thesis's osculating paraboloid (H §4.2) over
-//!   the `--ring K` platelet (default 1); `--fit quadric` adds linear terms (default ring 2).
-//!   **The thesis's method** is `--normals area --fit paraboloid --ring 1` (or `--normals file`
-//!   with exact normals, as in H Table 4.1). The default's jet normals are an extension: with
-//!   area normals alone the 1-ring paraboloid loses to libigl and VTK on irregular meshes
-//!   (`bench/curvature_peers.py`, `bench/README.md`). Curvature is measured along the normal:
-//!   an outward-oriented sphere of radius R has H = −1/R.
+//!   an empty cell). **Default** (`--normals jet`, `--fit jet`): a jet (degree 4, else 3)
+//!   fitted over each vertex's 2-ring in the frame of the area-weighted normal, and the
+//!   curvature of the fitted graph at the vertex (on a boundary vertex, where that fit is
+//!   one-sided, the quadric with linear terms over the 2-ring instead). Not in the thesis: it
+//!   beats libigl and VTK on the meshes of `bench/curvature_peers.py` (`bench/README.md`).
+//!   `--normals jet --fit paraboloid` is the previous default (the jet's normal, then the
+//!   thesis's 1-ring paraboloid). `--normals area` (= `mesh`), `uniform`, `inverse` are the
+//!   weightings of V §9.4 alone; `file` uses the file's (PLY `nx,ny,nz`; refused when absent);
+//!   with these the default fit is `--fit paraboloid`, the thesis's osculating paraboloid
+//!   (H §4.2) over the `--ring K` platelet (default 1); `--fit quadric` adds linear terms
+//!   (default ring 2); `--fit jet` is the jet in their normals' frame (default ring 2).
+//!   **The thesis's method** is `--normals area` (= `--normals area --fit paraboloid --ring 1`;
+//!   or `--normals file` with exact normals, as in H Table 4.1). Curvature is measured along
+//!   the normal: an outward-oriented sphere of radius R has H = −1/R.
 //! - Volumes → `-o DIR`: `DIR/k1.nrrd k2.nrrd k3.nrrd H.nrrd K.nrrd` on the input grid (same
 //!   dims, spacing, origin, orientation), f32, NaN where undetermined; gradients by central
 //!   differences.
@@ -40,19 +43,23 @@ pub struct Args {
     /// Output: .ply or .csv for a mesh; a folder for a volume.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Vertex normals: `jet` = area-weighted, corrected by a cubic fit over the 2-ring
+    /// Vertex normals: `jet` = area-weighted, with the jet fit's own normal and curvature
     /// (default; not in the thesis; boundary vertices get the quadric over the 2-ring instead);
     /// `area` (= `mesh`), `uniform`, `inverse` = that weighting
     /// alone (V §9.4); `file` = the file's. The thesis's method: `--normals area` (or `file`)
     /// with the default fit and ring.
     #[arg(long, default_value = "jet", value_parser = ["jet", "mesh", "area", "uniform", "inverse", "file"])]
     pub normals: String,
-    /// The fitted surface: `paraboloid` (the thesis's, H §4.2) or `quadric` (with linear
-    /// terms: corrects a tilted normal, needs ≥ 5 points).
-    #[arg(long, default_value = "paraboloid", value_parser = ["paraboloid", "quadric"])]
-    pub fit: String,
+    /// The fitted surface: `jet` (a polynomial of degree 4, else 3, over the 2-ring: the
+    /// curvature of the fitted graph at the vertex; default with `--normals jet`; not in the
+    /// thesis), `paraboloid` (the thesis's, H §4.2;
+    /// default with any other `--normals`) or `quadric` (with linear terms: corrects a tilted
+    /// normal, needs ≥ 5 points). `--normals jet --fit paraboloid` is the jet-corrected normal
+    /// followed by the thesis's paraboloid.
+    #[arg(long, value_parser = ["jet", "paraboloid", "quadric"])]
+    pub fit: Option<String>,
     /// Fit over the K-ring of each vertex (default: 1 for the paraboloid = the thesis's
-    /// platelet, 2 for the quadric).
+    /// platelet, 2 for the quadric and the jet; the jet uses at least 2).
     #[arg(long)]
     pub ring: Option<usize>,
 }
@@ -103,15 +110,25 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         "inverse" => NormalSource::Estimated(NormalWeighting::InverseArea),
         _ => NormalSource::Estimated(NormalWeighting::Area),
     };
-    let fit = match args.fit.as_str() {
-        "quadric" => SurfaceFit::Quadric,
+    let jet = args.normals == "jet";
+    let fit = match (args.fit.as_deref(), jet) {
+        (Some("quadric"), _) => SurfaceFit::Quadric,
+        (Some("jet"), _) | (None, true) => SurfaceFit::Jet,
         _ => SurfaceFit::Paraboloid,
     };
-    let jet_normals = args.normals == "jet";
+    // `--normals jet` corrects the normal before a paraboloid or quadric; the jet fit needs no
+    // correction (it is the same cubic)
+    let jet_normals = jet && fit != SurfaceFit::Jet;
     let ring = args.ring.unwrap_or(match fit {
-        SurfaceFit::Quadric => 2,
-        _ => 1,
+        SurfaceFit::Paraboloid => 1,
+        _ => 2,
     });
+    // the jet needs at least the 2-ring (the report names the ring used)
+    let ring = if fit == SurfaceFit::Jet {
+        ring.max(2)
+    } else {
+        ring
+    };
     let opts = SurfaceOptions {
         normals,
         ring,
@@ -124,7 +141,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     })?;
     report.set("vertices", mesh.positions.len());
     report.set("undetermined", c.undetermined);
-    if jet_normals {
+    if jet_normals || fit == SurfaceFit::Jet {
         report.set("jet_fallbacks", c.jet_fallbacks);
     }
     report.set("ring", ring);
@@ -132,7 +149,8 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         "fit",
         match fit {
             SurfaceFit::Quadric => "quadric",
-            _ => "paraboloid",
+            SurfaceFit::Jet => "jet",
+            SurfaceFit::Paraboloid => "paraboloid",
         },
     );
     report.set("normals", args.normals.as_str());
@@ -311,14 +329,16 @@ pub fn demo_section(ctx: &super::demo::Ctx) -> morpho::Result<Vec<morpho::io::ht
     let opts = SurfaceOptions::estimated_normals();
     let mut s = Section::new(
         "Mean curvature of a contour surface and of a scan",
-        "Hamann ch. 4: H per vertex by the osculating-paraboloid fit over the 1-ring (H §4.2), \
-         with area-weighted normals corrected by a cubic fit over the 2-ring (morpho's default \
-         for estimated normals; `--normals area` is the thesis's method). Diverging colour map \
+        "Hamann ch. 4: H per vertex by a local surface fit (H §4.2): morpho's default for \
+         estimated normals fits a jet of degree 4 (else 3) with linear terms over the 2-ring in \
+         the frame of the area-weighted normal and takes the fitted graph's curvature at the \
+         vertex (`--normals area` is the thesis's method, the osculating paraboloid over the \
+         1-ring). Diverging colour map \
          centred on H = 0: blue H < 0 (bending away from the outward normal: convex), red \
          H > 0 (concave), grey flat or saddle-balanced. The skull's contour surface carries \
          voxel-scale steps (slices 2 voxels apart), so it is fitted over the 3-ring \
          (`--ring 3`) and shown over ±1.5 × the median of |H| (the vault, radius ≈ 75 voxels, is \
-         blue); the bunny over the 1-ring, range ±(95th percentile of |H|).",
+         blue); the bunny over the 2-ring, range ±(95th percentile of |H|).",
     );
     if let Some(path) = ctx.data_file("volumes/cthead_8bit_256x256x99.json") {
         use morpho::volume::{isosurface, IsoOptions};

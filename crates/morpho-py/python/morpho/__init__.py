@@ -198,15 +198,17 @@ def info(vertices, faces=None):
     return _morpho.info(v, f)
 
 
-def curvature(vertices, faces=None, normals="jet", ring=None, fit="paraboloid"):
+def curvature(vertices, faces=None, normals="jet", ring=None, fit=None):
     """Per-vertex curvature by a local surface fit (Hamann 1991, §4.2); the CLI's options.
 
-    ``normals``: ``jet`` (default: area-weighted normals corrected by a cubic fit over the
-    2-ring, as ``morpho curvature``), ``area``/``uniform``/``inverse`` (estimated, V §9.4
+    ``normals``: ``jet`` (default: area-weighted normals, and with the default fit the jet's
+    own curvature, as ``morpho curvature``), ``area``/``uniform``/``inverse`` (estimated, V §9.4
     weightings; ``area`` with the default fit and ring is the thesis's method) or an ``(n, 3)``
-    array. ``fit``: ``paraboloid`` (the thesis's osculating paraboloid) or ``quadric`` (with
-    linear terms). ``ring``: neighbourhood size (default 1 for the paraboloid, 2 for the
-    quadric). Returns a dict of arrays ``k1, k2, H, K, A``, ``dir1, dir2, normals``,
+    array. ``fit``: ``jet`` (default with ``normals="jet"``: the quartic jet over the 2-ring,
+    its curvature at the vertex), ``paraboloid`` (the thesis's osculating paraboloid; the
+    default otherwise; after jet-corrected normals with ``normals="jet"``) or ``quadric`` (with
+    linear terms). ``ring``: neighbourhood size (default 1 for the paraboloid, 2 otherwise).
+    Returns a dict of arrays ``k1, k2, H, K, A``, ``dir1, dir2, normals``,
     ``status`` (0 ok; otherwise the curvatures are NaN), ``undetermined`` (count) and, with
     jet normals, ``jet_fallbacks``. ``curvature(mesh)`` takes a mesh object too.
     """

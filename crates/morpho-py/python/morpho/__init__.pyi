@@ -73,7 +73,7 @@ def curvature(
     faces: Optional[npt.ArrayLike] = None,
     normals: Union[Literal["jet", "area", "uniform", "inverse"], npt.ArrayLike] = "jet",
     ring: Optional[int] = None,
-    fit: Literal["paraboloid", "quadric"] = "paraboloid",
+    fit: Optional[Literal["jet", "paraboloid", "quadric"]] = None,
 ) -> Dict[str, Any]: ...
 @overload
 def reduce(

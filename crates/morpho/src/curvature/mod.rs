@@ -1,7 +1,9 @@
 //! Curvature of triangle meshes and of graphs of trivariate functions (Hamann 1991, ch. 4).
 //!
 //! * [`surface_curvature`]: κ₁ ≤ κ₂, principal directions, H, K and the absolute curvature
-//!   per mesh vertex, by the osculating-paraboloid fit over the platelet (H §4.2).
+//!   per mesh vertex, by the osculating-paraboloid fit over the platelet (H §4.2), or, the
+//!   default for estimated normals, by the curvature of a jet (degree 4) fitted over the 2-ring
+//!   (`SurfaceFit::Jet`; `surface.rs` module doc).
 //! * [`trivariate_curvature`] / [`volume_curvature`]: κ₁ ≤ κ₂ ≤ κ₃, H and K per grid point
 //!   of the graph of a trivariate function, by the 6×6 fit in R⁴ over the 6-tetrahedra
 //!   decomposition (H §4.3).

@@ -27,30 +27,47 @@
 //! on irregular meshes the normal's error tilts the tangent plane and the fit turns it into
 //! curvature: on a randomly tessellated unit sphere (4000 points, convex hull) its interior
 //! RMS of H is 1.5 and of K 1.8e3, against libigl's 0.026 / 0.053.
-//! [`SurfaceOptions::estimated_normals`] (the CLI's default) therefore first replaces each
-//! normal by the normal of a cubic jet `a u + b v + ½(c20 u² + 2c11 uv + c02 v²) + cubic terms`
-//! fitted over the 2-ring ([`SurfaceOptions::jet_normals`]; the cubic terms keep the
-//! surface's third-order part out of the slopes, which a quadric's slopes carry), then runs
-//! the thesis's steps unchanged. On the meshes of `bench/curvature_peers.py` (torus regular and
-//! jittered, ellipsoid, random sphere, the 8 curved surfaces of Table 4.1 on its grid, all with
-//! estimated normals) its interior RMS and median relative error of H and K are below
-//! libigl's `principal_curvature` in every case (0.02–0.6×), and below `vtkCurvatures` by
-//! 10–100× on the irregular meshes; on regular grids VTK's discrete operators are
-//! super-convergent and stay ahead on some surfaces (up to 3.6× in RMS on the torus grid, 6× on
-//! the cylinder, where VTK's K is exactly 0): `bench/README.md` has the tables. The quadric
-//! with linear terms ([`SurfaceFit::Quadric`], 2-ring) is the other extension measured: better
-//! than the thesis's method on irregular meshes, worse than the jet normals on grids.
+//! [`SurfaceOptions::estimated_normals`] (the CLI's default, [`SurfaceFit::Jet`]) therefore
+//! fits a jet — a polynomial graph `d = f(u, v)` through the vertex, with linear terms — over
+//! the 2-ring in the frame `(b₁, b₂, n)` of the area-weighted normal, of degree 4 (14
+//! coefficients, at least 14 points) where that is determined, else of degree 3 (9
+//! coefficients, from the same moments), else the same on the 3-ring, and takes the curvature
+//! of the fitted graph at the vertex: with `g = ∇f(0)` (≠ 0: the area normal is not the
+//! surface's) and `Hess f(0)`, the first fundamental form is `I + ggᵀ`, the second
+//! `Hess / √(1+|g|²)`, and κ₁ ≤ κ₂ are the eigenvalues of the shape operator (H (4.15); the
+//! normal becomes the jet's, `(n − g₁b₁ − g₂b₂)/√(1+|g|²)`). The linear terms absorb the area
+//! normal's tilt; the cubic terms keep the odd-order part of the surface out of the slopes and
+//! the Hessian on irregular rings; the quartic terms keep the fourth-order part out of the
+//! Hessian, which on point-symmetric stencils (regular grids: the odd terms decouple there, so
+//! a cubic jet is no better than a quadric) is the whole O(h²) error. With degree 3 alone
+//! the 2-ring's Hessian error on grids was 2.5–4× the 1-ring paraboloid's (the stencil's
+//! radius is twice as large), behind `vtkCurvatures` on every regular grid; with degree 4 the
+//! measured slopes are 3.8–4.1 on grids, 3.1–3.4 on the jittered torus and 1.9 (with 16×
+//! smaller errors than before) on the random sphere. On the 12 meshes of
+//! `bench/curvature_peers.py` (torus regular and jittered, ellipsoid, random sphere, the 8
+//! curved surfaces of Table 4.1 on its grid, all with estimated normals) its interior RMS and
+//! median relative error of H and K are below libigl's `principal_curvature` in all 48
+//! comparisons (≤ 0.02×) and below `vtkCurvatures`' in 46 of 48 (the two exceptions: the
+//! median relative error of H and K on the torus parameter grid, 3.7× and 1.1×, whose RMS is
+//! 0.3–0.5× VTK's); `bench/README.md` has the tables. It also skips the second fit of the
+//! previous default (jet-corrected normal, then the thesis's paraboloid:
+//! [`SurfaceOptions::jet_normals_paraboloid`], CLI `--fit paraboloid`), which stays available,
+//! as does the quadric with linear terms ([`SurfaceFit::Quadric`], 2-ring). The library's
+//! [`Default`] stays the thesis's method (and `morpho reduce`, which weights by its
+//! curvature, is unchanged).
 //!
 //! **Undetermined vertices** (NaN in every output, a [`VertexStatus`] other than `Ok`, and
 //! counted in [`SurfaceCurvature::undetermined`]): a vertex in no triangle, a vertex without a
 //! normal (zero or non-finite), a platelet of fewer than 3 points, and a platelet whose normal
 //! matrix has `cond(UᵀU) > 1e10` (notes C.2). The condition number is invariant under scaling,
 //! so the rule is scale-free. On the 51×51 grid of Table 4.1 exactly the two corners in one
-//! triangle are undetermined.
+//! triangle are undetermined. With [`SurfaceFit::Jet`] a vertex is undetermined only when its
+//! jets (pivot ratio > 1e10 in the coordinates divided by the RMS radius: scale-free too) and
+//! the fallback paraboloid all are.
 //!
 //! **Boundaries.** On an open fan (a vertex with more neighbours than triangles: on a boundary)
 //! every platelet is one-sided. The thesis's method keeps its steps there (larger errors, as in
-//! Table 4.1). With [`SurfaceOptions::jet_normals`] the cubic's slopes at the edge of its data
+//! Table 4.1). With [`SurfaceFit::Jet`] or [`SurfaceOptions::jet_normals`] the cubic's slopes at the edge of its data
 //! extrapolate badly, and the paraboloid turns the tilt into curvature (monkey saddle of Table
 //! 4.1's grid: RMS of H on the boundary vertices 1.1, on the trig surface 1.3). There the
 //! estimated normal is kept and the quadric with linear terms ([`SurfaceFit::Quadric`]) is
@@ -75,7 +92,7 @@
 //! result bit for bit (`bench/README.md`).
 
 use super::error::CurvatureError;
-use super::fit::{CubicJet, Normal};
+use super::fit::{CubicJet, Normal, QuarticJet};
 use crate::geom::{vec, Vector3};
 use crate::mesh::{vertex_normal_from, weighted_crosses, NormalWeighting, TriMesh};
 use rayon::prelude::*;
@@ -110,6 +127,20 @@ pub enum SurfaceFit {
     /// 5 coefficients, ≥ 5 points — use a 2-ring or larger. Not in the thesis: an extension
     /// for estimated normals (see the module doc).
     Quadric,
+    /// The jet `a u + b v + ½(c20 u² + 2 c11 uv + c02 v²) + c30 u³ + c21 u²v + c12 uv² +
+    /// c03 v³ + c40 u⁴ + … + c04 v⁴` through the vertex over its k-ring
+    /// (k = [`SurfaceOptions::ring`], at least 2), in the frame of the given or estimated
+    /// normal; the curvatures are those of the fitted graph at the vertex (H (4.15), as for
+    /// [`SurfaceFit::Quadric`]) and the normal becomes the fitted one. Degree 4 (14
+    /// coefficients) where the ring has ≥ 14 points and the fit is determined (pivot ratio at
+    /// most 1e10), else degree 3 (9 coefficients, ≥ 9 points). Where both are undetermined
+    /// the (k+1)-ring is tried, then the thesis's paraboloid
+    /// over the 1-ring with the normal as given (counted in
+    /// [`SurfaceCurvature::jet_fallbacks`]); on a boundary vertex (an open fan) the quadric with
+    /// linear terms is fitted instead, as with [`SurfaceOptions::jet_normals`]. Not in the
+    /// thesis: the default for estimated normals ([`SurfaceOptions::estimated_normals`]; the
+    /// module doc gives the measurements). [`SurfaceOptions::jet_normals`] adds nothing to it.
+    Jet,
 }
 
 /// Options of [`surface_curvature`].
@@ -143,10 +174,23 @@ impl Default for SurfaceOptions {
 }
 
 impl SurfaceOptions {
-    /// The method for meshes whose normals are estimated (the CLI's default): area-weighted
-    /// normals corrected by the cubic fit over the 2-ring ([`SurfaceOptions::jet_normals`]),
-    /// then the thesis's 1-ring paraboloid. The module doc gives the measurements that chose it.
+    /// The method for meshes whose normals are estimated (the CLI's default): the jet (degree
+    /// 4, else 3) over the 2-ring in the frame of the area-weighted normal, its curvature at
+    /// the vertex
+    /// ([`SurfaceFit::Jet`]). The module doc gives the measurements that chose it.
     pub fn estimated_normals() -> Self {
+        SurfaceOptions {
+            normals: NormalSource::Estimated(NormalWeighting::Area),
+            ring: 2,
+            fit: SurfaceFit::Jet,
+            jet_normals: false,
+        }
+    }
+
+    /// The previous default for estimated normals: area-weighted normals corrected by the
+    /// cubic fit over the 2-ring ([`SurfaceOptions::jet_normals`]), then the thesis's 1-ring
+    /// paraboloid (CLI `--fit paraboloid`, with the default `--normals jet`).
+    pub fn jet_normals_paraboloid() -> Self {
         SurfaceOptions {
             normals: NormalSource::Estimated(NormalWeighting::Area),
             ring: 1,
@@ -195,7 +239,9 @@ pub struct SurfaceCurvature {
     /// Number of vertices whose status is not `Ok`.
     pub undetermined: usize,
     /// With [`SurfaceOptions::jet_normals`]: interior vertices whose cubic fit was undetermined
-    /// and that kept their given or estimated normal (boundary vertices get no jet).
+    /// and that kept their given or estimated normal; with [`SurfaceFit::Jet`]: interior
+    /// vertices whose jet was undetermined on both rings and that got the thesis's paraboloid
+    /// instead (boundary vertices get no jet).
     pub jet_fallbacks: usize,
 }
 
@@ -389,9 +435,26 @@ impl Pass<'_> {
         let y0: [f64; 3] = mesh.positions[v].into();
         let deg = adj.of(v).len();
         let mut fallback = false;
+        let jet_fit_here = opts.fit == SurfaceFit::Jet && !adj.open[v];
+        if jet_fit_here {
+            // the curvature of the cubic jet itself (no second fit)
+            let k = opts.ring.max(2);
+            adj.ring(v, k, &mut s.ring2, &mut s.marks);
+            gather(mesh, y0, &s.ring2, &mut s.dif2);
+            let jet = jet_fit(&s.dif2, nrm, true).or_else(|| {
+                adj.ring(v, k + 1, &mut s.ring, &mut s.marks);
+                gather(mesh, y0, &s.ring, &mut s.dif);
+                jet_fit(&s.dif, nrm, true)
+            });
+            return match jet {
+                Some(j) => (graph_vertex(j.n, j.b, j.g, j.hess), false),
+                // the breadth-first ring lists the 1-ring first
+                None => (fit_vertex(&s.dif2[..deg], nrm), true),
+            };
+        }
         // on an open fan the jet and the paraboloid are one-sided: the quadric with linear
         // terms over the (at least) 2-ring instead (module doc, "Boundaries")
-        let boundary_quadric = opts.jet_normals && adj.open[v];
+        let boundary_quadric = (opts.jet_normals || opts.fit == SurfaceFit::Jet) && adj.open[v];
         if opts.jet_normals && !boundary_quadric {
             adj.ring(v, 2, &mut s.ring2, &mut s.marks);
             gather(mesh, y0, &s.ring2, &mut s.dif2);
@@ -423,7 +486,7 @@ impl Pass<'_> {
             }
         };
         let r = match opts.fit {
-            SurfaceFit::Paraboloid if boundary_quadric => {
+            SurfaceFit::Paraboloid | SurfaceFit::Jet if boundary_quadric => {
                 let r = fit_quadric(platelet, nrm);
                 if r.status == VertexStatus::Ok {
                     r
@@ -431,7 +494,8 @@ impl Pass<'_> {
                     fit_vertex(&platelet[..deg], nrm)
                 }
             }
-            SurfaceFit::Paraboloid => fit_vertex(platelet, nrm),
+            // (an interior vertex with the jet fit returned above)
+            SurfaceFit::Paraboloid | SurfaceFit::Jet => fit_vertex(platelet, nrm),
             SurfaceFit::Quadric => fit_quadric(platelet, nrm),
         };
         (r, fallback)
@@ -535,8 +599,31 @@ fn fit_quadric(ring: &[[f64; 3]], nrm: [f64; 3]) -> Vertex {
         return Vertex::undetermined(n, VertexStatus::IllConditioned);
     };
     // slopes are scale-free; second derivatives scale by 1/ρ
-    let (ga, gb) = (c[0], c[1]);
-    let (h11, h12, h22) = (c[2] * inv, c[3] * inv, c[4] * inv);
+    graph_vertex(
+        n,
+        (b1, b2),
+        [c[0], c[1]],
+        [c[2] * inv, c[3] * inv, c[4] * inv],
+    )
+}
+
+/// The curvatures, principal directions and normal at the origin of the graph
+/// `d = a u + b v + ½(h11 u² + 2 h12 uv + h22 v²) + (higher terms)` over the frame `(b₁, b₂, n)`
+/// (H (4.15)): with the gradient `g = (a, b)`, the first fundamental form is `I + ggᵀ`, the
+/// second `Hess / l` along the graph's unit normal `(n − a b₁ − b b₂)/l`, `l = √(1+|g|²)`, and
+/// the principal curvatures are the eigenvalues of the shape operator `(I + ggᵀ)⁻¹ Hess / l`,
+/// i.e. of the symmetric `S Hess S / l` with `S = (I + ggᵀ)^{-1/2} = I + (1/l − 1) ĝĝᵀ`; an
+/// eigenvector `e` gives the parameter direction `S e`, mapped onto the tangent
+/// `(b₁ + a n, b₂ + b n)`. Curvature is measured along the graph's normal, which has a positive
+/// component along `n`: flipping `n` flips the curvatures.
+fn graph_vertex(
+    n: [f64; 3],
+    (b1, b2): ([f64; 3], [f64; 3]),
+    g: [f64; 2],
+    hess: [f64; 3],
+) -> Vertex {
+    let [ga, gb] = g;
+    let [h11, h12, h22] = hess;
     let g2 = ga * ga + gb * gb;
     let l = (1.0 + g2).sqrt();
     // S = I + (1/l − 1) ĝĝᵀ
@@ -574,13 +661,15 @@ fn fit_quadric(ring: &[[f64; 3]], nrm: [f64; 3]) -> Vertex {
     }
 }
 
-/// The normal of the cubic `a u + b v + ½(c20 u² + 2c11 uv + c02 v²) + c30 u³ + c21 u²v +
-/// c12 uv² + c03 v³` fitted over `ring` in the frame of `nrm` (jet fitting of degree 3): the
-/// graph's normal at the vertex, `(n − a b₁ − b b₂)/√(1+a²+b²)`. The cubic terms keep the
-/// surface's third-order part out of the slopes (a quadric's slopes carry it, O(h²) with the
-/// 2-ring's larger constant). Coordinates are divided by the RMS radius first (scale-free
-/// pivot test). `None` when `nrm` is not usable, fewer than 9 points, or pivots above 1e10.
-fn jet_normal(ring: &[[f64; 3]], nrm: [f64; 3]) -> Option<[f64; 3]> {
+/// The jet `a u + b v + ½(c20 u² + 2c11 uv + c02 v²) + c30 u³ + c21 u²v + c12 uv² + c03 v³
+/// [+ c40 u⁴ + c31 u³v + c22 u²v² + c13 uv³ + c04 v⁴]` fitted over `ring` in the frame
+/// `(b₁, b₂, n)` of `nrm` (jet fitting): with `quartic`, of degree 4 where the ring has at least
+/// 14 points and its fit is determined, else of degree 3 (from the same moments). Returns the
+/// unit `n`, the tangent basis, the gradient and the Hessian at the origin (in the units of the
+/// positions). Coordinates are divided by the RMS radius ρ first (scale-free pivot test; slopes
+/// are scale-free, second derivatives scale by 1/ρ). `None` when `nrm` is not usable, fewer
+/// than 9 points, or a pivot ratio above 1e10 in degree 3.
+fn jet_fit(ring: &[[f64; 3]], nrm: [f64; 3], quartic: bool) -> Option<Jet> {
     let len = vec::norm(nrm);
     if !(len > 0.0 && len.is_finite()) || ring.len() < 9 {
         return None;
@@ -592,15 +681,54 @@ fn jet_normal(ring: &[[f64; 3]], nrm: [f64; 3]) -> Option<[f64; 3]> {
         return None;
     }
     let inv = 1.0 / rho2.sqrt();
-    // the 25 moments of the rows' outer products (`CubicJet`): fewer products than the rows
-    let mut jet = CubicJet::new();
-    for &w in ring {
-        let w = vec::scale(w, inv);
-        jet.add(vec::dot(w, b1), vec::dot(w, b2), vec::dot(n, w));
-    }
-    let ne = jet.normal();
-    let c = ne.solve_ldl(SURFACE_MAX_COND)?;
-    let m = vec::add_scaled(vec::add_scaled(n, -c[0], b1), -c[1], b2);
+    let c: [f64; 5] = if quartic && ring.len() >= 14 {
+        // the 42 moments of the quartic's rows (`QuarticJet`); the cubic's are their prefix
+        let mut q = QuarticJet::new();
+        for &w in ring {
+            let w = vec::scale(w, inv);
+            q.add(vec::dot(w, b1), vec::dot(w, b2), vec::dot(n, w));
+        }
+        match q.normal().solve_ldl(SURFACE_MAX_COND) {
+            Some(c) => std::array::from_fn(|i| c[i]),
+            None => {
+                let c = q.cubic().normal().solve_ldl(SURFACE_MAX_COND)?;
+                std::array::from_fn(|i| c[i])
+            }
+        }
+    } else {
+        // the 25 moments of the cubic's rows (`CubicJet`): fewer products than the rows
+        let mut jet = CubicJet::new();
+        for &w in ring {
+            let w = vec::scale(w, inv);
+            jet.add(vec::dot(w, b1), vec::dot(w, b2), vec::dot(n, w));
+        }
+        let c = jet.normal().solve_ldl(SURFACE_MAX_COND)?;
+        std::array::from_fn(|i| c[i])
+    };
+    Some(Jet {
+        n,
+        b: (b1, b2),
+        g: [c[0], c[1]],
+        hess: [c[2] * inv, c[3] * inv, c[4] * inv],
+    })
+}
+
+/// A fitted jet at a vertex ([`jet_fit`]): frame, gradient and Hessian at the origin.
+struct Jet {
+    n: [f64; 3],
+    b: ([f64; 3], [f64; 3]),
+    g: [f64; 2],
+    hess: [f64; 3],
+}
+
+/// The normal of the cubic jet ([`jet_fit`]) over `ring` in the frame of `nrm`: the graph's
+/// normal at the vertex, `(n − a b₁ − b b₂)/√(1+a²+b²)`. The cubic terms keep the surface's
+/// third-order part out of the slopes (a quadric's slopes carry it, O(h²) with the 2-ring's
+/// larger constant).
+fn jet_normal(ring: &[[f64; 3]], nrm: [f64; 3]) -> Option<[f64; 3]> {
+    let j = jet_fit(ring, nrm, false)?;
+    let (b1, b2) = j.b;
+    let m = vec::add_scaled(vec::add_scaled(j.n, -j.g[0], b1), -j.g[1], b2);
     let l = vec::norm(m);
     (l > 0.0 && l.is_finite()).then(|| vec::scale(m, 1.0 / l))
 }
