@@ -635,8 +635,11 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
          centroid; per edge a degree-elevated quadratic boundary where one fits, else (9.4) where it \
          moves L1, R1 at most 3 edge lengths, else a bounded correction left creased and counted \
          as unresolved), the six-split (V §9.8 rebuilt: a C¹ piecewise-quadratic boundary, a \
-         prescribed normal field per macro edge, Powell–Sabin interior; inflected edges and sides \
-         that would turn outward fall back to a reported crease) and Hamann's \
+         prescribed normal field per macro edge — linear where the edge is not inflected, through \
+         the natural boundary with a free end scale where it is —, Powell–Sabin interior; a side \
+         that would turn outward takes the nearest inward member of its exact solutions, and \
+         where none exists, or the field has no positive solution, the edge falls back to a \
+         reported crease) and Hamann's \
          side-vertex surface of degree-elevated conics (H ch. 6, automatic weights), each \
          tessellated with surface normals. Left to right: the input (flat), the three-split, the \
          six-split, the side-vertex surface. Second row: reflection lines (V §8.4): parallel light lines far \
