@@ -602,3 +602,149 @@ fn bad_mesh_input_is_refused() {
         assert!(err.starts_with("error: "), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn mesh_intersect_equals_brute_force_and_writes_segments() {
+    use morpho::flint::intersect3_brute;
+    let dir = tempfile::tempdir().unwrap();
+    let m = morpho::mesh::generate::icosphere(2);
+    let mut b = m.clone();
+    for p in &mut b.positions {
+        *p = morpho::geom::Point3::new(p.x + 0.6, p.y + 0.2, p.z);
+    }
+    let mut far = m.clone();
+    for p in &mut far.positions {
+        p.x += 5.0;
+    }
+    write_off(&dir.path().join("a.off"), &m);
+    write_off(&dir.path().join("b.off"), &b);
+    write_off(&dir.path().join("far.off"), &far);
+    let flat = |m: &morpho::mesh::TriMesh| -> Vec<[f64; 3]> {
+        m.positions.iter().map(|p| [p.x, p.y, p.z]).collect()
+    };
+    let want = intersect3_brute(&flat(&m), &m.triangles, &flat(&b), &b.triangles);
+    assert!(want.len() > 20);
+    let o = morpho(
+        dir.path(),
+        &[
+            "flint",
+            "intersect",
+            "a.off",
+            "b.off",
+            "-o",
+            "s.csv",
+            "--report",
+            "r.json",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let r = report(dir.path(), "r.json");
+    assert_eq!(r["intersects"], true);
+    assert_eq!(r["pairs"], want.len());
+    assert_eq!(
+        r["segments"],
+        want.len(),
+        "no coplanar pairs here: one segment each"
+    );
+    assert_eq!(r["brute_pairs"], m.triangles.len() * b.triangles.len());
+    assert!(r["leaf_tests"].as_u64().unwrap() < r["brute_pairs"].as_u64().unwrap() / 4);
+    let csv = std::fs::read_to_string(dir.path().join("s.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next().unwrap(), "x,y,z,x2,y2,z2,tri_a,tri_b,coplanar");
+    let got: Vec<[u32; 2]> = lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            [f[6].parse().unwrap(), f[7].parse().unwrap()]
+        })
+        .collect();
+    assert_eq!(got, want);
+    // the PLY holds the segments as edges
+    let o = morpho(
+        dir.path(),
+        &["flint", "intersect", "a.off", "b.off", "-o", "s.ply"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let ply = std::fs::read_to_string(dir.path().join("s.ply")).unwrap();
+    assert!(
+        ply.contains(&format!("element edge {}\n", want.len())),
+        "{ply:.300}"
+    );
+    // detection, and disjoint meshes
+    for (other, hit) in [("b.off", true), ("far.off", false)] {
+        let o = morpho(
+            dir.path(),
+            &[
+                "flint",
+                "intersect",
+                "a.off",
+                other,
+                "--first",
+                "-o",
+                "d.csv",
+                "--report",
+                "r.json",
+            ],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(report(dir.path(), "r.json")["intersects"], hit, "{other}");
+    }
+}
+
+#[test]
+fn bad_mesh_intersect_input_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let cube = morpho::mesh::generate::cube();
+    write_off(&dir.path().join("cube.off"), &cube);
+    let mut open = cube.clone();
+    open.triangles.pop();
+    write_off(&dir.path().join("open.off"), &open);
+    let mut nm = cube.clone();
+    let t0 = nm.triangles[0];
+    // a third triangle on the edge t0[0]–t0[1]
+    nm.positions.push(morpho::geom::Point3::new(0.3, 0.4, 2.0));
+    nm.triangles
+        .push([t0[0], t0[1], (nm.positions.len() - 1) as u32]);
+    write_off(&dir.path().join("nonmanifold.off"), &nm);
+    let mut nan = cube.clone();
+    nan.positions[0].x = f64::NAN;
+    write_off(&dir.path().join("nan.off"), &nan);
+    let tet = morpho::mesh::generate::tetrahedron();
+    let mut three = tet.clone();
+    three.triangles.pop();
+    write_off(&dir.path().join("three.off"), &three);
+    for args in [
+        &["flint", "intersect", "open.off", "cube.off", "-o", "s.csv"][..],
+        &[
+            "flint",
+            "intersect",
+            "cube.off",
+            "nonmanifold.off",
+            "-o",
+            "s.csv",
+        ][..],
+        &["flint", "intersect", "nan.off", "cube.off", "-o", "s.csv"][..],
+        &["flint", "intersect", "cube.off", "three.off", "-o", "s.csv"][..],
+        &[
+            "flint",
+            "intersect",
+            "cube.off",
+            "cube.off",
+            "-o",
+            "s.geojson",
+        ][..],
+        &[
+            "flint",
+            "intersect",
+            "cube.off",
+            "cube.off",
+            "--repair",
+            "-o",
+            "s.csv",
+        ][..],
+    ] {
+        let o = morpho(dir.path(), args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.starts_with("error: "), "{args:?}: {err}");
+    }
+}

@@ -28,9 +28,9 @@
 //! that `--repair` removes them. A ring that really crosses itself is refused either way,
 //! naming the two edges by their input vertices (exit 2).
 //!
-//! A closed mesh (.ply/.obj/.off/.stl, also gzipped) as IN of `build`, `approx` and
-//! `contains` uses the 3D tree instead (`cmd/flint3.rs`; queries `x,y,z`). Not built yet:
-//! `intersect` of meshes and the 3D baselines.
+//! A closed mesh (.ply/.obj/.off/.stl, also gzipped) as IN of `build`, `approx`, `contains`
+//! and as A and B of `intersect` uses the 3D tree instead (`cmd/flint3.rs`; queries `x,y,z`;
+//! intersecting triangle pairs and their segments). Not built yet: the 3D baselines.
 
 use crate::report::Report;
 use crate::Failure;
@@ -110,14 +110,18 @@ pub enum Sub {
         #[arg(long)]
         repair: bool,
     },
-    /// Where the boundaries of A and B meet: one row per meeting edge pair.
+    /// Where the boundaries of A and B meet: one row per meeting edge pair (2D), or the
+    /// intersecting triangle pairs of two closed meshes and their segments (3D).
     Intersect {
-        /// First polygon or polyline (.csv in order, .geojson).
+        /// First polygon or polyline (.csv in order, .geojson), or closed mesh
+        /// (.ply/.obj/.off/.stl).
         a: PathBuf,
-        /// Second polygon or polyline.
+        /// Second polygon or polyline, or closed mesh.
         b: PathBuf,
         /// Output (.csv, .geojson, .ply, .xyz): `x,y` and `x2,y2` (the other end of a collinear
         /// overlap, else the same point), `edge_a`, `edge_b`, `overlap` (1 for an overlap).
+        /// Meshes: `.csv` with `x,y,z,x2,y2,z2,tri_a,tri_b,coplanar` (one row per segment; a
+        /// coplanar overlap gives its polygon's edges) or `.ply` (the segments as edges).
         #[arg(short, long)]
         output: PathBuf,
         /// Detection only: stop at the first meeting found.
@@ -535,6 +539,14 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             open,
             repair,
         } => {
+            if super::flint3::is_mesh(&a) || super::flint3::is_mesh(&b) {
+                if open || repair {
+                    return Err(Failure::usage(
+                        "--open and --repair are for polygons; meshes are read as they are",
+                    ));
+                }
+                return super::flint3::intersect(&a, &b, &output, first, report);
+            }
             let ext = crate::cmd::extension(&output);
             if !matches!(ext.as_str(), "csv" | "geojson" | "json" | "ply" | "xyz") {
                 return Err(Failure::usage(format!(

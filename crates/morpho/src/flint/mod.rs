@@ -24,8 +24,12 @@
 //!   [`FlintTree3::contains`] (Lemma 6.1, exact; crack-safe through path fills, see
 //!   `query3.rs`) with the oracle [`contains_brute3`], and its approximations
 //!   [`Approximation3`] (level ℓ, adaptive ε, triangle count; §7.3.3).
+//! - [`intersect3`], [`intersects3`]: mesh–mesh intersection by descending two 3D trees
+//!   (§7.4; pairs pruned only where convex supersets of the flintstones are provably
+//!   disjoint, exact triangle–triangle tests at the leaves, see `intersect3.rs`), with the
+//!   intersection geometry [`triangle_meet`] and the brute-force oracle [`intersect3_brute`].
 //!
-//! Not built yet: the 3D baselines (IEPF, prism tree) and tree–tree intersection in 3D.
+//! Not built yet: the 3D baselines (IEPF, prism tree).
 
 mod approx;
 mod approx3;
@@ -34,6 +38,7 @@ mod baselines;
 mod bquery;
 mod criteria;
 mod disc;
+mod intersect3;
 mod locate;
 mod patch3;
 mod query;
@@ -49,6 +54,9 @@ pub use baselines::{baseline, Baseline};
 pub use bquery::BaselineTree;
 pub use criteria::{approximation_criteria, edge_criteria, Criteria};
 pub use disc::{Flintstone, SideDisc, StoneKind};
+pub use intersect3::{
+    intersect3, intersect3_brute, intersects3, triangle_meet, IntersectStats3, TriangleMeet,
+};
 pub use query::{
     contains_brute, intersect, intersect_brute, intersect_counted, Containment, Crossing,
     IntersectStats,

@@ -72,7 +72,7 @@ pub fn on_segment(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
 type P = [f64; 3];
 
 /// The projection of p along `axis` (dropping that coordinate, the other two in cyclic order).
-fn proj(p: P, axis: usize) -> [f64; 2] {
+pub(crate) fn proj(p: P, axis: usize) -> [f64; 2] {
     match axis {
         0 => [p[1], p[2]],
         1 => [p[2], p[0]],
@@ -81,7 +81,7 @@ fn proj(p: P, axis: usize) -> [f64; 2] {
 }
 
 /// An axis whose projection keeps triangle abc non-degenerate (exact), if any.
-fn good_axis(a: P, b: P, c: P) -> Option<usize> {
+pub(crate) fn good_axis(a: P, b: P, c: P) -> Option<usize> {
     (0..3).find(|&ax| orient2d(proj(a, ax), proj(b, ax), proj(c, ax)) != 0.0)
 }
 
