@@ -34,14 +34,12 @@
 
 use super::exact::safe_range;
 use super::expansion::{two_prod, two_sum};
-use super::predicates::raw;
+use super::predicates::{insphere_stage_a, raw};
 
 /// Shewchuk's ε (half an ulp of 1).
 const EPS: f64 = f64::EPSILON * 0.5;
 /// Error bound factor of the floating-point `orient3d` (Shewchuk's o3derrboundA).
 const O3D_A: f64 = (7.0 + 56.0 * EPS) * EPS;
-/// Error bound factor of the floating-point `insphere` (Shewchuk's isperrboundA).
-const ISP_A: f64 = (16.0 + 224.0 * EPS) * EPS;
 /// Smallest magnitude the filter's sums and bounds may have (far above the subnormals).
 const TINY: f64 = 1e-280;
 
@@ -136,61 +134,6 @@ impl NearSphere {
         let l: [Lift; 5] = std::array::from_fn(|i| lifts[i].unwrap_or_else(|| self.lift(q[i])));
         lifted_sign(q, l).unwrap_or_else(|| raw::insphere(a, b, c, d, e))
     }
-}
-
-/// Shewchuk's floating-point `insphere` stage: the determinant when its sign is certain.
-fn insphere_stage_a(
-    pa: [f64; 3],
-    pb: [f64; 3],
-    pc: [f64; 3],
-    pd: [f64; 3],
-    pe: [f64; 3],
-) -> Option<f64> {
-    let [aex, aey, aez] = [pa[0] - pe[0], pa[1] - pe[1], pa[2] - pe[2]];
-    let [bex, bey, bez] = [pb[0] - pe[0], pb[1] - pe[1], pb[2] - pe[2]];
-    let [cex, cey, cez] = [pc[0] - pe[0], pc[1] - pe[1], pc[2] - pe[2]];
-    let [dex, dey, dez] = [pd[0] - pe[0], pd[1] - pe[1], pd[2] - pe[2]];
-    let (aexbey, bexaey) = (aex * bey, bex * aey);
-    let (bexcey, cexbey) = (bex * cey, cex * bey);
-    let (cexdey, dexcey) = (cex * dey, dex * cey);
-    let (dexaey, aexdey) = (dex * aey, aex * dey);
-    let (aexcey, cexaey) = (aex * cey, cex * aey);
-    let (bexdey, dexbey) = (bex * dey, dex * bey);
-    let ab = aexbey - bexaey;
-    let bc = bexcey - cexbey;
-    let cd = cexdey - dexcey;
-    let da = dexaey - aexdey;
-    let ac = aexcey - cexaey;
-    let bd = bexdey - dexbey;
-    let abc = aez * bc - bez * ac + cez * ab;
-    let bcd = bez * cd - cez * bd + dez * bc;
-    let cda = cez * da + dez * ac + aez * cd;
-    let dab = dez * ab + aez * bd + bez * da;
-    let alift = aex * aex + aey * aey + aez * aez;
-    let blift = bex * bex + bey * bey + bez * bez;
-    let clift = cex * cex + cey * cey + cez * cez;
-    let dlift = dex * dex + dey * dey + dez * dez;
-    let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-    let (az, bz, cz, dz) = (aez.abs(), bez.abs(), cez.abs(), dez.abs());
-    let permanent = ((cexdey.abs() + dexcey.abs()) * bz
-        + (dexbey.abs() + bexdey.abs()) * cz
-        + (bexcey.abs() + cexbey.abs()) * dz)
-        * alift
-        + ((dexaey.abs() + aexdey.abs()) * cz
-            + (aexcey.abs() + cexaey.abs()) * dz
-            + (cexdey.abs() + dexcey.abs()) * az)
-            * blift
-        + ((aexbey.abs() + bexaey.abs()) * dz
-            + (bexdey.abs() + dexbey.abs()) * az
-            + (dexaey.abs() + aexdey.abs()) * bz)
-            * clift
-        + ((bexcey.abs() + cexbey.abs()) * az
-            + (cexaey.abs() + aexcey.abs()) * bz
-            + (aexbey.abs() + bexaey.abs()) * cz)
-            * dlift;
-    let bound = ISP_A * permanent;
-    // (called in the safe range only: no product over- or underflows)
-    (det > bound || -det > bound).then_some(det)
 }
 
 /// Floating-point `orient3d(a, b, c, d)` (Shewchuk's formula) and a bound on its error.

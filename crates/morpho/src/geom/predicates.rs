@@ -329,69 +329,69 @@ fn to_int(x: f64, lo: i32) -> i64 {
 /// With the `predicate-stats` feature the calls decided at each stage are counted.
 #[inline]
 pub fn insphere_sign(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3], e: [f64; 3]) -> i32 {
-    let aex = a[0] - e[0];
-    let bex = b[0] - e[0];
-    let cex = c[0] - e[0];
-    let dex = d[0] - e[0];
-    let aey = a[1] - e[1];
-    let bey = b[1] - e[1];
-    let cey = c[1] - e[1];
-    let dey = d[1] - e[1];
-    let aez = a[2] - e[2];
-    let bez = b[2] - e[2];
-    let cez = c[2] - e[2];
-    let dez = d[2] - e[2];
+    if let Some(det) = insphere_stage_a(a, b, c, d, e) {
+        stats::count(stats::INSPHERE_FILTER);
+        return (det > 0.0) as i32 - (det < 0.0) as i32;
+    }
+    insphere_sign_exact(a, b, c, d, e)
+}
 
-    let aexbey = aex * bey;
-    let bexaey = bex * aey;
+/// Shewchuk's floating-point `insphere` stage A: the determinant of the differences `p − e`,
+/// evaluated in his order, when its sign is certain (`|det| > (16 + 224u)u · permanent`).
+/// Only in the safe range (`geom::exact::safe_range`: no product over- or underflows).
+/// Also the first stage of `geom::near_sphere::NearSphere::insphere`.
+#[inline]
+pub(crate) fn insphere_stage_a(
+    pa: [f64; 3],
+    pb: [f64; 3],
+    pc: [f64; 3],
+    pd: [f64; 3],
+    pe: [f64; 3],
+) -> Option<f64> {
+    let [aex, aey, aez] = [pa[0] - pe[0], pa[1] - pe[1], pa[2] - pe[2]];
+    let [bex, bey, bez] = [pb[0] - pe[0], pb[1] - pe[1], pb[2] - pe[2]];
+    let [cex, cey, cez] = [pc[0] - pe[0], pc[1] - pe[1], pc[2] - pe[2]];
+    let [dex, dey, dez] = [pd[0] - pe[0], pd[1] - pe[1], pd[2] - pe[2]];
+    let (aexbey, bexaey) = (aex * bey, bex * aey);
+    let (bexcey, cexbey) = (bex * cey, cex * bey);
+    let (cexdey, dexcey) = (cex * dey, dex * cey);
+    let (dexaey, aexdey) = (dex * aey, aex * dey);
+    let (aexcey, cexaey) = (aex * cey, cex * aey);
+    let (bexdey, dexbey) = (bex * dey, dex * bey);
     let ab = aexbey - bexaey;
-    let bexcey = bex * cey;
-    let cexbey = cex * bey;
     let bc = bexcey - cexbey;
-    let cexdey = cex * dey;
-    let dexcey = dex * cey;
     let cd = cexdey - dexcey;
-    let dexaey = dex * aey;
-    let aexdey = aex * dey;
     let da = dexaey - aexdey;
-    let aexcey = aex * cey;
-    let cexaey = cex * aey;
     let ac = aexcey - cexaey;
-    let bexdey = bex * dey;
-    let dexbey = dex * bey;
     let bd = bexdey - dexbey;
-
     let abc = aez * bc - bez * ac + cez * ab;
     let bcd = bez * cd - cez * bd + dez * bc;
     let cda = cez * da + dez * ac + aez * cd;
     let dab = dez * ab + aez * bd + bez * da;
-
     let alift = aex * aex + aey * aey + aez * aez;
     let blift = bex * bex + bey * bey + bez * bez;
     let clift = cex * cex + cey * cey + cez * cez;
     let dlift = dex * dex + dey * dey + dez * dez;
-
     let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
-
-    let (aexbey, bexaey, bexcey, cexbey) = (aexbey.abs(), bexaey.abs(), bexcey.abs(), cexbey.abs());
-    let (cexdey, dexcey, dexaey, aexdey) = (cexdey.abs(), dexcey.abs(), dexaey.abs(), aexdey.abs());
-    let (aexcey, cexaey, bexdey, dexbey) = (aexcey.abs(), cexaey.abs(), bexdey.abs(), dexbey.abs());
-    let (aez, bez, cez, dez) = (aez.abs(), bez.abs(), cez.abs(), dez.abs());
-    let permanent = ((cexdey + dexcey) * bez + (dexbey + bexdey) * cez + (bexcey + cexbey) * dez)
+    let (az, bz, cz, dz) = (aez.abs(), bez.abs(), cez.abs(), dez.abs());
+    let permanent = ((cexdey.abs() + dexcey.abs()) * bz
+        + (dexbey.abs() + bexdey.abs()) * cz
+        + (bexcey.abs() + cexbey.abs()) * dz)
         * alift
-        + ((dexaey + aexdey) * cez + (aexcey + cexaey) * dez + (cexdey + dexcey) * aez) * blift
-        + ((aexbey + bexaey) * dez + (bexdey + dexbey) * aez + (dexaey + aexdey) * bez) * clift
-        + ((bexcey + cexbey) * aez + (cexaey + aexcey) * bez + (aexbey + bexaey) * cez) * dlift;
-    let errbound = ISP_ERRBOUND_A * permanent;
-    if det > errbound {
-        stats::count(stats::INSPHERE_FILTER);
-        return 1;
-    }
-    if -det > errbound {
-        stats::count(stats::INSPHERE_FILTER);
-        return -1;
-    }
-    insphere_sign_exact(a, b, c, d, e)
+        + ((dexaey.abs() + aexdey.abs()) * cz
+            + (aexcey.abs() + cexaey.abs()) * dz
+            + (cexdey.abs() + dexcey.abs()) * az)
+            * blift
+        + ((aexbey.abs() + bexaey.abs()) * dz
+            + (bexdey.abs() + dexbey.abs()) * az
+            + (dexaey.abs() + aexdey.abs()) * bz)
+            * clift
+        + ((bexcey.abs() + cexbey.abs()) * az
+            + (cexaey.abs() + aexcey.abs()) * bz
+            + (aexbey.abs() + bexaey.abs()) * cz)
+            * dlift;
+    let bound = ISP_ERRBOUND_A * permanent;
+    (det > bound || -det > bound).then_some(det)
 }
 
 /// Shewchuk's bound for the floating-point in-sphere determinant (stage A).
