@@ -132,6 +132,120 @@ impl<const N: usize> Normal<N> {
     }
 }
 
+/// The jets' unknowns: the exponents `(a, b)` of `uᵃtᵇ` and their factors, in the order of the
+/// fit; the cubic jet ([`CubicJet`]) has the first 9, the quartic ([`QuarticJet`]) all 14.
+const JET_TERMS: [(usize, usize, f64); 14] = [
+    (1, 0, 1.0),
+    (0, 1, 1.0),
+    (2, 0, 0.5),
+    (1, 1, 1.0),
+    (0, 2, 0.5),
+    (3, 0, 1.0),
+    (2, 1, 1.0),
+    (1, 2, 1.0),
+    (0, 3, 1.0),
+    (4, 0, 1.0),
+    (3, 1, 1.0),
+    (2, 2, 1.0),
+    (1, 3, 1.0),
+    (0, 4, 1.0),
+];
+
+/// For each entry `(i, j)`, `i ≤ j`, of `UᵀU` of the first `N` jet terms in row order
+/// (`E = N(N+1)/2` entries): the index of its moment ([`CubicJet::at`]) and its factor
+/// `cᵢcⱼ` (evaluated at compile time).
+const fn jet_entries<const N: usize, const E: usize>() -> [(u8, f64); E] {
+    let mut e = [(0u8, 0.0f64); E];
+    let (mut i, mut k) = (0, 0);
+    while i < N {
+        let mut j = i;
+        while j < N {
+            let (ai, bi, ci) = JET_TERMS[i];
+            let (aj, bj, cj) = JET_TERMS[j];
+            e[k] = (CubicJet::at(ai + aj, bi + bj) as u8, ci * cj);
+            k += 1;
+            j += 1;
+        }
+        i += 1;
+    }
+    e
+}
+
+/// The normal equations `UᵀU c = Uᵀd` of a jet with the first `N` terms from its moments `m`
+/// (`Σ uᵃtᵇ` laid out by [`CubicJet::at`]) and `r` (`Σ d uᵃtᵇ` in the order of the unknowns).
+#[inline]
+fn jet_normal<const N: usize, const E: usize>(
+    entries: &[(u8, f64); E],
+    m: &[f64],
+    r: &[f64],
+    rows: usize,
+) -> Normal<N> {
+    let mut ne = Normal::<N>::new();
+    let mut k = 0;
+    for i in 0..N {
+        for j in i..N {
+            let (at, f) = entries[k];
+            ne.ata[i][j] = f * m[at as usize];
+            k += 1;
+        }
+        ne.atd[i] = JET_TERMS[i].2 * r[i];
+    }
+    ne.rows = rows;
+    ne
+}
+
+/// The monomials of degree 2, 3, 4, 5, 6 ([`monomials_2_6`]).
+type Monomials2to6 = ([f64; 3], [f64; 4], [f64; 5], [f64; 6], [f64; 7]);
+
+/// The monomials `uᵃtᵇ` of degree 2–6, each block by increasing `b`, each monomial one product
+/// from degree k − 1 (the first times `u`, every other the one before it times `t`): the jets'
+/// moment layout. Written out, not looped: a loop kept the monomials in memory and took twice
+/// as long.
+#[inline(always)]
+fn monomials_2_6(u: f64, t: f64) -> Monomials2to6 {
+    let d2 = [u * u, u * t, t * t];
+    let d3 = [d2[0] * u, d2[0] * t, d2[1] * t, d2[2] * t];
+    let d4 = [d3[0] * u, d3[0] * t, d3[1] * t, d3[2] * t, d3[3] * t];
+    let d5 = [
+        d4[0] * u,
+        d4[0] * t,
+        d4[1] * t,
+        d4[2] * t,
+        d4[3] * t,
+        d4[4] * t,
+    ];
+    let d6 = [
+        d5[0] * u,
+        d5[0] * t,
+        d5[1] * t,
+        d5[2] * t,
+        d5[3] * t,
+        d5[4] * t,
+        d5[5] * t,
+    ];
+    (d2, d3, d4, d5, d6)
+}
+
+/// Adds the monomials of [`monomials_2_6`] to the first 25 moments.
+#[inline(always)]
+fn add_moments_2_6(m: &mut [f64], d: &Monomials2to6) {
+    for (acc, x) in m[0..3].iter_mut().zip(d.0) {
+        *acc += x;
+    }
+    for (acc, x) in m[3..7].iter_mut().zip(d.1) {
+        *acc += x;
+    }
+    for (acc, x) in m[7..12].iter_mut().zip(d.2) {
+        *acc += x;
+    }
+    for (acc, x) in m[12..18].iter_mut().zip(d.3) {
+        *acc += x;
+    }
+    for (acc, x) in m[18..25].iter_mut().zip(d.4) {
+        *acc += x;
+    }
+}
+
 /// The normal equations of the cubic jet `a u + b t + ½(c20 u² + 2 c11 ut + c02 t²) + c30 u³ +
 /// c21 u²t + c12 ut² + c03 t³ = d` (the unknowns in that order), accumulated as moments: the
 /// 45 entries of `UᵀU` are `cᵢcⱼ Σ uᵃtᵇ` over only 25 distinct monomials of degree 2–6, and
@@ -150,19 +264,6 @@ pub(crate) struct CubicJet {
 }
 
 impl CubicJet {
-    /// The unknowns' exponents `(a, b)` of `uᵃtᵇ` and their factors, in the order of the fit.
-    const TERMS: [(usize, usize, f64); 9] = [
-        (1, 0, 1.0),
-        (0, 1, 1.0),
-        (2, 0, 0.5),
-        (1, 1, 1.0),
-        (0, 2, 0.5),
-        (3, 0, 1.0),
-        (2, 1, 1.0),
-        (1, 2, 1.0),
-        (0, 3, 1.0),
-    ];
-
     pub(crate) fn new() -> Self {
         CubicJet {
             m: [0.0; 25],
@@ -180,43 +281,9 @@ impl CubicJet {
     /// Adds the point `(u, t)` with height `d`.
     #[inline(always)]
     pub(crate) fn add(&mut self, u: f64, t: f64, d: f64) {
-        // degree by degree: the first monomial times u, every other the one before it times t
-        let d2 = [u * u, u * t, t * t];
-        let d3 = [d2[0] * u, d2[0] * t, d2[1] * t, d2[2] * t];
-        let d4 = [d3[0] * u, d3[0] * t, d3[1] * t, d3[2] * t, d3[3] * t];
-        let d5 = [
-            d4[0] * u,
-            d4[0] * t,
-            d4[1] * t,
-            d4[2] * t,
-            d4[3] * t,
-            d4[4] * t,
-        ];
-        let d6 = [
-            d5[0] * u,
-            d5[0] * t,
-            d5[1] * t,
-            d5[2] * t,
-            d5[3] * t,
-            d5[4] * t,
-            d5[5] * t,
-        ];
-        let m = &mut self.m;
-        for (acc, x) in m[0..3].iter_mut().zip(d2) {
-            *acc += x;
-        }
-        for (acc, x) in m[3..7].iter_mut().zip(d3) {
-            *acc += x;
-        }
-        for (acc, x) in m[7..12].iter_mut().zip(d4) {
-            *acc += x;
-        }
-        for (acc, x) in m[12..18].iter_mut().zip(d5) {
-            *acc += x;
-        }
-        for (acc, x) in m[18..25].iter_mut().zip(d6) {
-            *acc += x;
-        }
+        let mo = monomials_2_6(u, t);
+        add_moments_2_6(&mut self.m, &mo);
+        let (d2, d3) = (mo.0, mo.1);
         let low = [u, t, d2[0], d2[1], d2[2], d3[0], d3[1], d3[2], d3[3]];
         for (acc, x) in self.r.iter_mut().zip(low) {
             *acc += d * x;
@@ -224,40 +291,11 @@ impl CubicJet {
         self.rows += 1;
     }
 
-    /// For each entry `(i, j)`, `i ≤ j`, of `UᵀU` in row order: the index of its moment in `m`
-    /// and its factor `cᵢcⱼ` (evaluated at compile time).
-    const ENTRIES: [(u8, f64); 45] = {
-        let mut e = [(0u8, 0.0f64); 45];
-        let (mut i, mut k) = (0, 0);
-        while i < 9 {
-            let mut j = i;
-            while j < 9 {
-                let (ai, bi, ci) = Self::TERMS[i];
-                let (aj, bj, cj) = Self::TERMS[j];
-                e[k] = (Self::at(ai + aj, bi + bj) as u8, ci * cj);
-                k += 1;
-                j += 1;
-            }
-            i += 1;
-        }
-        e
-    };
+    const ENTRIES: [(u8, f64); 45] = jet_entries::<9, 45>();
 
     /// The normal equations `UᵀU c = Uᵀd` of the points added so far.
     pub(crate) fn normal(&self) -> Normal<9> {
-        let mut ne = Normal::<9>::new();
-        let mut k = 0;
-        for i in 0..9 {
-            for j in i..9 {
-                let (at, f) = Self::ENTRIES[k];
-                ne.ata[i][j] = f * self.m[at as usize];
-                k += 1;
-            }
-            // degree 1–3 monomials: Σ d uᵃtᵇ is stored in the order of the unknowns
-            ne.atd[i] = Self::TERMS[i].2 * self.r[i];
-        }
-        ne.rows = self.rows;
-        ne
+        jet_normal(&Self::ENTRIES, &self.m, &self.r, self.rows)
     }
 }
 
@@ -274,23 +312,6 @@ pub(crate) struct QuarticJet {
 }
 
 impl QuarticJet {
-    const TERMS: [(usize, usize, f64); 14] = [
-        (1, 0, 1.0),
-        (0, 1, 1.0),
-        (2, 0, 0.5),
-        (1, 1, 1.0),
-        (0, 2, 0.5),
-        (3, 0, 1.0),
-        (2, 1, 1.0),
-        (1, 2, 1.0),
-        (0, 3, 1.0),
-        (4, 0, 1.0),
-        (3, 1, 1.0),
-        (2, 2, 1.0),
-        (1, 3, 1.0),
-        (0, 4, 1.0),
-    ];
-
     pub(crate) fn new() -> Self {
         QuarticJet {
             m: [0.0; 42],
@@ -302,28 +323,10 @@ impl QuarticJet {
     /// Adds the point `(u, t)` with height `d`.
     #[inline(always)]
     pub(crate) fn add(&mut self, u: f64, t: f64, d: f64) {
-        // degree by degree, as in `CubicJet::add` (written out: the loop version kept the
-        // monomials in memory and took twice as long)
-        let d2 = [u * u, u * t, t * t];
-        let d3 = [d2[0] * u, d2[0] * t, d2[1] * t, d2[2] * t];
-        let d4 = [d3[0] * u, d3[0] * t, d3[1] * t, d3[2] * t, d3[3] * t];
-        let d5 = [
-            d4[0] * u,
-            d4[0] * t,
-            d4[1] * t,
-            d4[2] * t,
-            d4[3] * t,
-            d4[4] * t,
-        ];
-        let d6 = [
-            d5[0] * u,
-            d5[0] * t,
-            d5[1] * t,
-            d5[2] * t,
-            d5[3] * t,
-            d5[4] * t,
-            d5[5] * t,
-        ];
+        // degree by degree, as in `CubicJet::add`, two degrees further
+        let mo = monomials_2_6(u, t);
+        add_moments_2_6(&mut self.m, &mo);
+        let (d2, d3, d4, d6) = (mo.0, mo.1, mo.2, mo.4);
         let d7 = [
             d6[0] * u,
             d6[0] * t,
@@ -346,21 +349,6 @@ impl QuarticJet {
             d7[7] * t,
         ];
         let m = &mut self.m;
-        for (acc, x) in m[0..3].iter_mut().zip(d2) {
-            *acc += x;
-        }
-        for (acc, x) in m[3..7].iter_mut().zip(d3) {
-            *acc += x;
-        }
-        for (acc, x) in m[7..12].iter_mut().zip(d4) {
-            *acc += x;
-        }
-        for (acc, x) in m[12..18].iter_mut().zip(d5) {
-            *acc += x;
-        }
-        for (acc, x) in m[18..25].iter_mut().zip(d6) {
-            *acc += x;
-        }
         for (acc, x) in m[25..33].iter_mut().zip(d7) {
             *acc += x;
         }
@@ -377,22 +365,7 @@ impl QuarticJet {
         self.rows += 1;
     }
 
-    const ENTRIES: [(u8, f64); 105] = {
-        let mut e = [(0u8, 0.0f64); 105];
-        let (mut i, mut k) = (0, 0);
-        while i < 14 {
-            let mut j = i;
-            while j < 14 {
-                let (ai, bi, ci) = Self::TERMS[i];
-                let (aj, bj, cj) = Self::TERMS[j];
-                e[k] = (CubicJet::at(ai + aj, bi + bj) as u8, ci * cj);
-                k += 1;
-                j += 1;
-            }
-            i += 1;
-        }
-        e
-    };
+    const ENTRIES: [(u8, f64); 105] = jet_entries::<14, 105>();
 
     /// The cubic jet of the same points: its moments are the prefixes (degree 2–6 and 1–3).
     pub(crate) fn cubic(&self) -> CubicJet {
@@ -405,18 +378,7 @@ impl QuarticJet {
 
     /// The normal equations `UᵀU c = Uᵀd` of the points added so far.
     pub(crate) fn normal(&self) -> Normal<14> {
-        let mut ne = Normal::<14>::new();
-        let mut k = 0;
-        for i in 0..14 {
-            for j in i..14 {
-                let (at, f) = Self::ENTRIES[k];
-                ne.ata[i][j] = f * self.m[at as usize];
-                k += 1;
-            }
-            ne.atd[i] = Self::TERMS[i].2 * self.r[i];
-        }
-        ne.rows = self.rows;
-        ne
+        jet_normal(&Self::ENTRIES, &self.m, &self.r, self.rows)
     }
 }
 
