@@ -818,16 +818,7 @@ mod tests {
                 &d,
                 crate::boundary::d3::constrict::Until::All,
             );
-            let mut live: Vec<[u32; 3]> = Vec::new();
-            for (t, tet) in d.tets.iter().enumerate() {
-                if st.alive[t] {
-                    for (a, b, c) in [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)] {
-                        live.push(sorted3([tet[a], tet[b], tet[c]]));
-                    }
-                }
-            }
-            live.sort_unstable();
-            live.dedup();
+            let live = super::super::test_sets::live_faces(&d, &st.alive);
             // reference: no skipping, faces one after the other; against it: skipping (each
             // skipped face verified), faces evaluated in parallel — from the first sweep on
             let go = |fast: bool| {

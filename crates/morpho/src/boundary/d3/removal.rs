@@ -785,16 +785,7 @@ mod tests {
                 (d.hull.clone(), all.clone())
             } else {
                 let st = constrict_3d(&d, Until::All);
-                let mut live: Vec<[u32; 3]> = Vec::new();
-                for (t, tet) in d.tets.iter().enumerate() {
-                    if st.alive[t] {
-                        for (a, b, c) in [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)] {
-                            live.push(sorted3([tet[a], tet[b], tet[c]]));
-                        }
-                    }
-                }
-                live.sort_unstable();
-                live.dedup();
+                let live = super::super::test_sets::live_faces(&d, &st.alive);
                 (st.triangles, live)
             };
             // keep triangles: interior Delaunay triangles spread over the set

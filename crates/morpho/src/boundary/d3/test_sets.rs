@@ -1,7 +1,10 @@
 //! Point sets shared by the unit tests of the 3D boundary (test-only): the same draws from the
-//! caller's generator as the copies they replace, so every test keeps its exact input.
+//! caller's generator as the copies they replace, so every test keeps its exact input; and the
+//! faces of a constriction's live tetrahedra, the general engine's starting triangles.
 
+use crate::delaunay::d3::Delaunay3;
 use crate::geom::Point3;
+use crate::util::sorted3;
 use rand::Rng;
 
 /// `n` points uniform in the cube [−1, 1)³.
@@ -42,4 +45,20 @@ pub(super) fn lattice(nx: usize, ny: usize, nz: usize) -> Vec<Point3> {
             )
         })
         .collect()
+}
+
+/// Every face of the tetrahedra of `d` marked in `alive`, once, as sorted vertex triples in
+/// sorted order.
+pub(super) fn live_faces(d: &Delaunay3, alive: &[bool]) -> Vec<[u32; 3]> {
+    let mut live: Vec<[u32; 3]> = Vec::new();
+    for (t, tet) in d.tets.iter().enumerate() {
+        if alive[t] {
+            for (a, b, c) in [(0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)] {
+                live.push(sorted3([tet[a], tet[b], tet[c]]));
+            }
+        }
+    }
+    live.sort_unstable();
+    live.dedup();
+    live
 }
