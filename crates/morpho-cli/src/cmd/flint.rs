@@ -849,17 +849,9 @@ fn intersect3_section(ctx: &super::demo::Ctx) -> morpho::Result<morpho::io::html
         ));
     };
     let a = io::read_mesh(&path)?;
-    let (lo, hi) = a.positions.iter().fold(
-        ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
-        |(lo, hi), p| {
-            (
-                [lo[0].min(p.x), lo[1].min(p.y), lo[2].min(p.z)],
-                [hi[0].max(p.x), hi[1].max(p.y), hi[2].max(p.z)],
-            )
-        },
-    );
-    let c = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
-    let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    let bb = a.bbox();
+    let c = bb.center();
+    let size = bb.extent().into_iter().fold(0.0, f64::max);
     // the copy: turned by 40° about the vertical (y) axis through the centre, moved by 0.35
     // of the size along x
     let (sn, cs) = 40f64.to_radians().sin_cos();
