@@ -103,6 +103,56 @@ def build_only(a, up, poly_csv, d):
     print(f"load average {os.getloadavg()}")
 
 
+def intersect_only(a, up, poly_csv, d):
+    """Intersection of two polygons' boundaries (issue 18: "faster than shapely `intersection`
+    of their boundaries"): B is A turned by 0.5° about its centroid and moved by 0.2 % of its
+    box, so the two coasts cross many times. morpho: `flint intersect A B` (the CLI's
+    `timings.build` of both trees and `timings.intersect`, and the whole process's CPU);
+    shapely: `intersection(A.exterior, B.exterior)` of the two rings (GEOS overlay), wall and
+    CPU. Taking turns, minimum of `a.rounds`. The crossing counts are compared."""
+    import shapely
+
+    c = up.mean(axis=0)
+    th = np.radians(0.5)
+    rot = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
+    span = up.max(axis=0) - up.min(axis=0)
+    vb = (up - c) @ rot.T + c + 0.002 * span
+    b_csv = os.path.join(d, "polyb.csv")
+    np.savetxt(b_csv, vb, delimiter=",", header="x,y", comments="", fmt="%.17g")
+    ra, rb = shapely.LinearRing(up), shapely.LinearRing(vb)
+    rep, out = os.path.join(d, "ri.json"), os.path.join(d, "oi.csv")
+    rows = {"shapely wall": [], "shapely cpu": []}
+    for threads in [1, 2]:
+        for k in ["build", "intersect", "process cpu"]:
+            rows[f"morpho {threads}t {k}"] = []
+    pairs = None
+    for _ in range(a.rounds):
+        for threads in [1, 2]:
+            env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+            c0 = child_cpu()
+            subprocess.run([a.morpho, "flint", "intersect", poly_csv, b_csv, "-o", out,
+                            "--report", rep], check=True, capture_output=True, env=env)
+            rows[f"morpho {threads}t process cpu"].append(child_cpu() - c0)
+            r = json.load(open(rep))
+            rows[f"morpho {threads}t build"].append(r["timings"]["build"])
+            rows[f"morpho {threads}t intersect"].append(r["timings"]["intersect"])
+            pairs = r["pairs"]
+        w, g = best(lambda: shapely.intersection(ra, rb), 1)
+        rows["shapely wall"].append(w)
+        rows["shapely cpu"].append(best.cpu)
+    n_sh = len(shapely.get_parts(shapely.get_parts(g)))
+    m = {k: min(v) for k, v in rows.items()}
+    print(f"intersection: {len(up):,} + {len(vb):,} vertices, morpho {pairs} meeting edge pairs, "
+          f"shapely {n_sh} parts ({g.geom_type}), min of {a.rounds} rounds")
+    for k, v in m.items():
+        print(f"  {k:26s} {v:.3f} s")
+    for threads in [1, 2]:
+        t = m[f"morpho {threads}t build"] + m[f"morpho {threads}t intersect"]
+        print(f"  {threads} thread(s): build + intersect {t:.3f} s = "
+              f"{m['shapely wall'] / t:.2f}× faster than shapely (wall)")
+    print(f"load average {os.getloadavg()}")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--morpho", default=os.path.join(HERE, "..", "target", "release", "morpho"))
@@ -114,6 +164,9 @@ def main():
     ap.add_argument("--build-only", action="store_true",
                     help="tree build (one query) against Douglas–Peucker at tolerance 1e-3 and 0 "
                          "(the whole hierarchy), process CPU, taking turns; no point queries")
+    ap.add_argument("--intersect", action="store_true",
+                    help="intersection of the polygon's boundary with a turned, moved copy "
+                         "against shapely's intersection of the two rings; no point queries")
     a = ap.parse_args()
     import shapely
     import rtree  # noqa: F401  trimesh's ray tests need it to stay fast
@@ -138,6 +191,9 @@ def main():
         np.savetxt(poly_csv, up, delimiter=",", header="x,y", comments="", fmt="%.17g")
     if a.build_only:
         build_only(a, up, poly_csv, d)
+        return
+    if a.intersect:
+        intersect_only(a, up, poly_csv, d)
         return
     rng = np.random.default_rng(18)
     lo, hi = up.min(axis=0), up.max(axis=0)

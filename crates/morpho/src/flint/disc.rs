@@ -315,12 +315,15 @@ impl Flintstone {
 }
 
 /// True when two closed discs may meet (`f64`, with a relative slack so that rounding never
-/// turns a meeting pair into a miss).
+/// turns a meeting pair into a miss). A disc with an infinite or NaN centre or radius (the side
+/// disc of a vertex a subnormal distance off its chord: `t` overflows) always may: the test is
+/// written so that NaN never rejects.
 #[inline]
 pub(crate) fn discs_meet(a: ([f64; 2], f64), b: ([f64; 2], f64)) -> bool {
     let d = dist(a.0, b.0);
     let slack = 1e-12 * (a.1 + b.1 + a.0[0].abs() + a.0[1].abs() + b.0[0].abs() + b.0[1].abs());
-    d <= a.1 + b.1 + slack
+    // NaN compares as `None`: "may meet"
+    d.partial_cmp(&(a.1 + b.1 + slack)) != Some(std::cmp::Ordering::Greater)
 }
 
 #[cfg(test)]

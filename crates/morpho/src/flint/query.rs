@@ -305,15 +305,28 @@ pub(crate) fn tops(t: &FlintTree2) -> Vec<(usize, usize, u32)> {
     v
 }
 
-/// Conservative discs of a piece.
-fn discs(t: &FlintTree2, pc: Piece) -> smallvec::SmallVec<[([f64; 2], f64); 2]> {
+/// Conservative discs of a piece: for an edge, the disc about its midpoint; for a node, its
+/// flintstone's filter discs (the side discs of ∩ and caps, which may be huge or — for a vertex
+/// a subnormal distance off the chord — infinite) and always the hull disc about the chord
+/// midpoint, which is finite and about half the chord wide: two nearly flat pieces side by side
+/// are told apart by their hulls, not by their side discs.
+fn discs(t: &FlintTree2, pc: Piece) -> smallvec::SmallVec<[([f64; 2], f64); 3]> {
     if pc.node == NONE {
         let (a, b) = (at(&t.points, pc.lo), at(&t.points, pc.hi));
         let m = crate::geom::vec::midpoint(a, b);
         let r = dist(m, a).max(dist(m, b));
         smallvec::smallvec![(m, r)]
     } else {
-        t.nodes[pc.node as usize].stone.filter_discs()
+        let stone = &t.nodes[pc.node as usize].stone;
+        let mut v: smallvec::SmallVec<[([f64; 2], f64); 3]> = stone
+            .filter_discs()
+            .into_iter()
+            .filter(|(c, r)| c[0].is_finite() && c[1].is_finite() && r.is_finite())
+            .collect();
+        if !v.contains(&stone.hull) {
+            v.push(stone.hull);
+        }
+        v
     }
 }
 
@@ -487,5 +500,64 @@ mod tests {
             }
         }
         assert!(checked > 1000, "{checked}");
+    }
+
+    /// A vertex a subnormal distance off its chord puts the side disc's centre at infinity
+    /// (`t = (…)/2h` overflows, and `∞ · 0` makes a coordinate NaN): such a disc says nothing
+    /// and must never reject a pair. Before the fix, two such discs (or one NaN centre) gave a
+    /// NaN distance and the pair was dropped — crossings of the upsampled Great Britain coast
+    /// with a turned copy were missed this way (9 of 556).
+    #[test]
+    fn discs_at_infinity_never_hide_a_meeting() {
+        let p = |v: &[(f64, f64)]| {
+            v.iter()
+                .map(|&(x, y)| Point2::new(x, y))
+                .collect::<Vec<_>>()
+        };
+        for tiny in [1e-320, 5e-324, 1e-310, -1e-320] {
+            // A's bottom side is bent by `tiny` at x = 0.5 and x = 1.5
+            let a = p(&[
+                (0.0, 0.0),
+                (0.5, tiny),
+                (1.0, 0.0),
+                (1.5, tiny),
+                (2.0, 0.0),
+                (2.0, 2.0),
+                (0.0, 2.0),
+            ]);
+            // B crosses that side, its own bottom bent the same way
+            for dx in [0.0, 0.3, 0.7, 1.1] {
+                let b = p(&[
+                    (dx + 0.2, -1.0),
+                    (dx + 0.6, 1.0 + tiny),
+                    (dx + 0.8, 1.0),
+                    (dx + 0.9, 1.0 + tiny),
+                    (dx + 1.0, 1.0),
+                    (dx + 0.7, -1.0),
+                ]);
+                let (ta, tb) = (
+                    FlintTree2::new(&a, true).unwrap(),
+                    FlintTree2::new(&b, true).unwrap(),
+                );
+                let key = |v: Vec<Crossing>| v.into_iter().map(|c| (c.a, c.b)).collect::<Vec<_>>();
+                let brute = key(intersect_brute(&ta, &tb));
+                assert!(!brute.is_empty());
+                assert_eq!(
+                    key(intersect(&ta, &tb, false)),
+                    brute,
+                    "tiny {tiny:e}, dx {dx}"
+                );
+                assert_eq!(key(intersect(&tb, &ta, false)).len(), brute.len());
+            }
+        }
+        // two discs whose centres are infinite in opposite directions
+        let inf = ([f64::INFINITY, -f64::INFINITY], f64::INFINITY);
+        let nan = ([f64::NAN, f64::NEG_INFINITY], f64::INFINITY);
+        assert!(discs_meet(
+            inf,
+            ([f64::NEG_INFINITY, -f64::INFINITY], f64::INFINITY)
+        ));
+        assert!(discs_meet(nan, ([0.0, 0.0], 1.0)));
+        assert!(discs_meet(([0.0, 0.0], 1.0), nan));
     }
 }
