@@ -40,21 +40,22 @@
 //! two-triangle removal takes edge vⱼvₖ off the boundary, the tetrahedra around vⱼvₖ are pushed
 //! again (they may have become removable). A push of a (tetrahedron, mask) pair that already
 //! has an entry in the heap is skipped (the key is a function of the pair, so the entry would be
-//! the same; see `constrict_impl`). O(T log T) for T tetrahedra (V §5.5: O(N² log N) in
-//! the worst case, O(N log N) expected).
+//! the same; see [`constrict_3d_with`]). Each live tetrahedron's boundary-face mask is kept up
+//! to date (one byte read per heap entry, push and rotation step), its corners and neighbours
+//! are packed side by side (one cache line per step of a rotation around an edge, the hot
+//! loop; 32 bytes per tetrahedron while the constriction runs), and the heap is 4-ary over
+//! packed integer entries; the removals are the same, in the same order, as with a binary heap
+//! and masks recomputed from the neighbours (test `constriction_equals_the_reference`).
+//! O(T log T) for T tetrahedra (V §5.5: O(N² log N) in the worst case, O(N log N) expected).
 //!
 //! Preconditions: a non-degenerate tetrahedralization (at least one tetrahedron).
 
 pub use crate::boundary::indicator::Key;
-use crate::boundary::indicator::MinKey;
 use crate::delaunay::d3::{Delaunay3, FACE_OF};
 use crate::geom::exact::diametral_side_exact;
 use crate::geom::vec::{cross, dot, sub, triangle_area2};
+use crate::geom::Point3;
 use crate::util::{sorted3, IdSet, NONE};
-use std::collections::BinaryHeap;
-
-/// Heap entries: smallest key first, ties by the smallest item.
-type Entry = MinKey<(u32, u8)>;
 
 /// When to stop the 3D constriction.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -171,30 +172,112 @@ pub fn removal_key(key: Key, p: [[f64; 3]; 4], boundary: u8, big_r: f64) -> f64 
     }
 }
 
+/// Bit of [`State::mask`] marking a removed tetrahedron (the face bits are 0–3).
+const DEAD: u8 = 0x80;
+
+/// A tetrahedron's corners and its neighbours (across the face opposite each corner) side by
+/// side in half a cache line: a step of the rotation around an edge, the hot loop of the
+/// constriction, reads one line instead of one in `Delaunay3::tets` and one in
+/// `Delaunay3::neighbors`.
+#[derive(Clone, Copy)]
+#[repr(C, align(32))]
+struct Cell {
+    v: [u32; 4],
+    n: [u32; 4],
+}
+
+/// The cells of `d`'s tetrahedra.
+fn cells_of(d: &Delaunay3) -> Vec<Cell> {
+    d.tets
+        .iter()
+        .zip(&d.neighbors)
+        .map(|(&v, &n)| Cell { v, n })
+        .collect()
+}
+
+/// The circumradius of the tetrahedron with corners `p`: [`Delaunay3::circumsphere`]'s
+/// expression on the same values (bit-identical; test `circumradius_is_the_delaunay_one`), from
+/// corners the caller has already read.
+fn circumradius(p: [Point3; 4]) -> f64 {
+    let a = p[0];
+    let b = p[1] - a;
+    let c = p[2] - a;
+    let d = p[3] - a;
+    let den = 2.0 * b.dot(&c.cross(&d));
+    let num = c.cross(&d) * b.norm_squared()
+        + d.cross(&b) * c.norm_squared()
+        + b.cross(&c) * d.norm_squared();
+    (num / den).norm()
+}
+
 struct State<'a> {
     d: &'a Delaunay3,
-    p: Vec<[f64; 3]>,
+    /// `d`'s tetrahedra and neighbours, packed ([`Cell`]).
+    cells: Vec<Cell>,
     alive: Vec<bool>,
+    /// For each live tetrahedron its boundary faces (bit f: the neighbour across face f is
+    /// absent or removed), [`DEAD`] for a removed one; kept up to date by [`State::kill`], so
+    /// that a heap entry, a push and a step of the rotation around an edge read one byte
+    /// instead of the four neighbours and their `alive` flags.
+    mask: Vec<u8>,
     vcount: Vec<u32>,
     nbv: usize,
     keep: IdSet<[u32; 3]>,
     key: Key,
 }
 
-impl State<'_> {
+impl<'a> State<'a> {
+    /// The state with the live tetrahedra `alive` (no vertex counted on the boundary yet).
+    fn new(d: &'a Delaunay3, alive: Vec<bool>, keep: &[[u32; 3]], key: Key) -> Self {
+        let mask = (0..d.tets.len())
+            .map(|t| {
+                if !alive[t] {
+                    return DEAD;
+                }
+                let mut m = 0u8;
+                for (f, &n) in d.neighbors[t].iter().enumerate() {
+                    if n == NONE || !alive[n as usize] {
+                        m |= 1 << f;
+                    }
+                }
+                m
+            })
+            .collect();
+        State {
+            d,
+            cells: cells_of(d),
+            alive,
+            mask,
+            vcount: vec![0; d.points.len()],
+            nbv: 0,
+            keep: keep.iter().map(|&f| sorted3(f)).collect(),
+            key,
+        }
+    }
+
+    /// The boundary faces of live tetrahedron t ([`DEAD`] when removed).
     fn mask(&self, t: usize) -> u8 {
-        let mut m = 0u8;
-        for f in 0..4 {
-            let n = self.d.neighbors[t][f];
-            if n == NONE || !self.alive[n as usize] {
-                m |= 1 << f;
+        self.mask[t]
+    }
+
+    /// Removes live tetrahedron t: its live neighbours gain the shared face as a boundary face.
+    fn kill(&mut self, t: usize) {
+        self.alive[t] = false;
+        self.mask[t] = DEAD;
+        for n in self.cells[t].n {
+            if n != NONE && self.mask[n as usize] != DEAD {
+                let nn = &self.cells[n as usize].n;
+                // (two tetrahedra share at most one face)
+                let g = nn.iter().position(|&x| x == t as u32).unwrap_or(4);
+                if g < 4 {
+                    self.mask[n as usize] |= 1 << g;
+                }
             }
         }
-        m
     }
 
     fn face(&self, t: usize, f: usize) -> [u32; 3] {
-        let v = self.d.tets[t];
+        let v = self.cells[t].v;
         let o = FACE_OF[f];
         [v[o[0]], v[o[1]], v[o[2]]]
     }
@@ -204,13 +287,13 @@ impl State<'_> {
         if !self.removable(t, m) {
             return None;
         }
-        let p = self.d.tets[t].map(|x| self.p[x as usize]);
+        let q = self.cells[t].v.map(|x| self.d.points[x as usize]);
         // the circumradius is computed only for the γ-indicator
         let r = match self.key {
-            Key::Gamma => self.d.circumsphere(t as u32).1,
+            Key::Gamma => circumradius(q),
             Key::MinAreaChange => 0.0,
         };
-        Some(removal_key(self.key, p, m, r))
+        Some(removal_key(self.key, q.map(|x| x.into()), m, r))
     }
 
     /// Tetrahedron t with boundary faces m (bit f: the face opposite corner f) may be removed
@@ -218,7 +301,7 @@ impl State<'_> {
     /// opposite edge (joining the corners opposite them) is not on the boundary; never a keep
     /// triangle (V §5.7), never three or four faces.
     fn removable(&self, t: usize, m: u8) -> bool {
-        let v = self.d.tets[t];
+        let v = self.cells[t].v;
         let mut faces = [0usize; 4];
         let mut nf = 0;
         for f in 0..4 {
@@ -244,43 +327,46 @@ impl State<'_> {
 
     fn add_face(&mut self, f: [u32; 3], delta: i32) {
         for &v in &f {
-            let v = v as usize;
-            let before = self.vcount[v];
-            self.vcount[v] = (before as i64 + delta as i64).max(0) as u32;
-            if before == 0 && self.vcount[v] > 0 {
-                self.nbv += 1;
-            } else if before > 0 && self.vcount[v] == 0 {
-                self.nbv -= 1;
-            }
+            self.add_vertex(v, delta);
+        }
+    }
+
+    /// Changes the number of boundary faces at vertex v by `delta` (counting the vertices on
+    /// the boundary).
+    fn add_vertex(&mut self, v: u32, delta: i32) {
+        let v = v as usize;
+        let before = self.vcount[v];
+        self.vcount[v] = (before as i64 + delta as i64).max(0) as u32;
+        if before == 0 && self.vcount[v] > 0 {
+            self.nbv += 1;
+        } else if before > 0 && self.vcount[v] == 0 {
+            self.nbv -= 1;
         }
     }
 
     /// Edge ab of the live tetrahedron t lies on the boundary: some face containing ab
     /// separates a live tetrahedron from a removed one or from the outside. Rotating around
-    /// ab from t through live tetrahedra either meets a removed one or the hull (on the
-    /// boundary) or comes back to t (every tetrahedron around ab is live: interior edge).
+    /// ab from t through live tetrahedra either meets a boundary face (a bit of the mask of
+    /// the live tetrahedron it leaves) or comes back to t (every tetrahedron around ab is
+    /// live: interior edge).
     fn edge_on_boundary(&self, t: u32, a: u32, b: u32) -> bool {
-        let d = self.d;
-        // the two faces of a tetrahedron containing ab: opposite its two other corners
-        let ab_faces = |t: u32| faces_with_edge(d, t, a, b);
-        let out = |n: u32| n == NONE || !self.alive[n as usize];
-        let [f0, f1] = ab_faces(t);
-        if out(d.neighbors[t as usize][f0]) || out(d.neighbors[t as usize][f1]) {
+        let cells = &self.cells;
+        let [f0, f1] = faces_with_edge(cells, t, a, b);
+        let m = self.mask[t as usize];
+        if (m >> f0 | m >> f1) & 1 == 1 {
             return true;
         }
-        let (mut prev, mut cur) = (t, d.neighbors[t as usize][f0]);
-        for _ in 0..d.tets.len() {
-            let [g0, g1] = ab_faces(cur);
-            let n0 = d.neighbors[cur as usize][g0];
-            let next = if n0 != prev {
-                n0
-            } else {
-                d.neighbors[cur as usize][g1]
-            };
+        let (mut prev, mut cur) = (t, cells[t as usize].n[f0]);
+        for _ in 0..cells.len() {
+            // cur is live: the face it was entered through is interior
+            let [g0, g1] = faces_with_edge(cells, cur, a, b);
+            let nb = &cells[cur as usize].n;
+            let g = if nb[g0] != prev { g0 } else { g1 };
+            let next = nb[g];
             if next == t {
                 return false;
             }
-            if out(next) {
+            if self.mask[cur as usize] >> g & 1 == 1 {
                 return true;
             }
             (prev, cur) = (cur, next);
@@ -291,8 +377,8 @@ impl State<'_> {
 
 /// The two faces of tetrahedron t that contain its edge ab: those opposite its two other
 /// corners (face f is opposite corner f).
-fn faces_with_edge(d: &Delaunay3, t: u32, a: u32, b: u32) -> [usize; 2] {
-    let v = d.tets[t as usize];
+fn faces_with_edge(cells: &[Cell], t: u32, a: u32, b: u32) -> [usize; 2] {
+    let v = cells[t as usize].v;
     let mut o = [0; 2];
     let mut k = 0;
     for (i, &x) in v.iter().enumerate() {
@@ -304,25 +390,26 @@ fn faces_with_edge(d: &Delaunay3, t: u32, a: u32, b: u32) -> [usize; 2] {
     o
 }
 
-/// The tetrahedra around edge ab of tetrahedron t (t included), by rotation through the
-/// neighbours (no vertex star needed).
-fn around_edge_from(d: &Delaunay3, t: u32, a: u32, b: u32) -> Vec<u32> {
-    let others = |t: u32| faces_with_edge(d, t, a, b);
-    let mut out = vec![t];
+/// The tetrahedra around edge ab of tetrahedron t (t included) into `out` (cleared first), by
+/// rotation through the neighbours (no vertex star needed).
+fn around_edge_from(cells: &[Cell], t: u32, a: u32, b: u32, out: &mut Vec<u32>) {
+    let others = |t: u32| faces_with_edge(cells, t, a, b);
+    out.clear();
+    out.push(t);
     for start in others(t) {
         let mut prev = t;
-        let mut cur = d.neighbors[t as usize][start];
-        while cur != NONE && cur != t && out.len() <= d.tets.len() {
+        let mut cur = cells[t as usize].n[start];
+        while cur != NONE && cur != t && out.len() <= cells.len() {
             if out.contains(&cur) {
                 break;
             }
             out.push(cur);
             let o = others(cur);
-            let n0 = d.neighbors[cur as usize][o[0]];
+            let n0 = cells[cur as usize].n[o[0]];
             let next = if n0 != prev {
                 n0
             } else {
-                d.neighbors[cur as usize][o[1]]
+                cells[cur as usize].n[o[1]]
             };
             prev = cur;
             cur = next;
@@ -331,7 +418,72 @@ fn around_edge_from(d: &Delaunay3, t: u32, a: u32, b: u32) -> Vec<u32> {
             break; // closed ring: the other direction gives the same tetrahedra
         }
     }
-    out
+}
+
+/// A 4-ary min-heap of the constriction's entries packed into `u128`s: the key's
+/// [`f64::total_cmp`] order in the high 64 bits, then the tetrahedron, then the mask — so the
+/// integer order is the order of `MinKey<(u32, u8)>` (smallest key first, ties by the
+/// smallest (tetrahedron, mask)), and the pop sequence is that of a `BinaryHeap` of those
+/// holding the same entries. Four children per node: half the levels of a binary heap, each level's
+/// children in one or two cache lines (the heap holds the whole constriction front).
+#[derive(Default)]
+struct QuadHeap {
+    a: Vec<u128>,
+}
+
+impl QuadHeap {
+    /// The packed entry of key `key` and item (t, m).
+    fn pack(key: f64, t: u32, m: u8) -> u128 {
+        let b = key.to_bits() as i64;
+        // the total_cmp transform, then the sign bit flipped: signed order → unsigned order
+        let k = (b ^ ((((b >> 63) as u64) >> 1) as i64)) as u64 ^ (1 << 63);
+        (k as u128) << 64 | (t as u128) << 8 | m as u128
+    }
+
+    fn push(&mut self, key: f64, t: u32, m: u8) {
+        let e = Self::pack(key, t, m);
+        let mut i = self.a.len();
+        self.a.push(e);
+        while i > 0 {
+            let p = (i - 1) / 4;
+            if self.a[p] <= e {
+                break;
+            }
+            self.a[i] = self.a[p];
+            i = p;
+        }
+        self.a[i] = e;
+    }
+
+    /// The smallest entry's item (t, m).
+    fn pop(&mut self) -> Option<(u32, u8)> {
+        let top = *self.a.first()?;
+        let last = self.a.pop()?;
+        let n = self.a.len();
+        if n > 0 {
+            let mut i = 0;
+            loop {
+                let c = 4 * i + 1;
+                if c >= n {
+                    break;
+                }
+                let end = (c + 4).min(n);
+                let mut best = c;
+                for j in c + 1..end {
+                    if self.a[j] < self.a[best] {
+                        best = j;
+                    }
+                }
+                if self.a[best] >= last {
+                    break;
+                }
+                self.a[i] = self.a[best];
+                i = best;
+            }
+            self.a[i] = last;
+        }
+        Some(((top >> 8) as u32, top as u8))
+    }
 }
 
 /// Constricts the Delaunay tetrahedralization (see the module documentation).
@@ -355,36 +507,9 @@ pub fn constrict_3d_with(
     keep: &[[u32; 3]],
     key: Key,
 ) -> Constriction3 {
-    constrict_impl(d, until, keep, key, true)
-}
-
-/// [`constrict_3d_with`]; `dedup` skips a push of (tetrahedron, mask) while an entry for the
-/// same pair is still in the heap (off only in the test that the results are the same).
-///
-/// Why skipping changes nothing: the key is a function of the tetrahedron and its mask, so the
-/// skipped entry would equal the pending one and pop right after it, with nothing changed in
-/// between — the first either removes the tetrahedron (the copy then finds it dead) or is
-/// discarded (the copy is judged on the same state and discarded too). It saves the key (the
-/// circumsphere and the exact sides of the boundary faces) and the heap traffic of the
-/// tetrahedra pushed again around a flipped edge or by an unchanged neighbour.
-fn constrict_impl(
-    d: &Delaunay3,
-    until: Until,
-    keep: &[[u32; 3]],
-    key: Key,
-    dedup: bool,
-) -> Constriction3 {
     let nt = d.tets.len();
     let nv = d.points.len();
-    let mut st = State {
-        d,
-        p: d.points.iter().map(|q| [q.x, q.y, q.z]).collect(),
-        alive: vec![true; nt],
-        vcount: vec![0; nv],
-        nbv: 0,
-        keep: keep.iter().map(|&f| sorted3(f)).collect(),
-        key,
-    };
+    let mut st = State::new(d, vec![true; nt], keep, key);
     for t in 0..nt {
         for f in 0..4 {
             if d.neighbors[t][f] == NONE {
@@ -393,54 +518,52 @@ fn constrict_impl(
             }
         }
     }
-    let mut heap = BinaryHeap::new();
-    // bit m of pending[t]: an entry (t, m) is in the heap
-    let mut pending = vec![0u16; if dedup { nt } else { 0 }];
-    let push = |st: &State, heap: &mut BinaryHeap<Entry>, pending: &mut [u16], t: usize| {
-        if !st.alive[t] {
-            return;
-        }
+    let mut heap = QuadHeap::default();
+    // bit m of pending[t]: an entry (t, m) is in the heap. A push of a pending pair is skipped:
+    // the key is a function of the tetrahedron and its mask, so the skipped entry would equal
+    // the pending one and pop right after it, with nothing changed in between — the first
+    // either removes the tetrahedron (the copy then finds it dead) or is discarded (the copy is
+    // judged on the same state and discarded too). It saves the key (the circumsphere and the
+    // exact sides of the boundary faces) and the heap traffic of the tetrahedra pushed again
+    // around a flipped edge or by an unchanged neighbour.
+    let mut pending = vec![0u16; nt];
+    let push = |st: &State, heap: &mut QuadHeap, pending: &mut [u16], t: usize| {
         let m = st.mask(t);
-        if m == 0 || pending.get(t).is_some_and(|&b| b >> m & 1 == 1) {
+        if m == 0 || m == DEAD || pending[t] >> m & 1 == 1 {
             return;
         }
         if let Some(key) = st.key(t, m) {
-            if let Some(b) = pending.get_mut(t) {
-                *b |= 1 << m;
-            }
-            heap.push(Entry {
-                key,
-                item: (t as u32, m),
-            });
+            pending[t] |= 1 << m;
+            heap.push(key, t as u32, m);
         }
     };
     for t in 0..nt {
         push(&st, &mut heap, &mut pending, t);
     }
     let mut iterations = 0;
+    let mut ring = Vec::new();
     while until == Until::Locked || st.nbv < nv {
-        let Some(en) = heap.pop() else { break };
-        let (t, mask) = (en.item.0 as usize, en.item.1);
-        if let Some(b) = pending.get_mut(t) {
-            *b &= !(1 << mask);
-        }
-        if !st.alive[t] || st.mask(t) != mask || !st.removable(t, mask) {
+        let Some((t, mask)) = heap.pop() else { break };
+        let t = t as usize;
+        pending[t] &= !(1 << mask);
+        // (a removed tetrahedron's mask is DEAD, never a pushed mask)
+        if st.mask(t) != mask || !st.removable(t, mask) {
             continue;
         }
         let m = mask;
-        for f in 0..4 {
-            let fc = st.face(t, f);
-            if m >> f & 1 == 1 {
-                st.add_face(fc, -1);
-            } else {
-                st.add_face(fc, 1);
-            }
+        // corner i lies on the three faces other than face i: its count gains those that become
+        // boundary faces and loses those that stop being ones (never below zero: the faces it
+        // loses were counted)
+        let Cell { v, n: nb } = st.cells[t];
+        for (i, &x) in v.iter().enumerate() {
+            let lost = (m & !(1 << i)).count_ones() as i32;
+            st.add_vertex(x, 3 - 2 * lost);
         }
-        st.alive[t] = false;
+        st.kill(t);
         iterations += 1;
         for f in 0..4 {
             if m >> f & 1 == 0 {
-                let n = d.neighbors[t][f];
+                let n = nb[f];
                 if n != NONE {
                     push(&st, &mut heap, &mut pending, n as usize);
                 }
@@ -448,25 +571,29 @@ fn constrict_impl(
         }
         if m.count_ones() == 2 {
             // the shared edge left the boundary: tetrahedra around it may now be removable
-            let v = d.tets[t];
-            let shared: Vec<u32> = (0..4).filter(|&f| m >> f & 1 == 0).map(|f| v[f]).collect();
-            if shared.len() == 2 {
-                for n in around_edge_from(d, t as u32, shared[0], shared[1]) {
-                    push(&st, &mut heap, &mut pending, n as usize);
+            let mut shared = [0u32; 2];
+            let mut k = 0;
+            for (f, &x) in v.iter().enumerate() {
+                if m >> f & 1 == 0 {
+                    shared[k] = x;
+                    k += 1;
                 }
+            }
+            around_edge_from(&st.cells, t as u32, shared[0], shared[1], &mut ring);
+            for &n in &ring {
+                push(&st, &mut heap, &mut pending, n as usize);
             }
         }
     }
     let mut triangles = Vec::new();
     for t in 0..nt {
-        if !st.alive[t] {
+        let m = st.mask(t);
+        if m == DEAD {
             continue;
         }
         for f in 0..4 {
-            let n = d.neighbors[t][f];
-            if n == NONE || !st.alive[n as usize] {
-                let fc = st.face(t, f);
-                triangles.push(fc);
+            if m >> f & 1 == 1 {
+                triangles.push(st.face(t, f));
             }
         }
     }
@@ -520,15 +647,8 @@ mod tests {
             let d = crate::delaunay::d3::triangulate(&pts).unwrap();
             let nt = d.tets.len();
             let kill = [0.0, 0.2, 0.5][case % 3];
-            let st = State {
-                d: &d,
-                p: d.points.iter().map(|q| [q.x, q.y, q.z]).collect(),
-                alive: (0..nt).map(|_| !rng.gen_bool(kill)).collect(),
-                vcount: vec![0; d.points.len()],
-                nbv: 0,
-                keep: IdSet::default(),
-                key: Key::Gamma,
-            };
+            let alive = (0..nt).map(|_| !rng.gen_bool(kill)).collect();
+            let st = State::new(&d, alive, &[], Key::Gamma);
             let brute = |a: u32, b: u32| {
                 (0..nt).filter(|&t| st.alive[t]).any(|t| {
                     (0..4).any(|f| {
@@ -602,36 +722,251 @@ mod tests {
         );
     }
 
-    /// Skipping a push of a (tetrahedron, mask) pair that is already in the heap (the default)
-    /// gives exactly the constriction that pushes every time: same live tetrahedra, boundary
-    /// triangles (in order) and removal count — for both keys and both stop rules, on a bumpy
-    /// sphere with interior points and on an integer lattice (many equal keys: ties decided by
-    /// the item).
+    /// The constriction as first written, the reference of the optimized one: masks
+    /// recomputed from the neighbours' `alive` flags, the rotation around an edge through the
+    /// `alive` flags, a `BinaryHeap` of `MinKey` entries, every push made (no skipping of pending
+    /// pairs), the corners' coordinates from a copy of the points.
+    fn reference(d: &Delaunay3, until: Until, keep: &[[u32; 3]], key: Key) -> Constriction3 {
+        use crate::boundary::indicator::MinKey;
+        let nt = d.tets.len();
+        let nv = d.points.len();
+        let p: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let cells = cells_of(d);
+        let keep: IdSet<[u32; 3]> = keep.iter().map(|&f| sorted3(f)).collect();
+        let mut alive = vec![true; nt];
+        let mut vcount = vec![0i64; nv];
+        let face = |t: usize, f: usize| FACE_OF[f].map(|i| d.tets[t][i]);
+        let mask = |alive: &[bool], t: usize| {
+            (0..4)
+                .filter(|&f| {
+                    let n = d.neighbors[t][f];
+                    n == NONE || !alive[n as usize]
+                })
+                .fold(0u8, |m, f| m | 1 << f)
+        };
+        let edge_on_boundary = |alive: &[bool], t: u32, a: u32, b: u32| {
+            // every live tetrahedron around ab, by rotation, and their faces at ab
+            let mut ring = Vec::new();
+            around_edge_from(&cells, t, a, b, &mut ring);
+            ring.iter().any(|&u| {
+                alive[u as usize]
+                    && (0..4).any(|f| {
+                        let n = d.neighbors[u as usize][f];
+                        face(u as usize, f).contains(&a)
+                            && face(u as usize, f).contains(&b)
+                            && (n == NONE || !alive[n as usize])
+                    })
+            })
+        };
+        let removable = |alive: &[bool], vcount: &[i64], t: usize, m: u8| {
+            let faces: Vec<usize> = (0..4).filter(|&f| m >> f & 1 == 1).collect();
+            if faces.iter().any(|&f| keep.contains(&sorted3(face(t, f)))) {
+                return false;
+            }
+            let v = d.tets[t];
+            match faces[..] {
+                [f] => vcount[v[f] as usize] == 0,
+                [f, g] => !edge_on_boundary(alive, t as u32, v[f], v[g]),
+                _ => false,
+            }
+        };
+        let key_of = |t: usize, m: u8| {
+            let r = match key {
+                Key::Gamma => d.circumsphere(t as u32).1,
+                Key::MinAreaChange => 0.0,
+            };
+            removal_key(key, d.tets[t].map(|x| p[x as usize]), m, r)
+        };
+        let mut heap = std::collections::BinaryHeap::new();
+        let push = |alive: &[bool],
+                    vcount: &[i64],
+                    heap: &mut std::collections::BinaryHeap<MinKey<(u32, u8)>>,
+                    t: usize| {
+            let m = mask(alive, t);
+            if alive[t] && m != 0 && removable(alive, vcount, t, m) {
+                heap.push(MinKey {
+                    key: key_of(t, m),
+                    item: (t as u32, m),
+                });
+            }
+        };
+        let on = |vcount: &[i64]| vcount.iter().filter(|&&c| c > 0).count();
+        for t in 0..nt {
+            for f in 0..4 {
+                if d.neighbors[t][f] == NONE {
+                    for v in face(t, f) {
+                        vcount[v as usize] += 1;
+                    }
+                }
+            }
+        }
+        for t in 0..nt {
+            push(&alive, &vcount, &mut heap, t);
+        }
+        let mut iterations = 0;
+        while until == Until::Locked || on(&vcount) < nv {
+            let Some(en) = heap.pop() else { break };
+            let (t, m) = (en.item.0 as usize, en.item.1);
+            if !alive[t] || mask(&alive, t) != m || !removable(&alive, &vcount, t, m) {
+                continue;
+            }
+            for f in 0..4 {
+                for v in face(t, f) {
+                    vcount[v as usize] += if m >> f & 1 == 1 { -1 } else { 1 };
+                }
+            }
+            alive[t] = false;
+            iterations += 1;
+            let mut again: Vec<u32> = d.neighbors[t]
+                .iter()
+                .copied()
+                .filter(|&n| n != NONE)
+                .collect();
+            if m.count_ones() == 2 {
+                let sh: Vec<u32> = (0..4)
+                    .filter(|&f| m >> f & 1 == 0)
+                    .map(|f| d.tets[t][f])
+                    .collect();
+                let mut ring = Vec::new();
+                around_edge_from(&cells, t as u32, sh[0], sh[1], &mut ring);
+                again.extend(ring);
+            }
+            for n in again {
+                push(&alive, &vcount, &mut heap, n as usize);
+            }
+        }
+        let triangles = (0..nt)
+            .filter(|&t| alive[t])
+            .flat_map(|t| {
+                let m = mask(&alive, t);
+                (0..4)
+                    .filter(move |&f| m >> f & 1 == 1)
+                    .map(move |f| face(t, f))
+            })
+            .collect();
+        Constriction3 {
+            boundary_vertices: on(&vcount),
+            alive,
+            triangles,
+            iterations,
+        }
+    }
+
+    /// The constriction (boundary masks kept up to date, the 4-ary heap of packed entries,
+    /// pending pushes skipped) gives exactly the reference's: same live tetrahedra, boundary
+    /// triangles (in order), removal count and vertices on the boundary — for both keys and
+    /// both stop rules, on a bumpy sphere with interior points (it locks), clustered cube points,
+    /// an integer lattice (many equal keys: ties decided by the item) and with keep triangles.
     #[test]
-    fn skipping_pending_pushes_changes_nothing() {
+    fn constriction_equals_the_reference() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(17);
         let sphere = super::super::test_sets::bumpy_sphere(&mut rng, 3000);
         let lattice = super::super::test_sets::lattice(7, 6, 5);
-        let mut differs_from_locked = false;
-        for pts in [&sphere, &lattice] {
+        let clustered: Vec<crate::geom::Point3> = super::super::test_sets::cube(&mut rng, 1500)
+            .iter()
+            .map(|q| crate::geom::Point3::new(q.x.powi(3), q.y.powi(3), q.z.powi(3)))
+            .collect();
+        let (mut differs_from_locked, mut locked_short, mut with_keep) = (false, false, 0);
+        for pts in [&sphere, &lattice, &clustered] {
             let d = crate::delaunay::d3::triangulate(pts).unwrap();
+            // keep triangles: some interior faces (each a face of tetrahedron t)
+            let keep: Vec<[u32; 3]> = (0..d.tets.len())
+                .step_by(d.tets.len() / 7)
+                .map(|t| FACE_OF[1].map(|i| d.tets[t][i]))
+                .collect();
             for key in [Key::Gamma, Key::MinAreaChange] {
                 let mut iters = Vec::new();
                 for until in [Until::All, Until::Locked] {
-                    let a = constrict_impl(&d, until, &[], key, true);
-                    let b = constrict_impl(&d, until, &[], key, false);
-                    assert_eq!(a.alive, b.alive, "{key:?} {until:?}");
-                    assert_eq!(a.triangles, b.triangles, "{key:?} {until:?}");
-                    assert_eq!(
-                        (a.iterations, a.boundary_vertices),
-                        (b.iterations, b.boundary_vertices)
-                    );
-                    assert!(a.iterations >= 50, "{}", a.iterations);
-                    iters.push(a.iterations);
+                    for k in [&[][..], &keep[..]] {
+                        let a = constrict_3d_with(&d, until, k, key);
+                        let b = reference(&d, until, k, key);
+                        assert_eq!(a.alive, b.alive, "{key:?} {until:?}");
+                        assert_eq!(a.triangles, b.triangles, "{key:?} {until:?}");
+                        assert_eq!(
+                            (a.iterations, a.boundary_vertices),
+                            (b.iterations, b.boundary_vertices)
+                        );
+                        assert!(a.iterations >= 50, "{}", a.iterations);
+                        if k.is_empty() {
+                            iters.push(a.iterations);
+                            locked_short |= a.boundary_vertices < d.points.len();
+                        } else {
+                            with_keep += 1;
+                        }
+                    }
                 }
                 differs_from_locked |= iters[0] != iters[1];
             }
         }
-        assert!(differs_from_locked);
+        assert!(differs_from_locked && locked_short && with_keep == 12);
+    }
+
+    /// The circumradius from the corners is bit for bit `Delaunay3::circumsphere`'s radius
+    /// (the constriction keys, and so the order of the removals, depend on it), on every
+    /// tetrahedron of random, lattice and clustered sets, flat slivers of a lattice included.
+    #[test]
+    fn circumradius_is_the_delaunay_one() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(29);
+        let sets = [
+            super::super::test_sets::cube(&mut rng, 2000),
+            super::super::test_sets::lattice(6, 5, 4),
+            super::super::test_sets::bumpy_sphere(&mut rng, 2000),
+        ];
+        let mut n = 0;
+        for pts in &sets {
+            let d = crate::delaunay::d3::triangulate(pts).unwrap();
+            for (t, v) in d.tets.iter().enumerate() {
+                let r = circumradius(v.map(|x| d.points[x as usize]));
+                assert_eq!(r.to_bits(), d.circumsphere(t as u32).1.to_bits(), "{t}");
+                n += 1;
+            }
+        }
+        assert!(n > 20_000, "{n}");
+    }
+
+    /// The 4-ary heap pops what a `BinaryHeap` of `MinKey<(u32, u8)>` pops, under random
+    /// interleaved pushes and pops with many equal keys (ties by the item), ±0, infinities,
+    /// NaN and subnormal keys.
+    #[test]
+    fn quad_heap_pops_in_binary_heap_order() {
+        use crate::boundary::indicator::MinKey;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(23);
+        let special = [
+            0.0,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+            5e-324,
+            -5e-324,
+            1.0,
+            -1.0,
+        ];
+        for round in 0..40 {
+            let mut q = QuadHeap::default();
+            let mut b = std::collections::BinaryHeap::new();
+            for _ in 0..3000 {
+                if rng.gen_bool(if round % 2 == 0 { 0.6 } else { 0.45 }) {
+                    let key = match rng.gen_range(0..3) {
+                        0 => special[rng.gen_range(0..special.len())],
+                        1 => rng.gen_range(-4..4) as f64 / 4.0,
+                        _ => rng.gen_range(-2.0..2.0),
+                    };
+                    let item = (
+                        rng.gen_range(0..50u32) * 97_000_001 % u32::MAX,
+                        rng.gen_range(0..16u8),
+                    );
+                    q.push(key, item.0, item.1);
+                    b.push(MinKey { key, item });
+                } else {
+                    assert_eq!(q.pop(), b.pop().map(|e| e.item));
+                }
+            }
+            while let Some(e) = b.pop() {
+                assert_eq!(q.pop(), Some(e.item));
+            }
+            assert_eq!(q.pop(), None);
+        }
     }
 }
