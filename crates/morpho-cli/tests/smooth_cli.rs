@@ -679,3 +679,99 @@ fn six_split_surface_from_the_cli() {
     ]);
     assert_input_error(&o, None);
 }
+
+/// `--scheme split2` (the two-split, V §9.7, experimental): on the icosphere every triangle
+/// qualifies for a pair; the `.json` patches (2 per paired, 3 per three-split triangle, the
+/// count given by the report's `pairs`) are checked independently of the construction, the
+/// report keys are those of the other schemes; bad input refused with exit 2.
+#[test]
+fn two_split_surface_from_the_cli() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("ico.ply");
+    let m = morpho::mesh::generate::icosphere(1);
+    morpho::io::write_mesh(&input, &m, morpho::io::Encoding::default()).unwrap();
+    let pj = dir.path().join("p.json");
+    let rep = dir.path().join("r.json");
+    ok(&morpho(&[
+        "smooth",
+        input.to_str().unwrap(),
+        "-o",
+        pj.to_str().unwrap(),
+        "--scheme",
+        "split2",
+        "--report",
+        rep.to_str().unwrap(),
+    ]));
+    let r = json(&rep);
+    assert_eq!(r["scheme"], "split2");
+    for k in [
+        "max_normal_jump_rad",
+        "non_g1_edges",
+        "max_deviation",
+        "unresolved_edges",
+        "folds",
+        "pairs",
+        "rejected_pairs",
+    ] {
+        assert!(r.get(k).is_some(), "{k}: {r}");
+    }
+    let pairs = r["pairs"].as_u64().unwrap() as usize;
+    assert!(pairs >= 10, "{r}");
+    let v = json(&pj);
+    assert_eq!(v["degree"].as_u64(), Some(3));
+    let patches = micro_patches(&v);
+    assert_eq!(patches.len(), 3 * m.triangles.len() - 2 * pairs);
+    assert_eq!(r["patches"].as_u64(), Some(patches.len() as u64));
+    // every patch has two macro vertices among its corners (b300, b030, b003)
+    for p in &patches {
+        let t = m.triangles[p.macro_tri as usize];
+        let at_vertex = [0, 6, 9]
+            .iter()
+            .filter(|&&i| {
+                t.iter().any(|&v| {
+                    let x: [f64; 3] = m.positions[v as usize].into();
+                    p.control[i] == x
+                })
+            })
+            .count();
+        assert_eq!(at_vertex, 2, "{p:?}");
+    }
+    let s = SplitSurface {
+        patches,
+        ..Default::default()
+    };
+    let c = continuity(&s, 25);
+    assert_eq!(c.open_edges, 0);
+    assert_eq!(c.folds, 0);
+    assert!(c.max_normal_jump_rad <= 1e-9, "{c:?}");
+    assert!(r["max_normal_jump_rad"].as_f64().unwrap() <= 1e-9);
+    assert_eq!(r["non_g1_edges"].as_u64(), Some(0));
+    let dev = r["max_deviation"].as_f64().unwrap();
+    assert!(dev > 0.0 && dev < 0.2, "{dev}");
+    // bad input: open mesh, 2D input with split2
+    let mut open = m.clone();
+    open.triangles.pop();
+    let op = dir.path().join("open.ply");
+    morpho::io::write_mesh(&op, &open, morpho::io::Encoding::default()).unwrap();
+    let ply = dir.path().join("t.ply");
+    let o = morpho(&[
+        "smooth",
+        op.to_str().unwrap(),
+        "-o",
+        ply.to_str().unwrap(),
+        "--scheme",
+        "split2",
+    ]);
+    assert_input_error(&o, Some(&op));
+    let csv = dir.path().join("p.csv");
+    std::fs::write(&csv, "x,y\n0,0\n1,0\n0,1\n").unwrap();
+    let o = morpho(&[
+        "smooth",
+        csv.to_str().unwrap(),
+        "-o",
+        pj.to_str().unwrap(),
+        "--scheme",
+        "split2",
+    ]);
+    assert_input_error(&o, None);
+}

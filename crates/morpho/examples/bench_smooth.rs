@@ -9,14 +9,15 @@
 //! `cargo run --release -p morpho --example bench_smooth [mesh file name] [density]`
 //! (default: horse.obj.gz from shared/data/meshes, density 4).
 //!
-//! The two-split (V §9.7) is not built, so it is not measured.
+//! The two-split (V §9.7, experimental, `morpho::smooth::two_split`) is measured after the
+//! three-split (it builds on it).
 
 mod common;
 
 use morpho::mesh::{vertex_normals, NormalWeighting, TriMesh};
 use morpho::smooth::{
     continuity, side_vertex, side_vertex_continuity, six_split, tessellate, three_split_with,
-    visible_normals, SideVertexOptions, SplitOptions,
+    two_split, visible_normals, SideVertexOptions, SplitOptions,
 };
 use std::time::Instant;
 
@@ -76,6 +77,24 @@ fn run(m: &TriMesh, density: usize, reps: usize) -> morpho::Result<()> {
         fmt(t_t),
         t.triangles.len() as f64 / t_t.0,
         t.triangles.len()
+    );
+    let (t_2, s2) = best(reps, || two_split(m, &n, &opts));
+    let s2 = s2?;
+    let (t_c2, c2) = if check {
+        let t0 = Instant::now();
+        let c = continuity(&s2.surface, 20);
+        (t0.elapsed().as_secs_f64(), c)
+    } else {
+        (0.0, Default::default())
+    };
+    println!(
+        "  split2      build {} ({} patches, {} pairs, {} rejected: {:?})  {}",
+        fmt(t_2),
+        s2.surface.patches.len(),
+        s2.pairs.len(),
+        s2.rejected.len(),
+        s2.rejected_by,
+        jump(c2.max_normal_jump_rad, c2.non_g1_edges.len(), t_c2),
     );
     let (t_6, s6) = best(reps, || six_split(m, &n));
     let s6 = s6?;

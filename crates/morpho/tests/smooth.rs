@@ -891,3 +891,260 @@ fn six_split_on_real_closed_meshes_reports_every_non_g1_edge() {
         );
     }
 }
+
+/// Two-split (V §9.7, experimental; `morpho::smooth::two_split`): the layout (each pair's two
+/// triangles share an edge, 4 patches instead of 6, no triangle next to a pair is paired),
+/// interpolation of every vertex and its normal at every patch corner that is a mesh vertex,
+/// and the independent continuity check; every edge that is not G¹ must be one the
+/// three-split part reports (the pairs are G¹ by construction and a local check).
+fn check_two(m: &TriMesh, n: &[Vector3]) -> (TwoSplit, Continuity) {
+    let t = two_split(m, n, &SplitOptions::default()).unwrap();
+    let s = &t.surface;
+    assert_eq!(s.patches.len(), 3 * m.triangles.len() - 2 * t.pairs.len());
+    assert_eq!(s.domain.len(), s.patches.len());
+    let mut paired = vec![false; m.triangles.len()];
+    let shares_edge = |a: [u32; 3], b: [u32; 3]| a.iter().filter(|v| b.contains(v)).count() == 2;
+    for &[p, q] in &t.pairs {
+        assert!(shares_edge(
+            m.triangles[p as usize],
+            m.triangles[q as usize]
+        ));
+        assert!(!paired[p as usize] && !paired[q as usize]);
+        paired[p as usize] = true;
+        paired[q as usize] = true;
+    }
+    for &[p, q] in &t.pairs {
+        for (u, &tu) in m.triangles.iter().enumerate() {
+            for w in [p, q] {
+                if u as u32 != p && u as u32 != q && shares_edge(tu, m.triangles[w as usize]) {
+                    assert!(!paired[u], "triangle {u} next to pair {p}-{q} is paired");
+                }
+            }
+        }
+    }
+    let tol = 1e-12 * (1.0 + m.bbox().diagonal());
+    let (mut corners, mut checked) = (0, 0);
+    for (p, d) in s.patches.iter().zip(&s.domain) {
+        let tri = m.triangles[p.macro_tri as usize];
+        let bt = p.triangle();
+        for (c, w) in d.iter().enumerate() {
+            let Some(k) = (0..3).find(|&k| w[k] == 1.0) else {
+                continue;
+            };
+            corners += 1;
+            let v = tri[k] as usize;
+            let mut bary = [0.0; 3];
+            bary[c] = 1.0;
+            let x: [f64; 3] = m.positions[v].into();
+            let e = bt.eval(bary);
+            let dd = (Vector3::from(e) - Vector3::from(x)).norm();
+            assert!(dd <= tol, "vertex {v}: {dd}");
+            // a three-split patch's corner can be degenerate (its two handles collinear or one
+            // of zero length, as at the flat box's rim and corners): no tangent plane to compare
+            let (i1, i2) = [(1, 2), (3, 7), (8, 5)][c];
+            let h = |i: usize| Vector3::from(p.control[i]) - Vector3::from(e);
+            let (h1, h2) = (h(i1), h(i2));
+            if !paired[p.macro_tri as usize]
+                && h1.cross(&h2).norm() <= 1e-9 * h1.norm().max(h2.norm()).powi(2)
+            {
+                continue;
+            }
+            checked += 1;
+            let nn = Vector3::from(bt.normal(bary));
+            let ang = nn.cross(&n[v]).norm().atan2(nn.dot(&n[v]));
+            // the tangent plane is interpolated; a three-split patch may be turned over at a
+            // vertex whose normal does not see its triangles (its fold), a pair's never is
+            assert!(
+                ang.min(std::f64::consts::PI - ang) <= 1e-10,
+                "normal at vertex {v}: {ang}, paired {} control {:?}",
+                paired[p.macro_tri as usize],
+                p.control
+            );
+            assert!(
+                ang <= 1e-10 || !paired[p.macro_tri as usize],
+                "pair turned over at vertex {v}"
+            );
+        }
+    }
+    // every micro patch has two mesh-vertex corners
+    assert_eq!(corners, 2 * s.patches.len());
+    assert!(
+        checked * 5 >= corners * 4,
+        "{checked} of {corners} corners checked"
+    );
+    let c = continuity(s, 20);
+    assert_eq!(c.open_edges, 0);
+    assert!(c.max_position_gap <= tol, "{c:?}");
+    // every non-G¹ edge is a macro edge the three-split part reports
+    let reported: std::collections::HashSet<[u32; 2]> = s
+        .unresolved_edges
+        .iter()
+        .chain(&s.singular_edges)
+        .chain(&s.fold_guarded)
+        .chain(&s.sign_warnings)
+        .copied()
+        .collect();
+    // the three-split alone (same normals): its non-G¹ macro edges
+    let s3 = three_split(m, n).unwrap();
+    let c3 = continuity(&s3, 20);
+    let non_g1_3: std::collections::HashSet<[u32; 2]> = c3
+        .non_g1_edges
+        .iter()
+        .filter(|&&(p, q)| s3.patches[p].macro_tri != s3.patches[q].macro_tri)
+        .map(|&(p, q)| macro_edge(m, &s3, p, q))
+        .collect();
+    assert!(
+        c.folds <= c3.folds,
+        "folds {} > three-split's {}",
+        c.folds,
+        c3.folds
+    );
+    for &(p, q) in &c.non_g1_edges {
+        let (tp, tq) = (s.patches[p].macro_tri, s.patches[q].macro_tri);
+        assert_ne!(
+            tp, tq,
+            "micro edge {p}-{q} inside macro triangle {tp} is not G1"
+        );
+        assert!(
+            !(paired[tp as usize] && paired[tq as usize]),
+            "edge {p}-{q} inside a pair is not G1"
+        );
+        let e = macro_edge(m, s, p, q);
+        assert!(
+            reported.contains(&e) || non_g1_3.contains(&e),
+            "non-G1 edge {e:?} (triangles {tp} {tq}, paired {} {}) neither reported nor non-G1 in the three-split",
+            paired[tp as usize],
+            paired[tq as usize]
+        );
+    }
+    (t, c)
+}
+
+#[test]
+fn two_split_perturbed_icospheres_are_g1() {
+    for seed in [1, 2, 7, 9, 11] {
+        for amp in [0.05, 0.1] {
+            let m = perturbed_icosphere(seed, amp);
+            let n = vertex_normals(&m, NormalWeighting::Area);
+            let (t, c) = check_two(&m, &n);
+            eprintln!(
+                "seed {seed} amp {amp}: {} pairs, {} rejected, jump {:.1e} (macro {:.1e} micro {:.1e}), non-G1 {}, folds {}, unresolved {}",
+                t.pairs.len(), t.rejected.len(), c.max_normal_jump_rad, c.max_macro_jump_rad,
+                c.max_micro_jump_rad, c.non_g1_edges.len(), c.folds, t.surface.unresolved_edges.len()
+            );
+            assert!(t.pairs.len() >= 5, "seed {seed}: {} pairs", t.pairs.len());
+            if c.folds == 0 && t.surface.unresolved_edges.is_empty() {
+                assert!(c.max_normal_jump_rad <= 1e-9, "seed {seed} amp {amp}");
+            }
+        }
+    }
+    // the unperturbed icosphere: the pairs avoid thin triangles nowhere better than elsewhere,
+    // but every triangle qualifies (the two-split's worst micro triangle, quality 0.75, beats
+    // the three-split's 0.6)
+    let m = generate::icosphere(1);
+    let n = vertex_normals(&m, NormalWeighting::Area);
+    let (t, c) = check_two(&m, &n);
+    assert!(t.pairs.len() >= 10, "{}", t.pairs.len());
+    assert!(c.max_normal_jump_rad <= 1e-9, "{c:?}");
+}
+
+#[test]
+fn two_split_linear_precision_a_flat_region_gives_the_plane() {
+    for (jitter, seed) in [(0.0, 1), (0.4, 2), (0.4, 3)] {
+        let (m, inner) = flat_box(6, jitter, seed);
+        let n = vertex_normals(&m, NormalWeighting::Area);
+        let (t, _) = check_two(&m, &n);
+        let s = &t.surface;
+        let mut rng = Rng::new(seed);
+        let (mut checked, mut in_pairs) = (0, 0);
+        let paired: std::collections::HashSet<u32> = t.pairs.iter().flatten().copied().collect();
+        for (p, d) in s.patches.iter().zip(&s.domain) {
+            let tri = m.triangles[p.macro_tri as usize];
+            if !tri.iter().all(|&v| inner[v as usize]) {
+                continue;
+            }
+            checked += 1;
+            in_pairs += usize::from(paired.contains(&p.macro_tri));
+            let c: Vec<Vector3> = tri
+                .iter()
+                .map(|&v| m.positions[v as usize].coords)
+                .collect();
+            let at = |w: [f64; 3]| c[0] * w[0] + c[1] * w[1] + c[2] * w[2];
+            let bt = p.triangle();
+            for _ in 0..20 {
+                let (u, v) = (uni(&mut rng), uni(&mut rng));
+                let (u, v) = if u + v > 1.0 {
+                    (1.0 - u, 1.0 - v)
+                } else {
+                    (u, v)
+                };
+                let w = 1.0 - u - v;
+                // the affine map of the micro triangle's domain corners
+                let x = at(d[0]) * u + at(d[1]) * v + at(d[2]) * w;
+                let e = Vector3::from(bt.eval([u, v, w]));
+                assert!(
+                    (e - x).norm() <= 1e-12,
+                    "jitter {jitter}: {}",
+                    (e - x).norm()
+                );
+            }
+        }
+        eprintln!(
+            "jitter {jitter}: {} pairs, {checked} flat patches, {in_pairs} in pairs",
+            t.pairs.len()
+        );
+        assert!(in_pairs >= 8, "{in_pairs}");
+    }
+}
+
+#[test]
+fn two_split_on_a_real_closed_mesh_reports_every_non_g1_edge() {
+    let Some(data) = common::data_dir() else {
+        return;
+    };
+    for name in ["spot.obj", "bunny_npm.obj"] {
+        let p = data.join("meshes").join(name);
+        let Ok(m) = morpho::io::read_mesh(&p) else {
+            continue;
+        };
+        if !morpho::mesh::analyze_topology(&m).is_closed() {
+            continue;
+        }
+        let n0 = vertex_normals(&m, NormalWeighting::Area);
+        let n = visible_normals(&m, &n0, 0.05).normals;
+        let (t, c) = check_two(&m, &n);
+        eprintln!(
+            "{name}: {} tris, {} pairs, {} rejected, jump {:.1e} (micro {:.1e}), non-G1 {} of {}, folds {} ({} edges), unresolved {}",
+            m.triangles.len(), t.pairs.len(), t.rejected.len(), c.max_normal_jump_rad,
+            c.max_micro_jump_rad, c.non_g1_edges.len(), c.edges, c.folds, c.fold_edges,
+            t.surface.unresolved_edges.len()
+        );
+        assert!(
+            t.pairs.len() >= m.triangles.len() / 50,
+            "{name}: {}",
+            t.pairs.len()
+        );
+    }
+}
+
+#[test]
+fn two_split_refuses_bad_meshes() {
+    let mut open = generate::icosphere(1);
+    open.triangles.pop();
+    let n = vertex_normals(&open, NormalWeighting::Area);
+    assert!(matches!(
+        two_split(&open, &n, &SplitOptions::default()),
+        Err(SmoothError::NotClosed { .. })
+    ));
+    let mut nan = generate::icosphere(1);
+    let n = vertex_normals(&nan, NormalWeighting::Area);
+    nan.positions[3].x = f64::NAN;
+    assert!(matches!(
+        two_split(&nan, &n, &SplitOptions::default()),
+        Err(SmoothError::NonFinite { .. })
+    ));
+    let m = generate::icosphere(1);
+    let mut n = vertex_normals(&m, NormalWeighting::Area);
+    n[5] = Vector3::new(f64::NAN, 0.0, 0.0);
+    assert!(two_split(&m, &n, &SplitOptions::default()).is_err());
+}

@@ -1,7 +1,11 @@
-//! `morpho smooth IN -o OUT [--scheme curve|split3|split6|side-vertex]
+//! `morpho smooth IN -o OUT [--scheme curve|split3|split2|split6|side-vertex]
 //! [--weights length|uniform|inverse] [--normals area|uniform|inverse|file] [--density N]
 //! [--tension T]`: the G¹ curve through a polygon (Veltkamp 1992, §9.2; NOTES B.2), the cubic
-//! three-split G¹ surface through a closed mesh (V §9.6; NOTES B.5), the cubic six-split
+//! three-split G¹ surface through a closed mesh (V §9.6; NOTES B.5), the cubic two-split
+//! (V §9.7, experimental: pairs of triangles split at their common edge's midpoint where that
+//! avoids thin micro triangles, the rest three-split; NOTES B.6; `morpho::smooth::two_split`;
+//! report keys `pairs`, `rejected_pairs` and its parts `rejected_pairs_system`, `_move`,
+//! `_check`), the cubic six-split
 //! (V §9.8 rebuilt as a Powell–Sabin macro element with a prescribed normal field; NOTES B.7;
 //! `morpho::smooth::six_split`) or Hamann's side-vertex surface of degree-elevated conics
 //! (Hamann 1991, ch. 6; NOTES E); see `morpho::smooth`.
@@ -47,7 +51,7 @@ use morpho::io::{self, Format};
 use morpho::mesh::{NormalWeighting, Polygon, Polyline, Shapes2, TriMesh};
 use morpho::smooth::{
     continuity, curve_joints, g1_curve, max_deviation, reversed_normals, side_vertex,
-    side_vertex_continuity, six_split, tessellate, three_split_with, visible_normals,
+    side_vertex_continuity, six_split, tessellate, three_split_with, two_split, visible_normals,
     CurveWeighting, FailureKind, G1Curve, SideVertexOptions, SplitOptions,
 };
 use serde_json::json;
@@ -63,8 +67,9 @@ pub struct Args {
     pub output: PathBuf,
     /// The construction (default: `curve` for 2D input, `split3` for a mesh; `side-vertex`:
     /// Hamann's conic surface; `split6`: the six-split, V §9.8 rebuilt, see
-    /// `morpho::smooth::six_split`). The two-split is not built yet.
-    #[arg(long, value_parser = ["curve", "split3", "split6", "side-vertex"])]
+    /// `morpho::smooth::six_split`; `split2`: the two-split, V §9.7, experimental, see
+    /// `morpho::smooth::two_split`).
+    #[arg(long, value_parser = ["curve", "split3", "split2", "split6", "side-vertex"])]
     pub scheme: Option<String>,
     /// Side-vertex surface: scales every conic's automatic weight (1 = Thm 6.3; smaller
     /// values pull the surface towards the mesh).
@@ -113,7 +118,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                 args.input.display()
             )))
         }
-        (Some(s @ ("split3" | "split6" | "side-vertex")), false) => {
+        (Some(s @ ("split3" | "split2" | "split6" | "side-vertex")), false) => {
             return Err(Failure::usage(format!(
                 "{}: --scheme {s} smooths closed meshes (.ply .obj .off .stl)",
                 args.input.display()
@@ -360,14 +365,25 @@ fn run_surface(args: &Args, report: &mut Report) -> Result<u8, Failure> {
     }
     let opts = SplitOptions { fold_guard: guard };
     let scheme = args.scheme.as_deref().unwrap_or("split3");
+    let mut pairs = None;
     let s = report.time("compute", || {
-        if scheme == "split6" {
-            six_split(&mesh, &n)
-        } else {
-            three_split_with(&mesh, &n, &opts)
+        match scheme {
+            "split6" => six_split(&mesh, &n),
+            "split2" => two_split(&mesh, &n, &opts).map(|t| {
+                pairs = Some((t.pairs.len(), t.rejected.len(), t.rejected_by));
+                t.surface
+            }),
+            _ => three_split_with(&mesh, &n, &opts),
         }
         .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
     })?;
+    if let Some((p, r, by)) = pairs {
+        report.set("pairs", p);
+        report.set("rejected_pairs", r);
+        report.set("rejected_pairs_system", by.system);
+        report.set("rejected_pairs_move", by.moved);
+        report.set("rejected_pairs_check", by.check);
+    }
     let c = report.time("check", || continuity(&s, 20));
     // default: 8 steps, fewer on big meshes (at most ~4M triangles); an explicit density is
     // refused beyond 32M triangles (no runaway allocation)
@@ -628,13 +644,17 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
     let m = r.mesh;
     io::write_mesh(&ctx.path("smooth_spot20.ply"), &m, io::Encoding::default())?;
     let mut s = Section::new(
-        "Smooth surfaces: a reduced scan, three-split, six-split and side-vertex (Veltkamp §9.6, §9.8, Hamann ch. 6)",
+        "Smooth surfaces: a reduced scan, three-split, two-split, six-split and side-vertex (Veltkamp §9.6–9.8, Hamann ch. 6)",
         "meshes/spot.obj reduced to 20 % of its triangles (Hamann's Algorithm 5.1), area-weighted \
          vertex normals (V §9.4; the few that do not see all their triangles adjusted), then the \
          cubic three-split (V §9.6: Farin's interior point, the Clough–Tocher split at the \
          centroid; per edge a degree-elevated quadratic boundary where one fits, else (9.4) where it \
          moves L1, R1 at most 3 edge lengths, else a bounded correction left creased and counted \
-         as unresolved), the six-split (V §9.8 rebuilt: a C¹ piecewise-quadratic boundary, a \
+         as unresolved), the two-split (V §9.7, experimental: pairs of triangles across an edge \
+         split at its midpoint where that avoids thin three-split micro triangles, chosen greedily \
+         thinnest first with no two pairs adjacent, each pair C¹ over its unfolded quadrilateral, \
+         its outer edges on a linear normal field shared with the three-split neighbour; a pair \
+         whose system or local check fails stays three-split), the six-split (V §9.8 rebuilt: a C¹ piecewise-quadratic boundary, a \
          prescribed normal field per macro edge — linear where the edge is not inflected, through \
          the natural boundary with a free end scale where it is —, Powell–Sabin interior; a side \
          that would turn outward takes the nearest inward member of its exact solutions, and \
@@ -642,7 +662,7 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
          reported crease) and Hamann's \
          side-vertex surface of degree-elevated conics (H ch. 6, automatic weights), each \
          tessellated with surface normals. Left to right: the input (flat), the three-split, the \
-         six-split, the side-vertex surface. Second row: reflection lines (V §8.4): parallel light lines far \
+         two-split, the six-split, the side-vertex surface. Second row: reflection lines (V §8.4): parallel light lines far \
          away, reflected by the surface normals; they run continuously across a G¹ surface and \
          break at every edge of the flat mesh, and at the split surfaces' unresolved edges. (9.4) \
          alone gave the 'wild oscillation' of V Fig. 9.5 here: near-mirror-image triangles make \
@@ -680,6 +700,26 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
     s.fig(
         "three-split: construction time",
         format!("{:.1} ms", t_split * 1e3),
+    );
+    let t0 = std::time::Instant::now();
+    let split2 = two_split(&m, &n, &SplitOptions { fold_guard: true })?;
+    let t_split2 = t0.elapsed().as_secs_f64();
+    let c2 = continuity(&split2.surface, 20);
+    let tess2 = tessellate(&split2.surface, 6)?;
+    s.fig(
+        "two-split: max normal jump (rad) / non-G¹ edges / fold edges",
+        jump_row(&c2),
+    );
+    s.fig(
+        "two-split: pairs (rejected), unresolved edges, max deviation, construction time",
+        format!(
+            "{} ({}), {}, {:.3}, {:.1} ms",
+            split2.pairs.len(),
+            split2.rejected.len(),
+            split2.surface.unresolved_edges.len(),
+            max_deviation(&split2.surface, &m, 8),
+            t_split2 * 1e3
+        ),
     );
     let t0 = std::time::Instant::now();
     let split6 = six_split(&m, &n)?;
@@ -720,6 +760,7 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
     );
     for (t, name) in [
         (&tess3, "smooth_spot_split3.ply"),
+        (&tess2, "smooth_spot_split2.ply"),
         (&tess6, "smooth_spot_split6.ply"),
         (&tess_sv, "smooth_spot_side_vertex.ply"),
     ] {
@@ -746,24 +787,26 @@ fn surface_demo(ctx: &super::demo::Ctx, path: &Path) -> morpho::Result<morpho::i
     let shaded = [
         render_mesh(&m, &flat),
         render_mesh(&tess3, &base),
+        render_mesh(&tess2, &base),
         render_mesh(&tess6, &base),
         render_mesh(&tess_sv, &base),
     ];
     let striped = [
         render_mesh(&m, &lines(&flat)),
         render_mesh(&tess3, &lines(&base)),
+        render_mesh(&tess2, &lines(&base)),
         render_mesh(&tess6, &lines(&base)),
         render_mesh(&tess_sv, &lines(&base)),
     ];
     super::reduce::hstack(&shaded).save_png(&ctx.path("smooth_spot.png"))?;
     s.img(
         "smooth_spot.png",
-        "input (flat) · three-split · six-split · side-vertex",
+        "input (flat) · three-split · two-split · six-split · side-vertex",
     );
     super::reduce::hstack(&striped).save_png(&ctx.path("smooth_spot_reflection.png"))?;
     s.img(
         "smooth_spot_reflection.png",
-        "reflection lines: input (facet normals) · three-split · six-split · side-vertex",
+        "reflection lines: input (facet normals) · three-split · two-split · six-split · side-vertex",
     );
     Ok(s)
 }

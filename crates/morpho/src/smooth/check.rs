@@ -94,7 +94,9 @@ pub fn continuity(s: &SplitSurface, samples: usize) -> Continuity {
 /// at the same parameter: for the three-split, micro patch `3t+i` (corners `V_i, V_{i+1}, Z`
 /// of macro triangle t) at barycentric `(a, b, c)` against `a V_i + b V_{i+1} + c·centroid`;
 /// for the six-split (`6·T` patches), patch `6t+2i` against the flat `(V_i, M_i, Z)` and
-/// `6t+2i+1` against `(M_i, V_{i+1}, Z)`, `M_i` the edge midpoint; on the grid with
+/// `6t+2i+1` against `(M_i, V_{i+1}, Z)`, `M_i` the edge midpoint; where the surface gives
+/// each patch's corners in its macro triangle ([`SplitSurface::domain`], the two-split),
+/// against the flat triangle of those corners; on the grid with
 /// `samples` (≥ 1) steps per micro edge. An upper bound of the distance from the surface to
 /// the input mesh. O(patches · samples²).
 pub fn max_deviation(s: &SplitSurface, mesh: &crate::mesh::TriMesh, samples: usize) -> f64 {
@@ -107,16 +109,28 @@ pub fn max_deviation(s: &SplitSurface, mesh: &crate::mesh::TriMesh, samples: usi
         };
         let v = t.map(|i| -> [f64; 3] { mesh.positions[i as usize].into() });
         let z = vec::scale(vec::add(vec::add(v[0], v[1]), v[2]), 1.0 / 3.0);
-        let (a, b) = if six {
+        let at = |w: [f64; 3]| {
+            vec::add(
+                vec::add(vec::scale(v[0], w[0]), vec::scale(v[1], w[1])),
+                vec::scale(v[2], w[2]),
+            )
+        };
+        let (a, b, z) = if let Some(d) = s
+            .domain
+            .get(k)
+            .filter(|_| s.domain.len() == s.patches.len())
+        {
+            (at(d[0]), at(d[1]), at(d[2]))
+        } else if six {
             let i = (k % 6) / 2;
             let m = vec::midpoint(v[i], v[(i + 1) % 3]);
             if k % 2 == 0 {
-                (v[i], m)
+                (v[i], m, z)
             } else {
-                (m, v[(i + 1) % 3])
+                (m, v[(i + 1) % 3], z)
             }
         } else {
-            (v[k % 3], v[(k + 1) % 3])
+            (v[k % 3], v[(k + 1) % 3], z)
         };
         let tri = patch.triangle();
         for i in 0..=n {

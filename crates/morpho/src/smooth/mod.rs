@@ -20,8 +20,12 @@
 //! boundary, a prescribed piecewise-linear normal field along every macro edge (linear along
 //! the whole edge where the edge is not inflected, after Peters 1990), each side's cross
 //! derivative solved independently against it, and the Powell–Sabin C¹ interior; see its
-//! file. Not yet built (issue 19): the two-split (V §9.7). The CLI is `morpho smooth` (curve,
-//! three-split, six-split, side-vertex).
+//! file. The two-split (V §9.7, [`two_split`], experimental as NOTES B.6 recommends) pairs
+//! macro triangles across an edge where that avoids thin three-split micro triangles, builds
+//! each pair C¹ over its unfolded domain and meets its three-split neighbours on a prescribed
+//! linear normal field per outer edge (the text's Farin ratio construction is not given);
+//! see its file. The CLI is `morpho smooth` (curve, three-split, two-split, six-split,
+//! side-vertex).
 
 mod bezier;
 mod check;
@@ -31,6 +35,7 @@ mod error;
 mod normals;
 mod side_vertex;
 mod singular;
+mod split2;
 mod split3;
 mod split6;
 mod tessellate;
@@ -46,6 +51,7 @@ pub use curve::{
 pub use error::SmoothError;
 pub use normals::{visible_normals, AdjustedNormals};
 pub use side_vertex::{side_vertex, SideVertexOptions, SideVertexSurface};
+pub use split2::{two_split, Rejections, TwoSplit};
 pub use split3::{three_split, three_split_with, MicroPatch, SplitOptions, SplitSurface};
 pub use split6::six_split;
 pub use tessellate::tessellate;

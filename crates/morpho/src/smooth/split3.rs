@@ -113,6 +113,10 @@ pub struct SplitSurface {
     /// Max over edges of `|L1 − L1_step4| / |edge|` (and the same for `R1`), with Step 4 on the
     /// final boundaries; at most `MAX_MOVE` = 3 by construction (module doc).
     pub max_displacement: f64,
+    /// Barycentric coordinates, in its macro triangle, of each micro patch's three corners,
+    /// where the layout is not fixed by the scheme (the two-split, [`super::two_split`]);
+    /// empty for the three- and six-split (their fixed layouts, see [`super::max_deviation`]).
+    pub domain: Vec<[[f64; 3]; 3]>,
 }
 
 /// Checks that `mesh` is a closed, consistently oriented 2-manifold without zero-area
