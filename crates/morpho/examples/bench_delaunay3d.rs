@@ -8,6 +8,10 @@
 //! Prints points/second and the peak resident memory (VmHWM) per point. `--write` stores the
 //! points as little-endian f64 triples, `--tets` the tetrahedra (input indices, little-endian u32
 //! quadruples) for `bench/delaunay3d_qhull.py` (scipy/Qhull timing and tetrahedron-set check).
+//! `--engine auto|seq|split`: the facade's choice (default; the split-and-merge path with more
+//! than one rayon thread on large inputs), the one-thread engine, or the split path forced
+//! (its counters are printed). Thread count from `RAYON_NUM_THREADS`; the load average is
+//! printed with every run (`bench/delaunay3d_threads.sh` takes turns 1 vs 2 threads).
 
 use morpho::delaunay::triangulate_3d;
 use morpho::geom::Point3;
@@ -41,6 +45,7 @@ fn main() {
     let mut grid = 0usize;
     let mut check = false;
     let mut sphere = false;
+    let mut engine = String::from("auto");
     let mut i = 0;
     while i < args.len() {
         match args[i].as_str() {
@@ -54,6 +59,10 @@ fn main() {
             }
             "--check" => check = true,
             "--sphere" => sphere = true,
+            "--engine" => {
+                i += 1;
+                engine = args[i].clone();
+            }
             "--tets" => {
                 i += 1;
                 tets = Some(args[i].clone());
@@ -116,7 +125,18 @@ fn main() {
     ps::reset();
     let c0 = cpu_secs();
     let t = Instant::now();
-    let d = triangulate_3d(&pts).expect("triangulate");
+    let mut split_stats = None;
+    let d = match engine.as_str() {
+        "auto" => triangulate_3d(&pts).expect("triangulate"),
+        "seq" => morpho::internals::delaunay::triangulate_3d_sequential(&pts).expect("triangulate"),
+        "split" => {
+            let (d, st) =
+                morpho::internals::delaunay::triangulate_3d_split_stats(&pts).expect("triangulate");
+            split_stats = Some(st);
+            d
+        }
+        e => panic!("unknown engine {e} (auto, seq, split)"),
+    };
     let secs = t.elapsed().as_secs_f64();
     let cpu = cpu_secs() - c0;
     let hwm = vm_hwm_kib().unwrap_or(0);
@@ -127,6 +147,18 @@ fn main() {
         n as f64 / secs,
         n as f64 / cpu.max(0.01)
     );
+    let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
+    println!(
+        "engine {engine}  threads {}  load {}",
+        rayon::current_num_threads(),
+        load.split_whitespace()
+            .take(3)
+            .collect::<Vec<_>>()
+            .join(" ")
+    );
+    if let Some(st) = split_stats {
+        println!("split: {st:?}");
+    }
     let k = ps::snapshot();
     let calls: u64 = k[7..10].iter().sum();
     if calls > 0 {

@@ -54,7 +54,13 @@ pub mod internals {
     /// Delaunay engine pieces: the symbolically perturbed predicates, the insertion-order test.
     pub mod delaunay {
         pub use crate::delaunay::d2::{incircle_sos, lex_cmp, triangulate_with_insertion_seed};
+        /// The 3D engines: the sequential one, and the split-and-merge one with its counters.
+        pub use crate::delaunay::d3::triangulate as triangulate_3d_sequential;
         pub use crate::delaunay::dd::perturbed_insphere;
+        pub use crate::delaunay::par3::{
+            predicted_seam_share, triangulate_split as triangulate_3d_split,
+            triangulate_split_stats as triangulate_3d_split_stats, SplitStats, PAR_MIN,
+        };
     }
     /// Graph engine pieces: the brute-force oracles and the γ-interval of one simplex.
     pub mod graphs {

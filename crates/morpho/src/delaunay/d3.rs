@@ -471,7 +471,7 @@ pub(crate) fn dedup_sorted<const D: usize>(coords: &[[f64; D]]) -> Result<Dedup<
         pts.push(q);
     }
     let mut idx: Vec<u32> = (0..pts.len() as u32).collect();
-    idx.sort_unstable_by(|&a, &b| {
+    let cmp = |&a: &u32, &b: &u32| {
         let (pa, pb) = (&pts[a as usize], &pts[b as usize]);
         for k in 0..D {
             match pa[k].partial_cmp(&pb[k]) {
@@ -480,7 +480,14 @@ pub(crate) fn dedup_sorted<const D: usize>(coords: &[[f64; D]]) -> Result<Dedup<
             }
         }
         a.cmp(&b)
-    });
+    };
+    // a total order (ties by index): the parallel sort gives the same permutation
+    if idx.len() >= 1 << 15 {
+        use rayon::slice::ParallelSliceMut;
+        idx.par_sort_unstable_by(cmp);
+    } else {
+        idx.sort_unstable_by(cmp);
+    }
     let mut uniq: Vec<[f64; D]> = Vec::new();
     let mut vertex_of_input = vec![0u32; pts.len()];
     let mut input_of_vertex = Vec::new();
@@ -495,8 +502,9 @@ pub(crate) fn dedup_sorted<const D: usize>(coords: &[[f64; D]]) -> Result<Dedup<
     Ok((uniq, vertex_of_input, input_of_vertex))
 }
 
-/// Computes the Delaunay tetrahedralization of `points` (facade name
-/// [`triangulate_3d`](crate::delaunay::triangulate_3d)).
+/// Computes the Delaunay tetrahedralization of `points` on one thread (the facade's
+/// [`triangulate_3d`](crate::delaunay::triangulate_3d) calls it, or the parallel split of
+/// `par3.rs` for large inputs when there are several threads: same tetrahedron set).
 ///
 /// Positively oriented tetrahedra whose circumspheres contain no vertex, with neighbours and the
 /// outward hull triangles. Duplicates are merged; co-spherical ties are broken by symbolic
@@ -529,22 +537,79 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     let (pts, vertex_of_input, input_of_vertex) = dedup_sorted(&coords)?;
     drop(coords);
     let duplicates = points.len() - pts.len();
-    let order = brio_order(&pts);
-    let mk = |pts: &[[f64; 3]], degenerate: Option<String>| Delaunay3 {
-        points: pts.iter().map(|p| Point3::new(p[0], p[1], p[2])).collect(),
-        vertex_of_input: vertex_of_input.clone(),
-        input_of_vertex: input_of_vertex.clone(),
-        tets: Vec::new(),
-        neighbors: Vec::new(),
-        hull: Vec::new(),
+    let core = build_sorted(&pts)?;
+    Ok(Delaunay3::from_core(
+        &pts,
+        vertex_of_input,
+        input_of_vertex,
         duplicates,
-        degenerate,
-        vertex_tet: vec![NONE; pts.len()],
-    };
+        core,
+    ))
+}
+
+/// The engine's result on distinct, lexicographically sorted points (vertex = index): positive
+/// tetrahedra in the engine's order, their neighbours ([`NONE`] on the hull), the outward hull
+/// triangles, or why there are no tetrahedra. Used by [`triangulate`] and by the parallel
+/// merge in `par3`, which runs it on halves and on the seam set.
+pub(crate) struct Core {
+    pub tets: Vec<[u32; 4]>,
+    pub neighbors: Vec<[u32; 4]>,
+    pub hull: Vec<[u32; 3]>,
+    pub degenerate: Option<String>,
+}
+
+impl Core {
+    fn degenerate(why: &str) -> Core {
+        Core {
+            tets: Vec::new(),
+            neighbors: Vec::new(),
+            hull: Vec::new(),
+            degenerate: Some(why.into()),
+        }
+    }
+}
+
+impl Delaunay3 {
+    /// The result type from the engine's [`Core`] on the sorted distinct points `pts`.
+    pub(crate) fn from_core(
+        pts: &[[f64; 3]],
+        vertex_of_input: Vec<u32>,
+        input_of_vertex: Vec<u32>,
+        duplicates: usize,
+        core: Core,
+    ) -> Delaunay3 {
+        let mut vertex_tet = vec![NONE; pts.len()];
+        for (t, v) in core.tets.iter().enumerate() {
+            for &x in v {
+                vertex_tet[x as usize] = t as u32;
+            }
+        }
+        Delaunay3 {
+            points: pts.iter().map(|p| Point3::new(p[0], p[1], p[2])).collect(),
+            vertex_of_input,
+            input_of_vertex,
+            tets: core.tets,
+            neighbors: core.neighbors,
+            hull: core.hull,
+            duplicates,
+            degenerate: core.degenerate,
+            vertex_tet,
+        }
+    }
+}
+
+/// Bowyer–Watson on distinct, lexicographically sorted points: the canonical index of a vertex
+/// is its index in `pts` (only the relative order of the indices matters to the perturbation,
+/// so a subsequence of a sorted set is triangulated as a subset of the whole).
+pub(crate) fn build_sorted(pts: &[[f64; 3]]) -> Result<Core> {
+    if pts.is_empty() {
+        return Ok(Core::degenerate("no points"));
+    }
+    let order = brio_order(pts);
     // initial simplex
     let a = order[0];
     if pts.len() == 1 {
-        return Ok(mk(&pts, Some("a single distinct point".into())));
+        return Ok(Core::degenerate("a single distinct point"));
     }
     let b = order[1];
     let (pa, pb) = (pts[a as usize], pts[b as usize]);
@@ -554,7 +619,7 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
             && orient2d_exact([pa[0], pa[2]], [pb[0], pb[2]], [c[0], c[2]]) == 0.0
     };
     let Some(ci) = order.iter().position(|&c| !collinear(&pts[c as usize])) else {
-        return Ok(mk(&pts, Some("all points collinear".into())));
+        return Ok(Core::degenerate("all points collinear"));
     };
     let c = order[ci];
     let pc = pts[c as usize];
@@ -562,7 +627,7 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
         .iter()
         .position(|&d| orient3d_exact(pa, pb, pc, pts[d as usize]) != 0.0)
     else {
-        return Ok(mk(&pts, Some("all points coplanar".into())));
+        return Ok(Core::degenerate("all points coplanar"));
     };
     let d = order[di];
     let mut first = if orient3d_exact(pa, pb, pc, pts[d as usize]) > 0.0 {
@@ -664,16 +729,12 @@ pub fn triangulate(points: &[Point3]) -> Result<Delaunay3> {
     tv.shrink_to_fit();
     tn.shrink_to_fit();
     drop(map);
-    let mut out = mk(&pts, None);
-    for (t, v) in tv.iter().enumerate() {
-        for &x in v {
-            out.vertex_tet[x as usize] = t as u32;
-        }
-    }
-    out.tets = tv;
-    out.neighbors = tn;
-    out.hull = hull;
-    Ok(out)
+    Ok(Core {
+        tets: tv,
+        neighbors: tn,
+        hull,
+        degenerate: None,
+    })
 }
 
 /// Links the faces of a handful of tetrahedra by brute force (initial simplex).

@@ -17,6 +17,11 @@
 //! [`Delaunay3::hull`] (outward triangles), [`DelaunayD::hull`] (facets), [`Cdt2::hull`]; the
 //! hull as a graph is [`crate::graphs::Kind::Hull`].
 //!
+//! [`triangulate_3d`] uses both cores on large inputs: with more than one rayon thread and at
+//! least `par3::PAR_MIN` points it splits the sorted points in two, triangulates the halves in
+//! parallel and merges them with an exact certificate (`par3.rs`); the tetrahedron set is the
+//! same, their order differs from the one-thread order (each order is deterministic).
+//!
 //! All decisions use exact predicates (symbolic perturbation breaks co-circular and
 //! co-spherical ties), so the result is a function of the point *set*: independent of the input
 //! order and of the absolute scale. Every function refuses bad input with a
@@ -39,13 +44,15 @@ pub(crate) mod d2;
 pub(crate) mod d3;
 pub(crate) mod dd;
 mod error;
+pub(crate) mod par3;
 pub(crate) mod voronoi;
 
 pub use cdt::{
     triangulate_constrained_2d, triangulate_polygon_interior as triangulate_polygon_2d, Cdt2,
 };
 pub use d2::{triangulate as triangulate_2d, Delaunay2, Location, TrianglesAround};
-pub use d3::{triangulate as triangulate_3d, Delaunay3, Face3, FACE_OF};
+pub use d3::{Delaunay3, Face3, FACE_OF};
 pub use dd::{triangulate_d as triangulate_nd, DelaunayD, MAX_DIM};
 pub use error::DelaunayError;
+pub use par3::triangulate_auto as triangulate_3d;
 pub use voronoi::{voronoi as voronoi_2d, Voronoi2, VoronoiCell, VoronoiEdge};
