@@ -17,6 +17,10 @@
 //! [`Delaunay3::hull`] (outward triangles), [`DelaunayD::hull`] (facets), [`Cdt2::hull`]; the
 //! hull as a graph is [`crate::graphs::Kind::Hull`].
 //!
+//! [`triangulate_2d`] uses two threads for large inputs when rayon has more than one
+//! (`par2`: the halves in parallel, the seam re-triangulated exactly): the same triangles as a
+//! set, in an order that is the same for every thread count > 1 but not the one-thread order.
+//!
 //! All decisions use exact predicates (symbolic perturbation breaks co-circular and
 //! co-spherical ties), so the result is a function of the point *set*: independent of the input
 //! order and of the absolute scale. Every function refuses bad input with a
@@ -39,6 +43,7 @@ pub(crate) mod d2;
 pub(crate) mod d3;
 pub(crate) mod dd;
 mod error;
+pub(crate) mod par2;
 pub(crate) mod voronoi;
 
 pub use cdt::{
