@@ -53,7 +53,9 @@ pub mod internals {
     // --- delaunay, graphs (f-tri) ---
     /// Delaunay engine pieces: the symbolically perturbed predicates, the insertion-order test.
     pub mod delaunay {
-        pub use crate::delaunay::d2::{incircle_sos, lex_cmp, triangulate_with_insertion_seed};
+        pub use crate::delaunay::d2::{
+            incircle_sos, lex_cmp, triangulate_split, triangulate_with_insertion_seed, Split,
+        };
         /// The 3D engines: the sequential one, and the split-and-merge one with its counters.
         pub use crate::delaunay::d3::triangulate as triangulate_3d_sequential;
         pub use crate::delaunay::dd::perturbed_insphere;

@@ -80,7 +80,7 @@ use crate::util::{Rng, Rng32};
 type Result<T, E = DelaunayError> = std::result::Result<T, E>;
 
 /// The infinite vertex of ghost triangles (construction only).
-const INF: u32 = u32::MAX;
+pub(super) const INF: u32 = u32::MAX;
 
 /// A 2D Delaunay triangulation (see the module documentation).
 #[derive(Debug, Clone)]
@@ -176,7 +176,10 @@ pub fn lex_cmp(p: [f64; 2], q: [f64; 2]) -> std::cmp::Ordering {
 /// only (not on the input order); all-collinear input gives no triangles and
 /// [`Delaunay2::collinear`]. Lawson flips in a biased randomized Hilbert order with exact
 /// predicates at any scale: expected O(n log n) time, O(n²) worst case; about 100 bytes per
-/// point while building.
+/// point while building. One thread: the two-thread split of `delaunay/par2.rs` (the halves in
+/// parallel, the seam re-triangulated exactly) is reached through [`triangulate_split`]; it
+/// gave only 1.10–1.16× on two idle cores for 1.5× the CPU and 1.3× the memory (bench/README,
+/// 2D Delaunay), so it is not the default.
 ///
 /// Errors: no points ([`DelaunayError::NoPoints`]), a NaN or infinite coordinate
 /// ([`DelaunayError::NonFinite`]), a non-zero coordinate below 2⁻¹⁸⁰ times the largest
@@ -191,7 +194,30 @@ pub fn lex_cmp(p: [f64; 2], q: [f64; 2]) -> std::cmp::Ordering {
 /// assert_eq!(d.hull.len(), 4);
 /// ```
 pub fn triangulate(points: &[Point2]) -> Result<Delaunay2> {
-    build(points, None)
+    build(points, None, Split::Never)
+}
+
+/// Whether [`triangulate`] uses the two-thread split path of `delaunay/par2.rs`.
+#[doc(hidden)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Split {
+    /// The split path when rayon has more than one thread, there are at least
+    /// `par2::MIN_SPLIT` (50 000) distinct points and a sample predicts a narrow seam (not on
+    /// points along curves).
+    Auto,
+    /// The split path whenever both halves have a triangle, even where a sample predicts a
+    /// wide seam (tests, benches).
+    Always,
+    /// The sequential engine only: what [`triangulate`] does.
+    Never,
+}
+
+/// As [`triangulate`], with the choice of the sequential or the split (parallel) path made
+/// explicit. Both give the same triangles as a set; the split path's triangle order is the same
+/// for every thread count, and differs from the sequential one (see `delaunay/par2.rs`).
+#[doc(hidden)]
+pub fn triangulate_split(points: &[Point2], split: Split) -> Result<Delaunay2> {
+    build(points, None, split)
 }
 
 /// As [`triangulate`], but inserts the vertices in a pseudo-random order drawn from `seed`
@@ -199,13 +225,17 @@ pub fn triangulate(points: &[Point2]) -> Result<Delaunay2> {
 /// depend on the insertion order.
 #[doc(hidden)]
 pub fn triangulate_with_insertion_seed(points: &[Point2], seed: u64) -> Result<Delaunay2> {
-    build(points, Some(seed))
+    build(points, Some(seed), Split::Never)
 }
 
 /// Exact predicates on the construction's vertex coordinates.
-trait Kernel {
+pub(super) trait Kernel: Send + Sync + Sized {
     type P: Copy;
     fn p(&self, v: u32) -> Self::P;
+    /// The exact coordinates of vertex `v` as `f64` (scaled; integers for [`IntKernel`]).
+    fn xy(&self, v: u32) -> [f64; 2];
+    /// The kernel of the vertices `ids` (vertex `i` of the result is `ids[i]` of `self`).
+    fn subset(&self, ids: &[u32]) -> Self;
     /// Sign of orient2d (+1 counter-clockwise).
     fn orient(a: Self::P, b: Self::P, c: Self::P) -> i32;
     /// Squared distance, rounded (only to choose where a walk starts).
@@ -215,13 +245,20 @@ trait Kernel {
 }
 
 /// Floating-point coordinates, Shewchuk's adaptive predicates.
-struct FloatKernel(Vec<[f64; 2]>);
+pub(super) struct FloatKernel(pub(super) Vec<[f64; 2]>);
 
 impl Kernel for FloatKernel {
     type P = [f64; 2];
     #[inline]
     fn p(&self, v: u32) -> [f64; 2] {
         self.0[v as usize]
+    }
+    #[inline]
+    fn xy(&self, v: u32) -> [f64; 2] {
+        self.0[v as usize]
+    }
+    fn subset(&self, ids: &[u32]) -> Self {
+        FloatKernel(ids.iter().map(|&v| self.0[v as usize]).collect())
     }
     #[inline]
     fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i32 {
@@ -252,6 +289,14 @@ impl Kernel for IntKernel {
     #[inline]
     fn p(&self, v: u32) -> [i64; 2] {
         self.0[v as usize]
+    }
+    #[inline]
+    fn xy(&self, v: u32) -> [f64; 2] {
+        // |x| < 2^28: exact
+        self.0[v as usize].map(|x| x as f64)
+    }
+    fn subset(&self, ids: &[u32]) -> Self {
+        IntKernel(ids.iter().map(|&v| self.0[v as usize]).collect())
     }
     #[inline]
     fn orient(a: [i64; 2], b: [i64; 2], c: [i64; 2]) -> i32 {
@@ -554,7 +599,7 @@ impl<K: Kernel> Builder<K> {
     }
 }
 
-fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
+fn build(points: &[Point2], order_seed: Option<u64>, split: Split) -> Result<Delaunay2> {
     if points.is_empty() {
         return Err(DelaunayError::NoPoints { dim: 2 });
     }
@@ -595,12 +640,18 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
         let t = ((0.5 * v - 0.5 * lo[k]) / ext).clamp(0.0, 1.0);
         (t * ((1u32 << HILBERT2_BITS) - 1) as f64) as u32
     };
-    let mut keys: Vec<u64> = points
-        .iter()
-        .enumerate()
-        .map(|(i, p)| ((hilbert2(cell(0, p.x), cell(1, p.y)) as u64) << 32) | i as u64)
-        .collect();
-    keys.sort_unstable();
+    let key =
+        |(i, p): (usize, &Point2)| ((hilbert2(cell(0, p.x), cell(1, p.y)) as u64) << 32) | i as u64;
+    let mut keys: Vec<u64>;
+    if split_wanted(split, n_in, order_seed) {
+        // the keys are distinct (they hold the input index): the same order on any schedule
+        use rayon::prelude::*;
+        keys = points.par_iter().enumerate().map(key).collect();
+        keys.par_sort_unstable();
+    } else {
+        keys = points.iter().enumerate().map(key).collect();
+        keys.sort_unstable();
+    }
     // Canonical order: Hilbert key, then coordinates, then input index.
     let norm = |i: usize| [points[i].x + 0.0, points[i].y + 0.0];
     let mut s = 0;
@@ -680,7 +731,7 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
             .map(|p| [(p[0] * int_scale) as i64, (p[1] * int_scale) as i64])
             .collect();
         drop(c);
-        run_insertion(IntKernel(ci), n, k0, order_seed)?
+        run_kernel(IntKernel(ci), n, k0, order_seed, split)?
     } else {
         // Shewchuk's expansions stay above the underflow threshold when no non-zero scaled
         // coordinate is below 2^-180 (the largest is ≈ 1).
@@ -692,7 +743,7 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
             let p = points_out[v];
             return Err(DelaunayError::CoordinateTooSmall { point: [p.x, p.y] });
         }
-        run_insertion(FloatKernel(c), n, k0, order_seed)?
+        run_kernel(FloatKernel(c), n, k0, order_seed, split)?
     };
     Ok(finish(
         tv,
@@ -702,6 +753,42 @@ fn build(points: &[Point2], order_seed: Option<u64>) -> Result<Delaunay2> {
         duplicates,
         scale,
     ))
+}
+
+/// The sequential insertion, or the split path of [`super::par2`] when `split` asks for it
+/// (it falls back to the sequential insertion where it does not apply, e.g. a collinear half).
+fn run_kernel<K: Kernel>(
+    k: K,
+    n: usize,
+    k0: usize,
+    order_seed: Option<u64>,
+    split: Split,
+) -> Result<Arrays> {
+    if split_wanted(split, n, order_seed) {
+        if let Some(a) = super::par2::insert_split(&k, n, split == Split::Auto)? {
+            return Ok(a);
+        }
+    }
+    run_insertion(k, n, k0, order_seed)
+}
+
+/// Does `split` ask for the split path for `n` points?
+fn split_wanted(split: Split, n: usize, order_seed: Option<u64>) -> bool {
+    order_seed.is_none()
+        && match split {
+            Split::Never => false,
+            Split::Always => true,
+            Split::Auto => rayon::current_num_threads() > 1 && n >= super::par2::MIN_SPLIT,
+        }
+}
+
+/// The first vertex `k ≥ 2` not collinear with vertices 0 and 1 (the initial triangle), if any.
+pub(super) fn first_noncollinear<K: Kernel>(k: &K, n: usize) -> Option<usize> {
+    if n < 3 {
+        return None;
+    }
+    let (a, b) = (k.p(0), k.p(1));
+    (2..n).find(|&i| K::orient(a, b, k.p(i as u32)) != 0)
 }
 
 /// Biased randomized insertion order (Amenta, Choi & Rote 2003) over the Hilbert-sorted
@@ -739,11 +826,16 @@ fn brio_order(n: usize, k0: usize) -> Vec<u32> {
 }
 
 /// Triangle corners and twin half-edges (ghosts included).
-type Arrays = (Vec<[u32; 3]>, Vec<[u32; 3]>);
+pub(super) type Arrays = (Vec<[u32; 3]>, Vec<[u32; 3]>);
 
 /// Runs the insertion with kernel `k`, starting from the triangle (0, 1, k0); returns the
 /// corner and twin arrays (ghosts included).
-fn run_insertion<K: Kernel>(k: K, n: usize, k0: usize, order_seed: Option<u64>) -> Result<Arrays> {
+pub(super) fn run_insertion<K: Kernel>(
+    k: K,
+    n: usize,
+    k0: usize,
+    order_seed: Option<u64>,
+) -> Result<Arrays> {
     let mut bld = Builder {
         k,
         tv: Vec::with_capacity(2 * n + 4),

@@ -21,6 +21,9 @@
 //! least `par3::PAR_MIN` points it splits the sorted points in two, triangulates the halves in
 //! parallel and merges them with an exact certificate (`par3.rs`); the tetrahedron set is the
 //! same, their order differs from the one-thread order (each order is deterministic).
+//! [`triangulate_2d`] stays on one thread: its two-thread split (`par2.rs`, the same design)
+//! gave only 1.10–1.16× on two idle cores for 1.5× the CPU and is reached through
+//! `morpho::internals::delaunay::triangulate_split` (bench `examples/bench_delaunay2d_par.rs`).
 //!
 //! All decisions use exact predicates (symbolic perturbation breaks co-circular and
 //! co-spherical ties), so the result is a function of the point *set*: independent of the input
@@ -44,6 +47,7 @@ pub(crate) mod d2;
 pub(crate) mod d3;
 pub(crate) mod dd;
 mod error;
+pub(crate) mod par2;
 pub(crate) mod par3;
 pub(crate) mod voronoi;
 
