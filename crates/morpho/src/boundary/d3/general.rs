@@ -34,11 +34,17 @@
 //! vertices (as [`super::boundary_3d`] does) and pay for the boundary only once, in
 //! [`General3::new`]. That list of faces is kept up to date from the edges the mutations
 //! changed (`General3::sweep_faces`), not rebuilt from every live triangle at each sweep.
+//! The grid of [`General3::crossing`] leaves out the triangles lying in a supporting plane
+//! of the points ([`super::support`]; they never meet the open tetrahedron of a removal): the
+//! Θ(g³) empty triangles of each coplanar hull facet of g points, which on CAD models such as
+//! the fandisk are most of all triangles and, being long, met the box of every tetrahedron
+//! (issue 17 item 8: each removal examined T/4–T/2 of all triangles).
 //! Worst case O(T²) for T triangles.
 //!
 //! Preconditions: the initial surface is a closed genus-0 2-manifold enclosing every vertex and
 //! every given triangle (as produced by [`super::constrict`] or the convex hull).
 
+use super::support::Support;
 use super::trigrid::TriGrid;
 use crate::boundary::indicator::MinKey;
 use crate::geom::grid::BoxGrid;
@@ -160,8 +166,13 @@ pub struct General3<'a> {
     pub(super) bnext: IdMap<u64, u32>,
     pub(super) vcount: Vec<u32>,
     pub(super) keep: IdSet<[u32; 3]>,
-    /// Live triangles that were not boundary faces when added (for [`Self::crossing`]).
+    /// Live triangles that were not boundary faces when added (for [`Self::crossing`]), but
+    /// for those in a supporting plane of the points (`support`), which never cross.
     pub(super) tgrid: TriGrid,
+    /// The supporting planes proposed by the initial boundary ([`super::support`]).
+    pub(super) support: Support,
+    /// Triangles the grid of [`Self::crossing`] handed over (work counter for the tests).
+    pub(super) crossing_examined: usize,
     /// Triangles that have been boundary faces (for [`Self::hits_boundary`]; `bflag` tells
     /// which still are).
     pub(super) bgrid: TriGrid,
@@ -253,8 +264,25 @@ impl<'a> General3<'a> {
         tris: &[[u32; 3]],
         keep: &[[u32; 3]],
     ) -> Self {
+        Self::blank_with(p, boundary, tris, keep, true)
+    }
+
+    /// [`Self::blank`], with or without leaving the triangles of supporting planes out of the
+    /// crossing grid (`cull`).
+    pub(super) fn blank_with(
+        p: &'a [P],
+        boundary: &[[u32; 3]],
+        tris: &[[u32; 3]],
+        keep: &[[u32; 3]],
+        cull: bool,
+    ) -> Self {
         let (lo, hi) = bbox(p);
         let n = p.len().max(1);
+        let support = if cull {
+            Support::new(p, boundary)
+        } else {
+            Support::default()
+        };
         // cell: twice the median edge length of the triangles (points of a scanned surface
         // fill the bounding box far from evenly, so its volume per point is a poor scale)
         let mut lens: Vec<f64> = boundary
@@ -294,6 +322,8 @@ impl<'a> General3<'a> {
             vcount: vec![0; p.len()],
             keep: keep.iter().map(|&f| sorted3(f)).collect(),
             tgrid: TriGrid::new(lo, cell),
+            support,
+            crossing_examined: 0,
             bgrid: TriGrid::new(lo, cell),
             in_bgrid: Vec::new(),
             vgrid: Grid::new(lo, cell, false),
@@ -374,6 +404,11 @@ impl<'a> General3<'a> {
                 }
             }
         }
+        // (triangles in a supporting plane stay out of the crossing grid: they never cross)
+        let in_tgrid: Vec<bool> = (n_boundary_ids..n)
+            .into_par_iter()
+            .map(|i| !self.support.holds(p, self.tris[i]))
+            .collect();
         let (tl, tbox) = (&self.tris, &self.tbox);
         let (eadj, bnext, vcount, bv, vgrid, vcoarse, tgrid, bgrid) = (
             &mut self.eadj,
@@ -410,7 +445,9 @@ impl<'a> General3<'a> {
                         rayon::join(
                             || {
                                 tgrid.insert_many(
-                                    (n_boundary_ids..n).map(|i| (i as u32, tbox[i].0, tbox[i].1)),
+                                    (n_boundary_ids..n)
+                                        .filter(|&i| in_tgrid[i - n_boundary_ids])
+                                        .map(|i| (i as u32, tbox[i].0, tbox[i].1)),
                                 );
                             },
                             || {
@@ -521,7 +558,7 @@ impl<'a> General3<'a> {
             self.id.insert(s, i);
             let (lo, hi) = bbox(&s.map(|v| self.pt(v)));
             self.tbox.push((lo, hi));
-            if grid {
+            if grid && !self.support.holds(self.p, s) {
                 self.tgrid.insert(i, lo, hi);
             }
         }

@@ -16,6 +16,7 @@ pub(crate) mod general;
 mod insert;
 mod keep;
 mod removal;
+mod support;
 #[cfg(test)]
 mod test_sets;
 mod trigrid;

@@ -300,12 +300,16 @@ impl General3<'_> {
         })
     }
 
-    /// Live triangles meeting the open tetrahedron (conservative), other than its faces.
+    /// Live triangles meeting the open tetrahedron (conservative), other than its faces: those
+    /// of the crossing grid whose box meets the tetrahedron's and which
+    /// [`may_meet_open_tet`], in id order. (The grid leaves out the triangles in supporting
+    /// planes, for which that test is always false: [`super::support`].)
     pub(super) fn crossing(&mut self, qv: [u32; 4]) -> Vec<u32> {
         let q = qv.map(|v| self.pt(v));
         let bb = bbox(&q);
         let mut buf = std::mem::take(&mut self.buf);
         self.tgrid.query(bb.0, bb.1, &mut buf);
+        self.crossing_examined += buf.len();
         let mut out = Vec::new();
         for &i in &buf {
             if !self.live[i as usize] {
@@ -894,6 +898,217 @@ mod tests {
         }
         assert!(g.incremental_sweeps >= checks && checks > 400, "{checks}");
         assert!(listed > 20 * checks, "{listed}");
+    }
+
+    /// The crossing search that leaves the triangles of supporting planes out of its grid
+    /// (issue 17 item 8) returns exactly the crossings of the old search (every triangle of
+    /// the old grid tested) at every removal, and the constriction is the same — run in lockstep
+    /// from the hull with the candidates of coplanar hull facets (Θ(g³) long triangles) and the
+    /// local γ-triangles at c = −0.5, on fandisk-like lattice prisms and a cube with points on
+    /// its faces. And the work: the triangles the grid hands over per removal stay a small
+    /// fraction of all (the old search examined T/4–T/2 of them per removal on the fandisk).
+    #[test]
+    fn crossing_without_supporting_planes_is_the_old_crossing_and_local() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(17);
+        let mut cube = super::super::test_sets::cube(&mut rng, 260);
+        for p in cube.iter_mut().step_by(2) {
+            let k = rng.gen_range(0..3);
+            p[k] = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+        }
+        let sets = [
+            super::super::test_sets::l_prism(4),
+            super::super::test_sets::l_prism(5),
+            cube,
+        ];
+        let (mut removals, mut calls, mut examined) = (0usize, 0usize, (0usize, 0usize));
+        let mut never = 0usize;
+        for (k, pts) in sets.iter().enumerate() {
+            let d = crate::delaunay::d3::triangulate(pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let all = crate::graphs::fast::candidates_3d(&d).triangles;
+            let make = |cull: bool| {
+                let mut g = General3::blank_with(&pos, &d.hull, &all, &[], cull);
+                g.build(&d.hull, &all, &[]);
+                g.track = true;
+                g.push_all();
+                let extra = g.local_gamma(-0.5, 16);
+                g.augment(&extra);
+                g
+            };
+            let (mut old, mut new) = (make(false), make(true));
+            assert!(new.support.len() >= 6, "set {k}");
+            assert_eq!(old.heap.len(), new.heap.len());
+            let t_all = old.tris.len();
+            // `run`, in lockstep, comparing every crossing set
+            loop {
+                while !old.done() {
+                    let (Some(a), Some(b)) = (old.heap.pop(), new.heap.pop()) else {
+                        assert!(new.heap.is_empty(), "set {k}");
+                        break;
+                    };
+                    assert_eq!(a.item, b.item, "set {k}");
+                    if !old.is_bface(a.item.0) {
+                        continue;
+                    }
+                    let (ra, rb) = (old.check(a.item.0, a.item.1), new.check(b.item.0, b.item.1));
+                    assert_eq!(ra.is_some(), rb.is_some(), "set {k}");
+                    match (ra, rb) {
+                        (Some((_, bf, nf)), Some(_)) => {
+                            let f = a.item.0;
+                            let qv = [f[0], f[1], f[2], a.item.1];
+                            let (ca, cb) = (old.crossing(qv), new.crossing(qv));
+                            assert_eq!(ca, cb, "set {k}: crossings of {qv:?}");
+                            calls += 1;
+                            // the work: the new grid hands over exactly the old candidates
+                            // but those in supporting planes, never one of those
+                            let bb = bbox(&qv.map(|v| pos[v as usize]));
+                            let (mut ia, mut ib) = (Vec::new(), Vec::new());
+                            old.tgrid.query(bb.0, bb.1, &mut ia);
+                            new.tgrid.query(bb.0, bb.1, &mut ib);
+                            let held = |i: &u32| new.support.holds(&pos, new.tris[*i as usize]);
+                            assert!(!ib.iter().any(held), "set {k}: {qv:?}");
+                            let n_held = ia.iter().filter(|i| held(i)).count();
+                            ia.retain(|i| !held(i));
+                            assert_eq!(ia, ib, "set {k}: {qv:?}");
+                            never += n_held;
+                            old.remove(f, a.item.1, &bf, &nf);
+                            new.remove(f, a.item.1, &bf, &nf);
+                        }
+                        _ => {
+                            assert_eq!(old.push(a.item.0), new.push(b.item.0));
+                        }
+                    }
+                }
+                let (pa, pb) = (old.push_all(), new.push_all());
+                assert_eq!(pa, pb, "set {k}");
+                if old.done() || !pa {
+                    break;
+                }
+            }
+            assert_eq!(old.boundary(), new.boundary(), "set {k}");
+            assert_eq!(old.iterations, new.iterations, "set {k}");
+            let r = old.iterations.max(1);
+            let (per_old, per_new) = (
+                old.crossing_examined as f64 / r as f64,
+                new.crossing_examined as f64 / r as f64,
+            );
+            eprintln!(
+                "set {k}: {} points, {t_all} triangles, {} removals, examined per removal \
+                 old {per_old:.0}, new {per_new:.0}",
+                pos.len(),
+                old.iterations
+            );
+            // (two crossing searches per removal here: the compared one and `remove`'s; the
+            // old search examined about all T triangles in each on the lattice prisms)
+            assert!(per_new <= per_old, "set {k}: {per_new} > {per_old}");
+            removals += old.iterations;
+            examined.0 += old.crossing_examined;
+            examined.1 += new.crossing_examined;
+        }
+        assert!(removals > 100 && calls == removals, "{removals} {calls}");
+        // the old search spent a good part of its work on triangles that never cross
+        eprintln!("examined {examined:?}, never crossing {never}");
+        assert!(
+            examined.0 > examined.1 && 5 * never > examined.0 / 2,
+            "{examined:?} {never}"
+        );
+    }
+
+    /// Diagnostics (ignored): the crossing search's work on a point file
+    /// (`MORPHO_DIAG_XYZ`, x y z per line) constricted from the hull at c = −0.5.
+    #[test]
+    #[ignore]
+    fn diag_crossing_work() {
+        let Ok(path) = std::env::var("MORPHO_DIAG_XYZ") else {
+            return;
+        };
+        let text = std::fs::read_to_string(path).unwrap();
+        let pts: Vec<crate::geom::Point3> = text
+            .lines()
+            .filter_map(|l| {
+                let v: Vec<f64> = l
+                    .split_whitespace()
+                    .filter_map(|x| x.parse().ok())
+                    .collect();
+                (v.len() >= 3).then(|| crate::geom::Point3::new(v[0], v[1], v[2]))
+            })
+            .collect();
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let all = crate::graphs::fast::candidates_3d(&d).triangles;
+        let mut g = General3::new(&pos, &d.hull, &all, &[]);
+        let held = all
+            .iter()
+            .filter(|t| g.support.holds(&pos, sorted3(**t)))
+            .count();
+        let mut lens: Vec<f64> = all
+            .iter()
+            .filter(|t| !g.support.holds(&pos, sorted3(**t)))
+            .map(|t| {
+                (0..3)
+                    .map(|k| {
+                        crate::geom::vec::dist(pos[t[k] as usize], pos[t[(k + 1) % 3] as usize])
+                    })
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        lens.sort_by(f64::total_cmp);
+        let q = |f: f64| {
+            lens.get((f * lens.len() as f64) as usize)
+                .copied()
+                .unwrap_or(0.0)
+        };
+        eprintln!(
+            "points {} triangles {} planes {} held {held}; rest longest edge q10 {:.3} q50 {:.3} q90 {:.3} q99 {:.3}; cells t {:.3} b {:.3}",
+            pos.len(),
+            all.len(),
+            g.support.len(),
+            q(0.1),
+            q(0.5),
+            q(0.9),
+            q(0.99),
+            g.tgrid.cell(),
+            g.bgrid.cell()
+        );
+        let extra = g.local_gamma(-0.5, 16);
+        let added = g.augment(&extra);
+        eprintln!("local gamma {} added {added}", extra.len());
+        let (mut last_i, mut last_e) = (0, 0);
+        loop {
+            while !g.done() {
+                let Some(en) = g.heap.pop() else { break };
+                if !g.is_bface(en.item.0) {
+                    continue;
+                }
+                match g.check(en.item.0, en.item.1) {
+                    Some((_, bf, nf)) => {
+                        let f = en.item.0;
+                        g.remove(f, en.item.1, &bf, &nf);
+                        if g.iterations % 500 == 0 {
+                            eprintln!(
+                                "removals {} examined per removal {:.0}",
+                                g.iterations,
+                                (g.crossing_examined - last_e) as f64
+                                    / (g.iterations - last_i) as f64
+                            );
+                            (last_i, last_e) = (g.iterations, g.crossing_examined);
+                        }
+                    }
+                    None => {
+                        g.push(en.item.0);
+                    }
+                }
+            }
+            if g.done() || !g.push_all() {
+                break;
+            }
+        }
+        eprintln!(
+            "removals {} examined {} done {}",
+            g.iterations,
+            g.crossing_examined,
+            g.done()
+        );
     }
 
     #[test]

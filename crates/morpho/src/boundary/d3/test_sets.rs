@@ -62,3 +62,35 @@ pub(super) fn live_faces(d: &Delaunay3, alive: &[bool]) -> Vec<[u32; 3]> {
     live.dedup();
     live
 }
+
+/// The integer points on the surface of the L-shaped prism
+/// ([0, 2k] × [0, k] ∪ [0, k] × [0, 2k]) × [0, k]: a fandisk-like sample, large coplanar
+/// facets on a regular lattice (a point is on the surface when one of the eight half-step
+/// diagonal offsets around it is outside the prism).
+pub(super) fn l_prism(k: i64) -> Vec<Point3> {
+    let inside = |x: f64, y: f64, z: f64| {
+        let kf = k as f64;
+        (0.0..=kf).contains(&z)
+            && ((0.0..=2.0 * kf).contains(&x) && (0.0..=kf).contains(&y)
+                || (0.0..=kf).contains(&x) && (0.0..=2.0 * kf).contains(&y))
+    };
+    let mut out = Vec::new();
+    for i in 0..=2 * k {
+        for j in 0..=2 * k {
+            for l in 0..=k {
+                let (x, y, z) = (i as f64, j as f64, l as f64);
+                if !inside(x, y, z) {
+                    continue;
+                }
+                let surface = (0..8).any(|m| {
+                    let o = |b: i32| if m >> b & 1 == 1 { 0.5 } else { -0.5 };
+                    !inside(x + o(0), y + o(1), z + o(2))
+                });
+                if surface {
+                    out.push(Point3::new(x, y, z));
+                }
+            }
+        }
+    }
+    out
+}
