@@ -64,26 +64,36 @@ impl Support {
             return s;
         }
         let pt = |v: u32| p[v as usize];
-        let ok: Vec<bool> = boundary
-            .iter()
-            .map(|f| {
-                f.iter().all(|&v| (v as usize) < p.len())
-                    && !collinear(pt(f[0]), pt(f[1]), pt(f[2]))
-            })
-            .collect();
+        let valid = |f: &[u32; 3]| f.iter().all(|&v| (v as usize) < p.len());
         // directed edge → face; two faces across an edge join when coplanar
         let mut by_edge: IdMap<u64, u32> = IdMap::default();
         by_edge.reserve(3 * boundary.len());
         for (i, f) in boundary.iter().enumerate() {
-            if ok[i] {
+            if valid(f) {
                 for k in 0..3 {
                     by_edge.insert(dk(f[k], f[(k + 1) % 3]), i as u32);
                 }
             }
         }
+        // whether a face is not collinear, decided only for faces about to join (a collinear
+        // face is coplanar with every neighbour and must join none): 0 unknown, 1 yes, 2 no
+        let mut ok = vec![0u8; boundary.len()];
+        let mut is_ok = |i: usize| {
+            if ok[i] == 0 {
+                let f = boundary[i];
+                ok[i] = if collinear(pt(f[0]), pt(f[1]), pt(f[2])) {
+                    2
+                } else {
+                    1
+                };
+            }
+            ok[i] == 1
+        };
         let mut parent: Vec<u32> = (0..boundary.len() as u32).collect();
+        // faces that joined another: the only ones that can form a group of ≥ 4 vertices
+        let mut joined = vec![false; boundary.len()];
         for (i, f) in boundary.iter().enumerate() {
-            if !ok[i] {
+            if !valid(f) {
                 continue;
             }
             for k in 0..3 {
@@ -96,18 +106,23 @@ impl Support {
                 }
                 let g = boundary[j as usize];
                 let d = g.into_iter().find(|&v| v != a && v != b).unwrap_or(a);
-                if orient3d(pt(f[0]), pt(f[1]), pt(f[2]), pt(d)) == 0.0 {
+                if orient3d(pt(f[0]), pt(f[1]), pt(f[2]), pt(d)) == 0.0
+                    && is_ok(i)
+                    && is_ok(j as usize)
+                {
                     let (x, y) = (find(&mut parent, i as u32), find(&mut parent, j));
                     if x != y {
                         parent[x.max(y) as usize] = x.min(y);
                     }
+                    joined[i] = true;
+                    joined[j as usize] = true;
                 }
             }
         }
         // groups: root → (first face, vertices)
         let mut groups: IdMap<u32, (u32, Vec<u32>)> = IdMap::default();
         for (i, f) in boundary.iter().enumerate() {
-            if !ok[i] {
+            if !joined[i] {
                 continue;
             }
             let r = find(&mut parent, i as u32);
