@@ -29,6 +29,18 @@ fn uni(r: &mut Rng) -> f64 {
     (r.next_u64() >> 11) as f64 / (1u64 << 53) as f64
 }
 
+/// A uniform random point of the reference triangle, as barycentric coordinates `[u, v, w]`
+/// (a point of the unit square folded across its diagonal).
+fn barycentric(r: &mut Rng) -> [f64; 3] {
+    let (u, v) = (uni(r), uni(r));
+    let (u, v) = if u + v > 1.0 {
+        (1.0 - u, 1.0 - v)
+    } else {
+        (u, v)
+    };
+    [u, v, 1.0 - u - v]
+}
+
 /// Rings of a CSV: `component,closed,order,x,y` (curves2d) or two columns (polygons).
 fn rings(path: &Path) -> Vec<(Vec<Point2>, bool)> {
     let text = std::fs::read_to_string(path).unwrap();
@@ -474,13 +486,7 @@ fn linear_precision_a_flat_region_gives_the_plane() {
             let (a, b) = (c[k % 3], c[(k + 1) % 3]);
             let tri = p.triangle();
             for _ in 0..20 {
-                let (u, v) = (uni(&mut rng), uni(&mut rng));
-                let (u, v) = if u + v > 1.0 {
-                    (1.0 - u, 1.0 - v)
-                } else {
-                    (u, v)
-                };
-                let w = 1.0 - u - v;
+                let [u, v, w] = barycentric(&mut rng);
                 let e = tri.eval([u, v, w]);
                 // the affine map of the micro triangle: the plane, linearly parametrised
                 let x = a.coords * u + b.coords * v + z.coords * w;
@@ -771,13 +777,7 @@ fn six_split_linear_precision_a_flat_region_gives_the_plane() {
             };
             let tri = p.triangle();
             for _ in 0..20 {
-                let (u, v) = (uni(&mut rng), uni(&mut rng));
-                let (u, v) = if u + v > 1.0 {
-                    (1.0 - u, 1.0 - v)
-                } else {
-                    (u, v)
-                };
-                let w = 1.0 - u - v;
+                let [u, v, w] = barycentric(&mut rng);
                 // the affine map of the micro triangle: the plane, linearly parametrised
                 let x = a * u + b * v + z * w;
                 let d = (Vector3::from(tri.eval([u, v, w])) - x).norm();
@@ -1072,13 +1072,7 @@ fn two_split_linear_precision_a_flat_region_gives_the_plane() {
             let at = |w: [f64; 3]| c[0] * w[0] + c[1] * w[1] + c[2] * w[2];
             let bt = p.triangle();
             for _ in 0..20 {
-                let (u, v) = (uni(&mut rng), uni(&mut rng));
-                let (u, v) = if u + v > 1.0 {
-                    (1.0 - u, 1.0 - v)
-                } else {
-                    (u, v)
-                };
-                let w = 1.0 - u - v;
+                let [u, v, w] = barycentric(&mut rng);
                 // the affine map of the micro triangle's domain corners
                 let x = at(d[0]) * u + at(d[1]) * v + at(d[2]) * w;
                 let e = Vector3::from(bt.eval([u, v, w]));
