@@ -43,6 +43,30 @@ fn assert_input_error(o: &Output, file: Option<&Path>) {
     }
 }
 
+/// A surface scheme refuses an open mesh (the error names it) and 2D points, with exit 2.
+fn refuses_open_mesh_and_points(
+    dir: &Path,
+    scheme: &str,
+    open: &Path,
+    mesh_out: &Path,
+    json_out: &Path,
+) {
+    let run = |input: &Path, out: &Path| {
+        morpho(&[
+            "smooth",
+            input.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--scheme",
+            scheme,
+        ])
+    };
+    assert_input_error(&run(open, mesh_out), Some(open));
+    let csv = dir.join("p.csv");
+    std::fs::write(&csv, "x,y\n0,0\n1,0\n0,1\n").unwrap();
+    assert_input_error(&run(&csv, json_out), None);
+}
+
 fn json(p: &Path) -> Value {
     serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
 }
@@ -658,26 +682,7 @@ fn six_split_surface_from_the_cli() {
             .join("\n"),
     )
     .unwrap();
-    let o = morpho(&[
-        "smooth",
-        open.to_str().unwrap(),
-        "-o",
-        ply.to_str().unwrap(),
-        "--scheme",
-        "split6",
-    ]);
-    assert_input_error(&o, Some(&open));
-    let csv = dir.path().join("p.csv");
-    std::fs::write(&csv, "x,y\n0,0\n1,0\n0,1\n").unwrap();
-    let o = morpho(&[
-        "smooth",
-        csv.to_str().unwrap(),
-        "-o",
-        pj.to_str().unwrap(),
-        "--scheme",
-        "split6",
-    ]);
-    assert_input_error(&o, None);
+    refuses_open_mesh_and_points(dir.path(), "split6", &open, &ply, &pj);
 }
 
 /// `--scheme split2` (the two-split, V §9.7, experimental): on the icosphere every triangle
@@ -754,24 +759,5 @@ fn two_split_surface_from_the_cli() {
     let op = dir.path().join("open.ply");
     morpho::io::write_mesh(&op, &open, morpho::io::Encoding::default()).unwrap();
     let ply = dir.path().join("t.ply");
-    let o = morpho(&[
-        "smooth",
-        op.to_str().unwrap(),
-        "-o",
-        ply.to_str().unwrap(),
-        "--scheme",
-        "split2",
-    ]);
-    assert_input_error(&o, Some(&op));
-    let csv = dir.path().join("p.csv");
-    std::fs::write(&csv, "x,y\n0,0\n1,0\n0,1\n").unwrap();
-    let o = morpho(&[
-        "smooth",
-        csv.to_str().unwrap(),
-        "-o",
-        pj.to_str().unwrap(),
-        "--scheme",
-        "split2",
-    ]);
-    assert_input_error(&o, None);
+    refuses_open_mesh_and_points(dir.path(), "split2", &op, &ply, &pj);
 }
