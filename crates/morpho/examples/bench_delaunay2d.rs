@@ -25,16 +25,13 @@
 //! resident memory (VmHWM) per point. `--write-points FILE` also writes the uniform points as
 //! little-endian f64 pairs (for bench/run.sh to time scipy on the same points).
 
+mod common;
+
+use common::{flower_curve, grid_2d, vm_hwm_kib};
 use morpho::delaunay::triangulate_2d;
 use morpho::geom::Point2;
 use rand::{Rng, SeedableRng};
 use std::time::Instant;
-
-fn vm_hwm_kib() -> Option<u64> {
-    let s = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = s.lines().find(|l| l.starts_with("VmHWM:"))?;
-    line.split_whitespace().nth(1)?.parse().ok()
-}
 
 /// CPU time (user + system) of this process in seconds, from /proc/self/stat (clock ticks of
 /// 1/100 s); `None` where unavailable.
@@ -213,27 +210,8 @@ fn main() {
     for dist in &dists {
         match dist.as_str() {
             "uniform" => run("uniform", &uniform, only.as_deref(), dig),
-            "grid" => {
-                let side = (n as f64).sqrt().round() as usize;
-                let g: Vec<Point2> = (0..side * side)
-                    .map(|k| Point2::new((k % side) as f64, (k / side) as f64))
-                    .collect();
-                run("grid", &g, only.as_deref(), dig);
-            }
-            "curve" => {
-                let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
-                let tau = std::f64::consts::TAU;
-                let c: Vec<Point2> = (0..n)
-                    .map(|k| {
-                        let t = tau * k as f64 / n as f64;
-                        let r = 1.0 + 0.3 * (5.0 * t).sin();
-                        let jx = (rng.gen::<f64>() - 0.5) * 2e-9;
-                        let jy = (rng.gen::<f64>() - 0.5) * 2e-9;
-                        Point2::new(r * t.cos() + jx, r * t.sin() + jy)
-                    })
-                    .collect();
-                run("curve", &c, only.as_deref(), dig);
-            }
+            "grid" => run("grid", &grid_2d(n), only.as_deref(), dig),
+            "curve" => run("curve", &flower_curve(n), only.as_deref(), dig),
             "curve0" => {
                 // the same curve without jitter (coordinates rounded to doubles only)
                 let tau = std::f64::consts::TAU;

@@ -13,29 +13,13 @@
 //! the peak resident memory (VmHWM) of the process, the triangle count, a digest of the sorted
 //! triangle set (equal across paths and thread counts) and the 1-minute load average.
 
+mod common;
+
+use common::{cpu_seconds, flower_curve, grid_2d, vm_hwm_kib};
 use morpho::geom::Point2;
 use morpho::internals::delaunay::{triangulate_split, Split};
 use rand::{Rng, SeedableRng};
 use std::time::Instant;
-
-fn proc_field(file: &str, key: &str) -> Option<u64> {
-    let s = std::fs::read_to_string(file).ok()?;
-    let line = s.lines().find(|l| l.starts_with(key))?;
-    line.split_whitespace().nth(1)?.parse().ok()
-}
-
-/// CPU time (user + system) of this process in seconds (clock ticks of 1/100 s).
-fn cpu_seconds() -> f64 {
-    let s = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    let Some(i) = s.rfind(')') else {
-        return f64::NAN;
-    };
-    let f: Vec<f64> = s[i + 2..]
-        .split_whitespace()
-        .map(|x| x.parse().unwrap_or(f64::NAN))
-        .collect();
-    (f[11] + f[12]) / 100.0
-}
 
 fn points(dist: &str, n: usize) -> Vec<Point2> {
     match dist {
@@ -45,25 +29,8 @@ fn points(dist: &str, n: usize) -> Vec<Point2> {
                 .map(|_| Point2::new(rng.gen::<f64>(), rng.gen::<f64>()))
                 .collect()
         }
-        "grid" => {
-            let side = (n as f64).sqrt().round() as usize;
-            (0..side * side)
-                .map(|k| Point2::new((k % side) as f64, (k / side) as f64))
-                .collect()
-        }
-        "curve" => {
-            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
-            let tau = std::f64::consts::TAU;
-            (0..n)
-                .map(|k| {
-                    let t = tau * k as f64 / n as f64;
-                    let r = 1.0 + 0.3 * (5.0 * t).sin();
-                    let jx = (rng.gen::<f64>() - 0.5) * 2e-9;
-                    let jy = (rng.gen::<f64>() - 0.5) * 2e-9;
-                    Point2::new(r * t.cos() + jx, r * t.sin() + jy)
-                })
-                .collect()
-        }
+        "grid" => grid_2d(n),
+        "curve" => flower_curve(n),
         d => panic!("unknown DIST {d} (uniform, grid, curve)"),
     }
 }
@@ -111,7 +78,7 @@ fn main() {
     println!(
         "{dist:8} threads {} split {split:?} wall {wall:.3} s cpu {cpu:.2} s peak {:.0} MiB triangles {} digest {h:016x} load {}",
         rayon::current_num_threads(),
-        proc_field("/proc/self/status", "VmHWM:").unwrap_or(0) as f64 / 1024.0,
+        vm_hwm_kib().unwrap_or(0) as f64 / 1024.0,
         d.triangles.len(),
         load.split_whitespace().next().unwrap_or("?"),
     );

@@ -13,28 +13,13 @@
 //! (its counters are printed). Thread count from `RAYON_NUM_THREADS`; the load average is
 //! printed with every run (`bench/delaunay3d_threads.sh` takes turns 1 vs 2 threads).
 
+mod common;
+
+use common::{cpu_seconds, vm_hwm_kib};
 use morpho::delaunay::triangulate_3d;
 use morpho::geom::Point3;
 use rand::{Rng, SeedableRng};
 use std::time::Instant;
-
-fn vm_hwm_kib() -> Option<u64> {
-    let s = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = s.lines().find(|l| l.starts_with("VmHWM:"))?;
-    line.split_whitespace().nth(1)?.parse().ok()
-}
-
-/// User + system CPU seconds of this process (from /proc/self/stat, clock ticks of 1/100 s).
-fn cpu_secs() -> f64 {
-    let Ok(s) = std::fs::read_to_string("/proc/self/stat") else {
-        return 0.0;
-    };
-    let rest = s.rsplit(')').next().unwrap_or("");
-    let f: Vec<&str> = rest.split_whitespace().collect();
-    let t = |i: usize| f.get(i).and_then(|x| x.parse::<f64>().ok()).unwrap_or(0.0);
-    // fields 14 and 15 of stat; after the ')' they are at positions 11 and 12
-    (t(11) + t(12)) / 100.0
-}
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -123,7 +108,7 @@ fn main() {
     let before = vm_hwm_kib().unwrap_or(0);
     use morpho::internals::predicate_stats as ps;
     ps::reset();
-    let c0 = cpu_secs();
+    let c0 = cpu_seconds();
     let t = Instant::now();
     let mut split_stats = None;
     let d = match engine.as_str() {
@@ -138,7 +123,7 @@ fn main() {
         e => panic!("unknown engine {e} (auto, seq, split)"),
     };
     let secs = t.elapsed().as_secs_f64();
-    let cpu = cpu_secs() - c0;
+    let cpu = cpu_seconds() - c0;
     let hwm = vm_hwm_kib().unwrap_or(0);
     println!(
         "points {n}  tets {}  hull {}  wall {secs:.3} s  {:.0} points/s  cpu {cpu:.2} s  {:.0} points/cpu-s",
