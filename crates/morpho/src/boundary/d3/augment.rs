@@ -164,11 +164,19 @@ impl General3<'_> {
                     (d2, u)
                 })
                 .collect();
-            faces.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             if faces.iter().filter(|f| f.0 <= rad * rad).count() >= k {
                 break;
             }
         }
+        // the first k in the order (distance, face): selected, then only they sorted (the
+        // order is total, so the same k in the same order as sorting all)
+        let order =
+            |a: &(f64, [u32; 3]), b: &(f64, [u32; 3])| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+        if k < faces.len() {
+            faces.select_nth_unstable_by(k, order);
+            faces.truncate(k);
+        }
+        faces.sort_unstable_by(order);
         for (_, u) in faces.into_iter().take(k) {
             for e in 0..3 {
                 pairs.push((u[e], u[(e + 1) % 3]));
@@ -243,32 +251,34 @@ impl General3<'_> {
     /// smaller c. Each ball's points are added nearest to its centre first, cells wholly
     /// outside the ball skipped.
     pub(super) fn gamma_decide(&self, t: [u32; 3], c: f64, first: &[u32]) -> Option<f64> {
-        use crate::graphs::gamma::{triangle_circle, CenterInterval, TriFrame};
+        use crate::graphs::gamma::{
+            in_closed_triangle_3d, triangle_circle, CenterInterval, TriFrame,
+        };
         let [pa, pb, pc] = t.map(|v| self.pt(v));
         let (Some(f), Some((m, r2, n))) = (TriFrame::new(pa, pb, pc), triangle_circle(pa, pb, pc))
         else {
             // degenerate (collinear corners): never a γ-triangle
             return Some(f64::NEG_INFINITY);
         };
-        let mut iv = f.start();
         let mut buf = Vec::new();
         let pts = self.p;
         if c <= -1.0 {
             // c = −1: every triangle is in γ([-1,1],[-1,1]) unless a point lies in the closed
-            // triangle (then no neighbourhood is empty); such points lie in its bounding box
+            // triangle (then no neighbourhood is empty); such points lie in its bounding box.
+            // Only the points in the plane can block (`TriFrame::add` sets `all_blocked` for
+            // them alone, by the same exact tests; the binding points and offsets it computes
+            // for the others do not enter this decision), so the rest are not added.
             let (lo, hi) = bbox(&[pa, pb, pc]);
             self.vgrid.query(lo, hi, &mut buf);
-            for &z in &buf {
-                if !t.contains(&z) {
-                    f.add(&mut iv, pts[z as usize]);
-                }
-            }
-            return if iv.all_blocked {
-                Some(f64::NEG_INFINITY)
-            } else {
-                None
-            };
+            let blocked = buf.iter().any(|&z| {
+                let x = pts[z as usize];
+                !t.contains(&z)
+                    && orient3d(pa, pb, pc, x) == 0.0
+                    && in_closed_triangle_3d(pa, pb, pc, x, n)
+            });
+            return blocked.then_some(f64::NEG_INFINITY);
         }
+        let mut iv = f.start();
         // the float c₁′ (accurate to 1e-9: the offsets are certified to `TAU_TOL`) raised by
         // `UB_MARGIN`: a proven upper bound of c₁′, the bound returned and cached
         let c1_float = |iv: &CenterInterval| iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
@@ -277,18 +287,23 @@ impl General3<'_> {
         // c₁′ < c, exactly (the float bound when it is below c, else the exact decision)
         let below_c = |iv: &CenterInterval| ub_of(iv) < c || !f.c1_at_least(iv, c);
         // adds the points; true when rejected (ub below stop on the way, or c₁′ < c at the end)
-        let scan = |iv: &mut CenterInterval, ids: &mut dyn Iterator<Item = u32>| -> bool {
-            for (j, z) in ids.enumerate() {
-                if !t.contains(&z) {
-                    f.add(iv, pts[z as usize]);
+        // (`skip`: the points of `first` once they have all been added — adding a point again
+        // changes nothing, as a binding end only ever moves to a strictly better point; the
+        // positions `j` of the early checks stay those of the full sequence, so the bound
+        // returned is the same too)
+        let scan =
+            |iv: &mut CenterInterval, ids: &mut dyn Iterator<Item = u32>, skip: &[u32]| -> bool {
+                for (j, z) in ids.enumerate() {
+                    if !t.contains(&z) && !skip.contains(&z) {
+                        f.add(iv, pts[z as usize]);
+                    }
+                    if j % 32 == 31 && c1_float(iv) < stop && below_c(iv) {
+                        return true;
+                    }
                 }
-                if j % 32 == 31 && c1_float(iv) < stop && below_c(iv) {
-                    return true;
-                }
-            }
-            below_c(iv)
-        };
-        if scan(&mut iv, &mut first.iter().copied()) {
+                below_c(iv)
+            };
+        if scan(&mut iv, &mut first.iter().copied(), &[]) {
             return Some(ub_of(&iv));
         }
         let nlen = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
@@ -326,7 +341,7 @@ impl General3<'_> {
             let g = self.point_grid_for(lo, hi);
             if !g.is_single_level() {
                 // (points are never wide boxes; kept for safety) every point, in index order
-                return scan(iv, &mut (0..pts.len() as u32));
+                return scan(iv, &mut (0..pts.len() as u32), first);
             }
             cells.clear();
             let (origin, cell) = (g.origin(), g.cell());
@@ -363,6 +378,7 @@ impl General3<'_> {
                     .iter()
                     .flat_map(|e| e.1.iter().copied())
                     .filter(inside),
+                first,
             )
         };
         if scan_ball(&mut iv, 0.0) {
@@ -379,12 +395,12 @@ impl General3<'_> {
             }
             moves += 1;
             if moves > 2 * pts.len() + 4 {
-                let all = scan(&mut iv, &mut (0..pts.len() as u32));
+                let all = scan(&mut iv, &mut (0..pts.len() as u32), first);
                 return all.then(|| ub_of(&iv));
             }
             let Some(s) = iv.witness_offset(c) else {
                 // only half-spaces can be empty (`finite_blocked`): every point decides
-                return if scan(&mut iv, &mut (0..pts.len() as u32)) {
+                return if scan(&mut iv, &mut (0..pts.len() as u32), first) {
                     Some(ub_of(&iv))
                 } else {
                     None
@@ -585,6 +601,237 @@ fn near_locked(d: &Delaunay3, alive: &[bool], tris: &[[u32; 3]], depth: usize) -
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The former code, kept as the references of `gamma_decide_equals_the_former_code` and
+    /// `gamma_candidates_equal_the_former_code`.
+    impl General3<'_> {
+        /// `gamma_candidates` sorting every face met (before the selection of the nearest k).
+        fn gamma_candidates_reference(
+            &self,
+            l: u32,
+            k: usize,
+            c: f64,
+            tb: &mut Vec<u32>,
+        ) -> Vec<([u32; 3], u32)> {
+            let (near, rad) = &self.near_cache[&l];
+            let mut cand = Vec::new();
+            let pl = self.pt(l);
+            // pairs of near vertices, and the edges of the k boundary faces nearest to l (by
+            // centroid; the faces a removal w.r.t. l starts from)
+            let mut pairs: Vec<(u32, u32)> = Vec::new();
+            for (i, &x) in near.iter().enumerate() {
+                for &y in &near[i + 1..] {
+                    pairs.push((x, y));
+                }
+            }
+            // the k faces nearest by centroid among those meeting the box of half-width 2·rad:
+            // a face missing from the box of half-width rad has its centroid farther than rad,
+            // so when that smaller box already holds k faces with centroids within rad, they
+            // are the same k (and the same order)
+            let mut faces: Vec<(f64, [u32; 3])> = Vec::new();
+            for reach_l in [*rad, 2.0 * rad] {
+                self.bgrid.query(
+                    std::array::from_fn(|i| pl[i] - reach_l),
+                    std::array::from_fn(|i| pl[i] + reach_l),
+                    tb,
+                );
+                faces = tb
+                    .iter()
+                    .filter(|&&i| self.live[i as usize] && self.bflag[i as usize])
+                    .map(|&i| self.tris[i as usize])
+                    .map(|u| {
+                        let q = u.map(|v| self.pt(v));
+                        let d2 = (0..3)
+                            .map(|i| ((q[0][i] + q[1][i] + q[2][i]) / 3.0 - pl[i]).powi(2))
+                            .sum::<f64>();
+                        (d2, u)
+                    })
+                    .collect();
+                faces.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                if faces.iter().filter(|f| f.0 <= rad * rad).count() >= k {
+                    break;
+                }
+            }
+            for (_, u) in faces.into_iter().take(k) {
+                for e in 0..3 {
+                    pairs.push((u[e], u[(e + 1) % 3]));
+                }
+            }
+            for (x, y) in pairs {
+                let t = sorted3([l, x, y]);
+                if x == l || y == l || self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t) {
+                    continue;
+                }
+                if self.gamma_ub.get(&t).is_some_and(|&ub| ub < c) {
+                    continue;
+                }
+                cand.push((t, l));
+            }
+            cand
+        }
+
+        /// `gamma_decide` before the c = −1 shortcut (every point of the triangle's box added)
+        /// and before the points of `first` were skipped in the ball scans.
+        fn gamma_decide_reference(&self, t: [u32; 3], c: f64, first: &[u32]) -> Option<f64> {
+            use crate::graphs::gamma::{triangle_circle, CenterInterval, TriFrame};
+            let [pa, pb, pc] = t.map(|v| self.pt(v));
+            let (Some(f), Some((m, r2, n))) =
+                (TriFrame::new(pa, pb, pc), triangle_circle(pa, pb, pc))
+            else {
+                // degenerate (collinear corners): never a γ-triangle
+                return Some(f64::NEG_INFINITY);
+            };
+            let mut iv = f.start();
+            let mut buf = Vec::new();
+            let pts = self.p;
+            if c <= -1.0 {
+                // c = −1: every triangle is in γ([-1,1],[-1,1]) unless a point lies in the closed
+                // triangle (then no neighbourhood is empty); such points lie in its bounding box
+                let (lo, hi) = bbox(&[pa, pb, pc]);
+                self.vgrid.query(lo, hi, &mut buf);
+                for &z in &buf {
+                    if !t.contains(&z) {
+                        f.add(&mut iv, pts[z as usize]);
+                    }
+                }
+                return if iv.all_blocked {
+                    Some(f64::NEG_INFINITY)
+                } else {
+                    None
+                };
+            }
+            // the float c₁′ (accurate to 1e-9: the offsets are certified to `TAU_TOL`) raised by
+            // `UB_MARGIN`: a proven upper bound of c₁′, the bound returned and cached
+            let c1_float =
+                |iv: &CenterInterval| iv.gamma_values().map_or(f64::NEG_INFINITY, |g| g.1);
+            let ub_of = |iv: &CenterInterval| c1_float(iv) + UB_MARGIN;
+            let stop = (c - UB_LOOKAHEAD).max(UB_FLOOR).min(c);
+            // c₁′ < c, exactly (the float bound when it is below c, else the exact decision)
+            let below_c = |iv: &CenterInterval| ub_of(iv) < c || !f.c1_at_least(iv, c);
+            // adds the points; true when rejected (ub below stop on the way, or c₁′ < c at the end)
+            let scan = |iv: &mut CenterInterval, ids: &mut dyn Iterator<Item = u32>| -> bool {
+                for (j, z) in ids.enumerate() {
+                    if !t.contains(&z) {
+                        f.add(iv, pts[z as usize]);
+                    }
+                    if j % 32 == 31 && c1_float(iv) < stop && below_c(iv) {
+                        return true;
+                    }
+                }
+                below_c(iv)
+            };
+            if scan(&mut iv, &mut first.iter().copied()) {
+                return Some(ub_of(&iv));
+            }
+            let nlen = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let (plo, phi) = self.pbox;
+            // every point of the ball B(s) (touching the triangle, offset s), by cells of the point
+            // grid (the coarse one for wide boxes) whose centres lie deepest in the ball first —
+            // by the power q − 2·s·h (< 0 inside; divided by |s| when |s| > 1: the same order
+            // without overflow). When the ball's box holds every point, or is not finite: all
+            // points in that order.
+            let mut cells: Vec<(f64, &[u32])> = Vec::new();
+            let mut scan_ball = |iv: &mut CenterInterval, s: f64| -> bool {
+                let depth = |x: P| {
+                    let d: P = std::array::from_fn(|i| x[i] - m[i]);
+                    let q = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - r2;
+                    let h = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+                    if s.abs() > 1.0 {
+                        q / s.abs() - 2.0 * s.signum() * h
+                    } else {
+                        q - 2.0 * s * h
+                    }
+                };
+                let centre: P = std::array::from_fn(|i| m[i] + s * n[i]);
+                let radius = nlen * (iv.r_over_n * iv.r_over_n + s * s).sqrt() * (1.0 + 1e-9);
+                let finite = radius.is_finite() && centre.iter().all(|x| x.is_finite());
+                let all = !finite
+                    || (0..3).all(|i| centre[i] - radius <= plo[i] && centre[i] + radius >= phi[i]);
+                let (lo, hi): (P, P) = if all {
+                    (plo, phi)
+                } else {
+                    (
+                        std::array::from_fn(|i| centre[i] - radius),
+                        std::array::from_fn(|i| centre[i] + radius),
+                    )
+                };
+                let g = self.point_grid_for(lo, hi);
+                if !g.is_single_level() {
+                    // (points are never wide boxes; kept for safety) every point, in index order
+                    return scan(iv, &mut (0..pts.len() as u32));
+                }
+                cells.clear();
+                let (origin, cell) = (g.origin(), g.cell());
+                let r2s = radius * radius;
+                g.for_cells(lo, hi, |k, ids| {
+                    let mid: P = std::array::from_fn(|i| origin[i] + (k[i] as f64 + 0.5) * cell);
+                    // a cell wholly outside the ball holds no point that `inside` admits: skip it
+                    // (the points scanned, and their order, stay the same). The cell's box is
+                    // widened for the rounding of the points' cell coordinates, the distance
+                    // compared with room for its own rounding.
+                    if !all {
+                        let d2: f64 = (0..3)
+                            .map(|i| {
+                                let half = 0.5 * cell * (1.0 + 1e-6) + 1e-12 * mid[i].abs();
+                                ((mid[i] - centre[i]).abs() - half).max(0.0).powi(2)
+                            })
+                            .sum();
+                        if d2 > r2s * (1.0 + 1e-6) {
+                            return;
+                        }
+                    }
+                    cells.push((depth(mid), ids));
+                });
+                cells.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+                let inside = |z: &u32| {
+                    all || {
+                        let x = pts[*z as usize];
+                        (0..3).map(|i| (x[i] - centre[i]).powi(2)).sum::<f64>() <= r2s
+                    }
+                };
+                scan(
+                    iv,
+                    &mut cells
+                        .iter()
+                        .flat_map(|e| e.1.iter().copied())
+                        .filter(inside),
+                )
+            };
+            if scan_ball(&mut iv, 0.0) {
+                return Some(ub_of(&iv));
+            }
+            let mut scanned = 0.0; // B(0) = B(m, r)
+                                   // s moves only when a point of B(s) changed the interval, i.e. became a binding point
+                                   // strictly better than the last one on its side (exact): at most 2n + 2 moves. The cap
+                                   // makes that explicit; beyond it (never reached) every point decides.
+            let mut moves = 0usize;
+            loop {
+                if !iv.finite_blocked && iv.lo > iv.hi {
+                    return None; // the gap regime with B(m, r) added: c₁′ ≥ c is final
+                }
+                moves += 1;
+                if moves > 2 * pts.len() + 4 {
+                    let all = scan(&mut iv, &mut (0..pts.len() as u32));
+                    return all.then(|| ub_of(&iv));
+                }
+                let Some(s) = iv.witness_offset(c) else {
+                    // only half-spaces can be empty (`finite_blocked`): every point decides
+                    return if scan(&mut iv, &mut (0..pts.len() as u32)) {
+                        Some(ub_of(&iv))
+                    } else {
+                        None
+                    };
+                };
+                if s == scanned {
+                    return None;
+                }
+                if scan_ball(&mut iv, s) {
+                    return Some(ub_of(&iv));
+                }
+                scanned = s;
+            }
+        }
+    }
     use rand::{Rng, SeedableRng};
     /// local_gamma with k ≥ n tries every triangle at a vertex off the boundary: its results
     /// over decreasing c must be exactly the triangles of γ(\[-1,1\],\[c,1\]) there (Def. 3.1 by
@@ -761,5 +1008,119 @@ mod tests {
         assert_eq!(a.tris, b.tris);
         assert_eq!(a.live, b.live);
         assert_eq!(a.eadj, b.eadj);
+    }
+
+    /// Points on the surface of a cube on an integer lattice (exactly coplanar quadruples,
+    /// collinear triples, lattice points inside lattice triangles) and random points inside
+    /// it: the degenerate cases of `gamma_decide` (points in the plane, in the closed
+    /// triangle, on the circumcircle).
+    fn cube_lattice(m: i32, inner: usize, seed: u64) -> Vec<crate::geom::Point3> {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let mut v = Vec::new();
+        for x in 0..=m {
+            for y in 0..=m {
+                for z in 0..=m {
+                    if [x, y, z].iter().any(|&c| c == 0 || c == m) {
+                        v.push(crate::geom::Point3::new(x as f64, y as f64, z as f64));
+                    }
+                }
+            }
+        }
+        for _ in 0..inner {
+            let q: [f64; 3] = std::array::from_fn(|_| rng.gen_range(0.5..m as f64 - 0.5));
+            v.push(crate::geom::Point3::new(q[0], q[1], q[2]));
+        }
+        v
+    }
+
+    /// gamma_decide equals the former code (`gamma_decide_reference`: every point of the
+    /// box added for c = −1, the points of `first` added again in the ball scans) — the same
+    /// verdicts and bit-identical bounds — on a bumpy sphere and on a cube lattice with points
+    /// inside, for the triangles of every vertex with pairs of its 16 nearest, at c from −0.1
+    /// to −1; with enough triangles blocked at c = −1 by a point in the plane (and, on the
+    /// lattice, with points off the plane in the triangle's box).
+    #[test]
+    fn gamma_decide_equals_the_former_code() {
+        let sets = [(bumpy_sphere(2000, 5), 37), (cube_lattice(7, 120, 6), 3)];
+        for (set, (pts, step)) in sets.into_iter().enumerate() {
+            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let g = General3::new(&pos, &d.hull, &[], &[]);
+            let (mut same, mut blocked_at_minus_one, mut rejected) = (0, 0, 0);
+            for l in (0..pos.len() as u32).step_by(step) {
+                let near = g.nearest(l, 16).0;
+                for (i, &x) in near.iter().enumerate() {
+                    for &y in &near[i + 1..] {
+                        let t = sorted3([l, x, y]);
+                        for c in [-0.1, -0.3, -0.5, -0.8, -0.9, -1.0] {
+                            let new = g.gamma_decide(t, c, &near);
+                            let old = g.gamma_decide_reference(t, c, &near);
+                            assert_eq!(
+                                new.map(f64::to_bits),
+                                old.map(f64::to_bits),
+                                "{t:?} c {c}: {new:?} against {old:?}"
+                            );
+                            same += 1;
+                            rejected += usize::from(new.is_some());
+                            blocked_at_minus_one += usize::from(c <= -1.0 && new.is_some());
+                        }
+                    }
+                }
+            }
+            // (on the lattice: triangles with a lattice point in them)
+            let need_blocked = if set == 1 { 20 } else { 0 };
+            assert!(
+                same > 5000 && rejected > 1000 && blocked_at_minus_one >= need_blocked,
+                "set {set}: {same} {rejected} {blocked_at_minus_one}"
+            );
+        }
+    }
+
+    /// gamma_candidates (the k nearest faces selected, then sorted) equals the former code
+    /// (every face met sorted) for every locked vertex, for k = 1, 4, 16, 40 and several c —
+    /// on the hull of a bumpy sphere and of a cube lattice with points inside, before and after
+    /// a round of augmentation and removals changed the boundary and the cached bounds.
+    #[test]
+    fn gamma_candidates_equal_the_former_code() {
+        // a bumpy sphere with a smaller one inside (its points off the hull), and the lattice
+        let mut two = bumpy_sphere(1500, 8);
+        two.extend(
+            bumpy_sphere(300, 9)
+                .into_iter()
+                .map(|q| crate::geom::Point3::new(0.5 * q.x, 0.5 * q.y, 0.5 * q.z)),
+        );
+        for (set, pts) in [two, cube_lattice(6, 80, 7)].into_iter().enumerate() {
+            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let mut g = General3::new(&pos, &d.hull, &[], &[]);
+            let mut compared = 0;
+            for round in 0..2 {
+                let extra = g.local_gamma(-0.4, 16);
+                let locked: Vec<u32> = (0..pos.len() as u32)
+                    .filter(|&v| !g.on_boundary(v))
+                    .collect();
+                // (the round of removals may free them all)
+                assert!(
+                    round > 0 || locked.len() > 20,
+                    "set {set}: {}",
+                    locked.len()
+                );
+                let mut tb = Vec::new();
+                for &l in &locked {
+                    for k in [1, 4, 16, 40] {
+                        for c in [-0.1, -0.5, -1.0] {
+                            let new = g.gamma_candidates(l, k, c, &mut tb);
+                            let old = g.gamma_candidates_reference(l, k, c, &mut tb);
+                            assert_eq!(new, old, "round {round} l {l} k {k} c {c}");
+                            compared += new.len();
+                        }
+                    }
+                }
+                if g.augment(&extra) > 0 {
+                    g.run();
+                }
+            }
+            assert!(compared > 10_000, "set {set}: {compared}");
+        }
     }
 }
