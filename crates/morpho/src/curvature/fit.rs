@@ -10,6 +10,8 @@
 
 use nalgebra::{SMatrix, SVector};
 
+mod jet_solve;
+
 /// Accumulated normal equations of an N-coefficient linear least-squares fit.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Normal<const N: usize> {
@@ -294,8 +296,19 @@ impl CubicJet {
     const ENTRIES: [(u8, f64); 45] = jet_entries::<9, 45>();
 
     /// The normal equations `UᵀU c = Uᵀd` of the points added so far.
+    #[cfg_attr(not(test), allow(dead_code))]
     pub(crate) fn normal(&self) -> Normal<9> {
         jet_normal(&Self::ENTRIES, &self.m, &self.r, self.rows)
+    }
+
+    /// `self.normal().solve_ldl(max_ratio)` up to rounding (the same rule of refusal), from the
+    /// moments without forming the matrix, in straight-line code ([`jet_solve`]); the
+    /// lockstep test `jet_solves_are_normal_solve_ldl` compares the two.
+    pub(crate) fn solve(&self, max_ratio: f64) -> Option<[f64; 9]> {
+        if self.rows < 9 {
+            return None;
+        }
+        jet_solve::cubic_solve(&self.m, &self.r, max_ratio)
     }
 }
 
@@ -367,6 +380,15 @@ impl QuarticJet {
 
     const ENTRIES: [(u8, f64); 105] = jet_entries::<14, 105>();
 
+    /// `self.normal().solve_ldl(max_ratio)` up to rounding (the same rule of refusal), as
+    /// [`CubicJet::solve`].
+    pub(crate) fn solve(&self, max_ratio: f64) -> Option<[f64; 14]> {
+        if self.rows < 14 {
+            return None;
+        }
+        jet_solve::quartic_solve(&self.m, &self.r, max_ratio)
+    }
+
     /// The cubic jet of the same points: its moments are the prefixes (degree 2–6 and 1–3).
     pub(crate) fn cubic(&self) -> CubicJet {
         CubicJet {
@@ -377,6 +399,7 @@ impl QuarticJet {
     }
 
     /// The normal equations `UᵀU c = Uᵀd` of the points added so far.
+    #[cfg_attr(not(test), allow(dead_code))]
     pub(crate) fn normal(&self) -> Normal<14> {
         jet_normal(&Self::ENTRIES, &self.m, &self.r, self.rows)
     }
@@ -555,6 +578,91 @@ mod tests {
         assert_eq!(p.ata, q.ata);
         assert_eq!(p.atd, q.atd);
         assert_eq!(p.rows, q.rows);
+    }
+
+    /// The points of a jittered 2-ring of a valence-6 vertex (19 points: the origin's 18
+    /// neighbours within two edges, in units of the edge), heights of a smooth surface; `k`
+    /// varies the jitter.
+    fn ring_points(k: usize) -> Vec<(f64, f64, f64)> {
+        let mut x = 0.29 + 0.01 * k as f64;
+        let mut next = || {
+            x = (x * 3.7 + 0.17).fract();
+            x - 0.5
+        };
+        let mut p = Vec::new();
+        for (ring, count) in [(1.0f64, 6), (2.0, 12)] {
+            for j in 0..count {
+                let a = std::f64::consts::TAU * j as f64 / count as f64 + 0.2 * next();
+                let rad = ring * (1.0 + 0.2 * next());
+                let (u, t) = (rad * a.cos(), rad * a.sin());
+                let d = 0.07 * u - 0.03 * t + 0.3 * u * u - 0.2 * u * t
+                    + 0.1 * t * t
+                    + 0.05 * u * u * t
+                    - 0.01 * t.powi(4)
+                    + 1e-3 * next();
+                p.push((u, t, d));
+            }
+        }
+        p
+    }
+
+    #[test]
+    fn jet_solves_are_normal_solve_ldl() {
+        // the straight-line solves (`jet_solve.rs`) must give `Normal::solve_ldl` of the same
+        // normal equations up to rounding: a wrong factor, moment, update or substitution in
+        // the generated code is off by far more than 1e-9
+        for k in 0..40 {
+            let mut q = QuarticJet::new();
+            for (u, t, d) in ring_points(k) {
+                q.add(u, t, d);
+            }
+            let a = q.solve(1e10).expect("a determined quartic");
+            let b = q.normal().solve_ldl(1e10).expect("a determined quartic");
+            for i in 0..14 {
+                assert!(
+                    (a[i] - b[i]).abs() <= 1e-9 * b[i].abs().max(1e-3),
+                    "{k} {a:?} {b:?}"
+                );
+            }
+            let c = q.cubic();
+            let a = c.solve(1e10).expect("a determined cubic");
+            let b = c.normal().solve_ldl(1e10).expect("a determined cubic");
+            for i in 0..9 {
+                assert!(
+                    (a[i] - b[i]).abs() <= 1e-9 * b[i].abs().max(1e-3),
+                    "{k} {a:?} {b:?}"
+                );
+            }
+        }
+        // the same refusals: rank deficiency (points on a line; on two lines for the
+        // quartic), too few points, a pivot ratio above the bound, NaN
+        let mut line = QuarticJet::new();
+        for j in 0..20 {
+            let u = j as f64 * 0.1 - 1.0;
+            line.add(u, 0.5 * u, u * u);
+        }
+        assert!(line.solve(1e10).is_none() && line.normal().solve_ldl(1e10).is_none());
+        assert!(line.cubic().solve(1e10).is_none());
+        let mut cross = QuarticJet::new();
+        for j in 0..20 {
+            let s = j as f64 * 0.1 - 1.0;
+            let (u, t) = if j % 2 == 0 { (s, 0.0) } else { (0.0, s) };
+            cross.add(u, t, s * s);
+        }
+        assert!(cross.solve(1e10).is_none() && cross.normal().solve_ldl(1e10).is_none());
+        let mut few = QuarticJet::new();
+        for &(u, t, d) in &ring_points(0)[..13] {
+            few.add(u, t, d);
+        }
+        assert!(few.solve(1e10).is_none());
+        assert!(few.cubic().solve(1e10).is_some());
+        let mut q = QuarticJet::new();
+        for (u, t, d) in ring_points(1) {
+            q.add(u, t, d);
+        }
+        assert!(q.solve(1.0).is_none() && q.normal().solve_ldl(1.0).is_none());
+        q.add(0.5, 0.5, f64::NAN);
+        assert!(q.solve(1e10).is_none() && q.cubic().solve(1e10).is_none());
     }
 
     #[test]

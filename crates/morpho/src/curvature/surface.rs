@@ -688,10 +688,10 @@ fn jet_fit(ring: &[[f64; 3]], nrm: [f64; 3], quartic: bool) -> Option<Jet> {
             let w = vec::scale(w, inv);
             q.add(vec::dot(w, b1), vec::dot(w, b2), vec::dot(n, w));
         }
-        match q.normal().solve_ldl(SURFACE_MAX_COND) {
+        match q.solve(SURFACE_MAX_COND) {
             Some(c) => std::array::from_fn(|i| c[i]),
             None => {
-                let c = q.cubic().normal().solve_ldl(SURFACE_MAX_COND)?;
+                let c = q.cubic().solve(SURFACE_MAX_COND)?;
                 std::array::from_fn(|i| c[i])
             }
         }
@@ -702,7 +702,7 @@ fn jet_fit(ring: &[[f64; 3]], nrm: [f64; 3], quartic: bool) -> Option<Jet> {
             let w = vec::scale(w, inv);
             jet.add(vec::dot(w, b1), vec::dot(w, b2), vec::dot(n, w));
         }
-        let c = jet.normal().solve_ldl(SURFACE_MAX_COND)?;
+        let c = jet.solve(SURFACE_MAX_COND)?;
         std::array::from_fn(|i| c[i])
     };
     Some(Jet {
