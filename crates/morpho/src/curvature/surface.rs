@@ -86,10 +86,11 @@
 //! threads. The adjacency (incident triangles and sorted neighbours) is built once in
 //! compressed rows, its rows filled in parallel; estimated normals are summed per vertex in the
 //! same pass as the fits (the same sums as [`crate::mesh::vertex_normals`]); each vertex's
-//! offsets `y_j − y₀` are gathered once for the jet and the paraboloid; the jet's 9×9 normal
-//! equations are accumulated one matrix row at a time over a batch of points (the same sums,
-//! in registers); nothing is allocated per vertex. These changes (issue 20's speed) keep every
-//! result bit for bit (`bench/README.md`).
+//! offsets `y_j − y₀` are gathered once for the jet and the paraboloid; the jets' normal
+//! equations are formed from their distinct moments `Σ uᵃtᵇ` and solved by LDLᵀ in generated
+//! straight-line code (`fit/jet_solve.rs`, the same operations as [`Normal::solve_ldl`] in the
+//! same order, each term rounded once differently: results equal to rounding, not bit for bit;
+//! `bench/README.md`); nothing is allocated per vertex.
 
 use super::error::CurvatureError;
 use super::fit::{CubicJet, Normal, QuarticJet};
