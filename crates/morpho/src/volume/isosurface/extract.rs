@@ -18,7 +18,7 @@ use crate::geom::{Point3, Vector3};
 use crate::volume::gradient::{gradient_at, CentralTable, GradientOperator};
 use crate::volume::Volume;
 
-use crate::util::NONE;
+use crate::util::{advise_huge_pages, NONE};
 /// Chunk-local triangle corners with this bit refer to the interior point list.
 pub(super) const INTERIOR: u32 = 1 << 31;
 /// Key of vertices not on a grid entity (cell-interior points).
@@ -469,6 +469,7 @@ impl Ctx<'_> {
         let mut out = ChunkOut::default();
         if self.normals == NormalMethod::ZuckerHummel {
             out.gcache = vec![0u64; 8 * nx * ny + 8];
+            advise_huge_pages(&mut out.gcache);
             let off = out.gcache.as_ptr().align_offset(64);
             out.gbase = if off < 8 { off } else { 0 };
         }
@@ -534,7 +535,9 @@ impl Ctx<'_> {
     }
 
     /// Reserves the output buffers for `total` layers at the rate of the `done` ones so far,
-    /// plus an eighth.
+    /// plus an eighth. (No huge-page hint here: these buffers are reallocated later, and
+    /// moving huge pages to an address of another alignment splits them, which measured
+    /// slower than the page faults it saves.)
     fn reserve_projected(out: &mut ChunkOut, done: usize, total: usize) {
         let more = |len: usize| {
             let p = (len as u64).saturating_mul(total as u64) / done.max(1) as u64;
