@@ -45,7 +45,7 @@
 //! so a parallel run may hold up to about twice the output briefly. With `topology`, per-vertex
 //! grid keys (8 bytes) and a transient edge table (24 bytes per triangle, whose memory then
 //! holds the part labels, and 4 per vertex and per triangle for grouping and union–find) are
-//! added. The topology tables and the gradient cache ask for transparent huge pages
+//! added. The topology tables ask for transparent huge pages
 //! (`util::advise_huge_pages`: fewer page faults, same contents).
 
 mod block;
