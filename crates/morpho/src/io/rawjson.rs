@@ -285,6 +285,8 @@ pub(crate) fn read_samples(
         _ => Error::format(format!("bad compressed data: {e}")),
     };
     let mut out: Vec<f32> = Vec::with_capacity(n);
+    // filled completely: one page fault per 2 MiB instead of per 4 KiB (issue 23 item 4)
+    crate::util::advise_huge_pages(&mut out);
     // `have` bytes at its start (less than one sample) are not decoded yet; there is always
     // room for more
     let mut buf = vec![0u8; (1 << 20).min(expected.saturating_add(8))];
