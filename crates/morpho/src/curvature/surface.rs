@@ -995,6 +995,48 @@ mod tests {
         }
     }
 
+    /// The rings of the adjacency's rows against a breadth-first search over neighbour sets
+    /// built directly from the triangles: the same vertices in the same order (the fits' sums
+    /// run in ring order, so the order is part of the result).
+    #[test]
+    fn rings_match_a_direct_breadth_first_search() {
+        let m = awkward_mesh();
+        let adj = Adjacency::new(&m);
+        let n = m.positions.len();
+        let mut nbs = vec![BTreeSet::new(); n];
+        for t in &m.triangles {
+            for &a in t {
+                for &b in t {
+                    if a != b {
+                        nbs[a as usize].insert(b);
+                    }
+                }
+            }
+        }
+        let (mut out, mut marks) = (Vec::new(), Marks::default());
+        for v in (0..n).step_by(7).chain([0, 1, 2, n - 2, n - 1]) {
+            for k in 1..=3 {
+                let mut want: Vec<u32> = nbs[v].iter().copied().collect();
+                let mut seen: BTreeSet<u32> = want.iter().copied().collect();
+                seen.insert(v as u32);
+                let mut level = 0..want.len();
+                for _ in 1..k {
+                    let end = want.len();
+                    for i in level.clone() {
+                        for &x in &nbs[want[i] as usize] {
+                            if seen.insert(x) {
+                                want.push(x);
+                            }
+                        }
+                    }
+                    level = end..want.len();
+                }
+                adj.ring(v, k, &mut out, &mut marks);
+                assert_eq!(out, want, "{v} {k}");
+            }
+        }
+    }
+
     #[test]
     fn hypot2_is_hypot() {
         let mut x = 0.3f64;
