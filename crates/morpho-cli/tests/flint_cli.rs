@@ -487,28 +487,91 @@ fn mesh_contains_equals_brute_force() {
         }
     }
     std::fs::write(dir.path().join("q.csv"), q).unwrap();
-    let o = morpho(
-        dir.path(),
-        &[
-            "flint", "contains", "m.off", "q.csv", "-o", "a.csv", "--report", "r.json",
-        ],
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let pos: Vec<[f64; 3]> = m.positions.iter().map(|p| [p.x, p.y, p.z]).collect();
-    let text = std::fs::read_to_string(dir.path().join("a.csv")).unwrap();
-    let rows: Vec<&str> = text.lines().skip(1).collect();
-    assert_eq!(rows.len(), qs.len());
-    let mut counts = [0; 3];
-    for (row, p) in rows.iter().zip(&qs) {
-        let got: u8 = row.rsplit(',').next().unwrap().trim().parse().unwrap();
-        let want = morpho::flint::contains_brute3(&pos, &m.triangles, *p) as u8;
-        assert_eq!(got, want, "{p:?}");
-        counts[want as usize] += 1;
+    // the flintstone walk and the prism tree's (the 3D baseline) give the same exact answers
+    for method in ["flintstone", "prism"] {
+        let o = morpho(
+            dir.path(),
+            &[
+                "flint", "contains", "m.off", "q.csv", "-o", "a.csv", "--report", "r.json",
+                "--method", method,
+            ],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let pos: Vec<[f64; 3]> = m.positions.iter().map(|p| [p.x, p.y, p.z]).collect();
+        let text = std::fs::read_to_string(dir.path().join("a.csv")).unwrap();
+        let rows: Vec<&str> = text.lines().skip(1).collect();
+        assert_eq!(rows.len(), qs.len());
+        let mut counts = [0; 3];
+        for (row, p) in rows.iter().zip(&qs) {
+            let got: u8 = row.rsplit(',').next().unwrap().trim().parse().unwrap();
+            let want = morpho::flint::contains_brute3(&pos, &m.triangles, *p) as u8;
+            assert_eq!(got, want, "{p:?}");
+            counts[want as usize] += 1;
+        }
+        assert!(counts.iter().all(|&c| c > 0), "{counts:?}");
+        let r = report(dir.path(), "r.json");
+        assert_eq!(r["queries"], qs.len());
+        assert_eq!(r["boundary"], counts[2]);
+        assert_eq!(r["method"], method);
     }
-    assert!(counts.iter().all(|&c| c > 0), "{counts:?}");
-    let r = report(dir.path(), "r.json");
-    assert_eq!(r["queries"], qs.len());
-    assert_eq!(r["boundary"], counts[2]);
+}
+
+#[test]
+fn mesh_baselines3_approx() {
+    let dir = tempfile::tempdir().unwrap();
+    let m = morpho::mesh::generate::icosphere(3);
+    write_off(&dir.path().join("s.off"), &m);
+    for method in ["iepf3", "prism"] {
+        // the initial triangle both ways, then a 3-split of each half
+        for (level, want) in [("0", 2), ("1", 6)] {
+            let o = morpho(
+                dir.path(),
+                &[
+                    "flint", "approx", "s.off", "--level", level, "--method", method, "-o",
+                    "a.off", "--report", "a.json",
+                ],
+            );
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            let r = report(dir.path(), "a.json");
+            assert_eq!(r["triangles"], want, "{method} level {level}");
+            assert_eq!(r["method"], method);
+        }
+        let mut last = 0;
+        for eps in ["0.3", "0.1", "0.03", "0"] {
+            let o = morpho(
+                dir.path(),
+                &[
+                    "flint", "approx", "s.off", "--error", eps, "--method", method, "-o", "e.ply",
+                    "--report", "e.json",
+                ],
+            );
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            let r = report(dir.path(), "e.json");
+            let n = r["triangles"].as_u64().unwrap() + r["dropped"].as_u64().unwrap();
+            assert!(n >= last, "{method} ε {eps}: {n} < {last}");
+            last = n;
+            let (e1, e2) = (r["e1"].as_f64().unwrap(), r["e2"].as_f64().unwrap());
+            assert!(e2 <= e1 * (1.0 + 1e-12), "{method}: e2 {e2} > e1 {e1}");
+            if method == "iepf3" {
+                // the 3D Douglas–Peucker: e1 within the bound
+                assert!(e1 <= eps.parse::<f64>().unwrap(), "{eps}: e1 {e1}");
+            }
+            let out = morpho::io::read_mesh(&dir.path().join("e.ply")).unwrap();
+            for p in &out.positions {
+                assert!(m.positions.iter().any(|q| q == p));
+            }
+        }
+        assert_eq!(last as usize, m.triangles.len());
+        let o = morpho(
+            dir.path(),
+            &[
+                "flint", "approx", "s.off", "--count", "100", "--method", method, "-o", "c.obj",
+                "--report", "c.json",
+            ],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(report(dir.path(), "c.json")["triangles"].as_u64().unwrap() >= 100);
+    }
 }
 
 #[test]
@@ -582,6 +645,15 @@ fn bad_mesh_input_is_refused() {
     let mut flip = cube.clone();
     flip.triangles[0].swap(1, 2);
     write_off(&dir.path().join("flip.off"), &flip);
+    // a fin on edge 0–1 of triangle 0: three triangles at one edge
+    let mut fin = cube.clone();
+    let t0 = fin.triangles[0];
+    fin.positions.push(morpho::geom::Point3::new(5.0, 5.0, 5.0));
+    let v = fin.positions.len() as u32 - 1;
+    fin.triangles.push([t0[1], t0[0], v]);
+    fin.triangles.push([t0[0], t0[1], v]);
+    write_off(&dir.path().join("fin.off"), &fin);
+    std::fs::write(dir.path().join("tri.csv"), "x,y\n0,0\n1,0\n0,1\n").unwrap();
     std::fs::write(dir.path().join("q2.csv"), "x,y\n0.5,0.5\n").unwrap();
     std::fs::write(dir.path().join("qn.csv"), "x,y,z\n0.5,nan,0.5\n").unwrap();
     for args in [
@@ -592,6 +664,24 @@ fn bad_mesh_input_is_refused() {
             "flint", "approx", "cube.off", "--level", "1", "--method", "dp", "-o", "a.off",
         ][..],
         &["flint", "approx", "cube.off", "--error=-1", "-o", "a.off"][..],
+        &[
+            "flint", "approx", "open.off", "--level", "1", "--method", "iepf3", "-o", "a.off",
+        ][..],
+        &[
+            "flint", "approx", "fin.off", "--level", "1", "--method", "prism", "-o", "a.off",
+        ][..],
+        &[
+            "flint", "approx", "flip.off", "--level", "1", "--method", "iepf3", "-o", "a.off",
+        ][..],
+        &[
+            "flint", "approx", "tri.csv", "--level", "1", "--method", "prism", "-o", "a.csv",
+        ][..],
+        &[
+            "flint", "contains", "fin.off", "qn.csv", "--method", "prism", "-o", "a.csv",
+        ][..],
+        &[
+            "flint", "contains", "tri.csv", "q2.csv", "--method", "prism", "-o", "a.csv",
+        ][..],
         &["flint", "contains", "open.off", "qn.csv", "-o", "a.csv"][..],
         &["flint", "contains", "cube.off", "q2.csv", "-o", "a.csv"][..],
         &["flint", "contains", "cube.off", "qn.csv", "-o", "a.csv"][..],

@@ -6,7 +6,8 @@
 //! - `build IN -o TREE.json`: the tree — root chord and disc, and per node its split vertex,
 //!   kind (`cap`, `intersection`, `union`, `segment`, `unbounded`), the two side discs (centre,
 //!   signed radius, width), children and level; report keys `nodes`, `depth`, `kinds`.
-//! - `approx IN (--level L | --error E | --count N) [--method flintstone|dp|strip|blg|arc] -o OUT`:
+//! - `approx IN (--level L | --error E | --count N) [--method flintstone|dp|strip|blg|arc] -o OUT`
+//!   (a mesh: `--method flintstone|iepf3|prism`, see `flint3.rs`):
 //!   the approximation by input vertices, in input order, as `.csv`/`.geojson`; report keys
 //!   `edges`, `e1`…`e5`, `simple` (early levels need not be simple: reported, not hidden).
 //! - `contains IN QUERIES -o OUT.csv`: the query rows (`x,y`) plus an `inside` column: 1 inside,
@@ -85,7 +86,9 @@ pub enum Sub {
         #[arg(long, group = "target")]
         count: Option<usize>,
         /// The hierarchy: flintstone (V ch. 7) or a baseline of V §6.3.
-        #[arg(long, default_value = "flintstone", value_parser = ["flintstone", "dp", "strip", "blg", "arc"])]
+        /// A mesh takes flintstone, iepf3 (3D iterative extreme-point fit) or prism (the prism
+        /// tree on it, refined by its prisms' half heights).
+        #[arg(long, default_value = "flintstone", value_parser = ["flintstone", "dp", "strip", "blg", "arc", "iepf3", "prism"])]
         method: String,
         /// Read a CSV as an open polyline.
         #[arg(long)]
@@ -109,6 +112,9 @@ pub enum Sub {
         /// a closed ring first (exact; area unchanged); reported as `spikes_removed`.
         #[arg(long)]
         repair: bool,
+        /// The hierarchy the walk descends: flintstone, or (a mesh only) prism.
+        #[arg(long, default_value = "flintstone", value_parser = ["flintstone", "prism"])]
+        method: String,
     },
     /// Where the boundaries of A and B meet: one row per meeting edge pair (2D), or the
     /// intersecting triangle pairs of two closed meshes and their segments (3D).
@@ -416,6 +422,11 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                     output.display()
                 )));
             }
+            if matches!(method.as_str(), "iepf3" | "prism") {
+                return Err(Failure::usage(format!(
+                    "--method {method} is a 3D baseline: it needs a closed mesh (.ply/.obj/.off/.stl)"
+                )));
+            }
             let c = read_repaired(&input, open, repair, report)?;
             report_repair(report, &[&c]);
             let (pts, closed) = (&c.pts, c.closed);
@@ -482,6 +493,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             queries,
             output,
             repair,
+            method,
         } => {
             if crate::cmd::extension(&output) != "csv" {
                 return Err(Failure::usage(format!(
@@ -490,7 +502,12 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                 )));
             }
             if super::flint3::is_mesh(&input) {
-                return super::flint3::contains(&input, &queries, &output, report);
+                return super::flint3::contains(&input, &queries, &output, &method, report);
+            }
+            if method != "flintstone" {
+                return Err(Failure::usage(format!(
+                    "--method {method}: a polygon takes --method flintstone"
+                )));
             }
             let c = read_repaired(&input, false, repair, report)?;
             if !c.closed {

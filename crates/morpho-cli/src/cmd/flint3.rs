@@ -5,11 +5,15 @@
 //!   corners, kind, the two side balls (vertex, centre, signed radius, width), error,
 //!   children, level, and for leaves the input triangle; report keys `triangles`, `nodes`,
 //!   `leaves`, `depth`, `kinds`, `fallbacks` (nodes divided into disc patches).
-//! - `approx MESH (--level L | --error E | --count N) -o OUT.(ply|obj|off|stl)`: the
-//!   approximation's triangles on the used input vertices, in input order; report keys
-//!   `triangles`, `dropped` (triangles with coalescing corners), `e1`, `e2`, `e5`.
-//! - `contains MESH QUERIES -o OUT.csv`: the query rows (`x,y,z`) plus `inside` (1 inside,
-//!   0 outside, 2 on the boundary; exact).
+//! - `approx MESH (--level L | --error E | --count N) [--method flintstone|iepf3|prism]
+//!   -o OUT.(ply|obj|off|stl)`: the approximation's triangles on the used input vertices, in
+//!   input order; report keys `method`, `nodes`, `triangles`, `dropped` (triangles with
+//!   coalescing corners), `e1`, `e2`, `e5` (e3 and e4 are 2D criteria, notes A.1), `fallbacks`.
+//!   `iepf3` is the 3D iterative extreme-point fit (refined by e1), `prism` the prism tree on it
+//!   (same triangles at a level; refined by the prisms' half heights); `morpho::flint`'s
+//!   `baselines3.rs`, `prism.rs`.
+//! - `contains MESH QUERIES [--method flintstone|prism] -o OUT.csv`: the query rows (`x,y,z`)
+//!   plus `inside` (1 inside, 0 outside, 2 on the boundary; exact with either hierarchy).
 //! - `intersect A B -o OUT.(csv|ply)`: the pairs of intersecting (closed) triangles by
 //!   descending both trees (exact at the leaves, `morpho::flint::intersect3`) and their
 //!   intersection segments — a CSV row `x,y,z,x2,y2,z2,tri_a,tri_b,coplanar` per segment (a
@@ -21,7 +25,7 @@
 
 use crate::report::Report;
 use crate::Failure;
-use morpho::flint::{Containment, FlintTree3, SideBall, Target};
+use morpho::flint::{Containment, FlintTree3, PrismTree3, SideBall, Target};
 use morpho::geom::Point3;
 use morpho::io;
 use morpho::mesh::{Column, PointSet, TriMesh};
@@ -50,6 +54,18 @@ fn read(path: &Path, report: &mut Report) -> Result<TriMesh, Failure> {
 fn tree(path: &Path, m: &TriMesh, report: &mut Report) -> Result<FlintTree3, Failure> {
     report.time("build", || {
         FlintTree3::from_mesh(m).map_err(|e| morpho::Error::from(e).with_path(path).into())
+    })
+}
+
+fn iepf(path: &Path, m: &TriMesh, report: &mut Report) -> Result<FlintTree3, Failure> {
+    report.time("build", || {
+        FlintTree3::iepf(m).map_err(|e| morpho::Error::from(e).with_path(path).into())
+    })
+}
+
+fn prism_tree(path: &Path, m: &TriMesh, report: &mut Report) -> Result<PrismTree3, Failure> {
+    report.time("build", || {
+        PrismTree3::new(m).map_err(|e| morpho::Error::from(e).with_path(path).into())
     })
 }
 
@@ -120,9 +136,9 @@ pub fn approx(
     method: &str,
     report: &mut Report,
 ) -> Result<u8, Failure> {
-    if method != "flintstone" {
+    if !matches!(method, "flintstone" | "iepf3" | "prism") {
         return Err(Failure::usage(format!(
-            "--method {method}: the 3D baselines are not built yet; a mesh takes --method flintstone"
+            "--method {method} is a 2D baseline; a mesh takes --method flintstone, iepf3 or prism"
         )));
     }
     if !is_mesh(output) {
@@ -132,13 +148,25 @@ pub fn approx(
         )));
     }
     let m = read(input, report)?;
-    let t = tree(input, &m, report)?;
+    let (t, prisms) = match method {
+        "flintstone" => (tree(input, &m, report)?, None),
+        "iepf3" => (iepf(input, &m, report)?, None),
+        _ => {
+            let p = prism_tree(input, &m, report)?;
+            (p.tree.clone(), Some(p))
+        }
+    };
     let a = report.time("approximate", || {
-        t.approximate(target)
-            .map_err(|e| Failure::from(morpho::Error::from(e).with_path(input)))
+        match &prisms {
+            Some(p) => p.approximate(target),
+            None => t.approximate(target),
+        }
+        .map_err(|e| Failure::from(morpho::Error::from(e).with_path(input)))
     })?;
     let (mesh, map) = a.to_mesh(&t);
-    report.set("method", "flintstone");
+    report.set("method", method);
+    report.set("nodes", t.node_count());
+    report.set("fallbacks", t.fallbacks());
     report.set("triangles_in", m.triangles.len());
     report.set("triangles", a.triangles.len());
     report.set("vertices", map.len());
@@ -159,11 +187,15 @@ pub fn approx(
     Ok(0)
 }
 
+/// A batch point-in-mesh query on one of the trees.
+type Walk = Box<dyn Fn(&[Point3]) -> Result<Vec<Containment>, morpho::flint::FlintError>>;
+
 /// `flint contains` on a mesh.
 pub fn contains(
     input: &Path,
     queries: &Path,
     output: &Path,
+    method: &str,
     report: &mut Report,
 ) -> Result<u8, Failure> {
     let m = read(input, report)?;
@@ -174,15 +206,21 @@ pub fn contains(
             queries.display()
         )));
     }
-    let t = tree(input, &m, report)?;
+    let walk: Walk = if method == "prism" {
+        let p = prism_tree(input, &m, report)?;
+        Box::new(move |xs| p.contains_batch(xs))
+    } else {
+        let t = tree(input, &m, report)?;
+        Box::new(move |xs| t.contains_batch(xs))
+    };
+    report.set("method", method);
     let xs: Vec<Point3> = q
         .coords
         .chunks_exact(3)
         .map(|c| Point3::new(c[0], c[1], c[2]))
         .collect();
     let ans = report.time("query", || {
-        t.contains_batch(&xs)
-            .map_err(|e| Failure::from(morpho::Error::from(e).with_path(queries)))
+        walk(&xs).map_err(|e| Failure::from(morpho::Error::from(e).with_path(queries)))
     })?;
     let count = |c: Containment| ans.iter().filter(|&&a| a == c).count();
     report.set("queries", xs.len());

@@ -83,7 +83,11 @@ impl Approximation3 {
 
 impl FlintTree3 {
     /// The cut for `target` (node ids).
-    pub(crate) fn select3(&self, target: Target) -> Result<Vec<u32>, FlintError> {
+    pub(crate) fn select3(
+        &self,
+        target: Target,
+        key: &dyn Fn(u32) -> f64,
+    ) -> Result<Vec<u32>, FlintError> {
         let tops = self.root.children.clone();
         let mut cut = Vec::new();
         match target {
@@ -105,7 +109,7 @@ impl FlintTree3 {
                 let mut stack = tops;
                 while let Some(id) = stack.pop() {
                     let nd = &self.nodes[id as usize];
-                    if nd.is_leaf() || nd.error() <= eps {
+                    if nd.is_leaf() || key(id) <= eps {
                         cut.push(id);
                     } else {
                         stack.extend(nd.children.iter().copied());
@@ -120,7 +124,7 @@ impl FlintTree3 {
                 let mut count = 0usize;
                 let key = |c: u32| {
                     let nd = &self.nodes[c as usize];
-                    ByError(if nd.is_leaf() { -1.0 } else { nd.error() }, c)
+                    ByError(if nd.is_leaf() { -1.0 } else { key(c) }, c)
                 };
                 for &c in &tops {
                     heap.push(key(c));
@@ -159,7 +163,16 @@ impl FlintTree3 {
     /// assert_eq!(fine.triangles.len(), 1280); // every node refined: the input
     /// ```
     pub fn approximate(&self, target: Target) -> Result<Approximation3, FlintError> {
-        let cut = self.select3(target)?;
+        self.approximate_by(target, &|id| self.key(id))
+    }
+
+    /// [`Self::approximate`] with the refinement key `key(node)` (ε and count targets).
+    pub(crate) fn approximate_by(
+        &self,
+        target: Target,
+        key: &dyn Fn(u32) -> f64,
+    ) -> Result<Approximation3, FlintError> {
+        let cut = self.select3(target, key)?;
         let mut a = Approximation3 {
             triangles: Vec::with_capacity(cut.len()),
             nodes: cut.clone(),

@@ -29,18 +29,23 @@
 //!   disjoint, exact triangle–triangle tests at the leaves, see `intersect3.rs`), with the
 //!   intersection geometry [`triangle_meet`] and the brute-force oracle [`intersect3_brute`].
 //!
-//! Not built yet: the 3D baselines (IEPF, prism tree).
+//! - [`FlintTree3::iepf`]: the 3D iterative extreme-point fit (Faugeras et al. 84, V §6.3)
+//!   through the same splitting, approximation and query code (`baselines3.rs`);
+//!   [`PrismTree3`]: the prism tree (Ponce–Faugeras 87, Def. 6.2) on it, with its point-in-mesh
+//!   walk (prisms as conservative filters, exact at the leaves; `prism.rs`).
 
 mod approx;
 mod approx3;
 mod ball;
 mod baselines;
+mod baselines3;
 mod bquery;
 mod criteria;
 mod disc;
 mod intersect3;
 mod locate;
 mod patch3;
+mod prism;
 mod query;
 mod query3;
 mod region;
@@ -57,6 +62,7 @@ pub use disc::{Flintstone, SideDisc, StoneKind};
 pub use intersect3::{
     intersect3, intersect3_brute, intersects3, triangle_meet, IntersectStats3, TriangleMeet,
 };
+pub use prism::{Prism, PrismTree3};
 pub use query::{
     contains_brute, intersect, intersect_brute, intersect_counted, Containment, Crossing,
     IntersectStats,

@@ -117,6 +117,24 @@ impl FlintTree3 {
 
     /// The hierarchical walk (finite `x`).
     pub(crate) fn locate(&self, x: [f64; 3]) -> (Containment, usize) {
+        let p = |v: u32| self.pos[v as usize];
+        let q = &self.q;
+        self.locate_with(x, |i| {
+            let nd = &q.nodes[i];
+            nd.filter.excludes(x, || nd.corners.map(p))
+        })
+    }
+
+    /// The walk with the node filter `excludes(i)` for the node at position `i` of the
+    /// breadth-first copy ([`QueryIndex::order`]); it must be true only when `x` is certainly
+    /// outside a convex set holding every vertex of the node's open polyhedron (then the
+    /// replacement by triangle and fills is exact, see the module doc).
+    #[inline]
+    pub(crate) fn locate_with(
+        &self,
+        x: [f64; 3],
+        excludes: impl Fn(usize) -> bool,
+    ) -> (Containment, usize) {
         if dist2(x, self.root.center) > self.root.reach2 {
             return (Containment::Outside, 0);
         }
@@ -140,7 +158,7 @@ impl FlintTree3 {
                 inside ^= ray_crosses_triangle(x, AXIS, a, b, c);
                 continue;
             }
-            if nd.filter.excludes(x, || nd.corners.map(p)) {
+            if excludes(id as usize) {
                 let cs = nd.corners.map(p);
                 inside ^= ray_crosses_triangle(x, AXIS, cs[0], cs[1], cs[2]);
                 for &s in &nd.sides {
@@ -213,6 +231,8 @@ pub(crate) struct QSide {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub(crate) struct QueryIndex {
     nodes: Vec<QNode>,
+    /// The node id at each position of `nodes`.
+    pub(crate) order: Vec<u32>,
     top: u32,
     sides: Vec<QSide>,
     paths: Vec<u32>,
@@ -266,6 +286,7 @@ impl QueryIndex {
             .collect();
         QueryIndex {
             nodes,
+            order,
             top: t.root.children.len() as u32,
             sides,
             paths,

@@ -146,6 +146,10 @@ pub struct FlintTree3 {
     /// Input triangles in depth-first leaf order: node `n` covers `leaf_order[n.range]`.
     pub leaf_order: Vec<u32>,
     pub(crate) prune: bool,
+    /// Per node the refinement key of the 3D IEPF hierarchy (e1 of the node: the largest
+    /// distance of its vertices to its triangle; 0 for leaves); empty for the flintstone tree,
+    /// whose key is the flintstone error (`baselines3.rs`).
+    pub(crate) keys: Vec<f64>,
     /// The compact copy the point queries walk (`query3.rs`).
     pub(crate) q: super::query3::QueryIndex,
 }
@@ -157,6 +161,18 @@ pub const DEFAULT_MIN_ANGLE: f64 = 20.0;
 struct Item {
     node: u32,
     region: Vec<u32>,
+    /// 3D IEPF: the node came from a 3-split, so its side 0 is an *old* side, to be 2-split
+    /// next (`baselines3.rs`).
+    old: bool,
+}
+
+/// Which hierarchy the builder makes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Method3 {
+    /// Alg. 7.2 (this module).
+    Flintstone,
+    /// The 3D iterative extreme-point fit (`baselines3.rs`).
+    Iepf,
 }
 
 struct Builder<'a> {
@@ -165,6 +181,8 @@ struct Builder<'a> {
     sides: Vec<Side3>,
     prune: bool,
     min_angle: f64,
+    method: Method3,
+    keys: Vec<f64>,
 }
 
 /// Flat positions and the neighbour table of a checked mesh.
@@ -253,6 +271,16 @@ impl FlintTree3 {
         triangles: &[[u32; 3]],
         min_angle_deg: f64,
     ) -> Result<FlintTree3, FlintError> {
+        Self::build(positions, triangles, min_angle_deg, Method3::Flintstone)
+    }
+
+    /// The tree of `method` (the IEPF ignores `min_angle_deg`).
+    pub(crate) fn build(
+        positions: &[Point3],
+        triangles: &[[u32; 3]],
+        min_angle_deg: f64,
+        method: Method3,
+    ) -> Result<FlintTree3, FlintError> {
         if !(0.0..60.0).contains(&min_angle_deg) {
             return Err(FlintError::BadTarget(format!(
                 "smallest angle {min_angle_deg}° (must be in [0, 60))"
@@ -287,16 +315,18 @@ impl FlintTree3 {
             f64::INFINITY
         };
         let tris = triangles.to_vec();
-        let (nodes, sides, children, patched) = {
+        let (nodes, sides, children, patched, keys) = {
             let mut b = Builder {
                 s: Surface::new(&pos, &tris, &nbr),
                 nodes: Vec::new(),
                 sides: Vec::new(),
                 prune,
                 min_angle: min_angle_deg.to_radians(),
+                method,
+                keys: Vec::new(),
             };
             let (children, patched) = b.run(corners);
-            (b.nodes, b.sides, children, patched)
+            (b.nodes, b.sides, children, patched, b.keys)
         };
         let mut t = FlintTree3 {
             pos,
@@ -313,6 +343,7 @@ impl FlintTree3 {
             sides,
             leaf_order: Vec::new(),
             prune,
+            keys,
             q: Default::default(),
         };
         t.number_leaves();
@@ -466,7 +497,7 @@ impl Builder<'_> {
         match halves {
             Some((specs, regions)) => {
                 for (spec, region) in specs.into_iter().zip(regions) {
-                    if let Some(id) = self.make(spec, region, 1, &mut frontier) {
+                    if let Some(id) = self.make(spec, region, 1, &mut frontier, false) {
                         root_children.push(id);
                     }
                 }
@@ -476,8 +507,10 @@ impl Builder<'_> {
             }
         }
         while !frontier.is_empty() {
-            for it in &frontier {
-                self.decide(it);
+            if self.method == Method3::Flintstone {
+                for it in &frontier {
+                    self.decide(it);
+                }
             }
             let mut next = Vec::new();
             for it in frontier {
@@ -540,11 +573,15 @@ impl Builder<'_> {
         region: Vec<u32>,
         level: u32,
         frontier: &mut Vec<Item>,
+        old: bool,
     ) -> Option<u32> {
         if region.is_empty() {
             return None;
         }
         let id = self.nodes.len() as u32;
+        if self.method == Method3::Iepf {
+            self.keys.push(0.0);
+        }
         if region.len() == 1 {
             let t = region[0];
             self.nodes.push(FlintNode3 {
@@ -564,6 +601,13 @@ impl Builder<'_> {
         let pr: Vec<&[u32]> = paths.iter().map(|p| p.as_slice()).collect();
         let verts = self.s.vertices(&region, &pr);
         let stone = Flintstone3::of(self.s.pos, corners, &verts, self.prune);
+        if self.method == Method3::Iepf {
+            // over the open polyhedron's own vertices, as the approximation's e1 (a path
+            // may hold more where two paths run along the same edges and cancel)
+            let own = self.s.vertices(&region, &[]);
+            let far = super::baselines3::farthest(self.s.pos, corners, &own);
+            self.keys[id as usize] = far.map_or(0.0, |f| f.1);
+        }
         self.nodes.push(FlintNode3 {
             corners,
             sides,
@@ -574,7 +618,11 @@ impl Builder<'_> {
             patched: false,
             range: [0, 0],
         });
-        frontier.push(Item { node: id, region });
+        frontier.push(Item {
+            node: id,
+            region,
+            old,
+        });
         Some(id)
     }
 
@@ -623,15 +671,19 @@ impl Builder<'_> {
             self.s.pos[path[0] as usize],
             self.s.pos[path[path.len() - 1] as usize],
         );
-        let k = (1..path.len() - 1)
-            .min_by(|&a, &b| {
-                let f = |i: usize| {
-                    let x = self.s.pos[path[i] as usize];
-                    (dist(u, x) - dist(x, v)).abs()
-                };
-                f(a).total_cmp(&f(b)).then(a.cmp(&b))
-            })
-            .unwrap_or(1);
+        let k = if self.method == Method3::Iepf {
+            super::baselines3::path_split(self.s.pos, &path)
+        } else {
+            (1..path.len() - 1)
+                .min_by(|&a, &b| {
+                    let f = |i: usize| {
+                        let x = self.s.pos[path[i] as usize];
+                        (dist(u, x) - dist(x, v)).abs()
+                    };
+                    f(a).total_cmp(&f(b)).then(a.cmp(&b))
+                })
+                .unwrap_or(1)
+        };
         let a = self.side(path[..=k].to_vec());
         let b = self.side(path[k..].to_vec());
         let x = (path[k], a, b);
@@ -659,14 +711,27 @@ impl Builder<'_> {
             let sd = &b.sides[sides[k].0 as usize];
             (sd.mark || sd.split.is_some()) && sd.path.len() >= 3
         };
-        let marked: Vec<usize> = (0..3).filter(|&k| marked(self, k)).collect();
+        let marked: Vec<usize> = if self.method == Method3::Iepf {
+            Vec::new() // the IEPF follows no neighbour's split (baselines3.rs)
+        } else {
+            (0..3).filter(|&k| marked(self, k)).collect()
+        };
         let splittable: Vec<usize> = (0..3).filter(|&k| self.splittable(sides[k].0)).collect();
         let interior = self.s.interior(&it.region, &pr);
         // candidate splits, in order: V's choice, then the alternatives when a division fails
         // (a part would keep every triangle, or its boundary is not its paths)
         let mut tries: Vec<Split> = Vec::new();
         let mut qs: Vec<u32> = Vec::new();
-        if !interior.is_empty() {
+        if self.method == Method3::Iepf {
+            // V §6.3: 2-split at the old side, else 3-split at the vertex farthest from the
+            // triangle; then the same alternatives as below
+            if it.old && splittable.contains(&0) {
+                tries.push(Split::Sides(vec![0]));
+            }
+            if let Some((q, _)) = super::baselines3::farthest(self.s.pos, corners, &interior) {
+                tries.push(Split::Vertex(q));
+            }
+        } else if !interior.is_empty() {
             let st = Flintstone3::of(self.s.pos, corners, &interior, false);
             qs.extend(st.split());
             for d in [st.below, st.above].into_iter().flatten() {
@@ -678,7 +743,7 @@ impl Builder<'_> {
                 qs.push(interior[0]);
             }
         }
-        if !marked.is_empty() {
+        if !marked.is_empty() && self.method == Method3::Flintstone {
             tries.push(Split::Sides(marked.clone()));
         }
         tries.extend(qs.iter().map(|&q| Split::Vertex(q)));
@@ -691,7 +756,9 @@ impl Builder<'_> {
             }
         }
         let mut planned = None;
+        let mut by_vertex = false;
         for t in tries {
+            by_vertex = matches!(t, Split::Vertex(_));
             planned = match t {
                 Split::Vertex(q) => self.three_split(&it.region, corners, sides, q),
                 Split::Sides(m) => match m.len() {
@@ -712,7 +779,7 @@ impl Builder<'_> {
             Some((specs, regions)) => {
                 let mut ch = Vec::new();
                 for (spec, region) in specs.into_iter().zip(regions) {
-                    if let Some(id) = self.make(spec, region, level + 1, next) {
+                    if let Some(id) = self.make(spec, region, level + 1, next, by_vertex) {
                         ch.push(id);
                     }
                 }
@@ -885,7 +952,7 @@ impl Builder<'_> {
         match planned {
             Some((specs, regions)) => {
                 for (spec, r) in specs.into_iter().zip(regions) {
-                    if let Some(id) = self.make(spec, r, level, frontier) {
+                    if let Some(id) = self.make(spec, r, level, frontier, false) {
                         children.push(id);
                     }
                 }
@@ -893,7 +960,8 @@ impl Builder<'_> {
             None => {
                 for &t in region {
                     let tr = self.s.tris[t as usize];
-                    if let Some(id) = self.make((tr, [(NONE, false); 3]), vec![t], level, frontier)
+                    if let Some(id) =
+                        self.make((tr, [(NONE, false); 3]), vec![t], level, frontier, false)
                     {
                         children.push(id);
                     }
