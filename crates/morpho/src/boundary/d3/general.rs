@@ -27,7 +27,11 @@
 //! bounding boxes, cell twice the median edge length; boundary faces and the other live
 //! triangles in separate grids, [`super::trigrid::TriGrid`]: the triangles of
 //! [`General3::new`] in one flat array built by a counting sort, later ones in a hash grid;
-//! triangles spanning more than 512 cells on coarser levels or in a list tested always). Boundary tests stop at the first hit and skip boxes that a conservative
+//! triangles spanning more than 512 cells on coarser levels or in a list tested always). The
+//! crossing search and the boundary-hit test use box hierarchies instead
+//! ([`super::crosstree::BoxIndex`]: per size class, dead ids skipped), whose cost follows the
+//! boxes that meet the query rather than the cells (the grid's cell follows the long
+//! triangles: on the fandisk it is half the object). Boundary tests stop at the first hit and skip boxes that a conservative
 //! floating-point bound puts off the triangle's plane. The sweep of `run` visits only the
 //! boundary faces next to a live non-boundary triangle (the only ones that can carry a
 //! removable tetrahedron), so a caller may pass only the live triangles near the locked
@@ -44,6 +48,7 @@
 //! Preconditions: the initial surface is a closed genus-0 2-manifold enclosing every vertex and
 //! every given triangle (as produced by [`super::constrict`] or the convex hull).
 
+use super::crosstree::BoxIndex;
 use super::support::Support;
 use super::trigrid::TriGrid;
 use crate::boundary::indicator::MinKey;
@@ -168,7 +173,7 @@ pub struct General3<'a> {
     pub(super) keep: IdSet<[u32; 3]>,
     /// Live triangles that were not boundary faces when added (for [`Self::crossing`]), but
     /// for those in a supporting plane of the points (`support`), which never cross.
-    pub(super) tgrid: TriGrid,
+    pub(super) tgrid: BoxIndex,
     /// The supporting planes proposed by the initial boundary ([`super::support`]).
     pub(super) support: Support,
     /// Triangles the grid of [`Self::crossing`] handed over (work counter for the tests).
@@ -177,6 +182,10 @@ pub struct General3<'a> {
     /// which still are).
     pub(super) bgrid: TriGrid,
     pub(super) in_bgrid: Vec<bool>,
+    /// The ids of `bgrid` again, alive exactly while a live boundary face (`live` and
+    /// `bflag`), for [`Self::hits_boundary`] ([`super::crosstree`]: its cost follows the
+    /// boxes that meet the query, not the dead faces and the coarse cells).
+    pub(super) bfaces: BoxIndex,
     pub(super) vgrid: Grid,
     /// The bounding box of the points.
     pub(super) pbox: (P, P),
@@ -321,10 +330,11 @@ impl<'a> General3<'a> {
             bnext: IdMap::default(),
             vcount: vec![0; p.len()],
             keep: keep.iter().map(|&f| sorted3(f)).collect(),
-            tgrid: TriGrid::new(lo, cell),
+            tgrid: BoxIndex::new(lo),
             support,
             crossing_examined: 0,
             bgrid: TriGrid::new(lo, cell),
+            bfaces: BoxIndex::new(lo),
             in_bgrid: Vec::new(),
             vgrid: Grid::new(lo, cell, false),
             pbox: (lo, hi),
@@ -410,7 +420,7 @@ impl<'a> General3<'a> {
             .map(|i| !self.support.holds(p, self.tris[i]))
             .collect();
         let (tl, tbox) = (&self.tris, &self.tbox);
-        let (eadj, bnext, vcount, bv, vgrid, vcoarse, tgrid, bgrid) = (
+        let (eadj, bnext, vcount, bv, vgrid, vcoarse, tgrid, bgrid, bfaces) = (
             &mut self.eadj,
             &mut self.bnext,
             &mut self.vcount,
@@ -419,6 +429,7 @@ impl<'a> General3<'a> {
             &mut self.vcoarse,
             &mut self.tgrid,
             &mut self.bgrid,
+            &mut self.bfaces,
         );
         rayon::join(
             || {
@@ -452,6 +463,11 @@ impl<'a> General3<'a> {
                             },
                             || {
                                 bgrid.insert_many(bids.iter().map(|&i| {
+                                    let (lo, hi) = tbox[i as usize];
+                                    (i, lo, hi)
+                                }));
+                                // (all live boundary faces)
+                                bfaces.insert_many(bids.iter().map(|&i| {
                                     let (lo, hi) = tbox[i as usize];
                                     (i, lo, hi)
                                 }));
@@ -549,6 +565,8 @@ impl<'a> General3<'a> {
                 return false;
             }
             self.live[i as usize] = true;
+            self.tgrid.set_alive(i, true);
+            self.bfaces.set_alive(i, self.bflag[i as usize]);
         } else {
             let i = self.tris.len() as u32;
             self.tris.push(s);
@@ -579,6 +597,8 @@ impl<'a> General3<'a> {
             return;
         }
         self.live[i as usize] = false;
+        self.tgrid.set_alive(i, false);
+        self.bfaces.set_alive(i, false);
         let (lo, hi) = self.tbox[i as usize];
         self.touched(lo, hi);
         let s = self.tris[i as usize];
@@ -609,7 +629,10 @@ impl<'a> General3<'a> {
                 self.in_bgrid[i as usize] = true;
                 let (lo, hi) = self.tbox[i as usize];
                 self.bgrid.insert(i, lo, hi);
+                self.bfaces.insert(i, lo, hi);
             }
+            self.bfaces
+                .set_alive(i, on && self.live[i as usize] && self.in_bgrid[i as usize]);
         }
         for k in 0..3 {
             let (a, b, c) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
@@ -784,8 +807,8 @@ mod tests {
             one.set_boundary(f, true);
         }
         assert!(
-            !bulk.tgrid.is_single_level(),
-            "no big triangles in the test"
+            bulk.tgrid.classes() > 1,
+            "boxes of one size only in the test"
         );
         assert_eq!(bulk.tris, one.tris);
         assert_eq!(bulk.live, one.live);
@@ -797,8 +820,9 @@ mod tests {
         assert_eq!(bulk.bnext, one.bnext);
         assert_eq!(bulk.vcount, one.vcount);
         assert_eq!(bulk.boundary_vertices, one.boundary_vertices);
-        assert_eq!(bulk.tgrid.contents(), one.tgrid.contents());
+        assert_eq!(bulk.tgrid.ids(), one.tgrid.ids());
         assert_eq!(bulk.bgrid.contents(), one.bgrid.contents());
+        assert_eq!(bulk.bfaces.ids(), one.bfaces.ids());
         assert_eq!(bulk.vgrid, one.vgrid);
         assert_eq!(bulk.vcoarse, one.vcoarse);
         // the cells of the point grid chosen for a box (the coarse one for wide boxes) hold

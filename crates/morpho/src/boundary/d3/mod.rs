@@ -11,6 +11,7 @@
 
 mod augment;
 pub(crate) mod constrict;
+mod crosstree;
 mod engine;
 pub(crate) mod general;
 mod insert;

@@ -282,45 +282,48 @@ impl General3<'_> {
         let scale = |x: P| x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let st_scale = scale(bb.0).max(scale(bb.1));
         let plane_ok = n1.is_finite() && n1 > 0.0;
-        self.bgrid.any_in_box(bb.0, bb.1, |i| {
-            // live boundary triangle (either orientation of the sorted triple)
-            if !self.live[i as usize] || !self.bflag[i as usize] {
-                return false;
-            }
-            let ub = self.tbox[i as usize];
-            if !boxes_meet(bb, ub) {
-                return false;
-            }
-            if plane_ok {
-                let c: P = std::array::from_fn(|k| 0.5 * (ub.0[k] + ub.1[k]));
-                let h: P = std::array::from_fn(|k| 0.5 * (ub.1[k] - ub.0[k]));
-                let dist = (0..3).map(|k| nrm[k] * (c[k] - pt[0][k])).sum::<f64>();
-                let rad = (0..3).map(|k| nrm[k].abs() * h[k]).sum::<f64>();
-                let margin = 1e-8 * n1 * (st_scale + scale(ub.0).max(scale(ub.1)));
-                if dist.abs() > rad + margin {
+        // (`bfaces` hands over only live boundary faces whose boxes may meet `bb`, in no
+        // particular order: the answer is an `any` of a function of the id)
+        self.bfaces
+            .any(bb.0, bb.1, |i| {
+                // live boundary triangle (either orientation of the sorted triple)
+                if !self.live[i as usize] || !self.bflag[i as usize] {
                     return false;
                 }
-            }
-            let u = self.tris[i as usize];
-            if u == st || skip_s.contains(&u) || skip.iter().skip(4).any(|&x| sorted3(x) == u) {
-                return false;
-            }
-            let pu = u.map(|v| self.pt(v));
-            triangles_meet_beyond_shared(t, pt, u, pu)
-        })
+                let ub = self.tbox[i as usize];
+                if !boxes_meet(bb, ub) {
+                    return false;
+                }
+                if plane_ok {
+                    let c: P = std::array::from_fn(|k| 0.5 * (ub.0[k] + ub.1[k]));
+                    let h: P = std::array::from_fn(|k| 0.5 * (ub.1[k] - ub.0[k]));
+                    let dist = (0..3).map(|k| nrm[k] * (c[k] - pt[0][k])).sum::<f64>();
+                    let rad = (0..3).map(|k| nrm[k].abs() * h[k]).sum::<f64>();
+                    let margin = 1e-8 * n1 * (st_scale + scale(ub.0).max(scale(ub.1)));
+                    if dist.abs() > rad + margin {
+                        return false;
+                    }
+                }
+                let u = self.tris[i as usize];
+                if u == st || skip_s.contains(&u) || skip.iter().skip(4).any(|&x| sorted3(x) == u) {
+                    return false;
+                }
+                let pu = u.map(|v| self.pt(v));
+                triangles_meet_beyond_shared(t, pt, u, pu)
+            })
+            .0
     }
 
     /// Live triangles meeting the open tetrahedron (conservative), other than its faces: those
-    /// of the crossing grid whose box meets the tetrahedron's and which
-    /// [`may_meet_open_tet`], in id order. (The grid leaves out the triangles in supporting
+    /// of the crossing index whose box meets the tetrahedron's and which
+    /// [`may_meet_open_tet`], in id order. (The index leaves out the triangles in supporting
     /// planes, for which that test is always false: [`super::support`].)
     ///
-    /// The cheap tests (live, not a face of the tetrahedron, boxes meet) run while the grid
-    /// hands the ids over ([`super::trigrid::TriGrid::query_where`], duplicates dropped by stamps), so that
-    /// only the survivors are sorted — on the fandisk at c = −0.5 about one in six of the
-    /// ids the coarse cells hold (the rest are dead or their boxes miss the tetrahedron's).
-    /// The same set as filtering the sorted answer of [`super::trigrid::TriGrid::query`]: every test is a
-    /// function of the id alone.
+    /// The cheap tests (live, not a face of the tetrahedron, exact boxes meet) run while the
+    /// index hands the ids over ([`super::crosstree::BoxIndex::query_where`]: live ids whose
+    /// boxes, rounded outward, meet the query's, each once), so that only the survivors are
+    /// sorted. The same set as filtering the sorted answer of a query: every test is a function
+    /// of the id alone, and the index hands over every live id whose exact box meets.
     pub(super) fn crossing(&mut self, qv: [u32; 4]) -> Vec<u32> {
         let q = qv.map(|v| self.pt(v));
         let bb = bbox(&q);
@@ -348,8 +351,9 @@ impl General3<'_> {
         out
     }
 
-    /// The crossing search as it was before [`super::trigrid::TriGrid::query_where`] (the reference of the
-    /// lockstep test): the sorted answer of [`super::trigrid::TriGrid::query`], then each test in turn.
+    /// The crossing search as it was before the filter during the walk (the reference of the
+    /// lockstep test): the sorted answer of [`super::crosstree::BoxIndex::query`], then each
+    /// test in turn.
     #[cfg(test)]
     pub(super) fn crossing_by_query(&self, qv: [u32; 4]) -> Vec<u32> {
         let q = qv.map(|v| self.pt(v));
@@ -1118,7 +1122,7 @@ mod tests {
             q(0.5),
             q(0.9),
             q(0.99),
-            g.tgrid.cell(),
+            g.bgrid.cell(),
             g.bgrid.cell()
         );
         let extra = g.local_gamma(-0.5, 16);

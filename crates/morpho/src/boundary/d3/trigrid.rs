@@ -10,7 +10,8 @@
 //! only the boxes inserted later one by one ([`TriGrid::insert`]) into a hash map of lists.
 //!
 //! The order in which ids come is unspecified ([`TriGrid::query`] sorts and deduplicates;
-//! [`TriGrid::any_in_box`] is for predicates whose answer does not depend on it).
+//! [`TriGrid::any_in_box`] is for predicates whose answer does not depend on it). The crossing
+//! search and the boundary-hit test use [`super::crosstree::BoxIndex`] instead.
 
 use crate::geom::grid::{BoxGrid, Cell};
 use crate::util::{IdMap, NONE};
@@ -120,10 +121,6 @@ pub(super) struct TriGrid {
     big: Vec<u32>,
     coarse: Option<Box<TriGrid>>,
     level: usize,
-    /// [`TriGrid::query_where`]'s deduplication: id → the stamp of the last query that met it
-    /// (grown on demand; only the finest level's is used).
-    seen: Vec<u32>,
-    stamp: u32,
 }
 
 impl TriGrid {
@@ -142,8 +139,6 @@ impl TriGrid {
             big: Vec::new(),
             coarse: None,
             level: 0,
-            seen: Vec::new(),
-            stamp: 0,
         }
     }
 
@@ -151,12 +146,6 @@ impl TriGrid {
     #[cfg(test)]
     pub(super) fn cell(&self) -> f64 {
         self.cell
-    }
-
-    /// True when every id sits on the finest level.
-    #[cfg(test)]
-    pub(super) fn is_single_level(&self) -> bool {
-        self.coarse.is_none() && self.big.is_empty()
     }
 
     /// The cells of the box `[lo, hi]` on this level ([`BoxGrid::range`]).
@@ -327,6 +316,7 @@ impl TriGrid {
     /// Calls `f` on the ids whose cells meet the box (an id may come more than once, in no
     /// particular order; every level and the list of wide boxes included) until it returns
     /// true; returns whether it did.
+    #[cfg(test)]
     pub(super) fn any_in_box(&self, lo: P, hi: P, mut f: impl FnMut(u32) -> bool) -> bool {
         self.any_dyn(lo, hi, &mut f)
     }
@@ -378,46 +368,6 @@ impl TriGrid {
         });
         out.sort_unstable();
         out.dedup();
-    }
-
-    /// [`TriGrid::query`] with a filter applied while the grid hands the ids over: `out`
-    /// receives, each once and in no particular order, the ids of the query's answer for
-    /// which `take` is true (`take` is called once per id of the answer), and the return value
-    /// is the size of the whole answer (the length of [`TriGrid::query`]'s list). Duplicates
-    /// are dropped by a stamp per id instead of a sort of the whole answer: the cost follows
-    /// the ids the cells hold, and only the ids taken need sorting when the order matters.
-    pub(super) fn query_where(
-        &mut self,
-        lo: P,
-        hi: P,
-        mut take: impl FnMut(u32) -> bool,
-        out: &mut Vec<u32>,
-    ) -> usize {
-        out.clear();
-        if self.stamp == u32::MAX {
-            self.seen.iter_mut().for_each(|s| *s = 0);
-            self.stamp = 0;
-        }
-        self.stamp += 1;
-        let stamp = self.stamp;
-        let mut seen = std::mem::take(&mut self.seen);
-        let mut met = 0usize;
-        self.any_dyn(lo, hi, &mut |i| {
-            let i_us = i as usize;
-            if i_us >= seen.len() {
-                seen.resize(i_us + 1, 0);
-            }
-            if seen[i_us] != stamp {
-                seen[i_us] = stamp;
-                met += 1;
-                if take(i) {
-                    out.push(i);
-                }
-            }
-            false
-        });
-        self.seen = seen;
-        met
     }
 
     /// Every cell's ids (sorted), per level (`(level, cell)`), and the list of wide boxes
@@ -611,30 +561,6 @@ mod tests {
                 if let Some(&t) = want.get(want.len() / 2) {
                     assert!(g.any_in_box(lo, hi, |i| i == t));
                 }
-                // query_where: the filtered answer, each id once, and the answer's size
-                // (through a wrap of the stamps on the second set)
-                if si == 1 && qi == 0 {
-                    g.stamp = u32::MAX - 3;
-                }
-                let mut calls = 0usize;
-                let mut taken = Vec::new();
-                let met = g.query_where(
-                    lo,
-                    hi,
-                    |i| {
-                        calls += 1;
-                        i % 3 != 1
-                    },
-                    &mut taken,
-                );
-                taken.sort_unstable();
-                assert_eq!(
-                    (met, calls),
-                    (want.len(), want.len()),
-                    "set {si} query {qi}"
-                );
-                let kept: Vec<u32> = want.iter().copied().filter(|i| i % 3 != 1).collect();
-                assert_eq!(taken, kept, "set {si} query {qi} (query_where)");
             }
         }
         assert_eq!(blocked_sets, 3);
