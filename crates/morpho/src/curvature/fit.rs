@@ -9,6 +9,7 @@
 //! an absolute determinant threshold would not be.
 
 use nalgebra::{SMatrix, SVector};
+use std::ops::{AddAssign, Mul, SubAssign};
 
 mod jet_solve;
 
@@ -197,14 +198,20 @@ fn jet_normal<const N: usize, const E: usize>(
 }
 
 /// The monomials of degree 2, 3, 4, 5, 6 ([`monomials_2_6`]).
-type Monomials2to6 = ([f64; 3], [f64; 4], [f64; 5], [f64; 6], [f64; 7]);
+type Monomials2to6<T> = ([T; 3], [T; 4], [T; 5], [T; 6], [T; 7]);
+
+/// The arithmetic of the moments: `f64` (one vertex) and [`F4`] (four vertices, one per lane,
+/// each lane the same operations as `f64`).
+pub(crate) trait Lane: Copy + Mul<Output = Self> + AddAssign {}
+impl Lane for f64 {}
+impl Lane for F4 {}
 
 /// The monomials `uᵃtᵇ` of degree 2–6, each block by increasing `b`, each monomial one product
 /// from degree k − 1 (the first times `u`, every other the one before it times `t`): the jets'
 /// moment layout. Written out, not looped: a loop kept the monomials in memory and took twice
 /// as long.
 #[inline(always)]
-fn monomials_2_6(u: f64, t: f64) -> Monomials2to6 {
+fn monomials_2_6<T: Lane>(u: T, t: T) -> Monomials2to6<T> {
     let d2 = [u * u, u * t, t * t];
     let d3 = [d2[0] * u, d2[0] * t, d2[1] * t, d2[2] * t];
     let d4 = [d3[0] * u, d3[0] * t, d3[1] * t, d3[2] * t, d3[3] * t];
@@ -230,7 +237,7 @@ fn monomials_2_6(u: f64, t: f64) -> Monomials2to6 {
 
 /// Adds the monomials of [`monomials_2_6`] to the first 25 moments.
 #[inline(always)]
-fn add_moments_2_6(m: &mut [f64], d: &Monomials2to6) {
+fn add_moments_2_6<T: Lane>(m: &mut [T], d: &Monomials2to6<T>) {
     for (acc, x) in m[0..3].iter_mut().zip(d.0) {
         *acc += x;
     }
@@ -245,6 +252,50 @@ fn add_moments_2_6(m: &mut [f64], d: &Monomials2to6) {
     }
     for (acc, x) in m[18..25].iter_mut().zip(d.4) {
         *acc += x;
+    }
+}
+
+/// Adds the point `(u, t)` with height `d` to the quartic jet's moments `m` (degree 2–8) and
+/// `r` (degree 1–4): [`QuarticJet::add`] for one vertex, [`QuarticJet4::add`] for four — the
+/// same code, so each lane's sums are the one vertex's, bit for bit.
+#[inline(always)]
+fn quartic_add<T: Lane>(m: &mut [T; 42], r: &mut [T; 14], u: T, t: T, d: T) {
+    // degree by degree, as in `CubicJet::add`, two degrees further
+    let mo = monomials_2_6(u, t);
+    add_moments_2_6(m, &mo);
+    let (d2, d3, d4, d6) = (mo.0, mo.1, mo.2, mo.4);
+    let d7 = [
+        d6[0] * u,
+        d6[0] * t,
+        d6[1] * t,
+        d6[2] * t,
+        d6[3] * t,
+        d6[4] * t,
+        d6[5] * t,
+        d6[6] * t,
+    ];
+    let d8 = [
+        d7[0] * u,
+        d7[0] * t,
+        d7[1] * t,
+        d7[2] * t,
+        d7[3] * t,
+        d7[4] * t,
+        d7[5] * t,
+        d7[6] * t,
+        d7[7] * t,
+    ];
+    for (acc, x) in m[25..33].iter_mut().zip(d7) {
+        *acc += x;
+    }
+    for (acc, x) in m[33..42].iter_mut().zip(d8) {
+        *acc += x;
+    }
+    let low = [
+        u, t, d2[0], d2[1], d2[2], d3[0], d3[1], d3[2], d3[3], d4[0], d4[1], d4[2], d4[3], d4[4],
+    ];
+    for (acc, x) in r.iter_mut().zip(low) {
+        *acc += d * x;
     }
 }
 
@@ -336,45 +387,7 @@ impl QuarticJet {
     /// Adds the point `(u, t)` with height `d`.
     #[inline(always)]
     pub(crate) fn add(&mut self, u: f64, t: f64, d: f64) {
-        // degree by degree, as in `CubicJet::add`, two degrees further
-        let mo = monomials_2_6(u, t);
-        add_moments_2_6(&mut self.m, &mo);
-        let (d2, d3, d4, d6) = (mo.0, mo.1, mo.2, mo.4);
-        let d7 = [
-            d6[0] * u,
-            d6[0] * t,
-            d6[1] * t,
-            d6[2] * t,
-            d6[3] * t,
-            d6[4] * t,
-            d6[5] * t,
-            d6[6] * t,
-        ];
-        let d8 = [
-            d7[0] * u,
-            d7[0] * t,
-            d7[1] * t,
-            d7[2] * t,
-            d7[3] * t,
-            d7[4] * t,
-            d7[5] * t,
-            d7[6] * t,
-            d7[7] * t,
-        ];
-        let m = &mut self.m;
-        for (acc, x) in m[25..33].iter_mut().zip(d7) {
-            *acc += x;
-        }
-        for (acc, x) in m[33..42].iter_mut().zip(d8) {
-            *acc += x;
-        }
-        let low = [
-            u, t, d2[0], d2[1], d2[2], d3[0], d3[1], d3[2], d3[3], d4[0], d4[1], d4[2], d4[3],
-            d4[4],
-        ];
-        for (acc, x) in self.r.iter_mut().zip(low) {
-            *acc += d * x;
-        }
+        quartic_add(&mut self.m, &mut self.r, u, t, d);
         self.rows += 1;
     }
 
@@ -402,6 +415,114 @@ impl QuarticJet {
     #[cfg_attr(not(test), allow(dead_code))]
     pub(crate) fn normal(&self) -> Normal<14> {
         jet_normal(&Self::ENTRIES, &self.m, &self.r, self.rows)
+    }
+}
+
+/// Four `f64` lanes, one vertex each: every operation is the `f64` operation in each lane
+/// (so a lane's results are bit for bit those of the scalar code doing the same operations);
+/// written as loops over the lanes that the compiler turns into vector instructions (two SSE2
+/// or one AVX2 instruction per operation).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[repr(align(32))]
+pub(crate) struct F4(pub(crate) [f64; 4]);
+
+impl F4 {
+    pub(crate) const ZERO: F4 = F4([0.0; 4]);
+
+    #[inline(always)]
+    pub(crate) fn splat(x: f64) -> F4 {
+        F4([x; 4])
+    }
+
+    #[inline(always)]
+    fn zip(self, o: F4, f: impl Fn(f64, f64) -> f64) -> F4 {
+        F4(std::array::from_fn(|l| f(self.0[l], o.0[l])))
+    }
+
+    /// `f64::max` in each lane.
+    #[inline(always)]
+    fn max(self, o: F4) -> F4 {
+        self.zip(o, f64::max)
+    }
+
+    /// `1.0 / x` in each lane.
+    #[inline(always)]
+    fn recip(self) -> F4 {
+        F4::splat(1.0).zip(self, |a, b| a / b)
+    }
+
+    /// Clears `ok` in the lanes where the pivot `self` fails the test of [`Normal::solve_ldl`]
+    /// (not positive, or at most `max_ratio⁻¹` times `dmax`; NaN fails).
+    #[inline(always)]
+    fn pivot_ok(self, max_ratio: f64, dmax: F4, ok: &mut [bool; 4]) {
+        for l in 0..4 {
+            let p = self.0[l];
+            ok[l] &= p > 0.0 && p * max_ratio >= dmax.0[l];
+        }
+    }
+
+    /// The solution of each lane where `ok` holds and every entry is finite.
+    #[inline(always)]
+    fn solutions<const N: usize>(c: &[F4; N], ok: [bool; 4]) -> [Option<[f64; N]>; 4] {
+        std::array::from_fn(|l| {
+            let x: [f64; N] = std::array::from_fn(|i| c[i].0[l]);
+            (ok[l] && x.iter().all(|v| v.is_finite())).then_some(x)
+        })
+    }
+}
+
+impl Mul for F4 {
+    type Output = F4;
+    #[inline(always)]
+    fn mul(self, o: F4) -> F4 {
+        self.zip(o, |a, b| a * b)
+    }
+}
+
+impl AddAssign for F4 {
+    #[inline(always)]
+    fn add_assign(&mut self, o: F4) {
+        *self = self.zip(o, |a, b| a + b);
+    }
+}
+
+impl SubAssign for F4 {
+    #[inline(always)]
+    fn sub_assign(&mut self, o: F4) {
+        *self = self.zip(o, |a, b| a - b);
+    }
+}
+
+/// The quartic jets of four vertices at once, one per lane ([`F4`]): lane `l` holds the moments
+/// of [`QuarticJet`] of the points added in lane `l`. A lane with fewer points is padded with
+/// the point `(0, 0, 0)`, which adds exactly nothing (every monomial is +0, and `x + 0 = x` for
+/// every sum that starts at +0: such a sum is never −0), so its moments are its own vertex's
+/// bit for bit.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct QuarticJet4 {
+    m: [F4; 42],
+    r: [F4; 14],
+}
+
+impl QuarticJet4 {
+    pub(crate) fn new() -> Self {
+        QuarticJet4 {
+            m: [F4::ZERO; 42],
+            r: [F4::ZERO; 14],
+        }
+    }
+
+    /// Adds one point per lane ([`QuarticJet::add`] in each lane).
+    #[inline(always)]
+    pub(crate) fn add(&mut self, u: F4, t: F4, d: F4) {
+        quartic_add(&mut self.m, &mut self.r, u, t, d);
+    }
+
+    /// [`QuarticJet::solve`] of each lane, for lanes of at least 14 points (the caller's
+    /// condition: the row count is not kept).
+    #[inline(always)]
+    pub(crate) fn solve(&self, max_ratio: f64) -> [Option<[f64; 14]>; 4] {
+        jet_solve::quartic_solve4(&self.m, &self.r, max_ratio)
     }
 }
 
@@ -663,6 +784,71 @@ mod tests {
         assert!(q.solve(1.0).is_none() && q.normal().solve_ldl(1.0).is_none());
         q.add(0.5, 0.5, f64::NAN);
         assert!(q.solve(1e10).is_none() && q.cubic().solve(1e10).is_none());
+    }
+
+    #[test]
+    fn quartic_solve4_lanes_are_quartic_solve() {
+        // each lane of `QuarticJet4` (moments and solution) must be `QuarticJet` of that lane's
+        // points bit for bit, whatever the other lanes hold and however many points they have
+        // (shorter lanes padded with zeros), refusals included: a wrong padding, a lane mix-up,
+        // a different order of operations or a refusal rule that differs changes some bits
+        let lanes_of = |k: usize| -> [Vec<(f64, f64, f64)>; 4] {
+            let mut line = Vec::new();
+            for j in 0..17 {
+                let u = j as f64 * 0.1 - 1.0;
+                line.push((u, 0.5 * u, u * u));
+            }
+            let mut nan = ring_points(k + 3);
+            nan[7].2 = f64::NAN;
+            let mut long = ring_points(k + 1);
+            long.extend(
+                ring_points(k + 2)
+                    .iter()
+                    .map(|&(u, t, d)| (0.5 * u, 0.7 * t, d)),
+            );
+            let short: Vec<_> = ring_points(k)[..14 + k % 5].to_vec();
+            match k % 4 {
+                0 => [ring_points(k), long, short, line],
+                1 => [short, ring_points(k), nan, long],
+                2 => [line, nan, ring_points(k), short],
+                _ => [long, short, line, ring_points(k)],
+            }
+        };
+        let mut refused = 0;
+        for k in 0..24 {
+            let lanes = lanes_of(k);
+            let longest = lanes.iter().map(Vec::len).max().unwrap();
+            let mut q4 = QuarticJet4::new();
+            for p in 0..longest {
+                let at = |c: usize| {
+                    F4(std::array::from_fn(|l| {
+                        lanes[l].get(p).map_or(0.0, |&(u, t, d)| [u, t, d][c])
+                    }))
+                };
+                q4.add(at(0), at(1), at(2));
+            }
+            let sol = q4.solve(1e10);
+            for (l, pts) in lanes.iter().enumerate() {
+                let mut q = QuarticJet::new();
+                for &(u, t, d) in pts {
+                    q.add(u, t, d);
+                }
+                for i in 0..42 {
+                    assert_eq!(q.m[i].to_bits(), q4.m[i].0[l].to_bits(), "{k} {l} m{i}");
+                }
+                for i in 0..14 {
+                    assert_eq!(q.r[i].to_bits(), q4.r[i].0[l].to_bits(), "{k} {l} r{i}");
+                }
+                let one = q.solve(1e10);
+                refused += usize::from(one.is_none());
+                assert_eq!(
+                    one.map(|c| c.map(f64::to_bits)),
+                    sol[l].map(|c| c.map(f64::to_bits)),
+                    "{k} {l}"
+                );
+            }
+        }
+        assert!(refused >= 24, "the line and NaN lanes are refused");
     }
 
     #[test]

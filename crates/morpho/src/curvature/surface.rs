@@ -90,10 +90,18 @@
 //! equations are formed from their distinct moments `Σ uᵃtᵇ` and solved by LDLᵀ in generated
 //! straight-line code (`fit/jet_solve.rs`, the same operations as [`Normal::solve_ldl`] in the
 //! same order, each term rounded once differently: results equal to rounding, not bit for bit;
-//! `bench/README.md`); nothing is allocated per vertex.
+//! `bench/README.md`); nothing is allocated per vertex. The quartic jets of the interior
+//! vertices are computed four at a time, one vertex per lane of a four-wide vector (`F4`):
+//! each lane does the scalar code's operations in the same order (the moments by the same
+//! generic code, the solve generated from the same elimination), a shorter ring is padded with
+//! points that add exactly zero, and a lane whose quartic is refused is recomputed alone by the
+//! scalar path, so the results are those of the one-vertex code bit for bit; on processors with
+//! AVX2 (detected at run time) the vertex pass runs a second compilation of itself with AVX2
+//! enabled (no FMA: the same bits). Tests `batched_and_avx2_passes_are_bitwise_the_scalar_pass`
+//! and `quartic_solve4_lanes_are_quartic_solve`.
 
 use super::error::CurvatureError;
-use super::fit::{CubicJet, Normal, QuarticJet};
+use super::fit::{CubicJet, Normal, QuarticJet, QuarticJet4, F4};
 use crate::geom::{vec, Vector3};
 use crate::mesh::{vertex_normal_from, weighted_crosses, NormalWeighting, TriMesh};
 use rayon::prelude::*;
@@ -263,6 +271,17 @@ pub fn surface_curvature(
     mesh: &TriMesh,
     opts: &SurfaceOptions,
 ) -> Result<SurfaceCurvature, CurvatureError> {
+    curvature_pass(mesh, opts, false, false)
+}
+
+/// [`surface_curvature`]; with `baseline` the vertex pass never takes its AVX2 compilation,
+/// with `unbatched` never the four-lane quartic (for the tests that compare them).
+fn curvature_pass(
+    mesh: &TriMesh,
+    opts: &SurfaceOptions,
+    baseline: bool,
+    unbatched: bool,
+) -> Result<SurfaceCurvature, CurvatureError> {
     mesh.validate()?;
     if opts.ring == 0 {
         return Err(CurvatureError::ZeroRing);
@@ -301,6 +320,8 @@ pub fn surface_curvature(
         opts,
         given,
         crosses,
+        baseline,
+        unbatched,
     };
     // the outputs are allocated once and filled in place, chunk by chunk, in parallel (the
     // zeroed f64 arrays come from the allocator untouched; the vector arrays are written in
@@ -355,6 +376,11 @@ struct Pass<'a> {
     /// With estimated normals: every triangle's weighted cross product
     /// ([`weighted_crosses`]).
     crosses: Option<Vec<Option<[f64; 3]>>>,
+    /// Never take the AVX2 compilation of the vertex pass ([`Pass::chunk`]; for tests).
+    #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
+    baseline: bool,
+    /// Never put vertices through the four-lane quartic ([`Pass::batch_run`]; for tests).
+    unbatched: bool,
 }
 
 /// The per-thread buffers of the vertex pass, reused from vertex to vertex (no allocation per
@@ -368,6 +394,22 @@ struct Scratch {
     dif: Vec<[f64; 3]>,
     dif2: Vec<[f64; 3]>,
     marks: Marks,
+    batch: Batch,
+}
+
+/// Up to four vertices waiting for the four-lane quartic ([`Pass::batch_push`],
+/// [`Pass::batch_run`]).
+#[derive(Default)]
+struct Batch {
+    /// Vertices in the batch (lanes `0..count`).
+    count: usize,
+    /// Point `p` of lane `l` is `(pts[p][0].0[l], pts[p][1].0[l], pts[p][2].0[l])` =
+    /// `(u, t, d)` for `p < len[l]`; the rest of a lane is stale until `batch_run` pads it.
+    pts: Vec<[F4; 3]>,
+    len: [usize; 4],
+    frame: [Frame; 4],
+    /// The vertex's index in its chunk.
+    index: [usize; 4],
 }
 
 /// The offsets `y_j − y₀` of the points `ring` into `out`.
@@ -402,12 +444,44 @@ type ChunkOut<'o> = (
 
 impl Pass<'_> {
     /// The vertices `first..` of one chunk into its output slices; the numbers of undetermined
-    /// vertices and of jet fallbacks.
+    /// vertices and of jet fallbacks. On x86-64 processors with AVX2 (checked at run time) the
+    /// same code is compiled a second time for AVX2 and that copy runs: wider vectors for the
+    /// moments and the elimination, the same operations in the same order (no FMA: Rust never
+    /// contracts a product and a sum), so the same bits (test
+    /// `avx2_pass_is_bitwise_the_baseline_pass`).
     fn chunk(&self, first: usize, out: ChunkOut<'_>, s: &mut Scratch) -> (usize, usize) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") && !self.baseline {
+            // SAFETY: the processor has AVX2 (detected just above), the only requirement of
+            // `chunk_avx2`
+            return unsafe { self.chunk_avx2(first, out, s) };
+        }
+        self.chunk_any(first, out, s)
+    }
+
+    /// [`Pass::chunk_any`] compiled with AVX2 enabled.
+    ///
+    /// # Safety
+    /// The processor must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn chunk_avx2(
+        &self,
+        first: usize,
+        out: ChunkOut<'_>,
+        s: &mut Scratch,
+    ) -> (usize, usize) {
+        self.chunk_any(first, out, s)
+    }
+
+    /// The body of [`Pass::chunk`], inlined (with the whole per-vertex fit) into each of its
+    /// two compilations.
+    #[inline(always)]
+    fn chunk_any(&self, first: usize, out: ChunkOut<'_>, s: &mut Scratch) -> (usize, usize) {
         let ((((((((k1, k2), h), k), a), dir1), dir2), normals), status) = out;
         let (mut undetermined, mut fallbacks) = (0, 0);
-        for i in 0..k1.len() {
-            let (r, fallback) = self.vertex(first + i, s);
+        let len = k1.len();
+        let mut put = |i: usize, r: Vertex, fallback: bool| {
             fallbacks += usize::from(fallback);
             undetermined += usize::from(r.status != VertexStatus::Ok);
             k1[i] = r.k[0];
@@ -419,20 +493,124 @@ impl Pass<'_> {
             dir2[i] = r.d[1].into();
             normals[i] = r.n.into();
             status[i] = r.status;
+        };
+        // interior vertices of the jet fit with at least 14 points go four at a time through
+        // the quartic (`QuarticJet4`, one lane per vertex); every other vertex, and a lane
+        // whose quartic is refused, through `vertex` (which then computes it again, as main
+        // did: the cubic, the 3-ring, the fallbacks)
+        let batching = self.opts.fit == SurfaceFit::Jet && !self.unbatched;
+        s.batch.count = 0;
+        for i in 0..len {
+            let v = first + i;
+            if batching && !self.adj.open[v] && self.batch_push(v, i, s) {
+                if s.batch.count == 4 {
+                    self.batch_run(first, s, &mut put);
+                }
+                continue;
+            }
+            let (r, fallback) = self.vertex(v, s);
+            put(i, r, fallback);
+        }
+        if s.batch.count > 0 {
+            self.batch_run(first, s, &mut put);
         }
         (undetermined, fallbacks)
+    }
+
+    /// The given or estimated normal of `v` (not normalised; zero when there is none).
+    #[inline(always)]
+    fn normal_of(&self, v: usize) -> [f64; 3] {
+        match self.given {
+            Some(g) => g[v].into(),
+            None => match &self.crosses {
+                Some(c) => vertex_normal_from(c, self.adj.triangles(v)).into(),
+                None => [0.0; 3],
+            },
+        }
+    }
+
+    /// Puts the interior vertex `v` (index `i` in its chunk) of the jet fit into the next lane
+    /// of `s.batch`: its ring of `max(ring, 2)` as in [`Pass::vertex`], its frame
+    /// ([`jet_frame`]) and its local coordinates. `false` (nothing added) when the ring has
+    /// fewer than 14 points or the frame is undetermined: then `vertex` decides.
+    #[inline(always)]
+    fn batch_push(&self, v: usize, i: usize, s: &mut Scratch) -> bool {
+        let nrm = self.normal_of(v);
+        let y0: [f64; 3] = self.mesh.positions[v].into();
+        self.adj
+            .ring(v, self.opts.ring.max(2), &mut s.ring2, &mut s.marks);
+        gather(self.mesh, y0, &s.ring2, &mut s.dif2);
+        if s.dif2.len() < 14 {
+            return false;
+        }
+        let Some(frame) = jet_frame(&s.dif2, nrm) else {
+            return false;
+        };
+        let b = &mut s.batch;
+        let lane = b.count;
+        if b.pts.len() < s.dif2.len() {
+            b.pts.resize(s.dif2.len(), [F4::ZERO; 3]);
+        }
+        for (p, &w) in b.pts.iter_mut().zip(&s.dif2) {
+            let (u, t, d) = frame.local(w);
+            p[0].0[lane] = u;
+            p[1].0[lane] = t;
+            p[2].0[lane] = d;
+        }
+        b.len[lane] = s.dif2.len();
+        b.frame[lane] = frame;
+        b.index[lane] = i;
+        b.count += 1;
+        true
+    }
+
+    /// The quartic jets of the vertices in `s.batch` (lanes past `count` are empty), their
+    /// curvatures into `put`; a refused lane goes through [`Pass::vertex`]. Empties the batch.
+    #[inline(always)]
+    fn batch_run(&self, first: usize, s: &mut Scratch, put: &mut impl FnMut(usize, Vertex, bool)) {
+        let b = &mut s.batch;
+        let count = b.count;
+        let len: [usize; 4] = std::array::from_fn(|l| if l < count { b.len[l] } else { 0 });
+        let longest = len.iter().copied().max().unwrap_or(0);
+        // pad the shorter lanes with (0, 0, 0): adds exactly nothing (`QuarticJet4`)
+        for (l, &n) in len.iter().enumerate() {
+            for p in &mut b.pts[n..longest] {
+                for x in p.iter_mut() {
+                    x.0[l] = 0.0;
+                }
+            }
+        }
+        let mut q = QuarticJet4::new();
+        for p in &b.pts[..longest] {
+            q.add(p[0], p[1], p[2]);
+        }
+        let sol = q.solve(SURFACE_MAX_COND);
+        let (frame, index) = (b.frame, b.index);
+        b.count = 0;
+        for l in 0..count {
+            match sol[l] {
+                Some(c) => {
+                    let f = &frame[l];
+                    let r = graph_vertex(
+                        f.n,
+                        (f.b1, f.b2),
+                        [c[0], c[1]],
+                        [c[2] * f.inv, c[3] * f.inv, c[4] * f.inv],
+                    );
+                    put(index[l], r, false);
+                }
+                None => {
+                    let (r, fallback) = self.vertex(first + index[l], s);
+                    put(index[l], r, fallback);
+                }
+            }
+        }
     }
 
     /// The fit at vertex `v`, and whether its jet normal fell back to the given one.
     fn vertex(&self, v: usize, s: &mut Scratch) -> (Vertex, bool) {
         let (adj, opts, mesh) = (self.adj, self.opts, self.mesh);
-        let mut nrm: [f64; 3] = match (self.given, &opts.normals) {
-            (Some(g), _) => g[v].into(),
-            (None, _) => match &self.crosses {
-                Some(c) => vertex_normal_from(c, adj.triangles(v)).into(),
-                None => [0.0; 3],
-            },
-        };
+        let mut nrm = self.normal_of(v);
         let y0: [f64; 3] = mesh.positions[v].into();
         let deg = adj.of(v).len();
         let mut fallback = false;
@@ -617,6 +795,7 @@ fn fit_quadric(ring: &[[f64; 3]], nrm: [f64; 3]) -> Vertex {
 /// eigenvector `e` gives the parameter direction `S e`, mapped onto the tangent
 /// `(b₁ + a n, b₂ + b n)`. Curvature is measured along the graph's normal, which has a positive
 /// component along `n`: flipping `n` flips the curvatures.
+#[inline(always)]
 fn graph_vertex(
     n: [f64; 3],
     (b1, b2): ([f64; 3], [f64; 3]),
@@ -671,23 +850,13 @@ fn graph_vertex(
 /// are scale-free, second derivatives scale by 1/ρ). `None` when `nrm` is not usable, fewer
 /// than 9 points, or a pivot ratio above 1e10 in degree 3.
 fn jet_fit(ring: &[[f64; 3]], nrm: [f64; 3], quartic: bool) -> Option<Jet> {
-    let len = vec::norm(nrm);
-    if !(len > 0.0 && len.is_finite()) || ring.len() < 9 {
-        return None;
-    }
-    let n = vec::scale(nrm, 1.0 / len);
-    let (b1, b2) = tangent_basis(n);
-    let rho2 = ring.iter().map(|&w| vec::norm2(w)).sum::<f64>() / ring.len() as f64;
-    if !(rho2 > 0.0 && rho2.is_finite()) {
-        return None;
-    }
-    let inv = 1.0 / rho2.sqrt();
+    let f = jet_frame(ring, nrm)?;
     let c: [f64; 5] = if quartic && ring.len() >= 14 {
         // the 42 moments of the quartic's rows (`QuarticJet`); the cubic's are their prefix
         let mut q = QuarticJet::new();
         for &w in ring {
-            let w = vec::scale(w, inv);
-            q.add(vec::dot(w, b1), vec::dot(w, b2), vec::dot(n, w));
+            let (u, t, d) = f.local(w);
+            q.add(u, t, d);
         }
         match q.solve(SURFACE_MAX_COND) {
             Some(c) => std::array::from_fn(|i| c[i]),
@@ -700,17 +869,62 @@ fn jet_fit(ring: &[[f64; 3]], nrm: [f64; 3], quartic: bool) -> Option<Jet> {
         // the 25 moments of the cubic's rows (`CubicJet`): fewer products than the rows
         let mut jet = CubicJet::new();
         for &w in ring {
-            let w = vec::scale(w, inv);
-            jet.add(vec::dot(w, b1), vec::dot(w, b2), vec::dot(n, w));
+            let (u, t, d) = f.local(w);
+            jet.add(u, t, d);
         }
         let c = jet.solve(SURFACE_MAX_COND)?;
         std::array::from_fn(|i| c[i])
     };
     Some(Jet {
-        n,
-        b: (b1, b2),
+        n: f.n,
+        b: (f.b1, f.b2),
         g: [c[0], c[1]],
-        hess: [c[2] * inv, c[3] * inv, c[4] * inv],
+        hess: [c[2] * f.inv, c[3] * f.inv, c[4] * f.inv],
+    })
+}
+
+/// The frame of a jet fit ([`jet_fit`], [`Pass::batch_push`]): the unit normal, the tangent
+/// basis and the reciprocal RMS radius of the ring.
+#[derive(Debug, Clone, Copy, Default)]
+struct Frame {
+    n: [f64; 3],
+    b1: [f64; 3],
+    b2: [f64; 3],
+    inv: f64,
+}
+
+impl Frame {
+    /// The local coordinates `(u, t, d)` of the offset `w`, divided by the RMS radius.
+    #[inline(always)]
+    fn local(&self, w: [f64; 3]) -> (f64, f64, f64) {
+        let w = vec::scale(w, self.inv);
+        (
+            vec::dot(w, self.b1),
+            vec::dot(w, self.b2),
+            vec::dot(self.n, w),
+        )
+    }
+}
+
+/// The frame of the jet over `ring` with normal `nrm`; `None` when `nrm` is not usable, the
+/// ring has fewer than 9 points or its RMS radius is zero or not finite.
+#[inline(always)]
+fn jet_frame(ring: &[[f64; 3]], nrm: [f64; 3]) -> Option<Frame> {
+    let len = vec::norm(nrm);
+    if !(len > 0.0 && len.is_finite()) || ring.len() < 9 {
+        return None;
+    }
+    let n = vec::scale(nrm, 1.0 / len);
+    let (b1, b2) = tangent_basis(n);
+    let rho2 = ring.iter().map(|&w| vec::norm2(w)).sum::<f64>() / ring.len() as f64;
+    if !(rho2 > 0.0 && rho2.is_finite()) {
+        return None;
+    }
+    Some(Frame {
+        n,
+        b1,
+        b2,
+        inv: 1.0 / rho2.sqrt(),
     })
 }
 
@@ -1055,6 +1269,80 @@ mod tests {
         assert_eq!(hypot2(f64::MAX, f64::MAX), f64::INFINITY);
         assert!((hypot2(3e200, 4e200) / 5e200 - 1.0).abs() < 1e-15);
         assert!(hypot2(f64::NAN, 1.0).is_nan());
+    }
+
+    /// Meshes whose 2-rings have many lengths: a jittered torus, a UV sphere (valence-3n
+    /// poles), a disk (a boundary, a high-valence centre), the awkward mesh, and a torus with a
+    /// patch collapsed onto one point (rank-deficient quartics: refused lanes).
+    fn lane_meshes() -> Vec<TriMesh> {
+        let mut x = 0.3f64;
+        let mut next = move || {
+            x = (x * 3.7 + 0.19).fract();
+            x - 0.5
+        };
+        let mut jittered = generate::torus(2.0, 0.7, 40, 23);
+        for p in &mut jittered.positions {
+            p.x += 0.02 * next();
+            p.y += 0.02 * next();
+            p.z += 0.02 * next();
+        }
+        let mut collapsed = generate::torus(2.0, 0.7, 30, 20);
+        for p in collapsed.positions.iter_mut().skip(200).take(45) {
+            *p = Point3::new(2.5, 0.1, 0.3);
+        }
+        vec![
+            jittered,
+            generate::uv_sphere(Point3::new(0.0, 0.0, 0.0), 1.5, 17, 29),
+            generate::disk(9, 23),
+            awkward_mesh(),
+            collapsed,
+        ]
+    }
+
+    /// The bits of every output of a curvature pass (NaN included).
+    fn bits(c: &SurfaceCurvature) -> Vec<u64> {
+        let mut b: Vec<u64> = [&c.k1, &c.k2, &c.h, &c.k, &c.a]
+            .iter()
+            .flat_map(|v| v.iter().map(|x| x.to_bits()))
+            .collect();
+        for v in [&c.dir1, &c.dir2, &c.normals] {
+            b.extend(v.iter().flat_map(|p| [p.x, p.y, p.z]).map(f64::to_bits));
+        }
+        b.extend(c.status.iter().map(|s| *s as u64));
+        b.extend([c.undetermined as u64, c.jet_fallbacks as u64]);
+        b
+    }
+
+    #[test]
+    fn batched_and_avx2_passes_are_bitwise_the_scalar_pass() {
+        // the four-lane quartic (`Pass::batch_run`) and the AVX2 compilation must give the
+        // scalar pass's bits on every vertex: a lane that mixes another vertex's points, a
+        // padding that adds something, a refused lane not recomputed, or a different order of
+        // operations changes some bits
+        let mut refused = 0;
+        for (k, m) in lane_meshes().iter().enumerate() {
+            for opts in [
+                SurfaceOptions::estimated_normals(),
+                SurfaceOptions {
+                    ring: 3,
+                    ..SurfaceOptions::estimated_normals()
+                },
+            ] {
+                let scalar = curvature_pass(m, &opts, true, true).unwrap();
+                let want = bits(&scalar);
+                for (baseline, unbatched) in [(true, false), (false, true), (false, false)] {
+                    let c = curvature_pass(m, &opts, baseline, unbatched).unwrap();
+                    assert!(
+                        bits(&c) == want,
+                        "mesh {k} ring {} baseline {baseline} unbatched {unbatched}",
+                        opts.ring
+                    );
+                }
+                refused += scalar.jet_fallbacks + scalar.undetermined;
+            }
+        }
+        // the collapsed patch and the awkward mesh exercise the refused lanes
+        assert!(refused > 0);
     }
 
     #[test]
