@@ -243,6 +243,21 @@ impl Ctx<'_> {
         };
         Vector3::new(g[0], g[1], g[2])
     }
+    /// Asks the processor to load the gradient cache line of grid position `i` = x + nx·y
+    /// (both planes' entries). Zucker–Hummel only (the cache is empty otherwise); a hint, no
+    /// effect on any result.
+    #[inline(always)]
+    fn prefetch_grad(&self, out: &ChunkOut, i: usize) {
+        #[cfg(target_arch = "x86_64")]
+        #[allow(unused_unsafe)]
+        if let Some(e) = out.gcache.get(out.gbase + 8 * i) {
+            use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+            // SAFETY: prefetching is a hint, valid for any address; this is a live reference.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(e as *const u64 as *const i8) };
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = (out, i);
+    }
     /// Grid point `p` of `vol` as a grid point of `gvol`.
     #[inline]
     fn gpoint(&self, p: [usize; 3]) -> [usize; 3] {
@@ -381,6 +396,22 @@ impl Ctx<'_> {
                 continue;
             }
             let row = nx * y;
+            if !out.gcache.is_empty() {
+                // the row's cache lines first, so that their misses overlap (the same cuts as
+                // below, in the same order; nothing is computed here)
+                if xe {
+                    for_each_cut(&s[row..row + nx - 1], &s[row + 1..row + nx], |x| {
+                        self.prefetch_grad(out, row + x);
+                        self.prefetch_grad(out, row + x + 1);
+                    });
+                }
+                if ye {
+                    for_each_cut(&s[row..row + nx], &s[row + nx..row + 2 * nx], |x| {
+                        self.prefetch_grad(out, row + x);
+                        self.prefetch_grad(out, row + nx + x);
+                    });
+                }
+            }
             if xe {
                 for_each_cut(&s[row..row + nx - 1], &s[row + 1..row + nx], |x| {
                     arr[ps * (row + x)] =
@@ -422,6 +453,12 @@ impl Ctx<'_> {
             }
             if !tet {
                 let row = nx * y;
+                if !out.gcache.is_empty() {
+                    // both ends' entries share one cache line (see `ChunkOut::gcache`)
+                    for_each_cut(&s0[row..row + nx], &s1[row..row + nx], |x| {
+                        self.prefetch_grad(out, row + x);
+                    });
+                }
                 for_each_cut(&s0[row..row + nx], &s1[row..row + nx], |x| {
                     arr[ls * (row + x)] =
                         self.vertex([x, y, z], [x, y, z + 1], key(2, x, y, z), out);
