@@ -1033,6 +1033,90 @@ mod tests {
         v
     }
 
+    /// The supporting planes proposed only by the boundary faces among the live triangles'
+    /// corners (`general::support_faces`) leave the general engine exactly as with the planes
+    /// of the whole boundary (the former construction, kept here through
+    /// `blank_with_support`): same surface, removals, added triangles, vertices on the
+    /// boundary and last c after the whole schedule of `augment_until_done_3d` — (1) as
+    /// `augment_after_lock` starts it, on clustered points on which the Delaunay constriction
+    /// locks; (2) from the convex hull of cube lattices with points inside (six facets: six
+    /// supporting planes of the whole boundary) with only the tetrahedra at a few inner
+    /// vertices live (none of the facets' planes is proposed then: the case is exercised, the
+    /// planes differ).
+    #[test]
+    fn support_from_the_region_changes_nothing() {
+        use super::super::support::Support;
+        let go = |pos: &[P], bnd: &[[u32; 3]], live: &[[u32; 3]], whole: bool| {
+            let mut g = if whole {
+                let s = Support::new(pos, bnd);
+                let mut g = General3::blank_with_support(pos, bnd, live, &[], s);
+                g.build(bnd, live, &[]);
+                g.track = true;
+                g.push_all();
+                g
+            } else {
+                General3::new(pos, bnd, live, &[])
+            };
+            let planes = g.support.len();
+            let c = augment_until_done_3d(&mut g, 0.0);
+            let counts = (g.iterations, g.added, g.boundary_vertices, c);
+            (g.boundary(), counts, planes)
+        };
+        let mut locked = 0;
+        for seed in [1647u64, 1755] {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let n = rng.gen_range(40..600);
+            let pts: Vec<crate::geom::Point3> = (0..n)
+                .map(|_| {
+                    let x: f64 = rng.gen_range(-1.0..1.0);
+                    let y: f64 = rng.gen_range(-1.0..1.0);
+                    let z: f64 = rng.gen_range(-1.0..1.0);
+                    crate::geom::Point3::new(x.powi(3), y.powi(3), z.powi(3))
+                })
+                .collect();
+            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let st = super::super::constrict::constrict_3d(&d, super::super::constrict::Until::All);
+            if st.boundary_vertices >= pos.len() {
+                continue;
+            }
+            locked += 1;
+            let region = near_locked(&d, &st.alive, &st.triangles, LOCAL_DEPTH);
+            let live = super::super::test_sets::live_faces(&d, &region);
+            let (a, b) = (
+                go(&pos, &st.triangles, &live, true),
+                go(&pos, &st.triangles, &live, false),
+            );
+            assert_eq!((&a.0, a.1), (&b.0, b.1), "seed {seed}");
+        }
+        assert!(locked >= 1);
+        for (m, inner, seed) in [(5, 30, 1u64), (6, 60, 2), (7, 90, 3)] {
+            let d = crate::delaunay::d3::triangulate(&cube_lattice(m, inner, seed)).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let mut on = vec![false; pos.len()];
+            for &v in d.hull.iter().flatten() {
+                on[v as usize] = true;
+            }
+            let inner_v: Vec<u32> = (0..pos.len() as u32)
+                .filter(|&v| !on[v as usize])
+                .take(3)
+                .collect();
+            let region: Vec<bool> = d
+                .tets
+                .iter()
+                .map(|t| t.iter().any(|v| inner_v.contains(v)))
+                .collect();
+            let live = super::super::test_sets::live_faces(&d, &region);
+            let (a, b) = (
+                go(&pos, &d.hull, &live, true),
+                go(&pos, &d.hull, &live, false),
+            );
+            assert_eq!((&a.0, a.1), (&b.0, b.1), "lattice {m}");
+            assert_eq!(a.2, 6, "lattice {m}");
+            assert!(b.2 < a.2, "lattice {m}: {} planes", b.2);
+        }
+    }
+
     /// gamma_decide equals the former code (`gamma_decide_reference`: every point of the
     /// box added for c = −1, the points of `first` added again in the ball scans) — the same
     /// verdicts and bit-identical bounds — on a bumpy sphere and on a cube lattice with points
