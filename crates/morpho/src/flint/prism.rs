@@ -237,16 +237,7 @@ impl PrismTree3 {
 
     /// [`Self::contains`] for many points, in parallel (rayon).
     pub fn contains_batch(&self, xs: &[Point3]) -> Result<Vec<Containment>, FlintError> {
-        if xs
-            .iter()
-            .any(|x| !(x.x.is_finite() && x.y.is_finite() && x.z.is_finite()))
-        {
-            return Err(FlintError::NonFiniteQuery);
-        }
-        Ok(xs
-            .par_iter()
-            .map(|x| self.locate([x.x, x.y, x.z]).0)
-            .collect())
+        super::query3::contains_batch_by(xs, |x| self.locate(x).0)
     }
 
     fn locate(&self, x: [f64; 3]) -> (Containment, usize) {

@@ -57,6 +57,21 @@ pub fn contains_brute3(positions: &[[f64; 3]], triangles: &[[u32; 3]], x: [f64; 
     }
 }
 
+/// The answers of `locate` for many points, in input order and in parallel (rayon), after
+/// refusing any non-finite coordinate (shared by the flintstone and prism walks' batches).
+pub(super) fn contains_batch_by(
+    xs: &[Point3],
+    locate: impl Fn([f64; 3]) -> Containment + Sync,
+) -> Result<Vec<Containment>, FlintError> {
+    if xs
+        .iter()
+        .any(|x| !(x.x.is_finite() && x.y.is_finite() && x.z.is_finite()))
+    {
+        return Err(FlintError::NonFiniteQuery);
+    }
+    Ok(xs.par_iter().map(|x| locate([x.x, x.y, x.z])).collect())
+}
+
 /// Does the ray from `x` (towards +`AXIS`, perturbed) certainly miss the ball `(c, r2)`?
 #[inline]
 fn ray_misses(x: [f64; 3], (c, r2): ([f64; 3], f64)) -> bool {
@@ -90,16 +105,7 @@ impl FlintTree3 {
 
     /// [`Self::contains`] for many points, in parallel (rayon).
     pub fn contains_batch(&self, xs: &[Point3]) -> Result<Vec<Containment>, FlintError> {
-        if xs
-            .iter()
-            .any(|x| !(x.x.is_finite() && x.y.is_finite() && x.z.is_finite()))
-        {
-            return Err(FlintError::NonFiniteQuery);
-        }
-        Ok(xs
-            .par_iter()
-            .map(|x| self.locate([x.x, x.y, x.z]).0)
-            .collect())
+        contains_batch_by(xs, |x| self.locate(x).0)
     }
 
     /// [`Self::contains`] and the number of nodes the walk examined (0 outside the root ball).
