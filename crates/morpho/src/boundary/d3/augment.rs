@@ -1064,16 +1064,7 @@ mod tests {
         };
         let mut locked = 0;
         for seed in [1647u64, 1755] {
-            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-            let n = rng.gen_range(40..600);
-            let pts: Vec<crate::geom::Point3> = (0..n)
-                .map(|_| {
-                    let x: f64 = rng.gen_range(-1.0..1.0);
-                    let y: f64 = rng.gen_range(-1.0..1.0);
-                    let z: f64 = rng.gen_range(-1.0..1.0);
-                    crate::geom::Point3::new(x.powi(3), y.powi(3), z.powi(3))
-                })
-                .collect();
+            let pts = super::super::test_sets::clustered_cube(seed);
             let d = crate::delaunay::d3::triangulate(&pts).unwrap();
             let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
             let st = super::super::constrict::constrict_3d(&d, super::super::constrict::Until::All);

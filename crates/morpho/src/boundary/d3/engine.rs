@@ -273,20 +273,12 @@ mod tests {
     /// as with the lookup.
     #[test]
     fn engine_delaunay_face_flags_are_true_and_check_alike() {
-        use rand::Rng;
         let mut locked = 0;
         // clustered cube points on which the Delaunay constriction locks (the seeds of the
         // integration test `locked_delaunay_constriction_falls_back_and_stays_valid`, and of
         // `general::tests::sweeps_that_skip_unchanged_faces_constrict_identically`)
         for seed in [1647u64, 1755, 1, 2, 3, 4] {
-            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-            let n = rng.gen_range(40..600);
-            let pts: Vec<Point3> = (0..n)
-                .map(|_| {
-                    let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
-                    Point3::new(v[0].powi(3), v[1].powi(3), v[2].powi(3))
-                })
-                .collect();
+            let pts = super::super::test_sets::clustered_cube(seed);
             let e = Engine3::new(&pts).unwrap();
             let o = e.delaunay_constriction(Key::Gamma, Until::All, true);
             let Some(flags) = o.delaunay_faces.clone() else {

@@ -924,16 +924,7 @@ mod tests {
         // integration test `locked_delaunay_constriction_falls_back_and_stays_valid`), plus
         // more clustered sets
         for seed in [1647u64, 1755, 1, 2, 3, 4] {
-            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-            let n = rng.gen_range(40..600);
-            let pts: Vec<crate::geom::Point3> = (0..n)
-                .map(|_| {
-                    let x: f64 = rng.gen_range(-1.0..1.0);
-                    let y: f64 = rng.gen_range(-1.0..1.0);
-                    let z: f64 = rng.gen_range(-1.0..1.0);
-                    crate::geom::Point3::new(x.powi(3), y.powi(3), z.powi(3))
-                })
-                .collect();
+            let pts = super::super::test_sets::clustered_cube(seed);
             let d = crate::delaunay::d3::triangulate(&pts).unwrap();
             let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
             let st = crate::boundary::d3::constrict::constrict_3d(

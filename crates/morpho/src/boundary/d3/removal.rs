@@ -814,14 +814,7 @@ mod tests {
         let mut sets: Vec<(Vec<crate::geom::Point3>, bool, usize)> = Vec::new();
         // (the clustered cube points of `sweeps_that_skip_unchanged_faces_constrict_identically`)
         for seed in [1647u64, 1755, 1, 2, 3, 4] {
-            let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-            let n = r.gen_range(40..600);
-            let cube = (0..n)
-                .map(|_| {
-                    let v: [f64; 3] = std::array::from_fn(|_| r.gen_range(-1.0f64..1.0).powi(3));
-                    crate::geom::Point3::new(v[0], v[1], v[2])
-                })
-                .collect();
+            let cube = super::super::test_sets::clustered_cube(seed);
             sets.push((cube, false, 0));
         }
         let bumpy = super::super::test_sets::bumpy_sphere(&mut rng, 800);

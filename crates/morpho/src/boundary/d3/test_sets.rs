@@ -17,6 +17,20 @@ pub(super) fn cube(rng: &mut impl Rng, n: usize) -> Vec<Point3> {
         .collect()
 }
 
+/// The clustered cube points on which the Delaunay constriction locks (for seeds 1647 and
+/// 1755; the integration test `locked_delaunay_constriction_falls_back_and_stays_valid`): a
+/// ChaCha8 generator from `seed` draws n ∈ [40, 600), then n cube points whose coordinates are
+/// cubed (dense towards the centre and the coordinate planes).
+pub(super) fn clustered_cube(seed: u64) -> Vec<Point3> {
+    use rand::SeedableRng;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let n = rng.gen_range(40..600);
+    cube(&mut rng, n)
+        .into_iter()
+        .map(|q| Point3::new(q.x.powi(3), q.y.powi(3), q.z.powi(3)))
+        .collect()
+}
+
 /// `n` points of a bumpy ellipsoid (radius 1 + 0.2·sin(4x)·cos(3z) in the directions of
 /// uniform cube points, z stretched by 1.4), every fifth at radius 0.7 inside it.
 pub(super) fn bumpy_sphere(rng: &mut impl Rng, n: usize) -> Vec<Point3> {
