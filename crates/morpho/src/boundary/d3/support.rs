@@ -17,8 +17,10 @@
 //! triangles for a facet of g points — most of all triangles on CAD models such as the fandisk,
 //! where they made every removal test a fixed fraction of all triangles (issue 17 item 8).
 //!
-//! The planes are proposed by the initial boundary surface: coplanar edge-connected groups of
-//! its faces with at least four vertices, each verified against every point (largest groups
+//! The planes are proposed by faces of the initial boundary surface — all of them from the
+//! hull; on the local path only those whose corners are corners of the live triangles
+//! (`general::support_faces`: fewer planes only means more triangles left to the exact
+//! crossing test) —: coplanar edge-connected groups of those faces with at least four vertices, each verified against every point (largest groups
 //! first, within a budget of O(n) orientation tests: an unverified group only costs time).
 //! A triangle is in a verified plane when its three corners are vertices of that group and it
 //! is not collinear (one `orient3d` against a point off the plane). O(B α(B) + budget) to
