@@ -10,7 +10,6 @@
 mod common;
 
 use morpho::flint::{Containment, FlintTree3, PrismTree3, Target};
-use morpho::geom::Point3;
 
 /// CPU seconds of this process (all threads).
 fn cpu() -> f64 {
@@ -87,23 +86,7 @@ fn main() -> morpho::Result<()> {
             show("iepf", i.approximate(Target::Count(count))?);
             show("prism", p.approximate(Target::Count(count))?);
         }
-        let b = m.bbox();
-        let mut s: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut unit = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let q: Vec<Point3> = (0..n)
-            .map(|_| {
-                Point3::new(
-                    b.min[0] + (b.max[0] - b.min[0]) * unit(),
-                    b.min[1] + (b.max[1] - b.min[1]) * unit(),
-                    b.min[2] + (b.max[2] - b.min[2]) * unit(),
-                )
-            })
-            .collect();
+        let q = common::box_points3(&m.bbox(), n);
         let mut qbest = [f64::INFINITY; 3];
         let mut visits = [0usize; 3];
         let mut answers: [Vec<Containment>; 3] = Default::default();

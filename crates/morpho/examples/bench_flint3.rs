@@ -16,7 +16,6 @@
 mod common;
 
 use morpho::flint::{Containment, FlintTree3};
-use morpho::geom::Point3;
 use std::time::Instant;
 
 fn main() -> morpho::Result<()> {
@@ -55,23 +54,7 @@ fn main() -> morpho::Result<()> {
         }
     }
     println!("fallback nodes by triangles (≤2, 3, 4–8, 9–64, >64): {hist:?}");
-    let b = m.bbox();
-    let mut s: u64 = 0x2545_f491_4f6c_dd1d;
-    let mut unit = || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let q: Vec<Point3> = (0..n)
-        .map(|_| {
-            Point3::new(
-                b.min[0] + (b.max[0] - b.min[0]) * unit(),
-                b.min[1] + (b.max[1] - b.min[1]) * unit(),
-                b.min[2] + (b.max[2] - b.min[2]) * unit(),
-            )
-        })
-        .collect();
+    let q = common::box_points3(&m.bbox(), n);
     let t1 = Instant::now();
     let mut inside = 0usize;
     let mut visits = 0usize;

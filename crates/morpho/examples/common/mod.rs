@@ -63,3 +63,24 @@ pub fn flower_curve(n: usize) -> Vec<morpho::geom::Point2> {
         })
         .collect()
 }
+
+/// `n` query points uniform in the box `b`, from a fixed xorshift64 seed: the same points on
+/// every run and in every example that uses it (`bench_flint3`, `bench_baselines3`).
+pub fn box_points3(b: &morpho::geom::Aabb3, n: usize) -> Vec<morpho::geom::Point3> {
+    let mut s: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut unit = || {
+        s ^= s << 13;
+        s ^= s >> 7;
+        s ^= s << 17;
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..n)
+        .map(|_| {
+            morpho::geom::Point3::new(
+                b.min[0] + (b.max[0] - b.min[0]) * unit(),
+                b.min[1] + (b.max[1] - b.min[1]) * unit(),
+                b.min[2] + (b.max[2] - b.min[2]) * unit(),
+            )
+        })
+        .collect()
+}
