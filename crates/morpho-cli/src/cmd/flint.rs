@@ -697,6 +697,17 @@ fn level_svg(t: &FlintTree2, pts: &[Point2], level: u32, width: f64) -> (String,
 /// `morpho demo` section: the flintstone hierarchy of the Benelux border (V Figs 7.5–7.6), an
 /// adaptive approximation against a level at the same edge count, point-in-polygon answers and
 /// the meeting points of the border with a moved copy (V §7.4).
+/// Uniform numbers in [0, 1) from a xorshift64 generator seeded with `seed` (non-zero): the
+/// demo's random query points, the same on every run.
+fn xorshift_unit(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 pub fn demo_section(ctx: &super::demo::Ctx) -> morpho::Result<Vec<morpho::io::html::Section>> {
     use morpho::io::html::Section;
     use morpho::render::{Stroke, Svg};
@@ -782,13 +793,7 @@ pub fn demo_section(ctx: &super::demo::Ctx) -> morpho::Result<Vec<morpho::io::ht
             )
         },
     );
-    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-    let mut unit = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut unit = xorshift_unit(0x9e37_79b9_7f4a_7c15);
     let qs: Vec<Point2> = (0..6000)
         .map(|_| {
             Point2::new(
@@ -942,13 +947,7 @@ fn approx3_section(ctx: &super::demo::Ctx) -> morpho::Result<morpho::io::html::S
         }
     }
     let b = m.bbox();
-    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-    let mut unit = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut unit = xorshift_unit(0x9e37_79b9_7f4a_7c15);
     let (mut vf, mut vp, mut inside) = (0usize, 0usize, 0usize);
     for _ in 0..20_000 {
         let q = Point3::new(
@@ -1195,13 +1194,7 @@ fn baseline_section(ctx: &super::demo::Ctx) -> morpho::Result<morpho::io::html::
             BaselineTree::new(&pts, Baseline::Arc)?,
         ];
         let b = morpho::geom::bbox2(&pts);
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut unit = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut unit = xorshift_unit(0x2545_f491_4f6c_dd1d);
         let m = 20_000;
         let mut v = [0usize; 4];
         for _ in 0..m {
