@@ -35,8 +35,8 @@ use crate::util::{sorted3, IdMap};
 /// [`GroupTriples::Balls`], without the triangles [`GroupTriples::All`] adds — the empty
 /// triangles of a coplanar hull facet of more than three points that are neither Delaunay
 /// faces nor triples of a cocircular cell (`graphs::fast::candidates_3d_with` (c)), Θ(g³) for
-/// a facet of g points: 5.6·10⁶ of the fandisk's triangles, 2.28 GB and half the CPU time of
-/// `boundary --c=-0.5` (issue 17 item 8).
+/// a facet of g points: most of the fandisk's 5.6·10⁶ triangles, its 2.28 GB peak and about
+/// 40 % of the CPU time of `boundary --c=-0.5` (issue 17 item 8; `bench/README.md`, cross7).
 ///
 /// Such a triangle t lies in the plane H of a hull facet, and every point is on H's closed
 /// inner side. Leaving t out changes no removal, so neither the surface nor any count:
