@@ -119,12 +119,21 @@ impl Engine3 {
     }
 
     /// Step 3, γ(\[-1,1\],\[c,1\]) with c < 0 constricted from the convex hull: the whole graph up
-    /// to [`BEYOND_ALL_MAX`] vertices, the Delaunay triangles plus the local γ-triangles above.
+    /// to [`BEYOND_ALL_MAX`] vertices, the Delaunay triangles plus the local γ-triangles above
+    /// (without the empty triangles of the coplanar hull facets, which change no removal:
+    /// [`super::removal::FROM_HULL_TRIPLES`]).
     pub(super) fn gamma_from_hull(&self, c: f64) -> Outcome3 {
         let d = &self.d;
-        let cand = crate::graphs::fast::candidates_3d(d);
-        let mut all = cand.triangles.clone();
         let small = d.points.len() <= BEYOND_ALL_MAX;
+        // (the whole γ needs every candidate; the local path leaves out the facet triangles,
+        // which never take part in a removal: `removal::FROM_HULL_TRIPLES`)
+        let which = if small {
+            crate::graphs::fast::GroupTriples::All
+        } else {
+            super::removal::FROM_HULL_TRIPLES
+        };
+        let cand = crate::graphs::fast::candidates_3d_with(d, which).0;
+        let mut all = cand.triangles.clone();
         if small {
             all.extend(crate::graphs::beyond3::beyond_dt_3d(d, &cand, c).0);
         }

@@ -27,7 +27,46 @@ use super::general::*;
 use crate::geom::intersect::triangles_meet_beyond_shared;
 use crate::geom::predicates::raw::orient3d;
 use crate::geom::vec::{cross, sub};
+use crate::graphs::fast::GroupTriples;
 use crate::util::{sorted3, IdMap};
+
+/// The group triples the constriction from the hull takes beyond the whole-γ size
+/// ([`super::Engine3::gamma_from_hull`], local path, no keep triangles): those of
+/// [`GroupTriples::Balls`], without the triangles [`GroupTriples::All`] adds — the empty
+/// triangles of a coplanar hull facet of more than three points that are neither Delaunay
+/// faces nor triples of a cocircular cell (`graphs::fast::candidates_3d_with` (c)), Θ(g³) for
+/// a facet of g points: most of the fandisk's 5.6·10⁶ triangles, its 2.28 GB peak and about
+/// 40 % of the CPU time of `boundary --c=-0.5` (issue 17 item 8; `bench/README.md`, cross7).
+///
+/// Such a triangle t lies in the plane H of a hull facet, and every point is on H's closed
+/// inner side. Leaving t out changes no removal, so neither the surface nor any count:
+/// 1. Every point of H is a boundary vertex from the start (the hull faces triangulate the
+///    facet through all its points: Delaunay faces are empty) and stays one: a removal never
+///    takes a vertex off the boundary (a one-face removal of abc + l keeps a, b, c on its new
+///    faces, a two-face removal has all four corners on them).
+/// 2. No removal has a non-boundary face in H. A one-face removal's new faces all contain l,
+///    which is not a boundary vertex, so not in H (1). For a two-face removal with a new face
+///    F ⊂ H: the tetrahedron Q lies in the region R bounded by the surface (it is on the inner
+///    side of its two boundary faces, its new faces meet no other boundary face and the closed
+///    Q holds no other point — what [`General3::check`] tests), so F ⊂ R ∩ H, which lies on the
+///    surface (R ⊂ the hull); the boundary faces covering F lie in H, so by induction they are
+///    hull faces: F itself (a third boundary face of Q: refused) or faces overlapping F in its
+///    plane, which `hits_boundary` finds (refused).
+/// 3. So t is never a face of a removed tetrahedron and never becomes a boundary face (t is
+///    no hull face; a new face is never in H by 2.); it is never deleted (it meets no open
+///    tetrahedron: H separates them, [`super::support`]); and [`General3::local_gamma`] never
+///    proposes it (its candidates contain a vertex off the boundary, not in H by 1.).
+///    A tetrahedron with t as a face is refused with t (2.) and without it (`has`); a face of
+///    the sweep list listed only through t has no removable tetrahedron (the live faces of
+///    one that is removable lie on its edges and list it anyway), so the same faces are pushed.
+/// 4. What does change: the ids of the triangles added later (no decision depends on an id's
+///    value: crossings are deleted as a set, candidates sorted by key and apex, the sweep list
+///    by face) and the grids' cell (the median edge of the given triangles; every grid query
+///    is followed by exact tests, the cell changes work only).
+///
+/// Checked at every removal in lockstep with the engine given every triangle
+/// (`hull_facet_triangles_change_no_removal`), and `cmp` on the CLI outputs.
+pub(super) const FROM_HULL_TRIPLES: GroupTriples = GroupTriples::Balls;
 
 /// Sign of det[x − y, e, f] (e, f edge vectors as differences of doubles), or `None` when the
 /// floating-point value is not certified.
@@ -60,8 +99,266 @@ pub(super) fn sat_sign(x: P, y: P, e: (P, P), f: (P, P)) -> Option<i32> {
 }
 
 /// Conservative exact test: may closed triangle `t` meet the open tetrahedron `q`? `false` only
-/// when a separating plane is proven (see the module documentation).
+/// when a separating plane is proven (see the module documentation). One query of
+/// [`OpenTet`]; a search testing many triangles against one tetrahedron prepares it once
+/// (the engine's only caller, [`General3::crossing`], does).
+#[cfg_attr(not(test), allow(dead_code))]
 pub fn may_meet_open_tet(t: [P; 3], tv: [u32; 3], q: [P; 4], qv: [u32; 4]) -> bool {
+    OpenTet::new(q, qv).may_meet(t, tv)
+}
+
+/// What [`Plane::side`] multiplies the permanent by: the floating-point value of
+/// (b − a) × (c − a) · (x − a) has eight rounded operations on the path of each of its terms
+/// (three differences, the product, the minor's difference, the product by a component of
+/// x − a, two sums), so its error is at most ((1 + ε)⁸ − 1) ≈ 8ε times the exact permanent
+/// Σ |wₖ| (|uᵢvⱼ| + |uⱼvᵢ|), which the computed one (seven rounded operations per term) is at
+/// least (1 − ε)⁷ of — the analysis of Shewchuk's first `orient3d` stage for this evaluation
+/// order; twice that leaves room for the absolute error of an underflow, which the floor
+/// below keeps under 1e-100 of the bound.
+const PLANE_ERR: f64 = 16.0 * f64::EPSILON;
+
+/// Below this permanent [`Plane::side`] leaves the sign to `orient3d` (underflow).
+const PLANE_FLOOR: f64 = 1e-200;
+
+/// The sign of an `orient3d` value: 1, −1, 0, or 2 when it is not a number (a NaN compares
+/// false with 0 in the product form of [`may_meet_open_tet_reference`]: 2 satisfies no side).
+fn sign_code(v: f64) -> i8 {
+    if v > 0.0 {
+        1
+    } else if v < 0.0 {
+        -1
+    } else if v == 0.0 {
+        0
+    } else {
+        2
+    }
+}
+
+/// `s` on the closed non-negative side.
+fn nonneg(s: i8) -> bool {
+    s == 0 || s == 1
+}
+
+/// `s` on the closed non-positive side.
+fn nonpos(s: i8) -> bool {
+    s == 0 || s == -1
+}
+
+/// `x` and `y` on opposite closed sides (the sign of x·y ≤ 0, without the product's underflow).
+fn opposite(x: i8, y: i8) -> bool {
+    (nonpos(x) && nonneg(y)) || (nonneg(x) && nonpos(y))
+}
+
+/// The plane through `a`, `b`, `c` for many exact `orient3d(a, b, c, x)` signs: the normal
+/// (b − a) × (c − a) and the row of its permanent are computed once, a point then costs a dot
+/// product and an error bound ([`PLANE_ERR`]); a sign the bound does not certify (exact zeros:
+/// coplanar corners on the fandisk's flat faces, and near-zeros) is `orient3d`'s. Either way
+/// the exact sign.
+#[derive(Clone, Copy)]
+struct Plane {
+    a: P,
+    b: P,
+    c: P,
+    n: P,
+    m: P,
+}
+
+impl Plane {
+    fn new(a: P, b: P, c: P) -> Self {
+        let (u, v) = (sub(b, a), sub(c, a));
+        Plane {
+            a,
+            b,
+            c,
+            n: [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ],
+            m: [
+                (u[1] * v[2]).abs() + (u[2] * v[1]).abs(),
+                (u[2] * v[0]).abs() + (u[0] * v[2]).abs(),
+                (u[0] * v[1]).abs() + (u[1] * v[0]).abs(),
+            ],
+        }
+    }
+
+    /// [`sign_code`] of `orient3d(a, b, c, x)`, which is −(b − a) × (c − a) · (x − a). A corner of
+    /// the plane given again is on it (two equal rows: 0 exactly, without `orient3d`'s adaptive
+    /// stages, which an exact zero always reaches).
+    fn side(&self, x: P) -> i8 {
+        if x == self.a || x == self.b || x == self.c {
+            return 0;
+        }
+        let w = sub(x, self.a);
+        let det = self.n[0] * w[0] + self.n[1] * w[1] + self.n[2] * w[2];
+        let perm = self.m[0] * w[0].abs() + self.m[1] * w[1].abs() + self.m[2] * w[2].abs();
+        if perm > PLANE_FLOOR && perm.is_finite() && det.abs() > PLANE_ERR * perm {
+            return if det > 0.0 { -1 } else { 1 };
+        }
+        sign_code(orient3d(self.a, self.b, self.c, x))
+    }
+}
+
+/// Q's faces as corner positions (the fourth is the opposite corner).
+const TET_FACES: [[usize; 4]; 4] = [[1, 2, 3, 0], [0, 2, 3, 1], [0, 1, 3, 2], [0, 1, 2, 3]];
+
+/// The open tetrahedron q of a removal prepared for [`OpenTet::may_meet`]: its orientation,
+/// its face planes ([`Plane`]) with the side of the opposite corner, computed once instead of
+/// for every triangle tested, and the side of each face plane a triangle corner was found on,
+/// by vertex id (triangles of one search share most corners; a vertex id names one point).
+/// The same answers as [`may_meet_open_tet_reference`] (the same exact signs, compared
+/// directly instead of through products, which could underflow to 0).
+pub(super) struct OpenTet {
+    q: [P; 4],
+    qv: [u32; 4],
+    flat: bool,
+    faces: [Plane; 4],
+    opp: [i8; 4],
+    /// vertex → its side of each face plane (3: not computed yet)
+    memo: IdMap<u32, [i8; 4]>,
+}
+
+impl OpenTet {
+    pub(super) fn new(q: [P; 4], qv: [u32; 4]) -> Self {
+        let faces = TET_FACES.map(|f| Plane::new(q[f[0]], q[f[1]], q[f[2]]));
+        let opp = std::array::from_fn(|k| {
+            let f = TET_FACES[k];
+            sign_code(orient3d(q[f[0]], q[f[1]], q[f[2]], q[f[3]]))
+        });
+        OpenTet {
+            q,
+            qv,
+            flat: orient3d(q[0], q[1], q[2], q[3]) == 0.0,
+            faces,
+            opp,
+            memo: IdMap::default(),
+        }
+    }
+
+    /// The side of face plane `f` vertex `v` at `x` is on.
+    fn face_side(&mut self, f: usize, v: u32, x: P) -> i8 {
+        let e = self.memo.entry(v).or_insert([3; 4]);
+        if e[f] == 3 {
+            e[f] = self.faces[f].side(x);
+        }
+        e[f]
+    }
+
+    /// [`may_meet_open_tet`] of the closed triangle `t` (vertex ids `tv`).
+    pub(super) fn may_meet(&mut self, t: [P; 3], tv: [u32; 3]) -> bool {
+        let (q, qv) = (self.q, self.qv);
+        // shared vertex: cones with a common apex, planes through it spanned by two corners
+        if let Some((it, iq)) = (0..3)
+            .flat_map(|i| (0..4).map(move |j| (i, j)))
+            .find(|&(i, j)| tv[i] == qv[j])
+        {
+            let a = t[it];
+            let ts: [P; 2] = [t[(it + 1) % 3], t[(it + 2) % 3]];
+            let ts = if it == 1 { [ts[1], ts[0]] } else { ts };
+            // Q's corners other than a: those not on t first (`qs`), then those shared with
+            // t, which lie on t and so on both sides: they only have to be on Q's side too
+            let mut qall = [[0.0; 3]; 3];
+            let mut nqs = 0;
+            for j in (0..4).filter(|&j| j != iq && !tv.contains(&qv[j])) {
+                qall[nqs] = q[j];
+                nqs += 1;
+            }
+            let mut m = nqs;
+            for j in (0..4).filter(|&j| j != iq && tv.contains(&qv[j])) {
+                qall[m] = q[j];
+                m += 1;
+            }
+            debug_assert_eq!(m, 3);
+            let mut all = [[0.0; 3]; 5];
+            all[..2].copy_from_slice(&ts);
+            all[2..2 + nqs].copy_from_slice(&qall[..nqs]);
+            let n_all = 2 + nqs;
+            for i in 0..n_all {
+                for j in i + 1..n_all {
+                    let pl = Plane::new(a, all[i], all[j]);
+                    let st = ts.map(|x| pl.side(x));
+                    let sq = qall.map(|x| pl.side(x));
+                    if st.iter().chain(&sq).all(|&s| s == 0) {
+                        continue; // degenerate plane
+                    }
+                    if (st.iter().all(|&s| nonpos(s)) && sq.iter().all(|&s| nonneg(s)))
+                        || (st.iter().all(|&s| nonneg(s)) && sq.iter().all(|&s| nonpos(s)))
+                    {
+                        return false;
+                    }
+                }
+            }
+            return true;
+        }
+        if self.flat {
+            return false; // flat: no interior
+        }
+        // (each test below only proves a separation: the answer does not depend on their
+        // order; the triangle's plane comes first, and it separates most of the long
+        // triangles whose boxes meet the tetrahedron's)
+        // the triangle's plane
+        let tp = Plane::new(t[0], t[1], t[2]);
+        let sq = q.map(|x| tp.side(x));
+        if sq.iter().all(|&s| nonneg(s)) || sq.iter().all(|&s| nonpos(s)) {
+            return false;
+        }
+        // face planes of q
+        for f in 0..4 {
+            let s = self.opp[f];
+            if (0..3).all(|k| {
+                let x = self.face_side(f, tv[k], t[k]);
+                opposite(x, s)
+            }) {
+                return false;
+            }
+        }
+        // edge–edge planes
+        let qe = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
+        for i in 0..3 {
+            let e = (t[i], t[(i + 1) % 3]);
+            for &(j, k) in &qe {
+                let f = (q[j], q[k]);
+                // signs of (x − e.0)·(e × f) for every corner x
+                let mut st = [0i32; 3];
+                let mut sqs = [0i32; 4];
+                let mut ok = true;
+                // the corners of e are exactly on the plane; only the third one is evaluated
+                match sat_sign(t[(i + 2) % 3], e.0, e, f) {
+                    Some(s) => st[2] = s,
+                    None => ok = false,
+                }
+                for (m, &x) in q.iter().enumerate() {
+                    match sat_sign(x, e.0, e, f) {
+                        Some(s) => sqs[m] = s,
+                        None => ok = false,
+                    }
+                }
+                if !ok || (st.iter().all(|&s| s == 0) && sqs.iter().all(|&s| s == 0)) {
+                    continue;
+                }
+                // t lies in a closed half-space through e; q's vertices of edge f share one
+                // value, the separating plane through e works when q is on the other closed side
+                if (st.iter().all(|&s| s <= 0) && sqs.iter().all(|&s| s >= 0))
+                    || (st.iter().all(|&s| s >= 0) && sqs.iter().all(|&s| s <= 0))
+                {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+}
+
+/// [`may_meet_open_tet`] as it was before [`OpenTet`] (the reference of the tests): every
+/// `orient3d` evaluated in full, signs compared through products.
+#[cfg(test)]
+pub(super) fn may_meet_open_tet_reference(
+    t: [P; 3],
+    tv: [u32; 3],
+    q: [P; 4],
+    qv: [u32; 4],
+) -> bool {
     // shared vertex: cones with a common apex, planes through it spanned by two corners
     if let Some((it, iq)) = (0..3)
         .flat_map(|i| (0..4).map(move |j| (i, j)))
@@ -340,10 +637,11 @@ impl General3<'_> {
         );
         buf.sort_unstable();
         let mut out = Vec::new();
+        let mut open = OpenTet::new(q, qv);
         for &i in &buf {
             let u = self.tris[i as usize];
             let pu = u.map(|v| self.pt(v));
-            if may_meet_open_tet(pu, u, q, qv) {
+            if open.may_meet(pu, u) {
                 out.push(i);
             }
         }
@@ -1059,6 +1357,241 @@ mod tests {
         assert!(
             examined.0 > examined.1 && 5 * never > examined.0 / 2,
             "{examined:?} {never}"
+        );
+    }
+
+    /// [`Plane::side`] is the sign of `orient3d` (filter or fallback): on random points at
+    /// scales 1e-120 … 1e120, on lattice points (exact zeros), on points one ulp off a plane
+    /// and on the plane's own corners. And the filter decides most random cases itself.
+    #[test]
+    fn plane_side_is_the_sign_of_orient3d() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(41);
+        let (mut n, mut zeros, mut near) = (0usize, 0usize, 0usize);
+        for it in 0..40_000 {
+            let scale = 10f64.powi([0, 0, 0, 3, -7, 120, -120][it % 7]);
+            let lattice = it % 5 == 1;
+            let mut pt = || -> P {
+                std::array::from_fn(|_| {
+                    if lattice {
+                        rng.gen_range(-3i32..=3) as f64 * scale
+                    } else {
+                        rng.gen_range(-1.0..1.0) * scale
+                    }
+                })
+            };
+            let (a, b, c) = (pt(), pt(), pt());
+            let mut x = pt();
+            if it % 5 == 2 {
+                // on the plane up to rounding, then nudged by an ulp or two
+                let (s, t) = (rng.gen_range(-2.0..2.0), rng.gen_range(-2.0..2.0));
+                x = std::array::from_fn(|k| a[k] + s * (b[k] - a[k]) + t * (c[k] - a[k]));
+                let k = rng.gen_range(0..3);
+                for _ in 0..rng.gen_range(0..3) {
+                    x[k] = if rng.gen_bool(0.5) {
+                        x[k].next_up()
+                    } else {
+                        x[k].next_down()
+                    };
+                }
+                near += 1;
+            } else if it % 5 == 3 {
+                x = [a, b, c][it % 3];
+            }
+            let want = sign_code(orient3d(a, b, c, x));
+            assert_eq!(Plane::new(a, b, c).side(x), want, "{a:?} {b:?} {c:?} {x:?}");
+            zeros += usize::from(want == 0);
+            n += 1;
+        }
+        assert!(
+            n == 40_000 && zeros > 8_000 && near > 7_000,
+            "{zeros} {near}"
+        );
+    }
+
+    /// [`OpenTet::may_meet`] (one prepared tetrahedron for many triangles, face sides kept by
+    /// vertex id) answers as the former [`may_meet_open_tet_reference`], on random and lattice
+    /// configurations (coplanar corners: exact zeros) sharing 0, 1 or 2 vertices with Q.
+    #[test]
+    fn open_tet_answers_as_the_reference() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(43);
+        let (mut meet, mut apart) = (0usize, 0usize);
+        for it in 0..400 {
+            let lattice = it % 2 == 0;
+            let pts: Vec<P> = (0..40)
+                .map(|_| {
+                    std::array::from_fn(|_| {
+                        if lattice {
+                            rng.gen_range(0i32..4) as f64
+                        } else {
+                            rng.gen_range(-1.0..1.0)
+                        }
+                    })
+                })
+                .collect();
+            let qv = [0u32, 1, 2, 3];
+            let q = qv.map(|v| pts[v as usize]);
+            let mut open = OpenTet::new(q, qv);
+            for _ in 0..200 {
+                let mut tv = [0u32; 3];
+                for k in 0..3 {
+                    tv[k] = rng.gen_range(0..40);
+                }
+                if tv[0] == tv[1] || tv[1] == tv[2] || tv[0] == tv[2] {
+                    continue;
+                }
+                let t = tv.map(|v| pts[v as usize]);
+                let want = may_meet_open_tet_reference(t, tv, q, qv);
+                assert_eq!(open.may_meet(t, tv), want, "{t:?} {q:?}");
+                assert_eq!(may_meet_open_tet(t, tv, q, qv), want);
+                if want {
+                    meet += 1;
+                } else {
+                    apart += 1;
+                }
+            }
+        }
+        assert!(meet > 5_000 && apart > 5_000, "{meet} {apart}");
+    }
+
+    /// Every `stride`-th vertex of the fandisk model of the shared data (`None` when the file
+    /// is not there): large coplanar hull facets on a CAD surface.
+    fn fandisk_subset(stride: usize) -> Option<Vec<crate::geom::Point3>> {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../../shared/data/meshes/fandisk.obj"
+        );
+        let text = std::fs::read_to_string(path).ok()?;
+        let pts: Vec<crate::geom::Point3> = text
+            .lines()
+            .filter(|l| l.starts_with("v "))
+            .step_by(stride)
+            .filter_map(|l| {
+                let v: Vec<f64> = l[2..]
+                    .split_whitespace()
+                    .filter_map(|x| x.parse().ok())
+                    .collect();
+                (v.len() == 3).then(|| crate::geom::Point3::new(v[0], v[1], v[2]))
+            })
+            .collect();
+        (pts.len() > 100).then_some(pts)
+    }
+
+    /// [`FROM_HULL_TRIPLES`]: the constriction from the hull (local γ-triangles at c = −0.5, as
+    /// `Engine3::gamma_from_hull` beyond the whole-γ size) given every candidate
+    /// ([`GroupTriples::All`]) and given those without the hull facets' empty triangles makes
+    /// the same removals — run in lockstep, comparing every heap entry, every removability
+    /// verdict, every crossing set (as vertex triples: the ids differ) and every sweep — on
+    /// fandisk-like lattice prisms, a cube with points on its faces and a fandisk subset. And
+    /// the argument's steps on the engine with every triangle: no face of a removed
+    /// tetrahedron is a facet triangle, and every facet triangle is still live at the end.
+    #[test]
+    fn hull_facet_triangles_change_no_removal() {
+        use crate::graphs::fast::candidates_3d_with;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(23);
+        let mut cube = super::super::test_sets::cube(&mut rng, 300);
+        for p in cube.iter_mut().step_by(2) {
+            let k = rng.gen_range(0..3);
+            p[k] = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+        }
+        let mut sets = vec![
+            ("prism 4", super::super::test_sets::l_prism(4)),
+            ("prism 5", super::super::test_sets::l_prism(5)),
+            ("cube faces", cube),
+        ];
+        if let Some(f) = fandisk_subset(9) {
+            sets.push(("fandisk / 9", f));
+        }
+        let (mut removals, mut facet_total, mut sweeps) = (0usize, 0usize, 0usize);
+        for (name, pts) in &sets {
+            let d = crate::delaunay::d3::triangulate(pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let all = candidates_3d_with(&d, GroupTriples::All).0.triangles;
+            let few = candidates_3d_with(&d, FROM_HULL_TRIPLES).0.triangles;
+            let kept: std::collections::HashSet<[u32; 3]> = few.iter().copied().collect();
+            let facet: std::collections::HashSet<[u32; 3]> =
+                all.iter().copied().filter(|t| !kept.contains(t)).collect();
+            assert!(
+                facet.len() > few.len() / 4,
+                "{name}: {} facet triangles",
+                facet.len()
+            );
+            facet_total += facet.len();
+            let make = |tris: &[[u32; 3]]| {
+                let mut g = General3::new(&pos, &d.hull, tris, &[]);
+                let extra = g.local_gamma(-0.5, 16);
+                (g, extra)
+            };
+            let (mut old, xa) = make(&all);
+            let (mut new, xb) = make(&few);
+            assert_eq!(xa, xb, "{name}: local γ-triangles");
+            assert_eq!(old.augment(&xa), new.augment(&xb), "{name}");
+            assert_eq!(old.heap.len(), new.heap.len(), "{name}");
+            let tri_set = |g: &General3, ids: &[u32]| -> Vec<[u32; 3]> {
+                let mut v: Vec<[u32; 3]> = ids.iter().map(|&i| g.tris[i as usize]).collect();
+                v.sort_unstable();
+                v
+            };
+            loop {
+                while !old.done() {
+                    let (a, b) = (old.heap.pop(), new.heap.pop());
+                    let (Some(a), Some(b)) = (a, b) else {
+                        assert!(a.is_none() && b.is_none(), "{name}: heaps");
+                        break;
+                    };
+                    assert_eq!(a.item, b.item, "{name}");
+                    assert_eq!(a.key.to_bits(), b.key.to_bits(), "{name}");
+                    if !old.is_bface(a.item.0) {
+                        assert!(!new.is_bface(b.item.0), "{name}");
+                        continue;
+                    }
+                    let (ra, rb) = (old.check(a.item.0, a.item.1), new.check(b.item.0, b.item.1));
+                    assert_eq!(ra.is_some(), rb.is_some(), "{name}: {:?}", a.item);
+                    match (ra, rb) {
+                        (Some((_, bf, nf)), Some((_, bf2, nf2))) => {
+                            assert_eq!((&bf, &nf), (&bf2, &nf2), "{name}");
+                            let f = a.item.0;
+                            let qv = [f[0], f[1], f[2], a.item.1];
+                            for face in bf.iter().chain(&nf) {
+                                assert!(!facet.contains(&sorted3(*face)), "{name}: {qv:?}");
+                            }
+                            let (ca, cb) = (old.crossing(qv), new.crossing(qv));
+                            assert_eq!(tri_set(&old, &ca), tri_set(&new, &cb), "{name}: {qv:?}");
+                            old.remove(f, a.item.1, &bf, &nf);
+                            new.remove(f, a.item.1, &bf, &nf);
+                        }
+                        _ => assert_eq!(old.push(a.item.0), new.push(b.item.0), "{name}"),
+                    }
+                }
+                let (pa, pb) = (old.push_all(), new.push_all());
+                assert_eq!(pa, pb, "{name}: sweep");
+                sweeps += 1;
+                if old.done() || !pa {
+                    break;
+                }
+            }
+            assert_eq!(old.boundary(), new.boundary(), "{name}");
+            assert_eq!(old.iterations, new.iterations, "{name}");
+            assert_eq!(old.added, new.added, "{name}");
+            assert_eq!(old.boundary_vertices, new.boundary_vertices, "{name}");
+            for t in &facet {
+                assert!(
+                    old.has(t[0], t[1], t[2]),
+                    "{name}: facet triangle {t:?} deleted"
+                );
+            }
+            eprintln!(
+                "{name}: {} points, {} / {} triangles, {} removals, done {}",
+                pos.len(),
+                few.len(),
+                all.len(),
+                old.iterations,
+                old.done()
+            );
+            removals += old.iterations;
+        }
+        assert!(
+            removals > 300 && facet_total > 5000 && sweeps >= 4,
+            "{removals} {facet_total}"
         );
     }
 
