@@ -93,12 +93,14 @@
 //! `bench/README.md`); nothing is allocated per vertex. The quartic jets of the interior
 //! vertices are computed four at a time, one vertex per lane of a four-wide vector (`F4`):
 //! each lane does the scalar code's operations in the same order (the moments by the same
-//! generic code, the solve generated from the same elimination), a shorter ring is padded with
-//! points that add exactly zero, and a lane whose quartic is refused is recomputed alone by the
-//! scalar path, so the results are those of the one-vertex code bit for bit; on processors with
-//! AVX2 (detected at run time) the vertex pass runs a second compilation of itself with AVX2
-//! enabled (no FMA: the same bits). Tests `batched_and_avx2_passes_are_bitwise_the_scalar_pass`
-//! and `quartic_solve4_lanes_are_quartic_solve`.
+//! generic code, the solve generated from the same elimination: every entry receives the same
+//! terms in the same order, its rows finished one by one, `gen_jet_solve.py`), a shorter ring
+//! is padded with points that add exactly zero, and a lane whose quartic is refused is
+//! recomputed alone by the scalar path, so the results are those of the one-vertex code bit
+//! for bit; on processors with AVX2 (detected at run time) the vertex pass runs a second
+//! compilation of itself with AVX2 enabled (no FMA: the same bits). Tests
+//! `batched_and_avx2_passes_are_bitwise_the_scalar_pass`, `quartic_solve4_lanes_are_quartic_solve`
+//! and `quartic_solve4_is_quartic_solve_on_random_and_ill_conditioned_rings`.
 
 use super::error::CurvatureError;
 use super::fit::{CubicJet, Normal, QuarticJet, QuarticJet4, F4};
