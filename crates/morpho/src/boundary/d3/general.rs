@@ -36,8 +36,11 @@
 //! boundary faces next to a live non-boundary triangle (the only ones that can carry a
 //! removable tetrahedron), so a caller may pass only the live triangles near the locked
 //! vertices (as [`super::boundary_3d`] does) and pay for the boundary only once, in
-//! [`General3::new`]. That list of faces is kept up to date from the edges the mutations
-//! changed (`General3::sweep_faces`), not rebuilt from every live triangle at each sweep.
+//! [`General3::new`] — and there only for its boxes: the hash maps receive the initial
+//! boundary faces at the vertices of the given triangles, the others when a mutation first
+//! touches a corner of theirs ([`General3::build_lazy`]). That list of faces is kept up to
+//! date from the edges the mutations changed (`General3::sweep_faces`), not rebuilt from every
+//! live triangle at each sweep.
 //! The grid of [`General3::crossing`] leaves out the triangles lying in a supporting plane
 //! of the points ([`super::support`]; they never meet the open tetrahedron of a removal): the
 //! Θ(g³) empty triangles of each coplanar hull facet of g points, which on CAD models such as
