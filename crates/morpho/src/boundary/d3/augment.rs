@@ -22,7 +22,7 @@ impl General3<'_> {
     /// Does the triangle a b m leave the boundary edge ab into the region? (exact: m strictly
     /// inside the interior dihedral wedge of the two boundary faces at ab)
     pub(super) fn inward_at_edge(&self, a: u32, b: u32, m: u32) -> bool {
-        let (Some(&y), Some(&w)) = (self.bnext.get(&dk(a, b)), self.bnext.get(&dk(b, a))) else {
+        let (Some(y), Some(w)) = (self.bnext_of(a, b), self.bnext_of(b, a)) else {
             return false;
         };
         let (pa, pb, py, pw, pm) = (self.pt(a), self.pt(b), self.pt(y), self.pt(w), self.pt(m));
@@ -446,9 +446,8 @@ impl General3<'_> {
                 self.try_insert(t)
             } else if ok && !self.has(t[0], t[1], t[2]) {
                 one_by_one = self
-                    .id
-                    .get(&sorted3(t))
-                    .is_some_and(|&i| self.bflag[i as usize]);
+                    .id_of(sorted3(t))
+                    .is_some_and(|i| self.bflag[i as usize]);
                 self.add_tri(t)
             } else {
                 false
@@ -459,7 +458,7 @@ impl General3<'_> {
                 for k in 0..3 {
                     let (a, b) = (t[k], t[(k + 1) % 3]);
                     for (x, y) in [(a, b), (b, a)] {
-                        if let Some(&z) = self.bnext.get(&dk(x, y)) {
+                        if let Some(z) = self.bnext_of(x, y) {
                             faces.push([x, y, z]);
                         }
                     }
@@ -1197,5 +1196,166 @@ mod tests {
             }
             assert!(compared > 10_000, "set {set}: {compared}");
         }
+    }
+
+    /// The engine of [`General3::new`], whose hash maps hold only the initial boundary faces
+    /// at warm vertices ([`General3::build_lazy`]), in lockstep with the engine built over
+    /// the whole boundary ([`General3::build`], the construction before): through the whole
+    /// schedule of `augment_until_done_3d` (runs, local γ rounds c = −0.1 … −1,
+    /// augmentations, `insert_left_out`), the same γ candidates found, the same surface,
+    /// removals, additions and Delaunay-face flags after every step, and the same answers of
+    /// `has`, `id_of`, `is_bface`, `bedge`, `bnext_of` on every triangle and edge the eager
+    /// engine knows; the lazy maps agree with the eager ones on every key they hold and hold
+    /// every key with a warm end. Sets: clustered cube points on which the Delaunay
+    /// constriction locks (regions of depth 0, 1 and `LOCAL_DEPTH`), cube lattices from
+    /// their hull with the tetrahedra at three inner vertices live, and a sphere with
+    /// clusters just inside whose engine has no live triangle (every vertex cold at the
+    /// start; `insert_left_out` does all the work).
+    #[test]
+    fn lazy_engine_equals_the_eager_one() {
+        use rand::{Rng, SeedableRng};
+        fn eager<'a>(pos: &'a [P], bnd: &[[u32; 3]], live: &[[u32; 3]]) -> General3<'a> {
+            let mut g = General3::blank(pos, bnd, live, &[]);
+            g.build(bnd, live, &[]);
+            g.track = true;
+            g.push_all();
+            g
+        }
+        fn same(a: &General3<'_>, b: &General3<'_>, what: &str) -> usize {
+            assert_eq!(a.boundary(), b.boundary(), "{what}");
+            assert_eq!(
+                a.boundary_with_delaunay_flags(),
+                b.boundary_with_delaunay_flags(),
+                "{what}"
+            );
+            let counts = |g: &General3<'_>| (g.iterations, g.added, g.boundary_vertices);
+            assert_eq!(counts(a), counts(b), "{what}");
+            assert!(a.cold.cold.is_empty());
+            let warm = |t: &[u32]| !b.cold.all_cold(t);
+            for (i, &t) in a.tris.iter().enumerate() {
+                let [x, y, z] = t;
+                assert_eq!(a.has(x, y, z), b.has(x, y, z), "{what} {t:?}");
+                assert_eq!(a.id_of(t), b.id_of(t), "{what} {t:?}");
+                assert_eq!(Some(i as u32), b.id_of(t), "{what} {t:?}");
+                for f in [[x, y, z], [x, z, y], [y, z, x], [z, y, x]] {
+                    assert_eq!(a.is_bface(f), b.is_bface(f), "{what} {f:?}");
+                    assert_eq!(a.bnext_of(f[0], f[1]), b.bnext_of(f[0], f[1]), "{what}");
+                    assert_eq!(a.bedge(f[0], f[1]), b.bedge(f[0], f[1]), "{what}");
+                }
+            }
+            // the maps: equal where the lazy one has a key, and it has every warm key
+            for (k, v) in &b.eadj {
+                assert_eq!(a.eadj.get(k), Some(v), "{what} eadj");
+            }
+            for (k, v) in &a.eadj {
+                if warm(&[(k >> 32) as u32, *k as u32]) {
+                    assert_eq!(b.eadj.get(k), Some(v), "{what} eadj {k}");
+                }
+            }
+            for (k, v) in &b.bnext {
+                assert_eq!(a.bnext.get(k), Some(v), "{what} bnext");
+            }
+            for (k, v) in &a.bnext {
+                if warm(&[(k >> 32) as u32, *k as u32, *v]) {
+                    assert_eq!(b.bnext.get(k), Some(v), "{what} bnext {k}");
+                }
+            }
+            for (k, v) in &b.id {
+                assert_eq!(a.id.get(k), Some(v), "{what} id");
+            }
+            assert!(b.id.len() <= a.id.len() && b.bnext.len() <= a.bnext.len());
+            b.cold.cold.iter().filter(|&&c| c).count()
+        }
+        let lockstep = |pos: &[P], bnd: &[[u32; 3]], live: &[[u32; 3]], what: &str| {
+            let mut a = eager(pos, bnd, live);
+            let mut b = General3::new(pos, bnd, live, &[]);
+            a.trust_initial_as_delaunay();
+            b.trust_initial_as_delaunay();
+            let cold_at_start = same(&a, &b, what);
+            a.run();
+            b.run();
+            same(&a, &b, what);
+            for step in 1..=10 {
+                if a.done() {
+                    break;
+                }
+                let c = -(step as f64) / 10.0;
+                let (xa, xb) = (a.local_gamma(c, 16), b.local_gamma(c, 16));
+                assert_eq!(xa, xb, "{what} c {c}");
+                assert_eq!(a.augment(&xa), b.augment(&xb), "{what} c {c}");
+                a.run();
+                b.run();
+                same(&a, &b, &format!("{what} c {c}"));
+            }
+            if !a.done() {
+                assert_eq!(a.insert_left_out(), b.insert_left_out(), "{what}");
+                a.run();
+                b.run();
+            }
+            let cold_at_end = same(&a, &b, what);
+            assert!(a.iterations > 0, "{what}: nothing removed");
+            (cold_at_start, cold_at_end)
+        };
+        let mut cold_kept = 0;
+        let mut locked = 0;
+        for seed in [1647u64, 1755, 1, 2, 3, 4] {
+            let pts = super::super::test_sets::clustered_cube(seed);
+            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let st = super::super::constrict::constrict_3d(&d, super::super::constrict::Until::All);
+            if st.boundary_vertices >= pos.len() {
+                continue;
+            }
+            locked += 1;
+            for depth in [0, 1, LOCAL_DEPTH] {
+                let region = near_locked(&d, &st.alive, &st.triangles, depth);
+                let live = super::super::test_sets::live_faces(&d, &region);
+                let (c0, c1) = lockstep(&pos, &st.triangles, &live, &format!("{seed}/{depth}"));
+                assert!(c0 > 0, "seed {seed} depth {depth}: no cold vertex");
+                cold_kept += c1;
+            }
+        }
+        assert!(locked >= 2, "{locked}");
+        for (m, inner, seed) in [(5, 30, 1u64), (6, 60, 2), (7, 90, 3)] {
+            let d = crate::delaunay::d3::triangulate(&cube_lattice(m, inner, seed)).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let mut on = vec![false; pos.len()];
+            for &v in d.hull.iter().flatten() {
+                on[v as usize] = true;
+            }
+            let inner_v: Vec<u32> = (0..pos.len() as u32)
+                .filter(|&v| !on[v as usize])
+                .take(3)
+                .collect();
+            let region: Vec<bool> = d
+                .tets
+                .iter()
+                .map(|t| t.iter().any(|v| inner_v.contains(v)))
+                .collect();
+            let live = super::super::test_sets::live_faces(&d, &region);
+            let (c0, c1) = lockstep(&pos, &d.hull, &live, &format!("lattice {m}"));
+            assert!(c0 > 0, "lattice {m}");
+            cold_kept += c1;
+        }
+        // a sphere with clusters just inside, no live triangle: all cold at the start
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(17);
+        let r = 2e-4 * (3000.0f64 / (4.0 * std::f64::consts::PI)).sqrt();
+        let mut dir = || {
+            let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt().max(1e-3);
+            (v.map(|x| x / n), rng.gen_range(-1e-5..1e-5))
+        };
+        let mut pts: Vec<crate::geom::Point3> = Vec::new();
+        for i in 0..3030 {
+            let (u, e) = dir();
+            let s = if i < 3000 { r } else { r - 3e-5 + e };
+            pts.push(crate::geom::Point3::new(s * u[0], s * u[1], s * u[2]));
+        }
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let (c0, c1) = lockstep(&pos, &d.hull, &[], "sphere");
+        assert_eq!(c0, pos.len(), "sphere: every vertex cold at the start");
+        cold_kept += c1;
+        assert!(cold_kept > 100, "{cold_kept} vertices never warmed");
     }
 }

@@ -36,8 +36,11 @@
 //! boundary faces next to a live non-boundary triangle (the only ones that can carry a
 //! removable tetrahedron), so a caller may pass only the live triangles near the locked
 //! vertices (as [`super::boundary_3d`] does) and pay for the boundary only once, in
-//! [`General3::new`]. That list of faces is kept up to date from the edges the mutations
-//! changed (`General3::sweep_faces`), not rebuilt from every live triangle at each sweep.
+//! [`General3::new`] — and there only for its boxes: the hash maps receive the initial
+//! boundary faces at the vertices of the given triangles, the others when a mutation first
+//! touches a corner of theirs ([`General3::build_lazy`]). That list of faces is kept up to
+//! date from the edges the mutations changed (`General3::sweep_faces`), not rebuilt from every
+//! live triangle at each sweep.
 //! The grid of [`General3::crossing`] leaves out the triangles lying in a supporting plane
 //! of the points ([`super::support`]; they never meet the open tetrahedron of a removal): the
 //! Θ(g³) empty triangles of each coplanar hull facet of g points, which on CAD models such as
@@ -194,6 +197,104 @@ pub(super) fn support_faces<'b>(
     }
 }
 
+/// The initial boundary faces of [`General3::build_lazy`] that are not (yet) in the engine's
+/// hash maps, read-only: per vertex whether it is still cold (no mutation has touched a
+/// triangle at it), and every initial face by vertex. Empty (no vertex cold) after
+/// [`General3::build`].
+#[derive(Default)]
+pub(super) struct Cold {
+    /// Per vertex: still cold.
+    pub(super) cold: Vec<bool>,
+    /// The initial boundary faces as given (oriented outward); face i has id i.
+    faces: Vec<[u32; 3]>,
+    /// Vertex v's initial faces are `at[start[v]..start[v + 1]]`, ids increasing.
+    start: Vec<u32>,
+    at: Vec<u32>,
+}
+
+impl Cold {
+    /// The table of the initial boundary `faces` on `n` vertices, every vertex cold; `None`
+    /// when a face is degenerate or out of range, or a face (sorted triple) or a directed edge
+    /// appears twice. O(F·d) for F faces and d faces per vertex.
+    fn new(n: usize, faces: &[[u32; 3]]) -> Option<Self> {
+        if faces.len() >= u32::MAX as usize {
+            return None;
+        }
+        let mut start = vec![0u32; n + 1];
+        for f in faces {
+            if f[0] == f[1] || f[1] == f[2] || f[0] == f[2] || f.iter().any(|&v| v as usize >= n) {
+                return None;
+            }
+            for &v in f {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let mut next = start.clone();
+        let mut at = vec![0u32; 3 * faces.len()];
+        for (i, f) in faces.iter().enumerate() {
+            for &v in f {
+                at[next[v as usize] as usize] = i as u32;
+                next[v as usize] += 1;
+            }
+        }
+        let c = Cold {
+            cold: vec![true; n],
+            faces: faces.to_vec(),
+            start,
+            at,
+        };
+        // each directed edge and each sorted triple once (looked up at the first corner)
+        for (i, f) in faces.iter().enumerate() {
+            let s = sorted3(*f);
+            let twice = c.at(f[0]).iter().any(|&j| {
+                let g = c.faces[j as usize];
+                j != i as u32
+                    && (sorted3(g) == s || (0..3).any(|k| g[k] == f[0] && g[(k + 1) % 3] == f[1]))
+            });
+            if twice {
+                return None;
+            }
+        }
+        Some(c)
+    }
+
+    /// The ids of the initial faces at v (none for a vertex out of range).
+    fn at(&self, v: u32) -> &[u32] {
+        let v = v as usize;
+        if v + 1 >= self.start.len() {
+            return &[];
+        }
+        &self.at[self.start[v] as usize..self.start[v + 1] as usize]
+    }
+
+    /// Every vertex of `vs` is cold (false when the table is empty).
+    pub(super) fn all_cold(&self, vs: &[u32]) -> bool {
+        vs.iter()
+            .all(|&v| self.cold.get(v as usize).copied().unwrap_or(false))
+    }
+
+    /// The third vertex of the initial face with the directed edge a→b.
+    fn directed(&self, a: u32, b: u32) -> Option<u32> {
+        self.at(a).iter().find_map(|&i| {
+            let f = self.faces[i as usize];
+            (0..3)
+                .find(|&k| f[k] == a && f[(k + 1) % 3] == b)
+                .map(|k| f[(k + 2) % 3])
+        })
+    }
+
+    /// The id of the initial face with the sorted corners s.
+    fn find(&self, s: [u32; 3]) -> Option<u32> {
+        self.at(s[0])
+            .iter()
+            .copied()
+            .find(|&i| sorted3(self.faces[i as usize]) == s)
+    }
+}
+
 /// The general 3D constriction (see the module documentation). Vertex indices are indices into
 /// the point array given to [`General3::new`].
 pub struct General3<'a> {
@@ -286,6 +387,9 @@ pub struct General3<'a> {
     /// boundary faces instead of looking every tetrahedron's faces up
     /// ([`General3::boundary_with_delaunay_flags`]).
     pub(super) delaunay_ids: u32,
+    /// The initial boundary faces kept out of the hash maps while no corner of theirs is
+    /// touched ([`General3::build_lazy`]; empty after [`General3::build`]).
+    pub(super) cold: Cold,
     /// Number of boundary vertices.
     pub boundary_vertices: usize,
     /// Number of removed tetrahedra.
@@ -300,7 +404,7 @@ impl<'a> General3<'a> {
     /// added to them). `keep` triangles are never deleted.
     pub fn new(p: &'a [P], boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) -> Self {
         let mut g = Self::blank(p, boundary, tris, keep);
-        g.build(boundary, tris, keep);
+        g.build_lazy(boundary, tris, keep);
         g.track = true;
         g.push_all();
         g
@@ -412,6 +516,7 @@ impl<'a> General3<'a> {
             verify_sweep_list: false,
             incremental_sweeps: 0,
             delaunay_ids: 0,
+            cold: Cold::default(),
             boundary_vertices: 0,
             iterations: 0,
             added: 0,
@@ -423,9 +528,77 @@ impl<'a> General3<'a> {
     /// ids, edge lists and grid cells in that order — but with every list allocated once and
     /// the independent tables built in parallel.
     pub(super) fn build(&mut self, boundary: &[[u32; 3]], tris: &[[u32; 3]], keep: &[[u32; 3]]) {
+        self.build_with(boundary, tris, keep, false);
+    }
+
+    /// [`General3::build`], but the hash maps (`id`, `bnext`, `eadj`) receive only what
+    /// concerns the vertices of the live and keep triangles (`tris`, `keep`): the initial
+    /// boundary faces with none of them among their corners stay in a read-only table
+    /// ([`Cold`]) until a mutation touches one of their corners. Every other table (ids,
+    /// flags, boxes, grids, vertex counts) is the same as after [`General3::build`].
+    ///
+    /// What the caller may assume: every query of the engine answers as after
+    /// [`General3::build`] (test `lazy_engine_equals_the_eager_one`), because
+    /// - a vertex stays *cold* until a mutation (`add_tri_grid`, `kill`, `set_boundary`)
+    ///   touches a triangle at it; before its tables change, the mutation *heats* the
+    ///   triangle's corners ([`General3::heat`]), which puts every initial boundary face at
+    ///   them into `id` and `bnext`, and the third vertices of those faces into `eadj` for
+    ///   every edge that had no warm end — in id order, the order of the bulk construction
+    ///   (such an edge carries initial boundary faces only: the live and keep triangles given
+    ///   here and every triangle added later have warm corners);
+    /// - so the maps hold exactly the state of every triangle and directed edge with a warm
+    ///   corner, and a triangle (directed edge) whose corners are all cold is untouched: an
+    ///   initial boundary face, live, when [`Cold`] lists it, absent otherwise. The
+    ///   accessors `has`, `is_bface`, `bedge`, [`General3::bnext_of`], [`General3::id_of`]
+    ///   and `boundary` consult [`Cold`] for those; the other readers of the maps
+    ///   (`removal.rs`: the sweep, `best_plain`, `lock_box`, `remove`) only read edges of
+    ///   faces that share an edge with a live non-boundary triangle or of triangles just
+    ///   mutated, whose corners are warm.
+    ///
+    /// Why it pays: after a locked Delaunay constriction the local engine starts from the
+    /// whole surface (875 k faces on the 437 645-point dragon) but works only near the
+    /// ≈ 1 100 locked vertices; the maps' entries of the far faces (2.6 M directed edges,
+    /// 1.3 M edges, 875 k triangle ids) were a third of the engine's construction.
+    /// Falls back to [`General3::build`] when the boundary has a degenerate face, a face
+    /// twice or a directed edge twice (not a 2-manifold: the precondition of the engine).
+    pub(super) fn build_lazy(
+        &mut self,
+        boundary: &[[u32; 3]],
+        tris: &[[u32; 3]],
+        keep: &[[u32; 3]],
+    ) {
+        let Some(mut cold) = Cold::new(self.p.len(), boundary) else {
+            return self.build(boundary, tris, keep);
+        };
+        for t in tris.iter().chain(keep) {
+            for &v in t {
+                if let Some(c) = cold.cold.get_mut(v as usize) {
+                    *c = false;
+                }
+            }
+        }
+        self.cold = cold;
+        self.build_with(boundary, tris, keep, true);
+    }
+
+    /// [`General3::build`] (`lazy` false) or the construction of [`General3::build_lazy`]
+    /// (`lazy`: `self.cold` set, the boundary faces distinct and non-degenerate).
+    fn build_with(
+        &mut self,
+        boundary: &[[u32; 3]],
+        tris: &[[u32; 3]],
+        keep: &[[u32; 3]],
+        lazy: bool,
+    ) {
         use rayon::prelude::*;
+        // (lazy: only the boundary faces with a warm corner go into the maps)
+        let warm_faces = if lazy {
+            boundary.iter().filter(|f| !self.cold.all_cold(*f)).count()
+        } else {
+            boundary.len()
+        };
         let nt = boundary.len() + tris.len() + keep.len();
-        self.id.reserve(nt);
+        self.id.reserve(warm_faces + tris.len() + keep.len());
         self.tris.reserve(nt);
         // ids: boundary faces first (not in the grid of live triangles), no repeats
         let mut n_boundary_ids = 0;
@@ -438,6 +611,16 @@ impl<'a> General3<'a> {
             }
             let s = sorted3(t);
             if s[0] == s[1] || s[1] == s[2] {
+                continue;
+            }
+            if lazy && k < boundary.len() {
+                // (distinct faces: the id is the position; in the map only with a warm corner)
+                let i = self.tris.len() as u32;
+                self.tris.push(s);
+                if !self.cold.all_cold(&s) {
+                    self.id.insert(s, i);
+                }
+                bface_ids.push(i);
                 continue;
             }
             let i = match self.id.entry(s) {
@@ -480,7 +663,7 @@ impl<'a> General3<'a> {
             .into_par_iter()
             .map(|i| !self.support.holds(p, self.tris[i]))
             .collect();
-        let (tl, tbox) = (&self.tris, &self.tbox);
+        let (tl, tbox, cold) = (&self.tris, &self.tbox, &self.cold);
         let (eadj, bnext, vcount, bv, vgrid, vcoarse, tgrid, bgrid, bfaces) = (
             &mut self.eadj,
             &mut self.bnext,
@@ -495,13 +678,15 @@ impl<'a> General3<'a> {
         rayon::join(
             || {
                 // edge → third vertices, in id order
+                // (lazy: the edges of the initial boundary faces without a warm end stay out)
                 let mut e: Vec<(u64, u32, u32)> = tl
                     .par_iter()
                     .enumerate()
                     .flat_map_iter(|(i, s)| {
-                        (0..3).map(move |k| {
+                        (0..3).filter_map(move |k| {
                             let (a, b, c) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
-                            (ek(a, b), i as u32, c)
+                            let out = lazy && i < n_boundary_ids && cold.all_cold(&[a, b]);
+                            (!out).then_some((ek(a, b), i as u32, c))
                         })
                     })
                     .collect();
@@ -541,11 +726,14 @@ impl<'a> General3<'a> {
                         let pts = || p.iter().enumerate().map(|(v, &q)| (v as u32, q, q));
                         vgrid.insert_many(pts());
                         vcoarse.insert_many(pts());
-                        bnext.reserve(3 * boundary.len());
+                        bnext.reserve(3 * warm_faces);
                         for f in boundary {
+                            let warm = !lazy || !cold.all_cold(f);
                             for k in 0..3 {
                                 let (a, b, c) = (f[k], f[(k + 1) % 3], f[(k + 2) % 3]);
-                                bnext.insert(dk(a, b), c);
+                                if warm {
+                                    bnext.insert(dk(a, b), c);
+                                }
                                 let v = a as usize;
                                 if vcount[v] == 0 {
                                     *bv += 1;
@@ -621,6 +809,7 @@ impl<'a> General3<'a> {
         if s[0] == s[1] || s[1] == s[2] {
             return false;
         }
+        self.heat(s);
         if let Some(&i) = self.id.get(&s) {
             if self.live[i as usize] {
                 return false;
@@ -657,6 +846,7 @@ impl<'a> General3<'a> {
         if !self.live[i as usize] {
             return;
         }
+        self.heat(self.tris[i as usize]);
         self.live[i as usize] = false;
         self.tgrid.set_alive(i, false);
         self.bfaces.set_alive(i, false);
@@ -674,12 +864,70 @@ impl<'a> General3<'a> {
 
     /// True when triangle abc is live.
     pub fn has(&self, a: u32, b: u32, c: u32) -> bool {
-        self.id
-            .get(&sorted3([a, b, c]))
-            .is_some_and(|&i| self.live[i as usize])
+        self.id_of(sorted3([a, b, c]))
+            .is_some_and(|i| self.live[i as usize])
+    }
+
+    /// The id of the triangle with the sorted corners `s`, if it has one: the map `id`, or for
+    /// corners that are all cold the initial boundary face ([`General3::build_lazy`]).
+    pub(super) fn id_of(&self, s: [u32; 3]) -> Option<u32> {
+        match self.id.get(&s) {
+            Some(&i) => Some(i),
+            None if self.cold.all_cold(&s) => self.cold.find(s),
+            None => None,
+        }
+    }
+
+    /// The third vertex of the outward boundary face with the directed edge a→b, if there is
+    /// one: the map `bnext`, or for two cold ends the initial boundary face
+    /// ([`General3::build_lazy`]: a face with a warm corner is in the map).
+    pub(super) fn bnext_of(&self, a: u32, b: u32) -> Option<u32> {
+        match self.bnext.get(&dk(a, b)) {
+            Some(&c) => Some(c),
+            None if self.cold.all_cold(&[a, b]) => self.cold.directed(a, b),
+            None => None,
+        }
+    }
+
+    /// Warms the corners of `t` before a mutation of a triangle at them: each initial boundary
+    /// face at a cold corner v enters `id` and `bnext` unless another corner of it is warm
+    /// (then it is there already), and each edge v–w of them with w cold enters `eadj` with
+    /// the third vertices of its two initial faces, in id order (see
+    /// [`General3::build_lazy`]). Changes no answer of the engine.
+    pub(super) fn heat(&mut self, t: [u32; 3]) {
+        for v in t {
+            if !self.cold.all_cold(&[v]) {
+                continue;
+            }
+            self.cold.cold[v as usize] = false;
+            let (lo, hi) = (
+                self.cold.start[v as usize] as usize,
+                self.cold.start[v as usize + 1] as usize,
+            );
+            for j in lo..hi {
+                let i = self.cold.at[j];
+                let f = self.cold.faces[i as usize];
+                let k = (0..3).find(|&k| f[k] == v).unwrap_or(0);
+                let (w, u) = (f[(k + 1) % 3], f[(k + 2) % 3]);
+                let (cw, cu) = (self.cold.all_cold(&[w]), self.cold.all_cold(&[u]));
+                if cw && cu {
+                    self.id.insert(sorted3(f), i);
+                    for k in 0..3 {
+                        self.bnext.insert(dk(f[k], f[(k + 1) % 3]), f[(k + 2) % 3]);
+                    }
+                }
+                if cw {
+                    self.eadj.entry(ek(v, w)).or_default().push(u);
+                }
+                if cu {
+                    self.eadj.entry(ek(u, v)).or_default().push(w);
+                }
+            }
+        }
     }
 
     pub(super) fn set_boundary(&mut self, f: [u32; 3], on: bool) {
+        self.heat(f);
         if self.track {
             let (lo, hi) = bbox(&f.map(|v| self.pt(v)));
             self.touched(lo, hi);
@@ -720,7 +968,7 @@ impl<'a> General3<'a> {
 
     /// Is the oriented face a boundary face (with this orientation)?
     pub(super) fn is_bface(&self, f: [u32; 3]) -> bool {
-        self.bnext.get(&dk(f[0], f[1])) == Some(&f[2])
+        self.bnext_of(f[0], f[1]) == Some(f[2])
     }
 
     pub(super) fn on_boundary(&self, v: u32) -> bool {
@@ -728,7 +976,7 @@ impl<'a> General3<'a> {
     }
 
     pub(super) fn bedge(&self, a: u32, b: u32) -> bool {
-        self.bnext.contains_key(&dk(a, b)) || self.bnext.contains_key(&dk(b, a))
+        self.bnext_of(a, b).is_some() || self.bnext_of(b, a).is_some()
     }
 
     /// The boundary surface (outward faces).
@@ -741,6 +989,14 @@ impl<'a> General3<'a> {
                 (a < b && a < c).then_some([a, b, c])
             })
             .collect();
+        // (the initial faces whose corners are all cold, untouched: [`General3::build_lazy`])
+        out.extend(
+            self.cold
+                .faces
+                .iter()
+                .filter(|f| self.cold.all_cold(*f))
+                .map(|&f| sorted_rot(f)),
+        );
         out.sort_unstable();
         out
     }
@@ -768,8 +1024,8 @@ impl<'a> General3<'a> {
         let mut seen = vec![false; self.delaunay_ids as usize];
         let flags = tris
             .iter()
-            .map(|&t| match self.id.get(&sorted3(t)) {
-                Some(&i) if i < self.delaunay_ids && !seen[i as usize] => {
+            .map(|&t| match self.id_of(sorted3(t)) {
+                Some(i) if i < self.delaunay_ids && !seen[i as usize] => {
                     seen[i as usize] = true;
                     true
                 }

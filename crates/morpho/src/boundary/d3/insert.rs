@@ -136,7 +136,7 @@ impl General3<'_> {
             }
             None => {
                 for t in added {
-                    if let Some(&i) = self.id.get(&sorted3(t)) {
+                    if let Some(i) = self.id_of(sorted3(t)) {
                         self.kill(i);
                     }
                 }
