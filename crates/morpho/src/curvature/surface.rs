@@ -75,8 +75,9 @@
 //! below the peers, and the convergence slopes rise (regular torus 4.3, jittered 3.6). ε
 //! bounds a point's weight by ε⁻⁴ = 10⁴ (a point on the vertex: a zero-length edge). The
 //! weights cost seven products, three sums and one division per point (one vector operation
-//! each for four vertices in the batched pass): +1.9 % of the vertex pass's instructions on
-//! the skull (`bench/README.md`). The jet normals of
+//! each for four vertices in the batched pass): on the skull, one thread, +2.4 % of the CLI's
+//! instructions and +2 to +3.4 % of its process CPU (+3 to +5 % of the compute alone;
+//! `bench/README.md`). The jet normals of
 //! [`SurfaceOptions::jet_normals`] stay unweighted (their outputs are unchanged).
 //!
 //! **Undetermined vertices** (NaN in every output, a [`VertexStatus`] other than `Ok`, and
