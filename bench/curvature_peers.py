@@ -28,8 +28,9 @@ vertex is |x − x_ex| / max(|x_ex|, 0.1·rms(x_ex)) (the floor keeps saddles' z
 dominating); median over the vertices.
 Tools: morpho `morpho curvature IN.ply -o OUT.csv` (variants below), libigl
 `igl.principal_curvature(V, F)` (its defaults: radius 5, k-ring), VTK `vtkCurvatures` mean and
-Gaussian (the discrete operators). Variants: `default` (the CLI default, `--fit jet`: the cubic
-jet over the 2-ring in the frame of the area normal, curvature of the jet at the vertex),
+Gaussian (the discrete operators). Variants: `default` (the CLI default, `--fit jet`: the jet of
+degree 4 (else 3) over the 2-ring in the frame of the area normal, its points weighted by
+1/(0.1 + r²/ρ²)⁴ since branch `tor`, curvature of the jet at the vertex),
 `jetparab` (`--fit paraboloid`: the previous default, area normals corrected by the cubic jet,
 then the thesis's 1-ring paraboloid), `thesis` (`--normals area`: the 1-ring paraboloid with
 area-weighted normals, H §4.2), `quadric` (`--normals area --fit quadric`: linear terms over

@@ -202,17 +202,62 @@ type Monomials2to6<T> = ([T; 3], [T; 4], [T; 5], [T; 6], [T; 7]);
 
 /// The arithmetic of the moments: `f64` (one vertex) and [`F4`] (four vertices, one per lane,
 /// each lane the same operations as `f64`).
-pub(crate) trait Lane: Copy + Mul<Output = Self> + AddAssign {}
-impl Lane for f64 {}
-impl Lane for F4 {}
+pub(crate) trait Lane: Copy + Mul<Output = Self> + AddAssign {
+    /// `x` (in every lane).
+    fn splat(x: f64) -> Self;
+    /// `1 / self` (in every lane).
+    fn recip(self) -> Self;
+}
+impl Lane for f64 {
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn recip(self) -> Self {
+        1.0 / self
+    }
+}
+impl Lane for F4 {
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        F4::splat(x)
+    }
+    #[inline(always)]
+    fn recip(self) -> Self {
+        F4::recip(self)
+    }
+}
 
-/// The monomials `uᵃtᵇ` of degree 2–6, each block by increasing `b`, each monomial one product
-/// from degree k − 1 (the first times `u`, every other the one before it times `t`): the jets'
-/// moment layout. Written out, not looped: a loop kept the monomials in memory and took twice
-/// as long.
+/// The offset of the jets' distance weight ([`jet_weight`]).
+pub(crate) const JET_WEIGHT_EPS: f64 = 0.1;
+
+/// The least-squares weight `w = 1/(ε + u² + t² + d²)⁴` (ε = [`JET_WEIGHT_EPS`]) of a jet's
+/// point `(u, t, d)` in coordinates divided by the ring's RMS radius (so the mean of
+/// `u² + t² + d²` over the ring is 1 and the weight is scale-free). The far points of a
+/// 2-ring carry the jet's truncation error (the surface's terms beyond degree 4, ∝ r⁵, r⁶):
+/// weighting them down takes it out of the Hessian (on the 40×120 torus grid 3.4× less RMS
+/// of H, `bench/README.md`); ε bounds the weight of a point at the vertex (a zero-length edge)
+/// by ε⁻⁴ = 10⁴, so the weights span at most that range times the ring's own. The same
+/// operations for `f64` and [`F4`] (the scalar and the four-lane paths agree bit for bit).
 #[inline(always)]
-fn monomials_2_6<T: Lane>(u: T, t: T) -> Monomials2to6<T> {
-    let d2 = [u * u, u * t, t * t];
+pub(crate) fn jet_weight<T: Lane>(u: T, t: T, d: T) -> T {
+    let mut q = T::splat(JET_WEIGHT_EPS);
+    q += u * u;
+    q += t * t;
+    q += d * d;
+    let q2 = q * q;
+    (q2 * q2).recip()
+}
+
+/// The monomials `w uᵃtᵇ` of degree 2–6 from `wu = w u` and `wt = w t` (`w` a point's weight,
+/// 1 for the unweighted fits: then the same bits as without it), each block by increasing
+/// `b`, each monomial one product from degree k − 1 (the first times `u`, every other the one
+/// before it times `t`): the jets' moment layout. Written out, not looped: a loop kept the
+/// monomials in memory and took twice as long.
+#[inline(always)]
+fn monomials_2_6<T: Lane>(u: T, t: T, wu: T, wt: T) -> Monomials2to6<T> {
+    let d2 = [wu * u, wu * t, wt * t];
     let d3 = [d2[0] * u, d2[0] * t, d2[1] * t, d2[2] * t];
     let d4 = [d3[0] * u, d3[0] * t, d3[1] * t, d3[2] * t, d3[3] * t];
     let d5 = [
@@ -255,13 +300,15 @@ fn add_moments_2_6<T: Lane>(m: &mut [T], d: &Monomials2to6<T>) {
     }
 }
 
-/// Adds the point `(u, t)` with height `d` to the quartic jet's moments `m` (degree 2–8) and
-/// `r` (degree 1–4): [`QuarticJet::add`] for one vertex, [`QuarticJet4::add`] for four — the
-/// same code, so each lane's sums are the one vertex's, bit for bit.
+/// Adds the point `(u, t)` with height `d` and weight `w` to the quartic jet's moments `m`
+/// (`Σ w uᵃtᵇ`, degree 2–8) and `r` (`Σ w d uᵃtᵇ`, degree 1–4): [`QuarticJet::add_weighted`]
+/// for one vertex, [`QuarticJet4::add`] for four — the same code, so each lane's sums are the
+/// one vertex's, bit for bit.
 #[inline(always)]
-fn quartic_add<T: Lane>(m: &mut [T; 42], r: &mut [T; 14], u: T, t: T, d: T) {
+fn quartic_add<T: Lane>(m: &mut [T; 42], r: &mut [T; 14], u: T, t: T, d: T, w: T) {
     // degree by degree, as in `CubicJet::add`, two degrees further
-    let mo = monomials_2_6(u, t);
+    let (wu, wt) = (w * u, w * t);
+    let mo = monomials_2_6(u, t, wu, wt);
     add_moments_2_6(m, &mo);
     let (d2, d3, d4, d6) = (mo.0, mo.1, mo.2, mo.4);
     let d7 = [
@@ -292,7 +339,7 @@ fn quartic_add<T: Lane>(m: &mut [T; 42], r: &mut [T; 14], u: T, t: T, d: T) {
         *acc += x;
     }
     let low = [
-        u, t, d2[0], d2[1], d2[2], d3[0], d3[1], d3[2], d3[3], d4[0], d4[1], d4[2], d4[3], d4[4],
+        wu, wt, d2[0], d2[1], d2[2], d3[0], d3[1], d3[2], d3[3], d4[0], d4[1], d4[2], d4[3], d4[4],
     ];
     for (acc, x) in r.iter_mut().zip(low) {
         *acc += d * x;
@@ -331,13 +378,22 @@ impl CubicJet {
         k * (k + 1) / 2 - 3 + b
     }
 
-    /// Adds the point `(u, t)` with height `d`.
+    /// Adds the point `(u, t)` with height `d` (weight 1).
+    #[cfg_attr(not(test), allow(dead_code))]
     #[inline(always)]
     pub(crate) fn add(&mut self, u: f64, t: f64, d: f64) {
-        let mo = monomials_2_6(u, t);
+        self.add_weighted(u, t, d, 1.0);
+    }
+
+    /// Adds the point `(u, t)` with height `d` and least-squares weight `w > 0` (the normal
+    /// equations `UᵀWU c = UᵀW d`; `w = 1` gives the bits of [`CubicJet::add`]).
+    #[inline(always)]
+    pub(crate) fn add_weighted(&mut self, u: f64, t: f64, d: f64, w: f64) {
+        let (wu, wt) = (w * u, w * t);
+        let mo = monomials_2_6(u, t, wu, wt);
         add_moments_2_6(&mut self.m, &mo);
         let (d2, d3) = (mo.0, mo.1);
-        let low = [u, t, d2[0], d2[1], d2[2], d3[0], d3[1], d3[2], d3[3]];
+        let low = [wu, wt, d2[0], d2[1], d2[2], d3[0], d3[1], d3[2], d3[3]];
         for (acc, x) in self.r.iter_mut().zip(low) {
             *acc += d * x;
         }
@@ -384,10 +440,18 @@ impl QuarticJet {
         }
     }
 
-    /// Adds the point `(u, t)` with height `d`.
+    /// Adds the point `(u, t)` with height `d` (weight 1).
+    #[cfg_attr(not(test), allow(dead_code))]
     #[inline(always)]
     pub(crate) fn add(&mut self, u: f64, t: f64, d: f64) {
-        quartic_add(&mut self.m, &mut self.r, u, t, d);
+        self.add_weighted(u, t, d, 1.0);
+    }
+
+    /// Adds the point `(u, t)` with height `d` and least-squares weight `w > 0`
+    /// ([`CubicJet::add_weighted`]).
+    #[inline(always)]
+    pub(crate) fn add_weighted(&mut self, u: f64, t: f64, d: f64, w: f64) {
+        quartic_add(&mut self.m, &mut self.r, u, t, d, w);
         self.rows += 1;
     }
 
@@ -514,10 +578,10 @@ impl QuarticJet4 {
         }
     }
 
-    /// Adds one point per lane ([`QuarticJet::add`] in each lane).
+    /// Adds one point per lane with its weight ([`QuarticJet::add_weighted`] in each lane).
     #[inline(always)]
-    pub(crate) fn add(&mut self, u: F4, t: F4, d: F4) {
-        quartic_add(&mut self.m, &mut self.r, u, t, d);
+    pub(crate) fn add(&mut self, u: F4, t: F4, d: F4, w: F4) {
+        quartic_add(&mut self.m, &mut self.r, u, t, d, w);
     }
 
     /// [`QuarticJet::solve`] of each lane, for lanes of at least 14 points (the caller's
@@ -703,6 +767,73 @@ mod tests {
         assert_eq!(p.rows, q.rows);
     }
 
+    #[test]
+    fn weighted_moments_are_the_weighted_rows_normal_equations() {
+        // `add_weighted(u, t, d, w)` must give the normal equations `UᵀWU c = UᵀW d`: those of
+        // the rows and heights scaled by √w, up to rounding (a weight missing from a moment,
+        // or applied twice, is off by O(1)); weight 1 must give the bits of `add`
+        let mut rows = Normal::<14>::new();
+        let mut jet = QuarticJet::new();
+        let mut cubic = CubicJet::new();
+        let (mut plain, mut one) = (QuarticJet::new(), QuarticJet::new());
+        let mut x = 0.43f64;
+        for k in 0..29 {
+            let mut next = || {
+                x = (x * 3.7 + 0.13 * k as f64).fract() - 0.5;
+                2.0 * x
+            };
+            let (u, t) = (next(), next());
+            let d = next() + 0.3 * u * t;
+            let w = jet_weight(u, t, d);
+            assert!(w > 0.0 && w <= 1e4 * (1.0 + 1e-12));
+            let s = w.sqrt();
+            let (uu, ut, tt) = (u * u, u * t, t * t);
+            let row = [
+                u,
+                t,
+                0.5 * uu,
+                ut,
+                0.5 * tt,
+                uu * u,
+                uu * t,
+                u * tt,
+                tt * t,
+                uu * uu,
+                uu * ut,
+                uu * tt,
+                ut * tt,
+                tt * tt,
+            ];
+            rows.add(row.map(|r| s * r), s * d);
+            jet.add_weighted(u, t, d, w);
+            cubic.add_weighted(u, t, d, w);
+            plain.add(u, t, d);
+            one.add_weighted(u, t, d, 1.0);
+        }
+        let ne = jet.normal();
+        for i in 0..14 {
+            let (a, b) = (ne.atd[i], rows.atd[i]);
+            assert!((a - b).abs() <= 1e-13 * b.abs().max(1.0), "atd {i} {a} {b}");
+            for j in i..14 {
+                let (a, b) = (ne.ata[i][j], rows.ata[i][j]);
+                assert!(
+                    (a - b).abs() <= 1e-13 * b.abs().max(1.0),
+                    "({i},{j}) {a} {b}"
+                );
+            }
+        }
+        let (p, q) = (jet.cubic().normal(), cubic.normal());
+        assert_eq!(p.ata, q.ata);
+        assert_eq!(p.atd, q.atd);
+        assert_eq!(plain.m.map(f64::to_bits), one.m.map(f64::to_bits));
+        assert_eq!(plain.r.map(f64::to_bits), one.r.map(f64::to_bits));
+        // the weight: 1/(ε + |p|²)⁴, largest (ε⁻⁴) at the origin
+        let w0 = jet_weight(0.0, 0.0, 0.0);
+        assert!((w0 * JET_WEIGHT_EPS.powi(4) - 1.0).abs() < 1e-12, "{w0}");
+        let w = jet_weight(0.3, -0.4, 0.5);
+        assert!((w - 1.0 / (JET_WEIGHT_EPS + 0.5f64).powi(4)).abs() < 1e-12 * w);
+    }
+
     /// The points of a jittered 2-ring of a valence-6 vertex (19 points: the origin's 18
     /// neighbours within two edges, in units of the edge), heights of a smooth surface; `k`
     /// varies the jitter.
@@ -827,13 +958,14 @@ mod tests {
                         lanes[l].get(p).map_or(0.0, |&(u, t, d)| [u, t, d][c])
                     }))
                 };
-                q4.add(at(0), at(1), at(2));
+                let (u, t, d) = (at(0), at(1), at(2));
+                q4.add(u, t, d, jet_weight(u, t, d));
             }
             let sol = q4.solve(1e10);
             for (l, pts) in lanes.iter().enumerate() {
                 let mut q = QuarticJet::new();
                 for &(u, t, d) in pts {
-                    q.add(u, t, d);
+                    q.add_weighted(u, t, d, jet_weight(u, t, d));
                 }
                 for i in 0..42 {
                     assert_eq!(q.m[i].to_bits(), q4.m[i].0[l].to_bits(), "{k} {l} m{i}");
