@@ -1034,14 +1034,15 @@ mod tests {
                         lanes[l].get(p).map_or(0.0, |&(u, t, d)| [u, t, d][c])
                     }))
                 };
-                q4.add(at(0), at(1), at(2));
+                let (u, t, d) = (at(0), at(1), at(2));
+                q4.add(u, t, d, jet_weight(u, t, d));
             }
             for max_ratio in [1e10, 1e6, 1e3] {
                 let sol = q4.solve(max_ratio);
                 for (l, pts) in lanes.iter().enumerate() {
                     let mut q = QuarticJet::new();
                     for &(u, t, d) in pts {
-                        q.add(u, t, d);
+                        q.add_weighted(u, t, d, jet_weight(u, t, d));
                     }
                     let one = q.solve(max_ratio);
                     refused += usize::from(one.is_none());
