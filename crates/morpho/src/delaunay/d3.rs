@@ -23,6 +23,9 @@
 //!    facet. New tetrahedra are linked to each other through a small generation-stamped hash
 //!    table on their shared cavity-boundary edges. Freed tetrahedra are reused through a free
 //!    list; all work buffers are reused, so an insertion allocates nothing in the steady state.
+//!    The cavity search prefetches the four neighbours of each popped tetrahedron. (A
+//!    transparent-huge-page hint on the arrays was tried and measured slower: the kernel's
+//!    zeroing of 2 MiB pages cost more than the TLB misses it saved, see `bench/README.md`.)
 //!
 //! # Degeneracies
 //! Duplicates are merged. Cospherical ties (`insphere == 0` exactly) are broken by symbolic
@@ -40,9 +43,12 @@
 //!
 //! # Predicates
 //! Shewchuk's adaptive `orient3d`/`insphere` (via `geom::predicates`) when every coordinate is 0
-//! or within 2^±120 (no overflow/underflow possible); an exact i128 in-sphere when all
-//! coordinates are integers of magnitude ≤ 2^20 (lattices hit exact ties constantly); otherwise
-//! (e.g. 1e-300 or 1e300) the big-integer determinants; all three in [`crate::geom::exact`].
+//! or within 2^±120 (no overflow/underflow possible), the in-sphere test first through a
+//! semi-static bound on the same floating-point determinant ([`insphere_semi_static`]: no
+//! permanent to evaluate; undecided tests go on to the full cascade); an exact i128 in-sphere
+//! when all coordinates are integers of magnitude ≤ 2^20 (lattices hit exact ties constantly);
+//! otherwise (e.g. 1e-300 or 1e300) the big-integer determinants; all three in
+//! [`crate::geom::exact`].
 //!
 //! # Complexity
 //! Expected `O(n log n)` for points spread in space (`O(n²)` worst case, e.g. points on the
@@ -136,6 +142,66 @@ pub(crate) fn perturbed_insphere(q: &[[f64; 3]; 5], ids: &[u32; 5]) -> bool {
     false
 }
 
+/// Shewchuk's stage-A error constant for `insphere` ((16 + 224u)u, u = 2^-53), times the 24
+/// products of the permanent, with a relative slack of 2^-40 for the roundings of the bound
+/// itself (see [`insphere_semi_static`]).
+const SEMI_STATIC_ISP: f64 = 24.0 * (16.0 + 224.0 * U53) * U53 * (1.0 + 1.0 / (1u64 << 40) as f64);
+/// The unit roundoff of `f64`.
+const U53: f64 = f64::EPSILON / 2.0;
+
+/// Sign of `insphere(a, b, c, d, e)` (positive: `e` inside the sphere through the positively
+/// oriented `a, b, c, d`) when a *semi-static* bound certifies it, else 0 (undecided: the caller
+/// runs the full cascade [`insphere_sign`]). The determinant is Shewchuk's stage-A expression on
+/// the rounded differences `X = fl(p − e)`; only its error bound is cheaper.
+///
+/// May assume: every coordinate is 0 or within 2^±120 (`geom::exact::safe_range`, the
+/// Builder's `safe`), so every non-zero difference lies in [2^-172, 2^121] and no product below
+/// under- or overflows.
+///
+/// Argument (CGAL's filtered kernels use a bound of the same shape; this one is derived here):
+/// Shewchuk's stage A certifies the sign when `|det| > errA · P`, where `P` is his permanent
+/// evaluated in floating point and errA = (16 + 224u)u. `P` is a sum of 24 non-negative terms
+/// `|X_px · X_qy| · |X_rz| · lift_s`, each at most `Mx · My · Mz · Λ` with `Mx = max |X_kx|`
+/// (likewise y, z) and `Λ = max lift ≤ Mx² + My² + Mz²`; evaluated in floating point (depth
+/// ≤ 10, non-negative operands, no underflow) it is at most (1 + u)^10 · 24 · B, with
+/// `B = Mx · My · Mz · (Mx² + My² + Mz²)`. `B` computed in floating point (5 roundings) is at
+/// least (1 − u)^5 · B. So `|det| > fl(24 · errA · (1 + 2^-40) · fl(B))` implies
+/// `|det| > errA · P`: the sign is the one stage A would certify, i.e. the exact sign. When some
+/// `M` is 0 the determinant evaluates to exactly 0 and nothing is certified.
+#[inline(always)]
+fn insphere_semi_static(
+    pa: [f64; 3],
+    pb: [f64; 3],
+    pc: [f64; 3],
+    pd: [f64; 3],
+    pe: [f64; 3],
+) -> i32 {
+    let [aex, aey, aez] = [pa[0] - pe[0], pa[1] - pe[1], pa[2] - pe[2]];
+    let [bex, bey, bez] = [pb[0] - pe[0], pb[1] - pe[1], pb[2] - pe[2]];
+    let [cex, cey, cez] = [pc[0] - pe[0], pc[1] - pe[1], pc[2] - pe[2]];
+    let [dex, dey, dez] = [pd[0] - pe[0], pd[1] - pe[1], pd[2] - pe[2]];
+    let ab = aex * bey - bex * aey;
+    let bc = bex * cey - cex * bey;
+    let cd = cex * dey - dex * cey;
+    let da = dex * aey - aex * dey;
+    let ac = aex * cey - cex * aey;
+    let bd = bex * dey - dex * bey;
+    let abc = aez * bc - bez * ac + cez * ab;
+    let bcd = bez * cd - cez * bd + dez * bc;
+    let cda = cez * da + dez * ac + aez * cd;
+    let dab = dez * ab + aez * bd + bez * da;
+    let alift = aex * aex + aey * aey + aez * aez;
+    let blift = bex * bex + bey * bey + bez * bez;
+    let clift = cex * cex + cey * cey + cez * cez;
+    let dlift = dex * dex + dey * dey + dez * dez;
+    let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+    let mx = aex.abs().max(bex.abs()).max(cex.abs().max(dex.abs()));
+    let my = aey.abs().max(bey.abs()).max(cey.abs().max(dey.abs()));
+    let mz = aez.abs().max(bez.abs()).max(cez.abs().max(dez.abs()));
+    let bound = SEMI_STATIC_ISP * ((mx * my * mz) * (mx * mx + my * my + mz * mz));
+    (det > bound) as i32 - (-det > bound) as i32
+}
+
 /// A record of a cavity boundary facet: the new tetrahedron's vertices (old tet with the new
 /// point in slot `i`) and the outside neighbour code.
 #[derive(Clone, Copy)]
@@ -207,7 +273,7 @@ impl<'a> Builder<'a> {
     }
 
     /// Conflict of the finite tetrahedron `t` with point `p` (exact, perturbed).
-    #[inline]
+    #[inline(always)]
     fn finite_conflict(&self, t: u32, p: u32) -> bool {
         let v = self.tv[t as usize];
         let q = [
@@ -220,6 +286,10 @@ impl<'a> Builder<'a> {
         let s = if self.small_int {
             insphere_small_int(&q)
         } else if self.safe {
+            let f = insphere_semi_static(q[0], q[1], q[2], q[3], q[4]);
+            if f != 0 {
+                return f > 0;
+            }
             insphere_sign(q[0], q[1], q[2], q[3], q[4]) as f64
         } else {
             insphere_exact(q[0], q[1], q[2], q[3], q[4])
@@ -231,7 +301,7 @@ impl<'a> Builder<'a> {
         perturbed_insphere(&q, &[r(v[0]), r(v[1]), r(v[2]), r(v[3]), r(p)])
     }
 
-    #[inline]
+    #[inline(always)]
     fn in_conflict(&self, t: u32, p: u32) -> bool {
         let v = self.tv[t as usize];
         if v[3] == INF {
@@ -298,8 +368,14 @@ impl<'a> Builder<'a> {
         self.stack.push(t0);
         self.conflict.push(t0);
         while let Some(t) = self.stack.pop() {
-            for i in 0..4 {
-                let code = self.tn[t as usize][i];
+            let codes = self.tn[t as usize];
+            // the four neighbours' stamps and corners are read next, in an order that depends
+            // on the tests: ask for all of them at once (a hint only)
+            for c in codes {
+                prefetch(&self.stamp, c >> 2);
+                prefetch(&self.tv, c >> 2);
+            }
+            for (i, &code) in codes.iter().enumerate() {
                 let u = code >> 2;
                 let su = self.stamp[u as usize];
                 if su == cs {
@@ -357,16 +433,8 @@ impl<'a> Builder<'a> {
                     continue;
                 }
                 // the two slots other than i and j
-                let (mut a, mut c) = (NONE, NONE);
-                for s in 0..4 {
-                    if s != i && s != j {
-                        if a == NONE {
-                            a = v[s];
-                        } else {
-                            c = v[s];
-                        }
-                    }
-                }
+                let (sa, sc) = EDGE_AFTER[i][j];
+                let (a, c) = (v[sa as usize], v[sc as usize]);
                 let key = if a < c {
                     ((a as u64) << 32) | c as u64
                 } else {
@@ -393,6 +461,45 @@ impl<'a> Builder<'a> {
         }
         self.last = last;
     }
+}
+
+/// `EDGE_AFTER[i][j]` (`j ≠ i`): the slots `(x, y)` that follow slot `i` in the outward cyclic
+/// order [`FACE_OF`]`[j]` of the face opposite corner `j` (the face is `(i, x, y)` up to rotation).
+const EDGE_AFTER: [[(u8, u8); 4]; 4] = {
+    let mut t = [[(0u8, 0u8); 4]; 4];
+    let mut i = 0;
+    while i < 4 {
+        let mut j = 0;
+        while j < 4 {
+            if j != i {
+                let f = FACE_OF[j];
+                let mut k = 0;
+                while f[k] != i {
+                    k += 1;
+                }
+                t[i][j] = (f[(k + 1) % 3] as u8, f[(k + 2) % 3] as u8);
+            }
+            j += 1;
+        }
+        i += 1;
+    }
+    t
+};
+
+/// Asks the processor to load `v[i]` into the cache (a hint only; `i` need not be in range).
+#[inline(always)]
+fn prefetch<T>(v: &[T], i: u32) {
+    #[cfg(target_arch = "x86_64")]
+    #[allow(unused_unsafe)]
+    {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        // no bounds check: the address is only a hint and is never dereferenced
+        let x = v.as_ptr().wrapping_add(i as usize);
+        // SAFETY: prefetching is a hint, valid for any address (it never faults).
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(x as *const i8) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = (v, i);
 }
 
 /// BRIO insertion order of `pts` (fixed seed), each round Hilbert-sorted.
@@ -470,6 +577,55 @@ pub(crate) fn dedup_sorted<const D: usize>(coords: &[[f64; D]]) -> Result<Dedup<
         }
         pts.push(q);
     }
+    let idx = lex_order(&pts);
+    let mut uniq: Vec<[f64; D]> = Vec::new();
+    let mut vertex_of_input = vec![0u32; pts.len()];
+    let mut input_of_vertex = Vec::new();
+    for &i in &idx {
+        let p = pts[i as usize];
+        if uniq.last() != Some(&p) {
+            uniq.push(p);
+            input_of_vertex.push(i);
+        }
+        vertex_of_input[i as usize] = (uniq.len() - 1) as u32;
+    }
+    Ok((uniq, vertex_of_input, input_of_vertex))
+}
+
+/// An unsigned key with the order of the finite, non-NaN `x` (−0.0 must have been normalised
+/// to 0.0): the sign bit flipped for non-negative values, all bits flipped for negative ones.
+#[inline]
+fn order_key(x: f64) -> u64 {
+    let b = x.to_bits();
+    if b >> 63 == 1 {
+        !b
+    } else {
+        b | 1 << 63
+    }
+}
+
+/// The indices of `pts` in lexicographic order of the coordinates, ties by index (a total order:
+/// the permutation is unique). Sorts (key, index) records, so no comparison reaches back into
+/// `pts`. May assume: finite coordinates, no −0.0.
+fn lex_order<const D: usize>(pts: &[[f64; D]]) -> Vec<u32> {
+    let mut rec: Vec<([u64; D], u32)> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (p.map(order_key), i as u32))
+        .collect();
+    if rec.len() >= 1 << 15 {
+        use rayon::slice::ParallelSliceMut;
+        rec.par_sort_unstable();
+    } else {
+        rec.sort_unstable();
+    }
+    rec.into_iter().map(|(_, i)| i).collect()
+}
+
+/// The order of [`lex_order`] by an index sort with comparisons on the points (main's method
+/// until December 2026; kept as the oracle of the lockstep test).
+#[cfg(test)]
+fn old_order<const D: usize>(pts: &[[f64; D]]) -> Vec<u32> {
     let mut idx: Vec<u32> = (0..pts.len() as u32).collect();
     let cmp = |&a: &u32, &b: &u32| {
         let (pa, pb) = (&pts[a as usize], &pts[b as usize]);
@@ -488,18 +644,7 @@ pub(crate) fn dedup_sorted<const D: usize>(coords: &[[f64; D]]) -> Result<Dedup<
     } else {
         idx.sort_unstable_by(cmp);
     }
-    let mut uniq: Vec<[f64; D]> = Vec::new();
-    let mut vertex_of_input = vec![0u32; pts.len()];
-    let mut input_of_vertex = Vec::new();
-    for &i in &idx {
-        let p = pts[i as usize];
-        if uniq.last() != Some(&p) {
-            uniq.push(p);
-            input_of_vertex.push(i);
-        }
-        vertex_of_input[i as usize] = (uniq.len() - 1) as u32;
-    }
-    Ok((uniq, vertex_of_input, input_of_vertex))
+    idx
 }
 
 /// Computes the Delaunay tetrahedralization of `points` on one thread (the facade's
@@ -656,6 +801,7 @@ pub(crate) fn build_sorted(pts: &[[f64; 3]]) -> Result<Core> {
     );
     drop(order);
     let ipts: Vec<[f64; 3]> = canon.iter().map(|&v| pts[v as usize]).collect();
+    let cap = 7 * n + 16;
     let mut bld = Builder {
         pts: &ipts,
         rank: &canon,
@@ -665,9 +811,9 @@ pub(crate) fn build_sorted(pts: &[[f64; 3]]) -> Result<Core> {
             .iter()
             .flatten()
             .all(|x| x.fract() == 0.0 && x.abs() <= (1u32 << 20) as f64),
-        tv: Vec::with_capacity(7 * n + 16),
-        tn: Vec::with_capacity(7 * n + 16),
-        stamp: Vec::with_capacity(7 * n + 16),
+        tv: Vec::with_capacity(cap),
+        tn: Vec::with_capacity(cap),
+        stamp: Vec::with_capacity(cap),
         free: Vec::new(),
         last: 0,
         rng: Rng::new(0x2545_F491_4F6C_DD1D),
@@ -682,8 +828,8 @@ pub(crate) fn build_sorted(pts: &[[f64; 3]]) -> Result<Core> {
     for f in FACE_OF {
         bld.tv.push([first[f[1]], first[f[0]], first[f[2]], INF]);
     }
-    bld.tn = vec![[0; 4]; 5];
-    bld.stamp = vec![0; 5];
+    bld.tn.resize(5, [0; 4]);
+    bld.stamp.resize(5, 0);
     link_brute(&bld.tv, &mut bld.tn);
     for p in 4..n as u32 {
         bld.insert(p, p - 4);
@@ -1077,6 +1223,132 @@ mod tests {
             .sum();
         assert!((vol - 8.0).abs() < 1e-12, "{vol}");
         assert_eq!(d.hull.len(), 6 * 8);
+    }
+
+    /// The semi-static in-sphere filter against the exact sign: random tuples over many
+    /// scales, and near-cospherical ones (integer points of a sphere, scaled and shifted so
+    /// that rounding breaks the tie, the fifth point moved by a few ulps), where a bound too
+    /// small certifies wrong signs. Both decided and undecided cases must occur.
+    #[test]
+    fn semi_static_insphere_agrees_with_exact() {
+        let mut rng = Rng::new(7);
+        let mut unit = || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
+        let sign = |x: f64| (x > 0.0) as i32 - (x < 0.0) as i32;
+        let (mut decided, mut undecided, mut near_decided) = (0, 0, 0);
+        // random tuples, scales 2^-60 .. 2^60, offsets up to 2^8 times the scale
+        for k in 0..20_000 {
+            let scale = 2f64.powi((k % 121) - 60);
+            let off = [unit(), unit(), unit()].map(|x| (x - 0.5) * 256.0 * scale);
+            let mut q = [[0.0; 3]; 5];
+            for p in q.iter_mut() {
+                *p = [0, 1, 2].map(|c| off[c] + unit() * scale);
+            }
+            let f = insphere_semi_static(q[0], q[1], q[2], q[3], q[4]);
+            let e = sign(insphere_exact(q[0], q[1], q[2], q[3], q[4]));
+            if f != 0 {
+                assert_eq!(f, e, "{q:?}");
+                decided += 1;
+            }
+        }
+        // integer points on x² + y² + z² = 50 (cospherical), scaled and shifted
+        let mut sph = Vec::new();
+        for x in -7i32..=7 {
+            for y in -7i32..=7 {
+                for z in -7i32..=7 {
+                    if x * x + y * y + z * z == 50 {
+                        sph.push([x as f64, y as f64, z as f64]);
+                    }
+                }
+            }
+        }
+        assert!(sph.len() >= 20);
+        let mut pick = Rng::new(11);
+        for k in 0..40_000 {
+            let scale = unit() * 2f64.powi((k % 41) - 20);
+            let shift = [unit(), unit(), unit()].map(|x| x * 10.0);
+            let mut q = [[0.0; 3]; 5];
+            for p in q.iter_mut() {
+                let s = sph[(pick.next_u64() % sph.len() as u64) as usize];
+                *p = [0, 1, 2].map(|c| s[c] * scale + shift[c]);
+            }
+            // move the fifth point by up to 3 ulps in one coordinate
+            let c = (k % 3) as usize;
+            for _ in 0..(k / 3) % 4 {
+                q[4][c] = if k % 2 == 0 {
+                    q[4][c].next_up()
+                } else {
+                    q[4][c].next_down()
+                };
+            }
+            let f = insphere_semi_static(q[0], q[1], q[2], q[3], q[4]);
+            let e = sign(insphere_exact(q[0], q[1], q[2], q[3], q[4]));
+            if f != 0 {
+                assert_eq!(f, e, "near-cospherical {q:?}");
+                near_decided += 1;
+            } else {
+                undecided += 1;
+            }
+        }
+        assert!(decided > 19_000, "random tuples decided: {decided}");
+        assert!(
+            undecided > 1000 && near_decided > 1000,
+            "{undecided} {near_decided}"
+        );
+    }
+
+    /// The keyed sort of `dedup_sorted` gives main's permutation (index sort comparing the
+    /// points, ties by index): negative, zero, tiny, huge and repeated coordinates, on the
+    /// sequential (small) and the parallel (≥ 2^15) paths.
+    #[test]
+    fn lex_order_matches_index_sort() {
+        let vals = [
+            -f64::MAX,
+            -3.5,
+            -1.0,
+            -1e-300,
+            -f64::MIN_POSITIVE,
+            -5e-324,
+            0.0,
+            5e-324,
+            1e-300,
+            0.75,
+            1.0,
+            2.0,
+            f64::MAX,
+        ];
+        let mut rng = Rng::new(3);
+        for n in [1usize, 2, 17, 1000, 40_000] {
+            let pts: Vec<[f64; 3]> = (0..n)
+                .map(|_| {
+                    [0, 1, 2].map(|_| {
+                        let r = rng.next_u64();
+                        if r % 4 == 0 {
+                            (r >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+                        } else {
+                            vals[(r >> 8) as usize % vals.len()]
+                        }
+                    })
+                })
+                .collect();
+            assert_eq!(lex_order(&pts), old_order(&pts), "n = {n}");
+        }
+    }
+
+    /// `EDGE_AFTER[i][j]` lists the two slots following `i` in the outward face opposite `j`.
+    #[test]
+    fn edge_after_table() {
+        for i in 0..4 {
+            for j in 0..4 {
+                if i == j {
+                    continue;
+                }
+                let (x, y) = EDGE_AFTER[i][j];
+                let f = FACE_OF[j];
+                let k = f.iter().position(|&s| s == i).unwrap();
+                assert_eq!((x as usize, y as usize), (f[(k + 1) % 3], f[(k + 2) % 3]));
+                assert!(x as usize != i && y as usize != i && x != y);
+            }
+        }
     }
 
     #[test]
