@@ -403,7 +403,7 @@ struct Pass<'a> {
     given: Option<&'a [Vector3]>,
     /// With estimated normals: every triangle's weighted cross product
     /// ([`weighted_crosses`]).
-    crosses: Option<Vec<Option<[f64; 3]>>>,
+    crosses: Option<Vec<[f64; 3]>>,
     /// Never take the AVX2 compilation of the vertex pass ([`Pass::chunk`]; for tests).
     #[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
     baseline: bool,
@@ -1388,7 +1388,14 @@ mod tests {
 
     #[test]
     fn per_vertex_normals_are_bitwise_vertex_normals() {
-        let m = awkward_mesh();
+        // the awkward mesh's zero-area triangles, and one whose cross product overflows (no
+        // direction either): `vertex_normals` skips both kinds, `weighted_crosses` stores −0
+        let mut m = awkward_mesh();
+        let n = m.positions.len() as u32;
+        m.positions.push(Point3::new(1e200, 0.0, 0.0));
+        m.positions.push(Point3::new(0.0, -1e200, 3.0));
+        m.triangles.push([5, n, n + 1]);
+        m.triangles.push([7, 7, n]);
         let adj = Adjacency::new(&m);
         for w in [
             NormalWeighting::Area,

@@ -50,32 +50,34 @@ pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<Vector3
     acc.into_iter().map(unit_or_zero).collect()
 }
 
-/// Every triangle's weighted cross product `w_t c_t` (`None` for a zero-area or non-finite
-/// triangle), in parallel: what [`vertex_normal_from`] sums. The products are rounded exactly
-/// as [`vertex_normals`] rounds them (`s + w·c` is `s + (w·c)`: no fused multiply-add), so the
-/// sums are the same bits; each triangle's cross product and length are computed once instead
-/// of once per corner.
-pub(crate) fn weighted_crosses(
-    mesh: &TriMesh,
-    weighting: NormalWeighting,
-) -> Vec<Option<[f64; 3]>> {
+/// Every triangle's weighted cross product `w_t c_t`, in parallel: what
+/// [`vertex_normal_from`] sums. A zero-area or non-finite triangle (which [`vertex_normals`]
+/// skips) gets `(−0, −0, −0)`: `x + (−0) = x` for every `x` (−0 included) in IEEE
+/// round-to-nearest, so adding it is adding nothing, bit for bit, and the sums need no test
+/// per triangle (a flat 24-byte row instead of a 32-byte `Option`: the normals read 25 % fewer
+/// bytes). The products are rounded exactly as [`vertex_normals`] rounds them (`s + w·c` is
+/// `s + (w·c)`: no fused multiply-add), so the sums are the same bits; each triangle's cross
+/// product and length are computed once instead of once per corner.
+pub(crate) fn weighted_crosses(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<[f64; 3]> {
     use rayon::prelude::*;
     mesh.triangles
         .par_iter()
-        .map(|t| weighted_cross(mesh, t, weighting).map(|(w, ct)| vec::scale(ct, w)))
+        .map(|t| match weighted_cross(mesh, t, weighting) {
+            Some((w, ct)) => vec::scale(ct, w),
+            None => [-0.0; 3],
+        })
         .collect()
 }
 
 /// The unit normal of one vertex from its incident triangles `tris` (indices into
 /// `crosses`, from [`weighted_crosses`]): the same sums in the same order as
-/// [`vertex_normals`] when `tris` is ascending, so the same bits; for callers that need the
-/// normals one vertex at a time (in parallel, without the whole array).
-pub(crate) fn vertex_normal_from(crosses: &[Option<[f64; 3]>], tris: &[u32]) -> Vector3 {
+/// [`vertex_normals`] when `tris` is ascending, so the same bits (a skipped triangle's `−0`
+/// changes no sum); for callers that need the normals one vertex at a time (in parallel,
+/// without the whole array).
+pub(crate) fn vertex_normal_from(crosses: &[[f64; 3]], tris: &[u32]) -> Vector3 {
     let mut s = [0.0f64; 3];
     for &t in tris {
-        if let Some(p) = crosses[t as usize] {
-            s = vec::add(s, p);
-        }
+        s = vec::add(s, crosses[t as usize]);
     }
     unit_or_zero(s)
 }
