@@ -1032,6 +1032,33 @@ mod tests {
         v
     }
 
+    /// The Delaunay tetrahedralization of [`cube_lattice`]`(m, inner, seed)`, its points, and
+    /// the faces of its tetrahedra with a corner among the first three points off the hull:
+    /// a constriction from the hull (`d.hull`) with a small region to work on.
+    fn lattice_from_hull(
+        m: i32,
+        inner: usize,
+        seed: u64,
+    ) -> (crate::delaunay::d3::Delaunay3, Vec<P>, Vec<[u32; 3]>) {
+        let d = crate::delaunay::d3::triangulate(&cube_lattice(m, inner, seed)).unwrap();
+        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+        let mut on = vec![false; pos.len()];
+        for &v in d.hull.iter().flatten() {
+            on[v as usize] = true;
+        }
+        let inner_v: Vec<u32> = (0..pos.len() as u32)
+            .filter(|&v| !on[v as usize])
+            .take(3)
+            .collect();
+        let region: Vec<bool> = d
+            .tets
+            .iter()
+            .map(|t| t.iter().any(|v| inner_v.contains(v)))
+            .collect();
+        let live = super::super::test_sets::live_faces(&d, &region);
+        (d, pos, live)
+    }
+
     /// The supporting planes proposed only by the boundary faces among the live triangles'
     /// corners (`general::support_faces`) leave the general engine exactly as with the planes
     /// of the whole boundary (the former construction, kept here through
@@ -1081,22 +1108,7 @@ mod tests {
         }
         assert!(locked >= 1);
         for (m, inner, seed) in [(5, 30, 1u64), (6, 60, 2), (7, 90, 3)] {
-            let d = crate::delaunay::d3::triangulate(&cube_lattice(m, inner, seed)).unwrap();
-            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
-            let mut on = vec![false; pos.len()];
-            for &v in d.hull.iter().flatten() {
-                on[v as usize] = true;
-            }
-            let inner_v: Vec<u32> = (0..pos.len() as u32)
-                .filter(|&v| !on[v as usize])
-                .take(3)
-                .collect();
-            let region: Vec<bool> = d
-                .tets
-                .iter()
-                .map(|t| t.iter().any(|v| inner_v.contains(v)))
-                .collect();
-            let live = super::super::test_sets::live_faces(&d, &region);
+            let (d, pos, live) = lattice_from_hull(m, inner, seed);
             let (a, b) = (
                 go(&pos, &d.hull, &live, true),
                 go(&pos, &d.hull, &live, false),
@@ -1317,22 +1329,7 @@ mod tests {
         }
         assert!(locked >= 2, "{locked}");
         for (m, inner, seed) in [(5, 30, 1u64), (6, 60, 2), (7, 90, 3)] {
-            let d = crate::delaunay::d3::triangulate(&cube_lattice(m, inner, seed)).unwrap();
-            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
-            let mut on = vec![false; pos.len()];
-            for &v in d.hull.iter().flatten() {
-                on[v as usize] = true;
-            }
-            let inner_v: Vec<u32> = (0..pos.len() as u32)
-                .filter(|&v| !on[v as usize])
-                .take(3)
-                .collect();
-            let region: Vec<bool> = d
-                .tets
-                .iter()
-                .map(|t| t.iter().any(|v| inner_v.contains(v)))
-                .collect();
-            let live = super::super::test_sets::live_faces(&d, &region);
+            let (d, pos, live) = lattice_from_hull(m, inner, seed);
             let (c0, c1) = lockstep(&pos, &d.hull, &live, &format!("lattice {m}"));
             assert!(c0 > 0, "lattice {m}");
             cold_kept += c1;
