@@ -97,6 +97,18 @@ fn main() {
             true,
         ),
         (
+            "decider_zucker_notopo",
+            IsoMethod::Decider,
+            NormalMethod::ZuckerHummel,
+            false,
+        ),
+        (
+            "decider_nonormals_topo",
+            IsoMethod::Decider,
+            NormalMethod::None,
+            true,
+        ),
+        (
             "tetra_nonormals_notopo",
             IsoMethod::Tetra,
             NormalMethod::None,

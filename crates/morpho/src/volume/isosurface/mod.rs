@@ -594,7 +594,25 @@ fn union(p: &mut [u32], a: u32, b: u32) {
     }
 }
 
+/// The vertices of a triangle in increasing order: its three edges, each as (smaller end,
+/// larger end), are (lo, mid), (lo, hi) and (mid, hi) whatever the winding, also when a
+/// vertex repeats.
+#[inline]
+fn sorted3(t: &[u32; 3]) -> (u32, u32, u32) {
+    let (a, b) = (t[0].min(t[1]), t[0].max(t[1]));
+    let (lo, c) = (a.min(t[2]), a.max(t[2]));
+    (lo, b.min(c), b.max(c))
+}
+
 /// Neighbours, parts and holes (H §3.3) of a contour triangulation with grid keys.
+///
+/// Assumes vertex indices `< keys.len()` and fewer than 2³² triangles (as [`assemble`] makes
+/// them). The edge table groups the 3·T triangle edges by their smaller end; a triangle's
+/// edges are (lo, mid), (lo, hi), (mid, hi) of its sorted vertices ([`sorted3`]), so it adds
+/// two entries to group lo (side by side) and one to group mid: two scattered counter updates
+/// and two scattered stores per triangle instead of three. Each group is the same multiset
+/// as when the edges are taken one by one in winding order (`tests::analyze_edge_table`, the
+/// oracle), and it is sorted by the whole entry, so every later step and result is the same.
 fn analyze(mesh: &TriMesh, keys: &[u64], valid_cell: impl Fn([i64; 3]) -> bool) -> Analysis {
     let n = mesh.positions.len();
     let nt = mesh.triangles.len();
@@ -603,10 +621,9 @@ fn analyze(mesh: &TriMesh, keys: &[u64], valid_cell: impl Fn([i64; 3]) -> bool) 
     let mut start = vec![0u32; n + 1];
     advise_huge_pages(&mut start);
     for t in &mesh.triangles {
-        for i in 0..3 {
-            let (a, b) = (t[i], t[(i + 1) % 3]);
-            start[a.min(b) as usize + 1] += 1;
-        }
+        let (lo, mid, _) = sorted3(t);
+        start[lo as usize + 1] += 2;
+        start[mid as usize + 1] += 1;
     }
     for v in 0..n {
         start[v + 1] += start[v];
@@ -616,12 +633,15 @@ fn analyze(mesh: &TriMesh, keys: &[u64], valid_cell: impl Fn([i64; 3]) -> bool) 
     let mut ent = vec![0u64; 3 * nt];
     advise_huge_pages(&mut ent);
     for (ti, t) in mesh.triangles.iter().enumerate() {
-        for i in 0..3 {
-            let (a, b) = (t[i], t[(i + 1) % 3]);
-            let s = &mut start[a.min(b) as usize];
-            ent[*s as usize] = (a.max(b) as u64) << 32 | ti as u64;
-            *s += 1;
-        }
+        let (lo, mid, hi) = sorted3(t);
+        let ti = ti as u64;
+        let s = start[lo as usize] as usize;
+        ent[s] = (mid as u64) << 32 | ti;
+        ent[s + 1] = (hi as u64) << 32 | ti;
+        start[lo as usize] += 2;
+        let s = &mut start[mid as usize];
+        ent[*s as usize] = (hi as u64) << 32 | ti;
+        *s += 1;
     }
     let mut tp: Vec<u32> = Vec::with_capacity(nt);
     advise_huge_pages(&mut tp);
@@ -841,6 +861,276 @@ mod tests {
             data[c] = *v as f32;
         }
         Volume::new([2, 2, 2], [0.0; 3], [1.0; 3], data).unwrap()
+    }
+
+    /// The topology pass before [`sorted3`] (edges counted and stored one by one in winding
+    /// order), kept verbatim as the oracle of [`analyze`].
+    fn analyze_edge_table(
+        mesh: &TriMesh,
+        keys: &[u64],
+        valid_cell: impl Fn([i64; 3]) -> bool,
+    ) -> Analysis {
+        let n = mesh.positions.len();
+        let nt = mesh.triangles.len();
+        // edges grouped by their smaller vertex (counting sort); an entry is the larger vertex
+        // and the triangle, packed as (b << 32) | t so that sorting the u64s sorts by (b, t)
+        let mut start = vec![0u32; n + 1];
+        advise_huge_pages(&mut start);
+        for t in &mesh.triangles {
+            for i in 0..3 {
+                let (a, b) = (t[i], t[(i + 1) % 3]);
+                start[a.min(b) as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        // start[a] is group a's cursor: after the scatter it is the group's end, i.e. the start
+        // of group a + 1, and group a begins where group a − 1 ends
+        let mut ent = vec![0u64; 3 * nt];
+        advise_huge_pages(&mut ent);
+        for (ti, t) in mesh.triangles.iter().enumerate() {
+            for i in 0..3 {
+                let (a, b) = (t[i], t[(i + 1) % 3]);
+                let s = &mut start[a.min(b) as usize];
+                ent[*s as usize] = (a.max(b) as u64) << 32 | ti as u64;
+                *s += 1;
+            }
+        }
+        let mut tp: Vec<u32> = Vec::with_capacity(nt);
+        advise_huge_pages(&mut tp);
+        tp.extend(0..nt as u32);
+        let mut bnd: Vec<(u32, u32, bool)> = Vec::new();
+        let mut nonman = 0;
+        let (vertex, tri) = (|e: u64| (e >> 32) as u32, |e: u64| e as u32);
+        for a in 0..n {
+            let begin = if a == 0 { 0 } else { start[a - 1] as usize };
+            let s = &mut ent[begin..start[a] as usize];
+            s.sort_unstable();
+            let mut i = 0;
+            while i < s.len() {
+                let mut j = i + 1;
+                while j < s.len() && vertex(s[j]) == vertex(s[i]) {
+                    j += 1;
+                }
+                match j - i {
+                    1 => {
+                        let b = vertex(s[i]);
+                        let interior = !on_domain_boundary(keys[a], keys[b as usize], &valid_cell);
+                        bnd.push((a as u32, b, interior));
+                    }
+                    2 => union(&mut tp, tri(s[i]), tri(s[i + 1])),
+                    _ => {
+                        nonman += 1;
+                        for k in i + 1..j {
+                            union(&mut tp, tri(s[i]), tri(s[k]));
+                        }
+                    }
+                }
+                i = j;
+            }
+        }
+        drop(start);
+        // the smaller root wins every union, so a parent precedes its child and a part's root is
+        // its first triangle: in increasing order, a triangle's parent already points at its root,
+        // and the root is met (and numbered) before the rest of its part. The labels reuse the
+        // edge table's memory (its first nt entries; the rest is given back)
+        ent.truncate(nt);
+        let mut parts = 0u32;
+        for t in 0..nt {
+            let r = tp[tp[t] as usize] as usize;
+            tp[t] = r as u32;
+            let label = if r == t {
+                parts += 1;
+                (parts - 1) as f64
+            } else {
+                f64::from_bits(ent[r])
+            };
+            ent[t] = label.to_bits();
+        }
+        let mut labels: Vec<f64> = ent.into_iter().map(f64::from_bits).collect();
+        labels.shrink_to_fit();
+        let interior_boundary_edges = bnd.iter().filter(|e| e.2).count();
+        let mut interior_holes = 0;
+        if interior_boundary_edges > 0 {
+            let mut vp: Vec<u32> = (0..n as u32).collect();
+            for &(a, b, _) in &bnd {
+                union(&mut vp, a, b);
+            }
+            let mut roots: Vec<u32> = bnd
+                .iter()
+                .filter(|e| e.2)
+                .map(|e| find(&mut vp, e.0))
+                .collect();
+            roots.sort_unstable();
+            roots.dedup();
+            interior_holes = roots.len();
+        }
+        Analysis {
+            labels,
+            parts: parts as usize,
+            boundary_edges: bnd.len(),
+            interior_boundary_edges,
+            interior_holes,
+            non_manifold_edges: nonman,
+        }
+    }
+
+    fn same_analysis(a: &Analysis, b: &Analysis) -> bool {
+        let bits = |l: &[f64]| l.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        bits(&a.labels) == bits(&b.labels)
+            && (a.parts, a.boundary_edges, a.interior_boundary_edges)
+                == (b.parts, b.boundary_edges, b.interior_boundary_edges)
+            && (a.interior_holes, a.non_manifold_edges) == (b.interior_holes, b.non_manifold_edges)
+    }
+
+    /// The mesh and grid keys `isosurface` hands to the topology pass (slabs of three layers,
+    /// before `finish`), with the unreferenced vertices dropped as `finish` does.
+    fn extracted(vol: &Volume, opts: &IsoOptions) -> Option<(TriMesh, Vec<u64>)> {
+        let range = fast_range(&vol.data).or_else(|| vol.value_range());
+        let eps = perturbation(vol.dims, range, opts.level).ok()?;
+        let axes = axis_coords(vol);
+        let ctx = Ctx {
+            vol,
+            axes: &axes,
+            alpha: opts.level,
+            eps,
+            method: opts.method,
+            normals: NormalMethod::None,
+            flip: opts.flip,
+            keys: true,
+            central: None,
+            gvol: vol,
+            gaxes: &axes,
+            goff: [0; 3],
+            cells: false,
+        };
+        let layers = vol.dims[2] - 1;
+        let per = 3.min(layers);
+        let chunks: Vec<ChunkOut> = (0..layers)
+            .step_by(per)
+            .map(|z0| ctx.chunk(z0, (z0 + per).min(layers)))
+            .collect();
+        let (mut r, mut keys) = assemble(chunks, opts).ok()?;
+        if r.skipped_cells > 0 {
+            drop_unreferenced(&mut r.mesh, &mut keys);
+        }
+        Some((r.mesh, keys))
+    }
+
+    #[test]
+    fn sorted3_gives_the_edges_by_smaller_end() {
+        for a in 0..4u32 {
+            for b in 0..4u32 {
+                for c in 0..4u32 {
+                    let t = [a, b, c];
+                    let (lo, mid, hi) = sorted3(&t);
+                    let mut want: Vec<(u32, u32)> = (0..3)
+                        .map(|i| (t[i].min(t[(i + 1) % 3]), t[i].max(t[(i + 1) % 3])))
+                        .collect();
+                    want.sort_unstable();
+                    let mut got = vec![(lo, mid), (lo, hi), (mid, hi)];
+                    got.sort_unstable();
+                    assert_eq!(got, want, "{t:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn topology_matches_the_edge_table_on_random_volumes() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(23);
+        let mut compared = [0usize; 3];
+        for round in 0..60 {
+            let dims = [
+                rng.gen_range(2..9),
+                rng.gen_range(2..9),
+                rng.gen_range(2..9),
+            ];
+            let nan = [0.0, 0.03][round % 2];
+            let ints = round % 3 == 0; // ties with the level (Rem. 3.8)
+            let data: Vec<f32> = (0..dims.iter().product::<usize>())
+                .map(|_| {
+                    if rng.gen_bool(nan) {
+                        f32::NAN
+                    } else if ints {
+                        rng.gen_range(-2..3) as f32
+                    } else {
+                        rng.gen_range(-1.0f32..1.0)
+                    }
+                })
+                .collect();
+            let v = Volume::new(dims, [0.0; 3], [1.0; 3], data).unwrap();
+            for (mi, method) in [IsoMethod::Decider, IsoMethod::Tetra, IsoMethod::Lorensen]
+                .into_iter()
+                .enumerate()
+            {
+                let opts = IsoOptions {
+                    level: 0.0,
+                    method,
+                    ..Default::default()
+                };
+                let Some((mesh, keys)) = extracted(&v, &opts) else {
+                    continue;
+                };
+                let skipped = v.data.iter().any(|x| x.is_nan());
+                let valid_cell = |c: [i64; 3]| -> bool {
+                    for k in 0..3 {
+                        if c[k] < 0 || c[k] + 1 >= dims[k] as i64 {
+                            return false;
+                        }
+                    }
+                    !skipped
+                        || !(0..8).any(|k| {
+                            v.at(
+                                c[0] as usize + (k & 1),
+                                c[1] as usize + (k >> 1 & 1),
+                                c[2] as usize + (k >> 2 & 1),
+                            )
+                            .is_nan()
+                        })
+                };
+                let got = analyze(&mesh, &keys, valid_cell);
+                let want = analyze_edge_table(&mesh, &keys, valid_cell);
+                assert!(same_analysis(&got, &want), "round {round} {method:?}");
+                compared[mi] += mesh.triangles.len();
+            }
+        }
+        assert!(compared.iter().all(|&t| t > 1000), "{compared:?}");
+    }
+
+    #[test]
+    fn topology_matches_the_edge_table_on_triangle_soups() {
+        // few vertices: repeated vertices in a triangle, edges of 3+ triangles, boundary loops
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(8);
+        let (mut nonman, mut holes) = (0, 0);
+        for round in 0..300 {
+            let n = rng.gen_range(1..12u32);
+            let nt = rng.gen_range(0..30);
+            let tris: Vec<[u32; 3]> = (0..nt)
+                .map(|_| [0; 3].map(|_: u32| rng.gen_range(0..n)))
+                .collect();
+            let mesh = TriMesh::new(vec![crate::geom::Point3::origin(); n as usize], tris);
+            // keys of x-edges on the outer face z = 0 of a 4³ grid, or interior points
+            let keys: Vec<u64> = (0..n)
+                .map(|_| {
+                    if rng.gen_bool(0.5) {
+                        KEY_INTERIOR
+                    } else {
+                        extract::key(0, rng.gen_range(0..3), rng.gen_range(0..4), 0)
+                    }
+                })
+                .collect();
+            let valid_cell = |c: [i64; 3]| c.iter().all(|&x| (0..3).contains(&x));
+            let got = analyze(&mesh, &keys, valid_cell);
+            let want = analyze_edge_table(&mesh, &keys, valid_cell);
+            assert!(same_analysis(&got, &want), "round {round}");
+            nonman += want.non_manifold_edges;
+            holes += want.interior_holes;
+        }
+        assert!(nonman > 0 && holes > 0, "{nonman} {holes}");
     }
 
     #[test]
