@@ -165,6 +165,10 @@ impl General3<'_> {
                 })
                 .collect();
             if faces.iter().filter(|f| f.0 <= rad * rad).count() >= k {
+                // at least k faces have d² ≤ rad² and every other face comes after them in
+                // the order (distance, face): the first k are among those, so the rest are
+                // dropped before the selection (the same k, fewer to select from)
+                faces.retain(|f| f.0 <= rad * rad);
                 break;
             }
         }
