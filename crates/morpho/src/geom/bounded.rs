@@ -135,6 +135,155 @@ impl Bounded {
     }
 }
 
+/// x = fl(a + b) and its exact rounding error y: a + b = x + y (Knuth's TWO-SUM; exact for any
+/// finite a, b whose sum does not overflow, subnormals included).
+#[inline(always)]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let x = a + b;
+    let bv = x - a;
+    let av = x - bv;
+    (x, (a - av) + (b - bv))
+}
+
+/// x = fl(a·b) and y with a·b = x + y (Dekker's product through Veltkamp's split; no fused
+/// multiply-add, so no library call on targets without one). Exact while |a|, |b| < 2⁹⁹⁵ (the
+/// split does not overflow) and no partial product underflows; with underflow, each of its
+/// four partial products is off by at most η/2 (η the smallest subnormal), so |a·b − x − y| ≤ 2η.
+#[inline(always)]
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    const SPLITTER: f64 = 134_217_729.0; // 2^27 + 1
+    let split = |a: f64| {
+        let c = SPLITTER * a;
+        let hi = c - (c - a);
+        (hi, a - hi)
+    };
+    let x = a * b;
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    let err = x - ah * bh - al * bh - ah * bl;
+    (x, al * bl - err)
+}
+
+/// A double-double value `hi + lo` with a proven bound `e` of its distance to the exact value of
+/// the same expression on the exact inputs: the second floating-point stage of the γ offsets
+/// (`graphs::gamma::TriFrame`), for the points where the [`Bounded`] stage's cancellation
+/// (rounding errors of ε times the magnitudes, on skinny triangles and points nearly in their
+/// plane) misses its tolerance. About 2⁻¹⁰⁶ instead of 2⁻⁵³ times the magnitudes, with no
+/// allocation (the exact fallback is heap expansion arithmetic).
+///
+/// The bound is a running error bound as in [`Bounded`], argued per operation:
+/// - [`BoundedDd::diff`]: a − b = hi + lo exactly (TWO-SUM), e = 0.
+/// - [`BoundedDd::plus`]: (s, t₁) = TWO-SUM(x.hi, y.hi) exactly; t₂ = fl(x.lo + y.lo);
+///   c = fl(t₁ + t₂); (hi, lo) = TWO-SUM(s, c) exactly. So hi + lo = x + y but for the two
+///   roundings of t₂ and c, each at most ε/2 times the rounded result (a sum that is subnormal
+///   is exact): e = e_x + e_y + ε(|t₂| + |c|).
+/// - [`BoundedDd::times`]: (p, e₀) = Dekker(x.hi, y.hi) (exact up to 2η); the three cross
+///   products a₁ = x.hi·y.lo, a₂ = x.lo·y.hi, a₃ = x.lo·y.lo and the sums s₁ = a₁ + a₂,
+///   s₂ = s₁ + a₃, t = s₂ + e₀ rounded (each off by at most ε/2 of its rounded result, and a
+///   product by η/2 more when it underflows); (hi, lo) = TWO-SUM(p, t) exactly. The exact
+///   product of the exact values X = x + δx, Y = y + δy differs from x·y by at most
+///   |x| e_y + |y| e_x + e_x e_y with |x| ≤ |x.hi| + |x.lo|: e = that + ε(|a₁| + |a₂| + |a₃| +
+///   |s₁| + |s₂| + |t|) + 8η.
+/// - [`BoundedDd::to_bounded`]: the value hi (rounded away: the bound grows by |lo|).
+///
+/// The bounds are computed in floating point, on nonnegative terms only: the final
+/// [`Bounded::certified`] (inflation by 1 + 2⁻⁴⁰) covers their rounding, as for [`Bounded`].
+/// Nothing is certified when a value or bound is not finite (overflow, or a split that
+/// overflows: NaN).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoundedDd {
+    /// The leading part.
+    pub hi: f64,
+    /// The trailing part (|lo| ≤ ulp(hi)/2 after each operation).
+    pub lo: f64,
+    /// |exact − (hi + lo)| ≤ e (before the final inflation).
+    pub e: f64,
+}
+
+impl BoundedDd {
+    /// a − b of exact inputs, exactly.
+    #[inline]
+    pub fn diff(a: f64, b: f64) -> Self {
+        let (hi, lo) = two_sum(a, -b);
+        BoundedDd { hi, lo, e: 0.0 }
+    }
+    /// self + o.
+    #[inline]
+    pub fn plus(self, o: BoundedDd) -> Self {
+        let (s, t1) = two_sum(self.hi, o.hi);
+        let t2 = self.lo + o.lo;
+        let c = t1 + t2;
+        let (hi, lo) = two_sum(s, c);
+        BoundedDd {
+            hi,
+            lo,
+            e: self.e + o.e + EPS * (t2.abs() + c.abs()),
+        }
+    }
+    /// self − o.
+    #[inline]
+    pub fn minus(self, o: BoundedDd) -> Self {
+        self.plus(BoundedDd {
+            hi: -o.hi,
+            lo: -o.lo,
+            e: o.e,
+        })
+    }
+    /// self · o.
+    #[inline]
+    pub fn times(self, o: BoundedDd) -> Self {
+        let (p, e0) = two_prod(self.hi, o.hi);
+        let a1 = self.hi * o.lo;
+        let a2 = self.lo * o.hi;
+        let a3 = self.lo * o.lo;
+        let s1 = a1 + a2;
+        let s2 = s1 + a3;
+        let t = s2 + e0;
+        let (hi, lo) = two_sum(p, t);
+        let (xm, ym) = (self.hi.abs() + self.lo.abs(), o.hi.abs() + o.lo.abs());
+        let op = EPS * (a1.abs() + a2.abs() + a3.abs() + s1.abs() + s2.abs() + t.abs()) + 8.0 * ETA;
+        BoundedDd {
+            hi,
+            lo,
+            e: xm * o.e + ym * self.e + self.e * o.e + op,
+        }
+    }
+    /// self · 2ᵏ for a power of two `p` (exact but for over- and underflow: η per part).
+    #[inline]
+    pub fn scale2(self, p: f64) -> Self {
+        BoundedDd {
+            hi: self.hi * p,
+            lo: self.lo * p,
+            e: self.e * p + 2.0 * ETA,
+        }
+    }
+    /// The dot product of 3-vectors.
+    #[inline]
+    pub fn dot3(x: [BoundedDd; 3], y: [BoundedDd; 3]) -> Self {
+        x[0].times(y[0])
+            .plus(x[1].times(y[1]))
+            .plus(x[2].times(y[2]))
+    }
+    /// The cross product of 3-vectors.
+    #[inline]
+    pub fn cross3(x: [BoundedDd; 3], y: [BoundedDd; 3]) -> [Self; 3] {
+        [
+            x[1].times(y[2]).minus(x[2].times(y[1])),
+            x[2].times(y[0]).minus(x[0].times(y[2])),
+            x[0].times(y[1]).minus(x[1].times(y[0])),
+        ]
+    }
+    /// The value rounded to `hi`, as a [`Bounded`]: |exact − hi| ≤ e + |lo| (NaN, so never
+    /// certified, when `lo` is not finite).
+    #[inline]
+    pub fn to_bounded(self) -> Bounded {
+        Bounded {
+            v: self.hi,
+            e: self.e + self.lo.abs(),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -785,6 +785,10 @@ pub struct TriFrame {
     /// error bounds, and ρ₀² = |o|²/|n|² (see [`TriFrame::offset_bounded`]); `None` when |n|²
     /// is not certainly nonzero (then every offset is exact).
     frame: Option<BoundedFrame>,
+    /// Whether an offset the floating-point stage does not certify goes through the
+    /// double-double stage ([`TriFrame::offset_dd`]) before the exact expansions
+    /// ([`TriFrame::with_dd_stage`]).
+    dd: bool,
 }
 
 /// The floating-point frame of [`TriFrame`] with running error bounds.
@@ -793,6 +797,9 @@ struct BoundedFrame {
     n: [Bounded; 3],
     o: [Bounded; 3],
     rho2: Bounded,
+    /// The per-component weights of the side filter ([`TriFrame::side_filter`]):
+    /// gₖ = (certified error of nₖ + 4ε|nₖ|)(1 + 10⁻¹²).
+    side_g: [f64; 3],
 }
 
 impl BoundedFrame {
@@ -811,7 +818,8 @@ impl BoundedFrame {
             o[k] = uu.times(t1[k]).plus(vv.times(t2[k])).over(den)?;
         }
         let rho2 = Bounded::dot3(o, o).over(nn)?;
-        Some(BoundedFrame { n, o, rho2 })
+        let side_g = n.map(|x| (x.certified() + 4.0 * f64::EPSILON * x.v.abs()) * (1.0 + 1e-12));
+        Some(BoundedFrame { n, o, rho2, side_g })
     }
 }
 
@@ -832,7 +840,18 @@ impl TriFrame {
             near: None,
             r_over_n: (r2 / dot(n, n)).sqrt(),
             frame: BoundedFrame::new(a, b, c),
+            dd: false,
         })
+    }
+    /// The frame with a second, double-double stage for the offsets the floating-point stage
+    /// does not certify ([`TriFrame::offset_dd`]), before the exact expansions: the same
+    /// decisions (every offset is accurate to [`TAU_TOL`] either way, and the decisions are
+    /// exact), no allocation for most of those points, but offsets that may differ from the
+    /// expansions' in their last bits — so the γ-values a graph reports could too; the
+    /// boundary's γ decisions (`boundary::d3::augment`) use it, the graph builders do not.
+    pub fn with_dd_stage(mut self) -> Self {
+        self.dd = true;
+        self
     }
     /// The frame with in-sphere tests filtered by the reference sphere `s` (see
     /// [`NearSphere`]); the results are identical.
@@ -872,9 +891,38 @@ impl TriFrame {
     /// Side of x: +1 along the normal, −1 against, 0 in the plane (exact).
     #[inline]
     pub(crate) fn side(&self, x: [f64; 3]) -> f64 {
+        if let Some((h, bound)) = self.side_filter(x) {
+            if h > bound {
+                return 1.0;
+            }
+            if h < -bound {
+                return -1.0;
+            }
+        }
         let [a, b, c] = self.t;
         // orient3d(a, b, c, x) > 0 when x is below, i.e. on the side opposite to n
         sign(-raw::orient3d(a, b, c, x))
+    }
+    /// h = (x − a)·n in floating point and a bound B of its error against the exact
+    /// (x − a)·((b − a) × (c − a)) — the side is sign(h) when |h| > B; the filter before
+    /// `orient3d` in [`TriFrame::side`] (the same sign: orient3d(a, b, c, x) = −(x − a)·n).
+    /// With wₖ = fl(xₖ − aₖ) (|Wₖ − wₖ| ≤ ε|wₖ|/2, W exact), nₖ the float normal with its
+    /// certified bound eₖ ≥ |Nₖ − nₖ| ([`BoundedFrame`]) and h = fl(Σ wₖnₖ) (three products,
+    /// two sums: off by at most γ₃ Σ|wₖnₖ| ≤ 2ε Σ|wₖnₖ| from Σ wₖnₖ):
+    /// |Σ WₖNₖ − h| ≤ Σ |wₖ| (eₖ + ε(|nₖ| + eₖ) + 2ε|nₖ|) ≤ Σ |wₖ| gₖ with
+    /// gₖ = (eₖ + 4ε|nₖ|)(1 + 10⁻¹²) (εeₖ ≤ 10⁻¹²eₖ). B is that sum, inflated by 10⁻¹² for
+    /// its own five roundings on nonnegative terms, plus 4η for products that underflow.
+    /// `None` without a bounded frame.
+    #[inline]
+    fn side_filter(&self, x: [f64; 3]) -> Option<(f64, f64)> {
+        let f = self.frame.as_ref()?;
+        let a = self.t[0];
+        let w = [x[0] - a[0], x[1] - a[1], x[2] - a[2]];
+        let h = w[0] * f.n[0].v + w[1] * f.n[1].v + w[2] * f.n[2].v;
+        let g = f.side_g;
+        let bound = (w[0].abs() * g[0] + w[1].abs() * g[1] + w[2].abs() * g[2]) * (1.0 + 1e-12)
+            + 4.0 * 5e-324;
+        Some((h, bound))
     }
     /// The offset τ = q / 2h of x off the plane (exact side `side`), accurate to a relative
     /// [`TAU_TOL`] of |τ| + r/|n|: the floating-point value when its proven error bound
@@ -883,13 +931,42 @@ impl TriFrame {
     /// sets: a point nearly on the circumcircle) q and h are both tiny and the float quotient
     /// can be meaningless.
     fn offset(&self, side: f64, x: [f64; 3]) -> f64 {
-        if let Some((t, h)) = self.offset_bounded(x) {
-            // (h's sign is certified, so it is the exact side; checked all the same)
-            if (h > 0.0) == (side > 0.0) && t.certified() <= TAU_TOL * (t.v.abs() + self.r_over_n) {
-                return t.v;
+        // (h's sign is certified, so it is the exact side; checked all the same)
+        let ok = |(t, h): &(Bounded, f64)| {
+            (*h > 0.0) == (side > 0.0) && t.certified() <= TAU_TOL * (t.v.abs() + self.r_over_n)
+        };
+        if let Some(t) = self.offset_bounded(x).filter(ok) {
+            return t.0.v;
+        }
+        if self.dd {
+            if let Some(t) = self.offset_dd(x).filter(ok) {
+                return t.0.v;
             }
         }
         exact_offset(self.t, x)
+    }
+    /// τ(x) = num / den in double-double arithmetic with a proven error bound
+    /// ([`crate::geom::bounded::BoundedDd`]), from the differences to corner a, by the
+    /// polynomial formula of [`exact_offset`]: u = b − a, v = c − a, w = x − a, n = u × v,
+    /// num = |w|²|n|² − |u|² w·(v × n) − |v|² w·(n × u), den = 2|n|² w·n. The differences
+    /// are exact and every product and sum carries about 2⁻¹⁰⁶ of its magnitudes, so the
+    /// cancellations that defeat [`TriFrame::offset_bounded`] (a skinny triangle, a point
+    /// nearly in its plane) cost 2⁵³ times less accuracy; the quotient is the rounded `hi`
+    /// parts', bounded by [`Bounded::over`]. `None` when the bound does not certify den ≠ 0;
+    /// with τ, den's leading part (the sign of h, as |n|² > 0).
+    fn offset_dd(&self, x: [f64; 3]) -> Option<(Bounded, f64)> {
+        use crate::geom::bounded::BoundedDd as D;
+        let [a, b, c] = self.t;
+        let d = |p: [f64; 3]| [0, 1, 2].map(|k| D::diff(p[k], a[k]));
+        let (u, v, w) = (d(b), d(c), d(x));
+        let n = D::cross3(u, v);
+        let nn = D::dot3(n, n);
+        let num = D::dot3(w, w)
+            .times(nn)
+            .minus(D::dot3(w, D::cross3(v, n)).times(D::dot3(u, u)))
+            .minus(D::dot3(w, D::cross3(n, u)).times(D::dot3(v, v)));
+        let den = D::dot3(w, n).times(nn).scale2(2.0).to_bounded();
+        Some((num.to_bounded().over(den)?, den.v))
     }
     /// τ(x) in floating point with a proven error bound, from the differences to corner a:
     /// with w = x − a, h = w·n and q = |w|² − 2 w·o (= |x − m|² − r²), τ = q / 2h. `None` when
@@ -1185,5 +1262,215 @@ pub fn def_contains_3d(t: [[f64; 3]; 3], c0: f64, c1: f64, side: f64, x: [f64; 3
         in0 || in1
     } else {
         in0 && in1
+    }
+}
+
+#[cfg(test)]
+mod dd_stage_tests {
+    use super::*;
+    use crate::geom::exact::{big_cross, big_dot, float_parts};
+    use num_bigint::BigInt;
+    use rand::{Rng, SeedableRng};
+
+    /// The sign of y − τ(x) for triangle t, exactly: τ = 2ᵏ N / D on the coordinates scaled
+    /// to integers X = x·2ᵏ (τ is homogeneous of degree −1), N and D the polynomials of
+    /// [`exact_offset`] in big integers; y a float. (x off the plane: D ≠ 0.)
+    fn cmp_tau(t: [[f64; 3]; 3], x: [f64; 3], y: f64) -> Ordering {
+        let all = [t[0], t[1], t[2], x];
+        let emin = all
+            .iter()
+            .flatten()
+            .filter(|v| **v != 0.0)
+            .map(|&v| float_parts(v).1)
+            .min()
+            .unwrap_or(0);
+        let big = |p: [f64; 3]| {
+            p.map(|v| {
+                let (m, e) = float_parts(v);
+                BigInt::from(m) << ((e - emin) as usize)
+            })
+        };
+        let [a, b, c, xx] = all.map(big);
+        let d = |p: &[BigInt; 3]| -> [BigInt; 3] { std::array::from_fn(|k| &p[k] - &a[k]) };
+        let (u, v, w) = (d(&b), d(&c), d(&xx));
+        let n = big_cross(&u, &v);
+        let nn = big_dot(&n, &n);
+        let num = big_dot(&w, &w) * &nn
+            - big_dot(&w, &big_cross(&v, &n)) * big_dot(&u, &u)
+            - big_dot(&w, &big_cross(&n, &u)) * big_dot(&v, &v);
+        let den = BigInt::from(2) * &nn * big_dot(&w, &n);
+        assert!(den != BigInt::from(0));
+        // y·D against 2^(−emin)·N, both scaled by 2^s so that the exponents are integers ≥ 0
+        let (m, e) = float_parts(y);
+        let k = -emin;
+        let base = e.min(k);
+        let lhs = (BigInt::from(m) * &den) << ((e - base) as usize);
+        let rhs = num << ((k - base) as usize);
+        let o = lhs.cmp(&rhs);
+        if den < BigInt::from(0) {
+            o.reverse()
+        } else {
+            o
+        }
+    }
+
+    /// Near-degenerate triangles and points: skinny triangles (the third corner 10⁻³ … 10⁻⁹
+    /// off the line of the other two) and points 10⁻⁴ … 10⁻¹³ off the plane, at coordinates
+    /// near 0.1 (the dragon's) and near 1.
+    fn cases(seed: u64, count: usize) -> Vec<([[f64; 3]; 3], [f64; 3])> {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let mut out = Vec::new();
+        while out.len() < count {
+            let scale = [0.1, 1.0, 3e-4][rng.gen_range(0..3)];
+            let base: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            let pt = |rng: &mut rand_chacha::ChaCha8Rng| -> [f64; 3] {
+                std::array::from_fn(|k| base[k] + scale * rng.gen_range(-1.0..1.0))
+            };
+            let (a, b) = (pt(&mut rng), pt(&mut rng));
+            let skinny = [1e-1, 1e-3, 1e-6, 1e-9][rng.gen_range(0..4)];
+            let s = rng.gen_range(-0.5..1.5);
+            let jitter: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            let c: [f64; 3] =
+                std::array::from_fn(|k| a[k] + s * (b[k] - a[k]) + skinny * scale * jitter[k]);
+            let Some(f) = TriFrame::new(a, b, c) else {
+                continue;
+            };
+            // a point in the plane (by the float normal), then off it by a tiny height
+            let (p, q) = (rng.gen_range(-2.0..2.0), rng.gen_range(-2.0..2.0));
+            let nl = dot(f.n, f.n).sqrt();
+            let off = [1e-4, 1e-7, 1e-10, 1e-13][rng.gen_range(0..4)] * rng.gen_range(-1.0..1.0);
+            let x: [f64; 3] = std::array::from_fn(|k| {
+                a[k] + p * (b[k] - a[k]) + q * (c[k] - a[k]) + off * scale * f.n[k] / nl
+            });
+            if f.side(x) != 0.0 {
+                out.push(([a, b, c], x));
+            }
+        }
+        out
+    }
+
+    /// The double-double stage's bound holds against the exact τ (big integers) on
+    /// near-degenerate cases, the sign it reports is the exact side, it certifies to
+    /// [`TAU_TOL`] most of the points the floating-point stage does not, and the bound is
+    /// not vacuous: a millionth of it fails on some case.
+    #[test]
+    fn dd_offsets_are_within_their_bound_of_the_exact_ones() {
+        let (mut checked, mut rescued, mut missed_f64, mut sharp) = (0, 0, 0, 0);
+        for ([a, b, c], x) in cases(41, 4000) {
+            let f = TriFrame::new(a, b, c).unwrap();
+            let side = f.side(x);
+            let Some((t, h)) = f.offset_dd(x) else {
+                continue;
+            };
+            assert_eq!(h > 0.0, side > 0.0, "{a:?} {b:?} {c:?} {x:?}");
+            let e = t.certified();
+            if !e.is_finite() {
+                continue;
+            }
+            assert_ne!(cmp_tau([a, b, c], x, t.v - e), Ordering::Greater);
+            assert_ne!(cmp_tau([a, b, c], x, t.v + e), Ordering::Less);
+            checked += 1;
+            let tol = TAU_TOL * (t.v.abs() + f.r_over_n);
+            let f64_ok = f.offset_bounded(x).is_some_and(|(tb, hb)| {
+                (hb > 0.0) == (side > 0.0) && tb.certified() <= TAU_TOL * (tb.v.abs() + f.r_over_n)
+            });
+            if !f64_ok {
+                missed_f64 += 1;
+                rescued += usize::from(e <= tol);
+            }
+            let tight = e / 1e6;
+            if cmp_tau([a, b, c], x, t.v - tight) == Ordering::Greater
+                || cmp_tau([a, b, c], x, t.v + tight) == Ordering::Less
+            {
+                sharp += 1;
+            }
+        }
+        eprintln!("dd stage: checked {checked}, missed by the f64 stage {missed_f64}, rescued {rescued}, sharp {sharp}");
+        assert!(checked > 3500, "{checked}");
+        assert!(
+            missed_f64 > 300 && rescued * 10 > missed_f64 * 9,
+            "{missed_f64} {rescued}"
+        );
+        assert!(sharp > 0, "the bound is 10⁶ times too loose on every case");
+    }
+
+    /// The side filter ([`TriFrame::side_filter`]) against the exact `orient3d`, on the
+    /// near-degenerate cases and on exactly coplanar points whose float evaluation rounds
+    /// (integer coordinates up to 2²⁷: the normal's products pass 2⁵³): when it decides, the
+    /// sign is orient3d's, and [`TriFrame::side`] always is. The bound is not vacuous: a
+    /// millionth of it would claim a side for some exactly coplanar point.
+    #[test]
+    fn side_filter_agrees_with_orient3d() {
+        let mut all = cases(47, 3000);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(49);
+        let r = 1i64 << 26;
+        for _ in 0..3000 {
+            let p = |rng: &mut rand_chacha::ChaCha8Rng| -> [f64; 3] {
+                std::array::from_fn(|_| rng.gen_range(-r..=r) as f64)
+            };
+            let (a, b, c) = (p(&mut rng), p(&mut rng), p(&mut rng));
+            let (s, t) = (
+                rng.gen_range(-2i64..=2) as f64,
+                rng.gen_range(-2i64..=2) as f64,
+            );
+            let x = std::array::from_fn(|k| a[k] + s * (b[k] - a[k]) + t * (c[k] - a[k]));
+            all.push(([a, b, c], x));
+        }
+        let (mut decided, mut coplanar, mut wrong_tight) = (0, 0, 0);
+        for ([a, b, c], x) in all {
+            let Some(f) = TriFrame::new(a, b, c) else {
+                continue;
+            };
+            let exact = sign(-raw::orient3d(a, b, c, x));
+            assert_eq!(f.side(x), exact, "{a:?} {b:?} {c:?} {x:?}");
+            coplanar += usize::from(exact == 0.0);
+            if let Some((h, bound)) = f.side_filter(x) {
+                if h.abs() > bound {
+                    decided += 1;
+                    assert_eq!(h.signum(), exact);
+                }
+                if h.abs() > bound / 1e6 && h.signum() != exact {
+                    wrong_tight += 1;
+                }
+            }
+        }
+        assert!(
+            decided > 1500 && coplanar > 1000 && wrong_tight > 0,
+            "{decided} {coplanar} {wrong_tight}"
+        );
+    }
+
+    /// With the stage, [`TriFrame::offset`] stays within [`TAU_TOL`] of the exact τ, and the
+    /// intervals built point by point decide c₁′ ≥ c as without it (the offsets only feed the
+    /// floats; the decisions are exact).
+    #[test]
+    fn dd_stage_keeps_the_offsets_and_the_decisions() {
+        let all = cases(43, 3000);
+        for ([a, b, c], x) in &all {
+            let f = TriFrame::new(*a, *b, *c).unwrap().with_dd_stage();
+            let side = f.side(*x);
+            let tau = f.offset(side, *x);
+            let tol = TAU_TOL * (tau.abs() + f.r_over_n);
+            assert_ne!(cmp_tau([*a, *b, *c], *x, tau - tol), Ordering::Greater);
+            assert_ne!(cmp_tau([*a, *b, *c], *x, tau + tol), Ordering::Less);
+        }
+        // one triangle against groups of the points (the near-degenerate ones of `cases`
+        // relative to their own triangles, so here: arbitrary points near it)
+        for chunk in all.chunks(30) {
+            let [a, b, c] = chunk[0].0;
+            let (plain, dd) = (
+                TriFrame::new(a, b, c).unwrap(),
+                TriFrame::new(a, b, c).unwrap().with_dd_stage(),
+            );
+            let (mut i0, mut i1) = (plain.start(), dd.start());
+            for (_, x) in chunk {
+                plain.add(&mut i0, *x);
+                dd.add(&mut i1, *x);
+            }
+            assert_eq!((i0.lo_at, i0.hi_at), (i1.lo_at, i1.hi_at));
+            for cc in [-0.9, -0.5, -0.1, 0.0, 0.3, 0.9] {
+                assert_eq!(plain.c1_at_least(&i0, cc), dd.c1_at_least(&i1, cc));
+            }
+        }
     }
 }

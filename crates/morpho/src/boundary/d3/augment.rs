@@ -165,6 +165,10 @@ impl General3<'_> {
                 })
                 .collect();
             if faces.iter().filter(|f| f.0 <= rad * rad).count() >= k {
+                // at least k faces have d² ≤ rad² and every other face comes after them in
+                // the order (distance, face): the first k are among those, so the rest are
+                // dropped before the selection (the same k, fewer to select from)
+                faces.retain(|f| f.0 <= rad * rad);
                 break;
             }
         }
@@ -250,13 +254,29 @@ impl General3<'_> {
     /// or until the ball's points run out) so that the cached bound also settles the next
     /// smaller c. Each ball's points are added nearest to its centre first, cells wholly
     /// outside the ball skipped.
+    ///
+    /// The offsets τ go through the double-double stage of
+    /// [`crate::graphs::gamma::TriFrame::with_dd_stage`] before exact expansions (no
+    /// allocation for most of the points the floating-point stage does not certify); the
+    /// verdicts are those without it (`gamma_decide_with(.., false)`; a lockstep test).
     pub(super) fn gamma_decide(&self, t: [u32; 3], c: f64, first: &[u32]) -> Option<f64> {
+        self.gamma_decide_with(t, c, first, true)
+    }
+
+    /// [`Self::gamma_decide`], with the offsets' double-double stage when `dd`.
+    pub(super) fn gamma_decide_with(
+        &self,
+        t: [u32; 3],
+        c: f64,
+        first: &[u32],
+        dd: bool,
+    ) -> Option<f64> {
         use crate::graphs::gamma::{
             in_closed_triangle_3d, triangle_circle, CenterInterval, TriFrame,
         };
         let [pa, pb, pc] = t.map(|v| self.pt(v));
-        let (Some(f), Some((m, r2, n))) = (TriFrame::new(pa, pb, pc), triangle_circle(pa, pb, pc))
-        else {
+        let frame = TriFrame::new(pa, pb, pc).map(|f| if dd { f.with_dd_stage() } else { f });
+        let (Some(f), Some((m, r2, n))) = (frame, triangle_circle(pa, pb, pc)) else {
             // degenerate (collinear corners): never a γ-triangle
             return Some(f64::NEG_INFINITY);
         };
@@ -674,9 +694,12 @@ mod tests {
         fn gamma_decide_reference(&self, t: [u32; 3], c: f64, first: &[u32]) -> Option<f64> {
             use crate::graphs::gamma::{triangle_circle, CenterInterval, TriFrame};
             let [pa, pb, pc] = t.map(|v| self.pt(v));
-            let (Some(f), Some((m, r2, n))) =
-                (TriFrame::new(pa, pb, pc), triangle_circle(pa, pb, pc))
-            else {
+            // (with the offsets' double-double stage, as `gamma_decide`: this reference is of
+            // the c = −1 shortcut and the skipped points; the stage has its own lockstep test)
+            let (Some(f), Some((m, r2, n))) = (
+                TriFrame::new(pa, pb, pc).map(TriFrame::with_dd_stage),
+                triangle_circle(pa, pb, pc),
+            ) else {
                 // degenerate (collinear corners): never a γ-triangle
                 return Some(f64::NEG_INFINITY);
             };
@@ -1158,6 +1181,40 @@ mod tests {
             assert!(
                 same > 5000 && rejected > 1000 && blocked_at_minus_one >= need_blocked,
                 "set {set}: {same} {rejected} {blocked_at_minus_one}"
+            );
+        }
+    }
+
+    /// The offsets' double-double stage (`TriFrame::with_dd_stage`) changes no verdict of
+    /// gamma_decide: with and without it, the same triangles are in γ(\[-1,1\],\[c,1\]), on
+    /// a dense bumpy sphere (skinny triangles of near vertices, points nearly in their planes)
+    /// and on the cube lattice, for the triangles of every vertex with pairs of its 16 nearest.
+    #[test]
+    fn gamma_decide_verdicts_do_not_depend_on_the_dd_stage() {
+        let sets = [(bumpy_sphere(4000, 12), 23), (cube_lattice(7, 120, 6), 5)];
+        for (set, (pts, step)) in sets.into_iter().enumerate() {
+            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+            let g = General3::new(&pos, &d.hull, &[], &[]);
+            let (mut decided, mut accepted) = (0, 0);
+            for l in (0..pos.len() as u32).step_by(step) {
+                let near = g.nearest(l, 16).0;
+                for (i, &x) in near.iter().enumerate() {
+                    for &y in &near[i + 1..] {
+                        let t = sorted3([l, x, y]);
+                        for c in [-0.1, -0.4, -0.8, -0.9] {
+                            let with = g.gamma_decide_with(t, c, &near, true);
+                            let without = g.gamma_decide_with(t, c, &near, false);
+                            assert_eq!(with.is_none(), without.is_none(), "{t:?} c {c}");
+                            decided += 1;
+                            accepted += usize::from(with.is_none());
+                        }
+                    }
+                }
+            }
+            assert!(
+                decided > 5000 && accepted > 500 && decided - accepted > 500,
+                "set {set}: {decided} {accepted}"
             );
         }
     }
