@@ -41,7 +41,9 @@
 //! again (they may have become removable). A push of a (tetrahedron, mask) pair that already
 //! has an entry in the heap is skipped (the key is a function of the pair, so the entry would be
 //! the same; see [`constrict_3d_with`]). Each live tetrahedron's boundary-face mask is kept up
-//! to date (one byte read per heap entry, push and rotation step), its corners and neighbours
+//! to date (one byte read per heap entry, push and rotation step; in one word with the
+//! tetrahedron's pending entries, so that a push reads one line, and the live flags are
+//! derived from it at the end instead of written at every removal), its corners and neighbours
 //! are packed side by side (one cache line per step of a rotation around an edge, the hot
 //! loop; 32 bytes per tetrahedron while the constriction runs), and the heap is 4-ary over
 //! packed integer entries; the removals are the same, in the same order, as with a binary heap
@@ -175,6 +177,12 @@ pub fn removal_key(key: Key, p: [[f64; 3]; 4], boundary: u8, big_r: f64) -> f64 
 /// Bit of [`State::mask`] marking a removed tetrahedron (the face bits are 0–3).
 const DEAD: u8 = 0x80;
 
+/// The bit of [`State::meta`] recording that an entry (t, m) is in the heap: bit 16 + m (the
+/// mask m of a pushed entry is 1–15).
+fn pending_bit(m: u8) -> u32 {
+    1 << (16 + m as u32)
+}
+
 /// A tetrahedron's corners and its neighbours (across the face opposite each corner) side by
 /// side in half a cache line: a step of the rotation around an edge, the hot loop of the
 /// constriction, reads one line instead of one in `Delaunay3::tets` and one in
@@ -214,12 +222,15 @@ struct State<'a> {
     d: &'a Delaunay3,
     /// `d`'s tetrahedra and neighbours, packed ([`Cell`]).
     cells: Vec<Cell>,
-    alive: Vec<bool>,
-    /// For each live tetrahedron its boundary faces (bit f: the neighbour across face f is
-    /// absent or removed), [`DEAD`] for a removed one; kept up to date by [`State::kill`], so
-    /// that a heap entry, a push and a step of the rotation around an edge read one byte
-    /// instead of the four neighbours and their `alive` flags.
-    mask: Vec<u8>,
+    /// Per tetrahedron, in one word (one cache line for the two reads of a push):
+    /// - the low byte, its mask ([`State::mask`]): for a live tetrahedron its boundary faces
+    ///   (bit f: the neighbour across face f is absent or removed), [`DEAD`] for a removed
+    ///   one; kept up to date by [`State::kill`], so that a heap entry, a push and a step of
+    ///   the rotation around an edge read one byte instead of the four neighbours and their
+    ///   live flags (the live set is the tetrahedra not [`DEAD`]);
+    /// - the high 16 bits, the masks m with an entry (t, m) in the heap ([`pending_bit`];
+    ///   see [`constrict_3d_with`]).
+    meta: Vec<u32>,
     vcount: Vec<u32>,
     nbv: usize,
     keep: IdSet<[u32; 3]>,
@@ -228,15 +239,15 @@ struct State<'a> {
 
 impl<'a> State<'a> {
     /// The state with the live tetrahedra `alive` (no vertex counted on the boundary yet).
-    fn new(d: &'a Delaunay3, alive: Vec<bool>, keep: &[[u32; 3]], key: Key) -> Self {
-        let mask = (0..d.tets.len())
+    fn new(d: &'a Delaunay3, alive: impl Fn(usize) -> bool, keep: &[[u32; 3]], key: Key) -> Self {
+        let meta = (0..d.tets.len())
             .map(|t| {
-                if !alive[t] {
-                    return DEAD;
+                if !alive(t) {
+                    return DEAD as u32;
                 }
-                let mut m = 0u8;
+                let mut m = 0u32;
                 for (f, &n) in d.neighbors[t].iter().enumerate() {
-                    if n == NONE || !alive[n as usize] {
+                    if n == NONE || !alive(n as usize) {
                         m |= 1 << f;
                     }
                 }
@@ -246,8 +257,7 @@ impl<'a> State<'a> {
         State {
             d,
             cells: cells_of(d),
-            alive,
-            mask,
+            meta,
             vcount: vec![0; d.points.len()],
             nbv: 0,
             keep: keep.iter().map(|&f| sorted3(f)).collect(),
@@ -257,20 +267,30 @@ impl<'a> State<'a> {
 
     /// The boundary faces of live tetrahedron t ([`DEAD`] when removed).
     fn mask(&self, t: usize) -> u8 {
-        self.mask[t]
+        self.meta[t] as u8
+    }
+
+    /// Tetrahedron t is live (not removed).
+    fn alive(&self, t: usize) -> bool {
+        self.mask(t) != DEAD
+    }
+
+    /// The live tetrahedra (those not [`DEAD`]).
+    fn alive_flags(&self) -> Vec<bool> {
+        (0..self.meta.len()).map(|t| self.alive(t)).collect()
     }
 
     /// Removes live tetrahedron t: its live neighbours gain the shared face as a boundary face.
     fn kill(&mut self, t: usize) {
-        self.alive[t] = false;
-        self.mask[t] = DEAD;
+        // (the pending bits stay: a push of a removed tetrahedron stops at its mask)
+        self.meta[t] = self.meta[t] & !0xff | DEAD as u32;
         for n in self.cells[t].n {
-            if n != NONE && self.mask[n as usize] != DEAD {
+            if n != NONE && self.mask(n as usize) != DEAD {
                 let nn = &self.cells[n as usize].n;
                 // (two tetrahedra share at most one face)
                 let g = nn.iter().position(|&x| x == t as u32).unwrap_or(4);
                 if g < 4 {
-                    self.mask[n as usize] |= 1 << g;
+                    self.meta[n as usize] |= 1 << g;
                 }
             }
         }
@@ -352,7 +372,7 @@ impl<'a> State<'a> {
     fn edge_on_boundary(&self, t: u32, a: u32, b: u32) -> bool {
         let cells = &self.cells;
         let [f0, f1] = faces_with_edge(cells, t, a, b);
-        let m = self.mask[t as usize];
+        let m = self.mask(t as usize);
         if (m >> f0 | m >> f1) & 1 == 1 {
             return true;
         }
@@ -366,7 +386,7 @@ impl<'a> State<'a> {
             if next == t {
                 return false;
             }
-            if self.mask[cur as usize] >> g & 1 == 1 {
+            if self.mask(cur as usize) >> g & 1 == 1 {
                 return true;
             }
             (prev, cur) = (cur, next);
@@ -509,7 +529,7 @@ pub fn constrict_3d_with(
 ) -> Constriction3 {
     let nt = d.tets.len();
     let nv = d.points.len();
-    let mut st = State::new(d, vec![true; nt], keep, key);
+    let mut st = State::new(d, |_| true, keep, key);
     for t in 0..nt {
         for f in 0..4 {
             if d.neighbors[t][f] == NONE {
@@ -519,33 +539,32 @@ pub fn constrict_3d_with(
         }
     }
     let mut heap = QuadHeap::default();
-    // bit m of pending[t]: an entry (t, m) is in the heap. A push of a pending pair is skipped:
+    // bit `pending_bit(m)` of meta[t]: an entry (t, m) is in the heap. A push of a pending pair is skipped:
     // the key is a function of the tetrahedron and its mask, so the skipped entry would equal
     // the pending one and pop right after it, with nothing changed in between — the first
     // either removes the tetrahedron (the copy then finds it dead) or is discarded (the copy is
     // judged on the same state and discarded too). It saves the key (the circumsphere and the
     // exact sides of the boundary faces) and the heap traffic of the tetrahedra pushed again
     // around a flipped edge or by an unchanged neighbour.
-    let mut pending = vec![0u16; nt];
-    let push = |st: &State, heap: &mut QuadHeap, pending: &mut [u16], t: usize| {
+    let push = |st: &mut State, heap: &mut QuadHeap, t: usize| {
         let m = st.mask(t);
-        if m == 0 || m == DEAD || pending[t] >> m & 1 == 1 {
+        if m == 0 || m == DEAD || st.meta[t] & pending_bit(m) != 0 {
             return;
         }
         if let Some(key) = st.key(t, m) {
-            pending[t] |= 1 << m;
+            st.meta[t] |= pending_bit(m);
             heap.push(key, t as u32, m);
         }
     };
     for t in 0..nt {
-        push(&st, &mut heap, &mut pending, t);
+        push(&mut st, &mut heap, t);
     }
     let mut iterations = 0;
     let mut ring = Vec::new();
     while until == Until::Locked || st.nbv < nv {
         let Some((t, mask)) = heap.pop() else { break };
         let t = t as usize;
-        pending[t] &= !(1 << mask);
+        st.meta[t] &= !pending_bit(mask);
         // (a removed tetrahedron's mask is DEAD, never a pushed mask)
         if st.mask(t) != mask || !st.removable(t, mask) {
             continue;
@@ -565,7 +584,7 @@ pub fn constrict_3d_with(
             if m >> f & 1 == 0 {
                 let n = nb[f];
                 if n != NONE {
-                    push(&st, &mut heap, &mut pending, n as usize);
+                    push(&mut st, &mut heap, n as usize);
                 }
             }
         }
@@ -581,7 +600,7 @@ pub fn constrict_3d_with(
             }
             around_edge_from(&st.cells, t as u32, shared[0], shared[1], &mut ring);
             for &n in &ring {
-                push(&st, &mut heap, &mut pending, n as usize);
+                push(&mut st, &mut heap, n as usize);
             }
         }
     }
@@ -598,7 +617,7 @@ pub fn constrict_3d_with(
         }
     }
     Constriction3 {
-        alive: st.alive,
+        alive: st.alive_flags(),
         triangles,
         boundary_vertices: st.nbv,
         iterations,
@@ -647,19 +666,19 @@ mod tests {
             let d = crate::delaunay::d3::triangulate(&pts).unwrap();
             let nt = d.tets.len();
             let kill = [0.0, 0.2, 0.5][case % 3];
-            let alive = (0..nt).map(|_| !rng.gen_bool(kill)).collect();
-            let st = State::new(&d, alive, &[], Key::Gamma);
+            let alive: Vec<bool> = (0..nt).map(|_| !rng.gen_bool(kill)).collect();
+            let st = State::new(&d, |t| alive[t], &[], Key::Gamma);
             let brute = |a: u32, b: u32| {
-                (0..nt).filter(|&t| st.alive[t]).any(|t| {
+                (0..nt).filter(|&t| st.alive(t)).any(|t| {
                     (0..4).any(|f| {
                         let fc = st.face(t, f);
                         let n = d.neighbors[t][f];
-                        fc.contains(&a) && fc.contains(&b) && (n == NONE || !st.alive[n as usize])
+                        fc.contains(&a) && fc.contains(&b) && (n == NONE || !st.alive(n as usize))
                     })
                 })
             };
             for t in 0..nt {
-                if !st.alive[t] {
+                if !st.alive(t) {
                     continue;
                 }
                 let v = d.tets[t];
