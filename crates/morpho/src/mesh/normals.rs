@@ -58,15 +58,22 @@ pub fn vertex_normals(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<Vector3
 /// bytes). The products are rounded exactly as [`vertex_normals`] rounds them (`s + w·c` is
 /// `s + (w·c)`: no fused multiply-add), so the sums are the same bits; each triangle's cross
 /// product and length are computed once instead of once per corner.
+/// The array asks for transparent huge pages before it is written
+/// ([`crate::util::advise_huge_pages`]: 12 MB on the 257k-vertex skull, 6 page faults instead
+/// of 3 000).
 pub(crate) fn weighted_crosses(mesh: &TriMesh, weighting: NormalWeighting) -> Vec<[f64; 3]> {
     use rayon::prelude::*;
-    mesh.triangles
-        .par_iter()
-        .map(|t| match weighted_cross(mesh, t, weighting) {
-            Some((w, ct)) => vec::scale(ct, w),
-            None => [-0.0; 3],
-        })
-        .collect()
+    let mut out = Vec::with_capacity(mesh.triangles.len());
+    crate::util::advise_huge_pages(&mut out);
+    out.par_extend(
+        mesh.triangles
+            .par_iter()
+            .map(|t| match weighted_cross(mesh, t, weighting) {
+                Some((w, ct)) => vec::scale(ct, w),
+                None => [-0.0; 3],
+            }),
+    );
+    out
 }
 
 /// The unit normal of one vertex from its incident triangles `tris` (indices into
@@ -93,15 +100,21 @@ fn weighted_cross(
     let p = |i: u32| -> [f64; 3] { mesh.positions[i as usize].into() };
     let (pa, pb, pc) = (p(a), p(b), p(c));
     let ct = vec::cross(vec::sub(pb, pa), vec::sub(pc, pa));
-    let len = vec::norm(ct);
-    if len.is_nan() || len <= 0.0 || len.is_infinite() {
+    // the test on |c|² decides as the test on |c| = √|c|² would (|c|² is NaN, +0, +∞ or
+    // positive, and √ keeps each of these), without the square root the area weighting never
+    // uses
+    let len2 = vec::norm2(ct);
+    if len2.is_nan() || len2 <= 0.0 || len2.is_infinite() {
         return None;
     }
     let w = match weighting {
         NormalWeighting::Area => 1.0,
-        NormalWeighting::Uniform => 1.0 / len,
+        NormalWeighting::Uniform => 1.0 / len2.sqrt(),
         // (c/|c|)/area = 2c/|c|²
-        NormalWeighting::InverseArea => 2.0 / (len * len),
+        NormalWeighting::InverseArea => {
+            let len = len2.sqrt();
+            2.0 / (len * len)
+        }
     };
     Some((w, ct))
 }
