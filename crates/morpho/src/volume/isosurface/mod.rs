@@ -643,6 +643,22 @@ fn analyze(mesh: &TriMesh, keys: &[u64], valid_cell: impl Fn([i64; 3]) -> bool) 
         ent[*s as usize] = (hi as u64) << 32 | ti;
         *s += 1;
     }
+    analyze_groups(n, ent, start, keys, valid_cell)
+}
+
+/// The rest of [`analyze`] from its filled edge table: `ent` holds the 3·T entries
+/// `(b << 32) | t` of the edges grouped by their smaller end a (group a is
+/// `ent[start[a − 1]..start[a]]`, group 0 starts at 0), each group in any order; `n` is the
+/// vertex count. Sorts each group and walks it: an edge met once is a boundary edge, twice
+/// joins its two triangles, more often is non-manifold (all its triangles joined).
+fn analyze_groups(
+    n: usize,
+    mut ent: Vec<u64>,
+    start: Vec<u32>,
+    keys: &[u64],
+    valid_cell: impl Fn([i64; 3]) -> bool,
+) -> Analysis {
+    let nt = ent.len() / 3;
     let mut tp: Vec<u32> = Vec::with_capacity(nt);
     advise_huge_pages(&mut tp);
     tp.extend(0..nt as u32);
@@ -863,8 +879,9 @@ mod tests {
         Volume::new([2, 2, 2], [0.0; 3], [1.0; 3], data).unwrap()
     }
 
-    /// The topology pass before [`sorted3`] (edges counted and stored one by one in winding
-    /// order), kept verbatim as the oracle of [`analyze`].
+    /// The topology pass before [`sorted3`]: its edge table filled as before (edges counted and
+    /// stored one by one in winding order), kept verbatim as the oracle of [`analyze`]'s fill;
+    /// the group walk after it ([`analyze_groups`]) is the one both share, unchanged.
     fn analyze_edge_table(
         mesh: &TriMesh,
         keys: &[u64],
@@ -897,83 +914,7 @@ mod tests {
                 *s += 1;
             }
         }
-        let mut tp: Vec<u32> = Vec::with_capacity(nt);
-        advise_huge_pages(&mut tp);
-        tp.extend(0..nt as u32);
-        let mut bnd: Vec<(u32, u32, bool)> = Vec::new();
-        let mut nonman = 0;
-        let (vertex, tri) = (|e: u64| (e >> 32) as u32, |e: u64| e as u32);
-        for a in 0..n {
-            let begin = if a == 0 { 0 } else { start[a - 1] as usize };
-            let s = &mut ent[begin..start[a] as usize];
-            s.sort_unstable();
-            let mut i = 0;
-            while i < s.len() {
-                let mut j = i + 1;
-                while j < s.len() && vertex(s[j]) == vertex(s[i]) {
-                    j += 1;
-                }
-                match j - i {
-                    1 => {
-                        let b = vertex(s[i]);
-                        let interior = !on_domain_boundary(keys[a], keys[b as usize], &valid_cell);
-                        bnd.push((a as u32, b, interior));
-                    }
-                    2 => union(&mut tp, tri(s[i]), tri(s[i + 1])),
-                    _ => {
-                        nonman += 1;
-                        for k in i + 1..j {
-                            union(&mut tp, tri(s[i]), tri(s[k]));
-                        }
-                    }
-                }
-                i = j;
-            }
-        }
-        drop(start);
-        // the smaller root wins every union, so a parent precedes its child and a part's root is
-        // its first triangle: in increasing order, a triangle's parent already points at its root,
-        // and the root is met (and numbered) before the rest of its part. The labels reuse the
-        // edge table's memory (its first nt entries; the rest is given back)
-        ent.truncate(nt);
-        let mut parts = 0u32;
-        for t in 0..nt {
-            let r = tp[tp[t] as usize] as usize;
-            tp[t] = r as u32;
-            let label = if r == t {
-                parts += 1;
-                (parts - 1) as f64
-            } else {
-                f64::from_bits(ent[r])
-            };
-            ent[t] = label.to_bits();
-        }
-        let mut labels: Vec<f64> = ent.into_iter().map(f64::from_bits).collect();
-        labels.shrink_to_fit();
-        let interior_boundary_edges = bnd.iter().filter(|e| e.2).count();
-        let mut interior_holes = 0;
-        if interior_boundary_edges > 0 {
-            let mut vp: Vec<u32> = (0..n as u32).collect();
-            for &(a, b, _) in &bnd {
-                union(&mut vp, a, b);
-            }
-            let mut roots: Vec<u32> = bnd
-                .iter()
-                .filter(|e| e.2)
-                .map(|e| find(&mut vp, e.0))
-                .collect();
-            roots.sort_unstable();
-            roots.dedup();
-            interior_holes = roots.len();
-        }
-        Analysis {
-            labels,
-            parts: parts as usize,
-            boundary_edges: bnd.len(),
-            interior_boundary_edges,
-            interior_holes,
-            non_manifold_edges: nonman,
-        }
+        analyze_groups(n, ent, start, keys, valid_cell)
     }
 
     fn same_analysis(a: &Analysis, b: &Analysis) -> bool {
