@@ -1113,13 +1113,9 @@ mod tests {
         };
         let mut locked = 0;
         for seed in [1647u64, 1755] {
-            let pts = super::super::test_sets::clustered_cube(seed);
-            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
-            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
-            let st = super::super::constrict::constrict_3d(&d, super::super::constrict::Until::All);
-            if st.boundary_vertices >= pos.len() {
+            let Some((d, pos, st)) = super::super::test_sets::locked_clustered_cube(seed) else {
                 continue;
-            }
+            };
             locked += 1;
             let region = near_locked(&d, &st.alive, &st.triangles, LOCAL_DEPTH);
             let live = super::super::test_sets::live_faces(&d, &region);
@@ -1368,13 +1364,9 @@ mod tests {
         let mut cold_kept = 0;
         let mut locked = 0;
         for seed in [1647u64, 1755, 1, 2, 3, 4] {
-            let pts = super::super::test_sets::clustered_cube(seed);
-            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
-            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
-            let st = super::super::constrict::constrict_3d(&d, super::super::constrict::Until::All);
-            if st.boundary_vertices >= pos.len() {
+            let Some((d, pos, st)) = super::super::test_sets::locked_clustered_cube(seed) else {
                 continue;
-            }
+            };
             locked += 1;
             for depth in [0, 1, LOCAL_DEPTH] {
                 let region = near_locked(&d, &st.alive, &st.triangles, depth);

@@ -1368,13 +1368,9 @@ mod tests {
     fn delaunay_flags_equal_the_lookups() {
         let mut cold_faces = 0;
         for seed in [1647u64, 1755, 1, 2, 3, 4] {
-            let pts = super::super::test_sets::clustered_cube(seed);
-            let d = crate::delaunay::d3::triangulate(&pts).unwrap();
-            let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
-            let st = super::super::constrict::constrict_3d(&d, super::super::constrict::Until::All);
-            if st.boundary_vertices >= pos.len() {
+            let Some((d, pos, st)) = super::super::test_sets::locked_clustered_cube(seed) else {
                 continue;
-            }
+            };
             let mut on = vec![false; pos.len()];
             for t in &st.triangles {
                 for &v in t {

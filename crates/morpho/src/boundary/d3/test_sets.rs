@@ -2,6 +2,7 @@
 //! caller's generator as the copies they replace, so every test keeps its exact input; and the
 //! faces of a constriction's live tetrahedra, the general engine's starting triangles.
 
+use super::constrict::{constrict_3d, Constriction3, Until};
 use crate::delaunay::d3::Delaunay3;
 use crate::geom::Point3;
 use crate::util::sorted3;
@@ -29,6 +30,18 @@ pub(super) fn clustered_cube(seed: u64) -> Vec<Point3> {
         .into_iter()
         .map(|q| Point3::new(q.x.powi(3), q.y.powi(3), q.z.powi(3)))
         .collect()
+}
+
+/// The clustered cube of `seed` ([`clustered_cube`]), its Delaunay tetrahedralization, its
+/// points as `[f64; 3]` and its Delaunay constriction run until no removal is left — when that
+/// constriction locks (leaves a point off the boundary); `None` when every point ends on it.
+pub(super) fn locked_clustered_cube(
+    seed: u64,
+) -> Option<(Delaunay3, Vec<[f64; 3]>, Constriction3)> {
+    let d = crate::delaunay::d3::triangulate(&clustered_cube(seed)).unwrap();
+    let pos: Vec<[f64; 3]> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+    let st = constrict_3d(&d, Until::All);
+    (st.boundary_vertices < pos.len()).then_some((d, pos, st))
 }
 
 /// `n` points of a bumpy ellipsoid (radius 1 + 0.2·sin(4x)·cos(3z) in the directions of
