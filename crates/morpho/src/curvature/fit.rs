@@ -703,6 +703,28 @@ mod tests {
         }
     }
 
+    /// The quartic jet's 14-term row at (u, t), written out from the monomials (the oracle of
+    /// the moment tests: independent of the moment code's own monomial table).
+    fn quartic_row(u: f64, t: f64) -> [f64; 14] {
+        let (uu, ut, tt) = (u * u, u * t, t * t);
+        [
+            u,
+            t,
+            0.5 * uu,
+            ut,
+            0.5 * tt,
+            uu * u,
+            uu * t,
+            u * tt,
+            tt * t,
+            uu * uu,
+            uu * ut,
+            uu * tt,
+            ut * tt,
+            tt * tt,
+        ]
+    }
+
     #[test]
     fn quartic_moments_are_the_rows_normal_equations() {
         // the 42 moments must give the outer products' sums of the 14-term rows up to rounding,
@@ -718,26 +740,7 @@ mod tests {
             };
             let (u, t) = (next(), next());
             let d = next() + 0.3 * u * t;
-            let (uu, ut, tt) = (u * u, u * t, t * t);
-            rows.add(
-                [
-                    u,
-                    t,
-                    0.5 * uu,
-                    ut,
-                    0.5 * tt,
-                    uu * u,
-                    uu * t,
-                    u * tt,
-                    tt * t,
-                    uu * uu,
-                    uu * ut,
-                    uu * tt,
-                    ut * tt,
-                    tt * tt,
-                ],
-                d,
-            );
+            rows.add(quartic_row(u, t), d);
             jet.add(u, t, d);
             cubic.add(u, t, d);
         }
@@ -787,24 +790,7 @@ mod tests {
             let w = jet_weight(u, t, d);
             assert!(w > 0.0 && w <= 1e4 * (1.0 + 1e-12));
             let s = w.sqrt();
-            let (uu, ut, tt) = (u * u, u * t, t * t);
-            let row = [
-                u,
-                t,
-                0.5 * uu,
-                ut,
-                0.5 * tt,
-                uu * u,
-                uu * t,
-                u * tt,
-                tt * t,
-                uu * uu,
-                uu * ut,
-                uu * tt,
-                ut * tt,
-                tt * tt,
-            ];
-            rows.add(row.map(|r| s * r), s * d);
+            rows.add(quartic_row(u, t).map(|r| s * r), s * d);
             jet.add_weighted(u, t, d, w);
             cubic.add_weighted(u, t, d, w);
             plain.add(u, t, d);
