@@ -546,6 +546,15 @@ pub fn constrict_3d_with(
     // judged on the same state and discarded too). It saves the key (the circumsphere and the
     // exact sides of the boundary faces) and the heap traffic of the tetrahedra pushed again
     // around a flipped edge or by an unchanged neighbour.
+    //
+    // Clearing the bit when (t, m) is popped is not needed for the result (so no test can catch
+    // its omission; dragon13 found none did): while t lives, (a) its mask only gains bits (a
+    // boundary face stays one while t lives), so a stale mask never recurs, and (b) a verdict
+    // "not removable" with mask m is final: with one boundary face the opposite vertex is on the
+    // boundary and stays there while t (which holds it) lives; with two, the edge opposite
+    // their shared edge is on the boundary and stays there while t (around it) lives; keep
+    // faces never change. So a popped (t, m) is never pushed again with a different outcome.
+    // The bit is cleared anyway, to keep the bits' meaning ("in the heap") exact.
     let push = |st: &mut State, heap: &mut QuadHeap, t: usize| {
         let m = st.mask(t);
         if m == 0 || m == DEAD || st.meta[t] & pending_bit(m) != 0 {
