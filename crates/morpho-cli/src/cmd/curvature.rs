@@ -28,7 +28,8 @@
 use crate::report::Report;
 use crate::Failure;
 use morpho::curvature::{
-    surface_curvature, volume_curvature, Gradients, NormalSource, SurfaceFit, SurfaceOptions,
+    surface_curvature, surface_curvature_scalars, volume_curvature, Gradients, NormalSource,
+    SurfaceFit, SurfaceOptions,
 };
 use morpho::io;
 use morpho::mesh::{NormalWeighting, Property, ScalarKind};
@@ -135,8 +136,10 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         fit,
         jet_normals,
     };
+    // the PLY and the CSV hold k1, k2, H, K, A only: no principal directions and normals
+    // kept in memory (the same values, `surface_curvature_scalars`)
     let c = report.time("compute", || {
-        surface_curvature(&mesh, &opts)
+        surface_curvature_scalars(&mesh, &opts)
             .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
     })?;
     report.set("vertices", mesh.positions.len());
