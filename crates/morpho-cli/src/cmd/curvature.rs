@@ -28,7 +28,8 @@
 use crate::report::Report;
 use crate::Failure;
 use morpho::curvature::{
-    surface_curvature, volume_curvature, Gradients, NormalSource, SurfaceFit, SurfaceOptions,
+    surface_curvature, surface_curvature_scalars, volume_curvature, Gradients, NormalSource,
+    SurfaceFit, SurfaceOptions,
 };
 use morpho::io;
 use morpho::mesh::{NormalWeighting, Property, ScalarKind};
@@ -83,6 +84,27 @@ fn summary(v: &[f64]) -> serde_json::Value {
     json!({"min": min, "max": max, "median": median})
 }
 
+/// Lets the allocator hand the mesh command's large freed blocks to its later allocations
+/// instead of returning them to the kernel and asking for fresh pages (glibc: blocks up to
+/// 32 MiB, the ceiling of glibc's own adaptive threshold, come from the heap,
+/// `mallopt(M_MMAP_THRESHOLD)`, and the heap's top is never trimmed, `M_TRIM_THRESHOLD`). The
+/// read stage frees the file's bytes (21 MB on the 257k-vertex skull) just before the
+/// curvature allocates its adjacency and cross products. On the benchmark's virtual machine a
+/// fresh page's first touch costs 0.6 ms/MB (4 KiB pages) and, for huge pages, 0.08 or
+/// 1.2–2 ms/MB depending on whether the host still backs the block (free page reporting):
+/// that made the skull's one-thread time bimodal; a reused heap page costs a `memset` at most
+/// (0.05 ms/MB). Measured in `bench/README.md` (branch `jet10`). The outputs are the same
+/// bytes (only where the memory comes from changes). Elsewhere a no-op.
+fn reuse_freed_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: `mallopt` only sets two of glibc's allocation thresholds (taking the arena's
+    // lock itself); no memory is touched and no pointer is passed
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 32 << 20);
+        libc::mallopt(libc::M_TRIM_THRESHOLD, i32::MAX);
+    }
+}
+
 fn is_volume(ext: &str) -> bool {
     matches!(ext, "nrrd" | "nhdr" | "mhd" | "mha" | "json")
 }
@@ -103,6 +125,7 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
             args.output.display()
         )));
     }
+    reuse_freed_memory();
     let mut mesh = report.time("read", || io::read_mesh(&args.input))?;
     let normals = match args.normals.as_str() {
         "file" => NormalSource::File,
@@ -135,8 +158,10 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         fit,
         jet_normals,
     };
+    // the PLY and the CSV hold k1, k2, H, K, A only: no principal directions and normals
+    // kept in memory (the same values, `surface_curvature_scalars`)
     let c = report.time("compute", || {
-        surface_curvature(&mesh, &opts)
+        surface_curvature_scalars(&mesh, &opts)
             .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
     })?;
     report.set("vertices", mesh.positions.len());
@@ -455,4 +480,29 @@ pub fn demo_section(ctx: &super::demo::Ctx) -> morpho::Result<Vec<morpho::io::ht
     }
     out.push(s);
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// After `reuse_freed_memory` a block of 24 MB (the skull's file is 21 MB) is carved from
+    /// the heap, not mapped on its own: glibc's count of directly mapped bytes does not grow
+    /// by it (a lower threshold, or no call, maps it and fails this).
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    #[test]
+    fn large_blocks_come_from_the_heap_after_reuse_freed_memory() {
+        reuse_freed_memory();
+        // SAFETY: `mallinfo2` only reads the allocator's statistics
+        let mapped = || unsafe { libc::mallinfo2() }.hblkhd;
+        let before = mapped();
+        let v: Vec<u8> = Vec::with_capacity(24 << 20);
+        std::hint::black_box(v.as_ptr());
+        let during = mapped();
+        drop(v);
+        assert!(
+            during < before + (24 << 20),
+            "the 24 MB block was mapped on its own: {before} → {during} bytes mapped"
+        );
+    }
 }

@@ -303,14 +303,45 @@ pub fn surface_curvature(
     mesh: &TriMesh,
     opts: &SurfaceOptions,
 ) -> Result<SurfaceCurvature, CurvatureError> {
-    curvature_pass(mesh, opts, false, false)
+    curvature_pass(mesh, opts, true, false, false)
 }
 
-/// [`surface_curvature`]; with `baseline` the vertex pass never takes its AVX2 compilation,
-/// with `unbatched` never the four-lane quartic (for the tests that compare them).
+/// [`surface_curvature`] without the vector outputs: `dir1`, `dir2` and `normals` are left
+/// empty; every other field is the same, bit for bit (test
+/// `scalar_outputs_are_bitwise_the_full_pass`). For callers that use only κ₁, κ₂, H, K, A and
+/// the statuses (the CLI writes nothing else): the three vector arrays are 72 % of the
+/// outputs' memory (24 of 33 bytes per vertex, 19 MB on the 257k-vertex skull), fresh pages
+/// that were written twice (zeroed, then filled). Fresh pages are what made the skull's
+/// one-thread time bimodal on the benchmark's virtual machine: the kernel's clearing of a
+/// fresh page (`clear_page_erms`) costs up to 5× more in some runs than in others
+/// (`bench/README.md`, branch `jet10`).
+///
+/// ```
+/// use morpho::curvature::{surface_curvature, surface_curvature_scalars, SurfaceOptions};
+/// use morpho::mesh::generate;
+/// let sphere = generate::icosphere(3);
+/// let opts = SurfaceOptions::estimated_normals();
+/// let (all, some) = (
+///     surface_curvature(&sphere, &opts).unwrap(),
+///     surface_curvature_scalars(&sphere, &opts).unwrap(),
+/// );
+/// assert_eq!((all.h, all.status), (some.h, some.status));
+/// assert!(some.dir1.is_empty() && some.normals.is_empty());
+/// ```
+pub fn surface_curvature_scalars(
+    mesh: &TriMesh,
+    opts: &SurfaceOptions,
+) -> Result<SurfaceCurvature, CurvatureError> {
+    curvature_pass(mesh, opts, false, false, false)
+}
+
+/// [`surface_curvature`], or without `vectors` [`surface_curvature_scalars`]; with `baseline`
+/// the vertex pass never takes its AVX2 compilation, with `unbatched` never the four-lane
+/// quartic (for the tests that compare them).
 fn curvature_pass(
     mesh: &TriMesh,
     opts: &SurfaceOptions,
+    vectors: bool,
     baseline: bool,
     unbatched: bool,
 ) -> Result<SurfaceCurvature, CurvatureError> {
@@ -366,6 +397,9 @@ fn curvature_pass(
         v
     };
     let zeros3 = || -> Vec<Vector3> {
+        if !vectors {
+            return Vec::new();
+        }
         let mut v = Vec::with_capacity(n);
         advise_huge_pages(&mut v);
         v.par_extend((0..n).into_par_iter().map(|_| Vector3::zeros()));
@@ -386,6 +420,17 @@ fn curvature_pass(
         undetermined: 0,
         jet_fallbacks: 0,
     };
+    // each chunk's slices of the vector outputs, or `None` for every chunk without them
+    let vector_chunks: Vec<Option<VectorsOut<'_>>> = if vectors {
+        out.dir1
+            .chunks_mut(CHUNK)
+            .zip(out.dir2.chunks_mut(CHUNK))
+            .zip(out.normals.chunks_mut(CHUNK))
+            .map(|((d1, d2), nm)| Some((d1, d2, nm)))
+            .collect()
+    } else {
+        (0..n.div_ceil(CHUNK)).map(|_| None).collect()
+    };
     let (undetermined, jet_fallbacks) = out
         .k1
         .par_chunks_mut(CHUNK)
@@ -393,14 +438,24 @@ fn curvature_pass(
         .zip(out.h.par_chunks_mut(CHUNK))
         .zip(out.k.par_chunks_mut(CHUNK))
         .zip(out.a.par_chunks_mut(CHUNK))
-        .zip(out.dir1.par_chunks_mut(CHUNK))
-        .zip(out.dir2.par_chunks_mut(CHUNK))
-        .zip(out.normals.par_chunks_mut(CHUNK))
         .zip(out.status.par_chunks_mut(CHUNK))
+        .zip(vector_chunks)
         .enumerate()
-        .map_init(Scratch::default, |s, (c, out)| {
-            pass.chunk(c * CHUNK, out, s)
-        })
+        .map_init(
+            Scratch::default,
+            |s, (c, ((((((k1, k2), h), k), a), status), vectors))| {
+                let out = ChunkOut {
+                    k1,
+                    k2,
+                    h,
+                    k,
+                    a,
+                    status,
+                    vectors,
+                };
+                pass.chunk(c * CHUNK, out, s)
+            },
+        )
         .reduce(|| (0, 0), |x, y| (x.0 + y.0, x.1 + y.1));
     out.undetermined = undetermined;
     out.jet_fallbacks = jet_fallbacks;
@@ -468,26 +523,21 @@ fn gather(mesh: &TriMesh, y0: [f64; 3], ring: &[u32], out: &mut Vec<[f64; 3]>) {
     );
 }
 
-/// The output slices of one chunk of vertices, as the zipped chunk iterators give them.
-type ChunkOut<'o> = (
-    (
-        (
-            (
-                (
-                    (
-                        ((&'o mut [f64], &'o mut [f64]), &'o mut [f64]),
-                        &'o mut [f64],
-                    ),
-                    &'o mut [f64],
-                ),
-                &'o mut [Vector3],
-            ),
-            &'o mut [Vector3],
-        ),
-        &'o mut [Vector3],
-    ),
-    &'o mut [VertexStatus],
-);
+/// One chunk's slices of `dir1`, `dir2` and `normals`.
+type VectorsOut<'o> = (&'o mut [Vector3], &'o mut [Vector3], &'o mut [Vector3]);
+
+/// The output slices of one chunk of vertices ([`SurfaceCurvature`]'s fields of the same
+/// names); `vectors` is `None` when the pass keeps no vector outputs
+/// ([`surface_curvature_scalars`]).
+struct ChunkOut<'o> {
+    k1: &'o mut [f64],
+    k2: &'o mut [f64],
+    h: &'o mut [f64],
+    k: &'o mut [f64],
+    a: &'o mut [f64],
+    status: &'o mut [VertexStatus],
+    vectors: Option<VectorsOut<'o>>,
+}
 
 impl Pass<'_> {
     /// The vertices `first..` of one chunk into its output slices; the numbers of undetermined
@@ -525,7 +575,15 @@ impl Pass<'_> {
     /// two compilations.
     #[inline(always)]
     fn chunk_any(&self, first: usize, out: ChunkOut<'_>, s: &mut Scratch) -> (usize, usize) {
-        let ((((((((k1, k2), h), k), a), dir1), dir2), normals), status) = out;
+        let ChunkOut {
+            k1,
+            k2,
+            h,
+            k,
+            a,
+            status,
+            mut vectors,
+        } = out;
         let (mut undetermined, mut fallbacks) = (0, 0);
         let len = k1.len();
         let mut put = |i: usize, r: Vertex, fallback: bool| {
@@ -536,9 +594,11 @@ impl Pass<'_> {
             h[i] = 0.5 * (r.k[0] + r.k[1]);
             k[i] = r.k[0] * r.k[1];
             a[i] = r.k[0].abs() + r.k[1].abs();
-            dir1[i] = r.d[0].into();
-            dir2[i] = r.d[1].into();
-            normals[i] = r.n.into();
+            if let Some((dir1, dir2, normals)) = &mut vectors {
+                dir1[i] = r.d[0].into();
+                dir2[i] = r.d[1].into();
+                normals[i] = r.n.into();
+            }
             status[i] = r.status;
         };
         // interior vertices of the jet fit with at least 14 points go four at a time through
@@ -1095,24 +1155,27 @@ impl Adjacency {
         advise_huge_pages(&mut tstart);
         for t in &mesh.triangles {
             for &x in t {
-                tstart[x as usize + 1] += 1;
+                tstart[x as usize] += 1;
             }
         }
-        for i in 0..n {
-            tstart[i + 1] += tstart[i];
+        // inclusive sums: tstart[v] = the end of v's row (tstart[n] = the total)
+        let mut sum = 0;
+        for e in &mut tstart {
+            sum += *e;
+            *e = sum;
         }
-        let mut fill = Vec::with_capacity(n + 1);
-        advise_huge_pages(&mut fill);
-        fill.extend_from_slice(&tstart);
-        let mut tri = vec![0u32; tstart[n]];
+        // each row filled from its end, the triangles taken in descending order: the rows
+        // come out ascending and tstart[v] moves back to the start of v's row (no second
+        // array of cursors: 2 MB fewer fresh pages on the skull)
+        let mut tri = vec![0u32; sum];
         advise_huge_pages(&mut tri);
-        for (ti, t) in mesh.triangles.iter().enumerate() {
+        for (ti, t) in mesh.triangles.iter().enumerate().rev() {
             for &x in t {
-                tri[fill[x as usize]] = ti as u32;
-                fill[x as usize] += 1;
+                let e = &mut tstart[x as usize];
+                *e -= 1;
+                tri[*e] = ti as u32;
             }
         }
-        drop(fill);
         let mut nb = vec![0u32; 2 * tstart[n]];
         advise_huge_pages(&mut nb);
         // nstart[v + 1], until the blocks are joined: the end of v's row relative to its
@@ -1447,10 +1510,10 @@ mod tests {
                     ..SurfaceOptions::estimated_normals()
                 },
             ] {
-                let scalar = curvature_pass(m, &opts, true, true).unwrap();
+                let scalar = curvature_pass(m, &opts, true, true, true).unwrap();
                 let want = bits(&scalar);
                 for (baseline, unbatched) in [(true, false), (false, true), (false, false)] {
-                    let c = curvature_pass(m, &opts, baseline, unbatched).unwrap();
+                    let c = curvature_pass(m, &opts, true, baseline, unbatched).unwrap();
                     assert!(
                         bits(&c) == want,
                         "mesh {k} ring {} baseline {baseline} unbatched {unbatched}",
@@ -1462,6 +1525,39 @@ mod tests {
         }
         // the collapsed patch and the awkward mesh exercise the refused lanes
         assert!(refused > 0);
+    }
+
+    /// `surface_curvature_scalars` is the full pass without its vector outputs: every scalar
+    /// output and status the same bits, on every mesh and fit (the vertex results reach the
+    /// same slots whether or not the vector slices are there).
+    #[test]
+    fn scalar_outputs_are_bitwise_the_full_pass() {
+        let mut meshes = lane_meshes();
+        // more than one parallel chunk, with boundaries
+        meshes.push(generate::disk(40, 90));
+        for (k, m) in meshes.iter().enumerate() {
+            for opts in [
+                SurfaceOptions::default(),
+                SurfaceOptions::estimated_normals(),
+                SurfaceOptions::jet_normals_paraboloid(),
+                SurfaceOptions {
+                    fit: SurfaceFit::Quadric,
+                    ring: 2,
+                    ..SurfaceOptions::default()
+                },
+            ] {
+                let full = surface_curvature(m, &opts).unwrap();
+                let some = surface_curvature_scalars(m, &opts).unwrap();
+                assert!(some.dir1.is_empty() && some.dir2.is_empty() && some.normals.is_empty());
+                let want = SurfaceCurvature {
+                    dir1: Vec::new(),
+                    dir2: Vec::new(),
+                    normals: Vec::new(),
+                    ..full
+                };
+                assert!(bits(&some) == bits(&want), "mesh {k} {opts:?}");
+            }
+        }
     }
 
     #[test]
