@@ -260,3 +260,114 @@ fn non_manifold_isolated_and_zero_area_are_counted() {
         assert_eq!(empty, r["undetermined"].as_u64().unwrap(), "{csv}");
     }
 }
+
+/// An open cylinder of radius 2 around the z axis (24 × 13 vertices, height 3).
+fn cylinder(dir: &Path) {
+    let (n, m) = (24usize, 13usize);
+    let mut s = String::new();
+    for j in 0..m {
+        for i in 0..n {
+            let t = i as f64 * std::f64::consts::TAU / n as f64;
+            s.push_str(&format!(
+                "v {} {} {}\n",
+                2.0 * t.cos(),
+                2.0 * t.sin(),
+                j as f64 * 0.25
+            ));
+        }
+    }
+    for j in 0..m - 1 {
+        for i in 0..n {
+            let a = j * n + i + 1;
+            let b = j * n + (i + 1) % n + 1;
+            s.push_str(&format!("f {a} {b} {}\nf {a} {} {}\n", b + n, b + n, a + n));
+        }
+    }
+    std::fs::write(dir.join("cyl.obj"), s).unwrap();
+}
+
+/// `--directions`: six more columns; on a cylinder the direction of the curvature nearer 0 runs
+/// along the axis and the other around it, both unit and orthogonal (at the vertices two rings
+/// away from the open ends); NaN where undetermined; refused for volumes.
+#[test]
+fn directions_follow_the_cylinder() {
+    let dir = tempfile::tempdir().unwrap();
+    cylinder(dir.path());
+    for normals in ["jet", "area"] {
+        let o = morpho(
+            dir.path(),
+            &[
+                "curvature",
+                "cyl.obj",
+                "-o",
+                "c.csv",
+                "--directions",
+                "--normals",
+                normals,
+            ],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = std::fs::read_to_string(dir.path().join("c.csv")).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(
+            lines.next().unwrap(),
+            "x,y,z,index,k1,k2,H,K,A,d1x,d1y,d1z,d2x,d2y,d2z"
+        );
+        let mut checked = 0;
+        for l in lines {
+            let v: Vec<f64> = l
+                .split(',')
+                .map(|x| x.parse().unwrap_or(f64::NAN))
+                .collect();
+            let (z, k1, k2) = (v[2], v[4], v[5]);
+            let (d1, d2) = ([v[9], v[10], v[11]], [v[12], v[13], v[14]]);
+            if k1.is_nan() {
+                assert!(d1.iter().chain(&d2).all(|x| x.is_nan()), "{l}");
+                continue;
+            }
+            if !(0.4..=2.6).contains(&z) {
+                continue;
+            }
+            let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            assert!(
+                (dot(d1, d1) - 1.0).abs() < 1e-9 && (dot(d2, d2) - 1.0).abs() < 1e-9,
+                "{l}"
+            );
+            assert!(dot(d1, d2).abs() < 1e-9, "{l}");
+            let (axis, around) = if k1.abs() < k2.abs() {
+                (d1, d2)
+            } else {
+                (d2, d1)
+            };
+            assert!(axis[2].abs() > 0.99, "{normals}: {l}");
+            assert!(around[2].abs() < 0.1, "{normals}: {l}");
+            // around the axis: orthogonal to the radius (x, y)
+            assert!(
+                (around[0] * v[0] + around[1] * v[1]).abs() < 0.1 * 2.0,
+                "{normals}: {l}"
+            );
+            checked += 1;
+        }
+        assert!(checked >= 24 * 8, "{normals}: {checked}");
+    }
+    let o = morpho(
+        dir.path(),
+        &["curvature", "cyl.obj", "-o", "c.ply", "--directions"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let ply = std::fs::read(dir.path().join("c.ply")).unwrap();
+    let head = String::from_utf8_lossy(&ply[..800.min(ply.len())]).into_owned();
+    for p in ["k1", "A", "d1x", "d1y", "d1z", "d2x", "d2y", "d2z"] {
+        assert!(head.contains(&format!(" {p}\n")), "{p}: {head}");
+    }
+    let o = morpho(dir.path(), &["curvature", "cyl.obj", "-o", "plain.ply"]);
+    assert!(o.status.success());
+    let plain = std::fs::read(dir.path().join("plain.ply")).unwrap();
+    assert!(!String::from_utf8_lossy(&plain[..600.min(plain.len())]).contains("d1x"));
+    let o = morpho(
+        dir.path(),
+        &["curvature", "v.nrrd", "-o", "out", "--directions"],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--directions"));
+}

@@ -4,7 +4,10 @@
 //!
 //! - Meshes → `.ply` (the mesh with vertex properties `k1,k2,H,K,A`, κ₁ ≤ κ₂, NaN where the fit
 //!   is undetermined) or `.csv` (`x,y,z,index,k1,k2,H,K,A` per vertex; an undetermined value is
-//!   an empty cell). **Default** (`--normals jet`, `--fit jet`): a jet (degree 4, else 3)
+//!   an empty cell). `--directions` adds the unit principal directions `d1x,d1y,d1z` (of κ₁)
+//!   and `d2x,d2y,d2z` (of κ₂ = normal × d1), NaN (empty in CSV) where undetermined; they are
+//!   opt-in because most users want the scalars (the full pass keeps 19 MB more on the skull
+//!   and the PLY grows by half). **Default** (`--normals jet`, `--fit jet`): a jet (degree 4, else 3)
 //!   fitted over each vertex's 2-ring in the frame of the area-weighted normal, and the
 //!   curvature of the fitted graph at the vertex (on a boundary vertex, where that fit is
 //!   one-sided, the quadric with linear terms over the 2-ring instead). Not in the thesis: it
@@ -63,6 +66,10 @@ pub struct Args {
     /// platelet, 2 for the quadric and the jet; the jet uses at least 2).
     #[arg(long)]
     pub ring: Option<usize>,
+    /// Also write the unit principal directions: `d1x,d1y,d1z` (of κ₁) and `d2x,d2y,d2z` (of
+    /// κ₂), NaN where the vertex is undetermined.
+    #[arg(long)]
+    pub directions: bool,
 }
 
 /// min, max, median of the finite values (None when there are none).
@@ -158,12 +165,22 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
         fit,
         jet_normals,
     };
-    // the PLY and the CSV hold k1, k2, H, K, A only: no principal directions and normals
-    // kept in memory (the same values, `surface_curvature_scalars`)
+    // without --directions the PLY and the CSV hold k1, k2, H, K, A only: no principal
+    // directions and normals kept in memory (the same values, `surface_curvature_scalars`)
     let c = report.time("compute", || {
-        surface_curvature_scalars(&mesh, &opts)
-            .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
+        if args.directions {
+            surface_curvature(&mesh, &opts)
+        } else {
+            surface_curvature_scalars(&mesh, &opts)
+        }
+        .map_err(|e| Failure::from(morpho::Error::from(e).with_path(&args.input)))
     })?;
+    let directions = if args.directions {
+        direction_columns(&c)
+    } else {
+        Vec::new()
+    };
+    report.set("directions", args.directions);
     report.set("vertices", mesh.positions.len());
     report.set("undetermined", c.undetermined);
     if jet_normals || fit == SurfaceFit::Jet {
@@ -208,6 +225,14 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                 values: std::mem::take(v),
             });
         }
+        for (name, values) in directions {
+            mesh.vertex_props.retain(|p| p.name != name);
+            mesh.vertex_props.push(Property {
+                name: name.into(),
+                kind: ScalarKind::F64,
+                values,
+            });
+        }
         report.time("write", || {
             io::write_mesh(&args.output, &mesh, io::Encoding::BinaryLittleEndian)
         })?;
@@ -229,6 +254,14 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
                     name: (*n).into(),
                     values: (*v).clone(),
                 }));
+                cols.extend(
+                    directions
+                        .into_iter()
+                        .map(|(n, values)| morpho::mesh::Column {
+                            name: n.into(),
+                            values,
+                        }),
+                );
                 cols
             },
         };
@@ -243,7 +276,30 @@ pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     Ok(0)
 }
 
+/// The principal directions as six columns `d1x … d2z`, NaN at the undetermined vertices
+/// (whose k1 is NaN).
+fn direction_columns(c: &morpho::curvature::SurfaceCurvature) -> Vec<(&'static str, Vec<f64>)> {
+    let names = [["d1x", "d1y", "d1z"], ["d2x", "d2y", "d2z"]];
+    let mut out = Vec::with_capacity(6);
+    for (d, names) in [&c.dir1, &c.dir2].into_iter().zip(names) {
+        for (axis, name) in names.into_iter().enumerate() {
+            let values = d
+                .iter()
+                .zip(&c.k1)
+                .map(|(v, k1)| if k1.is_nan() { f64::NAN } else { v[axis] })
+                .collect();
+            out.push((name, values));
+        }
+    }
+    out
+}
+
 fn run_volume(args: &Args, report: &mut Report) -> Result<u8, Failure> {
+    if args.directions {
+        return Err(Failure::usage(
+            "--directions is for meshes: volume curvature writes k1 … K only",
+        ));
+    }
     if args.output.exists() && !args.output.is_dir() {
         return Err(Failure::usage(format!(
             "{}: volume curvature is written into a folder (k1.nrrd … K.nrrd); this is a file",
