@@ -47,6 +47,7 @@ mod error;
 pub(crate) mod facets;
 pub(crate) mod fast;
 pub(crate) mod gamma;
+mod lens_tree;
 mod lune;
 
 pub use build::{graph_2d, Graph, Kind, ALPHA_HULL_LIMIT_3D, BRUTE_LIMIT_3D};
