@@ -13,7 +13,9 @@
 //!   (same triangles at a level; refined by the prisms' half heights); `morpho::flint`'s
 //!   `baselines3.rs`, `prism.rs`.
 //! - `contains MESH QUERIES [--method flintstone|prism] -o OUT.csv`: the query rows (`x,y,z`)
-//!   plus `inside` (1 inside, 0 outside, 2 on the boundary; exact with either hierarchy).
+//!   plus `inside` (1 inside, 0 outside, 2 on the boundary; exact with either hierarchy). The
+//!   flintstone method answers through a grid of cached answers (`morpho::flint::CellCache3`,
+//!   about 4 cells per query up to 2²²; report keys `cells`, `near_cells`, timing `index`).
 //! - `intersect A B -o OUT.(csv|ply)`: the pairs of intersecting (closed) triangles by
 //!   descending both trees (exact at the leaves, `morpho::flint::intersect3`) and their
 //!   intersection segments — a CSV row `x,y,z,x2,y2,z2,tri_a,tri_b,coplanar` per segment (a
@@ -25,7 +27,7 @@
 
 use crate::report::Report;
 use crate::Failure;
-use morpho::flint::{Containment, FlintTree3, PrismTree3, SideBall, Target};
+use morpho::flint::{Containment, FlintTree3, PrismTree3, SideBall, Target, DEFAULT_CELLS};
 use morpho::geom::Point3;
 use morpho::io;
 use morpho::mesh::{Column, PointSet, TriMesh};
@@ -187,9 +189,6 @@ pub fn approx(
     Ok(0)
 }
 
-/// A batch point-in-mesh query on one of the trees.
-type Walk = Box<dyn Fn(&[Point3]) -> Result<Vec<Containment>, morpho::flint::FlintError>>;
-
 /// `flint contains` on a mesh.
 pub fn contains(
     input: &Path,
@@ -206,22 +205,26 @@ pub fn contains(
             queries.display()
         )));
     }
-    let walk: Walk = if method == "prism" {
-        let p = prism_tree(input, &m, report)?;
-        Box::new(move |xs| p.contains_batch(xs))
-    } else {
-        let t = tree(input, &m, report)?;
-        Box::new(move |xs| t.contains_batch(xs))
-    };
-    report.set("method", method);
     let xs: Vec<Point3> = q
         .coords
         .chunks_exact(3)
         .map(|c| Point3::new(c[0], c[1], c[2]))
         .collect();
-    let ans = report.time("query", || {
-        walk(&xs).map_err(|e| Failure::from(morpho::Error::from(e).with_path(queries)))
-    })?;
+    let refused = |e| Failure::from(morpho::Error::from(e).with_path(queries));
+    let ans = if method == "prism" {
+        let p = prism_tree(input, &m, report)?;
+        report.time("query", || p.contains_batch(&xs).map_err(refused))?
+    } else {
+        let t = tree(input, &m, report)?;
+        // the cached classification (morpho::flint::CellCache3): about 4 cells per query
+        let g = report.time("index", || {
+            t.cell_cache(xs.len().saturating_mul(4).min(DEFAULT_CELLS))
+        });
+        report.set("cells", g.dims().to_vec());
+        report.set("near_cells", g.label_counts()[2]);
+        report.time("query", || g.contains_batch(&xs).map_err(refused))?
+    };
+    report.set("method", method);
     let count = |c: Containment| ans.iter().filter(|&&a| a == c).count();
     report.set("queries", xs.len());
     report.set("inside", count(Containment::Inside));

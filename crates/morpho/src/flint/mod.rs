@@ -24,6 +24,9 @@
 //!   [`FlintTree3::contains`] (Lemma 6.1, exact; crack-safe through path fills, see
 //!   `query3.rs`) with the oracle [`contains_brute3`], and its approximations
 //!   [`Approximation3`] (level ℓ, adaptive ε, triangle count; §7.3.3).
+//!   [`CellCache3`]: a grid of cached answers over the tree for large batches (cells that
+//!   meet no triangle's box answered once per connected component by the exact walk; the
+//!   others by the walk; `locate3.rs`).
 //! - [`intersect3`], [`intersects3`]: mesh–mesh intersection by descending two 3D trees
 //!   (§7.4; pairs pruned only where convex supersets of the flintstones are provably
 //!   disjoint, exact triangle–triangle tests at the leaves, see `intersect3.rs`), with the
@@ -44,6 +47,7 @@ mod criteria;
 mod disc;
 mod intersect3;
 mod locate;
+mod locate3;
 mod patch3;
 mod prism;
 mod query;
@@ -62,6 +66,7 @@ pub use disc::{Flintstone, SideDisc, StoneKind};
 pub use intersect3::{
     intersect3, intersect3_brute, intersects3, triangle_meet, IntersectStats3, TriangleMeet,
 };
+pub use locate3::{CellCache3, DEFAULT_CELLS};
 pub use prism::{Prism, PrismTree3};
 pub use query::{
     contains_brute, intersect, intersect_brute, intersect_counted, Containment, Crossing,
