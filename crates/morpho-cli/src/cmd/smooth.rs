@@ -34,6 +34,10 @@
 //! Report keys (3D): `max_normal_jump_rad` (every macro and micro edge, 20 samples per edge,
 //! measured independently of the construction), `max_macro_jump_rad`, `max_micro_jump_rad`,
 //! `non_g1_edges` (edges above 1e-9 rad), `folds` (samples with `n₁·n₂ ≤ 0`), `fold_edges`,
+//! the non-G¹ edges by cause (`morpho::smooth::non_g1_causes`): `non_g1_micro`,
+//! `non_g1_fold_invisible` (a fold at a vertex whose normal does not see its triangles),
+//! `non_g1_fold`, `non_g1_inflected` (inflected or nearly flat macro edges), `non_g1_other`,
+//! and `non_g1_unlisted` (non-G¹ macro edges the construction did not list as unresolved),
 //! `singular_edges` (split6: edges built with the fallback normal field, inflected or flat),
 //! `unresolved_edges` (split6: edges whose linear systems kept a residual: the only ones
 //! that may be non-G¹), `sign_warnings`, `fold_guarded_edges` (split3 only),
@@ -50,9 +54,9 @@ use morpho::geom::{Point2, Vector3};
 use morpho::io::{self, Format};
 use morpho::mesh::{NormalWeighting, Polygon, Polyline, Shapes2, TriMesh};
 use morpho::smooth::{
-    continuity, curve_joints, g1_curve, max_deviation, reversed_normals, side_vertex,
-    side_vertex_continuity, six_split, tessellate, three_split_with, two_split, visible_normals,
-    CurveWeighting, FailureKind, G1Curve, SideVertexOptions, SplitOptions,
+    continuity, curve_joints, g1_curve, max_deviation, non_g1_causes, reversed_normals,
+    side_vertex, side_vertex_continuity, six_split, tessellate, three_split_with, two_split,
+    visible_normals, CurveWeighting, FailureKind, G1Curve, SideVertexOptions, SplitOptions,
 };
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -410,6 +414,13 @@ fn run_surface(args: &Args, report: &mut Report) -> Result<u8, Failure> {
     report.set("max_micro_jump_rad", c.max_micro_jump_rad);
     report.set("max_position_gap", c.max_position_gap);
     report.set("non_g1_edges", c.non_g1_edges.len());
+    let causes = non_g1_causes(&s, &mesh, &n, &c);
+    report.set("non_g1_micro", causes.micro);
+    report.set("non_g1_fold_invisible", causes.fold_invisible);
+    report.set("non_g1_fold", causes.fold);
+    report.set("non_g1_inflected", causes.inflected);
+    report.set("non_g1_other", causes.other);
+    report.set("non_g1_unlisted", causes.unlisted);
     report.set("edges_checked", c.edges);
     report.set("folds", c.folds);
     report.set("fold_edges", c.fold_edges);

@@ -242,3 +242,120 @@ pub fn reversed_normals(mesh: &crate::mesh::TriMesh) -> usize {
         .filter(|(f, s)| f.norm() > 0.0 && f.dot(s) <= 0.0)
         .count()
 }
+
+/// The non-G¹ edges of a split surface by cause (issue 19; see [`non_g1_causes`]). Every edge
+/// of [`Continuity::non_g1_edges`] is counted in exactly one of the first five fields.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct NonG1Causes {
+    /// Edges inside one macro triangle.
+    pub micro: usize,
+    /// Macro edges with a fold sample (`n₁·n₂ ≤ 0`) and an end vertex whose normal does not
+    /// see every incident triangle (`min_f n·n_f ≤ 0`): a fold is then unavoidable for a
+    /// surface interpolating that normal ([`super::visible_normals`]).
+    pub fold_invisible: usize,
+    /// Other macro edges with a fold sample.
+    pub fold: usize,
+    /// Macro edges `a b` without a fold whose tangent planes lie on one side of the chord
+    /// `d = b − a`, `(n_a·d)(n_b·d) ≥ 0`, or are nearly parallel, `|n_a × n_b| < 1e-3`:
+    /// inflected or nearly flat edges, where no degree-elevated quadratic boundary near the
+    /// Step-2 one exists and (9.4) is ill-conditioned (three-split module doc).
+    pub inflected: usize,
+    /// The remaining macro edges.
+    pub other: usize,
+    /// Non-G¹ macro edges (any cause) that the construction did not list in
+    /// [`SplitSurface::unresolved_edges`]: claimed G¹, measured not.
+    pub unlisted: usize,
+}
+
+/// Classifies the non-G¹ edges `c.non_g1_edges` of `s` (a split surface of `mesh` built with
+/// the unit-able vertex `normals`) by cause, as [`NonG1Causes`] says. The macro edge of a
+/// pair of patches of different macro triangles is the pair of vertices those triangles
+/// share; its fold test re-samples the pair at the 20 interior points of [`continuity`]. Only
+/// the listed edges are examined: O(T + V + |non_g1_edges|).
+pub fn non_g1_causes(
+    s: &SplitSurface,
+    mesh: &crate::mesh::TriMesh,
+    normals: &[crate::geom::Vector3],
+    c: &Continuity,
+) -> NonG1Causes {
+    let pos: Vec<[f64; 3]> = mesh.positions.iter().map(|p| (*p).into()).collect();
+    let nrm: Vec<[f64; 3]> = normals
+        .iter()
+        .map(|n| {
+            let l = n.norm();
+            [n.x / l, n.y / l, n.z / l]
+        })
+        .collect();
+    // min over the incident faces of n·n_f, per vertex
+    let mut sees = vec![f64::INFINITY; pos.len()];
+    for t in &mesh.triangles {
+        let p = |k: usize| pos[t[k] as usize];
+        let f = vec::cross(vec::sub(p(1), p(0)), vec::sub(p(2), p(0)));
+        let l = vec::norm(f);
+        for &v in t {
+            if let (Some(s), Some(n)) = (sees.get_mut(v as usize), nrm.get(v as usize)) {
+                *s = s.min(vec::dot(f, *n) / l);
+            }
+        }
+    }
+    let unresolved: std::collections::HashSet<[u32; 2]> =
+        s.unresolved_edges.iter().copied().collect();
+    let mut out = NonG1Causes::default();
+    for &(p, q) in &c.non_g1_edges {
+        let (tp, tq) = (s.patches[p].macro_tri, s.patches[q].macro_tri);
+        let (Some(ta), Some(tb)) = (
+            mesh.triangles.get(tp as usize),
+            mesh.triangles.get(tq as usize),
+        ) else {
+            out.other += 1;
+            continue;
+        };
+        if tp == tq {
+            out.micro += 1;
+            continue;
+        }
+        let shared: Vec<u32> = ta.iter().copied().filter(|v| tb.contains(v)).collect();
+        if shared.len() != 2 {
+            out.other += 1;
+            continue;
+        }
+        let (a, b) = (shared[0].min(shared[1]), shared[0].max(shared[1]));
+        let (ia, ib) = (a as usize, b as usize);
+        out.unlisted += usize::from(!unresolved.contains(&[a, b]));
+        let fold = pair_folds(s, p, q);
+        let d = vec::sub(pos[ib], pos[ia]);
+        let inflected = vec::dot(nrm[ia], d) * vec::dot(nrm[ib], d) >= 0.0
+            || vec::norm(vec::cross(nrm[ia], nrm[ib])) < 1e-3;
+        if fold && (sees[ia] <= 0.0 || sees[ib] <= 0.0) {
+            out.fold_invisible += 1;
+        } else if fold {
+            out.fold += 1;
+        } else if inflected {
+            out.inflected += 1;
+        } else {
+            out.other += 1;
+        }
+    }
+    out
+}
+
+/// Whether patches `p` and `q` of `s` have a fold sample (`n₁·n₂ ≤ 0`) on their shared edge,
+/// at the sample points of [`continuity`] (20 per edge).
+fn pair_folds(s: &SplitSurface, p: usize, q: usize) -> bool {
+    let (tp, tq) = (s.patches[p].triangle(), s.patches[q].triangle());
+    let (cp, cq) = (tp.corners(), tq.corners());
+    let unit = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for i in 0..3 {
+        for j in 0..3 {
+            if key(cp[i]) == key(cq[(j + 1) % 3]) && key(cp[(i + 1) % 3]) == key(cq[j]) {
+                return (1..=20).any(|k| {
+                    let t = k as f64 / 21.0;
+                    let n1 = tp.normal(vec::lerp(unit[i], unit[(i + 1) % 3], t));
+                    let n2 = tq.normal(vec::lerp(unit[j], unit[(j + 1) % 3], 1.0 - t));
+                    vec::dot(n1, n2) <= 0.0
+                });
+            }
+        }
+    }
+    false
+}

@@ -43,7 +43,10 @@ mod transversal;
 mod triangle;
 
 pub use bezier::{bernstein, joint, BezierCurve, Joint};
-pub use check::{continuity, max_deviation, reversed_normals, side_vertex_continuity, Continuity};
+pub use check::{
+    continuity, max_deviation, non_g1_causes, reversed_normals, side_vertex_continuity, Continuity,
+    NonG1Causes,
+};
 pub use conic::{side_vertex_weights, Conic, ConicEdge};
 pub use curve::{
     curve_joints, g1_curve, tangent, CurveFailure, CurveWeighting, FailureKind, G1Curve,
