@@ -161,6 +161,12 @@ def main():
     ap.add_argument("--mesh-queries", type=int, default=200_000)
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--polygon", help="a polygon CSV (x,y in order) instead of the upsampled GB coast")
+    ap.add_argument("--star", type=int, metavar="N",
+                    help="instead of the coast: a rough star of N vertices (radius 1 + 600 "
+                         "harmonics with amplitudes 0.05·g/h, g standard normal, + a closed 2e-5 "
+                         "random walk; seed 7), the dense smooth-and-rough case of bench/README")
+    ap.add_argument("--circle", type=int, metavar="N",
+                    help="instead of the coast: the exact circle (cos, sin of k·2π/N)")
     ap.add_argument("--build-only", action="store_true",
                     help="tree build (one query) against Douglas–Peucker at tolerance 1e-3 and 0 "
                          "(the whole hierarchy), process CPU, taking turns; no point queries")
@@ -178,6 +184,20 @@ def main():
     if a.polygon:
         up = np.loadtxt(a.polygon, delimiter=",", skiprows=1)
         poly_csv = a.polygon
+    elif a.star or a.circle:
+        n = a.star or a.circle
+        th = np.arange(n) * 2 * np.pi / n
+        r = np.ones(n)
+        if a.star:
+            rng = np.random.default_rng(7)
+            for h in range(1, 601):
+                amp = rng.normal() * 0.05 / h
+                r += amp * np.cos(h * th + rng.random() * 2 * np.pi)
+            w = np.cumsum(rng.normal(size=n)) * 2e-5
+            r += w - np.arange(n) / n * w[-1]
+        up = np.c_[r * np.cos(th), r * np.sin(th)]
+        poly_csv = os.path.join(d, "poly.csv")
+        np.savetxt(poly_csv, up, delimiter=",", header="x,y", comments="", fmt="%.17g")
     else:
         xy = np.loadtxt(os.path.join(DATA, "polygons", "coast_great_britain_ne10m.csv"),
                         delimiter=",", skiprows=1)

@@ -25,7 +25,8 @@
 //! Cost: O(k) for a polyline of k vertices.
 
 use crate::geom::intersect::on_segment;
-use crate::geom::predicates::raw::{incircle, orient2d};
+use crate::geom::predicates::incircle_sign;
+use crate::geom::predicates::raw::orient2d;
 use crate::geom::vec::{dist, dist2, dot, midpoint, perp, scale, sub};
 
 /// The disc of one side of a chord: through both chord ends and its defining vertex.
@@ -99,27 +100,124 @@ pub(crate) fn at(points: &[[f64; 2]], p: usize) -> [f64; 2] {
     points[p % points.len()]
 }
 
-/// The positions `from..to` of a polygon (wrapping) with their points, in order, without a
-/// division per vertex.
-fn positions(
-    points: &[[f64; 2]],
-    from: usize,
-    to: usize,
-) -> impl Iterator<Item = (usize, [f64; 2])> + '_ {
+/// Calls `f(position, point)` for the positions `from..to` of a polygon (wrapping; `to − from`
+/// at most the vertex count), in order, as at most two contiguous slices: no division and no
+/// chained iterator per vertex.
+#[inline]
+fn for_positions(points: &[[f64; 2]], from: usize, to: usize, mut f: impl FnMut(usize, [f64; 2])) {
     let n = points.len();
+    debug_assert!(to <= from + n);
     let start = from % n;
-    (from..to).zip(points[start..].iter().chain(points.iter().cycle()).copied())
+    let first = (to - from).min(n - start);
+    for (k, &x) in points[start..start + first].iter().enumerate() {
+        f(from + k, x);
+    }
+    let rest = to - from - first;
+    for (k, &x) in points[..rest].iter().enumerate() {
+        f(from + first + k, x);
+    }
+}
+
+/// u = 2⁻⁵³, the unit roundoff.
+const U: f64 = f64::EPSILON / 2.0;
+/// Shewchuk's stage-A bound of the floating-point in-circle determinant,
+/// `(10 + 96u)·u` (the constant of `robust::incircle` and
+/// [`crate::geom::predicates::incircle_sign`]).
+const ICC_ERRBOUND_A: f64 = (10.0 + 96.0 * U) * U;
+
+/// The current widest-disc vertex of one side of a chord `a b`, with the parts of the in-circle
+/// determinant that do not depend on the candidate precomputed.
+///
+/// [`Widest::outside`] evaluates Shewchuk's stage-A in-circle filter for the points
+/// `(b, q, x; a)` — translated by `a`: `B = b − a`, `Q = q − a`, `X = x − a` — with every
+/// floating-point operation in the order of `robust::incircle` /
+/// [`crate::geom::predicates::incircle_sign`] on those arguments, so the determinant and the
+/// permanent it computes are bit for bit theirs and Shewchuk's bound
+/// `|det − exact| ≤ ICC_ERRBOUND_A · permanent` applies unchanged (the stored products are the
+/// same roundings of the same operands, only computed once per widest vertex instead of once per
+/// candidate). Within the bound the sign is left to the exact [`incircle_sign`]. So the decision
+/// equals main's exact `incircle(a, b, q, x)` on every input (lockstep test
+/// `widest_filter_equals_the_exact_incircle_loop`).
+#[derive(Clone, Copy)]
+struct Widest {
+    pos: usize,
+    q: [f64; 2],
+    // B = b − a, |B|², Q = q − a, |Q|², and the B×Q products with their difference
+    bx: f64,
+    by: f64,
+    alift: f64,
+    qx: f64,
+    qy: f64,
+    blift: f64,
+    adxbdy: f64,
+    bdxady: f64,
+}
+
+impl Widest {
+    #[inline]
+    fn new(a: [f64; 2], b: [f64; 2], q: [f64; 2], pos: usize) -> Widest {
+        let (bx, by) = (b[0] - a[0], b[1] - a[1]);
+        let (qx, qy) = (q[0] - a[0], q[1] - a[1]);
+        Widest {
+            pos,
+            q,
+            bx,
+            by,
+            alift: bx * bx + by * by,
+            qx,
+            qy,
+            blift: qx * qx + qy * qy,
+            adxbdy: bx * qy,
+            bdxady: qx * by,
+        }
+    }
+
+    /// True when `x`, on the same side of `a → b` as this vertex (`left`: `orient2d(a, b, x) >
+    /// 0`), lies strictly outside the circle through `a`, `b` and this vertex (exact).
+    #[inline]
+    fn outside(&self, a: [f64; 2], b: [f64; 2], x: [f64; 2], left: bool) -> bool {
+        // Shewchuk's incircle(pa, pb, pc, pd) with (pa, pb, pc, pd) = (b, q, x, a):
+        // adx = B, bdx = Q, cdx = X
+        let (cdx, cdy) = (x[0] - a[0], x[1] - a[1]);
+        let bdxcdy = self.qx * cdy;
+        let cdxbdy = cdx * self.qy;
+        let cdxady = cdx * self.by;
+        let adxcdy = self.bx * cdy;
+        let clift = cdx * cdx + cdy * cdy;
+        let det = self.alift * (bdxcdy - cdxbdy)
+            + self.blift * (cdxady - adxcdy)
+            + clift * (self.adxbdy - self.bdxady);
+        let permanent = (bdxcdy.abs() + cdxbdy.abs()) * self.alift
+            + (cdxady.abs() + adxcdy.abs()) * self.blift
+            + (self.adxbdy.abs() + self.bdxady.abs()) * clift;
+        let errbound = ICC_ERRBOUND_A * permanent;
+        // (b, q, x, a) is an odd permutation of (a, b, q, x): this determinant is
+        // −incircle(a, b, q, x), positive when x is outside the circle a, b, q taken
+        // counter-clockwise; on the right side (a, b, q clockwise) outside is negative
+        let s = if det > errbound {
+            1
+        } else if -det > errbound {
+            -1
+        } else {
+            incircle_sign(b, self.q, x, a)
+        };
+        if left {
+            s > 0
+        } else {
+            s < 0
+        }
+    }
 }
 
 /// True when `x` lies in the closed disc through `a`, `b`, `v` (exact; `v` off line ab).
 #[inline]
 pub(crate) fn in_closed_disc(a: [f64; 2], b: [f64; 2], v: [f64; 2], x: [f64; 2]) -> bool {
     let o = orient2d(a, b, v);
-    let ic = incircle(a, b, v, x);
+    let ic = incircle_sign(a, b, v, x);
     if o > 0.0 {
-        ic >= 0.0
+        ic >= 0
     } else {
-        ic <= 0.0
+        ic <= 0
     }
 }
 
@@ -177,36 +275,38 @@ impl Flintstone {
         window: Option<[usize; 2]>,
     ) -> (Flintstone, Option<usize>) {
         let (a, b) = (at(points, lo), at(points, hi));
-        let n = points.len();
-        // positions lo+1..hi as (position, point) without a division per vertex
-        let interior = || positions(points, lo + 1, hi);
-        let (mut best_l, mut best_r): (Option<usize>, Option<usize>) = (None, None);
+        let (mut best_l, mut best_r): (Option<Widest>, Option<Widest>) = (None, None);
         let mut unbounded = false;
         // an empty range (never in the window) when there is no window
         let [w_lo, w_hi] = window.unwrap_or([1, 0]);
         let (mut far, mut far_o) = (window.map(|[l, h]| l + (h - l) / 2), 0.0f64);
-        for (p, x) in interior() {
+        // the chord midpoint's largest squared vertex distance (the `hull`), folded into the
+        // same pass: a maximum, so the order of the vertices does not matter
+        let m = midpoint(a, b);
+        let mut hull2: f64 = dist2(m, a).max(dist2(m, b));
+        for_positions(points, lo + 1, hi, |p, x| {
+            hull2 = hull2.max(dist2(m, x));
             let o = orient2d(a, b, x);
             if p >= w_lo && p <= w_hi && o.abs() > far_o {
                 (far, far_o) = (Some(p), o.abs());
             }
             if o == 0.0 {
                 unbounded |= !on_segment(a, b, x);
-                continue;
+                return;
             }
             let best = if o > 0.0 { &mut best_l } else { &mut best_r };
-            match *best {
-                None => *best = Some(p),
-                Some(q) => {
-                    // the current vertex q is on the same side as x (orient2d(a, b, q) has
-                    // the sign of o): x replaces q iff strictly outside the circle a, b, q
-                    let ic = incircle(a, b, points[q % n], x);
-                    if (o > 0.0 && ic < 0.0) || (o < 0.0 && ic > 0.0) {
-                        *best = Some(p);
+            match best {
+                None => *best = Some(Widest::new(a, b, x, p)),
+                // the current vertex is on the same side as x: x replaces it iff x lies
+                // strictly outside the circle through a, b and it
+                Some(w) => {
+                    if w.outside(a, b, x, o > 0.0) {
+                        *best = Some(Widest::new(a, b, x, p));
                     }
                 }
             }
-        }
+        });
+        let (best_l, best_r) = (best_l.map(|w| w.pos), best_r.map(|w| w.pos));
         let mut left = best_l.map(|q| side_disc(a, b, at(points, q), q));
         let mut right = best_r.map(|q| side_disc(a, b, at(points, q), q));
         let kind = match (best_l, best_r) {
@@ -223,16 +323,22 @@ impl Flintstone {
         };
         // conservative reaches: every polyline vertex in f64 distance (squares compared, one
         // square root at the end)
-        let m = midpoint(a, b);
-        let mut hull2: f64 = 0.0;
         let mut reach2 = [0.0f64; 2];
-        for (_, x) in positions(points, lo, hi + 1) {
-            hull2 = hull2.max(dist2(m, x));
-            for (k, d) in [&left, &right].into_iter().enumerate() {
-                if let Some(d) = d {
-                    reach2[k] = reach2[k].max(dist2(d.center, x));
-                }
+        match (&left, &right) {
+            (Some(l), Some(r)) => {
+                let (cl, cr) = (l.center, r.center);
+                for_positions(points, lo, hi + 1, |_, x| {
+                    reach2[0] = reach2[0].max(dist2(cl, x));
+                    reach2[1] = reach2[1].max(dist2(cr, x));
+                });
             }
+            (Some(d), None) | (None, Some(d)) => {
+                let (c, k) = (d.center, left.is_none() as usize);
+                let mut r2 = 0.0f64;
+                for_positions(points, lo, hi + 1, |_, x| r2 = r2.max(dist2(c, x)));
+                reach2[k] = r2;
+            }
+            (None, None) => {}
         }
         for (k, d) in [&mut left, &mut right].into_iter().enumerate() {
             if let Some(d) = d {
@@ -329,6 +435,7 @@ pub(crate) fn discs_meet(a: ([f64; 2], f64), b: ([f64; 2], f64)) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::predicates::raw::incircle;
 
     #[test]
     fn cap_intersection_and_degenerate_kinds() {
@@ -352,6 +459,157 @@ mod tests {
         // a vertex beyond the chord end on its line
         let u = [[0.0, 0.0], [3.0, 0.0], [2.0, 0.0]];
         assert_eq!(Flintstone::of(&u, 0, 2).kind, StoneKind::Unbounded);
+    }
+
+    /// Main's selection loop before the precomputed filter (robust's `incircle` per candidate,
+    /// hull and reaches in one second pass): the oracle of the lockstep test below.
+    fn of_windowed_reference(
+        points: &[[f64; 2]],
+        lo: usize,
+        hi: usize,
+        window: Option<[usize; 2]>,
+    ) -> (Flintstone, Option<usize>) {
+        let n = points.len();
+        let (a, b) = (at(points, lo), at(points, hi));
+        let (mut best_l, mut best_r): (Option<usize>, Option<usize>) = (None, None);
+        let mut unbounded = false;
+        let [w_lo, w_hi] = window.unwrap_or([1, 0]);
+        let (mut far, mut far_o) = (window.map(|[l, h]| l + (h - l) / 2), 0.0f64);
+        for p in lo + 1..hi {
+            let x = points[p % n];
+            let o = orient2d(a, b, x);
+            if p >= w_lo && p <= w_hi && o.abs() > far_o {
+                (far, far_o) = (Some(p), o.abs());
+            }
+            if o == 0.0 {
+                unbounded |= !on_segment(a, b, x);
+                continue;
+            }
+            let best = if o > 0.0 { &mut best_l } else { &mut best_r };
+            match *best {
+                None => *best = Some(p),
+                Some(q) => {
+                    let ic = incircle(a, b, points[q % n], x);
+                    if (o > 0.0 && ic < 0.0) || (o < 0.0 && ic > 0.0) {
+                        *best = Some(p);
+                    }
+                }
+            }
+        }
+        let mut left = best_l.map(|q| side_disc(a, b, at(points, q), q));
+        let mut right = best_r.map(|q| side_disc(a, b, at(points, q), q));
+        let kind = match (best_l, best_r) {
+            _ if unbounded => StoneKind::Unbounded,
+            (None, None) => StoneKind::Segment,
+            (Some(_), None) | (None, Some(_)) => StoneKind::Cap,
+            (Some(q), Some(r)) => {
+                if in_closed_disc(a, b, at(points, q), at(points, r)) {
+                    StoneKind::Intersection
+                } else {
+                    StoneKind::Union
+                }
+            }
+        };
+        let m = midpoint(a, b);
+        let mut hull2: f64 = 0.0;
+        let mut reach2 = [0.0f64; 2];
+        for p in lo..=hi {
+            let x = points[p % n];
+            hull2 = hull2.max(dist2(m, x));
+            for (k, d) in [&left, &right].into_iter().enumerate() {
+                if let Some(d) = d {
+                    reach2[k] = reach2[k].max(dist2(d.center, x));
+                }
+            }
+        }
+        for (k, d) in [&mut left, &mut right].into_iter().enumerate() {
+            if let Some(d) = d {
+                d.reach = d.reach.max(reach2[k].sqrt());
+            }
+        }
+        let stone = Flintstone {
+            lo,
+            hi,
+            left,
+            right,
+            kind,
+            hull: (m, hull2.sqrt()),
+        };
+        (stone, far)
+    }
+
+    /// The precomputed in-circle filter and the one-slice-or-two walk against the plain loop
+    /// with robust's `incircle`, on inputs where the filter is and is not conclusive: points on
+    /// a circle rounded to `f64` (every in-circle determinant within rounding of 0, so a filter
+    /// with a wrong bound or a sign slip picks another vertex), exactly cocircular integer
+    /// points, collinear runs, repeated points, random walks; wrapping ranges and windows.
+    #[test]
+    fn widest_filter_equals_the_exact_incircle_loop() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(18);
+        let mut sets: Vec<Vec<[f64; 2]>> = Vec::new();
+        for n in [7usize, 64, 1000] {
+            // a circle, rounded; one with a random phase and radius; a far-off-origin circle
+            let r: f64 = rng.gen_range(0.5..3.0);
+            let ph: f64 = rng.gen_range(0.0..1.0);
+            for (c, s) in [(0.0, 1.0), (1e6, r), (-3.7, r)] {
+                sets.push(
+                    (0..n)
+                        .map(|k| {
+                            let t = (k as f64 + ph) * std::f64::consts::TAU / n as f64;
+                            [c + s * t.cos(), c + s * t.sin()]
+                        })
+                        .collect(),
+                );
+            }
+            // random walk; a walk on a coarse grid (collinear and cocircular ties)
+            let mut p = [0.0f64, 0.0];
+            sets.push(
+                (0..n)
+                    .map(|_| {
+                        p = [
+                            p[0] + rng.gen_range(-1.0..1.0),
+                            p[1] + rng.gen_range(-1.0..1.0),
+                        ];
+                        p
+                    })
+                    .collect(),
+            );
+            sets.push(
+                (0..n)
+                    .map(|_| [rng.gen_range(-3..=3) as f64, rng.gen_range(-3..=3) as f64])
+                    .collect(),
+            );
+        }
+        // exactly cocircular integer points (radius 25), in circle order
+        let mut c5: Vec<[f64; 2]> = (-25i32..=25)
+            .flat_map(|x| (-25i32..=25).map(move |y| (x, y)))
+            .filter(|&(x, y)| x * x + y * y == 625)
+            .map(|(x, y)| [x as f64, y as f64])
+            .collect();
+        c5.sort_by(|p, q| p[1].atan2(p[0]).total_cmp(&q[1].atan2(q[0])));
+        sets.push(c5);
+        let mut checked = 0;
+        for pts in &sets {
+            let n = pts.len();
+            for _ in 0..40 {
+                let lo = rng.gen_range(0..n);
+                let len = rng.gen_range(2..n.max(3));
+                let hi = lo + len;
+                if pts[lo % n] == pts[hi % n] {
+                    continue;
+                }
+                let window = rng.gen_bool(0.5).then(|| {
+                    let l = rng.gen_range(lo + 1..hi);
+                    [l, rng.gen_range(l..hi)]
+                });
+                let got = Flintstone::of_windowed(pts, lo, hi, window);
+                let want = of_windowed_reference(pts, lo, hi, window);
+                assert_eq!(got, want, "n {n} lo {lo} hi {hi} window {window:?}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 400, "{checked}");
     }
 
     #[test]

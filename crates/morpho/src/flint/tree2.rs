@@ -33,8 +33,10 @@
 //! splits a node differs, and only where Alg. 7.1's would break the budget (on the project's
 //! Benelux 1:50m border never; on the Great Britain coast 1:10m at 38 of 3 695 nodes, depth
 //! 57 → 37; on the 10⁶-vertex upsampled coast and rough star at 10 % and 6 % of the nodes).
-//! Not fixed by it: on (nearly) cocircular input, such as an exact circle, every visit's
-//! in-circle test takes its exact slow path (≈ 15 s per 10⁶ vertices, `bench/README.md`).
+//! On (nearly) cocircular input, such as an exact circle, the in-circle tests of a visit fall
+//! through the floating-point filter; they are settled by the integer stage of
+//! [`crate::geom::predicates::incircle_sign`] (and so is the smallest enclosing disc's Welzl),
+//! so such input costs about what generic input does (`bench/README.md`, "the exact circle").
 //! What it costs in
 //! approximation quality (e1–e5 at equal edge counts) is measured in `bench/README.md`
 //! ("Flintstone tree build: the depth budget"). [`FlintTree2::new_alg71`] builds the thesis's

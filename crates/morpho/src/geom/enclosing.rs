@@ -14,7 +14,7 @@
 //! by its floating-point centre, and "is p outside?" is decided exactly from the support points:
 //! - 1 point: coordinate equality;
 //! - 2 points (diametral ball, 2D and 3D): sign of (a − p)·(b − p) (Thales), exact;
-//! - 3 points in 2D: [`incircle`](super::predicates::raw::incircle) with the orientation from
+//! - 3 points in 2D: [`incircle_sign`](super::predicates::incircle_sign) with the orientation from
 //!   `orient2d`;
 //! - 3 points in 3D (the ball whose equator is the circle through a, b, c): sign of the degree-6
 //!   polynomial |n|²|w|² − |u|² w·(v×n) − |v|² w·(n×u) (u = b−a, v = c−a, w = p−a, n = u×v),
@@ -177,7 +177,9 @@ fn outside2(s: &[[f64; 2]], p: &[f64; 2]) -> bool {
         [a, b, c] => {
             let o = raw::orient2d(*a, *b, *c);
             if o != 0.0 {
-                raw::incircle(*a, *b, *c, *p) * o.signum() < 0.0
+                // the exact sign (its integer stage settles the near-cocircular tests of
+                // densely sampled circles far faster than robust's expansions)
+                (super::predicates::incircle_sign(*a, *b, *c, *p) as f64) * o.signum() < 0.0
             } else {
                 // Collinear support cannot arise with exact decisions; stay well-defined anyway.
                 let (x, y) = farthest_pair(s);
