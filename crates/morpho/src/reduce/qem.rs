@@ -95,7 +95,7 @@ impl QemQuadric {
         let g = a * rv + Vector3::new(self.0[6], self.0[7], self.0[8]);
         let eig = a.symmetric_eigen();
         let lmax = eig.eigenvalues.iter().fold(0.0f64, |m, &l| m.max(l));
-        if !(lmax > 0.0) {
+        if lmax <= 0.0 {
             return None;
         }
         let mut x = rv;
