@@ -6,6 +6,7 @@ Usage (from the repository root; the peers come from PyPI):
     /tmp/benchenv/bin/pip install pymeshlab fast-simplification meshoptimizer numpy trimesh
     cargo build --release -p morpho-cli --example mesh_compare -p morpho
     /tmp/benchenv/bin/python bench/reduce_peers.py [--rates 50,90,99] [--meshes skull,horse,...]
+        [--tools morpho,pymeshlab,...] [--morpho-old /path/to/another/morpho]
 
 For each mesh and each reduction rate R (% of the triangles removed) the target is
 T = round(n · (1 − R/100)) triangles, and every tool is asked for exactly T:
@@ -86,11 +87,11 @@ def timed(fn):
     return res, time.perf_counter() - t, time.process_time() - c
 
 
-def run_morpho(inp, target, tmp, extra=()):
+def run_morpho(inp, target, tmp, extra=(), binary=None):
     out = os.path.join(tmp, "morpho.ply")
     rep = os.path.join(tmp, "morpho.json")
     env = dict(os.environ, RAYON_NUM_THREADS="1")
-    cmd = ["/usr/bin/time", "-f", "%e %U %S %M", MORPHO, "reduce", inp, "--triangles",
+    cmd = ["/usr/bin/time", "-f", "%e %U %S %M", binary or MORPHO, "reduce", inp, "--triangles",
            str(target), "-o", out, "--report", rep, *extra]
     r = subprocess.run(cmd, capture_output=True, text=True, env=env)
     if r.returncode != 0:
@@ -164,9 +165,13 @@ def main():
     ap.add_argument("--rates", default="50,90,99")
     ap.add_argument("--meshes", default="skull,horse,bunny,fandisk")
     ap.add_argument("--tools", default="morpho,morpho-hamann,pymeshlab,pymeshlab-topo,fast,meshopt")
+    # another morpho binary (e.g. main's) run right after `morpho` as tool `morpho-old`
+    ap.add_argument("--morpho-old", default=None)
     a = ap.parse_args()
     rates = [float(r) for r in a.rates.split(",")]
     tools = a.tools.split(",")
+    if a.morpho_old and "morpho" in tools:
+        tools.insert(tools.index("morpho") + 1, "morpho-old")
     files = {
         "horse": os.path.join(DATA, "meshes", "horse.obj.gz"),
         "bunny": os.path.join(DATA, "meshes", "stanford-bunny.obj.gz"),
@@ -189,6 +194,8 @@ def main():
                     try:
                         if tool == "morpho":
                             res, out = run_morpho(inp, target, tmp)
+                        elif tool == "morpho-old":
+                            res, out = run_morpho(inp, target, tmp, binary=a.morpho_old)
                         elif tool == "morpho-hamann":
                             res, out = run_morpho(inp, target, tmp, ("--order", "hamann"))
                         elif tool == "pymeshlab":

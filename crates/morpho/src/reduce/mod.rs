@@ -22,6 +22,7 @@ mod engine;
 mod error;
 mod heap;
 mod point;
+mod qem;
 mod retri;
 mod state;
 pub mod table51;

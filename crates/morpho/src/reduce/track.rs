@@ -148,9 +148,11 @@ impl Tracker {
         Some((sse.max(0.0), max))
     }
 
-    /// The largest error of the knots re-assigned by the last [`Tracker::evaluate`].
-    pub fn last_local_max(&self) -> f64 {
-        self.pending.iter().fold(0.0, |m, x| m.max(x.2))
+    /// The root of the summed squared errors of the knots re-assigned by the last
+    /// evaluation (at least each one's error, so an evaluation abandoned at a bound `b` on
+    /// the knots' errors has this measure above `b` too).
+    pub fn last_local_l2(&self) -> f64 {
+        self.pending.iter().map(|x| x.2 * x.2).sum::<f64>().sqrt()
     }
 
     /// Applies the last [`Tracker::evaluate`] with the slots of the new triangles.
