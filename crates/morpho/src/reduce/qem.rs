@@ -20,6 +20,7 @@
 //! same removability, fold, degeneracy, reach and self-intersection tests as the fitted
 //! point and the corners, and keeps it only if it moves the input's vertices least.
 
+use crate::geom::vec::{cross, norm, sub};
 use nalgebra::{Matrix3, Vector3};
 
 /// Eigenvalues below this fraction of the largest are treated as zero (rank loss).
@@ -49,14 +50,8 @@ impl QemQuadric {
 
     /// The area-weighted plane quadric of triangle `t` (zero for a degenerate one).
     pub fn of_triangle(t: [[f64; 3]; 3]) -> QemQuadric {
-        let e1 = sub(t[1], t[0]);
-        let e2 = sub(t[2], t[0]);
-        let c = [
-            e1[1] * e2[2] - e1[2] * e2[1],
-            e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0],
-        ];
-        let len = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+        let c = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+        let len = norm(c);
         if !(len > 0.0 && len.is_finite()) {
             return QemQuadric::default();
         }
@@ -111,23 +106,18 @@ impl QemQuadric {
     }
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::util::Rng;
 
-    fn lcg(s: &mut u64) -> f64 {
-        *s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((*s >> 11) as f64) / ((1u64 << 53) as f64) * 2.0 - 1.0
+    /// A coordinate uniform in [−1, 1).
+    fn lcg(s: &mut Rng) -> f64 {
+        2.0 * s.unit() - 1.0
     }
 
     fn unit(v: [f64; 3]) -> [f64; 3] {
-        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let l = norm(v);
         v.map(|x| x / l)
     }
 
@@ -135,7 +125,7 @@ mod tests {
     /// depend on the reference); three planes: their intersection point.
     #[test]
     fn full_rank_minimizer_is_the_minimum() {
-        let mut s = 7u64;
+        let mut s = Rng::new(7);
         for _ in 0..200 {
             let mut q = QemQuadric::default();
             for _ in 0..6 {
