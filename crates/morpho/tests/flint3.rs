@@ -3,6 +3,7 @@
 //! against brute force (including points on vertices, edges and faces and rays through
 //! vertices), approximations, and refusals of bad input.
 mod common;
+use common::{real_mesh as real, XorShift as Rng};
 use morpho::flint::{contains_brute3, FlintError, FlintTree3, Target};
 use morpho::geom::Point3;
 use morpho::mesh::{generate, TriMesh};
@@ -19,28 +20,6 @@ fn meshes() -> Vec<(&'static str, TriMesh)> {
         ("torus", generate::torus(2.0, 0.6, 32, 14)),
         ("multi_torus3", generate::multi_torus(3)),
     ]
-}
-
-fn real(name: &str) -> Option<TriMesh> {
-    let p = common::data(&format!("meshes/{name}"))?;
-    Some(morpho::io::read_mesh(&p).expect("read mesh"))
-}
-
-/// xorshift for reproducible queries.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
 }
 
 fn check_structure(name: &str, m: &TriMesh, t: &FlintTree3) {

@@ -3,31 +3,10 @@
 //! planes, rays through vertices) on generated meshes (genus 0 to 3) and the bunny, spot, the
 //! rocker arm (genus 1) and the horse; every empty cell is free of the surface; bad queries.
 mod common;
+use common::{real_mesh as real, XorShift as Rng};
 use morpho::flint::{contains_brute3, CellCache3, Containment, FlintError, FlintTree3};
 use morpho::geom::Point3;
 use morpho::mesh::{generate, TriMesh};
-
-/// xorshift for reproducible queries.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-}
-
-fn real(name: &str) -> Option<TriMesh> {
-    let p = common::data(&format!("meshes/{name}"))?;
-    Some(morpho::io::read_mesh(&p).expect("read mesh"))
-}
 
 fn pos(m: &TriMesh) -> Vec<[f64; 3]> {
     m.positions.iter().map(|p| [p.x, p.y, p.z]).collect()

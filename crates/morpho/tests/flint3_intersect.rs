@@ -4,20 +4,10 @@
 //! an edge or a vertex, disjoint meshes, coplanar overlaps and real scans; detection agrees;
 //! the segments lie on both triangles.
 mod common;
+use common::XorShift as Rng;
 use morpho::flint::{intersect3, intersect3_brute, intersects3, triangle_meet, FlintTree3};
 use morpho::geom::Point3;
 use morpho::mesh::{generate, TriMesh};
-
-/// xorshift for reproducible perturbations.
-struct Rng(u64);
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 fn shifted(m: &TriMesh, d: [f64; 3]) -> TriMesh {
     let mut m = m.clone();

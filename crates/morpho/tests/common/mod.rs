@@ -37,3 +37,33 @@ pub fn data(rel: &str) -> Option<PathBuf> {
     }
     Some(p)
 }
+
+/// Marsaglia's 64-bit xorshift, shifts (13, 7, 17): reproducible test inputs (the flint tests'
+/// queries and perturbations).
+pub struct XorShift(pub u64);
+
+impl XorShift {
+    /// The next state.
+    pub fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    /// Uniform in [0, 1): the top 53 bits of the next state.
+    pub fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// The next state modulo `n` (`n > 0`).
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
+}
+
+/// The mesh `meshes/NAME` of the shared data folder, or `None` when the folder is absent.
+pub fn real_mesh(name: &str) -> Option<morpho::mesh::TriMesh> {
+    let p = data(&format!("meshes/{name}"))?;
+    Some(morpho::io::read_mesh(&p).expect("read mesh"))
+}
