@@ -73,6 +73,25 @@ pub(crate) fn quadratic_handles(a: P3, na: P3, b: P3, nb: P3, c: P3) -> Option<(
     Some((m1, m2, q))
 }
 
+/// The known terms of (9.3b), (9.3c): `A0 = (M1−M0) + f1(L0−M0) + g1(R0−M0)` and
+/// `A1 = (M3−M2) + f0(L2−M2) + g0(R2−M2)` (`m` the edge points, `l`, `r` the first rows of both
+/// sides), shared by [`solve_singular`] and the three-split's regular solve of (9.4).
+pub(crate) fn a_terms(
+    m: &[P3; 4],
+    l: &[P3; 3],
+    r: &[P3; 3],
+    [f0, g0, f1, g1]: [f64; 4],
+) -> (P3, P3) {
+    let d = vec::sub;
+    let mut a0 = d(m[1], m[0]);
+    a0 = vec::add_scaled(a0, f1, d(l[0], m[0]));
+    a0 = vec::add_scaled(a0, g1, d(r[0], m[0]));
+    let mut a1 = d(m[3], m[2]);
+    a1 = vec::add_scaled(a1, f0, d(l[2], m[2]));
+    a1 = vec::add_scaled(a1, g0, d(r[2], m[2]));
+    (a0, a1)
+}
+
 /// Step 5 on a (near-)singular edge (module doc): `m` the edge points, `l`, `r` the first rows
 /// of both sides, `[f0, g0, f1, g1]` from (9.3a), (9.3d) with `e = 1`, `old` the current
 /// `(L1, R1)`, `cutoff` the relative singular value below which the pseudo-inverse drops a
@@ -94,13 +113,7 @@ pub(crate) fn solve_singular(
     } else {
         1.0
     };
-    // A0 = (M1−M0) + f1(L0−M0) + g1(R0−M0); A1 = (M3−M2) + f0(L2−M2) + g0(R2−M2)
-    let mut a0 = d(m[1], m[0]);
-    a0 = vec::add_scaled(a0, f1, d(l[0], m[0]));
-    a0 = vec::add_scaled(a0, g1, d(r[0], m[0]));
-    let mut a1 = d(m[3], m[2]);
-    a1 = vec::add_scaled(a1, f0, d(l[2], m[2]));
-    a1 = vec::add_scaled(a1, g0, d(r[2], m[2]));
+    let (a0, a1) = a_terms(m, l, r, [f0, g0, f1, g1]);
     let m21 = d(m[2], m[1]);
     // unknowns u = L1 − M1, v = R1 − M1:
     //   2 f0 u + 2 g0 v         = −ρ A0 − 2 (M2−M1)        (9.3b)

@@ -287,12 +287,7 @@ fn solve_94(e: &EdgeData, [f0, g0, f1, g1]: [f64; 4]) -> (P3, P3) {
     let (m, l, r) = (e.m, e.l, e.r);
     let d = |x: P3, y: P3| vec::sub(x, y);
     let m21 = d(m[2], m[1]);
-    let mut a0 = d(m[1], m[0]);
-    a0 = vec::add_scaled(a0, f1, d(l[0], m[0]));
-    a0 = vec::add_scaled(a0, g1, d(r[0], m[0]));
-    let mut a1 = d(m[3], m[2]);
-    a1 = vec::add_scaled(a1, f0, d(l[2], m[2]));
-    a1 = vec::add_scaled(a1, g0, d(r[2], m[2]));
+    let (a0, a1) = super::singular::a_terms(&m, &l, &r, [f0, g0, f1, g1]);
     let big = 4.0 * (f0 * g1 - g0 * f1);
     let cramer = |b0: f64, b1: f64| {
         (
