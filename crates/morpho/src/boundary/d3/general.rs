@@ -1316,10 +1316,7 @@ mod tests {
     #[test]
     fn block_stamps_answer_as_the_cells() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(21);
-        let pts = super::super::test_sets::cube(&mut rng, 400);
-        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
-        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
-        let all = crate::graphs::fast::candidates_3d(&d).triangles;
+        let (d, pos, all) = super::super::test_sets::cube_candidates(&mut rng, 400);
         let mut g = General3::new(&pos, &d.hull, &all, &[]);
         let cell = g.bgrid.cell();
         let former = |g: &General3<'_>, epoch: u64, lo: P, hi: P| {
@@ -1414,10 +1411,7 @@ mod tests {
     #[test]
     fn mutations_stamp_the_cells_they_touch() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(9);
-        let pts = super::super::test_sets::cube(&mut rng, 300);
-        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
-        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
-        let all = crate::graphs::fast::candidates_3d(&d).triangles;
+        let (d, pos, all) = super::super::test_sets::cube_candidates(&mut rng, 300);
         let mut g = General3::new(&pos, &d.hull, &all, &[]);
         assert!(g.changed.is_empty() && g.changed_all == 0);
         let shift = 50.0 * g.bgrid.cell() + 10.0;

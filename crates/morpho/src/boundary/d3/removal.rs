@@ -1197,10 +1197,7 @@ mod tests {
     #[test]
     fn sweep_list_follows_every_mutation_primitive() {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
-        let pts = super::super::test_sets::cube(&mut rng, 400);
-        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
-        let pos: Vec<P> = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
-        let all = crate::graphs::fast::candidates_3d(&d).triangles;
+        let (d, pos, all) = super::super::test_sets::cube_candidates(&mut rng, 400);
         let mut g = General3::new(&pos, &d.hull, &all, &[]);
         let n = pos.len() as u32;
         let (mut checks, mut listed) = (0, 0);

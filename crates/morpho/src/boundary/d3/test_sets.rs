@@ -18,6 +18,19 @@ pub(super) fn cube(rng: &mut impl Rng, n: usize) -> Vec<Point3> {
         .collect()
 }
 
+/// `n` cube points ([`cube`], drawn from `rng`), their Delaunay tetrahedralization, the points
+/// as `[f64; 3]`, and every triangle of the tetrahedralization (the general engine's input in
+/// the tests of its primitives).
+pub(super) fn cube_candidates(
+    rng: &mut impl Rng,
+    n: usize,
+) -> (Delaunay3, Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let d = crate::delaunay::d3::triangulate(&cube(rng, n)).unwrap();
+    let pos = d.points.iter().map(|q| [q.x, q.y, q.z]).collect();
+    let all = crate::graphs::fast::candidates_3d(&d).triangles;
+    (d, pos, all)
+}
+
 /// The clustered cube points on which the Delaunay constriction locks (for seeds 1647 and
 /// 1755; the integration test `locked_delaunay_constriction_falls_back_and_stays_valid`): a
 /// ChaCha8 generator from `seed` draws n ∈ [40, 600), then n cube points whose coordinates are
