@@ -160,6 +160,25 @@ pub(crate) fn in_closed_ball(
     }
 }
 
+/// [`in_closed_ball`] when the sign of `orient3d(a, b, c, v)` is known: `positive` iff it is
+/// > 0 (it must not be 0). The same exact answer with one predicate less.
+#[inline]
+pub(crate) fn in_closed_ball_side(
+    positive: bool,
+    a: [f64; 3],
+    b: [f64; 3],
+    c: [f64; 3],
+    v: [f64; 3],
+    x: [f64; 3],
+) -> bool {
+    let i = insphere(a, b, c, v, x);
+    if positive {
+        i >= 0.0
+    } else {
+        i <= 0.0
+    }
+}
+
 /// Circumcentre and circumradius of the triangle abc (`f64`; `None` when degenerate).
 pub(crate) fn circumcircle(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Option<([f64; 3], f64)> {
     let (u, v) = (sub(b, a), sub(c, a));
@@ -213,16 +232,24 @@ impl Flintstone3 {
         let mut unbounded = false;
         for &x in verts {
             let px = pos[x as usize];
+            // a corner (or a vertex at a corner's position) is in the plane and on every
+            // sphere through the corners, so in the closed ball of the apex: it changes
+            // nothing, and skipping it saves two exact (fully degenerate) predicates
+            if px == a || px == b || px == c {
+                continue;
+            }
             let o = orient3d(a, b, c, px);
             if o == 0.0 {
                 unbounded |= !in_closed_ball(a, b, c, apex, px);
                 continue;
             }
-            let best = if o > 0.0 { &mut best_b } else { &mut best_a };
+            let below = o > 0.0;
+            let best = if below { &mut best_b } else { &mut best_a };
             match *best {
                 None => *best = Some(x),
                 Some(q) => {
-                    if !in_closed_ball(a, b, c, pos[q as usize], px) {
+                    // q is on x's side: orient3d(a, b, c, q) has the sign of `o`
+                    if !in_closed_ball_side(below, a, b, c, pos[q as usize], px) {
                         *best = Some(x);
                     }
                 }
@@ -335,6 +362,81 @@ impl Flintstone3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The per-vertex loop of [`Flintstone3::of`] as first written (no corner skip, the
+    /// candidate's side recomputed by `orient3d`): the oracle of the lockstep test.
+    fn best_reference(
+        pos: &[[f64; 3]],
+        corners: [u32; 3],
+        verts: &[u32],
+    ) -> Option<(Option<u32>, Option<u32>, bool)> {
+        let [a, b, c] = corners.map(|v| pos[v as usize]);
+        let (cc, r) = circumcircle(a, b, c)?;
+        let n = cross(sub(b, a), sub(c, a));
+        let nn = norm(n);
+        let apex = add_scaled(cc, r.max(f64::MIN_POSITIVE), n.map(|x| x / nn));
+        if orient3d(a, b, c, apex) == 0.0 || nn.is_nan() || nn <= 0.0 {
+            return None;
+        }
+        let (mut bb, mut ba, mut unb) = (None, None, false);
+        for &x in verts {
+            let px = pos[x as usize];
+            let o = orient3d(a, b, c, px);
+            if o == 0.0 {
+                unb |= !in_closed_ball(a, b, c, apex, px);
+                continue;
+            }
+            let best: &mut Option<u32> = if o > 0.0 { &mut bb } else { &mut ba };
+            match *best {
+                None => *best = Some(x),
+                Some(q) if !in_closed_ball(a, b, c, pos[q as usize], px) => *best = Some(x),
+                _ => {}
+            }
+        }
+        Some((bb, ba, unb))
+    }
+
+    /// Lockstep: the same side vertices and kind as the reference loop on point sets holding
+    /// the corners (also repeated, and duplicated at another index), exactly coplanar points
+    /// inside and outside the circumcircle, cospherical points (ties) and random points.
+    #[test]
+    fn side_vertices_equal_the_reference_loop() {
+        let mut r = crate::util::Rng::new(3);
+        let mut kinds = [0usize; 5];
+        for round in 0..400 {
+            let mut pos: Vec<[f64; 3]> = Vec::new();
+            let g = |r: &mut crate::util::Rng| (r.below(9) as f64) - 4.0;
+            // corners on z = 0 (integers: coplanar tests are exact)
+            for _ in 0..3 {
+                pos.push([g(&mut r), g(&mut r), 0.0]);
+            }
+            let corners = [0, 1, 2];
+            pos.push(pos[1]); // a duplicate of a corner at another index
+            for k in 0..12 {
+                let z = match (round + k) % 4 {
+                    0 => 0.0,
+                    1 => g(&mut r),
+                    _ => r.unit() * 2.0 - 1.0,
+                };
+                pos.push([g(&mut r) * 0.7, g(&mut r) * 0.5, z]);
+            }
+            let mut verts: Vec<u32> = (0..pos.len() as u32).collect();
+            verts.extend([2, 0, 1]);
+            let st = Flintstone3::of(&pos, corners, &verts, true);
+            let Some((bb, ba, unb)) = best_reference(&pos, corners, &verts) else {
+                assert_eq!(st.kind, StoneKind::Unbounded);
+                continue;
+            };
+            assert_eq!(st.below.map(|d| d.vertex), bb, "round {round}");
+            assert_eq!(st.above.map(|d| d.vertex), ba, "round {round}");
+            assert_eq!(st.kind == StoneKind::Unbounded, unb, "round {round}");
+            kinds[st.kind as usize] += 1;
+        }
+        assert!(
+            kinds.iter().filter(|&&k| k > 0).count() >= 3,
+            "kinds {kinds:?}"
+        );
+    }
 
     #[test]
     fn cap_and_intersection_contain_their_vertices() {
