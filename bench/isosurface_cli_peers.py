@@ -14,7 +14,13 @@ Each round runs, for each volume, one after the other:
   stage times (read / compute / write);
 * a Python process that loads the same samples with numpy and runs `vtkFlyingEdges3D` with and
   without normals on one thread (`vtkSMPTools.Initialize(1)`), timing `Update()` by process CPU
-  time (the peer's compute alone: interpreter start and numpy read are not counted).
+  time (the peer's compute alone: interpreter start and numpy read are not counted);
+* a second Python process running VTK's whole pipeline as a user would: read the raw file
+  (numpy), build the image, `vtkFlyingEdges3D` with normals (one thread), write a binary PLY
+  with `vtkPLYWriter` (`vtk_pipeline`: process CPU from the read to the closed file, without
+  the interpreter's start and imports, which `vtk_pipeline_process` — the whole process's
+  task-clock — includes). VTK does not fsync its file; morpho's write stage does (see
+  bench/README "Where the write stage goes").
 Prints one JSON line per run and, at the end, the minimum over rounds per (volume, tool), the
 machine's load average before and after, and the memory-bandwidth floor of reading the volume
 file and writing the PLY (bytes / a measured numpy copy rate).
@@ -51,6 +57,24 @@ for normals in (False, True):
     print(json.dumps({"normals": normals, "wall": time.perf_counter() - t,
                       "cpu": time.process_time() - c,
                       "triangles": fe.GetOutput().GetNumberOfCells()}))
+"""
+
+
+VTK_PIPELINE = r"""
+import sys, time, json, numpy as np, vtk
+from vtk.util import numpy_support
+vtk.vtkSMPTools.Initialize(1)
+path, nx, ny, nz, dt, level, out = sys.argv[1], *map(int, sys.argv[2:5]), sys.argv[5], float(sys.argv[6]), sys.argv[7]
+t, c = time.perf_counter(), time.process_time()
+vol = np.fromfile(path, dtype=dt).reshape(nz, ny, nx).astype(np.float32)
+img = vtk.vtkImageData(); img.SetDimensions(nx, ny, nz)
+img.GetPointData().SetScalars(numpy_support.numpy_to_vtk(vol.ravel(), deep=True))
+fe = vtk.vtkFlyingEdges3D(); fe.SetInputData(img); fe.SetValue(0, level)
+fe.SetComputeNormals(True); fe.SetComputeGradients(False); fe.SetComputeScalars(False)
+w = vtk.vtkPLYWriter(); w.SetInputConnection(fe.GetOutputPort()); w.SetFileName(out)
+w.SetFileTypeToBinary(); w.Write()
+print(json.dumps({"wall": time.perf_counter() - t, "cpu": time.process_time() - c,
+                  "triangles": fe.GetOutput().GetNumberOfCells()}))
 """
 
 
@@ -103,6 +127,21 @@ def run_vtk(d, name, dims, dt, level):
              "wall": r["wall"], "triangles": r["triangles"]} for r in rows]
 
 
+def run_vtk_pipeline(d, name, dims, dt, level, tmp):
+    raw, out = os.path.join(d, name + ".raw"), os.path.join(tmp, name + "_vtk.ply")
+    cmd = ["perf", "stat", "-x,", "-e", "task-clock", "--", sys.executable, "-c", VTK_PIPELINE,
+           raw, *map(str, dims), dt, str(level), out]
+    p = subprocess.run(cmd, capture_output=True, text=True, check=True)
+    r = json.loads(p.stdout.splitlines()[-1])
+    stat = {l.split(",")[2]: float(l.split(",")[0])
+            for l in p.stderr.strip().splitlines() if l.count(",") >= 3}
+    row = {"tool": "vtk_pipeline", "vol": name, "cpu": r["cpu"], "wall": r["wall"],
+           "process_cpu": stat["task-clock"] / 1e3, "triangles": r["triangles"],
+           "ply_bytes": os.path.getsize(out)}
+    os.remove(out)
+    return [row]
+
+
 def bandwidth():
     a = np.ones(64 << 20, dtype=np.uint8)
     b = np.empty_like(a)
@@ -125,7 +164,9 @@ def main():
         for k in range(rounds):
             for name, hdr, level, dims, dt in VOLS:
                 runs = [run_morpho(lb, b, d, name, hdr, level, tmp) for lb, b in bins]
-                for r in runs + run_vtk(d, name, dims, dt, level):
+                vtk_rows = run_vtk(d, name, dims, dt, level)
+                vtk_rows += run_vtk_pipeline(d, name, dims, dt, level, tmp)
+                for r in runs + vtk_rows:
                     r["round"] = k
                     print(json.dumps(r), flush=True)
                     rows.append(r)
@@ -136,6 +177,11 @@ def main():
         v = [r for r in rows if r["vol"] == name and r["tool"] == "vtk_fe_normals=True"]
         vn = [r for r in rows if r["vol"] == name and r["tool"] == "vtk_fe_normals=False"]
         vcpu = min(r["cpu"] for r in v)
+        vp = [r for r in rows if r["vol"] == name and r["tool"] == "vtk_pipeline"]
+        pcpu = min(r["cpu"] for r in vp)
+        print(json.dumps({"vol": name, "tool": "vtk_pipeline", "cpu_min": pcpu,
+                          "process_cpu_min": min(r["process_cpu"] for r in vp),
+                          "ply_mb": vp[0]["ply_bytes"] / 1e6}))
         vol_bytes = os.path.getsize(os.path.join(d, name + ".raw"))
         for label, _ in bins:
             m = [r for r in rows if r["vol"] == name and r["tool"] == label]
@@ -148,7 +194,8 @@ def main():
                 "stage_wall_min": stage, "rss_mb_max": max(r["rss_mb"] for r in m),
                 "page_faults": m[0]["page_faults"],
                 "vtk_normals_cpu_min": vcpu, "vtk_nonormals_cpu_min": min(r["cpu"] for r in vn),
-                "ratio_cpu_vs_vtk_normals": cpu / vcpu, "rw_floor_s": floor,
+                "ratio_cpu_vs_vtk_normals": cpu / vcpu, "vtk_pipeline_cpu_min": pcpu,
+                "ratio_cpu_vs_vtk_pipeline": cpu / pcpu, "rw_floor_s": floor,
                 "cpu_over_rw_floor": cpu / floor,
                 "volume_f32_mb": float(np.prod(dims)) * 4 / 1e6, "ply_mb": m[0]["ply_bytes"] / 1e6}))
 
