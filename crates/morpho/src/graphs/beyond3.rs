@@ -1612,8 +1612,11 @@ mod tests {
                 assert_eq!(with.0, without.0, "n = {n}, c = {c}");
                 assert_eq!(with.1, without.1, "n = {n}, c = {c}");
                 eprintln!("n = {n}, c = {c}: {:?} / {:?}", with.2, without.2);
-                assert!(with.2.learnt > 0 && without.2.learnt == 0);
+                assert_eq!(without.2.learnt, 0);
+                // (on the sphere at c = −0.3 nearly every triple is a triangle: nothing blocks,
+                // nothing is learnt)
                 if g == 1 {
+                    assert!(with.2.learnt > 0);
                     assert!(
                         4 * with.2.triples <= 3 * without.2.triples,
                         "{:?} / {:?}",
