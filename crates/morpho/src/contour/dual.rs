@@ -5,16 +5,17 @@
 //! * [`simplex_neighbors`] — the adjacency of the simplices across shared facets, computed in
 //!   O(n + |V|) by radix-sorting the facets (no hashing); it also checks that no facet is shared
 //!   by more than two simplices and that twins have opposite orientations.
-//! * [`Dual::construct_dual`] (§3.1): one graph vertex per simplex, one edge per shared facet.
-//! * [`Dual::extend`] (§3.2, Fig. 1): the vertex `v_ext` for the exterior, joined to every
-//!   vertex of degree < K (the simplices with a facet on the hull).
+//! * `Dual::construct_dual` (§3.1): one graph vertex per simplex, one edge per shared facet.
+//! * `Dual::extend` (§3.2, Fig. 1): the vertex `v_ext` for the exterior, joined to every
+//!   vertex of degree < K (the simplices with a facet on the hull). [`Dual::run`] does both in
+//!   one pass over the colours and the neighbour array.
 //! * [`Dual::hollow_out`] (§3.3, Fig. 2): from `v_ext`, deletes every white vertex that can be
 //!   reached through white vertices, re-joining its neighbours to `v_ext`, and *marks* the black
 //!   vertices so reached. O(n): each vertex enters the work list at most once and has at most K
 //!   neighbours (Lemma 3).
-//! * [`Dual::remove_v_ext`] (§3.4, Fig. 3) and [`Dual::black_components`] (§3.4): the connected
+//! * [`Dual::remove_v_ext`] (§3.4, Fig. 3) and [`Dual::marked_components`] (§3.4): the connected
 //!   components of what remains — black simplices plus the white ones they enclose — by
-//!   breadth-first search.
+//!   depth-first search, reported as the marked simplices of each component.
 //!
 //! `v_ext` is not stored as a vertex with an adjacency list (its degree is unbounded); the edge
 //! `{u, v_ext}` is a flag on u, and deleting a vertex (with its edges) is a flag as well, so that
@@ -48,6 +49,24 @@ impl Valid {
     pub(crate) fn delaunay3(_fresh: &crate::delaunay::Delaunay3) -> Self {
         Valid(())
     }
+}
+
+/// Asks the processor to bring `x` into the cache: the graph searches push a vertex some pops
+/// before they read its neighbour row, a random place in an array far larger than the cache.
+/// A hint only; it changes no result.
+#[inline(always)]
+fn prefetch<T>(x: &T) {
+    #[cfg(target_arch = "x86_64")]
+    #[allow(unused_unsafe)]
+    {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        // SAFETY: prefetching is a hint, valid for any address; `x` is a live reference.
+        unsafe {
+            _mm_prefetch::<_MM_HINT_T0>(x as *const T as *const i8);
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = x;
 }
 
 /// Checks that every index of `simplices` is below `n`.
@@ -228,6 +247,29 @@ const EXT: u8 = 1;
 const REMOVED: u8 = 2;
 const MARKED: u8 = 4;
 const BLACK: u8 = 8;
+/// Reached by the component search (§3.4).
+const DONE: u8 = 16;
+
+/// The marked vertices of the components of §3.4 ([`Dual::marked_components`]): those of
+/// component `c` are `marked[start[c]..start[c + 1]]`, in search order.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct MarkedComponents {
+    /// Marked vertices, grouped by component.
+    pub marked: Vec<u32>,
+    /// `start[c]`: where the group of component `c` begins; `start[ncomp] = marked.len()`.
+    pub start: Vec<u32>,
+}
+
+impl MarkedComponents {
+    /// Number of components.
+    pub fn len(&self) -> usize {
+        self.start.len() - 1
+    }
+    /// The marked vertices of component `c`.
+    pub fn group(&self, c: usize) -> &[u32] {
+        &self.marked[self.start[c] as usize..self.start[c + 1] as usize]
+    }
+}
 
 /// The coloured dual graph G of a triangulation (tetrahedrization), with the state of the graph
 /// steps of the contour algorithm.
@@ -249,7 +291,9 @@ pub struct Dual<'a, const K: usize> {
 
 impl<'a, const K: usize> Dual<'a, K> {
     /// §3.1: one vertex per simplex with its colour, one edge per shared facet. The callers
-    /// have checked that there is one colour per simplex.
+    /// have checked that there is one colour per simplex. ([`Self::run`] does this and
+    /// `extend` in one pass; the separate steps are the tests' reference.)
+    #[cfg(test)]
     pub fn construct_dual(neighbors: &'a [[u32; K]], black: &[bool]) -> Self {
         debug_assert_eq!(neighbors.len(), black.len());
         Dual {
@@ -286,6 +330,7 @@ impl<'a, const K: usize> Dual<'a, K> {
     }
 
     /// §3.2, Fig. 1: adds `v_ext` and joins it to every vertex of degree < K.
+    #[cfg(test)]
     pub fn extend(&mut self) {
         for (u, (nb, st)) in self.init.iter().zip(self.state.iter_mut()).enumerate() {
             if nb.contains(&NONE) {
@@ -317,6 +362,10 @@ impl<'a, const K: usize> Dual<'a, K> {
                     // if v_ext ∉ N(v): E := E ∪ {v, v_ext}, S := S ∪ {v}
                     if self.state[v] & (REMOVED | EXT) == 0 {
                         self.state[v] |= EXT;
+                        if self.state[v] & BLACK == 0 {
+                            // a white v reads its neighbours when popped
+                            prefetch(&self.init[v]);
+                        }
                         s.push(v as u32);
                     }
                 }
@@ -340,13 +389,53 @@ impl<'a, const K: usize> Dual<'a, K> {
     }
 
     /// §3.4: the connected components of the remaining graph (black simplices and the white ones
-    /// they enclose), by depth-first search. Returns the component of each vertex ([`NONE`]
-    /// for removed vertices) and the number of components.
-    pub fn black_components(&self) -> (Vec<u32>, usize) {
+    /// they enclose), by depth-first search from each vertex not yet reached, in index order (so
+    /// component `c` is the one whose smallest vertex is the `c`-th smallest of the starts).
+    /// Returns the *marked* vertices of each component — the only ones the contour steps
+    /// (§3.5, the faces of §3.7) read — grouped by component in that order, each group in
+    /// search order (not sorted). May assume `remove_v_ext` has run; sets the `DONE` flag of
+    /// every vertex it reaches, so it runs once. O(n): each vertex is pushed once and has at
+    /// most K neighbours.
+    ///
+    /// The "reached" flag lives in the state byte the search reads anyway, and no per-simplex
+    /// component array is written: the old form (a `NONE`-filled `u32` per simplex plus a
+    /// `bool` per simplex, [`Self::black_components_reference`] in the tests) is what the
+    /// tests compare this with, group for group.
+    pub fn marked_components(&mut self) -> MarkedComponents {
+        let n = self.init.len();
+        let mut marked = Vec::new();
+        let mut start = vec![0u32];
+        let mut stack = Vec::new();
+        for s in 0..n {
+            if self.state[s] & (REMOVED | DONE) != 0 {
+                continue;
+            }
+            self.state[s] |= DONE;
+            stack.push(s as u32);
+            while let Some(u) = stack.pop() {
+                let u = u as usize;
+                if self.state[u] & MARKED != 0 {
+                    marked.push(u as u32);
+                }
+                for &v in &self.init[u] {
+                    if v != NONE && self.state[v as usize] & (REMOVED | DONE) == 0 {
+                        self.state[v as usize] |= DONE;
+                        prefetch(&self.init[v as usize]);
+                        stack.push(v);
+                    }
+                }
+            }
+            start.push(marked.len() as u32);
+        }
+        MarkedComponents { marked, start }
+    }
+
+    /// The former §3.4 search, kept as the tests' reference for [`Self::marked_components`]:
+    /// the component of each vertex ([`NONE`] for removed vertices) and their number.
+    #[cfg(test)]
+    pub fn black_components_reference(&self) -> (Vec<u32>, usize) {
         let n = self.init.len();
         let mut comp = vec![NONE; n];
-        // One byte per vertex says "removed or already in a component", so the search reads a
-        // single small array per neighbour.
         let mut done: Vec<bool> = self.state.iter().map(|&e| e & REMOVED != 0).collect();
         let mut count = 0u32;
         let mut stack = Vec::new();
@@ -373,8 +462,28 @@ impl<'a, const K: usize> Dual<'a, K> {
 
     /// Runs §3.1–§3.4 (`construct_dual`, `extend`, `hollow_out`, `remove_v_ext`).
     pub fn run(neighbors: &'a [[u32; K]], black: &[bool]) -> Self {
-        let mut g = Self::construct_dual(neighbors, black);
-        g.extend();
+        // `construct_dual` and `extend` in one pass over the colours and G_init.
+        debug_assert_eq!(neighbors.len(), black.len());
+        let mut joined = Vec::new();
+        let state = neighbors
+            .iter()
+            .zip(black)
+            .enumerate()
+            .map(|(u, (nb, &b))| {
+                let c = if b { BLACK } else { 0 };
+                if nb.contains(&NONE) {
+                    joined.push(u as u32);
+                    c | EXT
+                } else {
+                    c
+                }
+            })
+            .collect();
+        let mut g = Dual {
+            init: neighbors,
+            state,
+            joined,
+        };
         g.hollow_out();
         g.remove_v_ext();
         g
@@ -430,9 +539,72 @@ mod tests {
         assert!(!g.marked(6));
         assert_eq!(g.degree(1), 2);
         assert!(!g.ext(1));
-        let (comp, n) = g.black_components();
+        let (comp, n) = g.black_components_reference();
         assert_eq!(n, 1);
         assert_eq!(comp[0], NONE);
         assert_eq!(comp[2], comp[6]);
+        let mut g = g;
+        let m = g.marked_components();
+        assert_eq!(m.len(), 1);
+        let mut group = m.group(0).to_vec();
+        group.sort();
+        assert_eq!(group, [1, 3, 5, 7]);
+    }
+
+    /// The fused `run` (construct_dual and extend in one pass) leaves the state of the separate
+    /// steps, and `marked_components` groups the marked vertices exactly as the reference search
+    /// numbers the components; on random neighbour arrays of random triangulations, random
+    /// colourings from all-white to all-black.
+    #[test]
+    fn fused_steps_and_components_match_the_reference() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for round in 0..200 {
+            // A random triangulated grid of (w+1) × (h+1) points: two triangles per cell, the
+            // diagonal chosen at random; neighbours from `simplex_neighbors`.
+            let (w, h) = (1 + next() as usize % 9, 1 + next() as usize % 9);
+            let id = |x: usize, y: usize| (y * (w + 1) + x) as u32;
+            let mut tri = Vec::new();
+            for y in 0..h {
+                for x in 0..w {
+                    let (a, b, c, d) = (id(x, y), id(x + 1, y), id(x + 1, y + 1), id(x, y + 1));
+                    if next() % 2 == 0 {
+                        tri.push([a, b, c]);
+                        tri.push([a, c, d]);
+                    } else {
+                        tri.push([a, b, d]);
+                        tri.push([b, c, d]);
+                    }
+                }
+            }
+            let nb = simplex_neighbors(&tri, (w + 1) * (h + 1)).unwrap();
+            let p = (round % 11) as u64;
+            let black: Vec<bool> = (0..tri.len()).map(|_| next() % 10 < p).collect();
+            let mut r = Dual::construct_dual(&nb, &black);
+            r.extend();
+            let mut fused = Dual::run(&nb, &black);
+            r.hollow_out();
+            r.remove_v_ext();
+            assert_eq!(r.state, fused.state);
+            let (comp, ncomp) = r.black_components_reference();
+            let m = fused.marked_components();
+            assert_eq!(m.len(), ncomp);
+            let mut got = vec![NONE; tri.len()];
+            for c in 0..m.len() {
+                for &u in m.group(c) {
+                    assert_eq!(got[u as usize], NONE, "vertex twice");
+                    got[u as usize] = c as u32;
+                }
+            }
+            for u in 0..tri.len() {
+                let want = if r.marked(u) { comp[u] } else { NONE };
+                assert_eq!(got[u], want, "round {round}, vertex {u}");
+            }
+        }
     }
 }

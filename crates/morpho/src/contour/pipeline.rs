@@ -164,17 +164,17 @@ fn delaunay_vertex_values(
     if duplicates != 0 || vertex_of_input.len() != input_of_vertex.len() {
         return vertex_values(input_of_vertex.len(), vertex_of_input, values);
     }
-    input_of_vertex
+    // One range check, then a gather of known length: collecting `Result`s would grow the
+    // vector by doubling (its size hint is 0), copying and faulting in pages several times.
+    if input_of_vertex.iter().any(|&i| i as usize >= values.len()) {
+        return Err(ContourError::BadVertexMap {
+            reason: "vertex refers to a missing sample",
+        });
+    }
+    Ok(input_of_vertex
         .iter()
-        .map(|&i| {
-            values
-                .get(i as usize)
-                .map(|&x| 0.0 + x)
-                .ok_or(ContourError::BadVertexMap {
-                    reason: "vertex refers to a missing sample",
-                })
-        })
-        .collect()
+        .map(|&i| 0.0 + values[i as usize])
+        .collect())
 }
 
 /// A triangulation of the kept samples, as produced by a Delaunay triangulator.
@@ -280,8 +280,14 @@ pub fn contour_triangulated_2d(
     opts: &SampleOptions,
 ) -> Result<PlaneContour, ContourError> {
     let values = vertex_values(tri.points.len(), tri.vertex_of_input, &selected.values)?;
-    let r = plane_phases(&selected, tri, values, opts, None)?;
-    Ok(r.into_contour(selected, tri.points.to_vec(), tri.triangles.to_vec()))
+    let r = plane_phases(tri, values, opts, None)?;
+    let sample_of_vertex = map_vertices(tri.input_of_vertex, &selected.input)?;
+    Ok(r.into_contour(
+        selected,
+        sample_of_vertex,
+        tri.points.to_vec(),
+        tri.triangles.to_vec(),
+    ))
 }
 
 /// [`contour_triangulated_2d`] on the Delaunay triangulation of the selected samples that
@@ -306,13 +312,13 @@ pub(crate) fn contour_delaunay_2d(
         &d.input_of_vertex,
         &selected.values,
     )?;
-    let r = plane_phases(&selected, tri, values, opts, Some(valid))?;
-    Ok(r.into_contour(selected, d.points, d.triangles))
+    let r = plane_phases(tri, values, opts, Some(valid))?;
+    let sample_of_vertex = map_vertices_owned(d.input_of_vertex, &selected.input)?;
+    Ok(r.into_contour(selected, sample_of_vertex, d.points, d.triangles))
 }
 
 /// What the plane pipeline computes besides the triangulation itself.
 struct PlanePhases {
-    sample_of_vertex: Vec<u32>,
     values: Vec<f64>,
     ratings: Vec<f64>,
     black: Vec<bool>,
@@ -323,13 +329,14 @@ impl PlanePhases {
     fn into_contour(
         self,
         selected: SelectedSamples,
+        sample_of_vertex: Vec<u32>,
         points: Vec<Point2>,
         triangles: Vec<[u32; 3]>,
     ) -> PlaneContour {
         PlaneContour {
             selected,
             points,
-            sample_of_vertex: self.sample_of_vertex,
+            sample_of_vertex,
             triangles,
             values: self.values,
             ratings: self.ratings,
@@ -342,7 +349,6 @@ impl PlanePhases {
 /// Rating, colouring and contour; the triangulation is checked unless `valid` vouches for it
 /// (then `tri.neighbors` is `Some`).
 fn plane_phases(
-    selected: &SelectedSamples,
     tri: SampleTriangulation2<'_>,
     values: Vec<f64>,
     opts: &SampleOptions,
@@ -368,9 +374,7 @@ fn plane_phases(
         }
         _ => external_contour_with(tri.triangles, tri.neighbors, tri.points, &black, &copts)?,
     };
-    let sample_of_vertex = map_vertices(tri.input_of_vertex, &selected.input)?;
     Ok(PlanePhases {
-        sample_of_vertex,
         values,
         ratings,
         black,
@@ -385,8 +389,14 @@ pub fn contour_triangulated_3d(
     opts: &SampleOptions,
 ) -> Result<SpaceContour, ContourError> {
     let values = vertex_values(tri.points.len(), tri.vertex_of_input, &selected.values)?;
-    let r = space_phases(&selected, tri, values, opts, None)?;
-    Ok(r.into_contour(selected, tri.points.to_vec(), tri.tets.to_vec()))
+    let r = space_phases(tri, values, opts, None)?;
+    let sample_of_vertex = map_vertices(tri.input_of_vertex, &selected.input)?;
+    Ok(r.into_contour(
+        selected,
+        sample_of_vertex,
+        tri.points.to_vec(),
+        tri.tets.to_vec(),
+    ))
 }
 
 /// [`contour_triangulated_3d`] on the Delaunay tetrahedrization of the selected samples that
@@ -411,13 +421,13 @@ pub(crate) fn contour_delaunay_3d(
         &d.input_of_vertex,
         &selected.values,
     )?;
-    let r = space_phases(&selected, tri, values, opts, Some(valid))?;
-    Ok(r.into_contour(selected, d.points, d.tets))
+    let r = space_phases(tri, values, opts, Some(valid))?;
+    let sample_of_vertex = map_vertices_owned(d.input_of_vertex, &selected.input)?;
+    Ok(r.into_contour(selected, sample_of_vertex, d.points, d.tets))
 }
 
 /// What the space pipeline computes besides the tetrahedrization itself.
 struct SpacePhases {
-    sample_of_vertex: Vec<u32>,
     values: Vec<f64>,
     ratings: Vec<f64>,
     black: Vec<bool>,
@@ -428,13 +438,14 @@ impl SpacePhases {
     fn into_contour(
         self,
         selected: SelectedSamples,
+        sample_of_vertex: Vec<u32>,
         points: Vec<Point3>,
         tets: Vec<[u32; 4]>,
     ) -> SpaceContour {
         SpaceContour {
             selected,
             points,
-            sample_of_vertex: self.sample_of_vertex,
+            sample_of_vertex,
             tets,
             values: self.values,
             ratings: self.ratings,
@@ -447,7 +458,6 @@ impl SpacePhases {
 /// Rating, colouring and the external surface; checked unless `valid` vouches for the
 /// tetrahedrization.
 fn space_phases(
-    selected: &SelectedSamples,
     tri: SampleTriangulation3<'_>,
     values: Vec<f64>,
     opts: &SampleOptions,
@@ -462,9 +472,7 @@ fn space_phases(
         (Some(v), Some(nb)) => external_surface_valid(tri.tets, nb, tri.points, &black, v)?,
         _ => external_surface_with(tri.tets, tri.neighbors, tri.points, &black)?,
     };
-    let sample_of_vertex = map_vertices(tri.input_of_vertex, &selected.input)?;
     Ok(SpacePhases {
-        sample_of_vertex,
         values,
         ratings,
         black,
@@ -472,6 +480,18 @@ fn space_phases(
     })
 }
 
+/// [`map_vertices`] taking the vertex map by value: when nothing was skipped (`input` is the
+/// identity) and the map is in range, the sample of each vertex is its kept-sample index, and
+/// the map itself is the result (moved, not copied).
+fn map_vertices_owned(input_of_vertex: Vec<u32>, input: &[u32]) -> Result<Vec<u32>, ContourError> {
+    let identity = input.iter().enumerate().all(|(i, &k)| k as usize == i);
+    if identity && input_of_vertex.iter().all(|&i| (i as usize) < input.len()) {
+        return Ok(input_of_vertex);
+    }
+    map_vertices(&input_of_vertex, input)
+}
+
+/// The input sample of each vertex: `input[input_of_vertex[v]]`.
 fn map_vertices(input_of_vertex: &[u32], input: &[u32]) -> Result<Vec<u32>, ContourError> {
     // Nothing skipped (the usual case): `input` is the identity and one sequential copy replaces
     // a gather in vertex order.

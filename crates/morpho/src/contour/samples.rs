@@ -42,26 +42,42 @@ pub fn contour_samples(
 ) -> Result<SampleContour, ContourError> {
     let sel = select_samples(samples, opts.value.as_deref())?;
     if samples.dim == 2 {
-        let pts: Vec<Point2> = sel
-            .input
-            .iter()
-            .map(|&i| {
-                let p = samples.point(i as usize);
-                Point2::new(p[0], p[1])
-            })
-            .collect();
+        // Nothing skipped (the usual case): the kept samples are all samples in order, and one
+        // sequential pass over the coordinates replaces the gather.
+        let pts: Vec<Point2> = if sel.input.len() == samples.len() {
+            samples
+                .coords
+                .chunks_exact(2)
+                .map(|p| Point2::new(p[0], p[1]))
+                .collect()
+        } else {
+            sel.input
+                .iter()
+                .map(|&i| {
+                    let p = samples.point(i as usize);
+                    Point2::new(p[0], p[1])
+                })
+                .collect()
+        };
         let d = d2::triangulate(&pts).map_err(lower)?;
         drop(pts);
         Ok(SampleContour::Plane(contour_delaunay_2d(sel, d, opts)?))
     } else {
-        let pts: Vec<Point3> = sel
-            .input
-            .iter()
-            .map(|&i| {
-                let p = samples.point(i as usize);
-                Point3::new(p[0], p[1], p[2])
-            })
-            .collect();
+        let pts: Vec<Point3> = if sel.input.len() == samples.len() && samples.dim >= 3 {
+            samples
+                .coords
+                .chunks_exact(samples.dim)
+                .map(|p| Point3::new(p[0], p[1], p[2]))
+                .collect()
+        } else {
+            sel.input
+                .iter()
+                .map(|&i| {
+                    let p = samples.point(i as usize);
+                    Point3::new(p[0], p[1], p[2])
+                })
+                .collect()
+        };
         let d = d3::triangulate(&pts).map_err(lower)?;
         drop(pts);
         Ok(SampleContour::Space(contour_delaunay_3d(sel, d, opts)?))

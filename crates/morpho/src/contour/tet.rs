@@ -176,12 +176,20 @@ fn external_surface_impl(
 /// §3.1–§3.4 and the faces of the marked tetrahedra on positively oriented tetrahedra with
 /// their neighbours.
 fn surface_of(tets: &[[u32; 4]], nb: &[[u32; 4]], black: &[bool]) -> Surface3 {
-    let g = Dual::<4>::run(nb, black);
-    let (comp, ncomp) = g.black_components();
+    let mut g = Dual::<4>::run(nb, black);
+    let comps = g.marked_components();
+    // The component of each marked tetrahedron (the only ones read below); the others keep the
+    // zero of a fresh allocation, whose pages are not touched.
+    let mut comp = vec![0u32; tets.len()];
+    for c in 0..comps.len() {
+        for &u in comps.group(c) {
+            comp[u as usize] = c as u32;
+        }
+    }
     let mut out = Surface3 {
         black: black.iter().filter(|&&b| b).count(),
         tetrahedra: tets.len(),
-        components: ncomp,
+        components: comps.len(),
         ..Default::default()
     };
     for (u, t) in tets.iter().enumerate() {
