@@ -37,7 +37,9 @@
 //! the non-G¹ edges by cause (`morpho::smooth::non_g1_causes`): `non_g1_micro`,
 //! `non_g1_fold_invisible` (a fold at a vertex whose normal does not see its triangles),
 //! `non_g1_fold`, `non_g1_inflected` (inflected or nearly flat macro edges), `non_g1_other`,
-//! and `non_g1_unlisted` (non-G¹ macro edges the construction did not list as unresolved),
+//! and `non_g1_unlisted` (non-G¹ macro edges the construction did not list as unresolved
+//! or non-G¹), `non_g1_reported` (the macro edges the construction's own a-posteriori check
+//! found not G¹: split3/split2; 0 for split6, which does not run it),
 //! `singular_edges` (split6: edges built with the fallback normal field, inflected or flat),
 //! `unresolved_edges` (split6: edges whose linear systems kept a residual: the only ones
 //! that may be non-G¹), `sign_warnings`, `fold_guarded_edges` (split3 only),
@@ -421,6 +423,7 @@ fn run_surface(args: &Args, report: &mut Report) -> Result<u8, Failure> {
     report.set("non_g1_inflected", causes.inflected);
     report.set("non_g1_other", causes.other);
     report.set("non_g1_unlisted", causes.unlisted);
+    report.set("non_g1_reported", s.non_g1_edges.len());
     report.set("edges_checked", c.edges);
     report.set("folds", c.folds);
     report.set("fold_edges", c.fold_edges);

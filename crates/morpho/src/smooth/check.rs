@@ -6,7 +6,7 @@
 //! and the positions are compared (C⁰). O(patches · samples). The side-vertex surface (H ch. 6)
 //! has no control points: [`side_vertex_continuity`] compares finite-difference normals.
 
-use super::{SideVertexSurface, SplitSurface};
+use super::{BezierTriangle, SideVertexSurface, SplitSurface};
 use crate::geom::vec;
 use std::collections::HashMap;
 
@@ -40,7 +40,6 @@ fn key(p: [f64; 3]) -> [u64; 3] {
 /// The continuity figures of `s` at `samples` (≥ 1) interior points per edge.
 pub fn continuity(s: &SplitSurface, samples: usize) -> Continuity {
     let tris: Vec<_> = s.patches.iter().map(|p| p.triangle()).collect();
-    let unit = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let mut map: HashMap<([u64; 3], [u64; 3]), (usize, usize)> = HashMap::new();
     for (p, t) in tris.iter().enumerate() {
         let c = t.corners();
@@ -58,24 +57,10 @@ pub fn continuity(s: &SplitSurface, samples: usize) -> Continuity {
             continue;
         }
         out.edges += 1;
-        let mut worst: f64 = 0.0;
-        let mut folded = false;
-        for k in 1..=samples.max(1) {
-            let t = k as f64 / (samples.max(1) + 1) as f64;
-            // p runs corner i → i+1; q runs j → j+1 the other way
-            let bp = vec::lerp(unit[i], unit[(i + 1) % 3], t);
-            let bq = vec::lerp(unit[j], unit[(j + 1) % 3], 1.0 - t);
-            let (x1, x2) = (tris[p].eval(bp), tris[q].eval(bq));
-            out.max_position_gap = out.max_position_gap.max(vec::dist(x1, x2));
-            let (n1, n2) = (tris[p].normal(bp), tris[q].normal(bq));
-            let d = vec::dot(n1, n2);
-            if d <= 0.0 {
-                out.folds += 1;
-                folded = true;
-            }
-            worst = worst.max(vec::norm(vec::cross(n1, n2)).atan2(d));
-        }
-        out.fold_edges += usize::from(folded);
+        let (worst, gap, folds) = pair_samples(&tris[p], i, &tris[q], j, samples);
+        out.max_position_gap = out.max_position_gap.max(gap);
+        out.folds += folds;
+        out.fold_edges += usize::from(folds > 0);
         if s.patches[p].macro_tri == s.patches[q].macro_tri {
             out.max_micro_jump_rad = out.max_micro_jump_rad.max(worst);
         } else {
@@ -88,6 +73,126 @@ pub fn continuity(s: &SplitSurface, samples: usize) -> Continuity {
     out.non_g1_edges.sort_unstable();
     out.max_normal_jump_rad = out.max_macro_jump_rad.max(out.max_micro_jump_rad);
     out
+}
+
+/// The samples of [`continuity`] on one shared edge: patch `tp`'s edge from corner `i` to
+/// `i + 1` against `tq`'s edge from corner `j` to `j + 1` (the same edge the other way), at
+/// `samples` (≥ 1) interior points; returns the largest normal angle (`atan2(|n₁×n₂|,
+/// n₁·n₂)`), the largest position gap and the number of fold samples (`n₁·n₂ ≤ 0`). Used by
+/// [`continuity`] and, on the same arguments, by the three-split's a-posteriori check
+/// ([`macro_edges_not_g1`]), so that both measure the same numbers.
+fn pair_samples(
+    tp: &BezierTriangle,
+    i: usize,
+    tq: &BezierTriangle,
+    j: usize,
+    samples: usize,
+) -> (f64, f64, usize) {
+    let unit = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let (mut worst, mut gap, mut folds) = (0.0f64, 0.0f64, 0);
+    for k in 1..=samples.max(1) {
+        let t = k as f64 / (samples.max(1) + 1) as f64;
+        // p runs corner i → i+1; q runs j → j+1 the other way
+        let bp = vec::lerp(unit[i], unit[(i + 1) % 3], t);
+        let bq = vec::lerp(unit[j], unit[(j + 1) % 3], 1.0 - t);
+        let (x1, x2) = (tp.eval(bp), tq.eval(bq));
+        gap = gap.max(vec::dist(x1, x2));
+        let (n1, n2) = (tp.normal(bp), tq.normal(bq));
+        let d = vec::dot(n1, n2);
+        if d <= 0.0 {
+            folds += 1;
+        }
+        worst = worst.max(vec::norm(vec::cross(n1, n2)).atan2(d));
+    }
+    (worst, gap, folds)
+}
+
+/// Relative bound on `tan` of the normal angle below which [`g1_certified`] accepts an edge
+/// without sampling (a tenth of the 1e-9 rad of [`continuity`]).
+const CERTIFY_TAN: f64 = 1e-10;
+/// Lower bound of `n_P·n_Q / (|T_P||D_P||T_Q||D_Q|)` (control-point maxima) required by
+/// [`g1_certified`]: every sine between a patch's two edge derivatives is then ≥ 1e-4, so
+/// rounding moves [`continuity`]'s unit normals by ≲ 1e4·ε ≈ 1e-12 rad.
+const CERTIFY_COND: f64 = 1e-4;
+
+/// The Bernstein coefficients (degree 4) of the unnormalised normal `N(s) = T(s) × D(s)` of a
+/// cubic patch along its edge from corner 0 (b300) to corner 1 (b030): `T` the boundary's
+/// derivative (coefficients `M_{k+1} − M_k`, `M = b300, b210, b120, b030`) and `D` the
+/// derivative towards b003 (coefficients `L_k − M_k`, `L = b201, b111, b021`), both a third
+/// of (8.6)'s; and `max_k |T_k| · max_k |D_k|`.
+fn edge_normal_poly(c: &[[f64; 3]; 10]) -> ([[f64; 3]; 5], f64) {
+    let m = [c[0], c[1], c[3], c[6]];
+    let l = [c[2], c[4], c[7]];
+    let t = [0, 1, 2].map(|k| vec::sub(m[k + 1], m[k]));
+    let d = [0, 1, 2].map(|k| vec::sub(l[k], m[k]));
+    const B2: [f64; 3] = [1.0, 2.0, 1.0];
+    const B4: [f64; 5] = [1.0, 4.0, 6.0, 4.0, 1.0];
+    let mut n = [[0.0; 3]; 5];
+    for (i, ti) in t.iter().enumerate() {
+        for (j, dj) in d.iter().enumerate() {
+            n[i + j] = vec::add_scaled(n[i + j], B2[i] * B2[j] / B4[i + j], vec::cross(*ti, *dj));
+        }
+    }
+    let mx = |v: &[[f64; 3]; 3]| v.iter().fold(0.0f64, |a, x| a.max(vec::norm(*x)));
+    (n, mx(&t) * mx(&d))
+}
+
+/// Whether the two cubic patches `p`, `q` sharing the edge from `p`'s corner 0 to its corner 1
+/// (= `q`'s corner 1 to its corner 0) are certified G¹ there without sampling. With
+/// `N_P(s)`, `N_Q(s)` their unnormalised normals at the same point (`q`'s reversed), the
+/// normal angle θ satisfies `tan θ = |N_P × N_Q| / (N_P · N_Q)`; both are degree-8
+/// polynomials whose Bernstein coefficients `C_k`, `D_k` are formed here, and by the convex
+/// hull property `|N_P × N_Q| ≤ max |C_k|`, `N_P · N_Q ≥ min D_k` on all of `[0, 1]`. The edge
+/// is certified when `min D_k > CERTIFY_COND · scale` (well-conditioned normals, so the
+/// rounding of [`continuity`]'s evaluation stays ≲ 1e-12 rad) and `max |C_k| ≤ CERTIFY_TAN ·
+/// min D_k` (θ ≤ 1e-10 everywhere). `false` is no verdict: the caller samples the edge.
+/// NaN gives `false`. O(1): 43 cross products.
+pub(crate) fn g1_certified(p: &[[f64; 3]; 10], q: &[[f64; 3]; 10]) -> bool {
+    let (np, sp) = edge_normal_poly(p);
+    let (nq, sq) = edge_normal_poly(q);
+    const B4: [f64; 5] = [1.0, 4.0, 6.0, 4.0, 1.0];
+    const B8: [f64; 9] = [1.0, 8.0, 28.0, 56.0, 70.0, 56.0, 28.0, 8.0, 1.0];
+    let mut cr = [[0.0; 3]; 9];
+    let mut dt = [0.0; 9];
+    for (a, na) in np.iter().enumerate() {
+        for b in 0..5 {
+            // q's parameter runs the other way: its coefficient 4 − b sits at s-index b
+            let nb = nq[4 - b];
+            let w = B4[a] * B4[b] / B8[a + b];
+            cr[a + b] = vec::add_scaled(cr[a + b], w, vec::cross(*na, nb));
+            dt[a + b] += w * vec::dot(*na, nb);
+        }
+    }
+    let dmin = dt.iter().fold(f64::INFINITY, |a, &x| a.min(x));
+    let cmax = cr.iter().fold(0.0f64, |a, x| a.max(vec::norm(*x)));
+    dmin > CERTIFY_COND * sp * sq && cmax <= CERTIFY_TAN * dmin
+}
+
+/// The construction's a-posteriori check (issue 19: "report every edge that is not G¹"):
+/// for each `(p, q)` of `pairs` — two cubic patches of `patches` sharing their edge 0 (`p`'s
+/// corner 0 → 1 is `q`'s corner 1 → 0), `p < q` as in [`continuity`] — whether the edge is
+/// **not** G¹ as [`continuity`] measures it at `samples` points (normal angle above 1e-9
+/// rad). Edges [`g1_certified`] accepts are G¹ there (its bound leaves a factor 10 for
+/// rounding); the others are sampled with [`continuity`]'s own code on the same arguments,
+/// so the verdict is the same. In parallel; O(pairs), plus O(samples) per uncertified edge.
+pub(crate) fn macro_edges_not_g1(
+    patches: &[[[f64; 3]; 10]],
+    pairs: &[(usize, usize)],
+    samples: usize,
+) -> Vec<bool> {
+    use rayon::prelude::*;
+    pairs
+        .par_iter()
+        .map(|&(p, q)| {
+            let (cp, cq) = (&patches[p], &patches[q]);
+            if g1_certified(cp, cq) {
+                return false;
+            }
+            let tp = BezierTriangle::new(3, cp.to_vec());
+            let tq = BezierTriangle::new(3, cq.to_vec());
+            pair_samples(&tp, 0, &tq, 0, samples).0 > 1e-9
+        })
+        .collect()
 }
 
 /// The largest distance between the split surface `s` of `mesh` and the flat mesh, measured
@@ -263,7 +368,8 @@ pub struct NonG1Causes {
     /// The remaining macro edges.
     pub other: usize,
     /// Non-G¹ macro edges (any cause) that the construction did not list in
-    /// [`SplitSurface::unresolved_edges`]: claimed G¹, measured not.
+    /// [`SplitSurface::unresolved_edges`] or [`SplitSurface::non_g1_edges`]: claimed G¹,
+    /// measured not.
     pub unlisted: usize,
 }
 
@@ -298,8 +404,12 @@ pub fn non_g1_causes(
             }
         }
     }
-    let unresolved: std::collections::HashSet<[u32; 2]> =
-        s.unresolved_edges.iter().copied().collect();
+    let unresolved: std::collections::HashSet<[u32; 2]> = s
+        .unresolved_edges
+        .iter()
+        .chain(&s.non_g1_edges)
+        .copied()
+        .collect();
     let mut out = NonG1Causes::default();
     for &(p, q) in &c.non_g1_edges {
         let (tp, tq) = (s.patches[p].macro_tri, s.patches[q].macro_tri);
@@ -358,4 +468,93 @@ fn pair_folds(s: &SplitSurface, p: usize, q: usize) -> bool {
         }
     }
     false
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A seeded xorshift in [-1, 1).
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            (self.0 >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+        }
+        fn p3(&mut self) -> [f64; 3] {
+            [self.next(), self.next(), self.next()]
+        }
+    }
+
+    /// Two cubic patches sharing their edge 0 the other way round: the restrictions of one
+    /// random cubic patch (so C¹, hence G¹) to the domain triangles `(a, b, c)`, `(b, a, d)`
+    /// with `c`, `d` on opposite sides of `ab`.
+    fn g1_pair(r: &mut Rng) -> ([[f64; 3]; 10], [[f64; 3]; 10]) {
+        let mut ctl: Vec<[f64; 3]> = Vec::new();
+        for i in 0..10 {
+            // a gently curved graph-like patch over the unit triangle, plus noise
+            let base = [
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.5, 0.0, 0.2],
+                [2.0, 0.0, 0.0],
+                [1.5, 1.0, 0.3],
+                [1.0, 2.0, 0.1],
+                [3.0, 0.0, 0.0],
+                [2.5, 1.0, 0.2],
+                [2.0, 2.0, 0.0],
+                [1.5, 3.0, 0.0],
+            ][i];
+            ctl.push(vec::add_scaled(base, 0.3, r.p3()));
+        }
+        let t = BezierTriangle::new(3, ctl);
+        let w = |x: f64, y: f64| [1.0 - x - y, x, y];
+        let (a, b) = (w(0.2, 0.3), w(0.6, 0.1));
+        let (c, d) = (w(0.5, 0.45), w(0.3, 0.05));
+        let p = t.subdivide(a, b, c).control;
+        let q = t.subdivide(b, a, d).control;
+        (p.try_into().unwrap(), q.try_into().unwrap())
+    }
+
+    #[test]
+    fn g1_certificate_never_accepts_an_edge_the_samples_reject() {
+        // creases of every size from 1e-2 down to rounding: the certificate must never pass an
+        // edge whose sampled jump (continuity's own code) exceeds 1e-9 rad, and must pass the
+        // exact G¹ pairs (else it is vacuous)
+        let mut r = Rng(0x9e37_79b9_7f4a_7c15);
+        let (mut certified, mut exact_certified, mut creased) = (0, 0, 0);
+        for trial in 0..4000 {
+            let (p, mut q) = g1_pair(&mut r);
+            let eps = if trial % 4 == 0 {
+                0.0
+            } else {
+                10f64.powf(-2.0 - 12.0 * (r.next() + 1.0) / 2.0)
+            };
+            for k in [2, 4, 7] {
+                q[k] = vec::add_scaled(q[k], eps, r.p3());
+            }
+            let tp = BezierTriangle::new(3, p.to_vec());
+            let tq = BezierTriangle::new(3, q.to_vec());
+            let (jump, _, _) = pair_samples(&tp, 0, &tq, 0, 20);
+            let ok = g1_certified(&p, &q);
+            if ok {
+                certified += 1;
+                exact_certified += usize::from(eps == 0.0);
+                assert!(
+                    jump <= 2e-10,
+                    "certified with a jump of {jump:e} (eps {eps:e})"
+                );
+            }
+            creased += usize::from(jump > 1e-9);
+            assert_eq!(
+                macro_edges_not_g1(&[p, q], &[(0, 1)], 20),
+                vec![jump > 1e-9]
+            );
+        }
+        eprintln!("certified {certified} (exact {exact_certified} of 1000), creased {creased}");
+        assert!(exact_certified >= 900, "{exact_certified}");
+        assert!(creased >= 1000, "{creased}");
+    }
 }

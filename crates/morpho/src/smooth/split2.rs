@@ -690,6 +690,7 @@ pub fn two_split(
     };
     s.singular_edges = keep(&base.singular_edges);
     s.unresolved_edges = keep(&base.unresolved_edges);
+    s.non_g1_edges = keep(&base.non_g1_edges);
     s.sign_warnings = keep(&base.sign_warnings);
     s.fold_guarded = keep(&base.fold_guarded);
     s.max_displacement = displacement;

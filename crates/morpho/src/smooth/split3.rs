@@ -43,6 +43,18 @@
 //! garble) in [`SplitSurface::sign_warnings`]. Continuity is verified independently by
 //! [`super::continuity`].
 //!
+//! **Every non-G¹ edge reported (issue 19, item 4).** The arguments above give G¹ in exact
+//! arithmetic; in floating point an edge can still crease where the data are ill-conditioned
+//! (fandisk: `Δ` near 1e-13, a transversal edge next to a nearly degenerate corner, a fold
+//! where `f, g` are positive at one end although the normal sees its triangles). So after
+//! Step 6 every macro edge is checked a posteriori on the final control points
+//! (`check::macro_edges_not_g1`): first a certificate — the Bernstein coefficients of the
+//! degree-8 polynomials `N_P × N_Q` and `N_P · N_Q` of the two patches' unnormalised normals
+//! bound `tan θ ≤ 1e-10` on the whole edge, with well-conditioned normals —, and where it
+//! does not certify, the 20 samples of [`super::continuity`] with its own code. The edges
+//! above 1e-9 rad are listed in [`SplitSurface::non_g1_edges`]: the same set as the
+//! independent check's non-G¹ macro edges.
+//!
 //! **Folds (derived here; the text only says "the normal at a vertex should be altered").**
 //! The sign rule `f, g < 0` at an edge end holds exactly when the edge point lies strictly
 //! inside the cone of its two `W` neighbours in the tangent plane, which holds when the edge
@@ -114,6 +126,13 @@ pub struct SplitSurface {
     /// Edges that keep the cubic boundary because the quadratic one would have turned a
     /// neighbouring corner over (module doc, "folds").
     pub fold_guarded: Vec<[u32; 2]>,
+    /// Macro edges `[a, b]` (a < b) that the construction's a-posteriori check measured
+    /// **not** G¹ (normal angle above 1e-9 rad at the 20 sample points of
+    /// [`super::continuity`], whatever the reason: a residual, rounding on an ill-conditioned
+    /// edge, a fold), sorted. The same edges as `continuity(s, 20)`'s non-G¹ macro edges
+    /// (module doc, "Every non-G¹ edge reported"); empty for the six-split, and for the
+    /// two-split the three-split's list less the rebuilt edges.
+    pub non_g1_edges: Vec<[u32; 2]>,
     /// Max over edges of `|L1 − L1_step4| / |edge|` (and the same for `R1`), with Step 4 on the
     /// final boundaries; at most `MAX_MOVE` = 3 by construction (module doc).
     pub max_displacement: f64,
@@ -536,6 +555,22 @@ pub fn three_split_with(
             p[9] = z;
         }
     });
+    // The a-posteriori check (module doc): every macro edge certified or sampled as
+    // `continuity` samples it.
+    let pairs: Vec<(usize, usize)> = edges
+        .iter()
+        .map(|&(a, b)| {
+            let (p, q) = (half[&(a, b)], half[&(b, a)]);
+            (p.min(q), p.max(q))
+        })
+        .collect();
+    let bad = super::check::macro_edges_not_g1(&patches, &pairs, 20);
+    out.non_g1_edges = edges
+        .iter()
+        .zip(&bad)
+        .filter(|(_, &b)| b)
+        .map(|(&(a, b), _)| [a, b])
+        .collect();
     out.patches = patches
         .into_iter()
         .enumerate()
