@@ -39,7 +39,8 @@
 //! `non_g1_fold`, `non_g1_inflected` (inflected or nearly flat macro edges), `non_g1_other`,
 //! and `non_g1_unlisted` (non-G¹ macro edges the construction did not list as unresolved
 //! or non-G¹), `non_g1_reported` (the macro edges the construction's own a-posteriori check
-//! found not G¹: split3/split2; 0 for split6, which does not run it),
+//! found not G¹: split3, split6 (both halves of a macro edge), split2 (split3's list less the
+//! rebuilt edges)),
 //! `singular_edges` (split6: edges built with the fallback normal field, inflected or flat),
 //! `unresolved_edges` (split6: edges whose linear systems kept a residual: the only ones
 //! that may be non-G¹), `sign_warnings`, `fold_guarded_edges` (split3 only),

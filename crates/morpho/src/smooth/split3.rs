@@ -130,8 +130,9 @@ pub struct SplitSurface {
     /// **not** G¹ (normal angle above 1e-9 rad at the 20 sample points of
     /// [`super::continuity`], whatever the reason: a residual, rounding on an ill-conditioned
     /// edge, a fold), sorted. The same edges as `continuity(s, 20)`'s non-G¹ macro edges
-    /// (module doc, "Every non-G¹ edge reported"); empty for the six-split, and for the
-    /// two-split the three-split's list less the rebuilt edges.
+    /// (module doc, "Every non-G¹ edge reported"); for the six-split the same check on both
+    /// halves of each macro edge, and for the two-split the three-split's list less the
+    /// rebuilt edges.
     pub non_g1_edges: Vec<[u32; 2]>,
     /// Max over edges of `|L1 − L1_step4| / |edge|` (and the same for `R1`), with Step 4 on the
     /// final boundaries; at most `MAX_MOVE` = 3 by construction (module doc).
@@ -564,7 +565,7 @@ pub fn three_split_with(
             (p.min(q), p.max(q))
         })
         .collect();
-    let bad = super::check::macro_edges_not_g1(&patches, &pairs, 20);
+    let bad = super::check::macro_edges_not_g1(|k| &patches[k], &pairs, 20);
     out.non_g1_edges = edges
         .iter()
         .zip(&bad)

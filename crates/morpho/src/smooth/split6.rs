@@ -570,7 +570,9 @@ fn turn_inward(dirs: &[P3], [d0, d1]: [P3; 2], (c1, c2): (&mut P3, &mut P3), nul
 /// (inflected or flat, or `ρ` outside `[RHO_MIN, 1/RHO_MIN]`, or reverted by the fan repair
 /// to a field through the natural tangents); `unresolved_edges` — every
 /// edge whose boundary or side system kept a residual or whose side took safeguard (2): the
-/// only edges that may be non-G¹; `sign_warnings` — the edges where safeguard (2) met an
+/// only edges that may be non-G¹ in exact arithmetic; `non_g1_edges` — the macro edges that
+/// the three-split's a-posteriori check measures not G¹ on the final control points (either
+/// half; the same set as [`super::continuity`]'s non-G¹ macro edges); `sign_warnings` — the edges where safeguard (2) met an
 /// outward cross derivative; `max_displacement` — the largest change of a boundary tangent or
 /// of a first-row point from its natural value, in edge lengths (changes not used are not
 /// counted); `fold_guarded` stays empty. Errors as [`super::three_split`]. O(triangles).
@@ -772,6 +774,29 @@ pub fn six_split(
             out.sign_warnings.push([a, b]);
         }
     }
+    // The a-posteriori check of the three-split (its module doc, "Every non-G¹ edge
+    // reported") on both halves of every macro edge: half-edge a → b is edge i of triangle t
+    // (`half` = 3t + i), covered by patches 6t+2i (a → M) and 6t+2i+1 (M → b); its twin, edge j
+    // of u, by 6u+2j (b → M) and 6u+2j+1 (M → a). Each pair shares its patches' edge 0, the one
+    // the other way round, as `macro_edges_not_g1` requires.
+    let mut pairs = Vec::with_capacity(2 * keys.len());
+    for &(a, b) in &keys {
+        let (h, g) = (half[&(a, b)], half[&(b, a)]);
+        let (t, i, u, j) = (h / 3, h % 3, g / 3, g % 3);
+        for (p, q) in [
+            (6 * t + 2 * i, 6 * u + 2 * j + 1),
+            (6 * t + 2 * i + 1, 6 * u + 2 * j),
+        ] {
+            pairs.push((p.min(q), p.max(q)));
+        }
+    }
+    let bad = super::check::macro_edges_not_g1(|k| &tris[k / 6].patches[k % 6], &pairs, 20);
+    out.non_g1_edges = keys
+        .iter()
+        .zip(bad.chunks_exact(2))
+        .filter(|(_, b)| b[0] || b[1])
+        .map(|(&(a, b), _)| [a, b])
+        .collect();
     out.patches = tris
         .into_iter()
         .enumerate()
