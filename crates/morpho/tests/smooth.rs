@@ -1185,20 +1185,7 @@ fn three_split_lists_exactly_the_non_g1_macro_edges_on_real_meshes() {
         let n0 = vertex_normals(&m, NormalWeighting::Area);
         let a = visible_normals(&m, &n0, 0.05);
         let s = three_split_with(&m, &a.normals, &SplitOptions { fold_guard: true }).unwrap();
-        let c = continuity(&s, 20);
-        let mut measured: Vec<[u32; 2]> = c
-            .non_g1_edges
-            .iter()
-            .filter(|&&(p, q)| s.patches[p].macro_tri != s.patches[q].macro_tri)
-            .map(|&(p, q)| macro_edge(&m, &s, p, q))
-            .collect();
-        measured.sort_unstable();
-        let k = morpho::smooth::non_g1_causes(&s, &m, &a.normals, &c);
-        eprintln!(
-            "{name}: non-G1 {} listed {} {k:?}",
-            c.non_g1_edges.len(),
-            s.non_g1_edges.len()
-        );
+        let (measured, k) = measured_non_g1_macro_edges(name, &m, &s, &a.normals);
         assert_eq!(k.micro, 0, "{name}");
         assert_eq!(measured, s.non_g1_edges, "{name}");
         assert_eq!(k.unlisted, 0, "{name}");
@@ -1207,6 +1194,33 @@ fn three_split_lists_exactly_the_non_g1_macro_edges_on_real_meshes() {
             "{name}: nothing to list, the test is vacuous"
         );
     }
+}
+
+/// The macro edges (sorted, each once: the six-split has two shared edges per macro edge) of
+/// `s`'s non-G¹ shared edges as `continuity` measures them at 20 samples, and their causes
+/// (`normals`: those `s` was built with); prints the counts under `name`.
+fn measured_non_g1_macro_edges(
+    name: &str,
+    m: &TriMesh,
+    s: &SplitSurface,
+    normals: &[Vector3],
+) -> (Vec<[u32; 2]>, morpho::smooth::NonG1Causes) {
+    let c = continuity(s, 20);
+    let mut measured: Vec<[u32; 2]> = c
+        .non_g1_edges
+        .iter()
+        .filter(|&&(p, q)| s.patches[p].macro_tri != s.patches[q].macro_tri)
+        .map(|&(p, q)| macro_edge(m, s, p, q))
+        .collect();
+    measured.sort_unstable();
+    measured.dedup();
+    let k = morpho::smooth::non_g1_causes(s, m, normals, &c);
+    eprintln!(
+        "{name}: non-G1 {} listed {} {k:?}",
+        c.non_g1_edges.len(),
+        s.non_g1_edges.len()
+    );
+    (measured, k)
 }
 
 /// The six-split runs the same a-posteriori check on both halves of every macro edge: its
@@ -1223,21 +1237,7 @@ fn six_split_lists_exactly_the_non_g1_macro_edges_on_real_meshes() {
         let n0 = vertex_normals(&m, NormalWeighting::Area);
         let a = visible_normals(&m, &n0, 0.05);
         let s = six_split(&m, &a.normals).unwrap();
-        let c = continuity(&s, 20);
-        let mut measured: Vec<[u32; 2]> = c
-            .non_g1_edges
-            .iter()
-            .filter(|&&(p, q)| s.patches[p].macro_tri != s.patches[q].macro_tri)
-            .map(|&(p, q)| macro_edge(&m, &s, p, q))
-            .collect();
-        measured.sort_unstable();
-        measured.dedup();
-        let k = morpho::smooth::non_g1_causes(&s, &m, &a.normals, &c);
-        eprintln!(
-            "{name}: non-G1 {} listed {} {k:?}",
-            c.non_g1_edges.len(),
-            s.non_g1_edges.len()
-        );
+        let (measured, k) = measured_non_g1_macro_edges(name, &m, &s, &a.normals);
         assert_eq!(measured, s.non_g1_edges, "{name}");
         assert_eq!(k.unlisted, 0, "{name}");
         assert!(
