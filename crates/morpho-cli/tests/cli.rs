@@ -463,6 +463,98 @@ fn graph_command() {
     }
 }
 
+/// Issue 17 item 8: a 3D γ-graph with a parameter < 0 tests Θ(N³) candidate triples on
+/// samples of a surface; above `--max-triples` (or MORPHO_TRIPLE_LIMIT, default 1e8) it is
+/// refused at once with one `error:` line naming the limit, and nothing is written. The whole
+/// fandisk (6 475 points, about 4.5·10¹⁰ triples, hours of work) is refused by default.
+#[test]
+fn gamma_below_zero_in_3d_is_refused_above_the_triple_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // 64 points on the faces of a cube (every vertex open at c < 0)
+    let mut txt = String::new();
+    let mut r: u64 = 12345;
+    for i in 0..64 {
+        let mut q = [0.0f64; 3];
+        for x in &mut q {
+            r = r
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            *x = (r >> 11) as f64 / (1u64 << 53) as f64;
+        }
+        q[i % 3] = (i / 3 % 2) as f64;
+        txt.push_str(&format!("{} {} {}\n", q[0], q[1], q[2]));
+    }
+    let f = write(d, "cube.xyz", txt.as_bytes());
+    let out = d.join("g.json");
+    let args = |extra: &[&str]| -> Vec<String> {
+        let mut a: Vec<String> = ["graph", f.to_str().unwrap(), "--kind", "gamma"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        a.extend(["--c0=0", "--c1=-0.5", "-o", out.to_str().unwrap()].map(String::from));
+        a.extend(extra.iter().map(|s| s.to_string()));
+        a
+    };
+    let run = |a: Vec<String>, env: Option<&str>| {
+        let mut c = Command::new(env!("CARGO_BIN_EXE_morpho"));
+        c.args(&a).env_remove("MORPHO_TRIPLE_LIMIT");
+        if let Some(v) = env {
+            c.env("MORPHO_TRIPLE_LIMIT", v);
+        }
+        c.output().expect("run morpho")
+    };
+    let o = run(args(&[]), None);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    std::fs::remove_file(&out).unwrap();
+    for (extra, env) in [
+        (&["--max-triples", "100"][..], None),
+        (&[][..], Some("100")),
+        (&["--max-triples", "1e2"][..], Some("1e12")),
+    ] {
+        let o = run(args(extra), env);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{extra:?} {env:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.starts_with("error: ")
+                && err.contains("limit of 100")
+                && err.contains("--max-triples"),
+            "{err}"
+        );
+        assert!(
+            !out.exists(),
+            "nothing is written when the graph is refused"
+        );
+    }
+    let o = run(args(&["--max-triples", "lots"]), None);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).starts_with("error: ") && stderr(&o).contains("--max-triples"));
+    // the whole fandisk: refused by default, before its triple loop
+    let Some(data) = data_dir() else { return };
+    let fan = data.join("meshes/fandisk.obj");
+    let o = run(
+        vec![
+            "graph".into(),
+            fan.to_str().unwrap().into(),
+            "--kind".into(),
+            "gamma".into(),
+            "--c0=0".into(),
+            "--c1=-0.5".into(),
+            "-o".into(),
+            out.to_str().unwrap().into(),
+        ],
+        None,
+    );
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("candidate triples") && err.contains("limit of 100000000"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}
+
 /// A raw f32 volume of a sphere function with its JSON sidecar.
 fn sphere_volume(dir: &Path, n: usize, dims_claimed: usize) -> PathBuf {
     let mut raw = Vec::new();

@@ -41,6 +41,10 @@ pub struct Args {
     /// Output file (.json, .svg, .ply).
     #[arg(short, long)]
     pub output: PathBuf,
+    /// Most candidate triples a 3D γ-graph with a parameter < 0 may test (Θ(N³) on surface
+    /// samples; default: MORPHO_TRIPLE_LIMIT, else 1e8, about 20–30 s of one core).
+    #[arg(long, value_name = "N")]
+    pub max_triples: Option<String>,
 }
 
 fn need(v: Option<f64>, name: &str, kind: &str) -> Result<f64, Failure> {
@@ -94,6 +98,14 @@ pub fn parse_kind(a: &Args) -> Result<Kind, Failure> {
 pub fn run(args: Args, report: &mut Report) -> Result<u8, Failure> {
     let kind = parse_kind(&args)?;
     kind.validate().map_err(|e| Failure::usage(e.to_string()))?;
+    if let Some(m) = &args.max_triples {
+        let n = morpho::graphs::parse_count(m).ok_or_else(|| {
+            Failure::usage(format!(
+                "--max-triples must be a positive count such as 1e9, not '{m}'"
+            ))
+        })?;
+        morpho::graphs::set_triple_limit(n);
+    }
     let fmt = Format::of(&args.output)?;
     let pts = report.time("read", || super::read_points(&args.input, args.dims))?;
     report.set("kind", kind.name());

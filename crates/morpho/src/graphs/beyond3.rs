@@ -127,11 +127,22 @@
 //! the surviving x to a ball around e, but on a surface the blockers lie near the tangent
 //! plane and the azimuths across the body stay uncovered.
 //!
+//! **The limit (issue 17 item 8).** Because of that, the candidate triples are counted before
+//! the loop of step 8 ([`super::limit`]; exact for this enumeration, an upper bound of the
+//! triples it visits) and the search is refused with [`GraphError::TooManyTriples`] above a
+//! documented, overridable limit ([`super::triple_limit`], 10⁸ by default) instead of running
+//! for hours: when even C(N, 3) exceeds the limit, the open vertices are found first by a
+//! search that stops at the grid boundary ([`Field::reaches_border`]) and C(open, 3) — the
+//! triples of three open vertices, all of them candidates — is checked before the floods and
+//! partner searches (which cost minutes on the whole fandisk: refused in 0.4 s CPU).
+//!
 //! Preconditions: a full-dimensional tetrahedralization (`d.degenerate` is `None`).
 
 use super::fast::{coords3, Candidates3};
 use super::gamma::{offset_ratio, triangle_circle, CenterInterval, TriFrame};
 use super::lens_tree::BoxTree;
+use super::limit::triples_of_vertex;
+use super::GraphError;
 use crate::delaunay::d3::Delaunay3;
 use crate::geom::bounded::Bounded;
 use crate::geom::grid::PointGrid as Grid;
@@ -153,16 +164,24 @@ const SIZING_ROUNDS: usize = 8000;
 /// Triangles with their intervals.
 type Found = Vec<([u32; 3], CenterInterval)>;
 
+/// The triangles, their intervals and the work of [`beyond_dt_3d_learn`].
+type Beyond = (Vec<[u32; 3]>, Vec<CenterInterval>, Work);
+
 /// The triangles outside γ(\[-1,1\],\[0,1\]) (i.e. not in `cand.triangles`) whose largest
 /// intersection parameter c₁′ is ≥ `c` (c < 0), with their intervals (normal of the sorted
 /// corners (b − a) × (c − a)). Sorted by triangle. See the module documentation.
+///
+/// Refused with [`GraphError::TooManyTriples`] when its enumeration would test more than
+/// `limit` candidate triples (counted after the floods, before the triple loop; the CLI
+/// passes [`super::triple_limit`], issue 17 item 8).
 pub fn beyond_dt_3d(
     d: &Delaunay3,
     cand: &Candidates3,
     c: f64,
-) -> (Vec<[u32; 3]>, Vec<CenterInterval>) {
-    let (t, iv, _) = beyond_dt_3d_with(d, cand, c, true);
-    (t, iv)
+    limit: u64,
+) -> Result<(Vec<[u32; 3]>, Vec<CenterInterval>), GraphError> {
+    let (t, iv, _) = beyond_dt_3d_learn(d, cand, c, true, true, limit)?;
+    Ok((t, iv))
 }
 
 /// The work of the exact decisions of [`beyond_dt_3d_with`] (for the tests that bound it).
@@ -191,6 +210,9 @@ pub(crate) struct Work {
     /// blockers learnt during a pair's walk (points that blocked a triple of the pair in an
     /// exact decision, added to the pair-level filter)
     pub learnt: u64,
+    /// the candidate triples counted before the loop (the limit's measure,
+    /// [`super::limit::triples_of_vertex`]): an upper bound of `visited`
+    pub candidates: u64,
 }
 
 impl Work {
@@ -205,6 +227,7 @@ impl Work {
         self.pairs += o.pairs;
         self.nodes += o.nodes;
         self.learnt += o.learnt;
+        self.candidates += o.candidates;
         self
     }
 }
@@ -212,13 +235,14 @@ impl Work {
 /// [`beyond_dt_3d`] with its work counted; `hints = false` is the search without the blocking
 /// hints of [`Hints`] (the reference of the lockstep tests: the triangles and intervals are the
 /// same, only the work differs).
+#[cfg(test)]
 pub(crate) fn beyond_dt_3d_with(
     d: &Delaunay3,
     cand: &Candidates3,
     c: f64,
     hints: bool,
 ) -> (Vec<[u32; 3]>, Vec<CenterInterval>, Work) {
-    beyond_dt_3d_learn(d, cand, c, hints, hints)
+    beyond_dt_3d_learn(d, cand, c, hints, hints, u64::MAX).expect("no limit")
 }
 
 /// [`beyond_dt_3d_with`]; `learn = false` keeps each pair's blockers to those chosen before
@@ -229,11 +253,12 @@ pub(crate) fn beyond_dt_3d_learn(
     c: f64,
     hints: bool,
     learn: bool,
-) -> (Vec<[u32; 3]>, Vec<CenterInterval>, Work) {
+    limit: u64,
+) -> Result<Beyond, GraphError> {
     let p = coords3(d);
     let n = p.len();
     if n < 4 || c >= 0.0 || d.degenerate.is_some() {
-        return (vec![], vec![], Work::default());
+        return Ok((vec![], vec![], Work::default()));
     }
     let existing: HashSet<[u32; 3]> = cand.triangles.iter().copied().collect();
     let grid = Grid::new(&p, 2.0);
@@ -260,7 +285,7 @@ pub(crate) fn beyond_dt_3d_learn(
             })
             .collect();
         let (t, iv) = per.into_iter().flatten().unzip();
-        return (t, iv, Work::default());
+        return Ok((t, iv, Work::default()));
     }
     let field = Field::new(&p, &grid);
     let nbrs = if hints {
@@ -269,6 +294,26 @@ pub(crate) fn beyond_dt_3d_learn(
         vec![vec![]; n]
     };
     let mu = dec.mu;
+    // the limit's early test: the triples of three open vertices alone are C(h, 3) of the
+    // candidates counted below, known from the open vertices (found by a search that stops at
+    // the boundary) before the floods and partner searches, which cost O(N) cells and points
+    // per open vertex (the whole fandisk: 6 475 open vertices, minutes); skipped when even
+    // C(n, 3) is within the limit
+    if choose3(n as u64) > limit {
+        let h = (0..n)
+            .into_par_iter()
+            .filter(|&a| field.reaches_border(p[a], mu))
+            .count();
+        if choose3(h as u64) > limit {
+            return Err(GraphError::TooManyTriples {
+                c,
+                points: n,
+                open: h,
+                triples: choose3(h as u64),
+                limit,
+            });
+        }
+    }
     let tree = BoxTree::new(&p);
     // step 2 and the partners of step 3, per vertex: (open, R_a, partners b > a, sorted)
     let floods: Vec<(bool, f64, Vec<u32>)> = (0..n)
@@ -320,6 +365,28 @@ pub(crate) fn beyond_dt_3d_learn(
         .collect();
     let open: Vec<bool> = floods.iter().map(|x| x.0).collect();
     let open_list: Vec<u32> = (0..n as u32).filter(|&v| open[v as usize]).collect();
+    // the candidate triples of the loop below, counted before it (issue 17 item 8: the limit)
+    let mut open_above = open_list.len() as u64;
+    let mut candidates = 0u64;
+    for (a, (a_open, _, partners)) in floods.iter().enumerate() {
+        open_above -= u64::from(open[a]);
+        let open_partners = partners.iter().filter(|&&b| open[b as usize]).count() as u64;
+        candidates = candidates.saturating_add(triples_of_vertex(
+            partners.len() as u64,
+            open_above,
+            open_partners,
+            *a_open,
+        ));
+    }
+    if candidates > limit {
+        return Err(GraphError::TooManyTriples {
+            c,
+            points: n,
+            open: open_list.len(),
+            triples: candidates,
+            limit,
+        });
+    }
     // steps 3 and 4 together, each triple a < b < c once: a triple of step 3 has b and c among
     // a's partners and its circumcentre in the grid (and r ≤ R_a); one of step 4 has all three
     // corners open and its circumcentre outside the grid. So the pairs of a are its partners
@@ -396,12 +463,19 @@ pub(crate) fn beyond_dt_3d_learn(
             },
         )
         .collect();
-    let work = per.iter().fold(Work::default(), |w, x| w.merge(x.1));
+    let mut work = per.iter().fold(Work::default(), |w, x| w.merge(x.1));
+    work.candidates = candidates;
     let mut out: Found = per.into_iter().flat_map(|(f, _)| f).collect();
     out.sort_by_key(|x| x.0);
     out.dedup_by_key(|x| x.0);
     let (t, iv) = out.into_iter().unzip();
-    (t, iv, work)
+    Ok((t, iv, work))
+}
+
+/// C(k, 3), saturating.
+fn choose3(k: u64) -> u64 {
+    let k = k as u128;
+    u64::try_from(k * k.saturating_sub(1) * k.saturating_sub(2) / 6).unwrap_or(u64::MAX)
 }
 
 /// How many recent blocking points [`Hints`] keeps.
@@ -1298,6 +1372,54 @@ impl Field {
         }
         (cells, open, r_max)
     }
+
+    /// Whether a's flood region of step 2 reaches the grid boundary — the `open` of
+    /// [`Self::flood`], from the same admission rule and the same 26-connected cells — by a
+    /// best-first search that takes the cell nearest the boundary next and stops at the first
+    /// boundary cell (an open vertex of surface samples costs a path to the boundary, not its
+    /// whole region; a closed one costs its region, as the flood).
+    fn reaches_border(&self, a: [f64; 3], mu: f64) -> bool {
+        use std::cmp::Reverse;
+        use std::collections::BinaryHeap;
+        let d = self.dims;
+        let Some(start) = self.cell_of(a) else {
+            return true;
+        };
+        let to_border = |ci: usize| {
+            let [x, y, z] = self.coords(ci);
+            x.min(y)
+                .min(z)
+                .min(d[0] - 1 - x)
+                .min(d[1] - 1 - y)
+                .min(d[2] - 1 - z)
+        };
+        let mut seen: HashSet<usize> = HashSet::new();
+        seen.insert(start);
+        let mut heap = BinaryHeap::new();
+        heap.push(Reverse((to_border(start), start)));
+        while let Some(Reverse((b, ci))) = heap.pop() {
+            if b == 0 {
+                return true;
+            }
+            let [x, y, z] = self.coords(ci);
+            for nz in z.saturating_sub(1)..=(z + 1).min(d[2] - 1) {
+                for ny in y.saturating_sub(1)..=(y + 1).min(d[1] - 1) {
+                    for nx in x.saturating_sub(1)..=(x + 1).min(d[0] - 1) {
+                        let j = (nz * d[1] + ny) * d[0] + nx;
+                        if seen.contains(&j) {
+                            continue;
+                        }
+                        let (lo, hi) = self.cell_box(j);
+                        if mu * min_dist(a, lo, hi) <= self.u[j] * (1.0 + SLACK) {
+                            seen.insert(j);
+                            heap.push(Reverse((to_border(j), j)));
+                        }
+                    }
+                }
+            }
+        }
+        false
+    }
 }
 
 /// The nearest point to x other than `skip` (by growing box queries from radius `start`).
@@ -1607,8 +1729,8 @@ mod tests {
             let d = d3::triangulate(&pts).unwrap();
             let cand = super::super::fast::candidates_3d(&d);
             for c in [-0.3, -0.5] {
-                let with = beyond_dt_3d_learn(&d, &cand, c, true, true);
-                let without = beyond_dt_3d_learn(&d, &cand, c, true, false);
+                let with = beyond_dt_3d_learn(&d, &cand, c, true, true, u64::MAX).unwrap();
+                let without = beyond_dt_3d_learn(&d, &cand, c, true, false, u64::MAX).unwrap();
                 assert_eq!(with.0, without.0, "n = {n}, c = {c}");
                 assert_eq!(with.1, without.1, "n = {n}, c = {c}");
                 eprintln!("n = {n}, c = {c}: {:?} / {:?}", with.2, without.2);
@@ -1636,7 +1758,88 @@ mod tests {
         let pts: Vec<Point3> = p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
         let d = d3::triangulate(&pts).unwrap();
         let cand = super::super::fast::candidates_3d(&d);
-        let _ = beyond_dt_3d(&d, &cand, -0.5);
+        let _ = beyond_dt_3d(&d, &cand, -0.5, u64::MAX);
+    }
+
+    /// The limit's early test finds exactly the open vertices of the floods (a search that
+    /// stopped one cell early, or took another connectivity, fails it on the cloud, whose
+    /// vertices are partly open).
+    #[test]
+    fn the_border_search_finds_the_open_vertices_of_the_floods() {
+        for (p, c) in [
+            (surface(150, 1, 3), -0.5),
+            (cloud(400, 1.0), -0.2),
+            (cloud(400, 1.0), -0.05),
+        ] {
+            let grid = Grid::new(&p, 2.0);
+            let field = Field::new(&p, &grid);
+            let mu = Decider::new(&p, &grid, c, None).mu;
+            let mut open = 0;
+            for q in &p {
+                let want = field.flood(*q, mu).1;
+                assert_eq!(field.reaches_border(*q, mu), want, "{q:?} c = {c}");
+                open += usize::from(want);
+            }
+            assert!(open > 0, "c = {c}: some vertex is open");
+            if c > -0.1 {
+                assert!(open < p.len(), "c = {c}: some vertex is closed");
+            }
+        }
+    }
+
+    /// Issue 17 item 8 (the limit): the count made before the loop bounds the triples the loop
+    /// visits, is near C(n, 3) on surface samples (every vertex open; 300 uniform points at
+    /// c = −0.05 too) and below it where vertices are closed; a limit one below the count refuses with that count, a limit equal
+    /// to it gives the unlimited result. A count that left out a term (the open pairs, or the
+    /// partners) fails the first assertion on the surfaces.
+    #[test]
+    fn the_triple_limit_counts_every_visit_before_the_loop() {
+        for (p, c) in [
+            (surface(120, 1, 3), -0.5),
+            (surface(100, 0, 5), -0.3),
+            (cloud(300, 1.0), -0.05),
+        ] {
+            let pts: Vec<Point3> = p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
+            let d = d3::triangulate(&pts).unwrap();
+            let cand = super::super::fast::candidates_3d(&d);
+            let (t, iv, w) = beyond_dt_3d_learn(&d, &cand, c, true, true, u64::MAX).unwrap();
+            let n = p.len() as u64;
+            let all = n * (n - 1) * (n - 2) / 6;
+            assert!(
+                w.visited <= w.candidates && w.candidates <= all,
+                "visited {} candidates {} all {all}",
+                w.visited,
+                w.candidates
+            );
+            let e = beyond_dt_3d(&d, &cand, c, w.candidates - 1).unwrap_err();
+            assert!(
+                matches!(e, GraphError::TooManyTriples { triples, .. } if triples == w.candidates),
+                "{e}"
+            );
+            assert_eq!(beyond_dt_3d(&d, &cand, c, w.candidates).unwrap(), (t, iv));
+        }
+        let p = surface(120, 1, 3);
+        let pts: Vec<Point3> = p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
+        let d = d3::triangulate(&pts).unwrap();
+        let cand = super::super::fast::candidates_3d(&d);
+        let w = beyond_dt_3d_learn(&d, &cand, -0.5, true, true, u64::MAX)
+            .unwrap()
+            .2;
+        assert!(
+            w.candidates * 10 >= 120 * 119 * 118 / 6 * 9,
+            "{}",
+            w.candidates
+        );
+        // inside a cloud some vertices are closed at c near 0 (the border search's test): their
+        // pairs are their partners only
+        let p = cloud(400, 1.0);
+        let pts: Vec<Point3> = p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();
+        let d = d3::triangulate(&pts).unwrap();
+        let cand = super::super::fast::candidates_3d(&d);
+        let w = beyond_dt_3d_learn(&d, &cand, -0.05, true, true, u64::MAX)
+            .unwrap()
+            .2;
+        assert!(w.candidates < 400 * 399 * 398 / 6, "{}", w.candidates);
     }
 }
 

@@ -208,7 +208,7 @@ pub fn graph_3d(points: &[Point3], kind: Kind) -> Result<Graph> {
                 });
             }
             let mut t = tri_filter(keep);
-            let (bt, bi) = beyond3::beyond_dt_3d(&d, &cand, c);
+            let (bt, bi) = beyond3::beyond_dt_3d(&d, &cand, c, super::triple_limit())?;
             t.extend(
                 bt.iter()
                     .zip(&bi)

@@ -84,6 +84,24 @@ pub enum GraphError {
         /// The limit.
         limit: usize,
     },
+    /// A 3D γ-graph beyond the tetrahedralization (a parameter c < 0) whose enumeration would
+    /// test more candidate triples than the limit ([`crate::graphs::triple_limit`]).
+    #[error(
+        "3D γ-graphs with a parameter c = {c} < 0 test the triples of every 'open' vertex (near the hull or on a sampled surface: Θ(N³), V Lemma 3.4); these {points} points ({open} open) need at least {triples} candidate triples, above the limit of {limit} (raise it with --max-triples or MORPHO_TRIPLE_LIMIT; about 2·10⁻⁷ s each on one core)"
+    )]
+    TooManyTriples {
+        /// The parameter c.
+        c: f64,
+        /// Number of distinct points.
+        points: usize,
+        /// Of them, the open vertices.
+        open: usize,
+        /// The candidate triples the enumeration would test (C(open, 3) when it is refused
+        /// before its partner searches: a lower bound).
+        triples: u64,
+        /// The limit.
+        limit: u64,
+    },
     /// A 3D α-shape with a > 0 on more than `limit` hull vertices.
     #[error("3D α-shapes with a > 0 are limited to {limit} hull vertices (got {hull_vertices})")]
     AlphaHullTooLarge {

@@ -14,8 +14,10 @@
 //! and γ with parameters ≥ 0: O(N); EMST (Borůvka on the Delaunay edges): O(N log N) worst case;
 //! RNG and lune-based β (b > 0): O(N·k) with k the points in the box of a lune; SIG: O(N·k) with
 //! k the points near an edge; ∞-SG: O(N) filter plus O(N) per surviving edge; α (a > 0): O(h³)
-//! over the h hull vertices; γ beyond the Delaunay triangulation (a parameter < 0): output
-//! sensitive. In 3D, γ with a parameter −1 (nearly every triple of points, the brute force of
+//! over the h hull vertices; γ beyond the Delaunay triangulation (a parameter < 0):
+//! (2D) the partner searches of `fast::beyond_dt_2d`; in 3D Θ(N³) cheap tests where vertices are "open" (near the hull, samples
+//! of a surface: `beyond3`'s module documentation), refused above [`triple_limit`] candidate
+//! triples (10⁸ by default, overridable). In 3D, γ with a parameter −1 (nearly every triple of points, the brute force of
 //! V Thm 3.1) and degenerate (coplanar) input are limited to [`BRUTE_LIMIT_3D`] points, α with
 //! a > 0 to [`ALPHA_HULL_LIMIT_3D`] hull vertices (O(h⁴) worst case). Degenerate groups are
 //! output-sensitive: the Θ(g³) triples of g cospherical or cocircular points cost O(1) each
@@ -48,12 +50,14 @@ pub(crate) mod facets;
 pub(crate) mod fast;
 pub(crate) mod gamma;
 mod lens_tree;
+mod limit;
 mod lune;
 
 pub use build::{graph_2d, Graph, Kind, ALPHA_HULL_LIMIT_3D, BRUTE_LIMIT_3D};
 pub use build3::graph_3d;
 pub use error::GraphError;
 pub use gamma::{in_gamma, in_gamma_range};
+pub use limit::{parse_count, set_triple_limit, triple_limit, DEFAULT_TRIPLE_LIMIT};
 
 #[cfg(test)]
 mod tests;

@@ -468,7 +468,7 @@ mod beyond3_oracle {
                 .filter(|(t, v)| reaches(*t, v.1) && !known.contains(t))
                 .map(|(t, v)| (*t, *v))
                 .collect();
-            let (tris, ivs) = beyond_dt_3d(&d, &cand, c);
+            let (tris, ivs) = beyond_dt_3d(&d, &cand, c, u64::MAX).unwrap();
             let mut got = BTreeMap::new();
             for (t, iv) in tris.iter().zip(&ivs) {
                 let v = iv.gamma_values().expect("output triangle has γ-values");
@@ -1628,7 +1628,7 @@ mod exact_oracle {
                 }
             }
             if c < 0.0 {
-                let (tris, _) = beyond_dt_3d(&d, &cand, c);
+                let (tris, _) = beyond_dt_3d(&d, &cand, c, u64::MAX).unwrap();
                 let got: BTreeSet<[u32; 3]> = tris.into_iter().collect();
                 assert_eq!(got, want_beyond, "beyond_dt_3d at c = {c:e}");
             }

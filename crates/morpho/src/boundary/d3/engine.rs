@@ -135,7 +135,9 @@ impl Engine3 {
         let cand = crate::graphs::fast::candidates_3d_with(d, which).0;
         let mut all = cand.triangles.clone();
         if small {
-            all.extend(crate::graphs::beyond3::beyond_dt_3d(d, &cand, c).0);
+            // at most C(BEYOND_ALL_MAX, 3) ≈ 1.06·10⁷ candidate triples: no limit applies
+            let beyond = crate::graphs::beyond3::beyond_dt_3d(d, &cand, c, u64::MAX);
+            all.extend(beyond.expect("no limit").0);
         }
         let mut g = General3::new(&self.pos, &d.hull, &all, &self.keep_v);
         if !small {
