@@ -581,34 +581,3 @@ fn table_5_1_error_levels_beat_the_thesis() {
         assert!(ratio < 0.85, "{name}: {rms} = {ratio:.2}× the thesis");
     }
 }
-
-/// Error levels on a CAD part (fandisk: planes, cylinders, sharp creases) at 90 % removed: the
-/// RMS distance of the input's vertices to the output is below 1.6e-4 of the bounding-box
-/// diagonal. With the max-min-angle fans alone (main before the plain-fan candidates) it was
-/// 2.33e-4, with them 1.13e-4 (pymeshlab's QEM: 5.17e-5; bench/README.md, "Plain fans"): the
-/// bound sits between the two, so dropping the plain fans fails it.
-#[test]
-fn error_levels_fandisk_at_90_percent_within_the_plain_fan_bound() {
-    let Some(m) = scan("fandisk.obj") else {
-        return;
-    };
-    let o = ReduceOptions {
-        stop: Stop::Triangles((m.triangles.len() as f64 * 0.1).round() as usize),
-        order: Order::ErrorLevels,
-        ..Default::default()
-    };
-    let r = reduce(&m, &o).unwrap();
-    assert_valid(&m, &r.mesh, "fandisk");
-    let p = p3(&m);
-    let diag = (0..3)
-        .map(|i| {
-            let (lo, hi) = p
-                .iter()
-                .fold((f64::MAX, f64::MIN), |(l, h), q| (l.min(q[i]), h.max(q[i])));
-            (hi - lo).powi(2)
-        })
-        .sum::<f64>()
-        .sqrt();
-    let rel = mesh_distance(&m, &r.mesh).rms / diag;
-    assert!(rel < 1.6e-4, "fandisk 90 %: RMS / diagonal {rel:e}");
-}

@@ -47,12 +47,7 @@
 //! memory: the minimiser of the summed squared distances to the planes of the input triangles
 //! around the three merged corners — not Hamann's); and — when both exceed ε — the corners of
 //! the removed triangle (creases and corners then stay where the quadratic fit would round
-//! them). The fit and the QEM point are tried twice: with the fan improved by Hamann's
-//! max-min angle-weight swaps (5.40), and with the **plain fan** (every new triangle keeps the
-//! new point). On a curved surface a swap puts a triangle across three ring vertices, a chord
-//! below the surface, and on developable CAD surfaces (fandisk's cylinders) the angle criterion
-//! chooses those chords against the rulings: at 90 % removed the plain fan halves fandisk's RMS
-//! (bench/README.md, "Plain fans"). Every candidate passes the same tests (removability, fold, degeneracy, reach,
+//! them). Every candidate passes the same tests (removability, fold, degeneracy, reach,
 //! self-intersection, height-field domain). A waiting triangle whose platelet changes is
 //! planned again only when ε reaches its recorded error. Measured (bench/README.md, "Triangle
 //! reduction", "QEM candidate"): at 90 % removed the RMS distance is 0.97–1.01× pymeshlab's on
@@ -283,8 +278,6 @@ struct Engine<'o> {
     waiting: Vec<bool>,
     /// [`Order::ErrorLevels`]: the quadric error memory of every vertex ([`super::qem`]).
     quad: Vec<QemQuadric>,
-    /// The swaps of the last [`Engine::finish`] (0 when it ended before the fan).
-    last_swaps: usize,
 }
 
 /// Reduces `mesh` by Hamann's triangle removal (Alg. 5.1); see the module documentation.
@@ -357,45 +350,39 @@ pub fn reduce(mesh: &TriMesh, opts: &ReduceOptions) -> Result<Reduced, ReduceErr
         // the tracker's last evaluation, while it is that of `plan` (then not repeated)
         let mut evaluated = None;
         if let (true, Some(tr)) = (levels, tracker.as_mut()) {
-            // the fitted point, the QEM point, or a corner of the triangle, each with the fan
-            // improved by swaps or (fit, QEM) the plain fan, whichever moves the input's
-            // vertices least (root of their summed squared errors); creases and corners stay
-            // where the fit would round them. Candidates after the fitted point's max-min-angle fan: the fitted point's plain
-            // fan, the QEM point's (an extension, not Hamann's: `super::qem`) improved and
-            // plain fans, and — only when all of those exceed ε — the three corners' improved
-            // fans; each judged the same way, a loser abandoned as soon as it is worse
+            // the fitted point, the QEM point, or a corner of the triangle, whichever moves
+            // the input's vertices least (root of their summed squared errors); creases and
+            // corners stay where the fit would round them
             e.new_corners(&prep, &plan, &mut corners);
             evaluated = Some(tr.evaluate(&prep.ring.removed, &corners));
             let mut best = tr.last_local_l2();
-            let mut cands = [(Cand::Fit, false); 6];
-            let mut n = 1;
-            if let Some(q) = e.qem_point(&prep) {
-                cands[1] = (Cand::At(q), true);
-                cands[2] = (Cand::At(q), false);
-                n = 3;
-            }
-            let cheap = n;
-            for k in 0..3 {
-                cands[n] = (Cand::Corner(k), true);
-                n += 1;
-            }
-            for (i, &(c, swaps)) in cands[..n].iter().enumerate() {
-                if i == cheap && best <= e.eps {
-                    break;
-                }
-                if !swaps && e.last_swaps == 0 {
-                    // the same point's improved fan (the finish just before) took no swap:
-                    // the plain fan is that very triangulation, already judged
-                    continue;
-                }
-                if let Some(alt) = e.finish(&prep, c, swaps) {
-                    e.new_corners(&prep, &alt, &mut corners);
-                    let ev = tr.evaluate_within(&prep.ring.removed, &corners, best);
+            // the QEM point (an extension, not Hamann's: `super::qem`), judged the same way
+            if let Some(alt) = e
+                .qem_point(&prep)
+                .and_then(|q| e.finish(&prep, Cand::At(q)))
+            {
+                e.new_corners(&prep, &alt, &mut corners);
+                let ev = tr.evaluate_within(&prep.ring.removed, &corners, best);
+                if ev.is_some() && tr.last_local_l2() < best {
+                    best = tr.last_local_l2();
+                    plan = alt;
+                    evaluated = ev;
+                } else {
                     evaluated = None;
-                    if ev.is_some() && tr.last_local_l2() < best {
-                        best = tr.last_local_l2();
-                        plan = alt;
-                        evaluated = ev;
+                }
+            }
+            if best > e.eps {
+                for k in 0..3 {
+                    if let Some(alt) = e.finish(&prep, Cand::Corner(k)) {
+                        // (a corner worse than the best so far is abandoned early)
+                        e.new_corners(&prep, &alt, &mut corners);
+                        let ev = tr.evaluate_within(&prep.ring.removed, &corners, best);
+                        evaluated = None;
+                        if ev.is_some() && tr.last_local_l2() < best {
+                            best = tr.last_local_l2();
+                            plan = alt;
+                            evaluated = ev;
+                        }
                     }
                 }
             }
@@ -520,7 +507,6 @@ impl<'o> Engine<'o> {
             over: WeightHeap::default(),
             waiting: vec![false; nt],
             quad: Vec::new(),
-            last_swaps: 0,
             s,
         };
         // the mean length of one edge per triangle sizes the grid's cells and the first error
@@ -585,7 +571,7 @@ impl<'o> Engine<'o> {
                 }
                 match self
                     .prepare(t)
-                    .and_then(|prep| Some((self.finish(&prep, Cand::Fit, true)?, prep)))
+                    .and_then(|prep| Some((self.finish(&prep, Cand::Fit)?, prep)))
                 {
                     Some((plan, prep)) => return Some((prep, plan)),
                     None => self.parked[t as usize] = true,
@@ -737,12 +723,10 @@ impl<'o> Engine<'o> {
         })
     }
 
-    /// The plan of a prepared removal with the new point `cand` (fitted, at the QEM point or
-    /// at a corner of the triangle; [`Order::ErrorLevels`] compares them): the fan, improved
-    /// by the max-min angle-weight swaps of (5.40) when `swaps` (always in Hamann's order), and
-    /// the tests of the new triangles. Sets [`Engine::last_swaps`].
-    fn finish(&mut self, prep: &Prep, cand: Cand, swaps: bool) -> Option<Plan> {
-        self.last_swaps = 0;
+    /// The plan of a prepared removal with the new point fitted (`corner` `None`) or put at
+    /// a corner of the triangle ([`Order::ErrorLevels`] compares them): the fan, its swaps
+    /// and the tests of the new triangles.
+    fn finish(&mut self, prep: &Prep, cand: Cand) -> Option<Plan> {
         let ring = &prep.ring;
         let t = prep.t;
         let (p, abs_curv) = match cand {
@@ -782,14 +766,12 @@ impl<'o> Engine<'o> {
             fan(m, ring.closed, &mut tris);
             let xyo = height.then_some(xy.as_slice());
             let (s, verts, buf, flips) = (&self.s, &ring.verts, &mut self.buf, &mut self.flips);
-            self.last_swaps = improve(
+            improve(
                 &mut tris,
                 &p3,
                 &p2,
                 xyo,
-                // (without swaps: every first swap of a fan puts the new diagonal between two
-                // ring vertices, which "already an edge" refuses, so the fan stays plain)
-                |i, j| !swaps || s.has_edge(verts[i - 1], verts[j - 1], buf),
+                |i, j| s.has_edge(verts[i - 1], verts[j - 1], buf),
                 flips,
             );
             // (the angle weights of the final triangles are improve's, same corners in the
