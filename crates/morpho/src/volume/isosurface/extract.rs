@@ -204,7 +204,8 @@ pub(super) struct Ctx<'a> {
     pub keys: bool,
     /// Decider topology during the extraction (`super::parts`): a union–find parent per
     /// grid-edge vertex, every polygon's vertices united, and the polygon sides on the
-    /// volume's outer faces counted. Only with [`IsoMethod::Decider`] and without `keys`.
+    /// volume's outer faces counted. Only meaningful with [`IsoMethod::Decider`] (the
+    /// tests record `keys` alongside, for the edge-table oracle).
     pub parts: bool,
     /// Offset and span tables for central-difference normals (`Some` iff `normals` is
     /// `Central`), built for `gvol`.
