@@ -325,6 +325,7 @@ pub fn isosurface_block(
         normals: opts.normals,
         flip: opts.flip,
         keys: true,
+        parts: false,
         central: central.as_ref(),
         gvol: &gvol,
         gaxes: &gaxes,
@@ -544,7 +545,14 @@ pub fn stitch_blocks(
     drop(blocks);
     let nan_cell = |c: [usize; 3]| nan.binary_search(&cell_index(c, g)).is_ok();
     let gr = (grid.dims, &grid.axes, &grid.orientation);
-    Ok(finish(r, keys, zero_normals, gr, nan_cell, opts))
+    Ok(finish(
+        r,
+        super::Topo::Keys(keys),
+        zero_normals,
+        gr,
+        nan_cell,
+        opts,
+    ))
 }
 
 #[cfg(test)]

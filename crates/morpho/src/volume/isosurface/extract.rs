@@ -53,6 +53,55 @@ pub(super) fn extent(key: u64, axis: usize) -> Option<(usize, usize)> {
     Some((c[axis], c[axis] + spans[axis] as usize))
 }
 
+/// Root of vertex `x` in the union–find parents `p` (path halving).
+#[inline]
+pub(super) fn vp_find(p: &mut [u32], mut x: u32) -> u32 {
+    while p[x as usize] != x {
+        let g = p[p[x as usize] as usize];
+        p[x as usize] = g;
+        x = g;
+    }
+    x
+}
+
+/// Joins the vertices of one polygon (all grid-edge vertices, slab-local indices) in the
+/// union–find parents `p`; the smaller root wins, so a parent never comes after its child.
+#[inline]
+fn unite_polygon(p: &mut [u32], v: &[u32]) {
+    let mut r = vp_find(p, v[0]);
+    for &w in &v[1..] {
+        let s = vp_find(p, w);
+        if s != r {
+            let (lo, hi) = (r.min(s), r.max(s));
+            p[hi as usize] = lo;
+            r = lo;
+        }
+    }
+}
+
+/// The polygon sides (face segments) that cell `p` of sign configuration `cfg` has on the
+/// outer faces of a volume of `dims` samples. On a face the contour crosses 0, 2 or 4 of its
+/// edges, and each segment joins two crossings, so a face holds (sign changes around it) / 2
+/// segments, whichever way an ambiguous face is resolved (marching-cubes methods).
+#[inline]
+fn outer_sides(p: [usize; 3], cfg: u8, dims: [usize; 3]) -> usize {
+    let mut n = 0;
+    for (f, fc) in FACE_CORNERS.iter().enumerate() {
+        let axis = f / 2;
+        let outer = if f % 2 == 0 {
+            p[axis] == 0
+        } else {
+            p[axis] + 2 == dims[axis]
+        };
+        if outer {
+            let b = |k: usize| cfg >> fc[k] & 1;
+            let changes = (b(0) ^ b(1)) + (b(1) ^ b(2)) + (b(2) ^ b(3)) + (b(3) ^ b(0));
+            n += changes as usize / 2;
+        }
+    }
+    n
+}
+
 /// True when the entity between samples with sign codes `a`, `b` carries a contour point.
 #[inline]
 fn cut(a: u8, b: u8) -> bool {
@@ -153,6 +202,11 @@ pub(super) struct Ctx<'a> {
     pub flip: bool,
     /// Record grid keys of vertices (needed for the topology analysis only).
     pub keys: bool,
+    /// Decider topology during the extraction (`super::parts`): a union–find parent per
+    /// grid-edge vertex, every polygon's vertices united, and the polygon sides on the
+    /// volume's outer faces counted. Only meaningful with [`IsoMethod::Decider`] (the
+    /// tests record `keys` alongside, for the edge-table oracle).
+    pub parts: bool,
     /// Offset and span tables for central-difference normals (`Some` iff `normals` is
     /// `Central`), built for `gvol`.
     pub central: Option<&'a CentralTable>,
@@ -177,6 +231,11 @@ pub(super) struct ChunkOut {
     pub ipos: Vec<Point3>,
     pub inrm: Vec<Vector3>,
     pub tris: Vec<[u32; 3]>,
+    /// With [`Ctx::parts`]: the union–find parent of each grid-edge vertex (slab-local index,
+    /// a parent never above its child), and the polygon sides lying on the volume's outer
+    /// faces.
+    pub vp: Vec<u32>,
+    pub outer: usize,
     /// With [`Ctx::cells`]: the cell of each triangle, of each interior point, and the cells
     /// skipped for a NaN corner.
     pub tcell: Vec<[usize; 3]>,
@@ -381,6 +440,9 @@ impl Ctx<'_> {
         if self.keys {
             out.keys.push(k);
         }
+        if self.parts {
+            out.vp.push(out.pos.len() as u32 - 1);
+        }
         out.overflow |= out.pos.len() >= INTERIOR as usize;
         (out.pos.len() - 1) as u32
     }
@@ -565,6 +627,7 @@ impl Ctx<'_> {
             out.pos.shrink_to_fit();
             out.nrm.shrink_to_fit();
             out.keys.shrink_to_fit();
+            out.vp.shrink_to_fit();
         }
         if out.tris.capacity() > 2 * out.tris.len() + 1024 {
             out.tris.shrink_to_fit();
@@ -588,6 +651,9 @@ impl Ctx<'_> {
         }
         if !out.keys.is_empty() {
             out.keys.reserve(np);
+        }
+        if !out.vp.is_empty() {
+            out.vp.reserve(np);
         }
         out.tris.reserve(nt);
     }
@@ -665,6 +731,9 @@ impl Ctx<'_> {
     #[inline]
     fn cell(&self, p: [usize; 3], cfg: u8, ix: &Index, out: &mut ChunkOut) {
         self.cell_triangles(p, cfg, ix, out);
+        if self.parts {
+            out.outer += outer_sides(p, cfg, self.vol.dims);
+        }
         if self.cells {
             out.tcell.resize(out.tris.len(), p);
         }
@@ -763,6 +832,9 @@ impl Ctx<'_> {
             let mut v = [0u32; 12];
             for i in 0..n {
                 v[i] = ent(poly.edges[i]);
+            }
+            if self.parts {
+                unite_polygon(&mut out.vp, &v[..n]);
             }
             if poly.fan_face == NO_FACE || self.method == IsoMethod::Lorensen {
                 for i in 1..n - 1 {

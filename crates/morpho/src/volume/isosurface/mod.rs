@@ -190,7 +190,10 @@ pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeEr
     };
     let axes = axis_coords(vol);
     let central = (opts.normals == NormalMethod::Central).then(|| CentralTable::new(vol, &axes));
-    let ctx = Ctx {
+    // the decider's topology is found during the extraction (`decider_analysis`); other
+    // methods, and any run that skips a NaN cell, take the edge-table pass (`analyze`)
+    let parts = opts.topology && opts.method == IsoMethod::Decider;
+    let mut ctx = Ctx {
         vol,
         axes: &axes,
         alpha: opts.level,
@@ -198,7 +201,8 @@ pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeEr
         method: opts.method,
         normals: opts.normals,
         flip: opts.flip,
-        keys: opts.topology,
+        keys: opts.topology && !parts,
+        parts,
         central: central.as_ref(),
         gvol: vol,
         gaxes: &axes,
@@ -216,13 +220,33 @@ pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeEr
         .step_by(per)
         .map(|z0| (z0, (z0 + per).min(layers)))
         .collect();
-    let chunks: Vec<ChunkOut> = if opts.parallel && ranges.len() > 1 {
-        ranges.par_iter().map(|&(a, b)| ctx.chunk(a, b)).collect()
-    } else {
-        ranges.iter().map(|&(a, b)| ctx.chunk(a, b)).collect()
+    let run = |ctx: &Ctx| -> Vec<ChunkOut> {
+        if opts.parallel && ranges.len() > 1 {
+            ranges.par_iter().map(|&(a, b)| ctx.chunk(a, b)).collect()
+        } else {
+            ranges.iter().map(|&(a, b)| ctx.chunk(a, b)).collect()
+        }
     };
+    let mut chunks = run(&ctx);
+    if parts && chunks.iter().any(|c| c.skipped_cells > 0) {
+        // NaN cells: the surface may end inside the volume, vertex unions no longer give the
+        // edge-connected parts, and the boundary edges need grid keys: extract again with keys
+        drop(chunks);
+        ctx.parts = false;
+        ctx.keys = true;
+        chunks = run(&ctx);
+    }
+    let vps: Vec<(Vec<u32>, usize, usize)> = chunks
+        .iter_mut()
+        .map(|c| (std::mem::take(&mut c.vp), c.last_plane_start, c.outer))
+        .collect();
     let zero_normals = chunks.iter().any(|c| c.zero_normals);
     let (r, keys) = assemble(chunks, opts)?;
+    let topo = if ctx.parts {
+        Topo::Parents(global_parents(vps))
+    } else {
+        Topo::Keys(keys)
+    };
     let nan_cell = |c: [usize; 3]| {
         (0..8).any(|k| {
             vol.at(c[0] + (k & 1), c[1] + (k >> 1 & 1), c[2] + (k >> 2 & 1))
@@ -230,7 +254,106 @@ pub fn isosurface(vol: &Volume, opts: &IsoOptions) -> Result<IsoResult, VolumeEr
         })
     };
     let grid = (vol.dims, &vol.axes, &vol.orientation);
-    Ok(finish(r, keys, zero_normals, grid, nan_cell, opts))
+    Ok(finish(r, topo, zero_normals, grid, nan_cell, opts))
+}
+
+/// What [`finish`] computes the topology from.
+pub(super) enum Topo {
+    /// Grid keys of the vertices (empty without topology): the edge-table pass [`analyze`].
+    Keys(Vec<u64>),
+    /// The decider's vertex parents over the grid-edge vertices and the outer-face polygon
+    /// sides ([`global_parents`]): [`decider_analysis`]. Never with skipped cells.
+    Parents((Vec<u32>, usize)),
+}
+
+/// The union–find parents of all grid-edge vertices (numbered as [`assemble`] numbers them)
+/// from the slabs' `(parents, last_plane_start, outer sides)`, and the total of outer sides.
+/// A slab's last plane is the next slab's first (same vertices in the same order, see
+/// `extract`): its vertices are dropped and their links to their parents replayed as unions.
+/// Assumes `assemble` accepted the slabs (fewer than 2³¹ vertices).
+fn global_parents(vps: Vec<(Vec<u32>, usize, usize)>) -> (Vec<u32>, usize) {
+    let nc = vps.len();
+    let outer = vps.iter().map(|v| v.2).sum();
+    if nc == 1 {
+        let vp = vps.into_iter().next().map(|v| v.0).unwrap_or_default();
+        return (vp, outer);
+    }
+    let ne: usize = vps
+        .iter()
+        .enumerate()
+        .map(|(i, v)| if i + 1 == nc { v.0.len() } else { v.1 })
+        .sum();
+    let mut vp = Vec::with_capacity(ne);
+    let mut links = Vec::new();
+    for (i, (p, lps, _)) in vps.into_iter().enumerate() {
+        let eo = vp.len() as u32;
+        let keep = if i + 1 == nc { p.len() } else { lps };
+        vp.extend(p[..keep].iter().map(|&q| q + eo));
+        links.extend((keep..p.len()).map(|v| (eo + v as u32, eo + p[v])));
+    }
+    for (a, b) in links {
+        union(&mut vp, a, b);
+    }
+    (vp, outer)
+}
+
+/// Parts and boundary edges of a decider surface without skipped cells (H §3.3), from the
+/// vertex parents `vp` of its grid-edge vertices (indices `< vp.len()`, every other index an
+/// interior fan point; a parent never after its child) and the polygon sides on the volume's
+/// outer faces.
+///
+/// Why vertex unions give the edge-connected parts: a polygon is one connected run of
+/// triangles (fan diagonals, or spokes to its interior point), and two polygons share an
+/// edge only along a face segment; the asymptotic decider resolves a face from its four
+/// samples alone, so both cells of an interior face have the same segments on it, each used
+/// once by each cell: no boundary edge inside the volume, no non-manifold edge, no hole. A
+/// grid-edge vertex belongs to one polygon per cell around its edge, and those cells (all
+/// valid, all crossed) follow one another around the edge across shared faces whose segment
+/// ends at the vertex: polygons sharing a vertex are edge-connected. So a part is a set of
+/// vertices, and the boundary edges are the outer-face segments. Parts are numbered by their
+/// first triangle, as [`analyze`] numbers them (`tests::decider_topology_matches_the_edge_table`).
+fn decider_analysis(tris: &[[u32; 3]], mut vp: Vec<u32>, outer: usize) -> Analysis {
+    const LABELLED: u32 = 1 << 31;
+    let ne = vp.len() as u32;
+    // parents precede children: in increasing order a parent already points at its root
+    for v in 0..vp.len() {
+        vp[v] = vp[vp[v] as usize];
+    }
+    let mut labels = Vec::with_capacity(tris.len());
+    let mut parts = 0u32;
+    for t in tris {
+        // every triangle has a grid-edge vertex (at most one corner is a fan point)
+        let v = if t[0] < ne {
+            t[0]
+        } else if t[1] < ne {
+            t[1]
+        } else {
+            t[2]
+        };
+        // a root's slot holds the root itself, or its part once numbered
+        let r = vp[v as usize];
+        let l = if r & LABELLED != 0 {
+            r & !LABELLED
+        } else {
+            let q = vp[r as usize];
+            if q & LABELLED != 0 {
+                q & !LABELLED
+            } else {
+                vp[r as usize] = LABELLED | parts;
+                parts += 1;
+                parts - 1
+            }
+        };
+        labels.push(l as f64);
+    }
+    Analysis {
+        labels,
+        parts: parts as usize,
+        boundary_edges: outer,
+        interior_boundary_edges: 0,
+        interior_holes: 0,
+        non_manifold_edges: 0,
+    }
 }
 
 /// The perturbation ε of Rem. 3.8 for samples of finite range `range` (`None`: no finite
@@ -273,13 +396,17 @@ type GridRef<'a> = (
 /// cells were skipped).
 fn finish(
     mut r: IsoResult,
-    mut keys: Vec<u64>,
+    topo: Topo,
     zero_normals: bool,
     grid: GridRef<'_>,
     nan_cell: impl Fn([usize; 3]) -> bool,
     opts: &IsoOptions,
 ) -> IsoResult {
     let (dims, axes, orientation) = grid;
+    let (mut keys, parents) = match topo {
+        Topo::Keys(k) => (k, None),
+        Topo::Parents(p) => (Vec::new(), Some(p)),
+    };
     if r.skipped_cells > 0 {
         drop_unreferenced(&mut r.mesh, &mut keys);
         r.note = Some(format!(
@@ -324,7 +451,10 @@ fn finish(
             }
             !skipped || !nan_cell([c[0] as usize, c[1] as usize, c[2] as usize])
         };
-        let a = analyze(&r.mesh, &keys, valid_cell);
+        let a = match parents {
+            Some((vp, outer)) => decider_analysis(&r.mesh.triangles, vp, outer),
+            None => analyze(&r.mesh, &keys, valid_cell),
+        };
         r.parts = a.parts;
         r.boundary_edges = a.boundary_edges;
         r.interior_boundary_edges = a.interior_boundary_edges;
@@ -940,6 +1070,7 @@ mod tests {
             normals: NormalMethod::None,
             flip: opts.flip,
             keys: true,
+            parts: false,
             central: None,
             gvol: vol,
             gaxes: &axes,
@@ -957,6 +1088,209 @@ mod tests {
             drop_unreferenced(&mut r.mesh, &mut keys);
         }
         Some((r.mesh, keys))
+    }
+
+    /// The decider topology found during the extraction ([`global_parents`] +
+    /// [`decider_analysis`], slabs of `per` layers) and the edge-table pass [`analyze`] on
+    /// the same assembled mesh (both recorded in one extraction), and the triangle count;
+    /// `None` when the volume has no surface or a cell was skipped (then `isosurface` takes
+    /// the edge-table pass: `decider_topology_matches_the_edge_table` checks it end to end).
+    fn parents_and_edge_table(
+        vol: &Volume,
+        opts: &IsoOptions,
+        per: usize,
+    ) -> Option<(Analysis, Analysis, usize)> {
+        let range = fast_range(&vol.data).or_else(|| vol.value_range());
+        let eps = perturbation(vol.dims, range, opts.level).ok()?;
+        let axes = axis_coords(vol);
+        let ctx = Ctx {
+            vol,
+            axes: &axes,
+            alpha: opts.level,
+            eps,
+            method: IsoMethod::Decider,
+            normals: NormalMethod::None,
+            flip: opts.flip,
+            keys: true,
+            parts: true,
+            central: None,
+            gvol: vol,
+            gaxes: &axes,
+            goff: [0; 3],
+            cells: false,
+        };
+        let layers = vol.dims[2] - 1;
+        let per = per.min(layers);
+        let mut chunks: Vec<ChunkOut> = (0..layers)
+            .step_by(per)
+            .map(|z0| ctx.chunk(z0, (z0 + per).min(layers)))
+            .collect();
+        let vps: Vec<(Vec<u32>, usize, usize)> = chunks
+            .iter_mut()
+            .map(|c| (std::mem::take(&mut c.vp), c.last_plane_start, c.outer))
+            .collect();
+        let (r, keys) = assemble(chunks, opts).ok()?;
+        if r.skipped_cells > 0 {
+            return None;
+        }
+        let (vp, outer) = global_parents(vps);
+        assert_eq!(vp.len() + r.fan_points, r.mesh.positions.len());
+        let got = decider_analysis(&r.mesh.triangles, vp, outer);
+        let dims = vol.dims;
+        let valid_cell = |c: [i64; 3]| (0..3).all(|k| c[k] >= 0 && c[k] + 1 < dims[k] as i64);
+        let want = analyze(&r.mesh, &keys, valid_cell);
+        Some((got, want, r.mesh.triangles.len()))
+    }
+
+    #[test]
+    fn decider_topology_matches_the_edge_table() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(10);
+        let (mut tris, mut bnd, mut parts, mut fallbacks) = (0usize, 0, 0, 0);
+        for round in 0..90 {
+            let dims = [
+                rng.gen_range(2..10),
+                rng.gen_range(2..10),
+                rng.gen_range(2..10),
+            ];
+            let nan = [0.0, 0.03, 0.0][round % 3];
+            let ints = round % 2 == 0; // ties with the level (Rem. 3.8)
+            let data: Vec<f32> = (0..dims.iter().product::<usize>())
+                .map(|_| {
+                    if rng.gen_bool(nan) {
+                        f32::NAN
+                    } else if ints {
+                        rng.gen_range(-2..3) as f32
+                    } else {
+                        rng.gen_range(-1.0f32..1.0)
+                    }
+                })
+                .collect();
+            let v = Volume::new(dims, [0.0; 3], [1.0; 3], data).unwrap();
+            let opts = IsoOptions {
+                level: 0.0,
+                flip: round % 5 == 1,
+                ..Default::default()
+            };
+            for per in [1, 2, 3, usize::MAX] {
+                let Some((got, want, nt)) = parents_and_edge_table(&v, &opts, per) else {
+                    continue;
+                };
+                assert!(
+                    same_analysis(&got, &want),
+                    "round {round} per {per}: {:?} vs {:?}",
+                    (got.parts, got.boundary_edges),
+                    (want.parts, want.boundary_edges)
+                );
+                tris += nt;
+                bnd += want.boundary_edges;
+                parts += want.parts;
+            }
+            // end to end (two threads' slabs, and the NaN fallback): `isosurface` against the
+            // edge-table pass on the mesh `extracted` gives
+            let Some((mesh, keys)) = extracted(&v, &opts) else {
+                continue;
+            };
+            let skipped = v.data.iter().any(|x| x.is_nan());
+            fallbacks += skipped as usize;
+            let valid_cell = |c: [i64; 3]| -> bool {
+                (0..3).all(|k| c[k] >= 0 && c[k] + 1 < dims[k] as i64)
+                    && !(0..8).any(|k| {
+                        v.at(
+                            c[0] as usize + (k & 1),
+                            c[1] as usize + (k >> 1 & 1),
+                            c[2] as usize + (k >> 2 & 1),
+                        )
+                        .is_nan()
+                    })
+            };
+            let want = analyze(&mesh, &keys, valid_cell);
+            for parallel in [false, true] {
+                let o = IsoOptions {
+                    parallel,
+                    ..opts.clone()
+                };
+                let r = isosurface(&v, &o).unwrap();
+                let labels = &r.mesh.face_prop("part").unwrap().values;
+                let got = Analysis {
+                    labels: labels.to_vec(),
+                    parts: r.parts,
+                    boundary_edges: r.boundary_edges,
+                    interior_boundary_edges: r.interior_boundary_edges,
+                    interior_holes: r.interior_holes,
+                    non_manifold_edges: r.non_manifold_edges,
+                };
+                assert!(same_analysis(&got, &want), "round {round} end to end");
+                assert_eq!(r.mesh.triangles, mesh.triangles);
+            }
+        }
+        // the inputs reach what is compared: borders, several parts, the NaN fallback
+        assert!(
+            tris > 4000 && bnd > 1000 && parts > 100,
+            "{tris} {bnd} {parts}"
+        );
+        assert!(fallbacks > 10, "{fallbacks}");
+    }
+
+    #[test]
+    fn decider_topology_matches_the_edge_table_on_every_cell_pair() {
+        // two cells sharing a face, along each axis, every sign configuration of their twelve
+        // corners (±1, then with a tie): every way a face is crossed from both sides
+        for axis in 0..3 {
+            let mut dims = [2usize; 3];
+            dims[axis] = 3;
+            for bits in 0u32..1 << 12 {
+                for tie in [false, true] {
+                    let data: Vec<f32> = (0..12)
+                        .map(|k| match (bits >> k & 1, tie && k == 5) {
+                            (_, true) => 0.0,
+                            (1, _) => 1.0 + k as f32 / 16.0,
+                            _ => -1.0 - (k % 5) as f32 / 8.0,
+                        })
+                        .collect();
+                    let v = Volume::new(dims, [0.0; 3], [1.0; 3], data).unwrap();
+                    for per in [1, 2] {
+                        let opts = IsoOptions {
+                            level: 0.0,
+                            ..Default::default()
+                        };
+                        let Some((got, want, _)) = parents_and_edge_table(&v, &opts, per) else {
+                            continue;
+                        };
+                        assert!(same_analysis(&got, &want), "{axis} {bits} {tie} {per}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn decider_topology_matches_the_edge_table_on_smooth_volumes() {
+        // the gyroid and the bumpy sphere of the benchmarks at 40³, a level through samples
+        let n = 40;
+        let gyroid =
+            |x: f64, y: f64, z: f64| x.sin() * y.cos() + y.sin() * z.cos() + z.sin() * x.cos();
+        let bumpy = |x: f64, y: f64, z: f64| {
+            (x * x + y * y + z * z).sqrt()
+                - 0.7
+                - 0.06 * (9.0 * x).sin() * (9.0 * y).sin() * (9.0 * z).sin()
+        };
+        let s = 6.0 * std::f64::consts::PI;
+        let vols = [
+            Volume::from_fn([n; 3], [0.0; 3], [s; 3], gyroid),
+            Volume::from_fn([n; 3], [-1.0; 3], [1.0; 3], bumpy),
+        ];
+        for v in &vols {
+            for (per, level) in [(usize::MAX, 0.0), (5, 0.0), (7, v.data[777] as f64)] {
+                let opts = IsoOptions {
+                    level,
+                    ..Default::default()
+                };
+                let (got, want, nt) = parents_and_edge_table(v, &opts, per).unwrap();
+                assert!(same_analysis(&got, &want), "{per} {level}");
+                assert!(nt > 1000);
+            }
+        }
     }
 
     #[test]
