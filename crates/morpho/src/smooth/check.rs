@@ -4,7 +4,7 @@
 //! each, both patches' unit normals (8.4) are evaluated from their own control points and
 //! compared, `angle = atan2(|n1×n2|, n1·n2)` (a fold, `n1·n2 ≤ 0`, gives an angle ≥ π/2),
 //! and the positions are compared (C⁰). O(patches · samples). The side-vertex surface (H ch. 6)
-//! has no control points: [`side_vertex_continuity`] compares finite-difference normals.
+//! has no control points: [`side_vertex_continuity`] compares normals from exact derivatives.
 
 use super::{BezierTriangle, SideVertexSurface, SplitSurface};
 use crate::geom::vec;
@@ -275,17 +275,14 @@ pub fn max_deviation(s: &SplitSurface, mesh: &crate::mesh::TriMesh, samples: usi
 }
 
 /// The continuity figures of the side-vertex surface `s` at `samples` (≥ 1) interior points
-/// per mesh edge, independent of its construction: both patches of an edge (paired by their
-/// corner indices) are evaluated at the edge points with [`SideVertexSurface::eval`], and each
-/// patch's normal there is the cross product of its own one-sided finite-difference
-/// derivatives from inside its triangle ([`SideVertexSurface::difference_normal`]), never the
-/// boundary normal the construction prescribes. The jump at a sample is the smallest angle
-/// between the two patches' normals over the steps `h = 1e-3, 1e-4, 1e-5, 1e-6`: a crease shows at
-/// every step, while the difference error is step-dependent (O(h⁴) truncation, large where a
-/// radial conic's end handle nearly collapses and the normal turns within a short distance of
-/// the edge; rounding about 1e-13/h; a sample resolved to 1e-10 at a larger step stops
-/// there). Edges are checked in parallel. Every edge is a macro edge (`max_micro_jump_rad` = 0);
-/// `non_g1_edges` holds triangle pairs above `tol` rad. O(edges · samples) evaluations.
+/// per mesh edge, independent of the construction's claim: both patches of an edge (paired by
+/// their corner indices) are evaluated at the edge points with [`SideVertexSurface::eval`], and
+/// each patch's normal there is the cross product of its own exact one-sided first derivatives
+/// from inside its triangle ([`SideVertexSurface::derivative_normal`], forward-mode through
+/// the whole construction), never the boundary normal the construction prescribes. No step
+/// size: a jump above rounding (about 1e-13 rad) is a crease of the surface. Edges are checked
+/// in parallel. Every edge is a macro edge (`max_micro_jump_rad` = 0); `non_g1_edges` holds
+/// triangle pairs above `tol` rad. O(edges · samples) evaluations.
 pub fn side_vertex_continuity(s: &SideVertexSurface, samples: usize, tol: f64) -> Continuity {
     use rayon::prelude::*;
     let mut map: HashMap<(u32, u32), (usize, usize)> = HashMap::new();
@@ -320,16 +317,9 @@ pub fn side_vertex_continuity(s: &SideVertexSurface, samples: usize, tol: f64) -
                 uq[(j + 1) % 3] = t;
                 uq[(j + 2) % 3] = 1.0 - t;
                 gap = gap.max(vec::dist(s.eval(p, up), s.eval(q, uq)));
-                let (mut jump, mut dot) = (f64::INFINITY, -1.0f64);
-                for h in [1e-3, 1e-4, 1e-5, 1e-6] {
-                    let (n1, n2) = (s.difference_normal(p, up, h), s.difference_normal(q, uq, h));
-                    let d = vec::dot(n1, n2);
-                    jump = jump.min(vec::norm(vec::cross(n1, n2)).atan2(d));
-                    dot = dot.max(d);
-                    if jump <= 1e-10 {
-                        break; // resolved: smaller steps only add rounding
-                    }
-                }
+                let (n1, n2) = (s.derivative_normal(p, up), s.derivative_normal(q, uq));
+                let dot = vec::dot(n1, n2);
+                let jump = vec::norm(vec::cross(n1, n2)).atan2(dot);
                 folds += usize::from(dot <= 0.0);
                 worst = worst.max(jump);
             }

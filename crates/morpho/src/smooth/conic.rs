@@ -61,6 +61,7 @@
 //!
 //! O(1) per construction and per evaluation.
 
+use super::dual::{v3, Dual, D3};
 use super::SmoothError;
 use crate::geom::vec;
 
@@ -320,6 +321,195 @@ impl Conic {
         } else {
             vec::scale(self.tangents[1], -1.0)
         }
+    }
+}
+
+/// A [`Conic`] over [`Dual`] numbers: control points and weights with their partials along two
+/// directions (the side-vertex surface's radial conics, whose ends move with the surface
+/// point). Built by [`Conic::build_dual`], which mirrors [`Conic::build`] operation for
+/// operation, so the value parts equal the `f64` construction's.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct DualConic {
+    pub control: [D3; 4],
+    pub weights: [Dual; 4],
+    pub tangents: [D3; 2],
+}
+
+fn unit_dual(v: D3) -> Option<D3> {
+    let l = v3::norm(v);
+    (l.v > TINY && l.v.is_finite()).then(|| v3::scale(v, Dual::c(1.0) / l))
+}
+
+impl Conic {
+    /// [`Conic::build`] over dual numbers (value parts identical, derivatives by the chain
+    /// rule). The branches are taken on the values; where the construction has a kink (the
+    /// unsigned angles where a tangent crosses the chord, the fallbacks of degenerate data)
+    /// the derivative is that of the branch the value selects.
+    pub(crate) fn build_dual(
+        b0: D3,
+        n0: D3,
+        b3: D3,
+        n3: D3,
+        tension: f64,
+        floor: f64,
+    ) -> DualConic {
+        let chord = v3::sub(b3, b0);
+        let len = v3::norm(chord);
+        let Some(d) = unit_dual(chord).filter(|_| len.v > 0.0) else {
+            return DualConic {
+                control: [b0; 4],
+                weights: [Dual::c(1.0); 4],
+                tangents: [v3::c([0.0; 3]); 2],
+            };
+        };
+        let m = unit_dual(v3::cross(d, v3::add(n0, n3)))
+            .or_else(|| unit_dual(v3::cross(d, n0)))
+            .or_else(|| unit_dual(v3::cross(d, n3)))
+            .unwrap_or_else(|| v3::c(perpendicular(v3::val(d))));
+        let mut t0 = unit_dual(v3::cross(m, n0)).unwrap_or(d);
+        if v3::dot(t0, d).v < 0.0 {
+            t0 = v3::scale_f(t0, -1.0);
+        }
+        let mut t3 = unit_dual(v3::cross(m, n3)).unwrap_or(v3::scale_f(d, -1.0));
+        if v3::dot(t3, d).v > 0.0 {
+            t3 = v3::scale_f(t3, -1.0);
+        }
+        let y = v3::cross(m, d);
+        let (mut s0, mut s3) = (v3::dot(t0, y), v3::dot(t3, y));
+        if s0.v * s3.v < 0.0 {
+            if v3::dot(t0, d).v.abs() <= TINY {
+                (t0, s0) = (v3::scale_f(t0, -1.0), -s0);
+            } else if v3::dot(t3, d).v.abs() <= TINY {
+                (t3, s3) = (v3::scale_f(t3, -1.0), -s3);
+            }
+        }
+        let mut alpha = s0.abs().atan2(v3::dot(t0, d));
+        let mut beta = s3.abs().atan2(-v3::dot(t3, d));
+        if alpha.v + beta.v <= STRAIGHT {
+            (alpha, beta) = (Dual::c(0.0), Dual::c(0.0));
+        } else if floor > 0.0 {
+            let m = SOFT_ANGLE * alpha.max(beta);
+            let soft = |x: Dual| {
+                if x.v >= m.v {
+                    x
+                } else {
+                    (x * x + m * m) / (2.0 * m)
+                }
+            };
+            (alpha, beta) = (soft(alpha), soft(beta));
+        }
+        let half = 0.5 * (alpha + beta);
+        let omega = tension * half.cos();
+        let (ra, rb) = if half.v == 0.0 {
+            (Dual::c(1.0), Dual::c(1.0))
+        } else {
+            (alpha.sin() / half.sin(), beta.sin() / half.sin())
+        };
+        let soft = |r: Dual| {
+            if floor > 0.0 && r.v < 2.0 * floor {
+                Dual::c(floor) + r * r / Dual::c(4.0 * floor)
+            } else {
+                r
+            }
+        };
+        let (ra, rb) = (soft(ra), soft(rb));
+        let e = Dual::c(1.0) + 2.0 * omega;
+        let l01 = tension * rb / e * len;
+        let l32 = tension * ra / e * len;
+        let w = e / Dual::c(3.0);
+        DualConic {
+            control: [
+                b0,
+                v3::add_scaled(b0, l01, t0),
+                v3::add_scaled(b3, l32, t3),
+                b3,
+            ],
+            weights: [Dual::c(1.0), w, w, Dual::c(1.0)],
+            tangents: [t0, t3],
+        }
+    }
+}
+
+impl DualConic {
+    /// The constant lift of `c` (zero partials).
+    pub fn lift(c: &Conic) -> DualConic {
+        DualConic {
+            control: c.control.map(v3::c),
+            weights: c.weights.map(Dual::c),
+            tangents: c.tangents.map(v3::c),
+        }
+    }
+
+    /// [`Conic::homogeneous`] at a dual parameter.
+    fn homogeneous(&self, t: Dual) -> (D3, Dual, D3, Dual) {
+        let s = Dual::c(1.0) - t;
+        let b = [s * s * s, 3.0 * t * s * s, 3.0 * t * t * s, t * t * t];
+        let db = [s * s, 2.0 * t * s, t * t];
+        let (mut p, mut w) = (v3::c([0.0; 3]), Dual::c(0.0));
+        for i in 0..4 {
+            p = v3::add_scaled(p, b[i] * self.weights[i], self.control[i]);
+            w = w + b[i] * self.weights[i];
+        }
+        let (mut dp, mut dw) = (v3::c([0.0; 3]), Dual::c(0.0));
+        for i in 0..3 {
+            let a = v3::sub(
+                v3::scale(self.control[i + 1], self.weights[i + 1]),
+                v3::scale(self.control[i], self.weights[i]),
+            );
+            dp = v3::add_scaled(dp, 3.0 * db[i], a);
+            dw = dw + 3.0 * db[i] * (self.weights[i + 1] - self.weights[i]);
+        }
+        (p, w, dp, dw)
+    }
+
+    /// `c(t)` for `t ∈ [0, 1]` with its partials; no shortcut at the ends (the partials there
+    /// include the end tangent times `∂t`), the value there is exactly `b0` or `b3`.
+    pub fn eval(&self, t: Dual) -> D3 {
+        let (p, w, _, _) = self.homogeneous(t);
+        v3::scale(p, Dual::c(1.0) / w)
+    }
+
+    /// [`Conic::unit_tangent`] at a dual parameter inside (0, 1) (at the ends and where `ċ`
+    /// vanishes: the constant end tangent).
+    pub fn unit_tangent(&self, t: Dual, scale: f64) -> D3 {
+        let (p, w, dp, dw) = self.homogeneous(t);
+        let c = v3::scale(p, Dual::c(1.0) / w);
+        let d = v3::scale(v3::add_scaled(dp, -dw, c), Dual::c(1.0) / w);
+        let l = v3::norm(d);
+        if t.v > 0.0 && t.v < 1.0 && l.v > 1e-12 * scale && l.v.is_finite() {
+            v3::scale(d, Dual::c(1.0) / l)
+        } else if t.v < 0.5 {
+            self.tangents[0]
+        } else {
+            v3::scale_f(self.tangents[1], -1.0)
+        }
+    }
+}
+
+impl ConicEdge {
+    /// The point `c(t)` and the boundary normal `n^S(t)` ([`ConicEdge::normal`]) at a dual
+    /// parameter, with their partials; at `t ≤ 0` or `t ≥ 1` the normal is the constant end
+    /// normal (its partials are not needed there: the side-vertex weights of such a block
+    /// vanish to first order).
+    pub(crate) fn eval_dual(&self, t: Dual) -> (D3, D3) {
+        let c = DualConic::lift(&self.conic);
+        let p = c.eval(t);
+        if t.v <= 0.0 {
+            return (p, v3::c(self.end_normals[0]));
+        }
+        if t.v >= 1.0 {
+            return (p, v3::c(self.end_normals[1]));
+        }
+        let scale = vec::dist(self.conic.control[0], self.conic.control[3]);
+        let tan = c.unit_tangent(t, scale);
+        let m = v3::c(self.conic.plane_normal);
+        let nc = v3::scale_f(v3::cross(tan, m), self.sigma);
+        let phi = (Dual::c(1.0) - t) * Dual::c(self.phi[0]) + t * Dual::c(self.phi[1]);
+        let n = v3::add(
+            v3::scale(nc, phi.cos()),
+            v3::scale(v3::cross(tan, nc), phi.sin()),
+        );
+        (p, n)
     }
 }
 
