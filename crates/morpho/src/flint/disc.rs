@@ -174,7 +174,10 @@ impl Widest {
 
     /// True when `x`, on the same side of `a → b` as this vertex (`left`: `orient2d(a, b, x) >
     /// 0`), lies strictly outside the circle through `a`, `b` and this vertex (exact).
-    #[inline]
+    ///
+    /// Inlined into the scan (a call per visit was a fifth of the build's CPU); the exact
+    /// fallback is a cold function of its own.
+    #[inline(always)]
     fn outside(&self, a: [f64; 2], b: [f64; 2], x: [f64; 2], left: bool) -> bool {
         // Shewchuk's incircle(pa, pb, pc, pd) with (pa, pb, pc, pd) = (b, q, x, a):
         // adx = B, bdx = Q, cdx = X
@@ -199,7 +202,7 @@ impl Widest {
         } else if -det > errbound {
             -1
         } else {
-            incircle_sign(b, self.q, x, a)
+            exact_incircle_sign(b, self.q, x, a)
         };
         if left {
             s > 0
@@ -207,6 +210,61 @@ impl Widest {
             s < 0
         }
     }
+}
+
+/// The running state of [`Flintstone::scan`] (one visit per interior vertex).
+struct Scan {
+    a: [f64; 2],
+    b: [f64; 2],
+    m: [f64; 2],
+    hull2: f64,
+    /// The widest vertex so far of the left (0) and the right (1) side.
+    best: [Option<Widest>; 2],
+    unbounded: bool,
+    w_lo: usize,
+    w_hi: usize,
+    far: Option<usize>,
+    far_o: f64,
+    outer: [[f64; 2]; 2],
+    outer2: [f64; 2],
+}
+
+impl Scan {
+    /// One vertex `x` at position `p`: the same decisions, in the same order, as main's loop
+    /// (`of_windowed_reference` in the tests), plus the two `outer` distances.
+    #[inline(always)]
+    fn visit(&mut self, p: usize, x: [f64; 2]) {
+        self.hull2 = self.hull2.max(dist2(self.m, x));
+        self.outer2[0] = self.outer2[0].max(dist2(self.outer[0], x));
+        self.outer2[1] = self.outer2[1].max(dist2(self.outer[1], x));
+        let o = orient2d(self.a, self.b, x);
+        if p >= self.w_lo && p <= self.w_hi && o.abs() > self.far_o {
+            (self.far, self.far_o) = (Some(p), o.abs());
+        }
+        if o == 0.0 {
+            self.unbounded |= !on_segment(self.a, self.b, x);
+            return;
+        }
+        let left = o > 0.0;
+        let best = &mut self.best[!left as usize];
+        // the current vertex is on the same side as x: x replaces it iff x lies strictly
+        // outside the circle through a, b and it
+        let replace = match best {
+            None => true,
+            Some(w) => w.outside(self.a, self.b, x, left),
+        };
+        if replace {
+            *best = Some(Widest::new(self.a, self.b, x, p));
+        }
+    }
+}
+
+/// [`incircle_sign`] out of line: the rare case of [`Widest::outside`] whose filter cannot
+/// decide.
+#[cold]
+#[inline(never)]
+fn exact_incircle_sign(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> i32 {
+    incircle_sign(a, b, c, d)
 }
 
 /// True when `x` lies in the closed disc through `a`, `b`, `v` (exact; `v` off line ab).
@@ -274,43 +332,92 @@ impl Flintstone {
         hi: usize,
         window: Option<[usize; 2]>,
     ) -> (Flintstone, Option<usize>) {
+        // the reach pass left out of the scan: the vertices' largest distances from this
+        // stone's own side centres, folded in here (the tree folds them into the children's
+        // scans instead, `FlintTree2::build`)
+        let (mut stone, far, _) = Flintstone::scan(points, lo, hi, window, [[0.0; 2]; 2]);
+        let c = stone.centres();
+        let mut reach2 = [0.0f64; 2];
+        for_positions(points, lo, hi + 1, |_, x| {
+            reach2[0] = reach2[0].max(dist2(c[0], x));
+            reach2[1] = reach2[1].max(dist2(c[1], x));
+        });
+        stone.finish_reach(reach2);
+        (stone, far)
+    }
+
+    /// The side centres `[left, right]` as the reach accumulators of [`Flintstone::scan`] and
+    /// [`Flintstone::finish_reach`] index them (`[0, 0]` for an absent side: its accumulator
+    /// is ignored).
+    #[inline]
+    pub(crate) fn centres(&self) -> [[f64; 2]; 2] {
+        [self.left, self.right].map(|d| d.map_or([0.0; 2], |d| d.center))
+    }
+
+    /// Sets each side disc's `reach` to `max(|radius|, sqrt(reach2[k]))`, `reach2[k]` being
+    /// the largest squared `f64` distance of the polyline's vertices `lo..=hi` from that
+    /// side's centre (`k` = 0 left, 1 right) — the conservative reach of [`SideDisc::reach`].
+    /// A maximum does not depend on the order in which the vertices were seen, so the reach is
+    /// the same whichever passes gathered `reach2`.
+    pub(crate) fn finish_reach(&mut self, reach2: [f64; 2]) {
+        for (k, d) in [&mut self.left, &mut self.right].into_iter().enumerate() {
+            if let Some(d) = d {
+                d.reach = d.reach.max(reach2[k].sqrt());
+            }
+        }
+    }
+
+    /// The one scan of [`Flintstone::of_windowed`] over the interior positions `lo + 1..hi`:
+    /// the side discs, the kind, the hull, the window's farthest position, and — for the tree,
+    /// which passes its parent's side centres as `outer` — the largest squared `f64` distance
+    /// of these interior vertices from each of `outer` (the parent's reach, gathered here
+    /// instead of in a pass of its own). The side discs' `reach` is only `|radius|`: the
+    /// caller completes it with [`Flintstone::finish_reach`].
+    pub(crate) fn scan(
+        points: &[[f64; 2]],
+        lo: usize,
+        hi: usize,
+        window: Option<[usize; 2]>,
+        outer: [[f64; 2]; 2],
+    ) -> (Flintstone, Option<usize>, [f64; 2]) {
         let (a, b) = (at(points, lo), at(points, hi));
-        let (mut best_l, mut best_r): (Option<Widest>, Option<Widest>) = (None, None);
-        let mut unbounded = false;
         // an empty range (never in the window) when there is no window
         let [w_lo, w_hi] = window.unwrap_or([1, 0]);
-        let (mut far, mut far_o) = (window.map(|[l, h]| l + (h - l) / 2), 0.0f64);
         // the chord midpoint's largest squared vertex distance (the `hull`), folded into the
         // same pass: a maximum, so the order of the vertices does not matter
         let m = midpoint(a, b);
-        let mut hull2: f64 = dist2(m, a).max(dist2(m, b));
-        for_positions(points, lo + 1, hi, |p, x| {
-            hull2 = hull2.max(dist2(m, x));
-            let o = orient2d(a, b, x);
-            if p >= w_lo && p <= w_hi && o.abs() > far_o {
-                (far, far_o) = (Some(p), o.abs());
-            }
-            if o == 0.0 {
-                unbounded |= !on_segment(a, b, x);
-                return;
-            }
-            let best = if o > 0.0 { &mut best_l } else { &mut best_r };
-            match best {
-                None => *best = Some(Widest::new(a, b, x, p)),
-                // the current vertex is on the same side as x: x replaces it iff x lies
-                // strictly outside the circle through a, b and it
-                Some(w) => {
-                    if w.outside(a, b, x, o > 0.0) {
-                        *best = Some(Widest::new(a, b, x, p));
-                    }
-                }
-            }
-        });
-        let (best_l, best_r) = (best_l.map(|w| w.pos), best_r.map(|w| w.pos));
-        let mut left = best_l.map(|q| side_disc(a, b, at(points, q), q));
-        let mut right = best_r.map(|q| side_disc(a, b, at(points, q), q));
+        let mut s = Scan {
+            a,
+            b,
+            m,
+            hull2: dist2(m, a).max(dist2(m, b)),
+            best: [None, None],
+            unbounded: false,
+            w_lo,
+            w_hi,
+            far: window.map(|[l, h]| l + (h - l) / 2),
+            far_o: 0.0,
+            outer,
+            outer2: [0.0; 2],
+        };
+        // the positions lo + 1..hi as at most two contiguous slices, one loop each with the
+        // visit inlined
+        let n = points.len();
+        let (from, to) = (lo + 1, hi);
+        debug_assert!(to <= from + n);
+        let start = from % n;
+        let first = (to - from).min(n - start);
+        for (k, &x) in points[start..start + first].iter().enumerate() {
+            s.visit(from + k, x);
+        }
+        for (k, &x) in points[..to - from - first].iter().enumerate() {
+            s.visit(from + first + k, x);
+        }
+        let [best_l, best_r] = s.best.map(|w| w.map(|w| w.pos));
+        let left = best_l.map(|q| side_disc(a, b, at(points, q), q));
+        let right = best_r.map(|q| side_disc(a, b, at(points, q), q));
         let kind = match (best_l, best_r) {
-            _ if unbounded => StoneKind::Unbounded,
+            _ if s.unbounded => StoneKind::Unbounded,
             (None, None) => StoneKind::Segment,
             (Some(_), None) | (None, Some(_)) => StoneKind::Cap,
             (Some(q), Some(r)) => {
@@ -321,39 +428,15 @@ impl Flintstone {
                 }
             }
         };
-        // conservative reaches: every polyline vertex in f64 distance (squares compared, one
-        // square root at the end)
-        let mut reach2 = [0.0f64; 2];
-        match (&left, &right) {
-            (Some(l), Some(r)) => {
-                let (cl, cr) = (l.center, r.center);
-                for_positions(points, lo, hi + 1, |_, x| {
-                    reach2[0] = reach2[0].max(dist2(cl, x));
-                    reach2[1] = reach2[1].max(dist2(cr, x));
-                });
-            }
-            (Some(d), None) | (None, Some(d)) => {
-                let (c, k) = (d.center, left.is_none() as usize);
-                let mut r2 = 0.0f64;
-                for_positions(points, lo, hi + 1, |_, x| r2 = r2.max(dist2(c, x)));
-                reach2[k] = r2;
-            }
-            (None, None) => {}
-        }
-        for (k, d) in [&mut left, &mut right].into_iter().enumerate() {
-            if let Some(d) = d {
-                d.reach = d.reach.max(reach2[k].sqrt());
-            }
-        }
         let stone = Flintstone {
             lo,
             hi,
             left,
             right,
             kind,
-            hull: (m, hull2.sqrt()),
+            hull: (m, s.hull2.sqrt()),
         };
-        (stone, far)
+        (stone, s.far, s.outer2)
     }
 
     /// The flintstone error `max{w_1, w_2}` (Def. 7.4; 0 for a segment, ∞ when unbounded).
