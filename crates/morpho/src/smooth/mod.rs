@@ -31,6 +31,7 @@ mod bezier;
 mod check;
 mod conic;
 mod curve;
+mod edgesplit;
 mod error;
 mod normals;
 mod side_vertex;
