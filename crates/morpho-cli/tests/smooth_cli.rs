@@ -316,7 +316,8 @@ fn smooth_report_on_a_real_mesh_is_consistent() {
     let u = |k: &str| r[k].as_u64().unwrap_or_else(|| panic!("{k}: {r}"));
     let f = |k: &str| r[k].as_f64().unwrap_or_else(|| panic!("{k}: {r}"));
     eprintln!("spot: {r}");
-    assert_eq!(u("patches"), 3 * u("macro_triangles"));
+    // three per macro triangle, more where the edge split bisected one (split3.rs, edgesplit.rs)
+    assert!(u("patches") >= 3 * u("macro_triangles") + 6 * u("split_edges"));
     assert_eq!(u("triangles"), 4 * u("patches"));
     // a folded edge has a normal angle ≥ π/2: it is among the non-G¹ edges
     assert!(u("fold_edges") <= u("non_g1_edges"));

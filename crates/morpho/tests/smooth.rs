@@ -475,15 +475,48 @@ fn linear_precision_a_flat_region_gives_the_plane() {
         }
         let mut checked = 0;
         let mut rng = Rng::new(seed);
+        // vertices of macro triangles the edge split bisected (more than 3 patches): next to
+        // them the parametrisation follows the bisected domain (edgesplit.rs), so only the
+        // plane itself is checked there
+        let mut per = vec![0usize; m.triangles.len()];
+        for p in &s.patches {
+            per[p.macro_tri as usize] += 1;
+        }
+        let mut near_split = vec![false; m.positions.len()];
+        for (t, &k) in m.triangles.iter().zip(&per) {
+            if k > 3 {
+                t.iter().for_each(|&v| near_split[v as usize] = true);
+            }
+        }
         for (k, p) in s.patches.iter().enumerate() {
-            let t = m.triangles[k / 3];
+            let t = m.triangles[p.macro_tri as usize];
             if !t.iter().all(|&v| inner[v as usize]) {
+                continue;
+            }
+            if t.iter().any(|&v| near_split[v as usize]) {
+                checked += 1;
+                let tri = p.triangle();
+                for _ in 0..20 {
+                    let e = tri.eval(barycentric(&mut rng));
+                    assert!(e[2].abs() <= 1e-12, "patch {k}: off the plane by {}", e[2]);
+                }
                 continue;
             }
             checked += 1;
             let c: Vec<Point3> = t.iter().map(|&v| m.positions[v as usize]).collect();
-            let z = Point3::from((c[0].coords + c[1].coords + c[2].coords) / 3.0);
-            let (a, b) = (c[k % 3], c[(k + 1) % 3]);
+            // the patch's corners in its macro triangle (the domain where the edge split
+            // bisected the triangle, else the fixed layout)
+            let at = |d: [f64; 3]| {
+                Point3::from(c[0].coords * d[0] + c[1].coords * d[1] + c[2].coords * d[2])
+            };
+            let (a, b, z) = match s.domain.get(k) {
+                Some(d) => (at(d[0]), at(d[1]), at(d[2])),
+                None => (
+                    c[k % 3],
+                    c[(k + 1) % 3],
+                    Point3::from((c[0].coords + c[1].coords + c[2].coords) / 3.0),
+                ),
+            };
             let tri = p.triangle();
             for _ in 0..20 {
                 let [u, v, w] = barycentric(&mut rng);
@@ -559,14 +592,19 @@ fn fold_remedies_on_real_meshes() {
 fn local_deviation(s: &SplitSurface, m: &TriMesh, n: usize) -> f64 {
     let mut worst: f64 = 0.0;
     for (k, patch) in s.patches.iter().enumerate() {
-        let t = m.triangles[k / 3];
+        let t = m.triangles[patch.macro_tri as usize];
         let v: Vec<Vector3> = t.iter().map(|&i| m.positions[i as usize].coords).collect();
         let len = (v[0] - v[1])
             .norm()
             .max((v[1] - v[2]).norm())
             .max((v[2] - v[0]).norm());
-        let z = (v[0] + v[1] + v[2]) / 3.0;
-        let (a, b) = (v[k % 3], v[(k + 1) % 3]);
+        // the patch's corners in its macro triangle: the three-split's fixed layout, or the
+        // domain the edge split records
+        let at = |d: [f64; 3]| v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
+        let (a, b, z) = match s.domain.get(k) {
+            Some(d) => (at(d[0]), at(d[1]), at(d[2])),
+            None => (v[k % 3], v[(k + 1) % 3], (v[0] + v[1] + v[2]) / 3.0),
+        };
         let tri = patch.triangle();
         for i in 0..=n {
             for j in 0..=n - i {
@@ -588,8 +626,21 @@ fn edge_jump(s: &SplitSurface, m: &TriMesh, a: u32, b: u32, samples: usize) -> f
             .iter()
             .position(|t| (0..3).any(|i| t[i] == x && t[(i + 1) % 3] == y))
             .unwrap();
-        let i = (0..3).find(|&i| m.triangles[t][i] == x).unwrap();
-        s.patches[3 * t + i].triangle()
+        // the patch of macro triangle t whose corners 0, 1 are x, y (any layout)
+        let (px, py): ([f64; 3], [f64; 3]) = (
+            m.positions[x as usize].into(),
+            m.positions[y as usize].into(),
+        );
+        s.patches
+            .iter()
+            .map(|p| p.triangle())
+            .zip(&s.patches)
+            .find(|(tr, p)| {
+                let c = tr.corners();
+                p.macro_tri as usize == t && c[0] == px && c[1] == py
+            })
+            .unwrap()
+            .0
     };
     let (p, q) = (find(a, b), find(b, a));
     let mut worst: f64 = 0.0;
@@ -624,8 +675,10 @@ fn three_split_nearly_singular_edge_of_spot_stays_g1_and_bounded() {
         .iter()
         .position(|t| (0..3).any(|i| t[i] == a && t[(i + 1) % 3] == b))
         .unwrap();
-    let far = s.patches[3 * t..3 * t + 3]
+    let far = s
+        .patches
         .iter()
+        .filter(|p| p.macro_tri as usize == t)
         .flat_map(|p| p.control.iter())
         .map(|c| (Vector3::from(*c) - m.positions[a as usize].coords).norm())
         .fold(0.0, f64::max);
@@ -992,6 +1045,9 @@ fn check_two(m: &TriMesh, n: &[Vector3]) -> (TwoSplit, Continuity) {
         .iter()
         .filter(|&&(p, q)| s3.patches[p].macro_tri != s3.patches[q].macro_tri)
         .map(|&(p, q)| macro_edge(m, &s3, p, q))
+        // the edges the three-split's first pass left non-G¹ and its edge split then split
+        // (edgesplit.rs): the two-split builds on that first pass
+        .chain(s3.split_edges.iter().copied())
         .collect();
     assert!(
         c.folds <= c3.folds,
@@ -1160,12 +1216,18 @@ fn three_split_non_g1_edges_by_cause_on_fandisk() {
         k.micro + k.fold_invisible + k.fold + k.inflected + k.other,
         c.non_g1_edges.len()
     );
-    assert_eq!(k.micro, 0);
+    // micro: only edges inside a macro triangle the edge split bisected (edgesplit.rs), each
+    // listed by its triangle
+    for &(p, q) in &c.non_g1_edges {
+        let (tp, tq) = (s.patches[p].macro_tri, s.patches[q].macro_tri);
+        assert!(tp != tq || s.non_g1_inner.contains(&tp), "{p} {q}");
+    }
     // the repaired normals see their triangles: no unavoidable fold
     assert_eq!(k.fold_invisible, 0);
     // before the backward-stable (9.4) (split3 module doc, Step 5 case 2): 1 099 non-G¹ edges,
-    // 19 fold edges, 677 of them not listed as unresolved; after: 544, 7, 144
-    assert!(c.non_g1_edges.len() <= 544, "{}", c.non_g1_edges.len());
+    // 19 fold edges, 677 of them not listed as unresolved; after: 544, 7, 144; after the
+    // edge split (edgesplit.rs, two rounds): 135 (26 inside split triangles), 6
+    assert!(c.non_g1_edges.len() <= 135, "{}", c.non_g1_edges.len());
     assert!(c.fold_edges <= 7, "{}", c.fold_edges);
     assert!(k.unlisted <= 144, "{}", k.unlisted);
 }
@@ -1186,9 +1248,12 @@ fn three_split_lists_exactly_the_non_g1_macro_edges_on_real_meshes() {
         let a = visible_normals(&m, &n0, 0.05);
         let s = three_split_with(&m, &a.normals, &SplitOptions { fold_guard: true }).unwrap();
         let (measured, k) = measured_non_g1_macro_edges(name, &m, &s, &a.normals);
-        assert_eq!(k.micro, 0, "{name}");
+        // non-G¹ edges inside a macro triangle occur only where the edge split bisected it,
+        // and are listed by triangle (fandisk; edgesplit.rs)
+        assert!(k.micro == 0 || !s.non_g1_inner.is_empty(), "{name}");
         assert_eq!(measured, s.non_g1_edges, "{name}");
         assert_eq!(k.unlisted, 0, "{name}");
+        // spot keeps 3 after the edge split (edgesplit.rs), fandisk and rocker-arm more
         assert!(
             !measured.is_empty(),
             "{name}: nothing to list, the test is vacuous"

@@ -425,6 +425,8 @@ fn run_surface(args: &Args, report: &mut Report) -> Result<u8, Failure> {
     report.set("non_g1_other", causes.other);
     report.set("non_g1_unlisted", causes.unlisted);
     report.set("non_g1_reported", s.non_g1_edges.len());
+    report.set("non_g1_inner", s.non_g1_inner.len());
+    report.set("split_edges", s.split_edges.len());
     report.set("edges_checked", c.edges);
     report.set("folds", c.folds);
     report.set("fold_edges", c.fold_edges);

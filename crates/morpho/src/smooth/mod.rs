@@ -32,6 +32,7 @@ mod check;
 mod conic;
 mod curve;
 mod dual;
+mod edgesplit;
 mod error;
 mod normals;
 mod side_vertex;

@@ -70,7 +70,7 @@
 //! construction costs about twice the three-split's (it builds the three-split first, then a
 //! 29×27 SVD and a local check per candidate).
 
-use super::split3::{check_closed, three_split_with, MicroPatch, SplitOptions, SplitSurface};
+use super::split3::{check_closed, three_split_once, MicroPatch, SplitOptions, SplitSurface};
 use super::triangle::{tri_index, BezierTriangle};
 use super::SmoothError;
 use crate::geom::vec;
@@ -533,7 +533,7 @@ pub fn two_split(
     normals: &[crate::geom::Vector3],
     opts: &SplitOptions,
 ) -> Result<TwoSplit, SmoothError> {
-    let base = three_split_with(mesh, normals, opts)?;
+    let base = three_split_once(mesh, normals, opts)?;
     let (half, nrm) = check_closed(mesh, normals)?;
     let pos: Vec<P3> = mesh.positions.iter().map(|p| (*p).into()).collect();
     let mut patches: Vec<[P3; 10]> = base.patches.iter().map(|p| p.control).collect();

@@ -134,6 +134,12 @@ pub struct SplitSurface {
     /// halves of each macro edge, and for the two-split the three-split's list less the
     /// rebuilt edges.
     pub non_g1_edges: Vec<[u32; 2]>,
+    /// Input triangles with a non-G¹ edge inside them (an edge from a split point to a
+    /// corner, `edgesplit.rs`), sorted; empty without edge splits.
+    pub non_g1_inner: Vec<u32>,
+    /// Input macro edges `[a, b]` (a < b) split by the local edge split (`edgesplit.rs`:
+    /// their first-pass three-split was not G¹), sorted.
+    pub split_edges: Vec<[u32; 2]>,
     /// Max over edges of `|L1 − L1_step4| / |edge|` (and the same for `R1`), with Step 4 on the
     /// final boundaries; at most `MAX_MOVE` = 3 by construction (module doc).
     pub max_displacement: f64,
@@ -379,8 +385,21 @@ pub struct SplitOptions {
     pub fold_guard: bool,
 }
 
-/// [`three_split`] with options.
+/// [`three_split`] with options: the three-split of the module doc, then the local edge
+/// split of `edgesplit.rs` where its a-posteriori check finds non-G¹ macro edges (a macro
+/// triangle next to a split edge then has more than three patches, see
+/// [`SplitSurface::domain`]).
 pub fn three_split_with(
+    mesh: &TriMesh,
+    normals: &[crate::geom::Vector3],
+    opts: &SplitOptions,
+) -> Result<SplitSurface, SmoothError> {
+    super::edgesplit::three_split_split(mesh, normals, opts)
+}
+
+/// One three-split pass (module doc) without the edge split: patch `3t+i` is micro patch i
+/// of macro triangle t.
+pub(crate) fn three_split_once(
     mesh: &TriMesh,
     normals: &[crate::geom::Vector3],
     opts: &SplitOptions,
