@@ -6,7 +6,7 @@
 //! Deviations from the text (each documented in its file): the three-split's singular edges
 //! (mirror-symmetric sides, where (9.4) has no solution) are detected and reported, and
 //! built with a degree-elevated quadratic boundary and the ratio `e1/e0` that makes (9.3)
-//! consistent, in closed form (see [`three_split`]); the 2D curve's failing vertices are
+//! consistent, in closed form (see [`three_split`]); an edge the three-split still leaves non-G¹ (inflected edges above all) is bisected at a point of its first-pass boundary curve and the three-split re-run on the refined mesh (`edgesplit.rs`, up to two rounds; the patch list then has 3(k+1) patches for a macro triangle with k split edges); the 2D curve's failing vertices are
 //! repaired with the uniform weighting (NOTES B.2), and its joint bound is relative to the
 //! rounding of the stored control points ([`Joint::rounding`]). The side-vertex surface
 //! ([`side_vertex`]) uses the corrections of NOTES E: squared blending weights
