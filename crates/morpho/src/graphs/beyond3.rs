@@ -1354,21 +1354,7 @@ impl Field {
             if x == 0 || y == 0 || z == 0 || x + 1 == d[0] || y + 1 == d[1] || z + 1 == d[2] {
                 open = true;
             }
-            for nz in z.saturating_sub(1)..=(z + 1).min(d[2] - 1) {
-                for ny in y.saturating_sub(1)..=(y + 1).min(d[1] - 1) {
-                    for nx in x.saturating_sub(1)..=(x + 1).min(d[0] - 1) {
-                        let j = (nz * d[1] + ny) * d[0] + nx;
-                        if seen.contains(&j) {
-                            continue;
-                        }
-                        let (lo, hi) = self.cell_box(j);
-                        if mu * min_dist(a, lo, hi) <= self.u[j] * (1.0 + SLACK) {
-                            seen.insert(j);
-                            cells.push(j);
-                        }
-                    }
-                }
-            }
+            self.admit_neighbours([x, y, z], a, mu, &mut seen, |j| cells.push(j));
         }
         (cells, open, r_max)
     }
@@ -1401,24 +1387,41 @@ impl Field {
             if b == 0 {
                 return true;
             }
-            let [x, y, z] = self.coords(ci);
-            for nz in z.saturating_sub(1)..=(z + 1).min(d[2] - 1) {
-                for ny in y.saturating_sub(1)..=(y + 1).min(d[1] - 1) {
-                    for nx in x.saturating_sub(1)..=(x + 1).min(d[0] - 1) {
-                        let j = (nz * d[1] + ny) * d[0] + nx;
-                        if seen.contains(&j) {
-                            continue;
-                        }
-                        let (lo, hi) = self.cell_box(j);
-                        if mu * min_dist(a, lo, hi) <= self.u[j] * (1.0 + SLACK) {
-                            seen.insert(j);
-                            heap.push(Reverse((to_border(j), j)));
-                        }
+            let c = self.coords(ci);
+            self.admit_neighbours(c, a, mu, &mut seen, |j| {
+                heap.push(Reverse((to_border(j), j)))
+            });
+        }
+        false
+    }
+
+    /// The admission step of the floods ([`Self::flood`], [`Self::reaches_border`]): each of
+    /// the 26 neighbours `j` of cell `c` not yet in `seen` with μ·dist(a, C_j) ≤ U(C_j) is
+    /// added to `seen` and handed to `push`.
+    fn admit_neighbours(
+        &self,
+        [x, y, z]: [usize; 3],
+        a: [f64; 3],
+        mu: f64,
+        seen: &mut HashSet<usize>,
+        mut push: impl FnMut(usize),
+    ) {
+        let d = self.dims;
+        for nz in z.saturating_sub(1)..=(z + 1).min(d[2] - 1) {
+            for ny in y.saturating_sub(1)..=(y + 1).min(d[1] - 1) {
+                for nx in x.saturating_sub(1)..=(x + 1).min(d[0] - 1) {
+                    let j = (nz * d[1] + ny) * d[0] + nx;
+                    if seen.contains(&j) {
+                        continue;
+                    }
+                    let (lo, hi) = self.cell_box(j);
+                    if mu * min_dist(a, lo, hi) <= self.u[j] * (1.0 + SLACK) {
+                        seen.insert(j);
+                        push(j);
                     }
                 }
             }
         }
-        false
     }
 }
 
@@ -1761,8 +1764,8 @@ mod tests {
         let _ = beyond_dt_3d(&d, &cand, -0.5, u64::MAX);
     }
 
-    /// The limit's early test finds exactly the open vertices of the floods (a search that
-    /// stopped one cell early, or took another connectivity, fails it on the cloud, whose
+    /// The limit's early test finds exactly the open vertices of the floods (both admit cells
+    /// by `admit_neighbours`; a search that stopped one cell early fails it on the cloud, whose
     /// vertices are partly open).
     #[test]
     fn the_border_search_finds_the_open_vertices_of_the_floods() {

@@ -1144,29 +1144,14 @@ mod tests {
 
     #[test]
     fn decider_topology_matches_the_edge_table() {
-        use rand::{Rng, SeedableRng};
+        use rand::SeedableRng;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(10);
         let (mut tris, mut bnd, mut parts, mut fallbacks) = (0usize, 0, 0, 0);
         for round in 0..90 {
-            let dims = [
-                rng.gen_range(2..10),
-                rng.gen_range(2..10),
-                rng.gen_range(2..10),
-            ];
-            let nan = [0.0, 0.03, 0.0][round % 3];
-            let ints = round % 2 == 0; // ties with the level (Rem. 3.8)
-            let data: Vec<f32> = (0..dims.iter().product::<usize>())
-                .map(|_| {
-                    if rng.gen_bool(nan) {
-                        f32::NAN
-                    } else if ints {
-                        rng.gen_range(-2..3) as f32
-                    } else {
-                        rng.gen_range(-1.0f32..1.0)
-                    }
-                })
-                .collect();
-            let v = Volume::new(dims, [0.0; 3], [1.0; 3], data).unwrap();
+            // NaN cells in a third of the rounds; integer samples (ties with the level, Rem. 3.8)
+            // in every other one
+            let v = random_volume(&mut rng, 10, [0.0, 0.03, 0.0][round % 3], round % 2 == 0);
+            let dims = v.dims;
             let opts = IsoOptions {
                 level: 0.0,
                 flip: round % 5 == 1,
@@ -1312,31 +1297,45 @@ mod tests {
         }
     }
 
+    /// A random volume of 2 to `max − 1` samples per axis, unit spacing: each sample NaN with
+    /// probability `nan`, else an integer in −2..=2 (`ints`: ties with the level 0) or a float
+    /// in [−1, 1).
+    fn random_volume(
+        rng: &mut rand_chacha::ChaCha8Rng,
+        max: usize,
+        nan: f64,
+        ints: bool,
+    ) -> Volume {
+        use rand::Rng;
+        let dims = [
+            rng.gen_range(2..max),
+            rng.gen_range(2..max),
+            rng.gen_range(2..max),
+        ];
+        let data: Vec<f32> = (0..dims.iter().product::<usize>())
+            .map(|_| {
+                if rng.gen_bool(nan) {
+                    f32::NAN
+                } else if ints {
+                    rng.gen_range(-2..3) as f32
+                } else {
+                    rng.gen_range(-1.0f32..1.0)
+                }
+            })
+            .collect();
+        Volume::new(dims, [0.0; 3], [1.0; 3], data).unwrap()
+    }
+
     #[test]
     fn topology_matches_the_edge_table_on_random_volumes() {
-        use rand::{Rng, SeedableRng};
+        use rand::SeedableRng;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(23);
         let mut compared = [0usize; 3];
         for round in 0..60 {
-            let dims = [
-                rng.gen_range(2..9),
-                rng.gen_range(2..9),
-                rng.gen_range(2..9),
-            ];
-            let nan = [0.0, 0.03][round % 2];
-            let ints = round % 3 == 0; // ties with the level (Rem. 3.8)
-            let data: Vec<f32> = (0..dims.iter().product::<usize>())
-                .map(|_| {
-                    if rng.gen_bool(nan) {
-                        f32::NAN
-                    } else if ints {
-                        rng.gen_range(-2..3) as f32
-                    } else {
-                        rng.gen_range(-1.0f32..1.0)
-                    }
-                })
-                .collect();
-            let v = Volume::new(dims, [0.0; 3], [1.0; 3], data).unwrap();
+            // NaN cells in every other round; integer samples (ties with the level, Rem. 3.8) in
+            // a third of them
+            let v = random_volume(&mut rng, 9, [0.0, 0.03][round % 2], round % 3 == 0);
+            let dims = v.dims;
             for (mi, method) in [IsoMethod::Decider, IsoMethod::Tetra, IsoMethod::Lorensen]
                 .into_iter()
                 .enumerate()
