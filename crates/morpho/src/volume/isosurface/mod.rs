@@ -1151,7 +1151,6 @@ mod tests {
             // NaN cells in a third of the rounds; integer samples (ties with the level, Rem. 3.8)
             // in every other one
             let v = random_volume(&mut rng, 10, [0.0, 0.03, 0.0][round % 3], round % 2 == 0);
-            let dims = v.dims;
             let opts = IsoOptions {
                 level: 0.0,
                 flip: round % 5 == 1,
@@ -1178,17 +1177,7 @@ mod tests {
             };
             let skipped = v.data.iter().any(|x| x.is_nan());
             fallbacks += skipped as usize;
-            let valid_cell = |c: [i64; 3]| -> bool {
-                (0..3).all(|k| c[k] >= 0 && c[k] + 1 < dims[k] as i64)
-                    && !(0..8).any(|k| {
-                        v.at(
-                            c[0] as usize + (k & 1),
-                            c[1] as usize + (k >> 1 & 1),
-                            c[2] as usize + (k >> 2 & 1),
-                        )
-                        .is_nan()
-                    })
-            };
+            let valid_cell = |c: [i64; 3]| cell_is_valid(&v, c);
             let want = analyze(&mesh, &keys, valid_cell);
             for parallel in [false, true] {
                 let o = IsoOptions {
@@ -1297,6 +1286,20 @@ mod tests {
         }
     }
 
+    /// Whether cell `c` (its lowest corner) lies in `v` and none of its eight samples is NaN:
+    /// the cells the extraction does not skip, for the topology passes' `valid_cell`.
+    fn cell_is_valid(v: &Volume, c: [i64; 3]) -> bool {
+        (0..3).all(|k| c[k] >= 0 && c[k] + 1 < v.dims[k] as i64)
+            && !(0..8).any(|k| {
+                v.at(
+                    c[0] as usize + (k & 1),
+                    c[1] as usize + (k >> 1 & 1),
+                    c[2] as usize + (k >> 2 & 1),
+                )
+                .is_nan()
+            })
+    }
+
     /// A random volume of 2 to `max − 1` samples per axis, unit spacing: each sample NaN with
     /// probability `nan`, else an integer in −2..=2 (`ints`: ties with the level 0) or a float
     /// in [−1, 1).
@@ -1335,7 +1338,6 @@ mod tests {
             // NaN cells in every other round; integer samples (ties with the level, Rem. 3.8) in
             // a third of them
             let v = random_volume(&mut rng, 9, [0.0, 0.03][round % 2], round % 3 == 0);
-            let dims = v.dims;
             for (mi, method) in [IsoMethod::Decider, IsoMethod::Tetra, IsoMethod::Lorensen]
                 .into_iter()
                 .enumerate()
@@ -1348,23 +1350,7 @@ mod tests {
                 let Some((mesh, keys)) = extracted(&v, &opts) else {
                     continue;
                 };
-                let skipped = v.data.iter().any(|x| x.is_nan());
-                let valid_cell = |c: [i64; 3]| -> bool {
-                    for k in 0..3 {
-                        if c[k] < 0 || c[k] + 1 >= dims[k] as i64 {
-                            return false;
-                        }
-                    }
-                    !skipped
-                        || !(0..8).any(|k| {
-                            v.at(
-                                c[0] as usize + (k & 1),
-                                c[1] as usize + (k >> 1 & 1),
-                                c[2] as usize + (k >> 2 & 1),
-                            )
-                            .is_nan()
-                        })
-                };
+                let valid_cell = |c: [i64; 3]| cell_is_valid(&v, c);
                 let got = analyze(&mesh, &keys, valid_cell);
                 let want = analyze_edge_table(&mesh, &keys, valid_cell);
                 assert!(same_analysis(&got, &want), "round {round} {method:?}");
