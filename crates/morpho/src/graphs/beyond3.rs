@@ -134,7 +134,12 @@
 //! for hours: when even C(N, 3) exceeds the limit, the open vertices are found first by a
 //! search that stops at the grid boundary ([`Field::reaches_border`]) and C(open, 3) — the
 //! triples of three open vertices, all of them candidates — is checked before the floods and
-//! partner searches (which cost minutes on the whole fandisk: refused in 0.4 s CPU).
+//! partner searches (which cost minutes on the whole fandisk: refused in 0.4 s CPU). The
+//! count of triples does not bound the time on (nearly) cospherical input, where every
+//! candidate is decided by a scan of every point with near-tie in-sphere tests (300 points of
+//! a Fibonacci sphere: 4.5·10⁶ triples, ≈ 1.3·10⁹ points added, minutes): the points the loop
+//! adds to intervals are counted as it runs and the search is refused with
+//! [`GraphError::TooMuchWork`] once they pass the same limit (≈ 20 s of one core there).
 //!
 //! Preconditions: a full-dimensional tetrahedralization (`d.degenerate` is `None`).
 
@@ -149,6 +154,7 @@ use crate::geom::grid::PointGrid as Grid;
 use crate::geom::near_sphere::NearSphere;
 use rayon::prelude::*;
 use std::collections::HashSet;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering::Relaxed};
 
 /// Relative slack of the floating-point filters.
 const SLACK: f64 = 1e-6;
@@ -392,11 +398,23 @@ pub(crate) fn beyond_dt_3d_learn(
     // corners open and its circumcentre outside the grid. So the pairs of a are its partners
     // and (a open) the open b > a, the third points of (a, b) the c > b with b, c partners or
     // a, b, c open, and the circumcentre tells which of the two tests applies.
+    // the points the loop adds to intervals, counted as it runs: on (nearly) cospherical input
+    // every candidate is decided by a scan of every point, with near-tie in-sphere tests, so
+    // the triple count alone does not bound the time (the limit's second measure, refused
+    // with `GraphError::TooMuchWork` once the sum passes it; whether it is refused does not
+    // depend on the threads' order: every point is counted, so the sum passes the limit iff
+    // the whole loop's count does)
+    let spent = AtomicU64::new(0);
+    let over = AtomicBool::new(false);
     let per: Vec<(Found, Work)> = (0..n)
         .into_par_iter()
         .map_init(
             || (vec![false; n], vec![false; n]),
             |(partner, scratch), a| {
+                if over.load(Relaxed) {
+                    return (Vec::new(), Work::default());
+                }
+                let mut counted = 0u64;
                 let pa = p[a];
                 let (a_open, r_max, partners) = (&floods[a].0, floods[a].1, &floods[a].2);
                 let a_open = *a_open;
@@ -455,6 +473,15 @@ pub(crate) fn beyond_dt_3d_learn(
                         hint.last
                     });
                     hint.work = hint.work.merge(pf.work);
+                    let now = hint.work.hint_points + hint.work.scan_points;
+                    let total = spent.fetch_add(now - counted, Relaxed) + (now - counted);
+                    counted = now;
+                    if total > limit {
+                        over.store(true, Relaxed);
+                    }
+                    if over.load(Relaxed) {
+                        break;
+                    }
                 }
                 for &b in partners {
                     partner[b as usize] = false;
@@ -463,6 +490,15 @@ pub(crate) fn beyond_dt_3d_learn(
             },
         )
         .collect();
+    if over.load(Relaxed) {
+        return Err(GraphError::TooMuchWork {
+            c,
+            points: n,
+            triples: candidates,
+            added: spent.load(Relaxed),
+            limit,
+        });
+    }
     let mut work = per.iter().fold(Work::default(), |w, x| w.merge(x.1));
     work.candidates = candidates;
     let mut out: Found = per.into_iter().flat_map(|(f, _)| f).collect();
@@ -1790,6 +1826,44 @@ mod tests {
         }
     }
 
+    /// Issue 17 item 8, the loop's second measure: 150 points of a Fibonacci sphere (nearly
+    /// cospherical: 5.5·10⁵ candidate triples, each decided by a scan of every point, ≈ 8·10⁷
+    /// points added, 15 s of one core before the limit) are refused with `TooMuchWork` once the
+    /// points added pass the limit, although the triple count is under it; with the limit
+    /// above the whole count the same set is decided (a smaller one, to stay quick).
+    #[test]
+    fn points_added_are_limited_on_a_sphere() {
+        let fib = |n: usize| -> Vec<Point3> {
+            let g = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+            (0..n)
+                .map(|i| {
+                    let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+                    let r = (1.0 - z * z).sqrt();
+                    let t = g * i as f64;
+                    Point3::new(r * t.cos(), r * t.sin(), z)
+                })
+                .collect()
+        };
+        let d = d3::triangulate(&fib(150)).unwrap();
+        let cand = super::super::fast::candidates_3d(&d);
+        let t0 = std::time::Instant::now();
+        let e = beyond_dt_3d(&d, &cand, -0.5, 2_000_000).unwrap_err();
+        match e {
+            GraphError::TooMuchWork { triples, added, .. } => {
+                assert!(triples < 2_000_000 && added > 2_000_000, "{e}");
+            }
+            _ => panic!("{e}"),
+        }
+        assert!(t0.elapsed().as_secs() < 20, "{:?}", t0.elapsed());
+        let d = d3::triangulate(&fib(40)).unwrap();
+        let cand = super::super::fast::candidates_3d(&d);
+        let (t, iv, w) = beyond_dt_3d_learn(&d, &cand, -0.5, true, true, u64::MAX).unwrap();
+        let added = w.hint_points + w.scan_points;
+        assert!(added > w.candidates, "{added} {}", w.candidates);
+        assert_eq!(beyond_dt_3d(&d, &cand, -0.5, added).unwrap(), (t, iv));
+        assert!(beyond_dt_3d(&d, &cand, -0.5, added - 1).is_err());
+    }
+
     /// Issue 17 item 8 (the limit): the count made before the loop bounds the triples the loop
     /// visits, is near C(n, 3) on surface samples (every vertex open; 300 uniform points at
     /// c = −0.05 too) and below it where vertices are closed; a limit one below the count refuses with that count, a limit equal
@@ -1819,7 +1893,17 @@ mod tests {
                 matches!(e, GraphError::TooManyTriples { triples, .. } if triples == w.candidates),
                 "{e}"
             );
-            assert_eq!(beyond_dt_3d(&d, &cand, c, w.candidates).unwrap(), (t, iv));
+            // the loop's own measure: the points it adds, refused once they pass the limit
+            let added = w.hint_points + w.scan_points;
+            let enough = w.candidates.max(added);
+            assert_eq!(beyond_dt_3d(&d, &cand, c, enough).unwrap(), (t, iv));
+            if added > w.candidates {
+                let e = beyond_dt_3d(&d, &cand, c, added - 1).unwrap_err();
+                assert!(
+                    matches!(e, GraphError::TooMuchWork { added: a, .. } if a == added),
+                    "{e}"
+                );
+            }
         }
         let p = surface(120, 1, 3);
         let pts: Vec<Point3> = p.iter().map(|q| Point3::new(q[0], q[1], q[2])).collect();

@@ -102,6 +102,24 @@ pub enum GraphError {
         /// The limit.
         limit: u64,
     },
+    /// A 3D γ-graph beyond the tetrahedralization (a parameter c < 0) whose triple loop added
+    /// more points to the triples' intervals than the limit ([`crate::graphs::triple_limit`]):
+    /// (nearly) cospherical input, where every candidate is decided by a scan of every point.
+    #[error(
+        "3D γ-graphs with a parameter c = {c} < 0 decide each candidate triple by the points around it; on these {points} points ({triples} candidate triples, nearly cospherical: every triple sees every point) the search added more than {limit} points to the triples' intervals and was stopped after {added} (Θ(N⁴) on points of a sphere; raise the limit with --max-triples or MORPHO_TRIPLE_LIMIT)"
+    )]
+    TooMuchWork {
+        /// The parameter c.
+        c: f64,
+        /// Number of distinct points.
+        points: usize,
+        /// The candidate triples counted before the loop.
+        triples: u64,
+        /// The points added when the search was stopped.
+        added: u64,
+        /// The limit.
+        limit: u64,
+    },
     /// A 3D α-shape with a > 0 on more than `limit` hull vertices.
     #[error("3D α-shapes with a > 0 are limited to {limit} hull vertices (got {hull_vertices})")]
     AlphaHullTooLarge {

@@ -35,7 +35,7 @@ use crate::delaunay::d2::Delaunay2;
 use crate::delaunay::d3::Delaunay3;
 use crate::geom::distance::dot_sign;
 use crate::geom::grid::PointGrid as Grid;
-use crate::geom::predicates::raw;
+use crate::geom::predicates::{incircle_sign, raw};
 use crate::util::{sorted3, NONE};
 use rayon::prelude::*;
 use std::collections::{HashMap, HashSet};
@@ -299,7 +299,7 @@ fn apex_rel(p: &[[f64; 2]], e: &DtEdge) -> f64 {
         return -1.0;
     }
     let g = |v: u32| p[v as usize];
-    raw::incircle(g(e.a), g(e.b), g(e.left), g(e.right))
+    incircle_sign(g(e.a), g(e.b), g(e.left), g(e.right)) as f64
 }
 
 /// The empty-ball interval of a Delaunay edge, and whether its two triangles are cocircular.
@@ -451,7 +451,7 @@ impl CircleOrder {
             return None;
         }
         count_chord_work(g);
-        if (3..g).any(|i| raw::incircle(o, u, w, at(i)) != 0.0) {
+        if (3..g).any(|i| incircle_sign(o, u, w, at(i)) != 0) {
             return None;
         }
         // seen from o on the circle the other points span less than a half-turn, in their order

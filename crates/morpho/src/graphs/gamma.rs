@@ -52,7 +52,7 @@
 use crate::geom::bounded::Bounded;
 use crate::geom::distance::dot_sign;
 use crate::geom::near_sphere::{Lift, NearSphere};
-use crate::geom::predicates::raw;
+use crate::geom::predicates::{incircle_sign, raw};
 use crate::geom::vec::{cross, dot, sub};
 use std::cmp::Ordering;
 
@@ -636,23 +636,23 @@ impl EdgeFrame {
         if side > 0.0 {
             let better = match iv.hi_at {
                 None => true,
-                Some(y) => raw::incircle(self.pa, self.pb, xy(y), x) > 0.0,
+                Some(y) => incircle_sign(self.pa, self.pb, xy(y), x) > 0,
             };
             if better {
                 iv.bind_hi(self.offset(side, x), [x[0], x[1], 0.0]);
                 if let Some(l) = iv.lo_at {
-                    iv.settle(raw::incircle(self.pa, self.pb, x, xy(l)));
+                    iv.settle(incircle_sign(self.pa, self.pb, x, xy(l)) as f64);
                 }
             }
         } else if side < 0.0 {
             let better = match iv.lo_at {
                 None => true,
-                Some(y) => raw::incircle(self.pb, self.pa, xy(y), x) > 0.0,
+                Some(y) => incircle_sign(self.pb, self.pa, xy(y), x) > 0,
             };
             if better {
                 iv.bind_lo(self.offset(side, x), [x[0], x[1], 0.0]);
                 if let Some(h) = iv.hi_at {
-                    iv.settle(raw::incircle(self.pa, self.pb, xy(h), x));
+                    iv.settle(incircle_sign(self.pa, self.pb, xy(h), x) as f64);
                 }
             }
         } else {

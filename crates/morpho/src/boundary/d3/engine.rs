@@ -14,6 +14,12 @@
 //!    missing keep triangles, volume — all in input indices.
 
 use super::augment::{augment_until_done_3d, BEYOND_ALL_MAX};
+
+/// The most points the whole γ-graph of [`Engine3::gamma_from_hull`] (inputs up to
+/// [`BEYOND_ALL_MAX`] points) may add to its triples' intervals before the local path takes
+/// over: 10⁷, about 2 s of one core on nearly cospherical points, where every triple scans
+/// every point (issue 17 item 8; generic inputs of that size stay far below it).
+pub(super) const WHOLE_BUDGET: u64 = 10_000_000;
 use super::constrict::{constrict_3d_with, Until};
 use super::general::General3;
 use super::keep::{has_non_delaunay_keep, keep_missing_v, keep_vertices};
@@ -134,13 +140,22 @@ impl Engine3 {
         };
         let cand = crate::graphs::fast::candidates_3d_with(d, which).0;
         let mut all = cand.triangles.clone();
-        if small {
-            // at most C(BEYOND_ALL_MAX, 3) ≈ 1.06·10⁷ candidate triples: no limit applies
-            let beyond = crate::graphs::beyond3::beyond_dt_3d(d, &cand, c, u64::MAX);
-            all.extend(beyond.expect("no limit").0);
+        // at most C(BEYOND_ALL_MAX, 3) ≈ 1.06·10⁷ candidate triples, but on (nearly)
+        // cospherical points each is decided by a scan of every point (minutes at 300 points):
+        // past `WHOLE_BUDGET` points added (`GraphError::TooMuchWork`) the local path below
+        // takes over, as for larger inputs
+        let whole = small
+            .then(|| {
+                let limit = crate::graphs::triple_limit().min(WHOLE_BUDGET);
+                crate::graphs::beyond3::beyond_dt_3d(d, &cand, c, limit).ok()
+            })
+            .flatten();
+        let local = whole.is_none();
+        if let Some(beyond) = whole {
+            all.extend(beyond.0);
         }
         let mut g = General3::new(&self.pos, &d.hull, &all, &self.keep_v);
-        if !small {
+        if local {
             let extra = g.local_gamma(c, 16);
             g.augment(&extra);
         }
