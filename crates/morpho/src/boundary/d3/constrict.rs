@@ -47,7 +47,10 @@
 //! are packed side by side (one cache line per step of a rotation around an edge, the hot
 //! loop; 32 bytes per tetrahedron while the constriction runs), and the heap is 4-ary over
 //! packed integer entries; the removals are the same, in the same order, as with a binary heap
-//! and masks recomputed from the neighbours (test `constriction_equals_the_reference`).
+//! and masks recomputed from the neighbours (test `constriction_equals_the_reference`). A
+//! popped two-face entry is not rotated around its edge again when no tetrahedron at an end
+//! of that edge was removed since its push (a per-vertex removal stamp in the entry): the
+//! rotation found the edge interior then and nothing around it changed.
 //! O(T log T) for T tetrahedra (V §5.5: O(N² log N) in the worst case, O(N log N) expected).
 //!
 //! Preconditions: a non-degenerate tetrahedralization (at least one tetrahedron).
@@ -174,6 +177,10 @@ pub fn removal_key(key: Key, p: [[f64; 3]; 4], boundary: u8, big_r: f64) -> f64 
     }
 }
 
+/// The largest [`State::stamp`] (28 bits, below the mask in a heap entry, [`QuadHeap`]); a
+/// saturated stamp proves nothing ([`State::edge_unchanged`]).
+const STAMP_SAT: u32 = (1 << 28) - 1;
+
 /// Bit of [`State::mask`] marking a removed tetrahedron (the face bits are 0–3).
 const DEAD: u8 = 0x80;
 
@@ -232,6 +239,12 @@ struct State<'a> {
     ///   see [`constrict_3d_with`]).
     meta: Vec<u32>,
     vcount: Vec<u32>,
+    /// Per vertex, how many removed tetrahedra had it as a corner (saturating at
+    /// [`STAMP_SAT`]): a two-face entry records the stamp of an end of the edge its
+    /// removability depends on, and when that stamp is unchanged at the pop no tetrahedron
+    /// around the edge was removed meanwhile, so the rotation around it is not redone
+    /// ([`State::edge_unchanged`]).
+    stamp: Vec<u32>,
     nbv: usize,
     keep: IdSet<[u32; 3]>,
     key: Key,
@@ -259,6 +272,7 @@ impl<'a> State<'a> {
             cells: cells_of(d),
             meta,
             vcount: vec![0; d.points.len()],
+            stamp: vec![0; d.points.len()],
             nbv: 0,
             keep: keep.iter().map(|&f| sorted3(f)).collect(),
             key,
@@ -343,6 +357,33 @@ impl<'a> State<'a> {
             [f, g] => !self.edge_on_boundary(t as u32, v[f], v[g]),
             _ => false,
         }
+    }
+
+    /// The end of the edge that decides whether tetrahedron t with the two boundary faces of
+    /// `m` is removable (the corner opposite the lower face; the edge joins the corners
+    /// opposite the two faces, [`State::removable`]).
+    fn edge_end(&self, t: usize, m: u8) -> u32 {
+        self.cells[t].v[m.trailing_zeros() as usize & 3]
+    }
+
+    /// The stamp an entry (t, m) records when pushed: its edge end's for two boundary faces,
+    /// 0 (never used) otherwise.
+    fn entry_stamp(&self, t: usize, m: u8) -> u32 {
+        if m.count_ones() == 2 {
+            self.stamp[self.edge_end(t, m) as usize]
+        } else {
+            0
+        }
+    }
+
+    /// Entry (t, m) with stamp `s`, found removable when pushed and with t's mask still m, is
+    /// still removable: m has two faces and the stamp of its edge end is still `s` (not
+    /// saturated). Why: the verdict then depended only on the edge joining the corners
+    /// opposite the two faces being off the boundary (keep triangles never change), and
+    /// whether an edge is on the boundary changes only when a live tetrahedron around it is
+    /// removed — whose corners include both ends, so the end's stamp would have grown.
+    fn edge_unchanged(&self, t: usize, m: u8, s: u32) -> bool {
+        m.count_ones() == 2 && s < STAMP_SAT && self.stamp[self.edge_end(t, m) as usize] == s
     }
 
     fn add_face(&mut self, f: [u32; 3], delta: i32) {
@@ -441,10 +482,11 @@ fn around_edge_from(cells: &[Cell], t: u32, a: u32, b: u32, out: &mut Vec<u32>) 
 }
 
 /// A 4-ary min-heap of the constriction's entries packed into `u128`s: the key's
-/// [`f64::total_cmp`] order in the high 64 bits, then the tetrahedron, then the mask — so the
-/// integer order is the order of `MinKey<(u32, u8)>` (smallest key first, ties by the
-/// smallest (tetrahedron, mask)), and the pop sequence is that of a `BinaryHeap` of those
-/// holding the same entries. Four children per node: half the levels of a binary heap, each level's
+/// [`f64::total_cmp`] order in the high 64 bits, then the tetrahedron, then the mask, then
+/// the entry's edge stamp ([`State::stamp`], below the mask: it orders only entries with the
+/// same key, tetrahedron and mask, which the heap never holds twice) — so the integer order is
+/// the order of `MinKey<(u32, u8)>` (smallest key first, ties by the smallest (tetrahedron,
+/// mask)), and the pop sequence is that of a `BinaryHeap` of those holding the same entries. Four children per node: half the levels of a binary heap, each level's
 /// children in one or two cache lines (the heap holds the whole constriction front).
 #[derive(Default)]
 struct QuadHeap {
@@ -452,16 +494,16 @@ struct QuadHeap {
 }
 
 impl QuadHeap {
-    /// The packed entry of key `key` and item (t, m).
-    fn pack(key: f64, t: u32, m: u8) -> u128 {
+    /// The packed entry of key `key`, item (t, m) (m < 16) and stamp `s` (< [`STAMP_SAT`] + 1).
+    fn pack(key: f64, t: u32, m: u8, s: u32) -> u128 {
         let b = key.to_bits() as i64;
         // the total_cmp transform, then the sign bit flipped: signed order → unsigned order
         let k = (b ^ ((((b >> 63) as u64) >> 1) as i64)) as u64 ^ (1 << 63);
-        (k as u128) << 64 | (t as u128) << 8 | m as u128
+        (k as u128) << 64 | (t as u128) << 32 | ((m & 15) as u128) << 28 | (s & STAMP_SAT) as u128
     }
 
-    fn push(&mut self, key: f64, t: u32, m: u8) {
-        let e = Self::pack(key, t, m);
+    fn push(&mut self, key: f64, t: u32, m: u8, s: u32) {
+        let e = Self::pack(key, t, m, s);
         let mut i = self.a.len();
         self.a.push(e);
         while i > 0 {
@@ -475,8 +517,8 @@ impl QuadHeap {
         self.a[i] = e;
     }
 
-    /// The smallest entry's item (t, m).
-    fn pop(&mut self) -> Option<(u32, u8)> {
+    /// The smallest entry's item (t, m) and stamp.
+    fn pop(&mut self) -> Option<(u32, u8, u32)> {
         let top = *self.a.first()?;
         let last = self.a.pop()?;
         let n = self.a.len();
@@ -502,7 +544,11 @@ impl QuadHeap {
             }
             self.a[i] = last;
         }
-        Some(((top >> 8) as u32, top as u8))
+        Some((
+            (top >> 32) as u32,
+            (top >> 28) as u8 & 15,
+            top as u32 & STAMP_SAT,
+        ))
     }
 }
 
@@ -562,7 +608,7 @@ pub fn constrict_3d_with(
         }
         if let Some(key) = st.key(t, m) {
             st.meta[t] |= pending_bit(m);
-            heap.push(key, t as u32, m);
+            heap.push(key, t as u32, m, st.entry_stamp(t, m));
         }
     };
     for t in 0..nt {
@@ -571,11 +617,14 @@ pub fn constrict_3d_with(
     let mut iterations = 0;
     let mut ring = Vec::new();
     while until == Until::Locked || st.nbv < nv {
-        let Some((t, mask)) = heap.pop() else { break };
+        let Some((t, mask, stamp)) = heap.pop() else {
+            break;
+        };
         let t = t as usize;
         st.meta[t] &= !pending_bit(mask);
-        // (a removed tetrahedron's mask is DEAD, never a pushed mask)
-        if st.mask(t) != mask || !st.removable(t, mask) {
+        // (a removed tetrahedron's mask is DEAD, never a pushed mask; every entry was
+        // removable when pushed)
+        if st.mask(t) != mask || !(st.edge_unchanged(t, mask, stamp) || st.removable(t, mask)) {
             continue;
         }
         let m = mask;
@@ -586,6 +635,8 @@ pub fn constrict_3d_with(
         for (i, &x) in v.iter().enumerate() {
             let lost = (m & !(1 << i)).count_ones() as i32;
             st.add_vertex(x, 3 - 2 * lost);
+            let s = &mut st.stamp[x as usize];
+            *s = (*s + 1).min(STAMP_SAT);
         }
         st.kill(t);
         iterations += 1;
@@ -985,14 +1036,17 @@ mod tests {
                         rng.gen_range(0..50u32) * 97_000_001 % u32::MAX,
                         rng.gen_range(0..16u8),
                     );
-                    q.push(key, item.0, item.1);
+                    // (the stamp, below the item, changes no order of items)
+                    let stamp = rng.gen_range(0..=STAMP_SAT);
+                    q.push(key, item.0, item.1, stamp);
                     b.push(MinKey { key, item });
                 } else {
-                    assert_eq!(q.pop(), b.pop().map(|e| e.item));
+                    let p = q.pop().map(|(t, m, _)| (t, m));
+                    assert_eq!(p, b.pop().map(|e| e.item));
                 }
             }
             while let Some(e) = b.pop() {
-                assert_eq!(q.pop(), Some(e.item));
+                assert_eq!(q.pop().map(|(t, m, _)| (t, m)), Some(e.item));
             }
             assert_eq!(q.pop(), None);
         }

@@ -379,6 +379,11 @@ pub struct General3<'a> {
     pub(super) sequential_sweeps: bool,
     /// Tests: evaluate every skipped face anyway and panic if it has a removable tetrahedron.
     pub(super) verify_skips: bool,
+    /// [`General3::best_plain`] drops the apexes l of a face abc for which bcl or acl is not
+    /// live by the lists of `eadj` ([`General3::live_thirds`]) before
+    /// [`General3::combinatorial`]'s lookups (switchable: off is the reference of the
+    /// equivalence test).
+    pub(super) filter_thirds: bool,
     /// The sweep's face list ([`General3::sweep_faces`]) kept up to date from `dirty_edges`
     /// instead of rebuilt from every live triangle: every directed boundary edge x→y (key
     /// `dk`) on a live non-boundary triangle with the face it names (x, y, `bnext`(x→y)), and
@@ -525,6 +530,7 @@ impl<'a> General3<'a> {
             skipped: 0,
             sequential_sweeps: false,
             verify_skips: false,
+            filter_thirds: true,
             sweep_src: None,
             dirty_edges: Vec::new(),
             rebuild_sweeps: false,
@@ -1006,6 +1012,24 @@ impl<'a> General3<'a> {
         }
     }
 
+    /// The third vertices of every live triangle on edge xy, from `eadj` without a lookup of
+    /// each triangle; `None` when x and y are both cold (the initial boundary faces on such an
+    /// edge are left out of `eadj`, [`General3::build_lazy`]: unknown).
+    ///
+    /// Why the list holds every live triangle xyl (so that `l` missing from it proves
+    /// `!self.has(x, y, l)`): a triangle enters `eadj` on each of its edges when it is
+    /// constructed ([`General3::build_with`]) or added or revived ([`General3::add_tri_grid`]),
+    /// and leaves only when killed ([`General3::kill`]); the one exception is an initial
+    /// boundary face on an edge with both ends cold at construction, and [`General3::heat`]
+    /// enters it on that edge when the first of the two ends warms (the other is cold then).
+    /// Test `thirds_filter_constricts_identically`.
+    pub(super) fn live_thirds(&self, x: u32, y: u32) -> Option<&[u32]> {
+        if self.cold.all_cold(&[x, y]) {
+            return None;
+        }
+        Some(self.eadj.get(&ek(x, y)).map_or(&[][..], |v| v.as_slice()))
+    }
+
     /// Is the oriented face a boundary face (with this orientation)?
     pub(super) fn is_bface(&self, f: [u32; 3]) -> bool {
         self.bnext_of(f[0], f[1]) == Some(f[2])
@@ -1433,5 +1457,93 @@ mod tests {
             assert!(!g.changed_since(g.epoch, b.0, b.1));
         }
         assert!(g.epoch >= 30, "{}", g.epoch);
+    }
+
+    /// Every live triangle xyl is in `eadj`'s list of its edge xy unless x and y are both cold
+    /// ([`General3::live_thirds`]: what makes the apex filter of `best_plain` exact).
+    fn assert_thirds_listed(g: &General3<'_>, at: &str) {
+        for (i, s) in g.tris.iter().enumerate() {
+            if !g.live[i] {
+                continue;
+            }
+            for k in 0..3 {
+                let (x, y, l) = (s[k], s[(k + 1) % 3], s[(k + 2) % 3]);
+                if let Some(list) = g.live_thirds(x, y) {
+                    assert!(list.contains(&l), "{at}: live {s:?} not listed on {x}-{y}");
+                }
+            }
+        }
+    }
+
+    /// The apex filter of `best_plain` ([`General3::live_thirds`]) changes no removal: after a
+    /// locked Delaunay constriction, engines on the live triangles near the locked vertices
+    /// (lazy construction: most boundary faces cold, as on the dragon) and on all of them,
+    /// with the filter and without it (the reference), go through the augmentation schedule
+    /// with the same removals and end with the same boundary; the lists hold every live
+    /// triangle after each step.
+    #[test]
+    fn thirds_filter_constricts_identically() {
+        let (mut locked, mut cold_runs) = (0, 0);
+        for seed in (1..=40u64).chain([1647, 1755]) {
+            let Some((d, pos, st)) = super::super::test_sets::locked_clustered_cube(seed) else {
+                continue;
+            };
+            locked += 1;
+            let on: IdSet<u32> = st.triangles.iter().flatten().copied().collect();
+            // the live tetrahedra at a locked vertex and their live neighbours
+            let mut near = vec![false; d.tets.len()];
+            for (t, tet) in d.tets.iter().enumerate() {
+                if st.alive[t] && tet.iter().any(|v| !on.contains(v)) {
+                    near[t] = true;
+                    for &n in &d.neighbors[t] {
+                        if n != crate::util::NONE && st.alive[n as usize] {
+                            near[n as usize] = true;
+                        }
+                    }
+                }
+            }
+            let all = super::super::test_sets::live_faces(&d, &st.alive);
+            let local = super::super::test_sets::live_faces(&d, &near);
+            for (name, live, lazy) in [("local", &local, true), ("all", &all, false)] {
+                let go = |filter: bool| {
+                    let mut g = General3::blank(&pos, &st.triangles, live, &[]);
+                    g.filter_thirds = filter;
+                    if lazy {
+                        g.build_lazy(&st.triangles, live, &[]);
+                    } else {
+                        g.build(&st.triangles, live, &[]);
+                    }
+                    let cold = g.cold.cold.iter().filter(|&&c| c).count();
+                    g.trust_initial_as_delaunay();
+                    g.track = true;
+                    g.push_all();
+                    g.run();
+                    assert_thirds_listed(&g, name);
+                    let mut trace = vec![(g.iterations, g.boundary_vertices, g.added)];
+                    for step in 1..=10 {
+                        if g.done() {
+                            break;
+                        }
+                        let x = g.local_gamma(-(step as f64) / 10.0, 16);
+                        g.augment(&x);
+                        g.run();
+                        assert_thirds_listed(&g, name);
+                        trace.push((g.iterations, g.boundary_vertices, g.added));
+                    }
+                    (g.boundary(), trace, cold)
+                };
+                let (b0, t0, _) = go(false);
+                let (b1, t1, cold) = go(true);
+                assert_eq!(t0, t1, "seed {seed} {name}");
+                assert_eq!(b0, b1, "seed {seed} {name}");
+                if lazy && cold > 0 {
+                    cold_runs += 1;
+                }
+            }
+        }
+        assert!(
+            locked >= 3 && cold_runs >= 3,
+            "{locked} locked, {cold_runs} with cold vertices"
+        );
     }
 }
