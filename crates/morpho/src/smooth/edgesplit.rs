@@ -27,7 +27,11 @@
 //! each half of a split edge is G¹ by `transversal.rs` where it is not reported. Only the
 //! macro triangles next to a split edge (their sub-triangles) and their neighbours (whose
 //! Step 5 reads the changed first rows) change; elsewhere the second pass recomputes the same
-//! numbers.
+//! numbers. So the passes after the first are local (`split3::three_split_pass` with the
+//! previous pass as `Reuse`): the quadratic boundaries, fold-guard decisions, Step-5 results
+//! and a-posteriori verdicts of the unchanged edges and the Step-4 patches of the unchanged
+//! triangles are taken over, everything else recomputed; the result is the full re-run's bit
+//! for bit (the reference `split_rounds(…, local = false)` of the tests).
 //!
 //! **Interpolation.** Every input vertex keeps its position and normal (Step 1–2 of the
 //! second pass); `S` is a new interpolated point on the first-pass surface.

@@ -73,8 +73,8 @@ use super::triangle::{tri_index, BezierTriangle};
 use super::SmoothError;
 use crate::geom::vec;
 use crate::mesh::TriMesh;
+use crate::util::IdMap;
 use rayon::prelude::*;
-use std::collections::HashMap;
 
 type P3 = [f64; 3];
 
@@ -89,7 +89,7 @@ const MAX_MOVE: f64 = 3.0;
 /// Largest relative residual of (9.3b, c) accepted on a singular edge.
 const RESOLVED: f64 = 1e-10;
 /// The half-edge map and the unit normals of a checked mesh.
-type Checked = (HashMap<(u32, u32), usize>, Vec<P3>);
+type Checked = (IdMap<(u32, u32), usize>, Vec<P3>);
 
 /// One cubic micro patch of the split surface.
 #[derive(Debug, Clone, PartialEq)]
@@ -168,7 +168,7 @@ pub(crate) fn check_closed(
     {
         return Err(SmoothError::NonFinite { index });
     }
-    let mut half = HashMap::with_capacity(mesh.triangles.len() * 3);
+    let mut half = IdMap::with_capacity_and_hasher(mesh.triangles.len() * 3, Default::default());
     for (t, tri) in mesh.triangles.iter().enumerate() {
         if tri.iter().any(|&v| v as usize >= nv) {
             return Err(SmoothError::BadIndex { triangle: t });
@@ -257,15 +257,10 @@ struct EdgeData {
     r: [P3; 3],
 }
 
-/// The edge `a → b` (a < b) in the notation of V 9.3 and its `(f0, g0, f1, g1)` from (9.3a),
+/// The edge `a → b` (a < b; `p`, `q` the patches of its half-edges `a → b`, `b → a`) in the notation of V 9.3 and its `(f0, g0, f1, g1)` from (9.3a),
 /// (9.3d) with `e0 = e1 = 1`.
-fn edge_data(
-    patches: &[[P3; 10]],
-    half: &HashMap<(u32, u32), usize>,
-    a: u32,
-    b: u32,
-) -> (EdgeData, [f64; 4]) {
-    let (pp, qq) = (&patches[half[&(a, b)]], &patches[half[&(b, a)]]);
+fn edge_data(patches: &[[P3; 10]], p: usize, q: usize) -> (EdgeData, [f64; 4]) {
+    let (pp, qq) = (&patches[p], &patches[q]);
     let e = EdgeData {
         m: [pp[0], pp[1], pp[3], pp[6]],
         l: [pp[2], pp[4], pp[7]],
@@ -341,18 +336,48 @@ fn solve_94(e: &EdgeData, [f0, g0, f1, g1]: [f64; 4]) -> (P3, P3) {
 /// `orient3d(a, h_ab, h_ac, a + n_a) < 0`. Then every projected corner angle is in (0, π) and
 /// each edge point lies strictly inside the cone of its two neighbouring `W` points, which is
 /// the orientation rule `f, g < 0` of NOTES B.1 at `a` (module doc, "folds").
-fn fan_ok(
-    pos: &[P3],
-    nrm: &[P3],
-    corners: &[Vec<(u32, u32)>],
-    handles: &HashMap<(u32, u32), P3>,
-    a: u32,
-) -> bool {
+fn fan_ok(pos: &[P3], nrm: &[P3], corners: &Corners, handles: &[P3], a: u32) -> bool {
     let pa = pos[a as usize];
     let up = vec::add(pa, nrm[a as usize]);
-    corners[a as usize].iter().all(|&(b, c)| {
-        crate::geom::predicates::raw::orient3d(pa, handles[&(a, b)], handles[&(a, c)], up) < 0.0
+    corners.of(a).iter().all(|&(ab, ac)| {
+        crate::geom::predicates::raw::orient3d(pa, handles[ab as usize], handles[ac as usize], up)
+            < 0.0
     })
+}
+
+/// The corners `(a, b, c)` of each vertex `a` as the half-edges `(a → b, a → c)` (CSR).
+struct Corners {
+    start: Vec<u32>,
+    list: Vec<(u32, u32)>,
+}
+
+impl Corners {
+    /// The corners of every vertex, in triangle order (`twin[e]`: the half-edge opposite `e`).
+    fn new(mesh: &TriMesh, nv: usize, twin: &[u32]) -> Corners {
+        let mut start = vec![0u32; nv + 1];
+        for t in &mesh.triangles {
+            for &v in t {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut list = vec![(0, 0); 3 * mesh.triangles.len()];
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for i in 0..3 {
+                let k = &mut fill[tri[i] as usize];
+                list[*k as usize] = ((3 * t + i) as u32, twin[3 * t + (i + 2) % 3]);
+                *k += 1;
+            }
+        }
+        Corners { start, list }
+    }
+
+    fn of(&self, a: u32) -> &[(u32, u32)] {
+        &self.list[self.start[a as usize] as usize..self.start[a as usize + 1] as usize]
+    }
 }
 
 /// The cubic three-split G¹ surface (module doc).
@@ -484,36 +509,49 @@ pub(crate) fn three_split_pass(
         None => vec![crate::util::NONE; nt],
     };
     let pos: Vec<P3> = mesh.positions.iter().map(|p| (*p).into()).collect();
-    let mut handles: HashMap<(u32, u32), P3> = half
-        .keys()
-        .map(|&(a, b)| {
-            (
-                (a, b),
-                edge_point(pos[a as usize], nrm[a as usize], pos[b as usize]),
-            )
+    // half-edge e = 3t + i runs from vertex i of triangle t to vertex i + 1; twin[e] the
+    // opposite half-edge (the mesh is closed: check_closed)
+    let twin: Vec<u32> = mesh
+        .triangles
+        .par_iter()
+        .flat_map_iter(|t| [0, 1, 2].map(|i| half[&(t[(i + 1) % 3], t[i])] as u32))
+        .collect();
+    // the edge point of each half-edge (Step 2; later the quadratic boundary's)
+    let mut handles: Vec<P3> = mesh
+        .triangles
+        .par_iter()
+        .flat_map_iter(|t| {
+            [0, 1, 2].map(|i| {
+                let (a, b) = (t[i] as usize, t[(i + 1) % 3] as usize);
+                edge_point(pos[a], nrm[a], pos[b])
+            })
         })
         .collect();
-    let tri_patches = |handles: &HashMap<(u32, u32), P3>, t: &[u32; 3]| {
-        let v = t.map(|i| pos[i as usize]);
+    let tri_patches = |handles: &[P3], t: usize| {
+        let v = mesh.triangles[t].map(|i| pos[i as usize]);
         let ep = [0, 1, 2].map(|i| {
-            let (a, b, c) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
-            [handles[&(a, b)], handles[&(a, c)]]
+            [
+                handles[3 * t + i],
+                handles[twin[3 * t + (i + 2) % 3] as usize],
+            ]
         });
         micro_patches(v, ep)
     };
-    let mut corners: Vec<Vec<(u32, u32)>> = vec![Vec::new(); pos.len()];
-    for t in &mesh.triangles {
-        for i in 0..3 {
-            corners[t[i] as usize].push((t[(i + 1) % 3], t[(i + 2) % 3]));
-        }
-    }
-    let mut edges: Vec<(u32, u32)> = half.keys().copied().filter(|&(a, b)| a < b).collect();
-    edges.sort_unstable();
-    // the two patches of each edge: p on the side a → b, q on b → a
-    let pq: Vec<(usize, usize)> = edges
+    let corners = Corners::new(mesh, pos.len(), &twin);
+    // the edges a < b and their two patches: p on the side a → b, q on b → a
+    let mut edge_pq: Vec<((u32, u32), (usize, usize))> = mesh
+        .triangles
         .iter()
-        .map(|&(a, b)| (half[&(a, b)], half[&(b, a)]))
+        .enumerate()
+        .flat_map(|(t, tri)| (0..3).map(move |i| (t, tri, i)))
+        .filter(|&(_, tri, i)| tri[i] < tri[(i + 1) % 3])
+        .map(|(t, tri, i)| {
+            let e = 3 * t + i;
+            ((tri[i], tri[(i + 1) % 3]), (e, twin[e] as usize))
+        })
         .collect();
+    edge_pq.sort_unstable_by_key(|&(e, _)| e);
+    let (edges, pq): (Vec<(u32, u32)>, Vec<(usize, usize)>) = edge_pq.into_iter().unzip();
     // the earlier pass's index of each edge (None: a new edge)
     let prev_edge: Vec<Option<usize>> = match reuse {
         Some(r) => edges
@@ -528,13 +566,14 @@ pub(crate) fn three_split_pass(
     // (transversal.rs); else the cubic of Step 2 and (9.4).
     let quad: Vec<Option<(P3, P3)>> = edges
         .par_iter()
+        .zip(&pq)
         .zip(&prev_edge)
-        .map(|(&(a, b), pe)| {
+        .map(|((&(a, b), &(p, q)), pe)| {
             if let (Some(r), Some(i)) = (reuse, *pe) {
                 return r.cache.quad[i];
             }
             let (pa, pb) = (pos[a as usize], pos[b as usize]);
-            let h = (handles[&(a, b)], handles[&(b, a)]);
+            let h = (handles[p], handles[q]);
             // the Q whose boundary is nearest the Step-2 one: least squares of |M − H|
             let c = vec::scale(
                 vec::add(
@@ -562,11 +601,12 @@ pub(crate) fn three_split_pass(
     let mut guarded = vec![false; edges.len()];
     // earlier edges whose decision changed
     let mut differs = vec![false; edges.len()];
-    for (k, (&(a, b), q)) in edges.iter().zip(&quad).enumerate() {
-        let Some((m1, m2)) = *q else { continue };
-        let old = (handles[&(a, b)], handles[&(b, a)]);
-        handles.insert((a, b), m1);
-        handles.insert((b, a), m2);
+    for (k, (&(a, b), qd)) in edges.iter().zip(&quad).enumerate() {
+        let Some((m1, m2)) = *qd else { continue };
+        let (p, q) = pq[k];
+        let old = (handles[p], handles[q]);
+        handles[p] = m1;
+        handles[q] = m2;
         if opts.fold_guard {
             let earlier = match (reuse, prev_edge[k]) {
                 (Some(r), Some(i)) => Some(r.cache.guarded[i]),
@@ -584,8 +624,8 @@ pub(crate) fn three_split_pass(
             }
             if guard {
                 // the new boundary would turn a neighbour's projected angle over (a fold)
-                handles.insert((a, b), old.0);
-                handles.insert((b, a), old.1);
+                handles[p] = old.0;
+                handles[q] = old.1;
                 out.fold_guarded.push([a, b]);
                 guarded[k] = true;
                 continue;
@@ -607,12 +647,12 @@ pub(crate) fn three_split_pass(
         .triangles
         .par_iter()
         .enumerate()
-        .flat_map_iter(|(t, tri)| match reuse {
+        .flat_map_iter(|(t, _)| match reuse {
             Some(r) if same4[t] => {
                 let f = 3 * from[t] as usize;
                 [r.cache.step4[f], r.cache.step4[f + 1], r.cache.step4[f + 2]]
             }
-            _ => tri_patches(&handles, tri),
+            _ => tri_patches(&handles, t),
         })
         .collect();
     let mut patches = step4.clone();
@@ -635,7 +675,7 @@ pub(crate) fn three_split_pass(
                     );
                 }
             }
-            let (e, fg) = edge_data(&patches, &half, a, b);
+            let (e, fg) = edge_data(&patches, p, q);
             let sign_warning = fg[0] * fg[1] <= 0.0 || fg[2] * fg[3] <= 0.0;
             let len = vec::dist(e.m[0], e.m[3]);
             let old = (patches[p][4], patches[q][4]);
