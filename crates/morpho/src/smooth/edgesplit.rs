@@ -27,7 +27,11 @@
 //! each half of a split edge is G¹ by `transversal.rs` where it is not reported. Only the
 //! macro triangles next to a split edge (their sub-triangles) and their neighbours (whose
 //! Step 5 reads the changed first rows) change; elsewhere the second pass recomputes the same
-//! numbers.
+//! numbers. So the passes after the first are local (`split3::three_split_pass` with the
+//! previous pass as `Reuse`): the quadratic boundaries, fold-guard decisions, Step-5 results
+//! and a-posteriori verdicts of the unchanged edges and the Step-4 patches of the unchanged
+//! triangles are taken over, everything else recomputed; the result is the full re-run's bit
+//! for bit (the reference `split_rounds(…, local = false)` of the tests).
 //!
 //! **Interpolation.** Every input vertex keeps its position and normal (Step 1–2 of the
 //! second pass); `S` is a new interpolated point on the first-pass surface.
@@ -42,7 +46,7 @@
 //! Up to [`ROUNDS`] rounds: the halves and inner edges still listed after a round are split
 //! again. A mesh whose first pass is G¹ everywhere is returned untouched (byte-identical).
 
-use super::split3::{three_split_once, SplitOptions, SplitSurface};
+use super::split3::{three_split_pass, Reuse, SplitOptions, SplitSurface};
 use super::triangle::BezierTriangle;
 use super::SmoothError;
 use crate::geom::{vec, Point3, Vector3};
@@ -65,6 +69,9 @@ struct Refined {
     on_edge: Vec<Option<[u32; 2]>>,
     /// The number of input vertices.
     nv: usize,
+    /// Per refined triangle: the previous mesh's triangle it is (same corners, same order),
+    /// `util::NONE` for a new (bisected) one.
+    from: Vec<u32>,
 }
 
 /// The three-split with the local edge split (module doc).
@@ -73,7 +80,19 @@ pub(crate) fn three_split_split(
     normals: &[Vector3],
     opts: &SplitOptions,
 ) -> Result<SplitSurface, SmoothError> {
-    let first = three_split_once(mesh, normals, opts)?;
+    split_rounds(mesh, normals, opts, true)
+}
+
+/// The rounds of the edge split; with `local`, each pass after the first reuses the previous
+/// one wherever its inputs are unchanged (`split3::three_split_pass`: bit for bit the full
+/// pass, which `local = false` runs, the reference of the tests).
+fn split_rounds(
+    mesh: &TriMesh,
+    normals: &[Vector3],
+    opts: &SplitOptions,
+    local: bool,
+) -> Result<SplitSurface, SmoothError> {
+    let (first, mut cache) = three_split_pass(mesh, normals, opts, None)?;
     if first.non_g1_edges.is_empty() {
         return Ok(first);
     }
@@ -91,6 +110,7 @@ pub(crate) fn three_split_split(
             .collect(),
         on_edge: vec![None; nv],
         nv,
+        from: Vec::new(),
     };
     let mut surf = first;
     let mut split_input: BTreeSet<[u32; 2]> = BTreeSet::new();
@@ -99,7 +119,14 @@ pub(crate) fn three_split_split(
             break;
         };
         cur = next;
-        surf = three_split_once(&cur.mesh, &cur.normals, opts)?;
+        let reuse = Reuse {
+            cache: &cache,
+            surf: &surf,
+            from: &cur.from,
+        };
+        let (s, c) = three_split_pass(&cur.mesh, &cur.normals, opts, local.then_some(&reuse))?;
+        surf = s;
+        cache = c;
         if surf.non_g1_edges.is_empty() {
             break;
         }
@@ -171,6 +198,7 @@ fn refine(
     }
     let mut triangles = Vec::with_capacity(tris.len() + 2 * split.len());
     let mut origin = Vec::with_capacity(tris.len() + 2 * split.len());
+    let mut from = Vec::with_capacity(tris.len() + 2 * split.len());
     for (t, tri) in tris.iter().enumerate() {
         let (o, dom) = r.origin[t];
         let mut subs: Vec<([u32; 3], [P3; 3])> = vec![(*tri, dom)];
@@ -193,9 +221,15 @@ fn refine(
             subs[k] = ([v[j], s, v[j2]], [d[j], ds, d[j2]]);
             subs.push(([s, v[j1], v[j2]], [ds, d[j1], d[j2]]));
         }
+        let kept = if subs.len() == 1 {
+            t as u32
+        } else {
+            crate::util::NONE
+        };
         for (v, d) in subs {
             triangles.push(v);
             origin.push((o, d));
+            from.push(kept);
         }
     }
     // keep the refined triangles grouped by input triangle (patch order = input order)
@@ -203,6 +237,7 @@ fn refine(
     order.sort_by_key(|&k| origin[k].0);
     let triangles = order.iter().map(|&k| triangles[k]).collect();
     let origin = order.iter().map(|&k| origin[k]).collect();
+    let from = order.iter().map(|&k| from[k]).collect();
     Some(Refined {
         mesh: TriMesh {
             positions,
@@ -213,6 +248,7 @@ fn refine(
         origin,
         on_edge,
         nv: r.nv,
+        from,
     })
 }
 
@@ -272,6 +308,7 @@ fn map_back(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::smooth::split3::three_split_once;
     use crate::smooth::{continuity, non_g1_causes, visible_normals};
 
     /// Spot (CLI defaults: area normals, visibility repair, fold guard) has 16 inflected
@@ -393,5 +430,105 @@ mod tests {
         assert!(c.non_g1_edges.len() <= 3, "{k:?}");
         assert_eq!(c.open_edges, 0);
         assert!(c.max_position_gap <= 1e-9);
+    }
+
+    /// Bit-for-bit equality of two split surfaces (every float by its bits).
+    fn assert_same_bits(a: &SplitSurface, b: &SplitSurface, what: &str) {
+        assert_eq!(a.patches.len(), b.patches.len(), "{what}: patch count");
+        for (k, (p, q)) in a.patches.iter().zip(&b.patches).enumerate() {
+            assert_eq!(p.macro_tri, q.macro_tri, "{what}: patch {k} macro");
+            let bits = |c: &[P3; 10]| c.map(|x| x.map(f64::to_bits));
+            assert_eq!(bits(&p.control), bits(&q.control), "{what}: patch {k}");
+        }
+        let dom = |s: &SplitSurface| -> Vec<u64> {
+            s.domain
+                .iter()
+                .flatten()
+                .flatten()
+                .map(|x| x.to_bits())
+                .collect()
+        };
+        assert_eq!(dom(a), dom(b), "{what}: domain");
+        assert_eq!(a.singular_edges, b.singular_edges, "{what}: singular");
+        assert_eq!(a.unresolved_edges, b.unresolved_edges, "{what}: unresolved");
+        assert_eq!(a.sign_warnings, b.sign_warnings, "{what}: sign warnings");
+        assert_eq!(a.fold_guarded, b.fold_guarded, "{what}: fold guarded");
+        assert_eq!(a.non_g1_edges, b.non_g1_edges, "{what}: non-G1");
+        assert_eq!(a.non_g1_inner, b.non_g1_inner, "{what}: non-G1 inner");
+        assert_eq!(a.split_edges, b.split_edges, "{what}: split edges");
+        assert_eq!(
+            a.max_displacement.to_bits(),
+            b.max_displacement.to_bits(),
+            "{what}: displacement"
+        );
+    }
+
+    /// The CLI's default normals: area weighting, then the visibility repair.
+    fn cli_normals(m: &TriMesh) -> Vec<Vector3> {
+        let n0 = crate::mesh::vertex_normals(m, crate::mesh::NormalWeighting::Area);
+        visible_normals(m, &n0, 0.05).normals
+    }
+
+    /// The local passes against the full re-run on `m`, with and without the fold guard;
+    /// returns how many edges the first pass split (with the guard).
+    fn local_equals_full(m: &TriMesh, n: &[Vector3], what: &str) -> usize {
+        let mut split = 0;
+        for fold_guard in [false, true] {
+            let opts = SplitOptions { fold_guard };
+            let full = split_rounds(m, n, &opts, false).unwrap();
+            let local = split_rounds(m, n, &opts, true).unwrap();
+            assert_same_bits(&local, &full, &format!("{what}, fold guard {fold_guard}"));
+            let cf = continuity(&full, 20);
+            let cl = continuity(&local, 20);
+            assert_eq!(cf.non_g1_edges, cl.non_g1_edges, "{what}");
+            assert_eq!(
+                cf.max_normal_jump_rad.to_bits(),
+                cl.max_normal_jump_rad.to_bits(),
+                "{what}"
+            );
+            if fold_guard {
+                split = local.split_edges.len();
+            }
+        }
+        split
+    }
+
+    /// The oracle of the local second pass (`split3::three_split_pass` with `Reuse`): the same
+    /// surface, bit for bit, as the full re-run of the three-split on the refined mesh, and
+    /// the same continuity figures, on the real meshes a test can afford.
+    #[test]
+    fn local_passes_equal_the_full_rerun_on_real_meshes() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data/meshes");
+        for name in ["spot.obj", "bunny_npm.obj", "fandisk.obj", "horse.obj.gz"] {
+            let path = std::path::Path::new(dir).join(name);
+            if !path.exists() {
+                eprintln!("note: {} absent; skipping", path.display());
+                continue;
+            }
+            let m = crate::io::read_mesh(&path).unwrap();
+            let n = cli_normals(&m);
+            let split = local_equals_full(&m, &n, name);
+            eprintln!("{name}: {split} split edges, local = full");
+            assert!(split > 0, "{name}: the test needs split edges");
+        }
+    }
+
+    /// The same oracle on random closed meshes: icospheres with random radial noise (many
+    /// inflected edges, hence splits in both rounds), area and visible normals.
+    #[test]
+    fn local_passes_equal_the_full_rerun_on_random_closed_meshes() {
+        let mut rng = crate::util::Rng::new(19);
+        let mut total = 0;
+        for round in 0..6usize {
+            let mut m = crate::mesh::generate::icosphere(2 + (round % 2) as u32);
+            let amp = [0.05, 0.15, 0.3][round % 3];
+            for p in &mut m.positions {
+                let s = 1.0 + amp * (2.0 * rng.unit() - 1.0);
+                *p = Point3::new(p.x * s, p.y * s, p.z * s);
+            }
+            let n = cli_normals(&m);
+            total += local_equals_full(&m, &n, &format!("random mesh {round}"));
+        }
+        assert!(total > 0, "no split edges in the random meshes");
     }
 }

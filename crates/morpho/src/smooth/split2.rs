@@ -77,7 +77,6 @@ use crate::geom::vec;
 use crate::mesh::TriMesh;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
-use std::collections::HashMap;
 
 type P3 = [f64; 3];
 
@@ -234,7 +233,7 @@ struct Built {
 struct Ctx<'a> {
     tris: &'a [[u32; 3]],
     nrm: &'a [P3],
-    half: &'a HashMap<(u32, u32), usize>,
+    half: &'a crate::util::IdMap<(u32, u32), usize>,
     base: &'a [[P3; 10]],
 }
 

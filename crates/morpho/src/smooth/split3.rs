@@ -73,8 +73,8 @@ use super::triangle::{tri_index, BezierTriangle};
 use super::SmoothError;
 use crate::geom::vec;
 use crate::mesh::TriMesh;
+use crate::util::IdMap;
 use rayon::prelude::*;
-use std::collections::HashMap;
 
 type P3 = [f64; 3];
 
@@ -89,7 +89,7 @@ const MAX_MOVE: f64 = 3.0;
 /// Largest relative residual of (9.3b, c) accepted on a singular edge.
 const RESOLVED: f64 = 1e-10;
 /// The half-edge map and the unit normals of a checked mesh.
-type Checked = (HashMap<(u32, u32), usize>, Vec<P3>);
+type Checked = (IdMap<(u32, u32), usize>, Vec<P3>);
 
 /// One cubic micro patch of the split surface.
 #[derive(Debug, Clone, PartialEq)]
@@ -168,7 +168,7 @@ pub(crate) fn check_closed(
     {
         return Err(SmoothError::NonFinite { index });
     }
-    let mut half = HashMap::with_capacity(mesh.triangles.len() * 3);
+    let mut half = IdMap::with_capacity_and_hasher(mesh.triangles.len() * 3, Default::default());
     for (t, tri) in mesh.triangles.iter().enumerate() {
         if tri.iter().any(|&v| v as usize >= nv) {
             return Err(SmoothError::BadIndex { triangle: t });
@@ -257,15 +257,10 @@ struct EdgeData {
     r: [P3; 3],
 }
 
-/// The edge `a → b` (a < b) in the notation of V 9.3 and its `(f0, g0, f1, g1)` from (9.3a),
+/// The edge `a → b` (a < b; `p`, `q` the patches of its half-edges `a → b`, `b → a`) in the notation of V 9.3 and its `(f0, g0, f1, g1)` from (9.3a),
 /// (9.3d) with `e0 = e1 = 1`.
-fn edge_data(
-    patches: &[[P3; 10]],
-    half: &HashMap<(u32, u32), usize>,
-    a: u32,
-    b: u32,
-) -> (EdgeData, [f64; 4]) {
-    let (pp, qq) = (&patches[half[&(a, b)]], &patches[half[&(b, a)]]);
+fn edge_data(patches: &[[P3; 10]], p: usize, q: usize) -> (EdgeData, [f64; 4]) {
+    let (pp, qq) = (&patches[p], &patches[q]);
     let e = EdgeData {
         m: [pp[0], pp[1], pp[3], pp[6]],
         l: [pp[2], pp[4], pp[7]],
@@ -341,18 +336,48 @@ fn solve_94(e: &EdgeData, [f0, g0, f1, g1]: [f64; 4]) -> (P3, P3) {
 /// `orient3d(a, h_ab, h_ac, a + n_a) < 0`. Then every projected corner angle is in (0, π) and
 /// each edge point lies strictly inside the cone of its two neighbouring `W` points, which is
 /// the orientation rule `f, g < 0` of NOTES B.1 at `a` (module doc, "folds").
-fn fan_ok(
-    pos: &[P3],
-    nrm: &[P3],
-    corners: &[Vec<(u32, u32)>],
-    handles: &HashMap<(u32, u32), P3>,
-    a: u32,
-) -> bool {
+fn fan_ok(pos: &[P3], nrm: &[P3], corners: &Corners, handles: &[P3], a: u32) -> bool {
     let pa = pos[a as usize];
     let up = vec::add(pa, nrm[a as usize]);
-    corners[a as usize].iter().all(|&(b, c)| {
-        crate::geom::predicates::raw::orient3d(pa, handles[&(a, b)], handles[&(a, c)], up) < 0.0
+    corners.of(a).iter().all(|&(ab, ac)| {
+        crate::geom::predicates::raw::orient3d(pa, handles[ab as usize], handles[ac as usize], up)
+            < 0.0
     })
+}
+
+/// The corners `(a, b, c)` of each vertex `a` as the half-edges `(a → b, a → c)` (CSR).
+struct Corners {
+    start: Vec<u32>,
+    list: Vec<(u32, u32)>,
+}
+
+impl Corners {
+    /// The corners of every vertex, in triangle order (`twin[e]`: the half-edge opposite `e`).
+    fn new(mesh: &TriMesh, nv: usize, twin: &[u32]) -> Corners {
+        let mut start = vec![0u32; nv + 1];
+        for t in &mesh.triangles {
+            for &v in t {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut list = vec![(0, 0); 3 * mesh.triangles.len()];
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for i in 0..3 {
+                let k = &mut fill[tri[i] as usize];
+                list[*k as usize] = ((3 * t + i) as u32, twin[3 * t + (i + 2) % 3]);
+                *k += 1;
+            }
+        }
+        Corners { start, list }
+    }
+
+    fn of(&self, a: u32) -> &[(u32, u32)] {
+        &self.list[self.start[a as usize] as usize..self.start[a as usize + 1] as usize]
+    }
 }
 
 /// The cubic three-split G¹ surface (module doc).
@@ -404,50 +429,151 @@ pub(crate) fn three_split_once(
     normals: &[crate::geom::Vector3],
     opts: &SplitOptions,
 ) -> Result<SplitSurface, SmoothError> {
+    three_split_pass(mesh, normals, opts, None).map(|(s, _)| s)
+}
+
+/// Step 5's result on one macro edge.
+#[derive(Debug, Clone, Copy)]
+struct Solved {
+    p: usize,
+    q: usize,
+    lr: (P3, P3),
+    sign_warning: bool,
+    singular: bool,
+    unresolved: bool,
+    displacement: f64,
+}
+
+/// What a pass keeps for a later pass on a refined mesh (`edgesplit.rs`): per macro edge of
+/// its mesh (sorted, `a < b`) the quadratic boundary, the fold guard's decision, Step 5's
+/// result and the a-posteriori verdict, and the Step-4 patches; the final patches are the
+/// surface's.
+pub(crate) struct PassCache {
+    triangles: Vec<[u32; 3]>,
+    edges: Vec<(u32, u32)>,
+    quad: Vec<Option<(P3, P3)>>,
+    guarded: Vec<bool>,
+    solved: Vec<Solved>,
+    bad: Vec<bool>,
+    step4: Vec<[P3; 10]>,
+}
+
+/// An earlier pass on a coarser mesh for [`three_split_pass`] to reuse: its cache, its surface,
+/// and per triangle of the refined mesh the earlier mesh's triangle with the same vertices in
+/// the same order (`util::NONE` for a new triangle). The refined mesh keeps every earlier
+/// vertex with its index, position and normal and only appends vertices.
+pub(crate) struct Reuse<'a> {
+    pub(crate) cache: &'a PassCache,
+    pub(crate) surf: &'a SplitSurface,
+    pub(crate) from: &'a [u32],
+}
+
+/// [`three_split_once`], reusing an earlier pass where the inputs of a step are the same
+/// (the second pass of `edgesplit.rs` made local; bit for bit the full pass, since every step
+/// is a pure function of the inputs it is skipped on):
+/// - an edge of the earlier mesh keeps its quadratic boundary (a function of its two ends);
+/// - the fold guard's decision on such an edge is the earlier one while neither end is
+///   *perturbed*: a perturbed vertex is one of a new triangle (its corners changed) or the end
+///   of an edge whose decision changed; elsewhere the handles around both ends are, at the
+///   moment of the decision, those of the earlier pass (the edge order among earlier edges is
+///   kept), so the fans and the decision are the same;
+/// - a triangle of the earlier mesh whose three edges kept their decision keeps its Step-4
+///   patches; an edge between two such triangles keeps its Step-5 result; an edge between two
+///   triangles whose final patches are the earlier ones (in the same patch order) keeps its
+///   a-posteriori verdict.
+///
+/// Returns the surface and the cache for a next pass.
+pub(crate) fn three_split_pass(
+    mesh: &TriMesh,
+    normals: &[crate::geom::Vector3],
+    opts: &SplitOptions,
+    reuse: Option<&Reuse>,
+) -> Result<(SplitSurface, PassCache), SmoothError> {
     let (half, nrm) = check_closed(mesh, normals)?;
+    let nt = mesh.triangles.len();
+    let reuse = reuse.filter(|r| r.from.len() == nt);
+    // the earlier triangle of each triangle, checked (NONE: new)
+    let from: Vec<u32> = match reuse {
+        Some(r) => (0..nt)
+            .map(|t| {
+                let f = r.from[t];
+                let same = r.cache.triangles.get(f as usize) == Some(&mesh.triangles[t])
+                    && r.surf.patches.len() == 3 * r.cache.triangles.len();
+                if same {
+                    f
+                } else {
+                    crate::util::NONE
+                }
+            })
+            .collect(),
+        None => vec![crate::util::NONE; nt],
+    };
     let pos: Vec<P3> = mesh.positions.iter().map(|p| (*p).into()).collect();
-    let mut handles: HashMap<(u32, u32), P3> = half
-        .keys()
-        .map(|&(a, b)| {
-            (
-                (a, b),
-                edge_point(pos[a as usize], nrm[a as usize], pos[b as usize]),
-            )
+    // half-edge e = 3t + i runs from vertex i of triangle t to vertex i + 1; twin[e] the
+    // opposite half-edge (the mesh is closed: check_closed)
+    let twin: Vec<u32> = mesh
+        .triangles
+        .par_iter()
+        .flat_map_iter(|t| [0, 1, 2].map(|i| half[&(t[(i + 1) % 3], t[i])] as u32))
+        .collect();
+    // the edge point of each half-edge (Step 2; later the quadratic boundary's)
+    let mut handles: Vec<P3> = mesh
+        .triangles
+        .par_iter()
+        .flat_map_iter(|t| {
+            [0, 1, 2].map(|i| {
+                let (a, b) = (t[i] as usize, t[(i + 1) % 3] as usize);
+                edge_point(pos[a], nrm[a], pos[b])
+            })
         })
         .collect();
-    // Steps 1–4 per macro triangle, in parallel (the patch order is the triangle order)
-    let tri_patches = |handles: &HashMap<(u32, u32), P3>, t: &[u32; 3]| {
-        let v = t.map(|i| pos[i as usize]);
+    let tri_patches = |handles: &[P3], t: usize| {
+        let v = mesh.triangles[t].map(|i| pos[i as usize]);
         let ep = [0, 1, 2].map(|i| {
-            let (a, b, c) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
-            [handles[&(a, b)], handles[&(a, c)]]
+            [
+                handles[3 * t + i],
+                handles[twin[3 * t + (i + 2) % 3] as usize],
+            ]
         });
         micro_patches(v, ep)
     };
-    // Steps 1–4 per macro triangle, in parallel (the patch order is the triangle order)
-    let build = |handles: &HashMap<(u32, u32), P3>| -> Vec<[P3; 10]> {
-        mesh.triangles
+    let corners = Corners::new(mesh, pos.len(), &twin);
+    // the edges a < b and their two patches: p on the side a → b, q on b → a
+    let mut edge_pq: Vec<((u32, u32), (usize, usize))> = mesh
+        .triangles
+        .iter()
+        .enumerate()
+        .flat_map(|(t, tri)| (0..3).map(move |i| (t, tri, i)))
+        .filter(|&(_, tri, i)| tri[i] < tri[(i + 1) % 3])
+        .map(|(t, tri, i)| {
+            let e = 3 * t + i;
+            ((tri[i], tri[(i + 1) % 3]), (e, twin[e] as usize))
+        })
+        .collect();
+    edge_pq.sort_unstable_by_key(|&(e, _)| e);
+    let (edges, pq): (Vec<(u32, u32)>, Vec<(usize, usize)>) = edge_pq.into_iter().unzip();
+    // the earlier pass's index of each edge (None: a new edge)
+    let prev_edge: Vec<Option<usize>> = match reuse {
+        Some(r) => edges
             .par_iter()
-            .flat_map_iter(|t| tri_patches(handles, t))
-            .collect()
+            .map(|e| r.cache.edges.binary_search(e).ok())
+            .collect(),
+        None => vec![None; edges.len()],
     };
-    let mut corners: Vec<Vec<(u32, u32)>> = vec![Vec::new(); pos.len()];
-    for t in &mesh.triangles {
-        for i in 0..3 {
-            corners[t[i] as usize].push((t[(i + 1) % 3], t[(i + 2) % 3]));
-        }
-    }
-    let mut edges: Vec<(u32, u32)> = half.keys().copied().filter(|&(a, b)| a < b).collect();
-    edges.sort_unstable();
     let mut out = SplitSurface::default();
     // The boundary of each edge: the degree-elevated quadratic wherever its point Q (in both
     // tangent planes) is usable, so that Step 5 is the explicit transversal construction
     // (transversal.rs); else the cubic of Step 2 and (9.4).
     let quad: Vec<Option<(P3, P3)>> = edges
         .par_iter()
-        .map(|&(a, b)| {
+        .zip(&pq)
+        .zip(&prev_edge)
+        .map(|((&(a, b), &(p, q)), pe)| {
+            if let (Some(r), Some(i)) = (reuse, *pe) {
+                return r.cache.quad[i];
+            }
             let (pa, pb) = (pos[a as usize], pos[b as usize]);
-            let h = (handles[&(a, b)], handles[&(b, a)]);
+            let h = (handles[p], handles[q]);
             // the Q whose boundary is nearest the Step-2 one: least squares of |M − H|
             let c = vec::scale(
                 vec::add(
@@ -462,43 +588,94 @@ pub(crate) fn three_split_once(
             (near(m1, h.0, pa) && near(m2, h.1, pb)).then_some((m1, m2))
         })
         .collect();
-    let mut quadratic: HashMap<(u32, u32), bool> = HashMap::new();
-    for (&(a, b), q) in edges.iter().zip(&quad) {
-        let Some((m1, m2)) = *q else { continue };
-        let old = (handles[&(a, b)], handles[&(b, a)]);
-        handles.insert((a, b), m1);
-        handles.insert((b, a), m2);
-        if opts.fold_guard
-            && !(fan_ok(&pos, &nrm, &corners, &handles, a)
-                && fan_ok(&pos, &nrm, &corners, &handles, b))
-        {
-            // the new boundary would turn a neighbour's projected angle over (a fold)
-            handles.insert((a, b), old.0);
-            handles.insert((b, a), old.1);
-            out.fold_guarded.push([a, b]);
-            continue;
+    // vertices whose fans may differ from the earlier pass's (see the doc above)
+    let mut perturbed = vec![false; pos.len()];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if reuse.is_some() && from[t] == crate::util::NONE {
+            for &v in tri {
+                perturbed[v as usize] = true;
+            }
         }
-        quadratic.insert((a, b), true);
     }
-    // Steps 1–4 with the final boundaries
-    let step4 = build(&handles);
+    let mut quadratic = vec![false; edges.len()];
+    let mut guarded = vec![false; edges.len()];
+    // earlier edges whose decision changed
+    let mut differs = vec![false; edges.len()];
+    for (k, (&(a, b), qd)) in edges.iter().zip(&quad).enumerate() {
+        let Some((m1, m2)) = *qd else { continue };
+        let (p, q) = pq[k];
+        let old = (handles[p], handles[q]);
+        handles[p] = m1;
+        handles[q] = m2;
+        if opts.fold_guard {
+            let earlier = match (reuse, prev_edge[k]) {
+                (Some(r), Some(i)) => Some(r.cache.guarded[i]),
+                _ => None,
+            };
+            let known = earlier.filter(|_| !perturbed[a as usize] && !perturbed[b as usize]);
+            let guard = known.unwrap_or_else(|| {
+                !(fan_ok(&pos, &nrm, &corners, &handles, a)
+                    && fan_ok(&pos, &nrm, &corners, &handles, b))
+            });
+            if earlier.is_some_and(|g| g != guard) {
+                differs[k] = true;
+                perturbed[a as usize] = true;
+                perturbed[b as usize] = true;
+            }
+            if guard {
+                // the new boundary would turn a neighbour's projected angle over (a fold)
+                handles[p] = old.0;
+                handles[q] = old.1;
+                out.fold_guarded.push([a, b]);
+                guarded[k] = true;
+                continue;
+            }
+        }
+        quadratic[k] = true;
+    }
+    // triangles with the earlier corners and handles: their Step-4 patches are the earlier ones
+    let mut same4: Vec<bool> = from.iter().map(|&f| f != crate::util::NONE).collect();
+    for (k, &(p, q)) in pq.iter().enumerate() {
+        if prev_edge[k].is_none() || differs[k] {
+            same4[p / 3] = false;
+            same4[q / 3] = false;
+        }
+    }
+    // Steps 1–4 with the final boundaries, per macro triangle in parallel (the patch order is
+    // the triangle order)
+    let step4: Vec<[P3; 10]> = mesh
+        .triangles
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(t, _)| match reuse {
+            Some(r) if same4[t] => {
+                let f = 3 * from[t] as usize;
+                [r.cache.step4[f], r.cache.step4[f + 1], r.cache.step4[f + 2]]
+            }
+            _ => tri_patches(&handles, t),
+        })
+        .collect();
     let mut patches = step4.clone();
     // Step 5: each edge reads only its own two patches' boundary rows and writes only their
     // 111 points, so the edges are solved in parallel and applied in edge order.
-    struct Solved {
-        p: usize,
-        q: usize,
-        lr: (P3, P3),
-        sign_warning: bool,
-        singular: bool,
-        unresolved: bool,
-        displacement: f64,
-    }
-    let solved: Vec<Solved> = edges
+    let solved: Vec<(Solved, bool)> = edges
         .par_iter()
-        .map(|&(a, b)| {
-            let (p, q) = (half[&(a, b)], half[&(b, a)]);
-            let (e, fg) = edge_data(&patches, &half, a, b);
+        .zip(&pq)
+        .enumerate()
+        .map(|(k, (&(a, b), &(p, q)))| {
+            if let (Some(r), Some(i)) = (reuse, prev_edge[k]) {
+                if same4[p / 3] && same4[q / 3] {
+                    return (
+                        Solved {
+                            p,
+                            q,
+                            ..r.cache.solved[i]
+                        },
+                        true,
+                    );
+                }
+            }
+            let (e, fg) = edge_data(&patches, p, q);
             let sign_warning = fg[0] * fg[1] <= 0.0 || fg[2] * fg[3] <= 0.0;
             let len = vec::dist(e.m[0], e.m[3]);
             let old = (patches[p][4], patches[q][4]);
@@ -507,7 +684,7 @@ pub(crate) fn three_split_once(
             let bounded94 = moves_at_most(lr94, old, bound);
             // ill-conditioned, or (9.4) would throw L1, R1 beyond the bound
             let singular = is_singular(fg) || !bounded94;
-            let explicit = if quadratic.contains_key(&(a, b)) {
+            let explicit = if quadratic[k] {
                 super::transversal::transversal_edge(
                     &e.m,
                     &e.l,
@@ -535,7 +712,7 @@ pub(crate) fn three_split_once(
                     }
                 }
             };
-            Solved {
+            let solved = Solved {
                 p,
                 q,
                 lr,
@@ -543,10 +720,13 @@ pub(crate) fn three_split_once(
                 singular,
                 unresolved,
                 displacement: vec::dist(lr.0, step4[p][4]).max(vec::dist(lr.1, step4[q][4])) / len,
-            }
+            };
+            (solved, false)
         })
         .collect();
-    for (&(a, b), r) in edges.iter().zip(&solved) {
+    // triangles whose final patches are the earlier ones: Step 4 and all three edges kept
+    let mut same_final = same4.clone();
+    for (&(a, b), (r, kept)) in edges.iter().zip(&solved) {
         if r.sign_warning {
             out.sign_warnings.push([a, b]);
         }
@@ -559,6 +739,10 @@ pub(crate) fn three_split_once(
         out.max_displacement = out.max_displacement.max(r.displacement);
         patches[r.p][4] = r.lr.0;
         patches[r.q][4] = r.lr.1;
+        if !kept {
+            same_final[r.p / 3] = false;
+            same_final[r.q / 3] = false;
+        }
     }
     // Step 6: the C¹ interior of each macro triangle (in parallel: a triangle's three patches)
     patches.par_chunks_mut(3).for_each(|tp| {
@@ -576,15 +760,33 @@ pub(crate) fn three_split_once(
         }
     });
     // The a-posteriori check (module doc): every macro edge certified or sampled as
-    // `continuity` samples it.
-    let pairs: Vec<(usize, usize)> = edges
+    // `continuity` samples it; an edge between two triangles with the earlier final patches,
+    // taken in the same order, keeps the earlier verdict.
+    let earlier_bad = |k: usize| -> Option<bool> {
+        let (r, i) = (reuse?, prev_edge[k]?);
+        let (p, q) = pq[k];
+        if !(same_final[p / 3] && same_final[q / 3]) {
+            return None;
+        }
+        let f = |x: usize| 3 * from[x / 3] as usize + x % 3;
+        ((p < q) == (f(p) < f(q))).then_some(r.cache.bad[i])
+    };
+    let kept_bad: Vec<Option<bool>> = (0..edges.len()).map(earlier_bad).collect();
+    let todo: Vec<usize> = (0..edges.len())
+        .filter(|&k| kept_bad[k].is_none())
+        .collect();
+    let pairs: Vec<(usize, usize)> = todo
         .iter()
-        .map(|&(a, b)| {
-            let (p, q) = (half[&(a, b)], half[&(b, a)]);
+        .map(|&k| {
+            let (p, q) = pq[k];
             (p.min(q), p.max(q))
         })
         .collect();
-    let bad = super::check::macro_edges_not_g1(|k| &patches[k], &pairs, 20);
+    let checked = super::check::macro_edges_not_g1(|k| &patches[k], &pairs, 20);
+    let mut bad: Vec<bool> = kept_bad.iter().map(|b| b.unwrap_or(false)).collect();
+    for (&k, &b) in todo.iter().zip(&checked) {
+        bad[k] = b;
+    }
     out.non_g1_edges = edges
         .iter()
         .zip(&bad)
@@ -599,7 +801,16 @@ pub(crate) fn three_split_once(
             control,
         })
         .collect();
-    Ok(out)
+    let cache = PassCache {
+        triangles: mesh.triangles.clone(),
+        edges,
+        quad,
+        guarded,
+        solved: solved.into_iter().map(|(s, _)| s).collect(),
+        bad,
+        step4,
+    };
+    Ok((out, cache))
 }
 
 #[cfg(test)]
