@@ -167,12 +167,12 @@ struct Widest {
 /// The largest coordinate magnitude for which [`Widest::outside`]'s quadratic filter is used:
 /// 2¹⁰⁰ (no product of its evaluation can overflow, and an underflowing one is off by far less
 /// than [`QUAD_TINY`]).
-const SMALL: f64 = f64::from_bits((1023 + 100) << 52);
+const SMALL: f64 = 1.2676506002282294e30;
 /// The quadratic filter's bound per unit of the permanent: 13u (its evaluation has at most 11
 /// roundings on the path of any monomial; see [`Widest::outside`]).
 const QUAD_ERRBOUND: f64 = 13.0 * U;
 /// The quadratic filter's absolute floor, 2⁻⁸⁶⁰: covers the underflow of its products.
-const QUAD_TINY: f64 = f64::from_bits((1023 - 860) << 52);
+const QUAD_TINY: f64 = 1.3007796349561859e-259;
 
 /// True when every coordinate of `points` is at most 2¹⁰⁰ in magnitude (NaN: false): the
 /// precondition of the quadratic in-circle filter of [`Flintstone::scan`].
@@ -817,7 +817,8 @@ mod tests {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(71);
         let (mut total, mut decided, mut random, mut random_decided) = (0, 0, 0, 0);
         let mut wrong_unbounded = 0;
-        // the scales where the filter applies and no monomial is below its floor
+        // the constants are the powers of two their docs say
+        assert_eq!((SMALL, QUAD_TINY), (2f64.powi(100), 2f64.powi(-860)));
         for scale in [1e-150, 1e-70, 1e-60, 1e-6, 1.0, 1e6, 1e25, 1e35] {
             for off in [0.0, 3.0, 1e4] {
                 let pt = |rng: &mut rand_chacha::ChaCha8Rng| -> [f64; 2] {
@@ -860,22 +861,19 @@ mod tests {
                     assert_eq!(w.outside(a, b, x, left), exact, "{a:?} {b:?} {q:?} {x:?}");
                     assert_eq!(w.outside_shewchuk(a, b, x, left), exact);
                     total += 1;
+                    // the scales where the filter applies and no monomial is below its floor
                     let applies = (1e-60..=1e25).contains(&scale);
                     random += (!on_circle && applies) as usize;
                     if let Some(pos) = w.quad_sign(a, x) {
-                        assert!(scale <= 1e25 && scale >= 1e-60, "decided at {scale}");
-                        assert_eq!(
-                            if left { pos } else { !pos },
-                            exact,
-                            "{a:?} {b:?} {q:?} {x:?}"
-                        );
+                        assert!(applies, "decided at {scale}");
+                        assert_eq!(pos == left, exact, "{a:?} {b:?} {q:?} {x:?}");
                         decided += 1;
                         random_decided += (!on_circle && applies) as usize;
                     }
                     // the mutation check built in: no relative bound at all decides some
                     // near-circle candidates wrongly
                     if let Some(pos) = w.quad_sign_with(a, x, 0.0) {
-                        wrong_unbounded += ((if left { pos } else { !pos }) != exact) as usize;
+                        wrong_unbounded += ((pos == left) != exact) as usize;
                     }
                 }
             }
