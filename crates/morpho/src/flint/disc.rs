@@ -151,24 +151,63 @@ struct Widest {
     blift: f64,
     adxbdy: f64,
     bdxady: f64,
+    // the determinant as a quadratic in X, `X·G + |X|²·k` (`G = (gx, gy)`, `k = B×Q`), and the
+    // same expression on the absolute values of its monomials, `|X|·P + |X|²·pk`
+    gx: f64,
+    gy: f64,
+    k: f64,
+    px: f64,
+    py: f64,
+    pk: f64,
+    /// Every coordinate of the polyline's points is at most [`SMALL`] in magnitude: the
+    /// quadratic filter's bound holds (else only Shewchuk's filter is used).
+    quad: bool,
+}
+
+/// The largest coordinate magnitude for which [`Widest::outside`]'s quadratic filter is used:
+/// 2¹⁰⁰ (no product of its evaluation can overflow, and an underflowing one is off by far less
+/// than [`QUAD_TINY`]).
+const SMALL: f64 = 1.2676506002282294e30;
+/// The quadratic filter's bound per unit of the permanent: 13u (its evaluation has at most 11
+/// roundings on the path of any monomial; see [`Widest::outside`]).
+const QUAD_ERRBOUND: f64 = 13.0 * U;
+/// The quadratic filter's absolute floor, 2⁻⁸⁶⁰: covers the underflow of its products.
+const QUAD_TINY: f64 = 1.3007796349561859e-259;
+
+/// True when every coordinate of `points` is at most 2¹⁰⁰ in magnitude (NaN: false): the
+/// precondition of the quadratic in-circle filter of [`Flintstone::scan`].
+pub(crate) fn small_coordinates(points: &[[f64; 2]]) -> bool {
+    points
+        .iter()
+        .all(|p| p[0].abs() <= SMALL && p[1].abs() <= SMALL)
 }
 
 impl Widest {
     #[inline]
-    fn new(a: [f64; 2], b: [f64; 2], q: [f64; 2], pos: usize) -> Widest {
+    fn new(a: [f64; 2], b: [f64; 2], q: [f64; 2], pos: usize, quad: bool) -> Widest {
         let (bx, by) = (b[0] - a[0], b[1] - a[1]);
         let (qx, qy) = (q[0] - a[0], q[1] - a[1]);
+        let alift = bx * bx + by * by;
+        let blift = qx * qx + qy * qy;
+        let (adxbdy, bdxady) = (bx * qy, qx * by);
         Widest {
             pos,
             q,
             bx,
             by,
-            alift: bx * bx + by * by,
+            alift,
             qx,
             qy,
-            blift: qx * qx + qy * qy,
-            adxbdy: bx * qy,
-            bdxady: qx * by,
+            blift,
+            adxbdy,
+            bdxady,
+            gx: blift * by - alift * qy,
+            gy: alift * qx - blift * bx,
+            k: adxbdy - bdxady,
+            px: blift * by.abs() + alift * qy.abs(),
+            py: alift * qx.abs() + blift * bx.abs(),
+            pk: adxbdy.abs() + bdxady.abs(),
+            quad,
         }
     }
 
@@ -177,8 +216,53 @@ impl Widest {
     ///
     /// Inlined into the scan (a call per visit was a fifth of the build's CPU); the exact
     /// fallback is a cold function of its own.
+    ///
+    /// First the quadratic filter: with `X = x − a` (rounded), the determinant below is
+    /// `X·G + |X|²·k`, `G = (|Q|²B_y − |B|²Q_y, |B|²Q_x − |Q|²B_x)` and `k = B×Q` precomputed
+    /// per widest vertex — the sign of `|X|² − 2C·X` about the circle's centre `C = −G/2k`,
+    /// scaled by `k` so that nothing is divided. Expanded in the exact differences, it is a sum
+    /// of degree-4 monomials, and along the path of each the evaluation rounds at most 11 times
+    /// (4 differences, 7 products and sums: `qx·qx`, `+ qy·qy`, `·by`, `−`, `·cx`, two sums;
+    /// the `|X|²·k` monomials likewise), so, without underflow, `|det − exact| ≤ γ₁₁·Σ|monomials|`
+    /// (Higham 2002, Lemma 3.3). `perm`, the same expression on the absolute values, is
+    /// `Σ|monomials|` up to a factor `(1 ± u)¹¹`, so `13u·perm` (rounded) covers the error
+    /// with room. With every coordinate at most 2¹⁰⁰ in magnitude (`quad`, checked once per
+    /// tree), no product overflows, and an underflowing product (absolute error ≤ 2⁻¹⁰⁷⁵)
+    /// passes through at most factors of 2²⁰³ more: 17 products, ≤ 2⁻⁸⁶⁷ in all, which the
+    /// floor [`QUAD_TINY`] = 2⁻⁸⁶⁰ covers. When `|det|` is not above that bound, Shewchuk's
+    /// stage A decides, then the exact [`incircle_sign`]: the decision is always the exact
+    /// one (lockstep test `quadratic_filter_equals_shewchuk_and_the_exact_loop`).
     #[inline(always)]
     fn outside(&self, a: [f64; 2], b: [f64; 2], x: [f64; 2], left: bool) -> bool {
+        match self.quad_sign(a, x) {
+            // the sign convention of `outside_shewchuk` (the same determinant, nonzero here)
+            Some(positive) => positive == left,
+            None => self.outside_shewchuk(a, b, x, left),
+        }
+    }
+
+    /// The quadratic filter of [`Widest::outside`]: `Some(det > 0)` when it decides, `None`
+    /// when `|det|` is within its bound or the coordinates are out of its range.
+    #[inline(always)]
+    fn quad_sign(&self, a: [f64; 2], x: [f64; 2]) -> Option<bool> {
+        self.quad_sign_with(a, x, QUAD_ERRBOUND)
+    }
+
+    /// [`Widest::quad_sign`] with the bound per unit of the permanent as a parameter (the
+    /// tests show that a smaller one decides wrongly).
+    #[inline(always)]
+    fn quad_sign_with(&self, a: [f64; 2], x: [f64; 2], per_unit: f64) -> Option<bool> {
+        let (cdx, cdy) = (x[0] - a[0], x[1] - a[1]);
+        let clift = cdx * cdx + cdy * cdy;
+        let det = (cdx * self.gx + cdy * self.gy) + clift * self.k;
+        let perm = (cdx.abs() * self.px + cdy.abs() * self.py) + clift * self.pk;
+        let errbound = per_unit * perm + QUAD_TINY;
+        (self.quad && det.abs() > errbound).then_some(det > 0.0)
+    }
+
+    /// Shewchuk's stage-A filter in robust's order (see the type's doc), then the exact sign.
+    #[inline]
+    fn outside_shewchuk(&self, a: [f64; 2], b: [f64; 2], x: [f64; 2], left: bool) -> bool {
         // Shewchuk's incircle(pa, pb, pc, pd) with (pa, pb, pc, pd) = (b, q, x, a):
         // adx = B, bdx = Q, cdx = X
         let (cdx, cdy) = (x[0] - a[0], x[1] - a[1]);
@@ -227,6 +311,8 @@ struct Scan {
     far_o: f64,
     outer: [[f64; 2]; 2],
     outer2: [f64; 2],
+    /// The quadratic in-circle filter may be used ([`small_coordinates`]).
+    quad: bool,
 }
 
 impl Scan {
@@ -254,7 +340,7 @@ impl Scan {
             Some(w) => w.outside(self.a, self.b, x, left),
         };
         if replace {
-            *best = Some(Widest::new(self.a, self.b, x, p));
+            *best = Some(Widest::new(self.a, self.b, x, p, self.quad));
         }
     }
 }
@@ -332,10 +418,28 @@ impl Flintstone {
         hi: usize,
         window: Option<[usize; 2]>,
     ) -> (Flintstone, Option<usize>) {
+        let mut quad = true;
+        for_positions(points, lo, hi + 1, |_, x| {
+            quad &= small_coordinates(&[x]);
+        });
+        Flintstone::of_windowed_with(points, lo, hi, window, quad)
+    }
+
+    /// [`Flintstone::of_windowed`] with the quadratic in-circle filter allowed or not (`quad`:
+    /// every coordinate of `lo..=hi` is at most 2¹⁰⁰ in magnitude, [`small_coordinates`];
+    /// `false` is always allowed and leaves every in-circle test to Shewchuk's filter and the
+    /// exact sign).
+    pub(crate) fn of_windowed_with(
+        points: &[[f64; 2]],
+        lo: usize,
+        hi: usize,
+        window: Option<[usize; 2]>,
+        quad: bool,
+    ) -> (Flintstone, Option<usize>) {
         // the reach pass left out of the scan: the vertices' largest distances from this
         // stone's own side centres, folded in here (the tree folds them into the children's
         // scans instead, `FlintTree2::build`)
-        let (mut stone, far, _) = Flintstone::scan(points, lo, hi, window, [[0.0; 2]; 2]);
+        let (mut stone, far, _) = Flintstone::scan(points, lo, hi, window, [[0.0; 2]; 2], quad);
         let c = stone.centres();
         let mut reach2 = [0.0f64; 2];
         for_positions(points, lo, hi + 1, |_, x| {
@@ -372,13 +476,16 @@ impl Flintstone {
     /// which passes its parent's side centres as `outer` — the largest squared `f64` distance
     /// of these interior vertices from each of `outer` (the parent's reach, gathered here
     /// instead of in a pass of its own). The side discs' `reach` is only `|radius|`: the
-    /// caller completes it with [`Flintstone::finish_reach`].
+    /// caller completes it with [`Flintstone::finish_reach`]. `quad`: every coordinate of the
+    /// points scanned is at most 2¹⁰⁰ in magnitude ([`small_coordinates`]), so that the
+    /// quadratic in-circle filter of [`Widest::outside`] may be used.
     pub(crate) fn scan(
         points: &[[f64; 2]],
         lo: usize,
         hi: usize,
         window: Option<[usize; 2]>,
         outer: [[f64; 2]; 2],
+        quad: bool,
     ) -> (Flintstone, Option<usize>, [f64; 2]) {
         let (a, b) = (at(points, lo), at(points, hi));
         // an empty range (never in the window) when there is no window
@@ -399,6 +506,7 @@ impl Flintstone {
             far_o: 0.0,
             outer,
             outer2: [0.0; 2],
+            quad,
         };
         // the positions lo + 1..hi as at most two contiguous slices, one loop each with the
         // visit inlined
@@ -693,6 +801,92 @@ mod tests {
             }
         }
         assert!(checked > 400, "{checked}");
+    }
+
+    /// The quadratic in-circle filter against the exact sign, candidate by candidate: random
+    /// chords and widest vertices at scales from 1e-150 (every product underflows: the floor
+    /// must refuse) through 1e-70 (monomials subnormal) to 1e25 (near the 2¹⁰⁰ limit) and 1e35
+    /// (beyond it: the filter is off), far from and near the origin, candidates random or on
+    /// the circle rounded to `f64` (within rounding of the circle, where a bound too small
+    /// decides wrongly). Every answer of `outside`, of Shewchuk's filter and of the quadratic
+    /// filter where it decides equals the exact sign; the quadratic filter decides most random
+    /// candidates (else it would be dead weight).
+    #[test]
+    fn quadratic_filter_equals_shewchuk_and_the_exact_loop() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(71);
+        let (mut total, mut decided, mut random, mut random_decided) = (0, 0, 0, 0);
+        let mut wrong_unbounded = 0;
+        // the constants are the powers of two their docs say
+        assert_eq!((SMALL, QUAD_TINY), (2f64.powi(100), 2f64.powi(-860)));
+        for scale in [1e-150, 1e-70, 1e-60, 1e-6, 1.0, 1e6, 1e25, 1e35] {
+            for off in [0.0, 3.0, 1e4] {
+                let pt = |rng: &mut rand_chacha::ChaCha8Rng| -> [f64; 2] {
+                    [
+                        (off + rng.gen_range(-1.0..1.0)) * scale,
+                        (off + rng.gen_range(-1.0..1.0)) * scale,
+                    ]
+                };
+                for _ in 0..3000 {
+                    let (a, b, q) = (pt(&mut rng), pt(&mut rng), pt(&mut rng));
+                    let oq = orient2d(a, b, q);
+                    if oq == 0.0 {
+                        continue;
+                    }
+                    let left = oq > 0.0;
+                    let on_circle = rng.gen_bool(0.5);
+                    let x = if on_circle {
+                        // the circumcentre and radius in f64, a point on that circle
+                        let (bx, by) = (b[0] - a[0], b[1] - a[1]);
+                        let (qx, qy) = (q[0] - a[0], q[1] - a[1]);
+                        let d = 2.0 * (bx * qy - by * qx);
+                        let (bb, qq) = (bx * bx + by * by, qx * qx + qy * qy);
+                        let ux = (qy * bb - by * qq) / d;
+                        let uy = (bx * qq - qx * bb) / d;
+                        let r = (ux * ux + uy * uy).sqrt();
+                        let t: f64 = rng.gen_range(0.0..std::f64::consts::TAU);
+                        [a[0] + ux + r * t.cos(), a[1] + uy + r * t.sin()]
+                    } else {
+                        pt(&mut rng)
+                    };
+                    let o = orient2d(a, b, x);
+                    if o == 0.0 || (o > 0.0) != left || !x.iter().all(|c| c.is_finite()) {
+                        continue;
+                    }
+                    let w = Widest::new(a, b, q, 0, small_coordinates(&[a, b, q, x]));
+                    // the exact sign (robust's `incircle` is wrong where its expansions
+                    // underflow, at the 1e-150 scale)
+                    let ic = incircle_sign(a, b, q, x);
+                    let exact = if left { ic < 0 } else { ic > 0 };
+                    assert_eq!(w.outside(a, b, x, left), exact, "{a:?} {b:?} {q:?} {x:?}");
+                    assert_eq!(w.outside_shewchuk(a, b, x, left), exact);
+                    total += 1;
+                    // the scales where the filter applies and no monomial is below its floor
+                    let applies = (1e-60..=1e25).contains(&scale);
+                    random += (!on_circle && applies) as usize;
+                    if let Some(pos) = w.quad_sign(a, x) {
+                        assert!(applies, "decided at {scale}");
+                        assert_eq!(pos == left, exact, "{a:?} {b:?} {q:?} {x:?}");
+                        decided += 1;
+                        random_decided += (!on_circle && applies) as usize;
+                    }
+                    // the mutation check built in: no relative bound at all decides some
+                    // near-circle candidates wrongly
+                    if let Some(pos) = w.quad_sign_with(a, x, 0.0) {
+                        wrong_unbounded += ((pos == left) != exact) as usize;
+                    }
+                }
+            }
+        }
+        assert!(total > 20_000, "{total}");
+        assert!(
+            decided > 0 && random_decided * 10 > random * 9,
+            "{random_decided} of {random}"
+        );
+        assert!(
+            wrong_unbounded > 0,
+            "a filter without its bound was never wrong"
+        );
     }
 
     #[test]

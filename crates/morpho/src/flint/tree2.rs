@@ -45,7 +45,7 @@
 //! of [`crate::mesh::validity::check_polygon`] (near-duplicate points are accepted; points that
 //! really coincide or edges that really meet are refused, naming their vertex indices).
 
-use super::disc::{at, Flintstone};
+use super::disc::{at, small_coordinates, Flintstone};
 use super::FlintError;
 use crate::geom::vec::dist2;
 use crate::geom::{smallest_enclosing_disc, Point2};
@@ -257,6 +257,8 @@ impl FlintTree2 {
         } else {
             Vec::new()
         };
+        // the quadratic in-circle filter's precondition, once for the whole tree
+        let quad = small_coordinates(&self.points);
         let first = self.nodes.len();
         // squared reaches gathered so far, per node of this subtree (`id − first`)
         let mut reach2: Vec<[f64; 2]> = Vec::with_capacity(self.points.len().min(hi - lo));
@@ -277,7 +279,7 @@ impl FlintTree2 {
                 NONE => [[0.0; 2]; 2],
                 _ => self.nodes[parent as usize].stone.centres(),
             };
-            let (stone, far, outer2) = Flintstone::scan(&self.points, lo, hi, window, outer);
+            let (stone, far, outer2) = Flintstone::scan(&self.points, lo, hi, window, outer, quad);
             if parent != NONE {
                 let r = &mut reach2[parent as usize - first];
                 r[0] = r[0].max(outer2[0]);
@@ -452,7 +454,9 @@ mod tests {
             }
             .max((hi - lo).div_ceil(2));
             let window = (hi - lo > cap).then(|| [hi - cap, lo + cap]);
-            let (stone, far) = Flintstone::of_windowed(points, lo, hi, window);
+            // Shewchuk's filter and the exact sign only: main's decisions before the
+            // quadratic filter
+            let (stone, far) = Flintstone::of_windowed_with(points, lo, hi, window, false);
             let vertex = match stone.split() {
                 Some(q) if q - lo <= cap && hi - q <= cap => q,
                 _ => far.unwrap_or((lo + hi) / 2),
