@@ -499,7 +499,9 @@ mod tests {
     #[test]
     fn local_passes_equal_the_full_rerun_on_real_meshes() {
         let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data/meshes");
-        for name in ["spot.obj", "bunny_npm.obj", "fandisk.obj", "horse.obj.gz"] {
+        // (the horse too, bit for bit, in 70 s under load: left to the CLI comparison in
+        // bench/README "loc3", to keep the suite within its time)
+        for name in ["spot.obj", "bunny_npm.obj", "fandisk.obj"] {
             let path = std::path::Path::new(dir).join(name);
             if !path.exists() {
                 eprintln!("note: {} absent; skipping", path.display());
