@@ -14,5 +14,7 @@ for r in $(seq "$ROUNDS"); do
     RAYON_NUM_THREADS=1 $BIN $dist "$N"
     RAYON_NUM_THREADS=2 $BIN $dist "$N"
     RAYON_NUM_THREADS=1 $BIN $dist "$N" --split always
+    RAYON_NUM_THREADS=1 $BIN $dist "$N" --split merge
+    RAYON_NUM_THREADS=2 $BIN $dist "$N" --split merge
   done
 done

@@ -3,12 +3,13 @@
 //!
 //! ```text
 //! RAYON_NUM_THREADS=1|2 cargo run --release --example bench_delaunay2d_par -p morpho -- \
-//!     DIST [N] [--split auto|always|never]
+//!     DIST [N] [--split auto|always|never|merge]
 //! ```
 //!
 //! DIST is `uniform` (N points in the unit square, ChaCha8 seed 42), `grid` (√N × √N integers)
 //! or `curve` (the jittered flower of `bench_delaunay2d.rs`). `--split auto` (default) is what
-//! `triangulate_2d` does: the split path on more than one rayon thread. Prints one line: wall and
+//! `triangulate_2d` does: the split path on more than one rayon thread; `--split merge` is the
+//! divide and conquer with the exact zipper merge of `delaunay/merge2.rs`. Prints one line: wall and
 //! CPU seconds (user + system of this process, from /proc/self/stat) of the triangulation call,
 //! the peak resident memory (VmHWM) of the process, the triangle count, a digest of the sorted
 //! triangle set (equal across paths and thread counts) and the 1-minute load average.
@@ -47,6 +48,7 @@ fn main() {
                 split = match args.get(i + 1).map(String::as_str) {
                     Some("always") => Split::Always,
                     Some("never") => Split::Never,
+                    Some("merge") => Split::Merge,
                     _ => Split::Auto,
                 };
                 i += 1;

@@ -210,6 +210,10 @@ pub enum Split {
     Always,
     /// The sequential engine only: what [`triangulate`] does.
     Never,
+    /// The divide and conquer of `delaunay/merge2.rs` (both halves in parallel, Guibas–Stolfi's
+    /// exact zipper merge) whenever both halves have a triangle; the sequential engine where it
+    /// does not apply.
+    Merge,
 }
 
 /// As [`triangulate`], with the choice of the sequential or the split (parallel) path made
@@ -765,7 +769,12 @@ fn run_kernel<K: Kernel>(
     split: Split,
 ) -> Result<Arrays> {
     if split_wanted(split, n, order_seed) {
-        if let Some(a) = super::par2::insert_split(&k, n, split == Split::Auto)? {
+        let merged = if split == Split::Merge {
+            super::merge2::insert_merge(&k, n)?
+        } else {
+            super::par2::insert_split(&k, n, split == Split::Auto)?
+        };
+        if let Some(a) = merged {
             return Ok(a);
         }
     }
@@ -777,7 +786,7 @@ fn split_wanted(split: Split, n: usize, order_seed: Option<u64>) -> bool {
     order_seed.is_none()
         && match split {
             Split::Never => false,
-            Split::Always => true,
+            Split::Always | Split::Merge => true,
             Split::Auto => rayon::current_num_threads() > 1 && n >= super::par2::MIN_SPLIT,
         }
 }
@@ -836,6 +845,16 @@ pub(super) fn run_insertion<K: Kernel>(
     k0: usize,
     order_seed: Option<u64>,
 ) -> Result<Arrays> {
+    run_insertion_vt(k, n, k0, order_seed).map(|(a, _)| a)
+}
+
+/// [`run_insertion`], also returning one incident triangle (possibly a ghost) per vertex.
+pub(super) fn run_insertion_vt<K: Kernel>(
+    k: K,
+    n: usize,
+    k0: usize,
+    order_seed: Option<u64>,
+) -> Result<(Arrays, Vec<u32>)> {
     let mut bld = Builder {
         k,
         tv: Vec::with_capacity(2 * n + 4),
@@ -891,7 +910,7 @@ pub(super) fn run_insertion<K: Kernel>(
         inserted.set(v);
         last_v = v;
     }
-    Ok((bld.tv, bld.th))
+    Ok(((bld.tv, bld.th), bld.vt))
 }
 
 /// Where the walk to vertex `v` starts: at the one of the last inserted vertex and the inserted

@@ -47,6 +47,7 @@ pub(crate) mod d2;
 pub(crate) mod d3;
 pub(crate) mod dd;
 mod error;
+mod merge2;
 pub(crate) mod par2;
 pub(crate) mod par3;
 pub(crate) mod voronoi;
