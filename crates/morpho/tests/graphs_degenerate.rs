@@ -261,18 +261,19 @@ fn cocircular_integer_points_2d() {
     assert_eq!(b.polygon.len(), n);
 }
 
-/// 300 points on the unit circle rounded to doubles (cos, sin: a user's "cocircular points",
+/// 400 points on the unit circle rounded to doubles (cos, sin: a user's "cocircular points",
 /// not exactly cocircular, in convex position): every in-circle decision between them is a
 /// near-tie that the floating-point filter cannot settle. β-lune with b = −0.5, the γ-range
 /// graph beyond the triangulation and the boundary with c = −0.5 each within the bound (before
 /// the exact stages of `geom::predicates::incircle_sign` replaced Shewchuk's adaptive
 /// `incircle` in the edge intervals, 400 points took 42 s and 1000 points > 300 s of one
-/// core; after, 2.0 s and 25 s: Θ(n²) edges of Θ(n) points each, as points on an ellipse);
+/// core — so each of the three bounds fails on the old code here —; after, 2.0 s and 25 s:
+/// Θ(n²) edges of Θ(n) points each, as points on an ellipse);
 /// β-lune agrees with Def. 3.1 on a sample of pairs, the γ-range graph holds exactly the pairs
 /// whose exact interval is in range, and the boundary goes through every point in circle order.
 #[test]
 fn rounded_circle_points_2d() {
-    let n = 300;
+    let n = 400;
     let p: Vec<[f64; 2]> = (0..n)
         .map(|i| {
             let t = std::f64::consts::TAU * i as f64 / n as f64;
