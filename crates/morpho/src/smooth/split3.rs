@@ -551,7 +551,9 @@ pub(crate) fn three_split_pass(
         })
         .collect();
     edge_pq.sort_unstable_by_key(|&(e, _)| e);
-    let (edges, pq): (Vec<(u32, u32)>, Vec<(usize, usize)>) = edge_pq.into_iter().unzip();
+    // each edge (sorted ends) with its two half-edges
+    let edges: Vec<(u32, u32)> = edge_pq.iter().map(|x| x.0).collect();
+    let pq: Vec<(usize, usize)> = edge_pq.into_iter().map(|x| x.1).collect();
     // the earlier pass's index of each edge (None: a new edge)
     let prev_edge: Vec<Option<usize>> = match reuse {
         Some(r) => edges
