@@ -210,6 +210,25 @@ fn in_gamma_def(p: &[[f64; 2]], i: usize, j: usize, c: f64) -> bool {
     })
 }
 
+/// `count` random pairs of `p`: an edge of the β-lune graph with b = −0.5 (`edges`, sorted)
+/// exactly when Def. 3.1 holds (γ(b, b), [`in_gamma_def`]).
+fn beta_lune_agrees_with_def(p: &[[f64; 2]], edges: &[[u32; 2]], seed: u64, count: usize) {
+    let n = p.len();
+    let mut r = ChaCha8Rng::seed_from_u64(seed);
+    for _ in 0..count {
+        let (i, j) = (r.gen_range(0..n), r.gen_range(0..n));
+        if i == j {
+            continue;
+        }
+        let e = [i.min(j) as u32, i.max(j) as u32];
+        assert_eq!(
+            edges.binary_search(&e).is_ok(),
+            in_gamma_def(p, i, j, -0.5),
+            "{e:?}"
+        );
+    }
+}
+
 /// 972 exactly cocircular integer points (x² + y² = 1185665²): γ([-1,1],[-0.5,1]) holds
 /// every chord (Θ(g²) output) with the definition's γ-values; β-lune with b = −0.5 (= γ(b, b))
 /// agrees with Def. 3.1 on a sample of pairs; the boundary with c = −0.5 goes through every
@@ -234,19 +253,7 @@ fn cocircular_integer_points_2d() {
     let g = within_bound("cocircular β-lune −0.5", move || {
         graph_2d(&pts2(&pp), Kind::BetaLune(-0.5)).unwrap()
     });
-    let mut r = ChaCha8Rng::seed_from_u64(8);
-    for _ in 0..150 {
-        let (i, j) = (r.gen_range(0..n), r.gen_range(0..n));
-        if i == j {
-            continue;
-        }
-        let e = [i.min(j) as u32, i.max(j) as u32];
-        assert_eq!(
-            g.edges.binary_search(&e).is_ok(),
-            in_gamma_def(&p, i, j, -0.5),
-            "{e:?}"
-        );
-    }
+    beta_lune_agrees_with_def(&p, &g.edges, 8, 150);
     let pp = p.clone();
     let b = within_bound("cocircular boundary c = −0.5", move || {
         let opts = Options2 {
@@ -285,19 +292,7 @@ fn rounded_circle_points_2d() {
         graph_2d(&pts2(&pp), Kind::BetaLune(-0.5)).unwrap()
     });
     assert!(g.edges.len() > n * (n - 1) / 4, "{} edges", g.edges.len());
-    let mut r = ChaCha8Rng::seed_from_u64(11);
-    for _ in 0..100 {
-        let (i, j) = (r.gen_range(0..n), r.gen_range(0..n));
-        if i == j {
-            continue;
-        }
-        let e = [i.min(j) as u32, i.max(j) as u32];
-        assert_eq!(
-            g.edges.binary_search(&e).is_ok(),
-            in_gamma_def(&p, i, j, -0.5),
-            "{e:?}"
-        );
-    }
+    beta_lune_agrees_with_def(&p, &g.edges, 11, 100);
     let pp = p.clone();
     let range = [-1.0, 1.0, -0.5, 1.0];
     let g = within_bound("rounded circle γ-range", move || {

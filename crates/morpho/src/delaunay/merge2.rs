@@ -476,6 +476,7 @@ pub(super) fn insert_merge<K: Kernel>(k: &K, n: usize) -> Result<Option<Arrays>,
 #[cfg(test)]
 mod tests {
     use super::super::d2::{triangulate_split, Delaunay2, FloatKernel, Split};
+    use super::super::test_sets::*;
     use super::*;
     use crate::geom::predicates::raw::orient2d;
     use crate::geom::Point2;
@@ -555,44 +556,20 @@ mod tests {
         merged
     }
 
-    fn uniform(n: usize, seed: u64) -> Vec<Point2> {
-        let mut r = Rng::new(seed);
-        (0..n).map(|_| Point2::new(r.unit(), r.unit())).collect()
-    }
-
     #[test]
     fn merge_equals_sequential_uniform_and_clustered() {
         for (n, seed) in [(11, 1), (300, 1), (5000, 2), (40_000, 3)] {
             assert!(same(&uniform(n, seed)));
         }
-        let mut r = Rng::new(7);
-        let mut p = Vec::new();
-        for c in 0..20 {
-            let (cx, cy, s) = (r.unit(), r.unit(), 1e-4 * (1 + c) as f64);
-            for _ in 0..500 {
-                p.push(Point2::new(cx + s * r.unit(), cy + s * r.unit()));
-            }
-        }
-        assert!(same(&p));
+        assert!(same(&clusters()));
     }
 
     #[test]
     fn merge_equals_sequential_curves_and_circles() {
         let n = 20_000;
-        let spiral: Vec<Point2> = (0..n)
-            .map(|i| {
-                let t = i as f64 * 0.01;
-                Point2::new((1.0 + 0.1 * t) * t.cos(), (1.0 + 0.1 * t) * t.sin())
-            })
-            .collect();
-        assert!(same(&spiral));
-        let sine: Vec<Point2> = (0..n)
-            .map(|i| {
-                let x = i as f64 / n as f64;
-                Point2::new(x, (40.0 * x).sin())
-            })
-            .collect();
-        assert!(same(&sine));
+        for p in curves(n) {
+            assert!(same(&p));
+        }
         let flower: Vec<Point2> = (0..n)
             .map(|i| {
                 let t = i as f64 * std::f64::consts::TAU / n as f64;
@@ -601,27 +578,11 @@ mod tests {
             })
             .collect();
         assert!(same(&flower));
-        // integer points on a circle of radius 5^4: many exactly cocircular
-        let r = 625i64;
-        let mut circ = Vec::new();
-        for x in -r..=r {
-            let y2 = r * r - x * x;
-            let y = (y2 as f64).sqrt() as i64;
-            if y * y == y2 {
-                circ.push(Point2::new(x as f64, y as f64));
-                circ.push(Point2::new(x as f64, -y as f64));
-            }
+        // the integer circle of radius 5⁴ (many exactly cocircular), the float circle with its
+        // centre (one vertex of degree n)
+        for p in circles() {
+            assert!(same(&p));
         }
-        assert!(same(&circ));
-        // a floating-point circle with its centre (one vertex of degree n)
-        let mut c2: Vec<Point2> = (0..1000)
-            .map(|i| {
-                let a = i as f64 * std::f64::consts::TAU / 1000.0;
-                Point2::new(a.cos(), a.sin())
-            })
-            .collect();
-        c2.push(Point2::new(0.0, 0.0));
-        assert!(same(&c2));
     }
 
     #[test]
@@ -637,21 +598,11 @@ mod tests {
         }
         // two columns: the left half is one collinear column, the merge declines
         assert!(!same(&grid(2, 9)));
-        let mut r = Rng::new(11);
-        for (n, m, s) in [(3000, 40, 1.0), (777, 12, 0.25), (5000, 300, 1e-3)] {
-            let p: Vec<Point2> = (0..n)
-                .map(|_| Point2::new(r.below(m) as f64 * s, r.below(m) as f64 * s))
-                .collect();
+        for p in lattice_subsets(&[(3000, 40, 1.0), (777, 12, 0.25), (5000, 300, 1e-3)]) {
             assert!(same(&p));
         }
         // a triangular lattice: cocircular hexagons, not on a power-of-two lattice
-        let t: Vec<Point2> = (0..60 * 60)
-            .map(|i| {
-                let (a, b) = ((i % 60) as f64, (i / 60) as f64);
-                Point2::new(a + 0.5 * b, b * 0.866_025_403_784_438_6)
-            })
-            .collect();
-        assert!(same(&t));
+        assert!(same(&triangular_lattice()));
         // collinear runs: points on a few lines through the split, plus a cloud
         let mut lines: Vec<Point2> = (0..400)
             .map(|i| Point2::new(i as f64 / 400.0, 0.5))
@@ -711,18 +662,7 @@ mod tests {
 
     #[test]
     fn merge_is_the_same_for_every_thread_count() {
-        let p = uniform(30_000, 21);
-        let run = |threads| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap()
-                .install(|| triangulate_split(&p, Split::Merge).unwrap())
-        };
-        let (a, b) = (run(1), run(2));
-        assert_eq!(a.triangles, b.triangles);
-        assert_eq!(a.neighbors, b.neighbors);
-        assert_eq!(a.vertex_tri, b.vertex_tri);
+        same_for_every_thread_count(Split::Merge);
     }
 
     proptest! {

@@ -50,6 +50,8 @@ mod error;
 mod merge2;
 pub(crate) mod par2;
 pub(crate) mod par3;
+#[cfg(test)]
+mod test_sets;
 pub(crate) mod voronoi;
 
 pub use cdt::{

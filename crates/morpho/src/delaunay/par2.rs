@@ -459,6 +459,7 @@ pub(super) fn insert_split<K: Kernel>(
 #[cfg(test)]
 mod tests {
     use super::super::d2::{triangulate_split, Delaunay2, FloatKernel, Split};
+    use super::super::test_sets::*;
     use super::*;
     use crate::geom::Point2;
     use crate::util::Rng;
@@ -547,66 +548,24 @@ mod tests {
         same_min(p, 8)
     }
 
-    fn uniform(n: usize, seed: u64) -> Vec<Point2> {
-        let mut r = Rng::new(seed);
-        (0..n).map(|_| Point2::new(r.unit(), r.unit())).collect()
-    }
-
     #[test]
     fn split_equals_sequential_uniform_and_clustered() {
         for (n, seed) in [(300, 1), (5000, 2), (40_000, 3)] {
             same(&uniform(n, seed));
         }
         // clusters of very different density
-        let mut r = Rng::new(7);
-        let mut p = Vec::new();
-        for c in 0..20 {
-            let (cx, cy, s) = (r.unit(), r.unit(), 1e-4 * (1 + c) as f64);
-            for _ in 0..500 {
-                p.push(Point2::new(cx + s * r.unit(), cy + s * r.unit()));
-            }
-        }
-        same(&p);
+        same(&clusters());
     }
 
     #[test]
     fn split_equals_sequential_curves_and_circle() {
-        let n = 20_000;
-        let spiral: Vec<Point2> = (0..n)
-            .map(|i| {
-                let t = i as f64 * 0.01;
-                Point2::new((1.0 + 0.1 * t) * t.cos(), (1.0 + 0.1 * t) * t.sin())
-            })
-            .collect();
-        same(&spiral);
-        let sine: Vec<Point2> = (0..n)
-            .map(|i| {
-                let x = i as f64 / n as f64;
-                Point2::new(x, (40.0 * x).sin())
-            })
-            .collect();
-        same(&sine);
-        // integer points on a circle of radius 5^4 (many exactly cocircular: S = P)
-        let r = 625i64;
-        let mut circ = Vec::new();
-        for x in -r..=r {
-            let y2 = r * r - x * x;
-            let y = (y2 as f64).sqrt() as i64;
-            if y * y == y2 {
-                circ.push(Point2::new(x as f64, y as f64));
-                circ.push(Point2::new(x as f64, -y as f64));
-            }
+        for p in curves(20_000) {
+            same(&p);
         }
+        // the integer circle (many exactly cocircular: S = P), the float circle with its centre
+        let [circ, c2] = circles();
         assert!(circ.len() > 8);
         same(&circ);
-        // a circle of floating-point points plus its centre
-        let mut c2: Vec<Point2> = (0..1000)
-            .map(|i| {
-                let a = i as f64 * std::f64::consts::TAU / 1000.0;
-                Point2::new(a.cos(), a.sin())
-            })
-            .collect();
-        c2.push(Point2::new(0.0, 0.0));
         same(&c2);
     }
 
@@ -618,26 +577,17 @@ mod tests {
             .collect();
         same(&g);
         // random lattice subsets with duplicates, odd sizes, at several scales
-        let mut r = Rng::new(11);
-        for (n, m, s) in [
+        let cases = [
             (3000, 40, 1.0),
             (777, 12, 0.25),
             (5000, 300, 1e-3),
             (20, 3, 1.0),
-        ] {
-            let p: Vec<Point2> = (0..n)
-                .map(|_| Point2::new(r.below(m) as f64 * s, r.below(m) as f64 * s))
-                .collect();
+        ];
+        for p in lattice_subsets(&cases) {
             same(&p);
         }
         // a triangular lattice (sheared): non-integer after scaling, many cocircular hexagons
-        let t: Vec<Point2> = (0..60 * 60)
-            .map(|i| {
-                let (a, b) = ((i % 60) as f64, (i / 60) as f64);
-                Point2::new(a + 0.5 * b, b * 0.866_025_403_784_438_6)
-            })
-            .collect();
-        same(&t);
+        same(&triangular_lattice());
     }
 
     #[test]
@@ -695,18 +645,7 @@ mod tests {
 
     #[test]
     fn split_is_the_same_for_every_thread_count() {
-        let p = uniform(30_000, 21);
-        let run = |threads| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap()
-                .install(|| triangulate_split(&p, Split::Always).unwrap())
-        };
-        let (a, b) = (run(1), run(2));
-        assert_eq!(a.triangles, b.triangles);
-        assert_eq!(a.neighbors, b.neighbors);
-        assert_eq!(a.vertex_tri, b.vertex_tri);
+        same_for_every_thread_count(Split::Always);
     }
 
     /// The exact side test against an integer oracle of the same polynomials on small integer
