@@ -41,8 +41,9 @@ pub struct Args {
     /// Output file (.json, .svg, .ply).
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Most candidate triples a 3D γ-graph with a parameter < 0 may test (Θ(N³) on surface
-    /// samples; default: MORPHO_TRIPLE_LIMIT, else 1e8, about 20–30 s of one core).
+    /// Most candidate triples a 3D γ-graph with a parameter < 0 may test, and most points its
+    /// search may add to their intervals (Θ(N³) triples on surface samples, Θ(N⁴) points on
+    /// points of a sphere; default: MORPHO_TRIPLE_LIMIT, else 1e8, about 20–30 s of one core).
     #[arg(long, value_name = "N")]
     pub max_triples: Option<String>,
 }

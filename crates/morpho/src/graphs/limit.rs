@@ -13,6 +13,13 @@
 //! enumeration (`candidate_triples`, an upper bound of the triples it visits), known after
 //! the floods, which cost O(N) cells per vertex.
 //!
+//! The same limit bounds a second measure, counted while the loop runs: the points it adds to
+//! the triples' intervals (`GraphError::TooMuchWork`). On nearly cospherical input (points of a
+//! sphere rounded to doubles) every candidate is decided by a scan of every point with near-tie
+//! in-sphere tests, so a count of triples under the limit can still mean minutes (300 points:
+//! 4.5·10⁶ triples, ≈ 1.3·10⁹ points); the loop stops once the points pass the limit (≈ 17 s
+//! of one core there).
+//!
 //! The limit is, in this order: the value given to [`set_triple_limit`] (the CLI's
 //! `graph --max-triples`), the environment variable `MORPHO_TRIPLE_LIMIT` (an integer, `1e9`
 //! accepted), else [`DEFAULT_TRIPLE_LIMIT`].
