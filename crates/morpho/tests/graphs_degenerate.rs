@@ -210,6 +210,20 @@ fn in_gamma_def(p: &[[f64; 2]], i: usize, j: usize, c: f64) -> bool {
     })
 }
 
+/// The 2D boundary of `p` with c = −0.5, within the bound.
+fn boundary_c_half(p: &[[f64; 2]], what: &str) -> morpho::boundary::Boundary2 {
+    let pp = p.to_vec();
+    within_bound(what, move || {
+        let opts = Options2 {
+            method: morpho::boundary::Method2::Gamma {
+                c: CParam::Fixed(-0.5),
+                keep: Vec::new(),
+            },
+        };
+        boundary_2d(&pts2(&pp), &opts).unwrap()
+    })
+}
+
 /// `count` random pairs of `p`: an edge of the β-lune graph with b = −0.5 (`edges`, sorted)
 /// exactly when Def. 3.1 holds (γ(b, b), [`in_gamma_def`]).
 fn beta_lune_agrees_with_def(p: &[[f64; 2]], edges: &[[u32; 2]], seed: u64, count: usize) {
@@ -254,16 +268,7 @@ fn cocircular_integer_points_2d() {
         graph_2d(&pts2(&pp), Kind::BetaLune(-0.5)).unwrap()
     });
     beta_lune_agrees_with_def(&p, &g.edges, 8, 150);
-    let pp = p.clone();
-    let b = within_bound("cocircular boundary c = −0.5", move || {
-        let opts = Options2 {
-            method: morpho::boundary::Method2::Gamma {
-                c: CParam::Fixed(-0.5),
-                keep: Vec::new(),
-            },
-        };
-        boundary_2d(&pts2(&pp), &opts).unwrap()
-    });
+    let b = boundary_c_half(&p, "cocircular boundary c = −0.5");
     assert!(b.all_on_boundary);
     assert_eq!(b.polygon.len(), n);
 }
@@ -314,16 +319,7 @@ fn rounded_circle_points_2d() {
             assert_eq!(g.edges.binary_search(&e).is_ok(), want, "{e:?} {c0} {c1}");
         }
     }
-    let pp = p.clone();
-    let b = within_bound("rounded circle boundary c = −0.5", move || {
-        let opts = Options2 {
-            method: morpho::boundary::Method2::Gamma {
-                c: CParam::Fixed(-0.5),
-                keep: Vec::new(),
-            },
-        };
-        boundary_2d(&pts2(&pp), &opts).unwrap()
-    });
+    let b = boundary_c_half(&p, "rounded circle boundary c = −0.5");
     assert!(b.all_on_boundary);
     assert_eq!(b.polygon.len(), n);
     let start = b.polygon.iter().position(|&v| v == 0).unwrap();

@@ -490,21 +490,7 @@ mod tests {
     }
 
     fn canon(d: &Delaunay2) -> Vec<[u32; 3]> {
-        let mut t: Vec<[u32; 3]> = d
-            .to_input_indices()
-            .iter()
-            .map(|&[a, b, c]| {
-                if a < b && a < c {
-                    [a, b, c]
-                } else if b < c {
-                    [b, c, a]
-                } else {
-                    [c, a, b]
-                }
-            })
-            .collect();
-        t.sort_unstable();
-        t
+        canonical(&d.to_input_indices())
     }
 
     /// Does the merge decline by rule (fewer than 8 distinct points, or a collinear half)?

@@ -465,21 +465,7 @@ mod tests {
     use crate::util::Rng;
 
     fn canon(d: &Delaunay2) -> Vec<[u32; 3]> {
-        let mut t: Vec<[u32; 3]> = d
-            .triangles
-            .iter()
-            .map(|&[a, b, c]| {
-                if a < b && a < c {
-                    [a, b, c]
-                } else if b < c {
-                    [b, c, a]
-                } else {
-                    [c, a, b]
-                }
-            })
-            .collect();
-        t.sort_unstable();
-        t
+        canonical(&d.triangles)
     }
 
     /// The split result's invariants: neighbour symmetry (with matching edges), each vertex's

@@ -104,3 +104,21 @@ pub(super) fn same_for_every_thread_count(split: Split) {
     assert_eq!(a.neighbors, b.neighbors);
     assert_eq!(a.vertex_tri, b.vertex_tri);
 }
+
+/// Triangles as a canonical set: each rotated to start at its smallest vertex, sorted.
+pub(super) fn canonical(tris: &[[u32; 3]]) -> Vec<[u32; 3]> {
+    let mut t: Vec<[u32; 3]> = tris
+        .iter()
+        .map(|&[a, b, c]| {
+            if a < b && a < c {
+                [a, b, c]
+            } else if b < c {
+                [b, c, a]
+            } else {
+                [c, a, b]
+            }
+        })
+        .collect();
+    t.sort_unstable();
+    t
+}
