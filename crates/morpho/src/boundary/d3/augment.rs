@@ -186,9 +186,29 @@ impl General3<'_> {
                 pairs.push((u[e], u[(e + 1) % 3]));
             }
         }
+        // whether l x y is live: y in the list of edge x–l ([`General3::live_thirds`], which
+        // lists exactly the live triangles on an edge with a warm end; `has` when both ends
+        // are cold), looked up once per run of pairs with the same x (the pairs of the
+        // nearest vertices come in such runs) instead of a lookup of `id` per pair
+        let mut last: Option<(u32, Option<&[u32]>)> = None;
         for (x, y) in pairs {
             let t = sorted3([l, x, y]);
-            if x == l || y == l || self.has(t[0], t[1], t[2]) || self.in_gamma.contains(&t) {
+            if x == l || y == l {
+                continue;
+            }
+            let thirds = match last {
+                Some((lx, s)) if lx == x => s,
+                _ => {
+                    let s = self.live_thirds(x, l);
+                    last = Some((x, s));
+                    s
+                }
+            };
+            let live = match thirds {
+                Some(s) => s.contains(&y),
+                None => self.has(t[0], t[1], t[2]),
+            };
+            if live || self.in_gamma.contains(&t) {
                 continue;
             }
             if self.gamma_ub.get(&t).is_some_and(|&ub| ub < c) {

@@ -93,6 +93,14 @@ const EMPTY: B = [
     f32::NEG_INFINITY,
 ];
 
+/// A node of a [`Class`]: the union of its items' boxes ([`EMPTY`] in unused slots) and the
+/// number of its live items, side by side (a query reads both: one cache line, not two).
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    b: B,
+    live: u32,
+}
+
 /// One size class: items `start..start + len` of the tree, in an implicit binary tree (node
 /// `k` has children `2k + 1`, `2k + 2`; the root covers the class's items and every node splits
 /// its range at the middle, down to at most [`LEAF`] items).
@@ -100,20 +108,29 @@ const EMPTY: B = [
 struct Class {
     start: usize,
     len: usize,
-    /// Node → the union of its items' boxes (unused slots hold [`EMPTY`]).
-    nodes: Vec<B>,
-    /// Node → its live items.
-    live: Vec<u32>,
+    nodes: Vec<Node>,
 }
+
+/// An item of a [`BoxTree`]: stored box, id and liveness together (32 bytes: a leaf's test
+/// of an item reads one cache line, not three).
+#[derive(Debug, Clone, Copy)]
+struct Item {
+    b: B,
+    id: u32,
+    alive: bool,
+}
+
+/// The deepest a class's implicit tree can be: its nodes are indexed by `usize` and a node
+/// `k` at depth `d` has `k ≥ 2^d − 1`, so `d < usize::BITS` (the traversal's stack holds at
+/// most one pending sibling per level, plus the node being expanded).
+const MAX_DEPTH: usize = usize::BITS as usize + 1;
 
 /// A static bounding-volume hierarchy per size class of boxes, with the live items under each
 /// node (see the module documentation).
 #[derive(Debug, Default)]
 struct BoxTree {
     classes: Vec<Class>,
-    ids: Vec<u32>,
-    boxes: Vec<B>,
-    alive: Vec<bool>,
+    items: Vec<Item>,
 }
 
 /// The size class of a box: log₄ of its longest side (zero or not finite: the smallest).
@@ -143,36 +160,40 @@ impl BoxTree {
                 start: s,
                 len: e - s,
                 nodes: Vec::new(),
-                live: Vec::new(),
             };
             build(&mut items[s..e], 0, &mut c);
             t.classes.push(c);
             s = e;
         }
-        t.ids = items.iter().map(|x| x.0).collect();
-        t.boxes = items.iter().map(|x| x.1).collect();
-        t.alive = items.iter().map(|x| x.2).collect();
+        t.items = items
+            .iter()
+            .map(|x| Item {
+                b: x.1,
+                id: x.0,
+                alive: x.2,
+            })
+            .collect();
         t
     }
 
     fn len(&self) -> usize {
-        self.ids.len()
+        self.items.len()
     }
 
     /// Marks item `p` dead or alive, updating the live counts on its path.
     fn set_alive(&mut self, p: usize, on: bool) {
-        if self.alive[p] == on {
+        if self.items[p].alive == on {
             return;
         }
-        self.alive[p] = on;
+        self.items[p].alive = on;
         let ci = self.classes.partition_point(|c| c.start <= p) - 1;
         let c = &mut self.classes[ci];
         let (mut k, mut lo, mut hi) = (0usize, c.start, c.start + c.len);
         loop {
             if on {
-                c.live[k] += 1;
+                c.nodes[k].live += 1;
             } else {
-                c.live[k] -= 1;
+                c.nodes[k].live -= 1;
             }
             if hi - lo <= LEAF {
                 break;
@@ -190,20 +211,27 @@ impl BoxTree {
 
     /// Calls `f` on every live id whose stored box meets `q`, each once, until it returns
     /// true; returns whether it did. `met` counts the calls.
+    ///
+    /// The traversal's stack is an array on the call stack (depth-first, the left child
+    /// first: at most one pending right sibling per level, [`MAX_DEPTH`]), not a heap
+    /// allocation per query.
     fn any(&self, q: &B, met: &mut usize, f: &mut dyn FnMut(u32) -> bool) -> bool {
-        let mut stack: Vec<(usize, usize, usize)> = Vec::with_capacity(64);
+        let mut stack = [(0usize, 0usize, 0usize); MAX_DEPTH];
         for c in &self.classes {
-            stack.clear();
-            stack.push((0, c.start, c.start + c.len));
-            while let Some((k, a, b)) = stack.pop() {
-                if c.live[k] == 0 || !meets(&c.nodes[k], q) {
+            let mut top = 1;
+            stack[0] = (0, c.start, c.start + c.len);
+            while top > 0 {
+                top -= 1;
+                let (k, a, b) = stack[top];
+                let node = &c.nodes[k];
+                if node.live == 0 || !meets(&node.b, q) {
                     continue;
                 }
                 if b - a <= LEAF {
-                    for i in a..b {
-                        if self.alive[i] && meets(&self.boxes[i], q) {
+                    for it in &self.items[a..b] {
+                        if it.alive && meets(&it.b, q) {
                             *met += 1;
-                            if f(self.ids[i]) {
+                            if f(it.id) {
                                 return true;
                             }
                         }
@@ -211,8 +239,9 @@ impl BoxTree {
                     continue;
                 }
                 let mid = a + (b - a) / 2;
-                stack.push((2 * k + 2, mid, b));
-                stack.push((2 * k + 1, a, mid));
+                stack[top] = (2 * k + 2, mid, b);
+                stack[top + 1] = (2 * k + 1, a, mid);
+                top += 2;
             }
         }
         false
@@ -222,10 +251,9 @@ impl BoxTree {
 /// Builds node `k` over `items` (the node's range), recursively (depth O(log n)).
 fn build(items: &mut [(u32, B, bool)], k: usize, c: &mut Class) -> B {
     if c.nodes.len() <= k {
-        c.nodes.resize(k + 1, EMPTY);
-        c.live.resize(k + 1, 0);
+        c.nodes.resize(k + 1, Node { b: EMPTY, live: 0 });
     }
-    c.live[k] = items.iter().filter(|x| x.2).count() as u32;
+    c.nodes[k].live = items.iter().filter(|x| x.2).count() as u32;
     let bound = if items.len() <= LEAF {
         items.iter().fold(EMPTY, |u, x| union(&u, &x.1))
     } else {
@@ -250,7 +278,7 @@ fn build(items: &mut [(u32, B, bool)], k: usize, c: &mut Class) -> B {
         let br = build(r, 2 * k + 2, c);
         union(&bl, &br)
     };
-    c.nodes[k] = bound;
+    c.nodes[k].b = bound;
     bound
 }
 
@@ -331,7 +359,7 @@ impl BoxIndex {
             let mut v = std::mem::take(&mut self.buf);
             while self.trees.last().is_some_and(|t| t.len() <= 2 * v.len()) {
                 let t = self.trees.pop().unwrap_or_default();
-                v.extend((0..t.len()).map(|i| (t.ids[i], t.boxes[i], t.alive[i])));
+                v.extend(t.items.iter().map(|x| (x.id, x.b, x.alive)));
             }
             self.push_tree(v);
         }
@@ -340,8 +368,8 @@ impl BoxIndex {
     fn push_tree(&mut self, v: Vec<(u32, B, bool)>) {
         let t = BoxTree::new(v);
         let ti = self.trees.len() as u32;
-        for (k, &id) in t.ids.iter().enumerate() {
-            self.set_loc(id, (ti, k as u32));
+        for (k, x) in t.items.iter().enumerate() {
+            self.set_loc(x.id, (ti, k as u32));
         }
         self.trees.push(t);
     }
@@ -386,7 +414,7 @@ impl BoxIndex {
     pub(super) fn ids(&self) -> Vec<u32> {
         let mut v: Vec<u32> = self.buf.iter().map(|x| x.0).collect();
         for t in &self.trees {
-            v.extend_from_slice(&t.ids);
+            v.extend(t.items.iter().map(|x| x.id));
         }
         v.sort_unstable();
         v

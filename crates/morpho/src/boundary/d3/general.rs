@@ -244,10 +244,38 @@ impl Cold {
         }
         let mut next = start.clone();
         let mut at = vec![0u32; 3 * faces.len()];
+        // beside each entry of `at` (face g at vertex v): the corners after v in g, and
+        // whether v is g's first corner (for the check below, read in `at`'s order)
+        let mut after = vec![[0u32; 2]; 3 * faces.len()];
+        let mut first = vec![false; 3 * faces.len()];
         for (i, f) in faces.iter().enumerate() {
-            for &v in f {
-                at[next[v as usize] as usize] = i as u32;
-                next[v as usize] += 1;
+            for k in 0..3 {
+                let v = f[k] as usize;
+                let e = next[v] as usize;
+                at[e] = i as u32;
+                after[e] = [f[(k + 1) % 3], f[(k + 2) % 3]];
+                first[e] = k == 0;
+                next[v] += 1;
+            }
+        }
+        // each directed edge and each sorted triple once (looked up at the first corner): for
+        // face f = v w u at its first corner v, another face g at v with the directed edge
+        // v→w (g's corner after v is w) or with the same corners (then g = v u w, the other
+        // one is already the directed edge) — the entries of v side by side, not the faces
+        // (the check that read `faces[g]` for every g at v missed the cache once per entry)
+        for v in 0..n {
+            let (lo, hi) = (start[v] as usize, start[v + 1] as usize);
+            for e in lo..hi {
+                if !first[e] {
+                    continue;
+                }
+                let [w, u] = after[e];
+                let twice = (lo..hi).any(|x| {
+                    x != e && (after[x][0] == w || (after[x][0] == u && after[x][1] == w))
+                });
+                if twice {
+                    return None;
+                }
             }
         }
         let c = Cold {
@@ -256,18 +284,6 @@ impl Cold {
             start,
             at,
         };
-        // each directed edge and each sorted triple once (looked up at the first corner)
-        for (i, f) in faces.iter().enumerate() {
-            let s = sorted3(*f);
-            let twice = c.at(f[0]).iter().any(|&j| {
-                let g = c.faces[j as usize];
-                j != i as u32
-                    && (sorted3(g) == s || (0..3).any(|k| g[k] == f[0] && g[(k + 1) % 3] == f[1]))
-            });
-            if twice {
-                return None;
-            }
-        }
         Some(c)
     }
 
@@ -1459,9 +1475,88 @@ mod tests {
         assert!(g.epoch >= 30, "{}", g.epoch);
     }
 
+    /// The refusal of [`Cold::new`] as the check it replaces: for each face f, another face
+    /// at f's first corner with the directed edge f₀→f₁ or the same sorted corners, found by
+    /// reading the faces. On random face lists over few vertices (faces repeated, reversed,
+    /// rotated, sharing directed edges: both answers occur often) and on a real closed
+    /// surface (accepted) with one face reversed or repeated (refused).
+    #[test]
+    fn cold_table_refuses_as_the_face_scan() {
+        fn reference(n: usize, faces: &[[u32; 3]]) -> bool {
+            if faces.iter().any(|f| {
+                f[0] == f[1] || f[1] == f[2] || f[0] == f[2] || f.iter().any(|&v| v as usize >= n)
+            }) {
+                return false;
+            }
+            faces.iter().enumerate().all(|(i, f)| {
+                let s = sorted3(*f);
+                !faces.iter().enumerate().any(|(j, g)| {
+                    j != i
+                        && g.contains(&f[0])
+                        && (sorted3(*g) == s
+                            || (0..3).any(|k| g[k] == f[0] && g[(k + 1) % 3] == f[1]))
+                })
+            })
+        }
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let (mut yes, mut no) = (0, 0);
+        for round in 0..3000 {
+            let n = rng.gen_range(3..9usize);
+            let m = rng.gen_range(1..7usize);
+            let mut faces: Vec<[u32; 3]> = Vec::new();
+            while faces.len() < m {
+                let f: [u32; 3] = std::array::from_fn(|_| rng.gen_range(0..n as u32));
+                // mostly non-degenerate faces, a few out of range or degenerate
+                if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) && rng.gen_range(0..10) > 0 {
+                    continue;
+                }
+                faces.push(f);
+            }
+            let nn = if round % 50 == 0 { n - 1 } else { n };
+            let want = reference(nn, &faces);
+            assert_eq!(Cold::new(nn, &faces).is_some(), want, "{nn} {faces:?}");
+            if want {
+                yes += 1;
+            } else {
+                no += 1;
+            }
+        }
+        assert!(yes > 300 && no > 300, "{yes} {no}");
+        // a closed surface: the hull of random points
+        let pts: Vec<crate::geom::Point3> = (0..300)
+            .map(|_| {
+                let v: [f64; 3] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+                crate::geom::Point3::new(v[0], v[1], v[2])
+            })
+            .collect();
+        let d = crate::delaunay::d3::triangulate(&pts).unwrap();
+        let hull = d.hull.clone();
+        let n = d.points.len();
+        assert!(hull.len() > 20);
+        assert!(Cold::new(n, &hull).is_some());
+        assert!(reference(n, &hull));
+        let mut rev = hull.clone();
+        rev.push([hull[7][0], hull[7][2], hull[7][1]]);
+        assert!(Cold::new(n, &rev).is_none() && !reference(n, &rev));
+        let mut rot = hull.clone();
+        rot.push([hull[3][1], hull[3][2], hull[3][0]]);
+        assert!(Cold::new(n, &rot).is_none() && !reference(n, &rot));
+    }
+
     /// Every live triangle xyl is in `eadj`'s list of its edge xy unless x and y are both cold
-    /// ([`General3::live_thirds`]: what makes the apex filter of `best_plain` exact).
+    /// ([`General3::live_thirds`]: what makes the apex filter of `best_plain` exact), and every
+    /// third vertex l in the list of an edge xy names a live triangle xyl (what lets
+    /// [`General3::combinatorial_listed`] skip the lookups the lists answered).
     fn assert_thirds_listed(g: &General3<'_>, at: &str) {
+        for (&e, list) in g.eadj.iter() {
+            let (x, y) = ((e >> 32) as u32, e as u32);
+            for &l in list {
+                assert!(
+                    g.has(x, y, l),
+                    "{at}: {l} listed on {x}-{y}, {x} {y} {l} not live"
+                );
+            }
+        }
         for (i, s) in g.tris.iter().enumerate() {
             if !g.live[i] {
                 continue;

@@ -473,6 +473,43 @@ impl General3<'_> {
         if !self.has(a, b, l) || !self.has(b, c, l) || !self.has(a, c, l) {
             return None;
         }
+        self.combinatorial_rest(f, l)
+    }
+
+    /// [`Self::combinatorial`] for a boundary face `f` = abc and an apex `l` from `eadj`'s
+    /// list of edge ab, where `bc_listed` (`ac_listed`) says that `l` was found in the list
+    /// of edge bc (ac) given by [`General3::live_thirds`]: the lookups those lists already
+    /// answered are skipped (the same answer, without `combinatorial`'s hash lookups of `id`
+    /// and `bnext`).
+    ///
+    /// Why: `f` was checked to be a boundary face by the caller; and a third vertex is in the
+    /// list of an edge xy (not both ends cold) exactly while xyl is live ([`General3::kill`]
+    /// removes it from all three lists, [`General3::add_tri_grid`] adds it when it becomes
+    /// live, [`General3::heat`] lists the untouched initial faces), so `l` from the list of ab
+    /// makes abl live, and from the lists of bc and ac, bcl and acl. Test
+    /// `thirds_filter_constricts_identically` (the lists against the triangles after every
+    /// step, and the removals with this path and with [`Self::combinatorial`]).
+    pub(super) fn combinatorial_listed(
+        &self,
+        f: [u32; 3],
+        l: u32,
+        bc_listed: bool,
+        ac_listed: bool,
+    ) -> Option<Removal> {
+        let [a, b, c] = f;
+        if l == a || l == b || l == c {
+            return None;
+        }
+        if (!bc_listed && !self.has(b, c, l)) || (!ac_listed && !self.has(a, c, l)) {
+            return None;
+        }
+        self.combinatorial_rest(f, l)
+    }
+
+    /// The part of [`Self::combinatorial`] after the boundary face `f` = abc and the live
+    /// triangles abl, bcl, acl were checked.
+    fn combinatorial_rest(&self, f: [u32; 3], l: u32) -> Option<Removal> {
+        let [a, b, c] = f;
         let (pa, pb, pc, pl) = (self.pt(a), self.pt(b), self.pt(c), self.pt(l));
         if orient3d(pa, pb, pc, pl) <= 0.0 {
             return None;
@@ -583,10 +620,9 @@ impl General3<'_> {
         // particular order: the answer is an `any` of a function of the id)
         self.bfaces
             .any(bb.0, bb.1, |i| {
-                // live boundary triangle (either orientation of the sorted triple)
-                if !self.live[i as usize] || !self.bflag[i as usize] {
-                    return false;
-                }
+                // (the tests of the box and of the plane first, the flags below: each test is
+                // a function of the id, so their order changes no answer, only which arrays a
+                // rejected id is read from)
                 let ub = self.tbox[i as usize];
                 if !boxes_meet(bb, ub) {
                     return false;
@@ -600,6 +636,10 @@ impl General3<'_> {
                     if dist.abs() > rad + margin {
                         return false;
                     }
+                }
+                // live boundary triangle (either orientation of the sorted triple)
+                if !self.live[i as usize] || !self.bflag[i as usize] {
+                    return false;
                 }
                 let u = self.tris[i as usize];
                 if u == st || skip_s.contains(&u) || skip.iter().skip(4).any(|&x| sorted3(x) == u) {
@@ -781,10 +821,19 @@ impl General3<'_> {
             Some(s) => s.contains(&l),
             None => true,
         };
+        // (with the filter, the lookups the lists answered are skipped:
+        // [`Self::combinatorial_listed`]; without it, the reference)
         let mut keyed: Vec<(f64, u32, Removal)> = apexes
             .iter()
             .filter(|&&l| l != f[2] && listed(bc, l) && listed(ac, l))
-            .filter_map(|&l| self.combinatorial(f, l).map(|r| (r.0, l, r)))
+            .filter_map(|&l| {
+                if self.filter_thirds {
+                    self.combinatorial_listed(f, l, bc.is_some(), ac.is_some())
+                } else {
+                    self.combinatorial(f, l)
+                }
+                .map(|r| (r.0, l, r))
+            })
             .collect();
         keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         keyed.into_iter().find_map(|(k, l, (_, bf, nf))| {
