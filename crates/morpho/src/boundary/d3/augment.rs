@@ -1380,6 +1380,48 @@ mod tests {
         }
     }
 
+    /// gamma_candidates against the former code where live triangles do meet the locked
+    /// vertices: engines on the live triangles of locked Delaunay constrictions (lazy
+    /// construction: cold boundary faces, and the list of edge x–l answering `has`), before
+    /// and after a local γ round, every locked vertex, k = 4, 16, c = −0.5, −1.
+    #[test]
+    fn gamma_candidates_equal_the_former_code_among_live_triangles() {
+        let (mut locked_sets, mut compared) = (0, 0);
+        for seed in (1..=40u64).chain([1647, 1755]) {
+            let Some((d, pos, st)) = super::super::test_sets::locked_clustered_cube(seed) else {
+                continue;
+            };
+            locked_sets += 1;
+            let live = super::super::test_sets::live_faces(&d, &st.alive);
+            let mut g = General3::new(&pos, &st.triangles, &live, &[]);
+            for _round in 0..2 {
+                // (fills the nearest-vertex cache of the locked vertices)
+                let extra = g.local_gamma(-0.5, 16);
+                let locked: Vec<u32> = (0..pos.len() as u32)
+                    .filter(|&v| !g.on_boundary(v))
+                    .collect();
+                let mut tb = Vec::new();
+                for &l in &locked {
+                    for k in [4, 16] {
+                        for c in [-0.5, -1.0] {
+                            let new = g.gamma_candidates(l, k, c, &mut tb);
+                            let old = g.gamma_candidates_reference(l, k, c, &mut tb);
+                            assert_eq!(new, old, "seed {seed} l {l} k {k} c {c}");
+                            compared += new.len();
+                        }
+                    }
+                }
+                if g.augment(&extra) > 0 {
+                    g.run();
+                }
+            }
+        }
+        assert!(
+            locked_sets >= 3 && compared > 300,
+            "{locked_sets} {compared}"
+        );
+    }
+
     /// The engine of [`General3::new`], whose hash maps hold only the initial boundary faces
     /// at warm vertices ([`General3::build_lazy`]), in lockstep with the engine built over
     /// the whole boundary ([`General3::build`], the construction before): through the whole
