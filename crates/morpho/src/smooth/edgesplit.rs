@@ -51,7 +51,8 @@ use super::triangle::BezierTriangle;
 use super::SmoothError;
 use crate::geom::{vec, Point3, Vector3};
 use crate::mesh::TriMesh;
-use std::collections::{BTreeSet, HashMap};
+use crate::util::IdMap;
+use std::collections::BTreeSet;
 
 type P3 = [f64; 3];
 
@@ -154,17 +155,25 @@ fn refine(
     split_input: &mut BTreeSet<[u32; 2]>,
 ) -> Option<Refined> {
     let tris = &r.mesh.triangles;
-    let mut half: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * tris.len());
+    // the half-edges of the listed edges (both directions), found by one scan of the triangles
+    let mut half: IdMap<(u32, u32), usize> = IdMap::default();
+    for &[a, b] in &surf.non_g1_edges {
+        half.insert((a, b), usize::MAX);
+        half.insert((b, a), usize::MAX);
+    }
     for (t, tri) in tris.iter().enumerate() {
         for i in 0..3 {
-            half.insert((tri[i], tri[(i + 1) % 3]), 3 * t + i);
+            if let Some(h) = half.get_mut(&(tri[i], tri[(i + 1) % 3])) {
+                *h = 3 * t + i;
+            }
         }
     }
+    half.retain(|_, h| *h != usize::MAX);
     let mut positions = r.mesh.positions.clone();
     let mut normals = r.normals.clone();
     let mut on_edge = r.on_edge.clone();
     // split point of each chosen edge
-    let mut split: HashMap<(u32, u32), u32> = HashMap::new();
+    let mut split: IdMap<(u32, u32), u32> = IdMap::default();
     for &[a, b] in &surf.non_g1_edges {
         let (Some(&p), Some(&q)) = (half.get(&(a, b)), half.get(&(b, a))) else {
             continue;
@@ -201,6 +210,13 @@ fn refine(
     let mut from = Vec::with_capacity(tris.len() + 2 * split.len());
     for (t, tri) in tris.iter().enumerate() {
         let (o, dom) = r.origin[t];
+        if (0..3).all(|i| !split.contains_key(&(tri[i], tri[(i + 1) % 3]))) {
+            // not bisected (most triangles): the same triangle
+            triangles.push(*tri);
+            origin.push((o, dom));
+            from.push(t as u32);
+            continue;
+        }
         let mut subs: Vec<([u32; 3], [P3; 3])> = vec![(*tri, dom)];
         for i in 0..3 {
             let (a, b) = (tri[i], tri[(i + 1) % 3]);
@@ -259,15 +275,19 @@ fn map_back(
     nv: usize,
     split_input: BTreeSet<[u32; 2]>,
 ) -> SplitSurface {
-    let mut domain = Vec::with_capacity(s.patches.len());
-    for (k, p) in s.patches.iter_mut().enumerate() {
-        let (o, d) = r.origin[k / 3];
-        let i = k % 3;
-        let z = vec::scale(vec::add(vec::add(d[0], d[1]), d[2]), 1.0 / 3.0);
-        domain.push([d[i], d[(i + 1) % 3], z]);
-        p.macro_tri = o;
-    }
-    s.domain = domain;
+    use rayon::prelude::*;
+    s.domain = s
+        .patches
+        .par_iter_mut()
+        .enumerate()
+        .map(|(k, p)| {
+            let (o, d) = r.origin[k / 3];
+            let i = k % 3;
+            let z = vec::scale(vec::add(vec::add(d[0], d[1]), d[2]), 1.0 / 3.0);
+            p.macro_tri = o;
+            [d[i], d[(i + 1) % 3], z]
+        })
+        .collect();
     let mut inner: BTreeSet<u32> = BTreeSet::new();
     let map = |list: &mut Vec<[u32; 2]>, inner: Option<&mut BTreeSet<u32>>| {
         let mut out: BTreeSet<[u32; 2]> = BTreeSet::new();

@@ -206,6 +206,99 @@ pub(crate) fn check_closed(
     Ok((half, unit))
 }
 
+/// [`check_closed`]'s checks and the opposite half-edge of every half-edge (`twin[3t + i]`
+/// runs `b → a` where `3t + i` runs `a → b`), found in per-vertex lists of outgoing half-edges
+/// sorted by their ends (a counting sort by start vertex) instead of a hash map, in parallel
+/// where it can be. A mesh that fails any check goes through [`check_closed`] itself, so the
+/// error is its own. O(triangles · log degree).
+fn closed_twins(
+    mesh: &TriMesh,
+    normals: &[crate::geom::Vector3],
+) -> Result<(Vec<u32>, Vec<P3>), SmoothError> {
+    let slow = || -> Result<(Vec<u32>, Vec<P3>), SmoothError> {
+        let (half, unit) = check_closed(mesh, normals)?;
+        let twin = mesh
+            .triangles
+            .iter()
+            .flat_map(|t| [0, 1, 2].map(|i| half[&(t[(i + 1) % 3], t[i])] as u32))
+            .collect();
+        Ok((twin, unit))
+    };
+    let (nv, nt) = (mesh.positions.len(), mesh.triangles.len());
+    if nv < 4 || nt < 4 || 3 * nt >= crate::util::NONE as usize || normals.len() != nv {
+        return slow();
+    }
+    let finite = mesh
+        .positions
+        .par_iter()
+        .all(|p| p.iter().all(|c| c.is_finite()));
+    let proper = mesh.triangles.par_iter().all(|tri| {
+        if tri.iter().any(|&v| v as usize >= nv) {
+            return false;
+        }
+        let p = |k: usize| -> P3 { mesh.positions[tri[k] as usize].into() };
+        let c = vec::cross(vec::sub(p(1), p(0)), vec::sub(p(2), p(0)));
+        !(tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || vec::norm2(c) == 0.0)
+    });
+    let unit: Vec<Option<P3>> = normals
+        .par_iter()
+        .map(|n| {
+            let l = n.norm();
+            (l > 0.0 && l.is_finite()).then(|| [n.x / l, n.y / l, n.z / l])
+        })
+        .collect();
+    if !(finite && proper && unit.iter().all(Option::is_some)) {
+        return slow();
+    }
+    let unit: Vec<P3> = unit.into_iter().flatten().collect();
+    // outgoing half-edges (end, half-edge) of each vertex, sorted by end
+    let mut start = vec![0u32; nv + 1];
+    for tri in &mesh.triangles {
+        for &v in tri {
+            start[v as usize + 1] += 1;
+        }
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut out = vec![(0u32, 0u32); 3 * nt];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for i in 0..3 {
+            let k = &mut fill[tri[i] as usize];
+            out[*k as usize] = (tri[(i + 1) % 3], (3 * t + i) as u32);
+            *k += 1;
+        }
+    }
+    let mut manifold = true;
+    for v in 0..nv {
+        let seg = &mut out[start[v] as usize..start[v + 1] as usize];
+        seg.sort_unstable();
+        // the same half-edge a → b twice
+        manifold &= seg.windows(2).all(|w| w[0].0 != w[1].0);
+    }
+    if !manifold {
+        return slow();
+    }
+    let mut twin = vec![crate::util::NONE; 3 * nt];
+    twin.par_chunks_mut(3)
+        .zip(mesh.triangles.par_iter())
+        .for_each(|(w, t)| {
+            for i in 0..3 {
+                let (a, b) = (t[i], t[(i + 1) % 3] as usize);
+                let seg = &out[start[b] as usize..start[b + 1] as usize];
+                if let Ok(k) = seg.binary_search_by_key(&a, |x| x.0) {
+                    w[i] = seg[k].1;
+                }
+            }
+        });
+    if twin.par_iter().any(|&e| e == crate::util::NONE) {
+        // a half-edge without its opposite: not closed
+        return slow();
+    }
+    Ok((twin, unit))
+}
+
 /// Step 2: the edge point from `a` towards `b`.
 fn edge_point(a: P3, na: P3, b: P3) -> P3 {
     let d = vec::sub(b, a);
@@ -259,8 +352,8 @@ struct EdgeData {
 
 /// The edge `a → b` (a < b; `p`, `q` the patches of its half-edges `a → b`, `b → a`) in the notation of V 9.3 and its `(f0, g0, f1, g1)` from (9.3a),
 /// (9.3d) with `e0 = e1 = 1`.
-fn edge_data(patches: &[[P3; 10]], p: usize, q: usize) -> (EdgeData, [f64; 4]) {
-    let (pp, qq) = (&patches[p], &patches[q]);
+fn edge_data(patches: &[MicroPatch], p: usize, q: usize) -> (EdgeData, [f64; 4]) {
+    let (pp, qq) = (&patches[p].control, &patches[q].control);
     let e = EdgeData {
         m: [pp[0], pp[1], pp[3], pp[6]],
         l: [pp[2], pp[4], pp[7]],
@@ -446,8 +539,10 @@ struct Solved {
 
 /// What a pass keeps for a later pass on a refined mesh (`edgesplit.rs`): per macro edge of
 /// its mesh (sorted, `a < b`) the quadratic boundary, the fold guard's decision, Step 5's
-/// result and the a-posteriori verdict, and the Step-4 patches; the final patches are the
-/// surface's.
+/// result and the a-posteriori verdict, and per patch Step 4's 111 point (`L1` or `R1`). A
+/// patch's Step-4 control points are the surface's final ones but for the 111 point (Step 5)
+/// and the 102, 012, 003 points (Step 6), and those three are rewritten by Step 6 before
+/// anything reads them: so the final patches with the kept 111 points stand for Step 4's.
 pub(crate) struct PassCache {
     triangles: Vec<[u32; 3]>,
     edges: Vec<(u32, u32)>,
@@ -455,7 +550,7 @@ pub(crate) struct PassCache {
     guarded: Vec<bool>,
     solved: Vec<Solved>,
     bad: Vec<bool>,
-    step4: Vec<[P3; 10]>,
+    step4_111: Vec<P3>,
 }
 
 /// An earlier pass on a coarser mesh for [`three_split_pass`] to reuse: its cache, its surface,
@@ -489,7 +584,9 @@ pub(crate) fn three_split_pass(
     opts: &SplitOptions,
     reuse: Option<&Reuse>,
 ) -> Result<(SplitSurface, PassCache), SmoothError> {
-    let (half, nrm) = check_closed(mesh, normals)?;
+    // half-edge e = 3t + i runs from vertex i of triangle t to vertex i + 1; twin[e] the
+    // opposite half-edge (the mesh is closed)
+    let (twin, nrm) = closed_twins(mesh, normals)?;
     let nt = mesh.triangles.len();
     let reuse = reuse.filter(|r| r.from.len() == nt);
     // the earlier triangle of each triangle, checked (NONE: new)
@@ -509,24 +606,19 @@ pub(crate) fn three_split_pass(
         None => vec![crate::util::NONE; nt],
     };
     let pos: Vec<P3> = mesh.positions.iter().map(|p| (*p).into()).collect();
-    // half-edge e = 3t + i runs from vertex i of triangle t to vertex i + 1; twin[e] the
-    // opposite half-edge (the mesh is closed: check_closed)
-    let twin: Vec<u32> = mesh
-        .triangles
-        .par_iter()
-        .flat_map_iter(|t| [0, 1, 2].map(|i| half[&(t[(i + 1) % 3], t[i])] as u32))
-        .collect();
-    // the edge point of each half-edge (Step 2; later the quadratic boundary's)
-    let mut handles: Vec<P3> = mesh
-        .triangles
-        .par_iter()
-        .flat_map_iter(|t| {
-            [0, 1, 2].map(|i| {
+    // the edge point of each half-edge (Step 2; later the quadratic boundary's; filled in
+    // place, three entries per triangle: an indexed write, where a flat-mapped collect
+    // concatenates per-thread pieces, a second copy)
+    let mut handles = vec![[0.0; 3]; 3 * nt];
+    handles
+        .par_chunks_mut(3)
+        .zip(mesh.triangles.par_iter())
+        .for_each(|(h, t)| {
+            for i in 0..3 {
                 let (a, b) = (t[i] as usize, t[(i + 1) % 3] as usize);
-                edge_point(pos[a], nrm[a], pos[b])
-            })
-        })
-        .collect();
+                h[i] = edge_point(pos[a], nrm[a], pos[b]);
+            }
+        });
     let tri_patches = |handles: &[P3], t: usize| {
         let v = mesh.triangles[t].map(|i| pos[i as usize]);
         let ep = [0, 1, 2].map(|i| {
@@ -550,7 +642,7 @@ pub(crate) fn three_split_pass(
             ((tri[i], tri[(i + 1) % 3]), (e, twin[e] as usize))
         })
         .collect();
-    edge_pq.sort_unstable_by_key(|&(e, _)| e);
+    edge_pq.par_sort_unstable_by_key(|&(e, _)| e);
     // each edge (sorted ends) with its two half-edges
     let edges: Vec<(u32, u32)> = edge_pq.iter().map(|x| x.0).collect();
     let pq: Vec<(usize, usize)> = edge_pq.into_iter().map(|x| x.1).collect();
@@ -645,19 +737,35 @@ pub(crate) fn three_split_pass(
     }
     // Steps 1–4 with the final boundaries, per macro triangle in parallel (the patch order is
     // the triangle order)
-    let step4: Vec<[P3; 10]> = mesh
-        .triangles
-        .par_iter()
-        .enumerate()
-        .flat_map_iter(|(t, _)| match reuse {
-            Some(r) if same4[t] => {
-                let f = 3 * from[t] as usize;
-                [r.cache.step4[f], r.cache.step4[f + 1], r.cache.step4[f + 2]]
-            }
-            _ => tri_patches(&handles, t),
+    // (in the output's array: allocated and first touched in parallel, then filled per macro
+    // triangle; a reused triangle's Step-4 patches are the earlier surface's with the earlier
+    // Step-4 111 points, see `PassCache`)
+    let mut patches: Vec<MicroPatch> = (0..3 * nt)
+        .into_par_iter()
+        .map(|k| MicroPatch {
+            macro_tri: (k / 3) as u32,
+            control: [[0.0; 3]; 10],
         })
         .collect();
-    let mut patches = step4.clone();
+    patches
+        .par_chunks_mut(3)
+        .enumerate()
+        .for_each(|(t, out)| match reuse {
+            Some(r) if same4[t] => {
+                let f = 3 * from[t] as usize;
+                for (i, o) in out.iter_mut().enumerate() {
+                    o.control = r.surf.patches[f + i].control;
+                    o.control[4] = r.cache.step4_111[f + i];
+                }
+            }
+            _ => {
+                for (o, c) in out.iter_mut().zip(tri_patches(&handles, t)) {
+                    o.control = c;
+                }
+            }
+        });
+    // Step 4's 111 points (Step 5 overwrites them in `patches`)
+    let step4_111: Vec<P3> = patches.par_iter().map(|p| p.control[4]).collect();
     // Step 5: each edge reads only its own two patches' boundary rows and writes only their
     // 111 points, so the edges are solved in parallel and applied in edge order.
     let solved: Vec<(Solved, bool)> = edges
@@ -680,7 +788,7 @@ pub(crate) fn three_split_pass(
             let (e, fg) = edge_data(&patches, p, q);
             let sign_warning = fg[0] * fg[1] <= 0.0 || fg[2] * fg[3] <= 0.0;
             let len = vec::dist(e.m[0], e.m[3]);
-            let old = (patches[p][4], patches[q][4]);
+            let old = (step4_111[p], step4_111[q]);
             let bound = MAX_MOVE * len;
             let lr94 = solve_94(&e, fg);
             let bounded94 = moves_at_most(lr94, old, bound);
@@ -721,7 +829,8 @@ pub(crate) fn three_split_pass(
                 sign_warning,
                 singular,
                 unresolved,
-                displacement: vec::dist(lr.0, step4[p][4]).max(vec::dist(lr.1, step4[q][4])) / len,
+                displacement: vec::dist(lr.0, step4_111[p]).max(vec::dist(lr.1, step4_111[q]))
+                    / len,
             };
             (solved, false)
         })
@@ -739,8 +848,8 @@ pub(crate) fn three_split_pass(
             out.unresolved_edges.push([a, b]);
         }
         out.max_displacement = out.max_displacement.max(r.displacement);
-        patches[r.p][4] = r.lr.0;
-        patches[r.q][4] = r.lr.1;
+        patches[r.p].control[4] = r.lr.0;
+        patches[r.q].control[4] = r.lr.1;
         if !kept {
             same_final[r.p / 3] = false;
             same_final[r.q / 3] = false;
@@ -751,14 +860,17 @@ pub(crate) fn three_split_pass(
         let mut y = [[0.0; 3]; 3];
         for i in 0..3 {
             let (mi, mp) = (i, (i + 2) % 3);
-            let w = tp[mi][2];
-            y[i] = vec::scale(vec::add(vec::add(w, tp[mi][4]), tp[mp][4]), 1.0 / 3.0);
-            tp[mi][5] = y[i];
-            tp[mp][8] = y[i];
+            let w = tp[mi].control[2];
+            y[i] = vec::scale(
+                vec::add(vec::add(w, tp[mi].control[4]), tp[mp].control[4]),
+                1.0 / 3.0,
+            );
+            tp[mi].control[5] = y[i];
+            tp[mp].control[8] = y[i];
         }
         let z = vec::scale(vec::add(vec::add(y[0], y[1]), y[2]), 1.0 / 3.0);
         for p in tp.iter_mut() {
-            p[9] = z;
+            p.control[9] = z;
         }
     });
     // The a-posteriori check (module doc): every macro edge certified or sampled as
@@ -784,7 +896,7 @@ pub(crate) fn three_split_pass(
             (p.min(q), p.max(q))
         })
         .collect();
-    let checked = super::check::macro_edges_not_g1(|k| &patches[k], &pairs, 20);
+    let checked = super::check::macro_edges_not_g1(|k| &patches[k].control, &pairs, 20);
     let mut bad: Vec<bool> = kept_bad.iter().map(|b| b.unwrap_or(false)).collect();
     for (&k, &b) in todo.iter().zip(&checked) {
         bad[k] = b;
@@ -795,14 +907,7 @@ pub(crate) fn three_split_pass(
         .filter(|(_, &b)| b)
         .map(|(&(a, b), _)| [a, b])
         .collect();
-    out.patches = patches
-        .into_iter()
-        .enumerate()
-        .map(|(k, control)| MicroPatch {
-            macro_tri: (k / 3) as u32,
-            control,
-        })
-        .collect();
+    out.patches = patches;
     let cache = PassCache {
         triangles: mesh.triangles.clone(),
         edges,
@@ -810,7 +915,7 @@ pub(crate) fn three_split_pass(
         guarded,
         solved: solved.into_iter().map(|(s, _)| s).collect(),
         bad,
-        step4,
+        step4_111,
     };
     Ok((out, cache))
 }
@@ -818,6 +923,75 @@ pub(crate) fn three_split_pass(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `closed_twins` against its definition, `check_closed`: on valid meshes (icospheres,
+    /// a torus, a genus-3 surface, spot) every twin is the hash map's opposite half-edge and
+    /// the unit normals are the same bits; on broken ones (a flipped triangle, a removed
+    /// triangle, a repeated triangle, an index out of range, a repeated corner, a NaN
+    /// position, a zero normal, too few normals) the error is `check_closed`'s.
+    #[test]
+    fn closed_twins_agree_with_check_closed() {
+        use crate::geom::{Point3, Vector3};
+        let normals =
+            |m: &TriMesh| crate::mesh::vertex_normals(m, crate::mesh::NormalWeighting::Area);
+        let mut meshes = vec![
+            crate::mesh::generate::icosphere(0),
+            crate::mesh::generate::icosphere(3),
+            crate::mesh::generate::torus(2.0, 0.5, 24, 12),
+            crate::mesh::generate::multi_torus(3),
+        ];
+        let spot = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../../shared/data/meshes/spot.obj"
+        );
+        if std::path::Path::new(spot).exists() {
+            meshes.push(crate::io::read_mesh(std::path::Path::new(spot)).unwrap());
+        }
+        let bits = |u: &[P3]| -> Vec<u64> { u.iter().flatten().map(|x| x.to_bits()).collect() };
+        for (k, m) in meshes.iter().enumerate() {
+            let n = normals(m);
+            let (half, unit) = check_closed(m, &n).unwrap();
+            let (twin, unit2) = closed_twins(m, &n).unwrap();
+            assert_eq!(bits(&unit), bits(&unit2), "mesh {k}");
+            for (t, tri) in m.triangles.iter().enumerate() {
+                for i in 0..3 {
+                    let want = half[&(tri[(i + 1) % 3], tri[i])] as u32;
+                    assert_eq!(twin[3 * t + i], want, "mesh {k}, half-edge {}", 3 * t + i);
+                }
+            }
+        }
+        let base = crate::mesh::generate::icosphere(2);
+        let n = normals(&base);
+        let mut broken: Vec<(TriMesh, Vec<Vector3>)> = Vec::new();
+        let mut m = base.clone();
+        m.triangles[7].swap(0, 1);
+        broken.push((m, n.clone()));
+        let mut m = base.clone();
+        m.triangles.remove(11);
+        broken.push((m, n.clone()));
+        let mut m = base.clone();
+        let t = m.triangles[3];
+        m.triangles.push(t);
+        broken.push((m, n.clone()));
+        let mut m = base.clone();
+        m.triangles[5][2] = m.positions.len() as u32;
+        broken.push((m, n.clone()));
+        let mut m = base.clone();
+        m.triangles[9][1] = m.triangles[9][0];
+        broken.push((m, n.clone()));
+        let mut m = base.clone();
+        m.positions[4] = Point3::new(f64::NAN, 0.0, 0.0);
+        broken.push((m, n.clone()));
+        let mut n0 = n.clone();
+        n0[6] = Vector3::new(0.0, 0.0, 0.0);
+        broken.push((base.clone(), n0));
+        broken.push((base.clone(), n[..n.len() - 1].to_vec()));
+        for (k, (m, n)) in broken.iter().enumerate() {
+            let want = check_closed(m, n).map(|_| ()).unwrap_err();
+            let got = closed_twins(m, n).map(|_| ()).unwrap_err();
+            assert_eq!(got, want, "broken mesh {k}");
+        }
+    }
 
     /// The residual of (9.3b, c) at `(l1, r1)`, per unit edge length, computed on offsets
     /// from `M1` (independently of `solve_94`'s arrangement: straight from the equations).
