@@ -252,15 +252,7 @@ fn closed_twins(
     }
     let unit: Vec<P3> = unit.into_iter().flatten().collect();
     // outgoing half-edges (end, half-edge) of each vertex, sorted by end
-    let mut start = vec![0u32; nv + 1];
-    for tri in &mesh.triangles {
-        for &v in tri {
-            start[v as usize + 1] += 1;
-        }
-    }
-    for v in 0..nv {
-        start[v + 1] += start[v];
-    }
+    let start = corner_starts(mesh, nv);
     let mut fill = start.clone();
     let mut out = vec![(0u32, 0u32); 3 * nt];
     for (t, tri) in mesh.triangles.iter().enumerate() {
@@ -438,6 +430,21 @@ fn fan_ok(pos: &[P3], nrm: &[P3], corners: &Corners, handles: &[P3], a: u32) -> 
     })
 }
 
+/// CSR offsets of the triangle corners at each vertex: vertex `v`'s corners are
+/// `start[v]..start[v + 1]` (every index of `mesh.triangles` must be `< nv`).
+fn corner_starts(mesh: &TriMesh, nv: usize) -> Vec<u32> {
+    let mut start = vec![0u32; nv + 1];
+    for tri in &mesh.triangles {
+        for &v in tri {
+            start[v as usize + 1] += 1;
+        }
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    start
+}
+
 /// The corners `(a, b, c)` of each vertex `a` as the half-edges `(a → b, a → c)` (CSR).
 struct Corners {
     start: Vec<u32>,
@@ -447,15 +454,7 @@ struct Corners {
 impl Corners {
     /// The corners of every vertex, in triangle order (`twin[e]`: the half-edge opposite `e`).
     fn new(mesh: &TriMesh, nv: usize, twin: &[u32]) -> Corners {
-        let mut start = vec![0u32; nv + 1];
-        for t in &mesh.triangles {
-            for &v in t {
-                start[v as usize + 1] += 1;
-            }
-        }
-        for v in 0..nv {
-            start[v + 1] += start[v];
-        }
+        let start = corner_starts(mesh, nv);
         let mut fill = start.clone();
         let mut list = vec![(0, 0); 3 * mesh.triangles.len()];
         for (t, tri) in mesh.triangles.iter().enumerate() {
