@@ -173,9 +173,7 @@ pub(crate) fn check_closed(
         if tri.iter().any(|&v| v as usize >= nv) {
             return Err(SmoothError::BadIndex { triangle: t });
         }
-        let p = |k: usize| -> P3 { mesh.positions[tri[k] as usize].into() };
-        let c = vec::cross(vec::sub(p(1), p(0)), vec::sub(p(2), p(0)));
-        if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || vec::norm2(c) == 0.0 {
+        if zero_area(mesh, tri) {
             return Err(SmoothError::ZeroArea { triangle: t });
         }
         for i in 0..3 {
@@ -197,13 +195,24 @@ pub(crate) fn check_closed(
     }
     let mut unit = Vec::with_capacity(nv);
     for (v, n) in normals.iter().enumerate() {
-        let l = n.norm();
-        if !(l > 0.0 && l.is_finite()) {
-            return Err(SmoothError::BadNormal { vertex: v });
-        }
-        unit.push([n.x / l, n.y / l, n.z / l]);
+        unit.push(unit_normal(n).ok_or(SmoothError::BadNormal { vertex: v })?);
     }
     Ok((half, unit))
+}
+
+/// Whether triangle `tri` (indices `< mesh.positions.len()`) repeats a corner or has a zero
+/// cross product of its edge vectors ([`SmoothError::ZeroArea`]).
+fn zero_area(mesh: &TriMesh, tri: &[u32; 3]) -> bool {
+    let p = |k: usize| -> P3 { mesh.positions[tri[k] as usize].into() };
+    let c = vec::cross(vec::sub(p(1), p(0)), vec::sub(p(2), p(0)));
+    tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || vec::norm2(c) == 0.0
+}
+
+/// `n` scaled to unit length, or `None` when its length is zero or not finite
+/// ([`SmoothError::BadNormal`]).
+fn unit_normal(n: &crate::geom::Vector3) -> Option<P3> {
+    let l = n.norm();
+    (l > 0.0 && l.is_finite()).then(|| [n.x / l, n.y / l, n.z / l])
 }
 
 /// [`check_closed`]'s checks and the opposite half-edge of every half-edge (`twin[3t + i]`
@@ -232,21 +241,11 @@ fn closed_twins(
         .positions
         .par_iter()
         .all(|p| p.iter().all(|c| c.is_finite()));
-    let proper = mesh.triangles.par_iter().all(|tri| {
-        if tri.iter().any(|&v| v as usize >= nv) {
-            return false;
-        }
-        let p = |k: usize| -> P3 { mesh.positions[tri[k] as usize].into() };
-        let c = vec::cross(vec::sub(p(1), p(0)), vec::sub(p(2), p(0)));
-        !(tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || vec::norm2(c) == 0.0)
-    });
-    let unit: Vec<Option<P3>> = normals
+    let proper = mesh
+        .triangles
         .par_iter()
-        .map(|n| {
-            let l = n.norm();
-            (l > 0.0 && l.is_finite()).then(|| [n.x / l, n.y / l, n.z / l])
-        })
-        .collect();
+        .all(|tri| tri.iter().all(|&v| (v as usize) < nv) && !zero_area(mesh, tri));
+    let unit: Vec<Option<P3>> = normals.par_iter().map(unit_normal).collect();
     if !(finite && proper && unit.iter().all(Option::is_some)) {
         return slow();
     }
