@@ -1332,6 +1332,29 @@ mod tests {
         }
     }
 
+    /// Asserts `gamma_candidates` = `gamma_candidates_reference` for every vertex of `locked`
+    /// and every k of `ks` and c of `cs` (`at` names the case); returns the candidates compared.
+    fn compare_candidates(
+        g: &General3<'_>,
+        locked: &[u32],
+        ks: &[usize],
+        cs: &[f64],
+        at: &str,
+    ) -> usize {
+        let (mut tb, mut compared) = (Vec::new(), 0);
+        for &l in locked {
+            for &k in ks {
+                for &c in cs {
+                    let new = g.gamma_candidates(l, k, c, &mut tb);
+                    let old = g.gamma_candidates_reference(l, k, c, &mut tb);
+                    assert_eq!(new, old, "{at}: l {l} k {k} c {c}");
+                    compared += new.len();
+                }
+            }
+        }
+        compared
+    }
+
     /// gamma_candidates (the k nearest faces selected, then sorted) equals the former code
     /// (every face met sorted) for every locked vertex, for k = 1, 4, 16, 40 and several c —
     /// on the hull of a bumpy sphere and of a cube lattice with points inside, before and after
@@ -1361,17 +1384,13 @@ mod tests {
                     "set {set}: {}",
                     locked.len()
                 );
-                let mut tb = Vec::new();
-                for &l in &locked {
-                    for k in [1, 4, 16, 40] {
-                        for c in [-0.1, -0.5, -1.0] {
-                            let new = g.gamma_candidates(l, k, c, &mut tb);
-                            let old = g.gamma_candidates_reference(l, k, c, &mut tb);
-                            assert_eq!(new, old, "round {round} l {l} k {k} c {c}");
-                            compared += new.len();
-                        }
-                    }
-                }
+                compared += compare_candidates(
+                    &g,
+                    &locked,
+                    &[1, 4, 16, 40],
+                    &[-0.1, -0.5, -1.0],
+                    &format!("set {set} round {round}"),
+                );
                 if g.augment(&extra) > 0 {
                     g.run();
                 }
@@ -1400,17 +1419,13 @@ mod tests {
                 let locked: Vec<u32> = (0..pos.len() as u32)
                     .filter(|&v| !g.on_boundary(v))
                     .collect();
-                let mut tb = Vec::new();
-                for &l in &locked {
-                    for k in [4, 16] {
-                        for c in [-0.5, -1.0] {
-                            let new = g.gamma_candidates(l, k, c, &mut tb);
-                            let old = g.gamma_candidates_reference(l, k, c, &mut tb);
-                            assert_eq!(new, old, "seed {seed} l {l} k {k} c {c}");
-                            compared += new.len();
-                        }
-                    }
-                }
+                compared += compare_candidates(
+                    &g,
+                    &locked,
+                    &[4, 16],
+                    &[-0.5, -1.0],
+                    &format!("seed {seed}"),
+                );
                 if g.augment(&extra) > 0 {
                     g.run();
                 }
